@@ -1,0 +1,21 @@
+# Explicit source lists, one block per subsystem (src/<subsystem>/).
+set(S ${PROJECT_SOURCE_DIR}/src)
+
+set(VKCOLLIDE_HOST_SOURCES
+  ${S}/core/result.cpp
+  ${S}/core/mesh.cpp
+  ${S}/graph/graph.cpp
+)
+# Subsystems owned elsewhere append to VKCOLLIDE_HOST_SOURCES in their own list file.
+foreach(part narrow scene io)
+  if(EXISTS ${S}/${part}/sources.cmake)
+    include(${S}/${part}/sources.cmake)
+  endif()
+endforeach()
+
+set(VKCOLLIDE_GPU_SOURCES
+  ${S}/vk/loader.cpp
+  ${S}/vk/device.cpp
+  ${S}/vk/resources.cpp
+  ${S}/graph/executor.cpp
+)

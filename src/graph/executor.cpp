@@ -1,0 +1,247 @@
+#include "graph/executor.hpp"
+
+namespace vkcollide::graph {
+
+ResourceId Graph::importBuffer(std::string name, vk::Buffer& buffer, bool host_readback) {
+    ResourceId id = importBuffer(std::move(name), buffer.size(), host_readback);
+    resources_[id.index].external_buffer = &buffer;
+    return id;
+}
+
+void PassContext::shaderBarrier() const {
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_2_VERTEX_SHADER_BIT |
+                      VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_SHADER_STORAGE_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+    VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    di.memoryBarrierCount = 1;
+    di.pMemoryBarriers = &mb;
+    device->fns.vkCmdPipelineBarrier2(cmd, &di);
+}
+
+Executor::~Executor() {
+    submission_.reset();
+    if (queries_) device_->fns.vkDestroyQueryPool(device_->device, queries_, nullptr);
+}
+
+VkDeviceSize Executor::transientBytes() const noexcept {
+    VkDeviceSize total = 0;
+    for (const auto& [name, b] : buffers_) total += b.size;
+    for (const auto& [name, i] : images_) total += VkDeviceSize(i.info.width) * i.info.height * 16;  // upper bound
+    return total;
+}
+
+Result<void> Executor::prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx) {
+    const auto& res = graph.resources();
+    ctx.buffers_.assign(res.size(), nullptr);
+    ctx.images_.assign(res.size(), nullptr);
+    for (std::uint32_t r = 0; r < res.size(); ++r) {
+        const ResourceDecl& d = res[r];
+        if (plan.lifetime[r].first == ~0u && !d.imported) continue;  // unused transient
+        if (d.imported) {
+            if (d.is_image) {
+                if (!d.external_image) return Error(ErrorCode::GraphError, "imported image '" + d.name + "' has no image");
+                ctx.images_[r] = d.external_image;
+            } else {
+                if (!d.external_buffer) return Error(ErrorCode::GraphError, "imported buffer '" + d.name + "' has no buffer (planning-only import)");
+                ctx.buffers_[r] = d.external_buffer;
+            }
+            continue;
+        }
+        if (d.is_image) {
+            CachedImage& c = images_[d.name];
+            const VkImageUsageFlags usage = plan.image_usage[r];
+            if (!c.image.valid() || c.usage != usage || c.info.format != d.image.format || c.info.width != d.image.width ||
+                c.info.height != d.image.height || c.info.mip_levels != d.image.mip_levels) {
+                vk::ImageDesc desc{d.image.format, d.image.width, d.image.height, d.image.mip_levels, usage};
+                auto img = vk::Image::create(*device_, desc, d.name);
+                if (!img) return img.error();
+                c.image = std::move(*img);
+                c.info = d.image;
+                c.usage = usage;
+            }
+            ctx.images_[r] = &c.image;
+        } else {
+            CachedBuffer& c = buffers_[d.name];
+            const VkBufferUsageFlags usage = plan.buffer_usage[r];
+            if (!c.buffer.valid() || c.size < d.size || (c.usage & usage) != usage) {
+                auto buf = vk::Buffer::create(*device_, d.size, usage, vk::MemoryKind::DeviceLocal, d.name);
+                if (!buf) return buf.error();
+                c.buffer = std::move(*buf);
+                c.size = d.size;
+                c.usage = usage;
+            }
+            ctx.buffers_[r] = &c.buffer;
+        }
+    }
+    return {};
+}
+
+void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx,
+                              const Graph& graph) const {
+    if (barriers.empty()) return;
+    std::vector<VkImageMemoryBarrier2> images;
+    std::vector<VkBufferMemoryBarrier2> buffers;
+    for (const Barrier& b : barriers) {
+        if (b.is_image) {
+            const vk::Image& img = ctx.image(b.resource);
+            const VkFormat f = graph.resource(b.resource).image.format;
+            const bool depth = f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM;
+            VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            ib.srcStageMask = b.src_stage ? b.src_stage : VK_PIPELINE_STAGE_2_NONE;
+            ib.srcAccessMask = b.src_access;
+            ib.dstStageMask = b.dst_stage;
+            ib.dstAccessMask = b.dst_access;
+            ib.oldLayout = b.old_layout;
+            ib.newLayout = b.new_layout;
+            ib.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            ib.image = img.handle();
+            ib.subresourceRange = {static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
+                                   b.base_mip, b.mip_count, 0, 1};
+            images.push_back(ib);
+        } else {
+            const vk::Buffer& buf = ctx.buffer(b.resource);
+            VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+            bb.srcStageMask = b.src_stage;
+            bb.srcAccessMask = b.src_access;
+            bb.dstStageMask = b.dst_stage;
+            bb.dstAccessMask = b.dst_access;
+            bb.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            bb.buffer = buf.handle();
+            bb.offset = 0;
+            bb.size = VK_WHOLE_SIZE;
+            buffers.push_back(bb);
+        }
+    }
+    VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    di.imageMemoryBarrierCount = static_cast<std::uint32_t>(images.size());
+    di.pImageMemoryBarriers = images.data();
+    di.bufferMemoryBarrierCount = static_cast<std::uint32_t>(buffers.size());
+    di.pBufferMemoryBarriers = buffers.data();
+    device_->fns.vkCmdPipelineBarrier2(cmd, &di);
+}
+
+Result<void> Executor::submit(const Graph& graph) {
+    auto plan = graph.compile();
+    if (!plan) return plan.error();
+    const auto& f = device_->fns;
+    if (!submission_.valid()) {
+        auto s = vk::Submission::create(*device_);
+        if (!s) return s.error();
+        submission_ = std::move(*s);
+    }
+    // Wait for the previous use before touching its resources or queries.
+    if (auto ok = submission_.wait(); !ok) return ok.error();
+
+    const auto pass_count = static_cast<std::uint32_t>(plan->order.size());
+    const std::uint32_t needed = 2 * pass_count + 2;
+    if (needed > query_capacity_) {
+        if (queries_) f.vkDestroyQueryPool(device_->device, queries_, nullptr);
+        queries_ = VK_NULL_HANDLE;
+        VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        qi.queryCount = needed;
+        VkResult r = f.vkCreateQueryPool(device_->device, &qi, nullptr, &queries_);
+        if (r != VK_SUCCESS) return vk::vulkanError(r, "vkCreateQueryPool");
+        query_capacity_ = needed;
+    }
+    f.vkResetQueryPool(device_->device, queries_, 0, query_capacity_);
+
+    PassContext ctx;
+    ctx.device = device_;
+    if (auto ok = prepareResources(graph, *plan, ctx); !ok) return ok.error();
+    auto cmd = submission_.begin();
+    if (!cmd) return cmd.error();
+    ctx.cmd = *cmd;
+
+    pending_names_.clear();
+    pending_culled_.clear();
+    for (std::uint32_t c : plan->culled) pending_culled_.push_back(graph.passes()[c].name);
+    std::uint32_t q = 0;
+    for (const PlannedPass& planned : plan->order) {
+        const PassDecl& p = graph.passes()[planned.pass];
+        pending_names_.push_back(p.name);
+        recordBarriers(ctx.cmd, planned.barriers, ctx, graph);
+        f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries_, q++);
+        if (p.kind == PassKind::Raster) {
+            std::vector<VkRenderingAttachmentInfo> colors;
+            VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            bool has_depth = false;
+            std::uint32_t width = p.render_width, height = p.render_height;
+            for (const Access& a : p.accesses) {
+                if (a.use != Use::ColorAttachment && a.use != Use::DepthAttachment) continue;
+                const vk::Image& img = ctx.image(a.resource);
+                VkRenderingAttachmentInfo att{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                att.imageView = img.levelView(0);
+                att.loadOp = a.load_op;
+                att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                att.clearValue = a.clear;
+                if (width == 0) {
+                    width = img.desc().width;
+                    height = img.desc().height;
+                }
+                if (a.use == Use::ColorAttachment) {
+                    att.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                    colors.push_back(att);
+                } else {
+                    att.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+                    depth = att;
+                    has_depth = true;
+                }
+            }
+            ctx.render_width = width;
+            ctx.render_height = height;
+            VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+            ri.renderArea = {{0, 0}, {width, height}};
+            ri.layerCount = 1;
+            ri.colorAttachmentCount = static_cast<std::uint32_t>(colors.size());
+            ri.pColorAttachments = colors.data();
+            ri.pDepthAttachment = has_depth ? &depth : nullptr;
+            f.vkCmdBeginRendering(ctx.cmd, &ri);
+            VkViewport vp{0, 0, float(width), float(height), 0, 1};
+            VkRect2D sc{{0, 0}, {width, height}};
+            f.vkCmdSetViewport(ctx.cmd, 0, 1, &vp);
+            f.vkCmdSetScissor(ctx.cmd, 0, 1, &sc);
+            p.record(ctx);
+            f.vkCmdEndRendering(ctx.cmd);
+        } else {
+            p.record(ctx);
+        }
+        f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
+    }
+    recordBarriers(ctx.cmd, plan->final_barriers, ctx, graph);
+    return submission_.submit();
+}
+
+Result<ExecutionReport> Executor::collect() {
+    if (auto ok = submission_.wait(); !ok) return ok.error();
+    ExecutionReport report;
+    report.culled = pending_culled_;
+    const auto count = static_cast<std::uint32_t>(2 * pending_names_.size());
+    if (count == 0) return report;
+    std::vector<std::uint64_t> stamps(count);
+    VkResult r = device_->fns.vkGetQueryPoolResults(device_->device, queries_, 0, count, stamps.size() * sizeof(std::uint64_t),
+                                                    stamps.data(), sizeof(std::uint64_t),
+                                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+    if (r != VK_SUCCESS) return vk::vulkanError(r, "vkGetQueryPoolResults");
+    // Mask to the valid bits so a wrapped counter does not give a huge time.
+    const std::uint64_t mask = device_->timestamp_valid_bits >= 64 ? ~0ull : ((1ull << device_->timestamp_valid_bits) - 1);
+    const double period_ms = device_->properties.limits.timestampPeriod * 1e-6;
+    for (std::size_t i = 0; i < pending_names_.size(); ++i) {
+        const std::uint64_t t0 = stamps[2 * i] & mask, t1 = stamps[2 * i + 1] & mask;
+        report.passes.push_back({pending_names_[i], double((t1 - t0) & mask) * period_ms});
+    }
+    report.total_gpu_ms = double(((stamps[count - 1] & mask) - (stamps[0] & mask)) & mask) * period_ms;
+    return report;
+}
+
+Result<ExecutionReport> Executor::run(const Graph& graph) {
+    if (auto ok = submit(graph); !ok) return ok.error();
+    return collect();
+}
+
+}  // namespace vkcollide::graph

@@ -1,0 +1,90 @@
+// Render graph, device side: allocates transient resources (kept between executions, so a
+// per-frame graph does not reallocate), records the compiled plan into one command buffer
+// with its barriers, submits it and reports each pass's GPU time from timestamps.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "graph/graph.hpp"
+#include "vk/resources.hpp"
+
+namespace vkcollide::graph {
+
+class PassContext {
+public:
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    vk::Device* device = nullptr;
+    std::uint32_t render_width = 0, render_height = 0;  // raster passes
+
+    const vk::DeviceFunctions& fns() const { return device->fns; }
+    const vk::Buffer& buffer(ResourceId id) const { return *buffers_.at(id.index); }
+    VkDeviceAddress address(ResourceId id) const { return buffer(id).address(); }
+    const vk::Image& image(ResourceId id) const { return *images_.at(id.index); }
+
+    // A barrier between two dependent dispatches or draws inside one pass (mip chains,
+    // multi-step scans): all shader writes become visible to later shader reads and writes.
+    void shaderBarrier() const;
+
+private:
+    friend class Executor;
+    std::vector<const vk::Buffer*> buffers_;
+    std::vector<const vk::Image*> images_;
+};
+
+struct PassTiming {
+    std::string name;
+    double gpu_ms = 0;
+};
+
+struct ExecutionReport {
+    std::vector<PassTiming> passes;  // in execution order
+    std::vector<std::string> culled;
+    double total_gpu_ms = 0;         // first pass start to last pass end
+};
+
+class Executor {
+public:
+    explicit Executor(vk::Device& device) : device_(&device) {}
+    ~Executor();
+    Executor(const Executor&) = delete;
+    Executor& operator=(const Executor&) = delete;
+
+    // Compiles, records and submits the graph; returns without waiting.
+    [[nodiscard]] Result<void> submit(const Graph& graph);
+    // Waits for the last submission and reads its timestamps.
+    [[nodiscard]] Result<ExecutionReport> collect();
+    // submit() then collect().
+    [[nodiscard]] Result<ExecutionReport> run(const Graph& graph);
+
+    // Bytes held in cached transient resources.
+    VkDeviceSize transientBytes() const noexcept;
+
+private:
+    Result<void> prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx);
+    void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx,
+                        const Graph& graph) const;
+
+    vk::Device* device_;
+    vk::Submission submission_;
+    VkQueryPool queries_ = VK_NULL_HANDLE;
+    std::uint32_t query_capacity_ = 0;
+    // Transients cached by name; recreated when the description changes.
+    struct CachedBuffer {
+        VkDeviceSize size = 0;
+        VkBufferUsageFlags usage = 0;
+        vk::Buffer buffer;
+    };
+    struct CachedImage {
+        ImageInfo info;
+        VkImageUsageFlags usage = 0;
+        vk::Image image;
+    };
+    std::map<std::string, CachedBuffer> buffers_;
+    std::map<std::string, CachedImage> images_;
+    std::vector<std::string> pending_names_;
+    std::vector<std::string> pending_culled_;
+};
+
+}  // namespace vkcollide::graph

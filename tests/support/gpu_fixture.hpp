@@ -1,0 +1,43 @@
+// GPU test support: a Context with the Khronos validation layer (and synchronization
+// validation) on, whose messages are collected so a test fails on any of them.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "vk/device.hpp"
+#include "vkcollide/context.hpp"
+
+namespace vkcollide::test {
+
+class ValidatedContext {
+public:
+    ValidatedContext();
+    Context& context() { return *context_; }
+    vk::Device& device() { return context_->device(); }
+    // Validation warnings/errors seen so far, joined for a failure message.
+    std::vector<std::string> messages() const;
+
+private:
+    struct Log {
+        mutable std::mutex mutex;
+        std::vector<std::string> lines;
+    };
+    std::shared_ptr<Log> log_ = std::make_shared<Log>();
+    std::unique_ptr<Context> context_;
+};
+
+}  // namespace vkcollide::test
+
+// Fails the test if the validation layer reported anything.
+#define REQUIRE_NO_VALIDATION_MESSAGES(ctx)                           \
+    do {                                                              \
+        auto vkcollide_msgs_ = (ctx).messages();                      \
+        INFO("validation messages: " << vkcollide_msgs_.size());      \
+        for (const auto& m_ : vkcollide_msgs_) UNSCOPED_INFO(m_);     \
+        REQUIRE(vkcollide_msgs_.empty());                             \
+    } while (0)

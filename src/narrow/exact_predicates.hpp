@@ -1,0 +1,31 @@
+// Exact orientation predicates for float coordinates.
+//
+// Each predicate first evaluates the determinant in double with Shewchuk's static error
+// bound (a filter that is right whenever it answers) and only falls back to exact
+// expansion arithmetic when the filter cannot decide. For float inputs the fallback is
+// exact for every finite input: see exact_predicates.cpp for the argument.
+#pragma once
+
+#include "vkcollide/mesh.hpp"
+
+namespace vkcollide::narrow {
+
+struct Float2 {
+    float x = 0, y = 0;
+};
+
+// Sign of det[b - a, c - a, d - a]: +1 when d lies on the side of the plane through
+// a, b, c that (b - a) x (c - a) points to, -1 on the other side, 0 when the four
+// points are coplanar (or a, b, c are collinear). Exact for all finite floats.
+int orient3d(const Float3& a, const Float3& b, const Float3& c, const Float3& d) noexcept;
+
+// Sign of det[b - a, c - a]: +1 when a, b, c turn counter-clockwise, -1 clockwise,
+// 0 collinear. Exact for all finite floats.
+int orient2d(const Float2& a, const Float2& b, const Float2& c) noexcept;
+
+// The exact fallbacks alone (no filter), exposed so tests can check filter and
+// fallback against each other.
+int orient3dExact(const Float3& a, const Float3& b, const Float3& c, const Float3& d) noexcept;
+int orient2dExact(const Float2& a, const Float2& b, const Float2& c) noexcept;
+
+}  // namespace vkcollide::narrow

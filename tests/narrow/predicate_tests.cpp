@@ -1,0 +1,175 @@
+// The exact predicates against an independent big-integer evaluation.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <random>
+
+#include "narrow/exact_predicates.hpp"
+
+using vkcollide::Float3;
+using vkcollide::narrow::Float2;
+using namespace vkcollide::narrow;
+
+namespace {
+
+// A 1024-bit two's-complement integer, enough for det of float differences scaled to
+// integers (each float is a multiple of 2^-149 below 2^128: 277 bits; the 3x3 product
+// of differences needs about 837). Arithmetic is modulo 2^1024, exact while in range.
+struct BigInt {
+    static constexpr int kLimbs = 32;
+    std::array<std::uint32_t, kLimbs> limb{};
+
+    static BigInt fromFloat(float f) {
+        BigInt r;
+        if (f == 0) return r;
+        int exponent = 0;
+        const double fraction = std::frexp(static_cast<double>(std::fabs(f)), &exponent);
+        auto mantissa = static_cast<std::uint64_t>(std::ldexp(fraction, 24));  // exact: 24 bits
+        int shift = exponent - 24 + 149;  // value * 2^149 = mantissa * 2^shift
+        while (shift < 0) {
+            mantissa >>= 1;  // only trailing zeros for subnormals
+            ++shift;
+        }
+        r.limb[static_cast<std::size_t>(shift / 32)] = static_cast<std::uint32_t>(mantissa << (shift % 32));
+        const std::uint64_t high = (mantissa << (shift % 32)) >> 32;
+        r.limb[static_cast<std::size_t>(shift / 32 + 1)] = static_cast<std::uint32_t>(high);
+        return f < 0 ? -r : r;
+    }
+
+    friend BigInt operator+(const BigInt& a, const BigInt& b) {
+        BigInt r;
+        std::uint64_t carry = 0;
+        for (int i = 0; i < kLimbs; ++i) {
+            const std::uint64_t s = std::uint64_t(a.limb[i]) + b.limb[i] + carry;
+            r.limb[i] = static_cast<std::uint32_t>(s);
+            carry = s >> 32;
+        }
+        return r;
+    }
+    BigInt operator-() const {
+        BigInt r;
+        for (int i = 0; i < kLimbs; ++i) r.limb[i] = ~limb[i];
+        BigInt one;
+        one.limb[0] = 1;
+        return r + one;
+    }
+    friend BigInt operator-(const BigInt& a, const BigInt& b) { return a + (-b); }
+    friend BigInt operator*(const BigInt& a, const BigInt& b) {
+        BigInt r;
+        for (int i = 0; i < kLimbs; ++i) {
+            if (a.limb[i] == 0) continue;
+            std::uint64_t carry = 0;
+            for (int j = 0; i + j < kLimbs; ++j) {
+                const std::uint64_t t = std::uint64_t(a.limb[i]) * b.limb[j] + r.limb[i + j] + carry;
+                r.limb[i + j] = static_cast<std::uint32_t>(t);
+                carry = t >> 32;
+            }
+        }
+        return r;
+    }
+    int sign() const {
+        if (limb[kLimbs - 1] >> 31) return -1;
+        for (std::uint32_t l : limb) {
+            if (l) return 1;
+        }
+        return 0;
+    }
+};
+
+int bigOrient3d(const Float3& a, const Float3& b, const Float3& c, const Float3& d) {
+    const auto B = [](float f) { return BigInt::fromFloat(f); };
+    const BigInt bax = B(b.x) - B(a.x), bay = B(b.y) - B(a.y), baz = B(b.z) - B(a.z);
+    const BigInt cax = B(c.x) - B(a.x), cay = B(c.y) - B(a.y), caz = B(c.z) - B(a.z);
+    const BigInt dax = B(d.x) - B(a.x), day = B(d.y) - B(a.y), daz = B(d.z) - B(a.z);
+    return (bax * (cay * daz - caz * day) + bay * (caz * dax - cax * daz) + baz * (cax * day - cay * dax)).sign();
+}
+
+int bigOrient2d(const Float2& a, const Float2& b, const Float2& c) {
+    const auto B = [](float f) { return BigInt::fromFloat(f); };
+    return ((B(b.x) - B(a.x)) * (B(c.y) - B(a.y)) - (B(b.y) - B(a.y)) * (B(c.x) - B(a.x))).sign();
+}
+
+// Random floats over a wide exponent range, including subnormals and huge values.
+float wideFloat(std::mt19937& rng) {
+    std::uniform_real_distribution<float> mantissa(-1.0f, 1.0f);
+    std::uniform_int_distribution<int> exponent(-150, 126);
+    return std::ldexp(mantissa(rng), exponent(rng));
+}
+
+Float3 nudge(Float3 p, std::mt19937& rng) {
+    std::uniform_int_distribution<int> which(0, 5);
+    const int w = which(rng);
+    float* c = w / 2 == 0 ? &p.x : (w / 2 == 1 ? &p.y : &p.z);
+    *c = std::nextafter(*c, (w % 2) ? INFINITY : -INFINITY);
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("orient3d signs of hand-worked configurations", "[narrow][predicates]") {
+    const Float3 o{0, 0, 0}, x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+    CHECK(orient3d(o, x, y, z) == 1);   // z is on the side of x cross y
+    CHECK(orient3d(o, y, x, z) == -1);  // swapping two points flips the sign
+    CHECK(orient3d(o, x, y, Float3{0.25f, 0.5f, 0}) == 0);
+    CHECK(orient3d(o, x, Float3{2, 0, 0}, z) == 0);  // collinear base
+    // 1 ulp above and below the plane z = 0.
+    CHECK(orient3d(o, x, y, Float3{0.3f, 0.3f, std::nextafter(0.0f, 1.0f)}) == 1);
+    CHECK(orient3d(o, x, y, Float3{0.3f, 0.3f, -std::nextafter(0.0f, 1.0f)}) == -1);
+    // A plane with inexact float normal: points exactly on it, built from exact sums.
+    const Float3 a{0.1f, 0.2f, 0.3f}, b{1.1f, 0.7f, 2.3f}, c{-0.9f, 3.2f, 0.3f};
+    CHECK(orient3d(a, b, c, a) == 0);
+    CHECK(orient3d(a, b, c, b) == 0);
+}
+
+TEST_CASE("orient2d signs of hand-worked configurations", "[narrow][predicates]") {
+    CHECK(orient2d({0, 0}, {1, 0}, {0, 1}) == 1);
+    CHECK(orient2d({0, 0}, {0, 1}, {1, 0}) == -1);
+    CHECK(orient2d({0, 0}, {1, 1}, {3, 3}) == 0);
+    // Three points that round to collinear in naive float arithmetic but are not.
+    const float e = std::nextafter(1.0f, 2.0f);
+    CHECK(orient2d({0.5f, 0.5f}, {12.0f, 12.0f}, {24.0f, 24.0f}) == 0);
+    CHECK(orient2d({0.5f, 0.5f}, {12.0f, 12.0f}, {24.0f * e, 24.0f}) == -1);
+    CHECK(orient2d({0.5f, 0.5f}, {12.0f, 12.0f}, {24.0f, 24.0f * e}) == 1);
+}
+
+TEST_CASE("orient3d and orient2d agree with big-integer arithmetic", "[narrow][predicates]") {
+    std::mt19937 rng(12345);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::uniform_int_distribution<int> small(-4, 4);
+    int zeros = 0;
+    for (int iter = 0; iter < 3000; ++iter) {
+        Float3 p[4];
+        const int mode = iter % 4;
+        for (Float3& q : p) {
+            if (mode == 0) q = {unit(rng), unit(rng), unit(rng)};
+            if (mode == 1) q = {wideFloat(rng), wideFloat(rng), wideFloat(rng)};
+            if (mode == 2) q = {float(small(rng)) * 0.1f, float(small(rng)) * 0.1f, float(small(rng)) * 0.1f};
+            if (mode == 3) q = {float(small(rng)), float(small(rng)), float(small(rng))};
+        }
+        if (iter % 8 == 3 || iter % 8 == 6) {
+            // d = a + s(b - a) + t(c - a) with small integers: exactly coplanar on the
+            // integer grid (mode 3), nearly so on the 0.1 grid (mode 2); then sometimes
+            // nudge by one ulp to land just off the plane.
+            const float s = float(small(rng)), t = float(small(rng));
+            const Float3 a{float(small(rng)), float(small(rng)), float(small(rng))};
+            p[0] = a;
+            p[3] = {a.x + s * (p[1].x - a.x) + t * (p[2].x - a.x), a.y + s * (p[1].y - a.y) + t * (p[2].y - a.y),
+                    a.z + s * (p[1].z - a.z) + t * (p[2].z - a.z)};
+            if (iter % 16 >= 8) p[3] = nudge(p[3], rng);
+        }
+        const int expected = bigOrient3d(p[0], p[1], p[2], p[3]);
+        zeros += expected == 0;
+        INFO("iteration " << iter);
+        REQUIRE(orient3d(p[0], p[1], p[2], p[3]) == expected);
+        REQUIRE(orient3dExact(p[0], p[1], p[2], p[3]) == expected);
+        REQUIRE(orient3d(p[1], p[0], p[2], p[3]) == -expected);
+
+        const Float2 a{p[0].x, p[0].y}, b{p[1].x, p[1].y}, c{p[2].x, p[2].y};
+        const int expected2 = bigOrient2d(a, b, c);
+        REQUIRE(orient2d(a, b, c) == expected2);
+        REQUIRE(orient2dExact(a, b, c) == expected2);
+    }
+    CHECK(zeros > 100);  // the degenerate cases were actually exercised
+}

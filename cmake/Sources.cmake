@@ -18,4 +18,5 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/vk/device.cpp
   ${S}/vk/resources.cpp
   ${S}/graph/executor.cpp
+  ${S}/passes/broad_phase.cpp
 )

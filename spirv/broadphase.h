@@ -1,0 +1,118 @@
+// Data shared by the broad-phase shaders (GLSL) and the host (C++): one definition of
+// every buffer layout and tunable. GLSL sees buffer references; C++ sees 64-bit addresses.
+#ifndef VKCOLLIDE_BROADPHASE_H
+#define VKCOLLIDE_BROADPHASE_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace vkcollide::gpu {
+using uint = std::uint32_t;
+struct vec4 { float x, y, z, w; };
+#define VKC_ADDRESS(type) std::uint64_t
+#define VKC_CONST inline constexpr uint
+#else
+#define VKC_ADDRESS(type) type
+#define VKC_CONST const uint
+#endif
+
+// Workgroup size of every per-pixel and per-triangle compute shader.
+VKC_CONST kGroupSize = 256;
+// Row width of the paper's packing texture (count / shift / move).
+VKC_CONST kPackRowWidth = 256;
+// Key layout, low word: bit 31 = back-facing, bit 30 = open surface, bits 0..29 = triangle.
+VKC_CONST kKeyBackFacing = 0x80000000u;
+VKC_CONST kKeyOpen = 0x40000000u;
+VKC_CONST kKeyTriangleMask = 0x3FFFFFFFu;
+VKC_CONST kMaxTriangles = 0x40000000u;
+// Per-pixel fragment counts: closed surfaces in the low half, open ones in the high half.
+VKC_CONST kOpenCountUnit = 0x10000u;
+// PixelState.flags
+VKC_CONST kRayDone = 1u;
+VKC_CONST kRayCollision = 2u;
+VKC_CONST kParityFront = 4u;
+VKC_CONST kParityBack = 8u;
+// ObjectGpu.flags
+VKC_CONST kObjectOpen = 1u;
+VKC_CONST kObjectIndex16 = 2u;
+VKC_CONST kMaxLevels = 16u;
+
+// One registered mesh instance.
+struct ObjectGpu {
+    VKC_ADDRESS(uint64_t) vertices;  // address of vertex 0's position (offset applied)
+    VKC_ADDRESS(uint64_t) indices;   // address of index 0
+    uint vertex_stride;              // bytes between positions
+    uint vertex_count;
+    uint triangle_count;
+    uint triangle_base;              // global id of triangle 0
+    uint flags;                      // kObjectOpen, kObjectIndex16
+    uint pad0;
+    vec4 model[3];                   // rows of the 3x4 object-to-world transform
+};
+
+// World -> normalised sampling space: x, y in [0,1] across the image, z in [0,1] depth.
+struct Projection {
+    vec4 row[3];
+    float open_epsilon;  // depth-proximity threshold of open surfaces, in normalised depth
+    float world_to_depth;
+    uint pad0, pad1;
+};
+
+// Per-ray state of the peeling.
+struct PixelState {
+    VKC_ADDRESS(uint64_t) last_front;  // key of the last fragment peeled from the front
+    VKC_ADDRESS(uint64_t) last_back;   // ... from the back (dual peeling)
+    uint peeled;                        // front count (low 16) | back count (high 16)
+    uint flags;
+};
+
+// Small results the host reads after each submission.
+struct Header {
+    uint depth_complexity;  // max fragments on one ray
+    uint record_count;      // packed records written
+    uint collision_rays;
+    uint max_row_count;     // paper packing: most records in one row
+    uint bounds[6];         // ordered-float min u,v,d then max u,v,d (auto fit)
+    uint pad0, pad1;
+};
+
+// Everything a broad-phase shader needs, uploaded once per detection.
+struct Frame {
+    VKC_ADDRESS(uint64_t) objects;      // ObjectGpu[object_count]
+    VKC_ADDRESS(uint64_t) projection;   // Projection
+    VKC_ADDRESS(uint64_t) header;       // Header (host-visible)
+    VKC_ADDRESS(uint64_t) counts;       // uint[N*N]
+    VKC_ADDRESS(uint64_t) front_keys;   // uint64[N*N]
+    VKC_ADDRESS(uint64_t) back_keys;    // uint64[N*N]
+    VKC_ADDRESS(uint64_t) state;        // PixelState[N*N]
+    VKC_ADDRESS(uint64_t) bundles;      // vec4[sum of (N>>l)^2]: the ray-bundle mipmap
+    VKC_ADDRESS(uint64_t) sparse;       // vec4[triangle_count]: kept box or empty
+    VKC_ADDRESS(uint64_t) records;      // CandidateTriangle[] (host-visible)
+    VKC_ADDRESS(uint64_t) scratch;      // uint[]: packing scratch
+    VKC_ADDRESS(uint64_t) ray_image;    // uint[N*N] collision flags for inspection, or 0
+    uint resolution;                    // N, a power of two
+    uint levels;                        // log2(N) + 1
+    uint object_count;
+    uint triangle_count;
+    uint dual;                          // 1: peel from the front and the back at once
+    uint step_count;                    // peeling steps recorded
+    uint pack_rows;                     // rows of the packing texture
+    uint pack_blocks;                   // workgroups of the scan packing
+    float direction_basis[12];          // u, v, d rows and (unused) for auto fit
+    float open_epsilon_world;           // open-surface proximity in world units
+    float fit_margin;                   // relative margin of the auto fit
+    uint level_offset[kMaxLevels];      // first texel of each mip level in `bundles`
+};
+
+// Pushed per dispatch or draw.
+struct Push {
+    VKC_ADDRESS(uint64_t) frame;
+    uint object;
+    uint step;
+    uint level;
+    uint pad0;
+};
+
+#ifdef __cplusplus
+}  // namespace vkcollide::gpu
+#endif
+#endif

@@ -1,0 +1,19 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Resets the per-ray peeling state; rays with no fragment are done at once.
+#include "common.glsl.inc"
+layout(local_size_x = kGroupSize) in;
+
+void main() {
+    Frame f = frame();
+    uint p = gl_GlobalInvocationID.x;
+    if (p >= f.resolution * f.resolution) return;
+    PixelState st;
+    st.last_front = 0ul;
+    st.last_back = ~0ul;
+    st.peeled = 0u;
+    st.flags = UintsRef(f.counts).v[p] == 0u ? kRayDone : 0u;
+    StatesRef(f.state).s[p] = st;
+    Uint64sRef(f.front_keys).v[p] = ~0ul;
+    Uint64sRef(f.back_keys).v[p] = 0ul;
+}

@@ -1,0 +1,46 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Exclusive prefix sum of `count` uints at scratch[0..count) into scratch[count..2count),
+// by one workgroup: each invocation sums a contiguous chunk, the chunk sums are scanned
+// in shared memory, then each chunk is written out. Also records the total (the number
+// of records) and the largest input (the paper's M, the longest packed row).
+#include "common.glsl.inc"
+layout(local_size_x = kGroupSize) in;
+shared uint s_scan[kGroupSize];
+shared uint s_max;
+
+void main() {
+    Frame f = frame();
+    uint count = pc.step;  // number of rows or blocks
+    UintsRef scratch = UintsRef(f.scratch);
+    uint chunk = (count + kGroupSize - 1u) / kGroupSize;
+    uint begin = min(gl_LocalInvocationIndex * chunk, count), end = min(begin + chunk, count);
+    if (gl_LocalInvocationIndex == 0u) s_max = 0u;
+    uint sum = 0u, biggest = 0u;
+    for (uint i = begin; i < end; ++i) {
+        uint v = scratch.v[i];
+        sum += v;
+        biggest = max(biggest, v);
+    }
+    s_scan[gl_LocalInvocationIndex] = sum;
+    barrier();
+    atomicMax(s_max, biggest);
+    // Hillis-Steele inclusive scan of the chunk sums.
+    for (uint stride = 1u; stride < kGroupSize; stride <<= 1) {
+        uint add = gl_LocalInvocationIndex >= stride ? s_scan[gl_LocalInvocationIndex - stride] : 0u;
+        barrier();
+        s_scan[gl_LocalInvocationIndex] += add;
+        barrier();
+    }
+    uint running = s_scan[gl_LocalInvocationIndex] - sum;
+    for (uint i = begin; i < end; ++i) {
+        uint v = scratch.v[i];
+        scratch.v[count + i] = running;
+        running += v;
+    }
+    if (gl_LocalInvocationIndex == kGroupSize - 1u) {
+        HeaderRef h = HeaderRef(f.header);
+        h.h.record_count = s_scan[kGroupSize - 1u];
+        h.h.max_row_count = s_max;
+    }
+}

@@ -1,0 +1,94 @@
+// The GPU broad phase (paper passes 1-4) on the render graph:
+//   1. object sampling: bounds -> fit -> depth complexity -> peeling steps + classification
+//   2. ray merging: the ray-bundle mipmap
+//   3. primitive separation: each triangle keeps (bundles under its corners) ∩ (its box)
+//   4. packing: paper count/shift/move or a scan compaction, into a host-visible buffer
+// Two submissions per run: the first measures depth complexity (the host reads it to
+// choose the number of peeling steps), the second does the rest.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "graph/executor.hpp"
+#include "vkcollide/narrow.hpp"
+#include "vk/resources.hpp"
+
+namespace vkcollide::passes {
+
+enum class PackingMethod { Paper, Scan };
+
+// A mesh as the GPU sees it. Addresses come from buffers created with
+// SHADER_DEVICE_ADDRESS usage; positions are three floats at `vertices + i * stride`.
+// 16-bit index data must be readable in whole 4-byte words (pad the buffer by 2 bytes).
+struct GpuMesh {
+    VkDeviceAddress vertices = 0;
+    std::uint32_t vertex_stride = 12;
+    std::uint32_t vertex_count = 0;
+    VkDeviceAddress indices = 0;
+    bool index16 = false;
+    std::uint32_t triangle_count = 0;
+    std::array<float, 12> transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // row-major 3x4 object->world
+    bool open = false;
+};
+
+struct BroadPhaseSettings {
+    std::uint32_t resolution = 256;                 // power of two, 4..16384
+    std::array<float, 3> direction{0, 0, 1};        // projection direction (any length > 0)
+    std::uint32_t layer_cap = 0;                    // 0: peel every layer
+    bool dual = false;                              // front and back peeling at once
+    PackingMethod packing = PackingMethod::Scan;
+    float open_epsilon = 0;                         // world units; open-surface depth proximity
+    float fit_margin = 1.0f / 64.0f;                // relative margin of the automatic fit
+    bool keep_ray_image = false;                    // read back the collision-ray image
+    // Sample this world box instead of fitting the scene: min x,y,z then max x,y,z.
+    std::optional<std::array<float, 6>> region;
+};
+
+struct BroadPhaseResult {
+    std::vector<CandidateTriangle> records;  // in global triangle order
+    std::vector<std::uint8_t> ray_image;     // N*N, row-major, 1 = collision ray (if kept)
+    std::uint32_t depth_complexity = 0;
+    std::uint32_t layers = 0;                // layers peeled: min(depth complexity, cap)
+    std::uint32_t peel_steps = 0;            // peeling passes recorded (half with dual)
+    std::uint32_t collision_rays = 0;
+    std::uint32_t triangles = 0;
+    std::vector<graph::PassTiming> passes;   // both submissions, in order
+    double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
+};
+
+// The sampling-space mapping for a world box, as the GPU fit computes it for the scene:
+// rows of x, y (image, [0,1]) and depth ([0.05, 0.95]); basis rows u, v, d.
+struct SamplingProjection {
+    std::array<float, 16> rows{};  // row-major 3x4 plus (open_epsilon, world_to_depth, 0, 0)
+};
+std::array<float, 9> projectionBasis(const std::array<float, 3>& direction);
+SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const std::array<float, 6>& region,
+                                       float open_epsilon);
+
+class BroadPhase {
+public:
+    static Result<std::unique_ptr<BroadPhase>> create(vk::Device& device);
+    [[nodiscard]] Result<BroadPhaseResult> run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
+
+private:
+    explicit BroadPhase(vk::Device& device) : device_(&device), executor_(device) {}
+    Result<void> ensureBuffers(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects, bool ray_image);
+
+    vk::Device* device_;
+    graph::Executor executor_;
+    struct Pipelines {
+        vk::Pipeline bounds, fit, count, peel, reduce_max, peel_init, classify, finalize, merge, separate;
+        vk::Pipeline pack_rowcount, scan_counts, pack_shift, pack_move, scan_blocksum, scan_scatter;
+    } pipes_;
+    struct Buffers {
+        std::uint32_t resolution = 0, triangles = 0, objects = 0;
+        vk::Buffer frame, objects_buf, projection, header, header_rb, counts, front, back, state, bundles, sparse,
+            records, scratch, ray_image;
+    } buf_;
+};
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,367 @@
+// GPU broad phase (paper passes 1-4) on the device, validation on, against the CPU
+// reference of the same four passes in tests/support.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "passes/broad_phase.hpp"
+#include "support/broadphase_reference.hpp"
+#include "support/gpu_fixture.hpp"
+#include "support/gpu_scene.hpp"
+#include "vkcollide/scene.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::passes;
+
+namespace {
+
+// Rotation about an arbitrary axis, so pixel centres do not sit on edges by construction.
+HostMesh placed(HostMesh m, float ax, float ay, float az, float angle, Float3 t, const std::string& name) {
+    const float len = std::sqrt(ax * ax + ay * ay + az * az);
+    ax /= len, ay /= len, az /= len;
+    const float c = std::cos(angle), s = std::sin(angle), k = 1 - c;
+    Transform3x4 tr = {c + ax * ax * k,      ax * ay * k - az * s, ax * az * k + ay * s, t.x,
+                       ay * ax * k + az * s, c + ay * ay * k,      ay * az * k - ax * s, t.y,
+                       az * ax * k - ay * s, az * ay * k + ax * s, c + az * az * k,      t.z};
+    REQUIRE(transformMesh(m, tr));
+    m.name = name;
+    return m;
+}
+
+HostMesh makeBox(float h, std::uint32_t sub = 2) {
+    auto b = box({h, h, h}, sub);
+    REQUIRE(b);
+    return *b;
+}
+
+HostMesh makeSphere(float r, std::uint32_t seg = 16, std::uint32_t rings = 8) {
+    auto s = uvSphere(r, seg, rings);
+    REQUIRE(s);
+    return *s;
+}
+
+HostMesh inverted(HostMesh m) {
+    for (std::size_t t = 0; t < m.indices.size(); t += 3) std::swap(m.indices[t + 1], m.indices[t + 2]);
+    return m;
+}
+
+struct Run {
+    BroadPhaseResult gpu;
+    test::ReferenceResult ref;
+};
+
+Run runBoth(test::ValidatedContext& ctx, BroadPhase& bp, const std::vector<const HostMesh*>& meshes,
+            BroadPhaseSettings settings, const std::vector<bool>& open = {}) {
+    settings.keep_ray_image = true;
+    if (!settings.region) settings.region = std::array<float, 6>{-2.5f, -2.5f, -2.5f, 2.5f, 2.5f, 2.5f};
+    auto scene = test::uploadScene(ctx.device(), meshes, open);
+    REQUIRE(scene);
+    auto gpu = bp.run(scene->meshes, settings);
+    INFO((gpu ? std::string() : gpu.error().message()));
+    REQUIRE(gpu);
+    std::vector<test::ReferenceObject> objects;
+    for (std::size_t i = 0; i < meshes.size(); ++i) objects.push_back({meshes[i], i < open.size() && open[i]});
+    Run run{std::move(*gpu), {}};
+    run.ref = test::referenceBroadPhase(objects, settings, run.gpu.layers);
+    if (run.ref.ambiguousCount() > 0) {
+        // Passes 2-4 are checked exactly from the GPU's rays; pass 1 is checked on every
+        // unambiguous ray by requireSameRays.
+        auto ref2 = test::referenceBroadPhase(objects, settings, run.gpu.layers, &run.gpu.ray_image);
+        run.ref.records = std::move(ref2.records);
+    }
+    return run;
+}
+
+// Rays equal wherever the reference is unambiguous; the scenes are built so none is.
+void requireSameRays(const Run& r) {
+    REQUIRE(r.gpu.ray_image.size() == r.ref.rays.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < r.ref.rays.size(); ++i)
+        if (!r.ref.ambiguous[i] && r.gpu.ray_image[i] != r.ref.rays[i]) ++differ;
+    CHECK(differ == 0);
+    // Samples within 1e-3 px of an edge or 1e-6 of another fragment's depth (silhouettes,
+    // intersection curves) may round either way; they must stay rare.
+    INFO("ambiguous rays: " << r.ref.ambiguousCount());
+    CHECK(r.ref.ambiguousCount() * 100 <= r.ref.rays.size());
+    CHECK(r.gpu.depth_complexity == r.ref.depth_complexity);
+}
+
+void requireSameRecords(const std::vector<CandidateTriangle>& a, const std::vector<CandidateTriangle>& b) {
+    REQUIRE(a.size() == b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        INFO("record " << i);
+        CHECK(a[i].object == b[i].object);
+        CHECK(a[i].triangle == b[i].triangle);
+        for (int c = 0; c < 3; ++c) CHECK(a[i].vertex_index[c] == b[i].vertex_index[c]);
+        // Boxes and depths agree up to float rounding of the projection (FMA on the GPU).
+        for (int c = 0; c < 4; ++c) CHECK(std::fabs(a[i].box[c] - b[i].box[c]) <= 1e-6f);
+        CHECK(std::fabs(a[i].zmin - b[i].zmin) <= 1e-6f);
+        CHECK(std::fabs(a[i].v[1].y - b[i].v[1].y) <= 1e-6f);
+    }
+}
+
+void requireIdenticalRecords(const std::vector<CandidateTriangle>& a, const std::vector<CandidateTriangle>& b) {
+    REQUIRE(a.size() == b.size());
+    CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(CandidateTriangle)) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("two overlapping boxes mark exactly the rays of their overlap footprint", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh a = placed(makeBox(1.0f), 0.3f, 1, 0.2f, 0.41f, {-0.45f, 0.07f, 0.03f}, "a");
+    HostMesh b = placed(makeBox(1.0f), 1, 0.2f, 0.5f, 0.73f, {0.55f, -0.11f, 0.09f}, "b");
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    Run r = runBoth(ctx, **bp, {&a, &b}, s);
+    requireSameRays(r);
+    CHECK(r.gpu.collision_rays > 0);
+    CHECK(r.gpu.collision_rays == r.ref.collision_rays);
+    requireSameRecords(r.gpu.records, r.ref.records);
+    CHECK_FALSE(r.gpu.records.empty());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("separated meshes mark no ray and download nothing", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh a = placed(makeSphere(0.8f), 0.3f, 1, 0.2f, 0.41f, {-1.2f, 0.07f, 0.03f}, "a");
+    HostMesh b = placed(makeBox(0.6f), 1, 0.2f, 0.5f, 0.73f, {1.1f, -0.11f, 0.09f}, "b");
+    for (bool dual : {false, true}) {
+        BroadPhaseSettings s;
+        s.resolution = 64;
+        s.dual = dual;
+        Run r = runBoth(ctx, **bp, {&a, &b}, s);
+        requireSameRays(r);
+        CHECK(r.gpu.collision_rays == 0);
+        CHECK(r.gpu.records.empty());
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("a mesh inside another is marked", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh outer = placed(makeSphere(2.0f, 24, 12), 0.3f, 1, 0.2f, 0.41f, {0.01f, 0.02f, 0.03f}, "outer");
+    HostMesh inner = placed(makeBox(0.5f), 1, 0.2f, 0.5f, 0.73f, {0.1f, -0.11f, 0.09f}, "inner");
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    Run r = runBoth(ctx, **bp, {&outer, &inner}, s);
+    requireSameRays(r);
+    CHECK(r.gpu.collision_rays > 0);
+    // The inner object's triangles are all downloaded.
+    std::size_t inner_records = 0;
+    for (const auto& rec : r.gpu.records) inner_records += rec.object == 1;
+    CHECK(inner_records == inner.triangleCount());
+    requireSameRecords(r.gpu.records, r.ref.records);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("an inverted mesh is marked everywhere it covers", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh m = inverted(placed(makeBox(1.2f, 1), 0.3f, 1, 0.2f, 0.41f, {0.01f, 0.02f, 0.03f}, "inside-out"));
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    Run r = runBoth(ctx, **bp, {&m}, s);
+    requireSameRays(r);
+    CHECK(r.gpu.collision_rays > 0);
+    // Every triangle of a coarse inverted box covers rays, so every one survives.
+    CHECK(r.gpu.records.size() == m.triangleCount());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("records equal the CPU reference: spheres and boxes, single and dual peeling", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh a = placed(makeSphere(1.0f, 20, 10), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
+    HostMesh b = placed(makeSphere(0.9f, 18, 9), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
+    HostMesh c = placed(makeBox(0.5f, 3), 0.2f, 0.4f, 1, 1.1f, {0.1f, 0.8f, -0.3f}, "c");
+    for (std::uint32_t res : {64u, 128u})
+        for (bool dual : {false, true}) {
+            INFO("resolution " << res << (dual ? " dual" : " single"));
+            BroadPhaseSettings s;
+            s.resolution = res;
+            s.dual = dual;
+            s.direction = {0.2f, -0.3f, 1.0f};
+            Run r = runBoth(ctx, **bp, {&a, &b, &c}, s);
+            requireSameRays(r);
+            requireSameRecords(r.gpu.records, r.ref.records);
+            CHECK(r.gpu.peel_steps == (dual ? (r.gpu.layers + 1) / 2 : r.gpu.layers));
+        }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("a layer cap marks deeper rays as colliding", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    // Four separated boxes in a row along the view: depth complexity 8, no collision.
+    std::vector<HostMesh> boxes;
+    for (int i = 0; i < 4; ++i)
+        boxes.push_back(placed(makeBox(0.35f), 0.3f, 1, 0.2f, 0.1f * float(i) + 0.2f, {0.03f, 0.02f, -1.8f + 1.2f * float(i)}, "b" + std::to_string(i)));
+    std::vector<const HostMesh*> ptrs;
+    for (auto& b : boxes) ptrs.push_back(&b);
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    Run full = runBoth(ctx, **bp, ptrs, s);
+    requireSameRays(full);
+    CHECK(full.gpu.depth_complexity == 8);
+    CHECK(full.gpu.collision_rays == 0);
+    s.layer_cap = 4;
+    Run capped = runBoth(ctx, **bp, ptrs, s);
+    requireSameRays(capped);
+    CHECK(capped.gpu.layers == 4);
+    CHECK(capped.gpu.collision_rays > 0);  // rays through more than four surfaces
+    requireSameRecords(capped.gpu.records, capped.ref.records);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("open surfaces collide by depth proximity", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    auto cloth = clothGrid(3.0f, 3.0f, 12, 12);
+    REQUIRE(cloth);
+    HostMesh sheet = placed(*cloth, 1, 0.1f, 0.2f, 1.3f, {0.02f, 0.03f, 0.01f}, "cloth");
+    HostMesh ball = placed(makeSphere(0.8f), 0.3f, 1, 0.2f, 0.41f, {0.1f, 0.05f, 0.2f}, "ball");
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    s.open_epsilon = 0.05f;
+    for (bool dual : {false, true}) {
+        s.dual = dual;
+        Run r = runBoth(ctx, **bp, {&sheet, &ball}, s, {true, false});
+        requireSameRays(r);
+        CHECK(r.gpu.collision_rays > 0);
+        requireSameRecords(r.gpu.records, r.ref.records);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("both packing methods give identical records", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh a = placed(makeSphere(1.0f, 24, 12), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
+    HostMesh b = placed(makeBox(0.7f, 4), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
+    HostMesh far_a = placed(makeSphere(0.5f), 0, 0, 1, 0.1f, {-1.5f, 0, 0}, "far-a");
+    HostMesh far_b = placed(makeSphere(0.5f), 0, 0, 1, 0.1f, {1.5f, 0, 0}, "far-b");
+    HostMesh inv = inverted(placed(makeBox(1.2f, 1), 0.3f, 1, 0.2f, 0.41f, {0.01f, 0.02f, 0.03f}, "inv"));
+    auto scene = [&](std::vector<const HostMesh*> meshes, PackingMethod m) {
+        BroadPhaseSettings s;
+        s.resolution = 128;
+        s.packing = m;
+        s.region = std::array<float, 6>{-2.5f, -2.5f, -2.5f, 2.5f, 2.5f, 2.5f};
+        auto up = test::uploadScene(ctx.device(), meshes);
+        REQUIRE(up);
+        auto r = (*bp)->run(up->meshes, s);
+        REQUIRE(r);
+        return std::move(*r);
+    };
+    SECTION("some survive") {
+        auto paper = scene({&a, &b}, PackingMethod::Paper), scan = scene({&a, &b}, PackingMethod::Scan);
+        CHECK_FALSE(paper.records.empty());
+        requireIdenticalRecords(paper.records, scan.records);
+    }
+    SECTION("empty result") {
+        auto paper = scene({&far_a, &far_b}, PackingMethod::Paper), scan = scene({&far_a, &far_b}, PackingMethod::Scan);
+        CHECK(paper.records.empty());
+        CHECK(scan.records.empty());
+    }
+    SECTION("every triangle survives") {
+        auto paper = scene({&inv}, PackingMethod::Paper), scan = scene({&inv}, PackingMethod::Scan);
+        CHECK(paper.records.size() == inv.triangleCount());
+        requireIdenticalRecords(paper.records, scan.records);
+    }
+    SECTION("more than one packing row and block") {
+        HostMesh big = placed(makeSphere(1.0f, 64, 40), 0.3f, 1, 0.2f, 0.41f, {-0.3f, 0.07f, 0.03f}, "big");
+        HostMesh big2 = placed(makeSphere(1.0f, 48, 30), 1, 0.2f, 0.5f, 0.73f, {0.4f, -0.11f, 0.29f}, "big2");
+        auto paper = scene({&big, &big2}, PackingMethod::Paper), scan = scene({&big, &big2}, PackingMethod::Scan);
+        CHECK(paper.records.size() > 256);
+        requireIdenticalRecords(paper.records, scan.records);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("16-bit indices, strided vertices and an automatic fit", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh a = placed(makeSphere(1.0f), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
+    HostMesh b = placed(makeBox(0.7f), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
+    auto plain = test::uploadScene(ctx.device(), {&a, &b});
+    auto packed = test::uploadScene(ctx.device(), {&a, &b}, {}, true, 28);
+    REQUIRE(plain);
+    REQUIRE(packed);
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    auto r1 = (*bp)->run(plain->meshes, s);
+    auto r2 = (*bp)->run(packed->meshes, s);
+    REQUIRE(r1);
+    REQUIRE(r2);
+    CHECK(r1->collision_rays > 0);
+    requireIdenticalRecords(r1->records, r2->records);
+    // The fit covers the scene: records carry boxes inside [0,1].
+    for (const auto& rec : r1->records) {
+        CHECK(rec.box[0] >= 0.0f);
+        CHECK(rec.box[2] <= 1.0f);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("per-pass GPU times and the Table 1 counts are reported", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh a = placed(makeSphere(1.0f), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
+    HostMesh b = placed(makeBox(0.7f), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    Run r = runBoth(ctx, **bp, {&a, &b}, s);
+    std::size_t rays = 0;
+    for (auto x : r.gpu.ray_image) rays += x;
+    CHECK(r.gpu.collision_rays == rays);
+    CHECK(r.gpu.triangles == a.triangleCount() + b.triangleCount());
+    std::vector<std::string> names;
+    for (const auto& p : r.gpu.passes) names.push_back(p.name);
+    for (const char* expected : {"depth-complexity", "reduce-max", "peel[0]", "classify[0]", "merge", "separate", "pack-scan"})
+        CHECK(std::find(names.begin(), names.end(), expected) != names.end());
+    CHECK(r.gpu.sampling_ms > 0);
+    CHECK(r.gpu.packing_ms > 0);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("bad broad-phase input gets an error naming the problem", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh a = makeBox(1.0f);
+    auto up = test::uploadScene(ctx.device(), {&a});
+    REQUIRE(up);
+    BroadPhaseSettings s;
+    s.resolution = 100;
+    auto r = (*bp)->run(up->meshes, s);
+    REQUIRE_FALSE(r);
+    CHECK_THAT(r.error().message(), Catch::Contains("power of two"));
+    s.resolution = 64;
+    auto none = (*bp)->run({}, s);
+    REQUIRE_FALSE(none);
+    CHECK_THAT(none.error().message(), Catch::Contains("zero meshes"));
+    auto empty = up->meshes;
+    empty[0].triangle_count = 0;
+    auto e = (*bp)->run(empty, s);
+    REQUIRE_FALSE(e);
+    CHECK_THAT(e.error().message(), Catch::Contains("object 0") && Catch::Contains("empty mesh"));
+    s.direction = {0, 0, 0};
+    auto d = (*bp)->run(up->meshes, s);
+    REQUIRE_FALSE(d);
+    CHECK_THAT(d.error().message(), Catch::Contains("direction"));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

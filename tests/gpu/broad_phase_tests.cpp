@@ -365,3 +365,32 @@ TEST_CASE("bad broad-phase input gets an error naming the problem", "[gpu][broad
     CHECK_THAT(d.error().message(), Catch::Contains("direction"));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+TEST_CASE("per-object transforms are applied on the GPU", "[gpu][broadphase]") {
+    test::ValidatedContext ctx;
+    auto bp = BroadPhase::create(ctx.device());
+    REQUIRE(bp);
+    HostMesh a = makeSphere(1.0f);
+    HostMesh b = makeBox(0.7f);
+    const Transform3x4 ta = {1, 0, 0, -0.5f, 0, 0, -1, 0.07f, 0, 1, 0, 0.03f};  // rotation about x + move
+    const Transform3x4 tb = {0, -1, 0, 0.6f, 1, 0, 0, -0.11f, 0, 0, 1, 0.29f};   // rotation about z + move
+    HostMesh a_world = a, b_world = b;
+    REQUIRE(transformMesh(a_world, ta));
+    REQUIRE(transformMesh(b_world, tb));
+    auto local = test::uploadScene(ctx.device(), {&a, &b});
+    auto world = test::uploadScene(ctx.device(), {&a_world, &b_world});
+    REQUIRE(local);
+    REQUIRE(world);
+    std::copy(ta.begin(), ta.end(), local->meshes[0].transform.begin());
+    std::copy(tb.begin(), tb.end(), local->meshes[1].transform.begin());
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    auto r1 = (*bp)->run(local->meshes, s);
+    auto r2 = (*bp)->run(world->meshes, s);
+    REQUIRE(r1);
+    REQUIRE(r2);
+    CHECK(r1->collision_rays > 0);
+    CHECK(r1->collision_rays == r2->collision_rays);
+    requireSameRecords(r1->records, r2->records);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -94,7 +94,6 @@ struct Frame {
     uint object_count;
     uint triangle_count;
     uint dual;                          // 1: peel from the front and the back at once
-    uint step_count;                    // peeling steps recorded
     uint pack_rows;                     // rows of the packing texture
     uint pack_blocks;                   // workgroups of the scan packing
     float direction_basis[12];          // u, v, d rows and (unused) for auto fit

@@ -26,13 +26,6 @@ Executor::~Executor() {
     if (queries_) device_->fns.vkDestroyQueryPool(device_->device, queries_, nullptr);
 }
 
-VkDeviceSize Executor::transientBytes() const noexcept {
-    VkDeviceSize total = 0;
-    for (const auto& [name, b] : buffers_) total += b.size;
-    for (const auto& [name, i] : images_) total += VkDeviceSize(i.info.width) * i.info.height * 16;  // upper bound
-    return total;
-}
-
 Result<void> Executor::prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx) {
     const auto& res = graph.resources();
     ctx.buffers_.assign(res.size(), nullptr);
@@ -79,16 +72,13 @@ Result<void> Executor::prepareResources(const Graph& graph, const GraphPlan& pla
     return {};
 }
 
-void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx,
-                              const Graph& graph) const {
+void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx) const {
     if (barriers.empty()) return;
     std::vector<VkImageMemoryBarrier2> images;
     std::vector<VkBufferMemoryBarrier2> buffers;
     for (const Barrier& b : barriers) {
         if (b.is_image) {
             const vk::Image& img = ctx.image(b.resource);
-            const VkFormat f = graph.resource(b.resource).image.format;
-            const bool depth = f == VK_FORMAT_D32_SFLOAT || f == VK_FORMAT_D16_UNORM;
             VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
             ib.srcStageMask = b.src_stage ? b.src_stage : VK_PIPELINE_STAGE_2_NONE;
             ib.srcAccessMask = b.src_access;
@@ -99,8 +89,7 @@ void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& b
             ib.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
             ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
             ib.image = img.handle();
-            ib.subresourceRange = {static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT),
-                                   b.base_mip, b.mip_count, 0, 1};
+            ib.subresourceRange = {vk::aspectOf(img.desc().format), b.base_mip, b.mip_count, 0, 1};
             images.push_back(ib);
         } else {
             const vk::Buffer& buf = ctx.buffer(b.resource);
@@ -165,7 +154,7 @@ Result<void> Executor::submit(const Graph& graph) {
     for (const PlannedPass& planned : plan->order) {
         const PassDecl& p = graph.passes()[planned.pass];
         pending_names_.push_back(p.name);
-        recordBarriers(ctx.cmd, planned.barriers, ctx, graph);
+        recordBarriers(ctx.cmd, planned.barriers, ctx);
         f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries_, q++);
         if (p.kind == PassKind::Raster) {
             std::vector<VkRenderingAttachmentInfo> colors;
@@ -213,7 +202,7 @@ Result<void> Executor::submit(const Graph& graph) {
         }
         f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
     }
-    recordBarriers(ctx.cmd, plan->final_barriers, ctx, graph);
+    recordBarriers(ctx.cmd, plan->final_barriers, ctx);
     return submission_.submit();
 }
 

@@ -58,13 +58,9 @@ public:
     // submit() then collect().
     [[nodiscard]] Result<ExecutionReport> run(const Graph& graph);
 
-    // Bytes held in cached transient resources.
-    VkDeviceSize transientBytes() const noexcept;
-
 private:
     Result<void> prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx);
-    void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx,
-                        const Graph& graph) const;
+    void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx) const;
 
     vk::Device* device_;
     vk::Submission submission_;

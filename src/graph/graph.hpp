@@ -158,7 +158,6 @@ public:
 
     const std::vector<ResourceDecl>& resources() const noexcept { return resources_; }
     const std::vector<PassDecl>& passes() const noexcept { return passes_; }
-    std::vector<PassDecl>& passes() noexcept { return passes_; }
     const ResourceDecl& resource(ResourceId id) const { return resources_.at(id.index); }
 
 private:

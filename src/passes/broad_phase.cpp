@@ -242,7 +242,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     auto& P = pipes_;
 
     // ---- submission 1: fit and depth complexity --------------------------------------
-    // The frame's step_count is filled for submission 2; shaders of submission 1 ignore it.
+    // One frame description serves both submissions.
     std::memcpy(buf_.frame.mapped(), &fr, sizeof(fr));
     buf_.frame.flush();
     graph::Graph g1;
@@ -298,9 +298,6 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     }
 
     // ---- submission 2: peel, merge, separate, pack -------------------------------------
-    fr.step_count = result.peel_steps;
-    std::memcpy(buf_.frame.mapped(), &fr, sizeof(fr));
-    buf_.frame.flush();
     graph::Graph g;
     header = g.importBuffer("header", buf_.header);
     header_rb = g.importBuffer("header-readback", buf_.header_rb, true);

@@ -110,6 +110,16 @@ void Buffer::reset() {
 
 // ---- Image ----------------------------------------------------------------
 
+VkImageAspectFlags aspectOf(VkFormat format) noexcept {
+    switch (format) {
+        case VK_FORMAT_D16_UNORM:
+        case VK_FORMAT_D32_SFLOAT:
+        case VK_FORMAT_D24_UNORM_S8_UINT:
+        case VK_FORMAT_D32_SFLOAT_S8_UINT: return VK_IMAGE_ASPECT_DEPTH_BIT;
+        default: return VK_IMAGE_ASPECT_COLOR_BIT;
+    }
+}
+
 Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::string& name) {
     if (desc.width == 0 || desc.height == 0 || desc.mip_levels == 0)
         return Error(ErrorCode::InvalidArgument, "image '" + name + "' has a zero dimension or no mip level");
@@ -142,14 +152,11 @@ Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::st
     r = f.vkBindImageMemory(device.device, img.image_, img.memory_, 0);
     if (r != VK_SUCCESS) return vulkanError(r, "vkBindImageMemory for '" + name + "'");
 
-    bool depth = desc.format == VK_FORMAT_D32_SFLOAT || desc.format == VK_FORMAT_D16_UNORM ||
-                 desc.format == VK_FORMAT_D24_UNORM_S8_UINT || desc.format == VK_FORMAT_D32_SFLOAT_S8_UINT;
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = img.image_;
     vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
     vi.format = desc.format;
-    vi.subresourceRange = {static_cast<VkImageAspectFlags>(depth ? VK_IMAGE_ASPECT_DEPTH_BIT : VK_IMAGE_ASPECT_COLOR_BIT), 0,
-                           desc.mip_levels, 0, 1};
+    vi.subresourceRange = {aspectOf(desc.format), 0, desc.mip_levels, 0, 1};
     r = f.vkCreateImageView(device.device, &vi, nullptr, &img.view_);
     if (r != VK_SUCCESS) return vulkanError(r, "vkCreateImageView for '" + name + "'");
     for (std::uint32_t level = 0; level < desc.mip_levels; ++level) {

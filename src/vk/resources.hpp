@@ -51,6 +51,9 @@ private:
     bool coherent_ = true;
 };
 
+// The aspect that views and barriers of an image of this format use.
+VkImageAspectFlags aspectOf(VkFormat format) noexcept;
+
 struct ImageDesc {
     VkFormat format = VK_FORMAT_UNDEFINED;
     std::uint32_t width = 0, height = 0;

@@ -12,8 +12,7 @@ void main() {
     vec3 w = toWorld(o, fetchPosition(o, i));
     HeaderRef h = HeaderRef(f.header);
     for (uint axis = 0u; axis < 3u; ++axis) {
-        vec3 b = vec3(f.direction_basis[axis * 3u], f.direction_basis[axis * 3u + 1u], f.direction_basis[axis * 3u + 2u]);
-        uint key = orderedFromFloat(dot(b, w));
+        uint key = orderedFromFloat(dot(basisRow(f, axis), w));
         atomicMin(h.h.bounds[axis], key);
         atomicMax(h.h.bounds[3u + axis], key);
     }

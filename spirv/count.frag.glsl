@@ -6,6 +6,6 @@ layout(location = 0) flat in uint v_key_low;
 
 void main() {
     Frame f = frame();
-    uint p = uint(gl_FragCoord.y) * f.resolution + uint(gl_FragCoord.x);
+    uint p = rayIndex(f, gl_FragCoord.xy);
     atomicAdd(UintsRef(f.counts).v[p], (v_key_low & kKeyOpen) != 0u ? kOpenCountUnit : 1u);
 }

@@ -18,11 +18,9 @@ void main() {
     if (!(depth > 0.0)) depth = 1.0;
     Projection pr;
     for (uint axis = 0u; axis < 2u; ++axis) {
-        vec3 b = vec3(f.direction_basis[axis * 3u], f.direction_basis[axis * 3u + 1u], f.direction_basis[axis * 3u + 2u]);
-        pr.row[axis] = vec4(b / size, -origin[axis] / size);
+        pr.row[axis] = vec4(basisRow(f, axis) / size, -origin[axis] / size);
     }
-    vec3 d = vec3(f.direction_basis[6], f.direction_basis[7], f.direction_basis[8]);
-    pr.row[2] = vec4(d * (0.9 / depth), 0.05 - 0.9 * lo.z / depth);
+    pr.row[2] = vec4(basisRow(f, 2u) * (0.9 / depth), 0.05 - 0.9 * lo.z / depth);
     pr.world_to_depth = 0.9 / depth;
     pr.open_epsilon = f.open_epsilon_world * pr.world_to_depth;
     pr.pad0 = 0u;

@@ -9,7 +9,7 @@ layout(location = 0) flat in uint v_key_low;
 
 void main() {
     Frame f = frame();
-    uint p = uint(gl_FragCoord.y) * f.resolution + uint(gl_FragCoord.x);
+    uint p = rayIndex(f, gl_FragCoord.xy);
     PixelState st = StatesRef(f.state).s[p];
     if ((st.flags & kRayDone) != 0u) return;
     uint low = v_key_low | (gl_FrontFacing ? 0u : kKeyBackFacing);

@@ -5,9 +5,8 @@
 // in shared memory, then each chunk is written out. Also records the total (the number
 // of records) and the largest input (the paper's M, the longest packed row).
 #include "common.glsl.inc"
+#include "workgroup.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-shared uint s_scan[kGroupSize];
-shared uint s_max;
 
 void main() {
     Frame f = frame();
@@ -15,24 +14,15 @@ void main() {
     UintsRef scratch = UintsRef(f.scratch);
     uint chunk = (count + kGroupSize - 1u) / kGroupSize;
     uint begin = min(gl_LocalInvocationIndex * chunk, count), end = min(begin + chunk, count);
-    if (gl_LocalInvocationIndex == 0u) s_max = 0u;
     uint sum = 0u, biggest = 0u;
     for (uint i = begin; i < end; ++i) {
         uint v = scratch.v[i];
         sum += v;
         biggest = max(biggest, v);
     }
-    s_scan[gl_LocalInvocationIndex] = sum;
-    barrier();
-    atomicMax(s_max, biggest);
-    // Hillis-Steele inclusive scan of the chunk sums.
-    for (uint stride = 1u; stride < kGroupSize; stride <<= 1) {
-        uint add = gl_LocalInvocationIndex >= stride ? s_scan[gl_LocalInvocationIndex - stride] : 0u;
-        barrier();
-        s_scan[gl_LocalInvocationIndex] += add;
-        barrier();
-    }
-    uint running = s_scan[gl_LocalInvocationIndex] - sum;
+    uint most = groupReduceMax(biggest);
+    uint inclusive = groupInclusiveScan(sum);
+    uint running = inclusive - sum;
     for (uint i = begin; i < end; ++i) {
         uint v = scratch.v[i];
         scratch.v[count + i] = running;
@@ -40,7 +30,7 @@ void main() {
     }
     if (gl_LocalInvocationIndex == kGroupSize - 1u) {
         HeaderRef h = HeaderRef(f.header);
-        h.h.record_count = s_scan[kGroupSize - 1u];
-        h.h.max_row_count = s_max;
+        h.h.record_count = inclusive;
+        h.h.max_row_count = most;
     }
 }

@@ -14,6 +14,8 @@ using graph::PassContext;
 using graph::PassKind;
 using graph::Use;
 
+static_assert(gpu::kPackRowWidth == gpu::kGroupSize, "pack_rowcount reduces a row with the workgroup helpers");
+
 std::uint32_t groups(std::uint64_t items, std::uint32_t size = gpu::kGroupSize) {
     return static_cast<std::uint32_t>((items + size - 1) / size);
 }

@@ -19,4 +19,5 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/vk/resources.cpp
   ${S}/graph/executor.cpp
   ${S}/passes/broad_phase.cpp
+  ${S}/passes/mesh_upload.cpp
 )

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <string>
 
 #include "narrow/thread_pool.hpp"
 #include "passes/broad_phase.hpp"
+#include "passes/mesh_upload.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/scene.hpp"
 
@@ -58,33 +58,18 @@ int main(int argc, char** argv) {
                                 moved(box({0.3f, 0.3f, 1.4f}, 16), 0.1f, {0.1f + 0.9f, 1.6f, 0.0f}),
                                 moved(uvSphere(0.5f, 48, 24), 0.0f, {-2.2f, -1.5f, 0.0f})};
     std::vector<HostMesh> meshes;
+    std::vector<const HostMesh*> mesh_ptrs;
+    std::size_t triangles = 0;
     for (auto& p : parts) {
         if (!p) return fail(p.error().message());
-        if (auto ok = validateMesh(*p); !ok) return fail(ok.error().message());
+        triangles += p->triangleCount();
         meshes.push_back(std::move(*p));
     }
-
+    for (const HostMesh& m : meshes) mesh_ptrs.push_back(&m);
     // Upload: the broad phase reads GPU buffers (as it would an engine's vertex buffers).
-    std::vector<vk::Buffer> buffers;
-    std::vector<passes::GpuMesh> gpu_meshes;
-    std::size_t triangles = 0;
-    for (const HostMesh& m : meshes) {
-        auto vb = vk::Buffer::create(dev, m.positions.size() * sizeof(Float3), 0, vk::MemoryKind::Upload, m.name);
-        auto ib = vk::Buffer::create(dev, m.indices.size() * 4, 0, vk::MemoryKind::Upload, m.name);
-        if (!vb) return fail(vb.error().message());
-        if (!ib) return fail(ib.error().message());
-        std::memcpy(vb->mapped(), m.positions.data(), m.positions.size() * sizeof(Float3));
-        std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
-        passes::GpuMesh g;
-        g.vertices = vb->address();
-        g.vertex_count = static_cast<std::uint32_t>(m.positions.size());
-        g.indices = ib->address();
-        g.triangle_count = static_cast<std::uint32_t>(m.triangleCount());
-        gpu_meshes.push_back(g);
-        buffers.push_back(std::move(*vb));
-        buffers.push_back(std::move(*ib));
-        triangles += m.triangleCount();
-    }
+    auto uploaded = passes::uploadMeshes(dev, mesh_ptrs);
+    if (!uploaded) return fail(uploaded.error().message());
+    const auto& gpu_meshes = uploaded->meshes;
 
     auto bp = passes::BroadPhase::create(dev);
     if (!bp) return fail(bp.error().message());

@@ -151,6 +151,13 @@ Result<void> BroadPhase::ensureBuffers(std::uint32_t n, std::uint32_t triangles,
     return {};
 }
 
+void BroadPhase::addHeaderReadback(graph::Graph& g, graph::ResourceId header, graph::ResourceId header_rb) const {
+    g.addPass("readback-header", PassKind::Transfer).use(header, Use::TransferSrc).use(header_rb, Use::TransferDst).record([this](PassContext& pc) {
+        VkBufferCopy copy{0, 0, sizeof(gpu::Header)};
+        pc.fns().vkCmdCopyBuffer(pc.cmd, buf_.header.handle(), buf_.header_rb.handle(), 1, &copy);
+    });
+}
+
 Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     const std::uint32_t n = s.resolution;
     if (n < 4 || n > 16384 || (n & (n - 1)) != 0)
@@ -282,10 +289,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
         bindAndPush(pc, P.reduce_max, frame_addr);
         pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
     });
-    g1.addPass("readback-header", PassKind::Transfer).use(header, Use::TransferSrc).use(header_rb, Use::TransferDst).record([&](PassContext& pc) {
-        VkBufferCopy copy{0, 0, sizeof(gpu::Header)};
-        pc.fns().vkCmdCopyBuffer(pc.cmd, buf_.header.handle(), buf_.header_rb.handle(), 1, &copy);
-    });
+    addHeaderReadback(g1, header, header_rb);
     auto report1 = executor_.run(g1);
     if (!report1) return report1.error();
     buf_.header_rb.invalidate();
@@ -386,10 +390,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
             pc.fns().vkCmdDispatch(pc.cmd, fr.pack_blocks, 1, 1);
         });
     }
-    g.addPass("readback-header", PassKind::Transfer).use(header, Use::TransferSrc).use(header_rb, Use::TransferDst).record([&](PassContext& pc) {
-        VkBufferCopy copy{0, 0, sizeof(gpu::Header)};
-        pc.fns().vkCmdCopyBuffer(pc.cmd, buf_.header.handle(), buf_.header_rb.handle(), 1, &copy);
-    });
+    addHeaderReadback(g, header, header_rb);
     auto report = executor_.run(g);
     if (!report) return report.error();
 

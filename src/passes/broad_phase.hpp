@@ -76,6 +76,8 @@ public:
 
 private:
     explicit BroadPhase(vk::Device& device) : device_(&device), executor_(device) {}
+    // The small result header, copied where the host can read it.
+    void addHeaderReadback(graph::Graph& g, graph::ResourceId header, graph::ResourceId header_rb) const;
     Result<void> ensureBuffers(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects, bool ray_image);
 
     vk::Device* device_;

@@ -4,11 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "passes/broad_phase.hpp"
+#include "passes/mesh_upload.hpp"
 #include "support/broadphase_reference.hpp"
 #include "support/gpu_fixture.hpp"
-#include "support/gpu_scene.hpp"
 #include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
@@ -55,7 +56,7 @@ Run runBoth(test::ValidatedContext& ctx, BroadPhase& bp, const std::vector<const
             BroadPhaseSettings settings, const std::vector<bool>& open = {}) {
     settings.keep_ray_image = true;
     if (!settings.region) settings.region = std::array<float, 6>{-2.5f, -2.5f, -2.5f, 2.5f, 2.5f, 2.5f};
-    auto scene = test::uploadScene(ctx.device(), meshes, open);
+    auto scene = uploadMeshes(ctx.device(), meshes, {.open = open});
     REQUIRE(scene);
     auto gpu = bp.run(scene->meshes, settings);
     INFO((gpu ? std::string() : gpu.error().message()));
@@ -259,7 +260,7 @@ TEST_CASE("both packing methods give identical records", "[gpu][broadphase]") {
         s.resolution = 128;
         s.packing = m;
         s.region = std::array<float, 6>{-2.5f, -2.5f, -2.5f, 2.5f, 2.5f, 2.5f};
-        auto up = test::uploadScene(ctx.device(), meshes);
+        auto up = uploadMeshes(ctx.device(), meshes);
         REQUIRE(up);
         auto r = (*bp)->run(up->meshes, s);
         REQUIRE(r);
@@ -296,8 +297,8 @@ TEST_CASE("16-bit indices, strided vertices and an automatic fit", "[gpu][broadp
     REQUIRE(bp);
     HostMesh a = placed(makeSphere(1.0f), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
     HostMesh b = placed(makeBox(0.7f), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
-    auto plain = test::uploadScene(ctx.device(), {&a, &b});
-    auto packed = test::uploadScene(ctx.device(), {&a, &b}, {}, true, 28);
+    auto plain = uploadMeshes(ctx.device(), {&a, &b});
+    auto packed = uploadMeshes(ctx.device(), {&a, &b}, {.index16 = true, .vertex_stride = 28});
     REQUIRE(plain);
     REQUIRE(packed);
     BroadPhaseSettings s;
@@ -343,7 +344,7 @@ TEST_CASE("bad broad-phase input gets an error naming the problem", "[gpu][broad
     auto bp = BroadPhase::create(ctx.device());
     REQUIRE(bp);
     HostMesh a = makeBox(1.0f);
-    auto up = test::uploadScene(ctx.device(), {&a});
+    auto up = uploadMeshes(ctx.device(), {&a});
     REQUIRE(up);
     BroadPhaseSettings s;
     s.resolution = 100;
@@ -377,8 +378,8 @@ TEST_CASE("per-object transforms are applied on the GPU", "[gpu][broadphase]") {
     HostMesh a_world = a, b_world = b;
     REQUIRE(transformMesh(a_world, ta));
     REQUIRE(transformMesh(b_world, tb));
-    auto local = test::uploadScene(ctx.device(), {&a, &b});
-    auto world = test::uploadScene(ctx.device(), {&a_world, &b_world});
+    auto local = uploadMeshes(ctx.device(), {&a, &b});
+    auto world = uploadMeshes(ctx.device(), {&a_world, &b_world});
     REQUIRE(local);
     REQUIRE(world);
     std::copy(ta.begin(), ta.end(), local->meshes[0].transform.begin());

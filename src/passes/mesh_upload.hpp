@@ -1,0 +1,27 @@
+// Host meshes copied into host-visible GPU buffers and described as GpuMesh, the form the
+// broad phase reads (and the form an engine's own vertex/index buffers take).
+#pragma once
+
+#include <vector>
+
+#include "passes/broad_phase.hpp"
+#include "vkcollide/mesh.hpp"
+
+namespace vkcollide::passes {
+
+struct MeshUploadOptions {
+    std::vector<bool> open;          // per mesh; missing entries are closed surfaces
+    bool index16 = false;            // store indices as uint16 (padded to whole words)
+    std::uint32_t vertex_stride = 12;  // bytes per vertex, >= 12 and a multiple of 4
+};
+
+struct UploadedMeshes {
+    std::vector<vk::Buffer> buffers;  // own the memory the meshes' addresses point into
+    std::vector<GpuMesh> meshes;
+};
+
+// Checks each mesh (validateMesh) and uploads it. The error names the mesh.
+Result<UploadedMeshes> uploadMeshes(vk::Device& device, const std::vector<const HostMesh*>& meshes,
+                                    const MeshUploadOptions& options = {});
+
+}  // namespace vkcollide::passes

@@ -107,17 +107,27 @@ void requireIdenticalRecords(const std::vector<CandidateTriangle>& a, const std:
     CHECK(std::memcmp(a.data(), b.data(), a.size() * sizeof(CandidateTriangle)) == 0);
 }
 
+std::unique_ptr<BroadPhase> makeBroadPhase(test::ValidatedContext& ctx) {
+    auto created = BroadPhase::create(ctx.device());
+    REQUIRE(created);
+    return std::move(*created);
+}
+
+// Every test: a validated context and a broad phase on it.
+struct BroadPhaseFixture {
+    test::ValidatedContext ctx;
+    std::unique_ptr<BroadPhase> owned = makeBroadPhase(ctx);
+    BroadPhase& bp = *owned;
+};
+
 }  // namespace
 
-TEST_CASE("two overlapping boxes mark exactly the rays of their overlap footprint", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "two overlapping boxes mark exactly the rays of their overlap footprint", "[gpu][broadphase]") {
     HostMesh a = placed(makeBox(1.0f), 0.3f, 1, 0.2f, 0.41f, {-0.45f, 0.07f, 0.03f}, "a");
     HostMesh b = placed(makeBox(1.0f), 1, 0.2f, 0.5f, 0.73f, {0.55f, -0.11f, 0.09f}, "b");
     BroadPhaseSettings s;
     s.resolution = 64;
-    Run r = runBoth(ctx, **bp, {&a, &b}, s);
+    Run r = runBoth(ctx, bp, {&a, &b}, s);
     requireSameRays(r);
     CHECK(r.gpu.collision_rays > 0);
     CHECK(r.gpu.collision_rays == r.ref.collision_rays);
@@ -126,17 +136,14 @@ TEST_CASE("two overlapping boxes mark exactly the rays of their overlap footprin
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("separated meshes mark no ray and download nothing", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "separated meshes mark no ray and download nothing", "[gpu][broadphase]") {
     HostMesh a = placed(makeSphere(0.8f), 0.3f, 1, 0.2f, 0.41f, {-1.2f, 0.07f, 0.03f}, "a");
     HostMesh b = placed(makeBox(0.6f), 1, 0.2f, 0.5f, 0.73f, {1.1f, -0.11f, 0.09f}, "b");
     for (bool dual : {false, true}) {
         BroadPhaseSettings s;
         s.resolution = 64;
         s.dual = dual;
-        Run r = runBoth(ctx, **bp, {&a, &b}, s);
+        Run r = runBoth(ctx, bp, {&a, &b}, s);
         requireSameRays(r);
         CHECK(r.gpu.collision_rays == 0);
         CHECK(r.gpu.records.empty());
@@ -144,15 +151,12 @@ TEST_CASE("separated meshes mark no ray and download nothing", "[gpu][broadphase
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("a mesh inside another is marked", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "a mesh inside another is marked", "[gpu][broadphase]") {
     HostMesh outer = placed(makeSphere(2.0f, 24, 12), 0.3f, 1, 0.2f, 0.41f, {0.01f, 0.02f, 0.03f}, "outer");
     HostMesh inner = placed(makeBox(0.5f), 1, 0.2f, 0.5f, 0.73f, {0.1f, -0.11f, 0.09f}, "inner");
     BroadPhaseSettings s;
     s.resolution = 64;
-    Run r = runBoth(ctx, **bp, {&outer, &inner}, s);
+    Run r = runBoth(ctx, bp, {&outer, &inner}, s);
     requireSameRays(r);
     CHECK(r.gpu.collision_rays > 0);
     // The inner object's triangles are all downloaded.
@@ -163,14 +167,11 @@ TEST_CASE("a mesh inside another is marked", "[gpu][broadphase]") {
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("an inverted mesh is marked everywhere it covers", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "an inverted mesh is marked everywhere it covers", "[gpu][broadphase]") {
     HostMesh m = inverted(placed(makeBox(1.2f, 1), 0.3f, 1, 0.2f, 0.41f, {0.01f, 0.02f, 0.03f}, "inside-out"));
     BroadPhaseSettings s;
     s.resolution = 64;
-    Run r = runBoth(ctx, **bp, {&m}, s);
+    Run r = runBoth(ctx, bp, {&m}, s);
     requireSameRays(r);
     CHECK(r.gpu.collision_rays > 0);
     // Every triangle of a coarse inverted box covers rays, so every one survives.
@@ -178,10 +179,7 @@ TEST_CASE("an inverted mesh is marked everywhere it covers", "[gpu][broadphase]"
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("records equal the CPU reference: spheres and boxes, single and dual peeling", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "records equal the CPU reference: spheres and boxes, single and dual peeling", "[gpu][broadphase]") {
     HostMesh a = placed(makeSphere(1.0f, 20, 10), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
     HostMesh b = placed(makeSphere(0.9f, 18, 9), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
     HostMesh c = placed(makeBox(0.5f, 3), 0.2f, 0.4f, 1, 1.1f, {0.1f, 0.8f, -0.3f}, "c");
@@ -192,7 +190,7 @@ TEST_CASE("records equal the CPU reference: spheres and boxes, single and dual p
             s.resolution = res;
             s.dual = dual;
             s.direction = {0.2f, -0.3f, 1.0f};
-            Run r = runBoth(ctx, **bp, {&a, &b, &c}, s);
+            Run r = runBoth(ctx, bp, {&a, &b, &c}, s);
             requireSameRays(r);
             requireSameRecords(r.gpu.records, r.ref.records);
             CHECK(r.gpu.peel_steps == (dual ? (r.gpu.layers + 1) / 2 : r.gpu.layers));
@@ -200,10 +198,7 @@ TEST_CASE("records equal the CPU reference: spheres and boxes, single and dual p
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("a layer cap marks deeper rays as colliding", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "a layer cap marks deeper rays as colliding", "[gpu][broadphase]") {
     // Four separated boxes in a row along the view: depth complexity 8, no collision.
     std::vector<HostMesh> boxes;
     for (int i = 0; i < 4; ++i)
@@ -212,12 +207,12 @@ TEST_CASE("a layer cap marks deeper rays as colliding", "[gpu][broadphase]") {
     for (auto& b : boxes) ptrs.push_back(&b);
     BroadPhaseSettings s;
     s.resolution = 64;
-    Run full = runBoth(ctx, **bp, ptrs, s);
+    Run full = runBoth(ctx, bp, ptrs, s);
     requireSameRays(full);
     CHECK(full.gpu.depth_complexity == 8);
     CHECK(full.gpu.collision_rays == 0);
     s.layer_cap = 4;
-    Run capped = runBoth(ctx, **bp, ptrs, s);
+    Run capped = runBoth(ctx, bp, ptrs, s);
     requireSameRays(capped);
     CHECK(capped.gpu.layers == 4);
     CHECK(capped.gpu.collision_rays > 0);  // rays through more than four surfaces
@@ -225,10 +220,7 @@ TEST_CASE("a layer cap marks deeper rays as colliding", "[gpu][broadphase]") {
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("open surfaces collide by depth proximity", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "open surfaces collide by depth proximity", "[gpu][broadphase]") {
     auto cloth = clothGrid(3.0f, 3.0f, 12, 12);
     REQUIRE(cloth);
     HostMesh sheet = placed(*cloth, 1, 0.1f, 0.2f, 1.3f, {0.02f, 0.03f, 0.01f}, "cloth");
@@ -238,7 +230,7 @@ TEST_CASE("open surfaces collide by depth proximity", "[gpu][broadphase]") {
     s.open_epsilon = 0.05f;
     for (bool dual : {false, true}) {
         s.dual = dual;
-        Run r = runBoth(ctx, **bp, {&sheet, &ball}, s, {true, false});
+        Run r = runBoth(ctx, bp, {&sheet, &ball}, s, {true, false});
         requireSameRays(r);
         CHECK(r.gpu.collision_rays > 0);
         requireSameRecords(r.gpu.records, r.ref.records);
@@ -246,10 +238,7 @@ TEST_CASE("open surfaces collide by depth proximity", "[gpu][broadphase]") {
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("both packing methods give identical records", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "both packing methods give identical records", "[gpu][broadphase]") {
     HostMesh a = placed(makeSphere(1.0f, 24, 12), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
     HostMesh b = placed(makeBox(0.7f, 4), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
     HostMesh far_a = placed(makeSphere(0.5f), 0, 0, 1, 0.1f, {-1.5f, 0, 0}, "far-a");
@@ -262,7 +251,7 @@ TEST_CASE("both packing methods give identical records", "[gpu][broadphase]") {
         s.region = std::array<float, 6>{-2.5f, -2.5f, -2.5f, 2.5f, 2.5f, 2.5f};
         auto up = uploadMeshes(ctx.device(), meshes);
         REQUIRE(up);
-        auto r = (*bp)->run(up->meshes, s);
+        auto r = bp.run(up->meshes, s);
         REQUIRE(r);
         return std::move(*r);
     };
@@ -291,10 +280,7 @@ TEST_CASE("both packing methods give identical records", "[gpu][broadphase]") {
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("16-bit indices, strided vertices and an automatic fit", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "16-bit indices, strided vertices and an automatic fit", "[gpu][broadphase]") {
     HostMesh a = placed(makeSphere(1.0f), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
     HostMesh b = placed(makeBox(0.7f), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
     auto plain = uploadMeshes(ctx.device(), {&a, &b});
@@ -303,8 +289,8 @@ TEST_CASE("16-bit indices, strided vertices and an automatic fit", "[gpu][broadp
     REQUIRE(packed);
     BroadPhaseSettings s;
     s.resolution = 64;
-    auto r1 = (*bp)->run(plain->meshes, s);
-    auto r2 = (*bp)->run(packed->meshes, s);
+    auto r1 = bp.run(plain->meshes, s);
+    auto r2 = bp.run(packed->meshes, s);
     REQUIRE(r1);
     REQUIRE(r2);
     CHECK(r1->collision_rays > 0);
@@ -317,15 +303,12 @@ TEST_CASE("16-bit indices, strided vertices and an automatic fit", "[gpu][broadp
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("per-pass GPU times and the Table 1 counts are reported", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "per-pass GPU times and the Table 1 counts are reported", "[gpu][broadphase]") {
     HostMesh a = placed(makeSphere(1.0f), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
     HostMesh b = placed(makeBox(0.7f), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
     BroadPhaseSettings s;
     s.resolution = 64;
-    Run r = runBoth(ctx, **bp, {&a, &b}, s);
+    Run r = runBoth(ctx, bp, {&a, &b}, s);
     std::size_t rays = 0;
     for (auto x : r.gpu.ray_image) rays += x;
     CHECK(r.gpu.collision_rays == rays);
@@ -339,38 +322,32 @@ TEST_CASE("per-pass GPU times and the Table 1 counts are reported", "[gpu][broad
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("bad broad-phase input gets an error naming the problem", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "bad broad-phase input gets an error naming the problem", "[gpu][broadphase]") {
     HostMesh a = makeBox(1.0f);
     auto up = uploadMeshes(ctx.device(), {&a});
     REQUIRE(up);
     BroadPhaseSettings s;
     s.resolution = 100;
-    auto r = (*bp)->run(up->meshes, s);
+    auto r = bp.run(up->meshes, s);
     REQUIRE_FALSE(r);
     CHECK_THAT(r.error().message(), Catch::Contains("power of two"));
     s.resolution = 64;
-    auto none = (*bp)->run({}, s);
+    auto none = bp.run({}, s);
     REQUIRE_FALSE(none);
     CHECK_THAT(none.error().message(), Catch::Contains("zero meshes"));
     auto empty = up->meshes;
     empty[0].triangle_count = 0;
-    auto e = (*bp)->run(empty, s);
+    auto e = bp.run(empty, s);
     REQUIRE_FALSE(e);
     CHECK_THAT(e.error().message(), Catch::Contains("object 0") && Catch::Contains("empty mesh"));
     s.direction = {0, 0, 0};
-    auto d = (*bp)->run(up->meshes, s);
+    auto d = bp.run(up->meshes, s);
     REQUIRE_FALSE(d);
     CHECK_THAT(d.error().message(), Catch::Contains("direction"));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("per-object transforms are applied on the GPU", "[gpu][broadphase]") {
-    test::ValidatedContext ctx;
-    auto bp = BroadPhase::create(ctx.device());
-    REQUIRE(bp);
+TEST_CASE_METHOD(BroadPhaseFixture, "per-object transforms are applied on the GPU", "[gpu][broadphase]") {
     HostMesh a = makeSphere(1.0f);
     HostMesh b = makeBox(0.7f);
     const Transform3x4 ta = {1, 0, 0, -0.5f, 0, 0, -1, 0.07f, 0, 1, 0, 0.03f};  // rotation about x + move
@@ -386,8 +363,8 @@ TEST_CASE("per-object transforms are applied on the GPU", "[gpu][broadphase]") {
     std::copy(tb.begin(), tb.end(), local->meshes[1].transform.begin());
     BroadPhaseSettings s;
     s.resolution = 64;
-    auto r1 = (*bp)->run(local->meshes, s);
-    auto r2 = (*bp)->run(world->meshes, s);
+    auto r1 = bp.run(local->meshes, s);
+    auto r2 = bp.run(world->meshes, s);
     REQUIRE(r1);
     REQUIRE(r2);
     CHECK(r1->collision_rays > 0);

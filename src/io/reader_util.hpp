@@ -24,23 +24,24 @@ Result<std::vector<HostMesh>> readObj(std::string_view in_text, std::string_view
 Result<std::vector<HostMesh>> readOff(std::string_view in_text, std::string_view source_name);
 Result<std::vector<HostMesh>> readPly(std::string_view in_data, std::string_view source_name);
 
-inline Error parseErrorAtLine(std::string_view source_name, std::size_t line, std::string_view what) {
+// "source<separator><position>: what"
+inline Error parseErrorAt(std::string_view source_name, std::string_view separator, std::size_t position,
+                          std::string_view what) {
     std::string message(source_name);
-    message += ':';
-    message += std::to_string(line);
+    message += separator;
+    message += std::to_string(position);
     message += ": ";
     message += what;
     return Error(ErrorCode::ParseError, std::move(message));
 }
 
+inline Error parseErrorAtLine(std::string_view source_name, std::size_t line, std::string_view what) {
+    return parseErrorAt(source_name, ":", line, what);
+}
+
 // Binary data has no lines; the byte offset from the start of the file locates it.
 inline Error parseErrorAtByte(std::string_view source_name, std::size_t offset, std::string_view what) {
-    std::string message(source_name);
-    message += ": byte ";
-    message += std::to_string(offset);
-    message += ": ";
-    message += what;
-    return Error(ErrorCode::ParseError, std::move(message));
+    return parseErrorAt(source_name, ": byte ", offset, what);
 }
 
 // "dir/bunny.off" -> "bunny": the name of an object the file does not name itself.

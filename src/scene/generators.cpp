@@ -33,6 +33,12 @@ void pushTriangle(HostMesh& io_mesh, std::uint32_t a, std::uint32_t b, std::uint
     io_mesh.indices.push_back(c);
 }
 
+// Quad a, b, c, d (in winding order) as triangles (a, b, c) and (a, c, d).
+void pushQuad(HostMesh& io_mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    pushTriangle(io_mesh, a, b, c);
+    pushTriangle(io_mesh, a, c, d);
+}
+
 }  // namespace
 
 Result<HostMesh> uvSphere(float radius, std::uint32_t segments, std::uint32_t rings) {
@@ -66,8 +72,7 @@ Result<HostMesh> uvSphere(float radius, std::uint32_t segments, std::uint32_t ri
         for (std::uint32_t j = 0; j < segments; ++j) {
             const std::uint32_t a0 = ring_vertex(k, j), a1 = ring_vertex(k, j + 1);
             const std::uint32_t b0 = ring_vertex(k + 1, j), b1 = ring_vertex(k + 1, j + 1);
-            pushTriangle(mesh, a0, b0, b1);
-            pushTriangle(mesh, a0, b1, a1);
+            pushQuad(mesh, a0, b0, b1, a1);
         }
     }
     for (std::uint32_t j = 0; j < segments; ++j)
@@ -98,8 +103,7 @@ Result<HostMesh> torus(float major_radius, float minor_radius, std::uint32_t seg
     mesh.indices.reserve(6ull * segments * sides);
     for (std::uint32_t i = 0; i < segments; ++i) {
         for (std::uint32_t j = 0; j < sides; ++j) {
-            pushTriangle(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1));
-            pushTriangle(mesh, at(i, j), at(i + 1, j + 1), at(i, j + 1));
+            pushQuad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
         }
     }
     return mesh;
@@ -154,8 +158,7 @@ Result<HostMesh> box(Float3 half_extents, std::uint32_t subdivisions) {
                         }
                     }
                     if (positive) {
-                        pushTriangle(mesh, corner[0][0], corner[1][0], corner[1][1]);
-                        pushTriangle(mesh, corner[0][0], corner[1][1], corner[0][1]);
+                        pushQuad(mesh, corner[0][0], corner[1][0], corner[1][1], corner[0][1]);
                     } else {
                         pushTriangle(mesh, corner[0][0], corner[1][1], corner[1][0]);
                         pushTriangle(mesh, corner[0][0], corner[0][1], corner[1][1]);
@@ -214,8 +217,7 @@ Result<HostMesh> twistedTube(float path_scale, float tube_radius, std::uint32_t 
     mesh.indices.reserve(6ull * segments * sides + 6ull * sides);
     for (std::uint32_t i = 0; i < segments; ++i) {
         for (std::uint32_t j = 0; j < sides; ++j) {
-            pushTriangle(mesh, ring(i, j), ring(i, j + 1), ring(i + 1, j + 1));
-            pushTriangle(mesh, ring(i, j), ring(i + 1, j + 1), ring(i + 1, j));
+            pushQuad(mesh, ring(i, j), ring(i, j + 1), ring(i + 1, j + 1), ring(i + 1, j));
         }
     }
     // psi turns from N towards Z, counter-clockwise seen from +T: the end cap (facing
@@ -259,8 +261,7 @@ Result<HostMesh> clothGrid(float width, float depth, std::uint32_t nx, std::uint
     mesh.indices.reserve(6ull * nx * ny);
     for (std::uint32_t j = 0; j < ny; ++j) {
         for (std::uint32_t i = 0; i < nx; ++i) {
-            pushTriangle(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1));
-            pushTriangle(mesh, at(i, j), at(i + 1, j + 1), at(i, j + 1));
+            pushQuad(mesh, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
         }
     }
     return mesh;

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "passes/broad_phase.hpp"
 #include "passes/mesh_upload.hpp"
 #include "vkcollide/context.hpp"

@@ -27,7 +27,7 @@
 
 namespace vkcollide {
 
-// Worker threads for the narrow phase; declared in src/narrow/thread_pool.hpp.
+// Worker threads for the narrow phase; declared in vkcollide/thread_pool.hpp.
 class ThreadPool;
 
 // One potentially colliding triangle, as the GPU broad phase writes it. The GLSL side

@@ -5,7 +5,7 @@
 
 #include "narrow/neighbours.hpp"
 #include "narrow/sweep_and_prune.hpp"
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "vkcollide/narrow.hpp"
 

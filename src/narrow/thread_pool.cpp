@@ -1,4 +1,4 @@
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 
 #include <algorithm>
 #include <system_error>

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "narrow/printers.hpp"
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "narrow/scene_builders.hpp"
 #include "support/exact_reference.hpp"
 

@@ -9,7 +9,7 @@
 
 #include "narrow/neighbours.hpp"
 #include "narrow/printers.hpp"
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "vkcollide/narrow.hpp"
 

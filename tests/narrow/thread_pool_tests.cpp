@@ -4,7 +4,7 @@
 #include <thread>
 #include <vector>
 
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 
 using vkcollide::ThreadPool;
 

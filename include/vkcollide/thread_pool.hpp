@@ -1,4 +1,4 @@
-// A small fixed-size pool of worker threads for data-parallel loops.
+// vkcollide: a small fixed-size pool of worker threads for data-parallel loops (the narrow phase).
 #pragma once
 
 #include <condition_variable>

@@ -34,6 +34,7 @@ VKC_CONST kParityBack = 8u;
 // ObjectGpu.flags
 VKC_CONST kObjectOpen = 1u;
 VKC_CONST kObjectIndex16 = 2u;
+VKC_CONST kObjectCheckOnGpu = 4u;  // geometry only on the GPU: check indices and positions there
 VKC_CONST kMaxLevels = 16u;
 
 // One registered mesh instance.
@@ -72,7 +73,9 @@ struct Header {
     uint collision_rays;
     uint max_row_count;     // paper packing: most records in one row
     uint bounds[6];         // ordered-float min u,v,d then max u,v,d (auto fit)
-    uint pad0, pad1;
+    // GPU-side input checks (kObjectCheckOnGpu): how many triangles failed, and one of them.
+    uint bad_index_count, bad_index_object, bad_index_triangle;
+    uint bad_vertex_count, bad_vertex_object, bad_vertex_triangle;
 };
 
 // Everything a broad-phase shader needs, uploaded once per detection.

@@ -1,5 +1,5 @@
 # Broad-phase programs (spirv/<name>.<stage>.glsl), embedded as vkcollide::shaders::<name>_<stage>.
 list(APPEND VKCOLLIDE_SHADERS
-  bounds.comp fit.comp sample.vert count.frag peel.frag reduce_max.comp peel_init.comp classify.comp
+  validate.comp bounds.comp fit.comp sample.vert count.frag peel.frag reduce_max.comp peel_init.comp classify.comp
   finalize.comp merge.comp separate.comp
   pack_rowcount.comp scan_counts.comp pack_shift.comp pack_move.comp scan_blocksum.comp scan_scatter.comp)

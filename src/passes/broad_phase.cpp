@@ -1,5 +1,6 @@
 #include "passes/broad_phase.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -98,7 +99,7 @@ Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device) {
         return {};
     };
     auto& P = bp->pipes_;
-    for (auto r : {compute(P.bounds, shaders::bounds_comp, "bounds"), compute(P.fit, shaders::fit_comp, "fit"),
+    for (auto r : {compute(P.validate, shaders::validate_comp, "validate"), compute(P.bounds, shaders::bounds_comp, "bounds"), compute(P.fit, shaders::fit_comp, "fit"),
                    raster(P.count, shaders::count_frag, "count"), raster(P.peel, shaders::peel_frag, "peel"),
                    compute(P.reduce_max, shaders::reduce_max_comp, "reduce-max"),
                    compute(P.peel_init, shaders::peel_init_comp, "peel-init"),
@@ -158,7 +159,7 @@ void BroadPhase::addHeaderReadback(graph::Graph& g, graph::ResourceId header, gr
     });
 }
 
-Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
+Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     const std::uint32_t n = s.resolution;
     if (n < 4 || n > 16384 || (n & (n - 1)) != 0)
         return Error(ErrorCode::InvalidArgument, "resolution " + std::to_string(n) + " is not a power of two in [4, 16384]");
@@ -166,15 +167,22 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     if (!(dl > 0) || !std::isfinite(dl)) return Error(ErrorCode::InvalidArgument, "projection direction must be finite and non-zero");
     if (meshes.empty()) return Error(ErrorCode::InvalidArgument, "no objects to test (zero meshes)");
     if (!(s.open_epsilon >= 0) || !std::isfinite(s.open_epsilon)) return Error(ErrorCode::InvalidArgument, "open_epsilon must be finite and >= 0");
+    if (s.region) {
+        const auto& r = *s.region;
+        for (int a = 0; a < 3; ++a)
+            if (!std::isfinite(r[a]) || !std::isfinite(r[a + 3]) || !(r[a] <= r[a + 3]))
+                return Error(ErrorCode::InvalidArgument, "sampling region must be finite with min <= max on every axis");
+    }
 
     std::uint64_t total = 0;
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const GpuMesh& m = meshes[i];
         const std::string who = "object " + std::to_string(i) + ": ";
         if (m.triangle_count == 0) return Error(ErrorCode::InvalidMesh, who + "has no triangles (empty mesh)");
+        if (m.vertex_count == 0) return Error(ErrorCode::InvalidMesh, who + "has no vertices");
         if (!m.vertices || !m.indices) return Error(ErrorCode::InvalidArgument, who + "vertex or index address is null");
-        if (m.vertex_stride < 12 || m.vertex_stride % 4 != 0 || m.vertices % 4 != 0)
-            return Error(ErrorCode::InvalidArgument, who + "positions must be 4-byte aligned with a stride of at least 12 bytes");
+        if (m.vertex_stride < 12 || m.vertex_stride % 4 != 0 || m.vertices % 4 != 0 || m.indices % 4 != 0)
+            return Error(ErrorCode::InvalidArgument, who + "positions and indices must be 4-byte aligned, with a vertex stride of at least 12 bytes");
         for (float t : m.transform)
             if (!std::isfinite(t)) return Error(ErrorCode::InvalidArgument, who + "transform is not finite");
         total += m.triangle_count;
@@ -184,7 +192,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     const auto objects = static_cast<std::uint32_t>(meshes.size());
     if (auto ok = ensureBuffers(n, triangles, objects, s.keep_ray_image); !ok) return ok.error();
 
-    // Upload objects and the frame description.
+    // Objects and the frame description.
     auto* objs = static_cast<gpu::ObjectGpu*>(buf_.objects_buf.mapped());
     std::uint32_t base = 0;
     for (std::uint32_t i = 0; i < objects; ++i) {
@@ -196,7 +204,8 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
         o.vertex_count = m.vertex_count;
         o.triangle_count = m.triangle_count;
         o.triangle_base = base;
-        o.flags = (m.open ? gpu::kObjectOpen : 0u) | (m.index16 ? gpu::kObjectIndex16 : 0u);
+        o.flags = (m.open ? gpu::kObjectOpen : 0u) | (m.index16 ? gpu::kObjectIndex16 : 0u) |
+                  (m.check_on_gpu ? gpu::kObjectCheckOnGpu : 0u);
         for (int r = 0; r < 3; ++r) o.model[r] = {m.transform[r * 4], m.transform[r * 4 + 1], m.transform[r * 4 + 2], m.transform[r * 4 + 3]};
         objs[i] = o;
         base += m.triangle_count;
@@ -243,186 +252,291 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
         std::memcpy(buf_.projection.mapped(), &pr, sizeof(pr));
         buf_.projection.flush();
     }
-
-    BroadPhaseResult result;
-    result.triangles = triangles;
-    const VkDeviceAddress frame_addr = buf_.frame.address();
-    const std::uint32_t pixels = n * n;
-    auto& P = pipes_;
-
-    // ---- submission 1: fit and depth complexity --------------------------------------
-    // One frame description serves both submissions.
     std::memcpy(buf_.frame.mapped(), &fr, sizeof(fr));
     buf_.frame.flush();
-    graph::Graph g1;
-    auto header = g1.importBuffer("header", buf_.header);
-    auto header_rb = g1.importBuffer("header-readback", buf_.header_rb, true);
-    auto counts = g1.importBuffer("counts", buf_.counts);
-    auto projection = g1.importBuffer("projection", buf_.projection);
-    g1.addPass("clear", PassKind::Transfer).use(header, Use::TransferDst).use(counts, Use::TransferDst).record([&](PassContext& pc) {
-        // Disjoint ranges: counters 0, bound minima +inf (ordered), maxima and padding 0.
+
+    frame_ = Prepared{};
+    frame_.frame = fr;
+    frame_.settings = s;
+    frame_.meshes.assign(meshes.begin(), meshes.end());
+    frame_.any_gpu_check = std::any_of(meshes.begin(), meshes.end(), [](const GpuMesh& m) { return m.check_on_gpu; });
+    return {};
+}
+
+BroadPhase::Resources BroadPhase::importResources(graph::Graph& g, bool full) {
+    Resources r;
+    r.header = g.importBuffer("header", buf_.header);
+    r.header_rb = g.importBuffer("header-readback", buf_.header_rb, true);
+    r.counts = g.importBuffer("counts", buf_.counts);
+    r.projection = g.importBuffer("projection", buf_.projection);
+    if (!full) return r;
+    r.front = g.importBuffer("front-keys", buf_.front);
+    r.back = g.importBuffer("back-keys", buf_.back);
+    r.state = g.importBuffer("ray-state", buf_.state);
+    r.bundles = g.importBuffer("bundles", buf_.bundles);
+    r.sparse = g.importBuffer("sparse", buf_.sparse);
+    r.records = g.importBuffer("records", buf_.records, true);
+    r.scratch = g.importBuffer("pack-scratch", buf_.scratch);
+    if (frame_.settings.keep_ray_image) r.rays = g.importBuffer("ray-image", buf_.ray_image, true);
+    return r;
+}
+
+// Clear, input checks, fit and depth complexity.
+void BroadPhase::recordMeasure(graph::Graph& g, const Resources& r) const {
+    const std::uint32_t pixels = frame_.frame.resolution * frame_.frame.resolution;
+    const VkDeviceAddress frame_addr = buf_.frame.address();
+    const auto& meshes = frame_.meshes;
+    const auto& P = pipes_;
+    g.addPass("clear", PassKind::Transfer).use(r.header, Use::TransferDst).use(r.counts, Use::TransferDst).record([this, pixels](PassContext& pc) {
+        // Writes the engine submitted earlier (vertex buffers it skinned or simulated)
+        // become visible to everything this detection does.
+        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+        mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &mb;
+        pc.fns().vkCmdPipelineBarrier2(pc.cmd, &dep);
+        // Disjoint ranges: counters 0, bound minima +inf (ordered), maxima and checks 0.
         constexpr VkDeviceSize mins = offsetof(gpu::Header, bounds), maxs = mins + 12;
         pc.fns().vkCmdFillBuffer(pc.cmd, buf_.header.handle(), 0, mins, 0);
         pc.fns().vkCmdFillBuffer(pc.cmd, buf_.header.handle(), mins, 12, 0xFFFFFFFFu);
         pc.fns().vkCmdFillBuffer(pc.cmd, buf_.header.handle(), maxs, sizeof(gpu::Header) - maxs, 0);
         pc.fns().vkCmdFillBuffer(pc.cmd, buf_.counts.handle(), 0, VkDeviceSize(pixels) * 4, 0);
     });
-    if (!s.region) {
-        g1.addPass("bounds", PassKind::Compute).readWrite(header).record([&](PassContext& pc) {
-            for (std::uint32_t i = 0; i < objects; ++i) {
+    if (frame_.any_gpu_check) {
+        g.addPass("validate", PassKind::Compute).readWrite(r.header).record([&, frame_addr](PassContext& pc) {
+            for (std::uint32_t i = 0; i < meshes.size(); ++i) {
+                if (!meshes[i].check_on_gpu) continue;
+                bindAndPush(pc, P.validate, frame_addr, i);
+                pc.fns().vkCmdDispatch(pc.cmd, groups(meshes[i].triangle_count), 1, 1);
+            }
+        });
+    }
+    if (!frame_.settings.region) {
+        g.addPass("bounds", PassKind::Compute).readWrite(r.header).record([&, frame_addr](PassContext& pc) {
+            for (std::uint32_t i = 0; i < meshes.size(); ++i) {
                 bindAndPush(pc, P.bounds, frame_addr, i);
                 pc.fns().vkCmdDispatch(pc.cmd, std::max(groups(meshes[i].vertex_count), 1u), 1, 1);
             }
         });
-        g1.addPass("fit", PassKind::Compute).read(header).write(projection).record([&](PassContext& pc) {
+        g.addPass("fit", PassKind::Compute).read(r.header).write(r.projection).record([&, frame_addr](PassContext& pc) {
             bindAndPush(pc, P.fit, frame_addr);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
         });
     }
-    g1.addPass("depth-complexity", PassKind::Raster).renderArea(n, n).read(projection).readWrite(counts).record([&](PassContext& pc) {
-        for (std::uint32_t i = 0; i < objects; ++i) {
+    const std::uint32_t n = frame_.frame.resolution;
+    g.addPass("depth-complexity", PassKind::Raster).renderArea(n, n).read(r.projection).readWrite(r.counts).record([&, frame_addr](PassContext& pc) {
+        for (std::uint32_t i = 0; i < meshes.size(); ++i) {
             bindAndPush(pc, P.count, frame_addr, i);
             pc.fns().vkCmdDraw(pc.cmd, meshes[i].triangle_count * 3, 1, 0, 0);
         }
     });
-    g1.addPass("reduce-max", PassKind::Compute).read(counts).readWrite(header).record([&](PassContext& pc) {
+    g.addPass("reduce-max", PassKind::Compute).read(r.counts).readWrite(r.header).record([&, frame_addr, pixels](PassContext& pc) {
         bindAndPush(pc, P.reduce_max, frame_addr);
         pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
     });
-    addHeaderReadback(g1, header, header_rb);
-    auto report1 = executor_.run(g1);
-    if (!report1) return report1.error();
-    buf_.header_rb.invalidate();
-    gpu::Header h1;
-    std::memcpy(&h1, buf_.header_rb.mapped(), sizeof(h1));
-    result.depth_complexity = h1.depth_complexity;
-    result.layers = s.layer_cap ? std::min(h1.depth_complexity, s.layer_cap) : h1.depth_complexity;
-    result.peel_steps = s.dual ? (result.layers + 1) / 2 : result.layers;
-    for (auto& p : report1->passes) {
-        result.sampling_ms += p.name == "readback-header" ? 0.0 : p.gpu_ms;
-        result.passes.push_back(p);
-    }
+}
 
-    // ---- submission 2: peel, merge, separate, pack -------------------------------------
-    graph::Graph g;
-    header = g.importBuffer("header", buf_.header);
-    header_rb = g.importBuffer("header-readback", buf_.header_rb, true);
-    counts = g.importBuffer("counts", buf_.counts);
-    projection = g.importBuffer("projection", buf_.projection);
-    auto front = g.importBuffer("front-keys", buf_.front);
-    auto back = g.importBuffer("back-keys", buf_.back);
-    auto state = g.importBuffer("ray-state", buf_.state);
-    auto bundles = g.importBuffer("bundles", buf_.bundles);
-    auto sparse = g.importBuffer("sparse", buf_.sparse);
-    auto records = g.importBuffer("records", buf_.records, true);
-    auto scratch = g.importBuffer("pack-scratch", buf_.scratch);
-    graph::ResourceId rays;
-    if (s.keep_ray_image) rays = g.importBuffer("ray-image", buf_.ray_image, true);
+// Peeling steps, classification, merging, separation and packing.
+void BroadPhase::recordPeelToPack(graph::Graph& g, const Resources& r, std::uint32_t steps) const {
+    const gpu::Frame& fr = frame_.frame;
+    const bool dual = fr.dual != 0, keep_rays = frame_.settings.keep_ray_image;
+    const std::uint32_t n = fr.resolution, pixels = n * n, levels = fr.levels;
+    const VkDeviceAddress frame_addr = buf_.frame.address();
+    const auto& meshes = frame_.meshes;
+    const auto& P = pipes_;
 
-    g.addPass("peel-init", PassKind::Compute).read(counts).write(state).write(front).write(back).record([&](PassContext& pc) {
+    g.addPass("peel-init", PassKind::Compute).read(r.counts).write(r.state).write(r.front).write(r.back).record([&, frame_addr, pixels](PassContext& pc) {
         bindAndPush(pc, P.peel_init, frame_addr);
         pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
     });
-    for (std::uint32_t step = 0; step < result.peel_steps; ++step) {
+    for (std::uint32_t step = 0; step < steps; ++step) {
         auto peel = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Raster);
-        peel.renderArea(n, n).read(projection).read(state).readWrite(front);
-        if (s.dual) peel.readWrite(back);
-        peel.record([&, step](PassContext& pc) {
-            for (std::uint32_t i = 0; i < objects; ++i) {
+        peel.renderArea(n, n).read(r.projection).read(r.state).readWrite(r.front);
+        if (dual) peel.readWrite(r.back);
+        peel.record([&, step, frame_addr](PassContext& pc) {
+            for (std::uint32_t i = 0; i < meshes.size(); ++i) {
                 bindAndPush(pc, P.peel, frame_addr, i, step);
                 pc.fns().vkCmdDraw(pc.cmd, meshes[i].triangle_count * 3, 1, 0, 0);
             }
         });
         auto classify = g.addPass("classify[" + std::to_string(step) + "]", PassKind::Compute);
-        classify.read(counts).read(projection).readWrite(state).readWrite(front);
-        if (s.dual) classify.readWrite(back);
-        classify.record([&, step](PassContext& pc) {
+        classify.read(r.counts).read(r.projection).readWrite(r.state).readWrite(r.front);
+        if (dual) classify.readWrite(r.back);
+        classify.record([&, step, frame_addr, pixels](PassContext& pc) {
             bindAndPush(pc, P.classify, frame_addr, 0, step);
             pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
         });
     }
     auto finalize = g.addPass("finalize", PassKind::Compute);
-    finalize.read(state).use(bundles, Use::StorageWrite).readWrite(header);
-    if (s.keep_ray_image) finalize.write(rays);
-    finalize.record([&](PassContext& pc) {
+    finalize.read(r.state).use(r.bundles, Use::StorageWrite).readWrite(r.header);
+    if (keep_rays) finalize.write(r.rays);
+    finalize.record([&, frame_addr, pixels](PassContext& pc) {
         bindAndPush(pc, P.finalize, frame_addr);
         pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
     });
-    g.addPass("merge", PassKind::Compute).readWrite(bundles).record([&](PassContext& pc) {
+    g.addPass("merge", PassKind::Compute).readWrite(r.bundles).record([&, frame_addr, n, levels](PassContext& pc) {
         for (std::uint32_t l = 1; l < levels; ++l) {
             bindAndPush(pc, P.merge, frame_addr, 0, 0, l);
             pc.fns().vkCmdDispatch(pc.cmd, groups(VkDeviceSize(n >> l) * (n >> l)), 1, 1);
             if (l + 1 < levels) pc.shaderBarrier();  // level l+1 reads level l
         }
     });
-    g.addPass("separate", PassKind::Compute).read(projection).read(bundles).write(sparse).record([&](PassContext& pc) {
-        for (std::uint32_t i = 0; i < objects; ++i) {
+    g.addPass("separate", PassKind::Compute).read(r.projection).read(r.bundles).write(r.sparse).record([&, frame_addr](PassContext& pc) {
+        for (std::uint32_t i = 0; i < meshes.size(); ++i) {
             bindAndPush(pc, P.separate, frame_addr, i);
             pc.fns().vkCmdDispatch(pc.cmd, groups(meshes[i].triangle_count), 1, 1);
         }
     });
-    if (s.packing == PackingMethod::Paper) {
-        g.addPass("pack-count", PassKind::Compute).read(sparse).write(scratch).record([&](PassContext& pc) {
+    const std::uint32_t rows = fr.pack_rows, blocks = fr.pack_blocks;
+    if (frame_.settings.packing == PackingMethod::Paper) {
+        g.addPass("pack-count", PassKind::Compute).read(r.sparse).write(r.scratch).record([&, frame_addr, rows](PassContext& pc) {
             bindAndPush(pc, P.pack_rowcount, frame_addr);
-            pc.fns().vkCmdDispatch(pc.cmd, fr.pack_rows, 1, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, rows, 1, 1);
             pc.shaderBarrier();
-            bindAndPush(pc, P.scan_counts, frame_addr, 0, fr.pack_rows);
+            bindAndPush(pc, P.scan_counts, frame_addr, 0, rows);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
         });
-        g.addPass("pack-shift", PassKind::Compute).read(sparse).readWrite(scratch).readWrite(header).record([&](PassContext& pc) {
+        g.addPass("pack-shift", PassKind::Compute).read(r.sparse).readWrite(r.scratch).readWrite(r.header).record([&, frame_addr, rows](PassContext& pc) {
             bindAndPush(pc, P.pack_shift, frame_addr);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(fr.pack_rows, 64), 1, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, groups(rows, 64), 1, 1);
         });
-        g.addPass("pack-move", PassKind::Compute).read(sparse).read(scratch).read(projection).write(records).record([&](PassContext& pc) {
+        g.addPass("pack-move", PassKind::Compute).read(r.sparse).read(r.scratch).read(r.projection).write(r.records).record([&, frame_addr, rows](PassContext& pc) {
             bindAndPush(pc, P.pack_move, frame_addr);
-            pc.fns().vkCmdDispatch(pc.cmd, fr.pack_rows, 1, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, rows, 1, 1);
         });
     } else {
-        g.addPass("pack-scan", PassKind::Compute).read(sparse).write(scratch).readWrite(header).record([&](PassContext& pc) {
+        g.addPass("pack-scan", PassKind::Compute).read(r.sparse).write(r.scratch).readWrite(r.header).record([&, frame_addr, blocks](PassContext& pc) {
             bindAndPush(pc, P.scan_blocksum, frame_addr);
-            pc.fns().vkCmdDispatch(pc.cmd, fr.pack_blocks, 1, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, blocks, 1, 1);
             pc.shaderBarrier();
-            bindAndPush(pc, P.scan_counts, frame_addr, 0, fr.pack_blocks);
+            bindAndPush(pc, P.scan_counts, frame_addr, 0, blocks);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
         });
-        g.addPass("pack-scatter", PassKind::Compute).read(sparse).read(scratch).read(projection).write(records).record([&](PassContext& pc) {
+        g.addPass("pack-scatter", PassKind::Compute).read(r.sparse).read(r.scratch).read(r.projection).write(r.records).record([&, frame_addr, blocks](PassContext& pc) {
             bindAndPush(pc, P.scan_scatter, frame_addr);
-            pc.fns().vkCmdDispatch(pc.cmd, fr.pack_blocks, 1, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, blocks, 1, 1);
         });
     }
-    addHeaderReadback(g, header, header_rb);
-    auto report = executor_.run(g);
+}
+
+gpu::Header BroadPhase::readHeader() {
+    buf_.header_rb.invalidate();
+    gpu::Header h;
+    std::memcpy(&h, buf_.header_rb.mapped(), sizeof(h));
+    return h;
+}
+
+// The GPU input checks' verdict, naming the object (its index in the run) and triangle.
+Result<void> BroadPhase::checkInputs(const gpu::Header& h) const {
+    if (h.bad_index_count)
+        return Error(ErrorCode::InvalidMesh, "object " + std::to_string(h.bad_index_object) + ": triangle " +
+                                                 std::to_string(h.bad_index_triangle) + " has an index >= the vertex count " +
+                                                 std::to_string(frame_.meshes.at(h.bad_index_object).vertex_count) + " (" +
+                                                 std::to_string(h.bad_index_count) + " triangles affected)");
+    if (h.bad_vertex_count)
+        return Error(ErrorCode::InvalidMesh, "object " + std::to_string(h.bad_vertex_object) + ": triangle " +
+                                                 std::to_string(h.bad_vertex_triangle) + " has a NaN or infinite vertex position (" +
+                                                 std::to_string(h.bad_vertex_count) + " triangles affected)");
+    return {};
+}
+
+void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report) {
+    for (const auto& p : report.passes) {
+        const std::string& name = p.name;
+        if (name == "depth-complexity" || name.rfind("peel", 0) == 0 || name.rfind("classify", 0) == 0 || name == "finalize" ||
+            name == "clear" || name == "validate" || name == "bounds" || name == "fit" || name == "reduce-max")
+            result.sampling_ms += p.gpu_ms;
+        else if (name == "merge") result.merging_ms += p.gpu_ms;
+        else if (name == "separate") result.separation_ms += p.gpu_ms;
+        else if (name.rfind("pack", 0) == 0) result.packing_ms += p.gpu_ms;
+        result.passes.push_back(p);
+    }
+}
+
+Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
+    if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
+    if (auto ok = prepare(meshes, s); !ok) return ok.error();
+
+    // Submission 1: fit and depth complexity; the host reads how many layers to peel.
+    graph::Graph g1;
+    const Resources r1 = importResources(g1, false);
+    recordMeasure(g1, r1);
+    addHeaderReadback(g1, r1.header, r1.header_rb);
+    auto report1 = executor_.run(g1);
+    if (!report1) return report1.error();
+    const gpu::Header h1 = readHeader();
+    if (auto ok = checkInputs(h1); !ok) return ok.error();
+    frame_.first = BroadPhaseResult{};
+    addTimings(frame_.first, *report1);
+    frame_.measured_layers = s.layer_cap ? std::min(h1.depth_complexity, s.layer_cap) : h1.depth_complexity;
+
+    // Submission 2: peel, merge, separate, pack.
+    graph::Graph g;
+    const Resources r = importResources(g, true);
+    frame_.steps = s.dual ? (frame_.measured_layers + 1) / 2 : frame_.measured_layers;
+    recordPeelToPack(g, r, frame_.steps);
+    addHeaderReadback(g, r.header, r.header_rb);
+    if (auto ok = executor_.submit(g); !ok) return ok.error();
+    pending_ = true;
+    return collect();
+}
+
+Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s, std::uint32_t layers) {
+    if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
+    if (auto ok = prepare(meshes, s); !ok) return ok.error();
+    if (s.layer_cap) layers = std::min(layers, s.layer_cap);
+    frame_.first = BroadPhaseResult{};
+    frame_.measured_layers = layers;
+    frame_.steps = s.dual ? (layers + 1) / 2 : layers;
+    graph::Graph g;
+    const Resources r = importResources(g, true);
+    recordMeasure(g, r);
+    recordPeelToPack(g, r, frame_.steps);
+    addHeaderReadback(g, r.header, r.header_rb);
+    if (auto ok = executor_.submit(g); !ok) return ok.error();
+    pending_ = true;
+    return {};
+}
+
+Result<BroadPhaseResult> BroadPhase::collect() {
+    if (!pending_) return Error(ErrorCode::InvalidArgument, "no broad phase in flight: submit() first");
+    pending_ = false;
+    auto report = executor_.collect();
     if (!report) return report.error();
 
     // The count first, then exactly that many records.
     const auto t0 = std::chrono::steady_clock::now();
-    buf_.header_rb.invalidate();
-    gpu::Header h2;
-    std::memcpy(&h2, buf_.header_rb.mapped(), sizeof(h2));
-    result.collision_rays = h2.collision_rays;
-    if (h2.record_count > triangles)
-        return Error(ErrorCode::VulkanError, "packing reported " + std::to_string(h2.record_count) + " records for " +
+    const gpu::Header h = readHeader();
+    if (auto ok = checkInputs(h); !ok) return ok.error();
+    BroadPhaseResult result = std::move(frame_.first);
+    addTimings(result, *report);
+    const gpu::Frame& fr = frame_.frame;
+    const std::uint32_t triangles = fr.triangle_count, pixels = fr.resolution * fr.resolution;
+    // A single submission measures the depth complexity in the same run; with a
+    // separate measuring submission, the second header keeps the first's value.
+    result.depth_complexity = h.depth_complexity;
+    result.layers = frame_.measured_layers;
+    result.peel_steps = frame_.steps;
+    result.triangles = triangles;
+    result.collision_rays = h.collision_rays;
+    if (h.record_count > triangles)
+        return Error(ErrorCode::VulkanError, "packing reported " + std::to_string(h.record_count) + " records for " +
                                                  std::to_string(triangles) + " triangles");
-    result.records.resize(h2.record_count);
-    if (h2.record_count) {
-        buf_.records.invalidate(0, VkDeviceSize(h2.record_count) * sizeof(CandidateTriangle));
-        std::memcpy(result.records.data(), buf_.records.mapped(), size_t(h2.record_count) * sizeof(CandidateTriangle));
+    result.records.resize(h.record_count);
+    if (h.record_count) {
+        buf_.records.invalidate(0, VkDeviceSize(h.record_count) * sizeof(CandidateTriangle));
+        std::memcpy(result.records.data(), buf_.records.mapped(), size_t(h.record_count) * sizeof(CandidateTriangle));
     }
-    if (s.keep_ray_image) {
+    if (frame_.settings.keep_ray_image) {
         buf_.ray_image.invalidate();
         result.ray_image.resize(pixels);
         const auto* src = static_cast<const std::uint32_t*>(buf_.ray_image.mapped());
         for (std::uint32_t i = 0; i < pixels; ++i) result.ray_image[i] = static_cast<std::uint8_t>(src[i]);
     }
     result.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    for (auto& p : report->passes) {
-        const std::string& name = p.name;
-        if (name.rfind("peel", 0) == 0 || name.rfind("classify", 0) == 0 || name == "finalize") result.sampling_ms += p.gpu_ms;
-        else if (name == "merge") result.merging_ms += p.gpu_ms;
-        else if (name == "separate") result.separation_ms += p.gpu_ms;
-        else if (name.rfind("pack", 0) == 0) result.packing_ms += p.gpu_ms;
-        result.passes.push_back(p);
-    }
     return result;
 }
 

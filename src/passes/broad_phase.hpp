@@ -13,13 +13,15 @@
 #include <span>
 #include <vector>
 
+#include "broadphase.h"
 #include "graph/executor.hpp"
 #include "vkcollide/narrow.hpp"
+#include "vkcollide/world.hpp"
 #include "vk/resources.hpp"
 
 namespace vkcollide::passes {
 
-enum class PackingMethod { Paper, Scan };
+using vkcollide::PackingMethod;
 
 // A mesh as the GPU sees it. Addresses come from buffers created with
 // SHADER_DEVICE_ADDRESS usage; positions are three floats at `vertices + i * stride`.
@@ -33,6 +35,9 @@ struct GpuMesh {
     std::uint32_t triangle_count = 0;
     std::array<float, 12> transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // row-major 3x4 object->world
     bool open = false;
+    // Geometry only the GPU holds (an engine's buffers): each run checks its indices and
+    // positions there (host meshes are checked before upload).
+    bool check_on_gpu = false;
 };
 
 struct BroadPhaseSettings {
@@ -72,18 +77,48 @@ SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const 
 class BroadPhase {
 public:
     static Result<std::unique_ptr<BroadPhase>> create(vk::Device& device);
+    // Two submissions with a host wait between them: the first measures the depth
+    // complexity, the second peels exactly that many layers (or the cap).
     [[nodiscard]] Result<BroadPhaseResult> run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
+    // One submission that peels `layers` layers (at most the cap) whatever the depth
+    // complexity turns out to be: rays with more layers become collision rays
+    // (conservative). collect() waits and reads the result; it reports the depth
+    // complexity measured in the same submission.
+    [[nodiscard]] Result<void> submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings, std::uint32_t layers);
+    [[nodiscard]] Result<BroadPhaseResult> collect();
+    bool pending() const noexcept { return pending_; }
 
 private:
     explicit BroadPhase(vk::Device& device) : device_(&device), executor_(device) {}
+    struct Resources {
+        graph::ResourceId header, header_rb, counts, projection, front, back, state, bundles, sparse, records, scratch, rays;
+    };
+    // Checks the run's inputs, sizes the buffers, uploads objects, frame and projection.
+    Result<void> prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
+    Resources importResources(graph::Graph& g, bool full);
+    void recordMeasure(graph::Graph& g, const Resources& r) const;
+    void recordPeelToPack(graph::Graph& g, const Resources& r, std::uint32_t steps) const;
     // The small result header, copied where the host can read it.
     void addHeaderReadback(graph::Graph& g, graph::ResourceId header, graph::ResourceId header_rb) const;
+    gpu::Header readHeader();
+    Result<void> checkInputs(const gpu::Header& header) const;
+    static void addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report);
     Result<void> ensureBuffers(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects, bool ray_image);
 
     vk::Device* device_;
     graph::Executor executor_;
+    bool pending_ = false;
+    // The run being recorded or in flight.
+    struct Prepared {
+        gpu::Frame frame{};
+        BroadPhaseSettings settings;
+        std::vector<GpuMesh> meshes;
+        bool any_gpu_check = false;
+        std::uint32_t measured_layers = 0, steps = 0;
+        BroadPhaseResult first;  // timings of a separate measuring submission
+    } frame_;
     struct Pipelines {
-        vk::Pipeline bounds, fit, count, peel, reduce_max, peel_init, classify, finalize, merge, separate;
+        vk::Pipeline validate, bounds, fit, count, peel, reduce_max, peel_init, classify, finalize, merge, separate;
         vk::Pipeline pack_rowcount, scan_counts, pack_shift, pack_move, scan_blocksum, scan_scatter;
     } pipes_;
     struct Buffers {

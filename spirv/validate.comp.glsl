@@ -1,0 +1,33 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Input check for geometry that lives only on the GPU (the host checks its own meshes):
+// every index below the vertex count, every position of a triangle finite. Counts the
+// triangles that fail and keeps one of each kind so the host can name it.
+#include "common.glsl.inc"
+layout(local_size_x = kGroupSize) in;
+
+void main() {
+    Frame f = frame();
+    ObjectGpu o = ObjectsRef(f.objects).o[pc.object];
+    uint t = gl_GlobalInvocationID.x;
+    if (t >= o.triangle_count) return;
+    HeaderRef h = HeaderRef(f.header);
+    bool bad_index = false, bad_vertex = false;
+    for (uint c = 0u; c < 3u; ++c) {
+        uint i = fetchRawIndex(o, t * 3u + c);
+        if (i >= o.vertex_count) {
+            bad_index = true;
+        } else {
+            vec3 p = fetchPosition(o, i);
+            if (any(isnan(p)) || any(isinf(p))) bad_vertex = true;
+        }
+    }
+    if (bad_index && atomicAdd(h.h.bad_index_count, 1u) == 0u) {
+        h.h.bad_index_object = pc.object;
+        h.h.bad_index_triangle = t;
+    }
+    if (bad_vertex && atomicAdd(h.h.bad_vertex_count, 1u) == 0u) {
+        h.h.bad_vertex_object = pc.object;
+        h.h.bad_vertex_triangle = t;
+    }
+}

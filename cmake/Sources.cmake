@@ -20,4 +20,5 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/graph/executor.cpp
   ${S}/passes/broad_phase.cpp
   ${S}/passes/mesh_upload.cpp
+  ${S}/api/world.cpp
 )

@@ -1,0 +1,197 @@
+// vkcollide: the public collision-detection API.
+//
+// A CollisionWorld holds the objects (mesh instances) of one scene on one Context and
+// finds every pair of intersecting triangles between them (and inside an object, if
+// its self-collision is on), with the GPU broad phase of Georgii, Krüger and
+// Westermann (2006) and an exact CPU narrow phase.
+//
+//   auto ctx = vkcollide::Context::create();                    // or Context::adopt(engine device)
+//   auto world = vkcollide::CollisionWorld::create(**ctx);
+//   auto a = (*world)->addMesh(sphere, {.name = "ball"});        // host arrays, uploaded once
+//   auto b = (*world)->addGpuMesh(desc, {.name = "cloth", .self_collision = true, .open = true});
+//   each frame:
+//     (*world)->setTransform(*a, model);                        // rigid motion
+//     (*world)->updateVertices(*a, new_positions);              // or deformation (host meshes)
+//     auto hits = (*world)->detect();                           // pairs, responses, statistics
+//   or, without stalling the frame:
+//     (*world)->submit();  ... render ...  auto hits = (*world)->collect();
+//
+// Meshes are what an engine renders: indexed triangle lists, no preprocessing and no
+// hierarchy. Vertices of GPU meshes may change every frame (skinning, simulation): the
+// world reads them when a detection is submitted.
+//
+// Thread safety: a CollisionWorld is used from one thread at a time, the thread that
+// uses its Context.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan_core.h>
+
+#include "vkcollide/context.hpp"
+#include "vkcollide/mesh.hpp"
+#include "vkcollide/narrow.hpp"
+#include "vkcollide/result.hpp"
+#include "vkcollide/scene.hpp"
+
+namespace vkcollide {
+
+// Stable handle of an object in a CollisionWorld (never reused after removeObject).
+using ObjectId = std::uint32_t;
+
+struct ObjectOptions {
+    std::string name;             // used in error messages; default "object <id>"
+    bool self_collision = false;  // test the object's own triangles against each other
+    bool open = false;            // an open surface (cloth, terrain): depth proximity, not facing
+    Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // object -> world, row-major
+    // GPU meshes only: a typical edge length in object units, for the automatic
+    // resolution (host meshes are measured). 0: unknown.
+    float typical_edge_length = 0;
+};
+
+// Geometry that lives only in the engine's GPU buffers, on the Context's device.
+// Both buffers need VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT and
+// VK_BUFFER_USAGE_STORAGE_BUFFER_BIT and memory bound before use. The engine must not
+// write them while a detection that reads them is in flight (between submit() and
+// collect()); writes it submitted earlier to the Context's queue are made visible by a
+// barrier at the start of each detection.
+struct GpuMeshDesc {
+    VkBuffer vertex_buffer = VK_NULL_HANDLE;
+    VkDeviceSize vertex_buffer_size = 0;  // size the buffer was created with
+    VkDeviceSize vertex_offset = 0;       // byte offset of vertex 0's position; multiple of 4
+    std::uint32_t vertex_stride = 12;     // bytes between positions; multiple of 4
+    std::uint32_t vertex_count = 0;
+    VkFormat position_format = VK_FORMAT_R32G32B32_SFLOAT;  // or R32G32B32A32_SFLOAT (w ignored)
+
+    VkBuffer index_buffer = VK_NULL_HANDLE;
+    VkDeviceSize index_buffer_size = 0;
+    VkDeviceSize index_offset = 0;  // multiple of 4
+    VkIndexType index_type = VK_INDEX_TYPE_UINT32;  // or VK_INDEX_TYPE_UINT16
+    std::uint32_t index_count = 0;  // 3 per triangle
+};
+
+enum class PackingMethod { Scan, Paper };
+
+// Every field left empty is chosen from the scene (DetectStats::settings_note says how).
+struct DetectSettings {
+    // Rays per image side, a power of two in [4, 16384]. Automatic: about four pixels
+    // per typical triangle edge across the scene's extent, within [64, 2048].
+    std::optional<std::uint32_t> resolution;
+    // Projection direction. Automatic: the world axis along which the scene is thinnest,
+    // so the image covers its two widest extents.
+    std::optional<std::array<float, 3>> direction;
+    // Most layers to peel; rays deeper than this count as collision rays (conservative).
+    // 0: as many as the scene's depth complexity (measured), no more.
+    std::uint32_t layer_cap = 0;
+    bool dual = false;  // peel from the front and the back at once (half the passes)
+    PackingMethod packing = PackingMethod::Scan;
+    // Open surfaces: two hits closer than this along a ray (world units) may collide.
+    // Automatic: half the typical edge length of the open objects.
+    std::optional<float> open_epsilon;
+    // Sample only this world box (min x, y, z, max x, y, z); default: fit to the scene.
+    std::optional<std::array<float, 6>> region;
+    // detect() only: measure the depth complexity before peeling (one extra host wait,
+    // exactly the layers needed). Off, and always in submit(): peel as many layers as the
+    // last detection measured (rays that need more become collision rays and the
+    // statistics say so); the first detection of a world measures.
+    bool measure_layers = true;
+};
+
+struct PassTime {
+    std::string name;
+    double gpu_ms = 0;
+};
+
+struct DetectStats {
+    // The paper's Table 1.
+    std::size_t triangles = 0;                        // "# tri's"
+    std::size_t collision_rays = 0;                   // "# coll. rays"
+    std::size_t triangles_downloaded = 0;             // "# tri's downl."
+    std::size_t potentially_colliding_triangles = 0;  // "# pot. coll. tri's"
+    std::size_t triangle_tests = 0;                   // "# tri-tri tests"
+    std::size_t positive_tests = 0;                   // "# pos. tests"
+    NarrowStats narrow;                               // every narrow-phase counter
+    // What ran.
+    std::uint32_t objects = 0;
+    std::uint32_t resolution = 0;
+    std::array<float, 3> direction{};
+    std::uint32_t depth_complexity = 0;  // measured by this detection
+    std::uint32_t layers = 0;            // layers peeled
+    std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
+    bool dual = false;
+    bool layers_short = false;           // depth complexity exceeded the layers peeled (no cap asked)
+    std::string backend = "raster";      // object-sampling backend
+    std::string settings_note;           // how automatic settings were chosen
+    // Times.
+    std::vector<PassTime> gpu_passes;    // GPU timestamps of every pass, in order
+    double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0;  // GPU
+    double readback_ms = 0;              // host: reading the count and the records
+    double narrow_ms = 0;                // host: the CPU narrow phase
+    double total_ms = 0;                 // host wall time from submit to result
+    unsigned narrow_threads = 0;
+};
+
+// A colliding pair; objects are ObjectIds, triangles index the object's triangle list.
+// Sorted, (object_a, triangle_a) < (object_b, triangle_b).
+struct DetectResult {
+    std::vector<TrianglePair> pairs;
+    std::vector<TriangleResponse> responses;  // one per colliding triangle, world space
+    DetectStats stats;
+};
+
+struct WorldOptions {
+    unsigned threads = 0;  // narrow-phase worker threads; 0: all hardware threads
+};
+
+class CollisionWorld {
+public:
+    // The Context must outlive the world.
+    [[nodiscard]] static Result<std::unique_ptr<CollisionWorld>> create(Context& context, const WorldOptions& options = {});
+    ~CollisionWorld();
+    CollisionWorld(const CollisionWorld&) = delete;
+    CollisionWorld& operator=(const CollisionWorld&) = delete;
+
+    // Host arrays, checked (validateMesh) and uploaded. The world keeps no pointer to `mesh`.
+    [[nodiscard]] Result<ObjectId> addMesh(const HostMesh& mesh, const ObjectOptions& options = {});
+    // Engine-owned buffers; checked against the declared sizes and formats. Index values
+    // and vertex values live only on the GPU: each detection checks them there and fails
+    // naming the object and triangle if an index is out of range or a position not finite.
+    [[nodiscard]] Result<ObjectId> addGpuMesh(const GpuMeshDesc& mesh, const ObjectOptions& options = {});
+    [[nodiscard]] Result<void> removeObject(ObjectId id);
+
+    [[nodiscard]] Result<void> setTransform(ObjectId id, const Transform3x4& object_to_world);
+    [[nodiscard]] Result<void> setSelfCollision(ObjectId id, bool on);
+    // New positions of a host mesh (same count, every one finite).
+    [[nodiscard]] Result<void> updateVertices(ObjectId id, std::span<const Float3> positions);
+    // Which object pairs may collide (called with a < b); empty: every pair may.
+    void setPairFilter(std::function<bool(ObjectId a, ObjectId b)> may_collide);
+
+    std::size_t objectCount() const noexcept;
+    std::size_t triangleCount() const noexcept;
+
+    // The settings detect() would use now, with every automatic field filled in.
+    [[nodiscard]] Result<DetectSettings> resolveSettings(const DetectSettings& settings = {}) const;
+
+    // Records, submits, waits and runs the narrow phase.
+    [[nodiscard]] Result<DetectResult> detect(const DetectSettings& settings = {});
+    // Records and submits the GPU work and returns; collect() waits for it and runs the
+    // narrow phase. One detection in flight at a time; objects must not change until
+    // collect() returns (calls that would change them fail).
+    [[nodiscard]] Result<void> submit(const DetectSettings& settings = {});
+    [[nodiscard]] Result<DetectResult> collect();
+    bool pending() const noexcept;
+
+private:
+    struct Impl;
+    explicit CollisionWorld(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vkcollide

@@ -1,0 +1,388 @@
+// The public API (CollisionWorld) on the device, validation on: what detect() returns,
+// the asynchronous form, object flags and filters, engine-owned GPU buffers, and the
+// errors bad input gets.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "support/exact_reference.hpp"
+#include "support/gpu_fixture.hpp"
+#include "support/test_scenes.hpp"
+#include "vk/resources.hpp"
+#include "vkcollide/world.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+std::unique_ptr<CollisionWorld> makeWorld(ValidatedContext& ctx) {
+    auto w = CollisionWorld::create(ctx.context(), {.threads = 2});
+    REQUIRE(w);
+    return std::move(*w);
+}
+
+std::vector<ObjectId> addScene(CollisionWorld& world, const TestScene& scene) {
+    std::vector<ObjectId> ids;
+    for (const SceneObject& o : scene.objects) {
+        auto id = world.addMesh(o.mesh, o.options);
+        REQUIRE(id);
+        ids.push_back(*id);
+    }
+    return ids;
+}
+
+std::vector<TrianglePair> referencePairs(const TestScene& scene) {
+    auto objects = scene.reference();
+    auto ref = computeReferencePairs(objects);
+    REQUIRE(ref);
+    return *ref;
+}
+
+DetectSettings fixedSettings(std::uint32_t resolution) {
+    DetectSettings s;
+    s.resolution = resolution;
+    s.direction = std::array<float, 3>{0.15f, -0.2f, 1.0f};
+    return s;
+}
+
+bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+
+// An engine-owned copy of a mesh: positions in a strided vertex buffer, 16- or 32-bit indices.
+struct EngineMesh {
+    vk::Buffer vertices, indices;
+    GpuMeshDesc desc;
+};
+
+EngineMesh engineCopy(vk::Device& dev, const HostMesh& m, std::uint32_t stride, VkFormat format, bool index16) {
+    EngineMesh e;
+    auto vb = vk::Buffer::create(dev, m.positions.size() * stride, 0, vk::MemoryKind::Upload, "engine-vertices");
+    REQUIRE(vb);
+    auto* dst = static_cast<std::uint8_t*>(vb->mapped());
+    std::memset(dst, 0, m.positions.size() * stride);
+    for (std::size_t i = 0; i < m.positions.size(); ++i) std::memcpy(dst + i * stride, &m.positions[i], 12);
+    vb->flush();
+    const std::size_t index_bytes = index16 ? (m.indices.size() * 2 + 3) / 4 * 4 : m.indices.size() * 4;
+    auto ib = vk::Buffer::create(dev, index_bytes, 0, vk::MemoryKind::Upload, "engine-indices");
+    REQUIRE(ib);
+    if (index16) {
+        auto* idx = static_cast<std::uint16_t*>(ib->mapped());
+        for (std::size_t k = 0; k < m.indices.size(); ++k) idx[k] = static_cast<std::uint16_t>(m.indices[k]);
+    } else {
+        std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
+    }
+    ib->flush();
+    e.desc.vertex_buffer = vb->handle();
+    e.desc.vertex_buffer_size = vb->size();
+    e.desc.vertex_stride = stride;
+    e.desc.vertex_count = static_cast<std::uint32_t>(m.positions.size());
+    e.desc.position_format = format;
+    e.desc.index_buffer = ib->handle();
+    e.desc.index_buffer_size = ib->size();
+    e.desc.index_type = index16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32;
+    e.desc.index_count = static_cast<std::uint32_t>(m.indices.size());
+    e.vertices = std::move(*vb);
+    e.indices = std::move(*ib);
+    return e;
+}
+
+}  // namespace
+
+TEST_CASE("detect() finds only exact pairs and reports the paper's statistics", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto scene = overlappingSpheres();
+    REQUIRE(scene);
+    const auto ids = addScene(*world, *scene);
+    auto result = world->detect(fixedSettings(256));
+    REQUIRE(result);
+    const auto cmp = comparePairs(result->pairs, referencePairs(*scene));
+    CHECK(cmp.false_positives == 0);
+    CHECK(cmp.recall > 0.95);
+    const DetectStats& st = result->stats;
+    CHECK(st.triangles == world->triangleCount());
+    CHECK(st.objects == ids.size());
+    CHECK(st.positive_tests == result->pairs.size());
+    CHECK(st.triangle_tests >= st.positive_tests);
+    CHECK(st.triangles_downloaded >= st.potentially_colliding_triangles);
+    CHECK(st.triangles_downloaded < st.triangles);  // the far sphere and most surfaces are culled
+    CHECK(st.collision_rays > 0);
+    CHECK(st.layers == st.depth_complexity);
+    CHECK_FALSE(st.layers_short);
+    CHECK(st.resolution == 256);
+    CHECK_FALSE(st.gpu_passes.empty());
+    CHECK(st.sampling_ms > 0);
+    CHECK(st.total_ms >= st.narrow_ms);
+    // One response per colliding triangle, unit length or zero.
+    std::size_t in_pairs = 0;
+    for (const auto& r : result->responses) {
+        in_pairs += r.partner_count;
+        const double len = std::sqrt(double(r.direction.x) * r.direction.x + double(r.direction.y) * r.direction.y +
+                                     double(r.direction.z) * r.direction.z);
+        CHECK((len == 0.0 || std::abs(len - 1.0) < 1e-5));
+    }
+    CHECK(in_pairs == 2 * result->pairs.size());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("submit()/collect() gives detect()'s pairs and guards the objects in flight", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto scene = torusThroughBox();
+    REQUIRE(scene);
+    const auto ids = addScene(*world, *scene);
+    auto sync = world->detect(fixedSettings(128));
+    REQUIRE(sync);
+    REQUIRE(world->submit(fixedSettings(128)));
+    CHECK(world->pending());
+    auto blocked = world->setTransform(ids[0], scene->objects[0].options.transform);
+    REQUIRE_FALSE(blocked);
+    CHECK(mentions(blocked.error(), "in flight"));
+    CHECK_FALSE(world->submit(fixedSettings(128)));
+    auto async = world->collect();
+    REQUIRE(async);
+    CHECK_FALSE(world->pending());
+    CHECK(async->pairs == sync->pairs);
+    CHECK(async->stats.layers == sync->stats.depth_complexity);  // the layers measured last time
+    CHECK_FALSE(world->collect());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("a deeper scene than predicted stays conservative and is reported", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto a = uvSphere(1.0f, 24, 12), b = uvSphere(0.6f, 24, 12);
+    REQUIRE(a);
+    REQUIRE(b);
+    auto ia = world->addMesh(*a, {.name = "a"});
+    REQUIRE(ia);
+    REQUIRE(world->detect(fixedSettings(64)));  // depth complexity 2
+    ObjectOptions inside;
+    inside.name = "b";
+    auto ib = world->addMesh(*b, inside);  // nested: 4 layers now
+    REQUIRE(ib);
+    REQUIRE(world->detect(fixedSettings(64)));  // measures again (objects changed): 4
+    REQUIRE(world->setTransform(*ib, rotationY(0, {3, 0, 0})));
+    REQUIRE(world->detect(fixedSettings(64)));  // 2 again
+    REQUIRE(world->setTransform(*ib, rotationY(0, {0.5f, 0, 0})));
+    REQUIRE(world->submit(fixedSettings(64)));  // predicts 2, the scene has 4
+    auto r = world->collect();
+    REQUIRE(r);
+    CHECK(r->stats.layers == 2);
+    CHECK(r->stats.depth_complexity == 4);
+    CHECK(r->stats.layers_short);
+    auto exact = world->detect(fixedSettings(64));
+    REQUIRE(exact);
+    CHECK_FALSE(exact->stats.layers_short);
+    // Conservative: every pair the exact layers find is found with too few layers too.
+    for (const auto& p : exact->pairs) CHECK(std::binary_search(r->pairs.begin(), r->pairs.end(), p));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("self-collision flag, pair filter, removal and vertex updates", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto tube = selfIntersectingTube();
+    REQUIRE(tube);
+    SceneObject t = tube->objects[0];
+    t.options.self_collision = false;
+    auto id = world->addMesh(t.mesh, t.options);
+    REQUIRE(id);
+    auto off = world->detect(fixedSettings(128));
+    REQUIRE(off);
+    CHECK(off->pairs.empty());
+    REQUIRE(world->setSelfCollision(*id, true));
+    auto on = world->detect(fixedSettings(128));
+    REQUIRE(on);
+    CHECK_FALSE(on->pairs.empty());
+    for (const auto& p : on->pairs) CHECK((p.object_a == *id && p.object_b == *id));
+
+    auto spheres = overlappingSpheres();
+    REQUIRE(spheres);
+    const auto ids = addScene(*world, *spheres);  // ids continue after the tube's
+    world->setPairFilter([&](ObjectId a, ObjectId b) { return !(a == ids[0] && b == ids[1]); });
+    auto filtered = world->detect(fixedSettings(128));
+    REQUIRE(filtered);
+    bool saw_a_c = false;
+    for (const auto& p : filtered->pairs) {
+        CHECK_FALSE((p.object_a == ids[0] && p.object_b == ids[1]));
+        saw_a_c |= p.object_a == ids[0] && p.object_b == ids[2];
+    }
+    CHECK(saw_a_c);
+    world->setPairFilter({});
+
+    REQUIRE(world->removeObject(*id));
+    CHECK_FALSE(world->removeObject(*id));
+    auto removed = world->detect(fixedSettings(128));
+    REQUIRE(removed);
+    for (const auto& p : removed->pairs) CHECK(p.object_a != *id);
+
+    // Move sphere-b far away by rewriting its vertices: its pairs disappear.
+    std::vector<Float3> moved = spheres->objects[1].mesh.positions;
+    for (Float3& p : moved) p.x += 10;
+    REQUIRE(world->updateVertices(ids[1], moved));
+    auto after = world->detect(fixedSettings(128));
+    REQUIRE(after);
+    for (const auto& p : after->pairs) CHECK((p.object_a != ids[1] && p.object_b != ids[1]));
+    moved[3].y = std::numeric_limits<float>::quiet_NaN();
+    auto nan = world->updateVertices(ids[1], moved);
+    REQUIRE_FALSE(nan);
+    CHECK(mentions(nan.error(), "sphere-b"));
+    CHECK(mentions(nan.error(), "vertex 3"));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("engine-owned GPU buffers give the host meshes' pairs", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto scene = overlappingSpheres();
+    REQUIRE(scene);
+    auto host_world = makeWorld(ctx);
+    addScene(*host_world, *scene);
+    auto expected = host_world->detect(fixedSettings(128));
+    REQUIRE(expected);
+
+    auto gpu_world = makeWorld(ctx);
+    std::vector<EngineMesh> engine;
+    for (std::size_t i = 0; i < scene->objects.size(); ++i) {
+        // Mixed layouts: strided RGBA float positions with 16-bit indices, packed with 32-bit.
+        const bool odd = i % 2 == 1;
+        engine.push_back(engineCopy(ctx.device(), scene->objects[i].mesh, odd ? 32 : 12,
+                                    odd ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32G32B32_SFLOAT, odd));
+        REQUIRE(gpu_world->addGpuMesh(engine.back().desc, scene->objects[i].options));
+    }
+    auto got = gpu_world->detect(fixedSettings(128));
+    REQUIRE(got);
+    CHECK(got->pairs == expected->pairs);
+    CHECK(got->stats.triangles_downloaded == expected->stats.triangles_downloaded);
+
+    // The engine deforms a mesh on the GPU side: the next detection sees it.
+    auto* v = static_cast<float*>(engine[1].vertices.mapped());
+    for (std::uint32_t i = 0; i < engine[1].desc.vertex_count; ++i) v[i * 8] += 10.0f;
+    engine[1].vertices.flush();
+    auto deformed = gpu_world->detect(fixedSettings(128));
+    REQUIRE(deformed);
+    for (const auto& p : deformed->pairs) CHECK((p.object_a != 1 && p.object_b != 1));
+
+    // Bad values only the GPU can see: the detection fails naming the object and triangle.
+    auto* idx = static_cast<std::uint32_t*>(engine[2].indices.mapped());
+    const std::uint32_t saved = idx[7];
+    idx[7] = engine[2].desc.vertex_count + 5;  // triangle 2
+    engine[2].indices.flush();
+    auto bad_index = gpu_world->detect(fixedSettings(128));
+    REQUIRE_FALSE(bad_index);
+    CHECK(bad_index.error().code() == ErrorCode::InvalidMesh);
+    CHECK(mentions(bad_index.error(), "sphere-c"));
+    CHECK(mentions(bad_index.error(), "triangle 2 "));
+    idx[7] = saved;
+    engine[2].indices.flush();
+    v = static_cast<float*>(engine[0].vertices.mapped());
+    v[idx[0] * 3 + 1] = std::numeric_limits<float>::infinity();
+    engine[0].vertices.flush();
+    auto bad_vertex = gpu_world->detect(fixedSettings(128));
+    REQUIRE_FALSE(bad_vertex);
+    CHECK(mentions(bad_vertex.error(), "sphere-a"));
+    CHECK(mentions(bad_vertex.error(), "NaN or infinite"));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("bad input gets an error that names the object and the problem", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto empty = world->detect();
+    REQUIRE_FALSE(empty);
+    CHECK(mentions(empty.error(), "no objects"));
+
+    auto sphere = uvSphere(1.0f, 12, 6);
+    REQUIRE(sphere);
+    HostMesh nan = *sphere;
+    nan.positions[5].z = std::numeric_limits<float>::quiet_NaN();
+    auto r = world->addMesh(nan, {.name = "melted"});
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code() == ErrorCode::InvalidMesh);
+    CHECK(mentions(r.error(), "melted"));
+    HostMesh bad_index = *sphere;
+    bad_index.indices[4] = 100000;
+    r = world->addMesh(bad_index, {.name = "torn"});
+    REQUIRE_FALSE(r);
+    CHECK(mentions(r.error(), "torn"));
+    HostMesh short_indices = *sphere;
+    short_indices.indices.pop_back();
+    r = world->addMesh(short_indices, {.name = "short"});
+    REQUIRE_FALSE(r);
+    CHECK(mentions(r.error(), "multiple of three"));
+    r = world->addMesh(HostMesh{"nothing", {}, {}}, {.name = "nothing"});
+    REQUIRE_FALSE(r);
+    CHECK(mentions(r.error(), "nothing"));
+    ObjectOptions inf_transform;
+    inf_transform.transform[3] = std::numeric_limits<float>::infinity();
+    CHECK_FALSE(world->addMesh(*sphere, inf_transform));
+    CHECK(world->objectCount() == 0);
+
+    EngineMesh e = engineCopy(ctx.device(), *sphere, 12, VK_FORMAT_R32G32B32_SFLOAT, false);
+    GpuMeshDesc d = e.desc;
+    d.vertex_count += 1;
+    auto small = world->addGpuMesh(d, {.name = "skinned"});
+    REQUIRE_FALSE(small);
+    CHECK(small.error().code() == ErrorCode::BufferTooSmall);
+    CHECK(mentions(small.error(), "skinned"));
+    d = e.desc;
+    d.vertex_buffer_size *= 4;  // more than the buffer holds
+    small = world->addGpuMesh(d);
+    REQUIRE_FALSE(small);
+    CHECK(small.error().code() == ErrorCode::BufferTooSmall);
+    d = e.desc;
+    d.position_format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    auto format = world->addGpuMesh(d);
+    REQUIRE_FALSE(format);
+    CHECK(format.error().code() == ErrorCode::UnsupportedFeature);
+    d = e.desc;
+    d.index_count -= 1;
+    CHECK_FALSE(world->addGpuMesh(d));
+    d = e.desc;
+    d.index_count = 0;
+    CHECK_FALSE(world->addGpuMesh(d));
+    d = e.desc;
+    d.index_buffer = VK_NULL_HANDLE;
+    CHECK_FALSE(world->addGpuMesh(d));
+
+    auto ok = world->addMesh(*sphere, {.name = "fine"});
+    REQUIRE(ok);
+    CHECK_FALSE(world->setTransform(*ok + 1, {}));
+    DetectSettings s;
+    s.resolution = 100;
+    auto bad_res = world->detect(s);
+    REQUIRE_FALSE(bad_res);
+    CHECK(mentions(bad_res.error(), "power of two"));
+    CHECK(world->detect());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto cloth = clothThroughSphere();
+    REQUIRE(cloth);
+    addScene(*world, *cloth);
+    auto s = world->resolveSettings();
+    REQUIRE(s);
+    // The scene is flattest along z; about four pixels per edge of the 40x40 cloth (3 / 40).
+    CHECK(*s->direction == std::array<float, 3>{0, 0, 1});
+    REQUIRE(s->resolution);
+    CHECK(*s->resolution == 256);
+    CHECK(*s->open_epsilon > 0);
+    // Finer meshes ask for more rays.
+    auto fine_world = makeWorld(ctx);
+    auto fine = clothThroughSphere(2.0f);
+    REQUIRE(fine);
+    addScene(*fine_world, *fine);
+    auto fs = fine_world->resolveSettings();
+    REQUIRE(fs);
+    CHECK(*fs->resolution == 2 * *s->resolution);
+    auto r = world->detect();
+    REQUIRE(r);
+    CHECK(r->stats.resolution == *s->resolution);
+    CHECK(r->stats.settings_note.find("resolution 256") != std::string::npos);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

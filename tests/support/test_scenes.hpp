@@ -1,0 +1,37 @@
+// Generated scenes shared by the API tests, the recall guard and the tools: overlapping
+// spheres, a torus threaded on a box, a self-intersecting twisted tube, a cloth falling
+// through a sphere. Each object is a mesh in its own space plus a world transform.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "vkcollide/scene.hpp"
+#include "vkcollide/world.hpp"
+#include "support/exact_reference.hpp"
+
+namespace vkcollide::test {
+
+struct SceneObject {
+    HostMesh mesh;
+    ObjectOptions options;
+};
+
+struct TestScene {
+    std::string name;
+    std::vector<SceneObject> objects;
+
+    // The same objects for computeReferencePairs (pointers into this scene).
+    std::vector<ReferenceObject> reference() const;
+};
+
+// `detail` scales the tessellation (1: a few thousand triangles per scene).
+Result<TestScene> overlappingSpheres(float detail = 1.0f);
+Result<TestScene> torusThroughBox(float detail = 1.0f);
+Result<TestScene> selfIntersectingTube(float detail = 1.0f);
+Result<TestScene> clothThroughSphere(float detail = 1.0f);
+Result<std::vector<TestScene>> allTestScenes(float detail = 1.0f);
+
+Transform3x4 rotationY(float angle, Float3 translation);
+
+}  // namespace vkcollide::test

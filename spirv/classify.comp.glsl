@@ -2,7 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // After a peeling step: checks the fragments just peeled against the ray's rules.
 // Closed surfaces: facing must alternate, front first (from the back: back first).
-// Open surfaces: two consecutive fragments within the depth epsilon collide.
+// Open surfaces: two consecutive fragments within the depth epsilon collide, and so does
+// an open fragment inside a closed object (odd closed parity before it): a sheet that
+// enters a solid crosses its surface, however thin the band where the depths are close.
 // A ray is done when every fragment counted by the depth-complexity pass was peeled.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
@@ -36,6 +38,8 @@ void main() {
             bool expect_back = (st.flags & kParityFront) != 0u;
             if (keyBack(kf) != expect_back) collide = true;
             st.flags ^= kParityFront;
+        } else if ((st.flags & kParityFront) != 0u) {
+            collide = true;
         }
         if (n_front > 0u && tooClose(st.last_front, kf, eps)) collide = true;
         st.last_front = kf;
@@ -50,6 +54,8 @@ void main() {
                 bool expect_back = (st.flags & kParityBack) == 0u;
                 if (keyBack(kb) != expect_back) collide = true;
                 st.flags ^= kParityBack;
+            } else if ((st.flags & kParityBack) != 0u) {
+                collide = true;
             }
             if (n_back > 0u && tooClose(kb, st.last_back, eps)) collide = true;
             if (kb == kf) {

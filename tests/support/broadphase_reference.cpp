@@ -102,6 +102,8 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
             if (!(lowk & kOpen)) {
                 if (((lowk & kBack) != 0) != (parity != 0)) collide = true;
                 parity ^= 1;
+            } else if (parity) {
+                collide = true;  // an open surface inside a closed one
             }
             if (i > 0 && ((lowk | std::uint32_t(f[i - 1])) & kOpen) && std::fabs(depth(f[i]) - depth(f[i - 1])) <= eps)
                 collide = true;

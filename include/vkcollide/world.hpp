@@ -136,6 +136,9 @@ struct DetectStats {
     double narrow_ms = 0;                // host: the CPU narrow phase
     double total_ms = 0;                 // host wall time from submit to result
     unsigned narrow_threads = 0;
+    // Memory: GPU buffers held by the world (uploaded meshes and the broad phase's buffers;
+    // engine-owned buffers not counted).
+    std::uint64_t gpu_memory_bytes = 0;
 };
 
 // A colliding pair; objects are ObjectIds, triangles index the object's triangle list.

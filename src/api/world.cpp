@@ -460,6 +460,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::BroadPhaseResult broad
     for (TrianglePair& p : out.pairs) p.object_a = run_ids[p.object_a], p.object_b = run_ids[p.object_b];
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = run_ids[r.object];
+    st.gpu_memory_bytes = broad->memoryBytes();
+    for (const Object& o : objects) st.gpu_memory_bytes += (o.vertices.valid() ? o.vertices.size() : 0) + (o.indices.valid() ? o.indices.size() : 0);
     st.total_ms = msSince(run_start);
     return out;
 }

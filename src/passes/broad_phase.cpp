@@ -422,6 +422,15 @@ void BroadPhase::recordPeelToPack(graph::Graph& g, const Resources& r, std::uint
     }
 }
 
+std::uint64_t BroadPhase::memoryBytes() const noexcept {
+    std::uint64_t n = 0;
+    for (const vk::Buffer* b : {&buf_.frame, &buf_.objects_buf, &buf_.projection, &buf_.header, &buf_.header_rb, &buf_.counts,
+                                &buf_.front, &buf_.back, &buf_.state, &buf_.bundles, &buf_.sparse, &buf_.records, &buf_.scratch,
+                                &buf_.ray_image})
+        n += b->valid() ? b->size() : 0;
+    return n;
+}
+
 gpu::Header BroadPhase::readHeader() {
     buf_.header_rb.invalidate();
     gpu::Header h;

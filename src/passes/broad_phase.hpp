@@ -87,6 +87,8 @@ public:
     [[nodiscard]] Result<void> submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings, std::uint32_t layers);
     [[nodiscard]] Result<BroadPhaseResult> collect();
     bool pending() const noexcept { return pending_; }
+    // Bytes of the GPU buffers the broad phase holds (its own, not the meshes').
+    std::uint64_t memoryBytes() const noexcept;
 
 private:
     explicit BroadPhase(vk::Device& device) : device_(&device), executor_(device) {}

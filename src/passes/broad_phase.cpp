@@ -183,6 +183,20 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     const auto triangles = static_cast<std::uint32_t>(total);
     const auto objects = static_cast<std::uint32_t>(meshes.size());
     if (auto ok = ensureBuffers(n, triangles, objects, s.keep_ray_image); !ok) return ok.error();
+    const BackendChoice backend = chooseSamplingBackend(device_->properties, s.backend, n, triangles,
+                                                        triangles == last_triangles_ ? last_fragments_per_triangle_ : -1.0);
+    const bool compute = backend.backend == SamplingBackend::Compute;
+    VkDeviceAddress compute_frame = 0;
+    if (compute) {
+        if (!compute_) {
+            auto created = ComputeSampling::create(*device_);
+            if (!created) return created.error();
+            compute_ = std::move(*created);
+        }
+        auto prepared = compute_->prepare(n, triangles, s.compute);
+        if (!prepared) return prepared.error();
+        compute_frame = *prepared;
+    }
 
     // Upload objects and the frame description.
     auto* objs = static_cast<gpu::ObjectGpu*>(buf_.objects_buf.mapped());
@@ -228,6 +242,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     std::memcpy(fr.direction_basis, basis.data(), sizeof(float) * 9);
     fr.open_epsilon_world = s.open_epsilon;
     fr.fit_margin = s.fit_margin;
+    fr.compute_sampling = compute_frame;
     VkDeviceSize offset = 0;
     for (std::uint32_t l = 0; l < levels; ++l) {
         fr.level_offset[l] = static_cast<std::uint32_t>(offset);
@@ -246,6 +261,8 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
 
     BroadPhaseResult result;
     result.triangles = triangles;
+    result.backend = backend.backend;
+    result.backend_reason = backend.reason;
     const VkDeviceAddress frame_addr = buf_.frame.address();
     const std::uint32_t pixels = n * n;
     auto& P = pipes_;
@@ -279,12 +296,18 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
         });
     }
-    g1.addPass("depth-complexity", PassKind::Raster).renderArea(n, n).read(projection).readWrite(counts).record([&](PassContext& pc) {
-        for (std::uint32_t i = 0; i < objects; ++i) {
-            bindAndPush(pc, P.count, frame_addr, i);
-            pc.fns().vkCmdDraw(pc.cmd, meshes[i].triangle_count * 3, 1, 0, 0);
-        }
-    });
+    if (compute) {
+        auto keys_front = g1.importBuffer("front-keys", buf_.front), keys_back = g1.importBuffer("back-keys", buf_.back);
+        compute_->addDepthComplexity(g1, compute_->import(g1), {projection, header, counts, {}, keys_front, keys_back}, meshes,
+                                     frame_addr);
+    } else {
+        g1.addPass("depth-complexity", PassKind::Raster).renderArea(n, n).read(projection).readWrite(counts).record([&](PassContext& pc) {
+            for (std::uint32_t i = 0; i < objects; ++i) {
+                bindAndPush(pc, P.count, frame_addr, i);
+                pc.fns().vkCmdDraw(pc.cmd, meshes[i].triangle_count * 3, 1, 0, 0);
+            }
+        });
+    }
     g1.addPass("reduce-max", PassKind::Compute).read(counts).readWrite(header).record([&](PassContext& pc) {
         bindAndPush(pc, P.reduce_max, frame_addr);
         pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
@@ -298,6 +321,10 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     result.depth_complexity = h1.depth_complexity;
     result.layers = s.layer_cap ? std::min(h1.depth_complexity, s.layer_cap) : h1.depth_complexity;
     result.peel_steps = s.dual ? (result.layers + 1) / 2 : result.layers;
+    result.fragments = h1.fragments;
+    result.compute_small = h1.cs_small, result.compute_big = h1.cs_big, result.compute_items = h1.cs_items;
+    last_triangles_ = triangles;
+    last_fragments_per_triangle_ = double(h1.fragments) / double(std::max(triangles, 1u));
     for (auto& p : report1->passes) {
         result.sampling_ms += p.name == "readback-header" ? 0.0 : p.gpu_ms;
         result.passes.push_back(p);
@@ -320,19 +347,25 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     if (s.keep_ray_image) rays = g.importBuffer("ray-image", buf_.ray_image, true);
 
     g.addPass("peel-init", PassKind::Compute).read(counts).write(state).write(front).write(back).record([&](PassContext& pc) {
-        bindAndPush(pc, P.peel_init, frame_addr);
+        bindAndPush(pc, P.peel_init, frame_addr, 0, compute && compute_->fusesFirstStep() ? 1u : 0u);
         pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
     });
+    ComputeSampling::Ids compute_ids;
+    if (compute) compute_ids = compute_->import(g);
     for (std::uint32_t step = 0; step < result.peel_steps; ++step) {
-        auto peel = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Raster);
-        peel.renderArea(n, n).read(projection).read(state).readWrite(front);
-        if (s.dual) peel.readWrite(back);
-        peel.record([&, step](PassContext& pc) {
-            for (std::uint32_t i = 0; i < objects; ++i) {
-                bindAndPush(pc, P.peel, frame_addr, i, step);
-                pc.fns().vkCmdDraw(pc.cmd, meshes[i].triangle_count * 3, 1, 0, 0);
-            }
-        });
+        if (compute) {
+            compute_->addPeelStep(g, compute_ids, {projection, header, counts, state, front, back}, step, s.dual, frame_addr);
+        } else {
+            auto peel = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Raster);
+            peel.renderArea(n, n).read(projection).read(state).readWrite(front);
+            if (s.dual) peel.readWrite(back);
+            peel.record([&, step](PassContext& pc) {
+                for (std::uint32_t i = 0; i < objects; ++i) {
+                    bindAndPush(pc, P.peel, frame_addr, i, step);
+                    pc.fns().vkCmdDraw(pc.cmd, meshes[i].triangle_count * 3, 1, 0, 0);
+                }
+            });
+        }
         auto classify = g.addPass("classify[" + std::to_string(step) + "]", PassKind::Compute);
         classify.read(counts).read(projection).readWrite(state).readWrite(front);
         if (s.dual) classify.readWrite(back);

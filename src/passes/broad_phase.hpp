@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "graph/executor.hpp"
+#include "passes/compute_sampling.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vk/resources.hpp"
 
@@ -46,6 +47,10 @@ struct BroadPhaseSettings {
     bool keep_ray_image = false;                    // read back the collision-ray image
     // Sample this world box instead of fitting the scene: min x,y,z then max x,y,z.
     std::optional<std::array<float, 6>> region;
+    // Object sampling on the graphics pipeline or in compute (same rays and records);
+    // Auto picks per device and scene (chooseSamplingBackend in compute_sampling.hpp).
+    SamplingBackend backend = SamplingBackend::Auto;
+    ComputeSamplingTuning compute;
 };
 
 struct BroadPhaseResult {
@@ -57,6 +62,10 @@ struct BroadPhaseResult {
     std::uint32_t collision_rays = 0;
     std::uint32_t triangles = 0;
     std::vector<graph::PassTiming> passes;   // both submissions, in order
+    SamplingBackend backend = SamplingBackend::Raster;  // the one that ran (never Auto)
+    std::string backend_reason;              // one line: why
+    std::uint64_t fragments = 0;             // covered pixels summed over all triangles
+    std::uint32_t compute_small = 0, compute_big = 0, compute_items = 0;  // compute backend's lists
     double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
 };
 
@@ -82,6 +91,9 @@ private:
 
     vk::Device* device_;
     graph::Executor executor_;
+    std::unique_ptr<ComputeSampling> compute_;  // created on first use
+    std::uint32_t last_triangles_ = 0;          // the previous run's scene, for Auto
+    double last_fragments_per_triangle_ = -1;
     struct Pipelines {
         vk::Pipeline bounds, fit, count, peel, reduce_max, peel_init, classify, finalize, merge, separate;
         vk::Pipeline pack_rowcount, scan_counts, pack_shift, pack_move, scan_blocksum, scan_scatter;

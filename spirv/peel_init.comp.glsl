@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Resets the per-ray peeling state; rays with no fragment are done at once.
+// Resets the per-ray peeling state; rays with no fragment are done at once. Step 1: the
+// keys were written by a count pass that did peeling step 0; leave them.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
 
@@ -14,6 +15,7 @@ void main() {
     st.peeled = 0u;
     st.flags = UintsRef(f.counts).v[p] == 0u ? kRayDone : 0u;
     StatesRef(f.state).s[p] = st;
+    if (pc.step != 0u) return;  // the keys already hold peeling step 0 (compute sampling)
     Uint64sRef(f.front_keys).v[p] = ~0ul;
     Uint64sRef(f.back_keys).v[p] = 0ul;
 }

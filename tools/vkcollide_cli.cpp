@@ -24,7 +24,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: vkcollide info\n"
     "       vkcollide detect SCENE... [--resolution N] [--pairs out.csv] [--stats out.json]\n"
-    "                        [--direction x,y,z] [--cap L] [--dual] [--paper-packing]\n"
+    "                        [--direction x,y,z] [--cap L] [--dual] [--paper-packing] [--backend raster|compute|auto]\n"
     "                        [--no-self-collision] [--open] [--frames K] [--threads T] [--device NAME]\n"
     "  SCENE: .obj (each o/g group is an object), .off or .ply (each file is an object)\n"
     "  --resolution N      rays per image side (power of two); default: chosen from the scene\n"
@@ -34,6 +34,7 @@ constexpr const char* kUsage =
     "  --cap L             peel at most L layers (deeper rays count as colliding)\n"
     "  --dual              peel from the front and the back at once\n"
     "  --paper-packing     the paper's count/shift/move packing instead of the scan\n"
+    "  --backend B         object sampling: raster, compute or auto (default: chosen per device and scene)\n"
     "  --no-self-collision skip pairs inside one object (default: tested)\n"
     "  --open              treat every object as an open surface\n"
     "  --frames K          run K detections (timings of the last; the first allocates)\n"
@@ -128,6 +129,7 @@ std::string statsJson(const DetectStats& st, const std::vector<std::string>& nam
     num("peel_passes", st.peel_passes);
     j += std::string("  \"dual\": ") + (st.dual ? "true" : "false") + ",\n";
     j += "  \"backend\": \"" + jsonEscape(st.backend) + "\",\n";
+    j += "  \"backend_reason\": \"" + jsonEscape(st.backend_reason) + "\",\n";
     j += "  \"settings_note\": \"" + jsonEscape(st.settings_note) + "\",\n";
     num("sampling_ms", st.sampling_ms);
     num("merging_ms", st.merging_ms);
@@ -195,6 +197,13 @@ int detect(int argc, char** argv) {
             const char* v = value();
             if (!v) return fail("--device needs a name");
             device = v;
+        } else if (a == "--backend") {
+            const char* v = value();
+            const std::string b = v ? v : "";
+            if (b == "raster") settings.backend = SamplingBackend::Raster;
+            else if (b == "compute") settings.backend = SamplingBackend::Compute;
+            else if (b == "auto") settings.backend = SamplingBackend::Auto;
+            else return fail("--backend needs raster, compute or auto");
         } else if (a == "--dual") {
             settings.dual = true;
         } else if (a == "--paper-packing") {
@@ -251,6 +260,7 @@ int detect(int argc, char** argv) {
     std::printf("scene: %zu objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u passes%s\n",
                 meshes.size(), st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
     if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
+    std::printf("sampling backend: %s (%s)\n", st.backend.c_str(), st.backend_reason.c_str());
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);

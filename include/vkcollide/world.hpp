@@ -79,6 +79,11 @@ struct GpuMeshDesc {
 
 enum class PackingMethod { Scan, Paper };
 
+// How object sampling (paper §4) runs: depth peeling on the graphics pipeline, or the
+// same rays and keys computed by compute shaders (edge functions with the rasterizer's
+// coverage rule). Auto chooses per device and scene; DetectStats says which and why.
+enum class SamplingBackend { Auto, Raster, Compute };
+
 // Every field left empty is chosen from the scene (DetectStats::settings_note says how).
 struct DetectSettings {
     // Rays per image side, a power of two in [4, 16384]. Automatic: about four pixels
@@ -92,6 +97,7 @@ struct DetectSettings {
     std::uint32_t layer_cap = 0;
     bool dual = false;  // peel from the front and the back at once (half the passes)
     PackingMethod packing = PackingMethod::Scan;
+    SamplingBackend backend = SamplingBackend::Auto;
     // Open surfaces: two hits closer than this along a ray (world units) may collide.
     // Automatic: half the typical edge length of the open objects.
     std::optional<float> open_epsilon;
@@ -127,7 +133,8 @@ struct DetectStats {
     std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
     bool dual = false;
     bool layers_short = false;           // depth complexity exceeded the layers peeled (no cap asked)
-    std::string backend = "raster";      // object-sampling backend
+    std::string backend;                 // object-sampling backend that ran: "raster" or "compute"
+    std::string backend_reason;          // why (Auto's rule, or "asked for")
     std::string settings_note;           // how automatic settings were chosen
     // Times.
     std::vector<PassTime> gpu_passes;    // GPU timestamps of every pass, in order

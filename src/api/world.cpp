@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "passes/broad_phase.hpp"
+#include "passes/compute_sampling.hpp"
 #include "vk/device.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -391,6 +392,7 @@ Result<passes::BroadPhaseResult> CollisionWorld::Impl::runBroad(const DetectSett
     b.layer_cap = s.layer_cap;
     b.dual = s.dual;
     b.packing = s.packing;
+    b.backend = s.backend;
     b.open_epsilon = *s.open_epsilon;
     b.region = s.region;
     auto named = [&](Error e) {
@@ -432,6 +434,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::BroadPhaseResult broad
     const std::uint32_t cap = run_settings.layer_cap;
     st.layers_short = broad_result.depth_complexity > broad_result.layers && (cap == 0 || broad_result.layers < cap);
     st.settings_note = run_note;
+    st.backend = passes::toString(broad_result.backend);
+    st.backend_reason = broad_result.backend_reason;
     for (const auto& p : broad_result.passes) st.gpu_passes.push_back({p.name, p.gpu_ms});
     st.sampling_ms = broad_result.sampling_ms;
     st.merging_ms = broad_result.merging_ms;

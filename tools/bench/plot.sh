@@ -12,7 +12,7 @@ command -v gnuplot >/dev/null || { echo "plot.sh: gnuplot missing (apt-get insta
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 # Columns by name, so the script survives new columns.
 awk -F, -v OFS=' ' 'NR==1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
-  { k = $c["scene"] SUBSEP $c["variant"] SUBSEP $c["resolution"]; n[k]++
+  { k = $c["scene"] SUBSEP $c["variant"] "-" $c["backend"] SUBSEP $c["resolution"]; n[k]++
     tri[k] = $c["triangles"]; lay[k] = $c["layers"]
     s[k] += $c["sampling_ms"]; m[k] += $c["merging_ms"] + $c["separation_ms"]; p[k] += $c["packing_ms"]
     r[k] += $c["readback_ms"]; nw[k] += $c["narrow_ms"]; g[k] += $c["gpu_ms"]; t[k] += $c["total_ms"]; rc[k] += $c["recall"] }
@@ -23,23 +23,23 @@ awk -F, -v OFS=' ' 'NR==1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
 scenes=$(cut -d' ' -f1 "$tmp/points" | sort -u)
 plots=""
 for s in $scenes; do
-  awk -v s="$s" '$1 == s && ($2 == "single" || $2 == "dual")' "$tmp/points" > "$tmp/f_$s"
+  awk -v s="$s" '$1 == s && ($2 == "single-raster" || $2 == "single-compute")' "$tmp/points" > "$tmp/f_$s"
   plots="$plots '$tmp/f_$s' using 12:13 with linespoints title '$s',"
 done
 gnuplot <<GP
 set terminal pngcairo size 1000,700
 set output '$out/frontier.png'
-set title 'Speed against accuracy: total time per frame vs recall (resolution 256..4096, single and dual)'
+set title 'Speed against accuracy: total time per frame vs recall (resolution 256..4096, single peeling, raster and compute)'
 set xlabel 'total time per frame, ms (log)'; set ylabel 'recall vs exact reference'
 set logscale x; set key bottom right; set grid
 plot ${plots%,}
 GP
-awk '$2 == "single" && $3 == 1024' "$tmp/points" | sort -k4,4n > "$tmp/stages"
-[ -s "$tmp/stages" ] || echo "plot.sh: no single-peeling 1024 points: stages.png skipped" >&2
+awk '$2 == "single-compute" && $3 == 1024' "$tmp/points" | sort -k4,4n > "$tmp/stages"
+[ -s "$tmp/stages" ] || echo "plot.sh: no single-compute 1024 points: stages.png skipped" >&2
 [ -s "$tmp/stages" ] && gnuplot <<GP
 set terminal pngcairo size 1000,700
 set output '$out/stages.png'
-set title 'Time per stage against triangle count (single peeling, 1024^2)'
+set title 'Time per stage against triangle count (single peeling, compute sampling, 1024^2)'
 set xlabel 'triangles (log)'; set ylabel 'ms (log)'; set logscale xy; set key top left; set grid
 plot '$tmp/stages' using 4:6 with linespoints title 'sampling (GPU)', \
      '' using 4:7 with linespoints title 'merging + separation (GPU)', \

@@ -9,7 +9,7 @@
 // update to the pair list) and writes one CSV row per frame: per-stage times (GPU
 // timestamps per stage, readback, CPU narrow phase, total wall), GPU and host memory,
 // Table 1 counts, and recall and precision against the exact reference of that frame.
-// "basic" sweeps resolution x {single, dual}; "full" adds layer caps, paper packing,
+// "basic" sweeps resolution x {single, dual} x {raster, compute}; "full" adds layer caps, paper packing,
 // open mode and the asynchronous form at 1024. A progress line goes to stderr.
 #include <sys/resource.h>
 
@@ -53,13 +53,15 @@ struct Point {
 std::vector<Point> points(const std::vector<std::uint32_t>& resolutions, bool full) {
     std::vector<Point> out;
     for (std::uint32_t r : resolutions) {
-        for (bool dual : {false, true}) {
-            Point p;
-            p.variant = dual ? "dual" : "single";
-            p.settings.resolution = r;
-            p.settings.dual = dual;
-            out.push_back(p);
-        }
+        for (bool dual : {false, true})
+            for (SamplingBackend b : {SamplingBackend::Raster, SamplingBackend::Compute}) {
+                Point p;
+                p.variant = dual ? "dual" : "single";
+                p.settings.resolution = r;
+                p.settings.dual = dual;
+                p.settings.backend = b;
+                out.push_back(p);
+            }
     }
     if (full) {
         auto at1024 = [&](const std::string& name) {
@@ -138,12 +140,12 @@ int main(int argc, char** argv) {
     std::string device = (*ctx)->deviceInfo().name;
     std::replace(device.begin(), device.end(), ',', ';');  // a plain CSV field
     std::ofstream csv(csv_path);
-    csv << "device,scene,motion,triangles,objects,variant,resolution,dual,layer_cap,packing,open,async,frame,"
+    csv << "device,scene,motion,triangles,objects,variant,backend,resolution,dual,layer_cap,packing,open,async,frame,"
            "sampling_ms,merging_ms,separation_ms,packing_ms,gpu_ms,readback_ms,narrow_ms,update_ms,total_ms,"
            "depth_complexity,layers,peel_passes,collision_rays,downloaded,pot_colliding,tests,pairs,reference_pairs,"
            "recall,precision,gpu_mib,host_peak_mib,narrow_threads\n";
     const Progress progress;
-    std::printf("%-18s %-14s %5s %9s %9s %9s %9s %8s %8s\n", "scene", "variant", "res", "gpu ms", "narrow ms", "total ms",
+    std::printf("%-18s %-14s %-8s %5s %9s %9s %9s %9s %8s %8s\n", "scene", "variant", "backend", "res", "gpu ms", "narrow ms", "total ms",
                 "pairs", "recall", "prec.");
     for (const std::string& name : scene_names) {
         const auto it = std::find_if(all.begin(), all.end(), [&](const SceneSpec& s) { return s.name == name; });
@@ -210,9 +212,9 @@ int main(int argc, char** argv) {
                 for (const auto& pass : st.gpu_passes) gpu_ms += pass.gpu_ms;
                 char row[1024];
                 std::snprintf(row, sizeof row,
-                              "%s,%s,%s,%zu,%zu,%s,%u,%d,%u,%s,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%u,%u,%u,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.2f,%.1f,%u\n",
+                              "%s,%s,%s,%zu,%zu,%s,%s,%u,%d,%u,%s,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%u,%u,%u,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.2f,%.1f,%u\n",
                               device.c_str(), scene.name.c_str(), deforming ? "deforming" : "rigid", triangles, ids.size(),
-                              p.variant.c_str(), st.resolution, st.dual ? 1 : 0, p.settings.layer_cap,
+                              p.variant.c_str(), st.backend.c_str(), st.resolution, st.dual ? 1 : 0, p.settings.layer_cap,
                               p.settings.packing == PackingMethod::Paper ? "paper" : "scan", p.open ? 1 : 0, p.async ? 1 : 0, f,
                               st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms,
                               update_ms, total_ms, st.depth_complexity, st.layers, st.peel_passes, st.collision_rays,
@@ -223,8 +225,8 @@ int main(int argc, char** argv) {
                 csv.flush();
                 if (f == frames) {
                     progress.done();
-                    std::printf("%-18s %-14s %5u %9.3f %9.3f %9.3f %9zu %8.4f %8.4f\n", scene.name.c_str(), p.variant.c_str(),
-                                st.resolution, gpu_ms, st.narrow_ms, total_ms, r->pairs.size(), cmp.recall, cmp.precision);
+                    std::printf("%-18s %-14s %-8s %5u %9.3f %9.3f %9.3f %9zu %8.4f %8.4f\n", scene.name.c_str(), p.variant.c_str(),
+                                st.backend.c_str(), st.resolution, gpu_ms, st.narrow_ms, total_ms, r->pairs.size(), cmp.recall, cmp.precision);
                     std::fflush(stdout);
                 }
             }

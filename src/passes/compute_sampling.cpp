@@ -1,0 +1,187 @@
+#include "passes/compute_sampling.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <string_view>
+
+#include "broadphase.h"
+#include "passes/broad_phase.hpp"
+#include "shaders/all.hpp"
+
+namespace vkcollide::passes {
+namespace {
+
+using graph::PassContext;
+using graph::PassKind;
+using graph::Use;
+
+constexpr std::uint32_t kNvidiaVendor = 0x10DE;
+// Extra work items beyond one per triangle, so a scene of few big triangles keeps one
+// tile per item.
+constexpr std::uint32_t kExtraItems = 65536;
+
+void bindAndPush(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint32_t object = 0,
+                 std::uint32_t step = 0) {
+    gpu::Push push{frame, object, step, 0, 0};
+    pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+    pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+}
+
+std::uint32_t groups(std::uint64_t items) {
+    return static_cast<std::uint32_t>((items + gpu::kGroupSize - 1) / gpu::kGroupSize);
+}
+
+bool contains(std::string_view haystack, std::string_view needle) { return haystack.find(needle) != std::string_view::npos; }
+
+}  // namespace
+
+const char* toString(SamplingBackend backend) noexcept {
+    switch (backend) {
+        case SamplingBackend::Auto: return "auto";
+        case SamplingBackend::Raster: return "raster";
+        case SamplingBackend::Compute: return "compute";
+    }
+    return "?";
+}
+
+BackendChoice chooseSamplingBackend(const VkPhysicalDeviceProperties& device, SamplingBackend requested,
+                                    std::uint32_t resolution, std::uint32_t triangles, double fragments_per_triangle) {
+    if (requested == SamplingBackend::Raster) return {SamplingBackend::Raster, "requested"};
+    if (requested == SamplingBackend::Compute) return {SamplingBackend::Compute, "requested"};
+    const std::string_view name = device.deviceName;
+    if (device.vendorID == kNvidiaVendor) {
+        for (std::string_view part : {"H100", "H200", "H800", "GH200", "H20"})
+            if (contains(name, part))
+                return {SamplingBackend::Compute,
+                        "auto: " + std::string(part) + " (GH100) runs graphics on 2 of its TPCs; compute uses every SM"};
+    }
+    if (device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) return {SamplingBackend::Raster, "auto: CPU device, raster"};
+    const bool measured = fragments_per_triangle >= 0;
+    const double fpt = measured ? fragments_per_triangle
+                                : 2.0 * double(resolution) * double(resolution) / double(std::max(triangles, 1u));
+    char text[160];
+    if (fpt < kTinyTriangleFragments) {
+        std::snprintf(text, sizeof(text), "auto: GPU with raster hardware but tiny triangles (%.2f px each, %s)", fpt,
+                      measured ? "measured" : "estimated");
+        return {SamplingBackend::Compute, text};
+    }
+    std::snprintf(text, sizeof(text), "auto: GPU with raster hardware, triangles of %.1f px (%s)", fpt,
+                  measured ? "measured" : "estimated");
+    return {SamplingBackend::Raster, text};
+}
+
+Result<std::unique_ptr<ComputeSampling>> ComputeSampling::create(vk::Device& device) {
+    std::unique_ptr<ComputeSampling> cs(new ComputeSampling(device));
+    const std::span<const vk::Pipeline::Binding> none;
+    auto compute = [&](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) -> Result<void> {
+        auto p = vk::Pipeline::createCompute(device, code, none, sizeof(gpu::Push), name);
+        if (!p) return p.error();
+        out = std::move(*p);
+        return {};
+    };
+    for (auto r : {compute(cs->setup_, shaders::csample_setup_comp, "csample-setup"),
+                   compute(cs->bin_, shaders::csample_bin_comp, "csample-bin"),
+                   compute(cs->args_, shaders::csample_args_comp, "csample-args"),
+                   compute(cs->count_, shaders::csample_count_comp, "csample-count"),
+                   compute(cs->peel_, shaders::csample_peel_comp, "csample-peel")})
+        if (!r) return r.error();
+    return cs;
+}
+
+Result<VkDeviceAddress> ComputeSampling::prepare(std::uint32_t resolution, std::uint32_t triangles,
+                                                 const ComputeSamplingTuning& tuning) {
+    using vk::MemoryKind;
+    const std::uint32_t bits = device_->properties.limits.subPixelPrecisionBits;
+    if (bits > 16)
+        return Error(ErrorCode::UnsupportedFeature, "compute sampling supports at most 16 sub-pixel bits, the device has " +
+                                                        std::to_string(bits));
+    const std::uint32_t tris = std::max(triangles, 1u);
+    auto make = [&](vk::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind, const char* name) -> Result<void> {
+        if (b.valid() && b.size() >= size) return {};
+        auto r = vk::Buffer::create(*device_, size, usage, kind, name);
+        if (!r) return r.error();
+        b = std::move(*r);
+        return {};
+    };
+    const VkDeviceSize items = VkDeviceSize(tris) + kExtraItems;
+    for (auto r : {make(frame_, sizeof(gpu::CsFrame), 0, MemoryKind::Upload, "csample-frame"),
+                   make(triangles_, VkDeviceSize(tris) * sizeof(gpu::CsTriangle), 0, MemoryKind::DeviceLocal, "csample-triangles"),
+                   make(lists_, VkDeviceSize(tris) * 8, 0, MemoryKind::DeviceLocal, "csample-lists"),
+                   make(items_, items * 8, 0, MemoryKind::DeviceLocal, "csample-items"),
+                   make(counters_, sizeof(gpu::CsCounters), 0, MemoryKind::DeviceLocal, "csample-counters"),
+                   make(args_buf_, 16, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryKind::DeviceLocal, "csample-args")})
+        if (!r) return r.error();
+    resolution_ = resolution;
+    fuse_ = tuning.fuse_first_step;
+    gpu::CsFrame cf{};
+    cf.triangles = triangles_.address();
+    cf.small = lists_.address();
+    cf.big = lists_.address() + VkDeviceSize(tris) * 4;
+    cf.items = items_.address();
+    cf.counters = counters_.address();
+    cf.args = args_buf_.address();
+    cf.item_capacity = static_cast<std::uint32_t>(items_.size() / 8);
+    cf.subpixel_bits = bits;
+    cf.small_box = tuning.small_box;
+    cf.tie_rule = gpu::kCsTieTopLeft;  // lavapipe and (measured) the H200: see tests
+    cf.fuse_first_step = fuse_ ? 1u : 0u;
+    std::memcpy(frame_.mapped(), &cf, sizeof(cf));
+    frame_.flush();
+    return frame_.address();
+}
+
+ComputeSampling::Ids ComputeSampling::import(graph::Graph& g) {
+    return {g.importBuffer("csample-triangles", triangles_), g.importBuffer("csample-lists", lists_),
+            g.importBuffer("csample-items", items_), g.importBuffer("csample-counters", counters_),
+            g.importBuffer("csample-args", args_buf_)};
+}
+
+void ComputeSampling::addDepthComplexity(graph::Graph& g, const Ids& ids, const Shared& shared,
+                                         std::span<const GpuMesh> meshes, VkDeviceAddress frame) const {
+    std::uint32_t total = 0;
+    for (const GpuMesh& m : meshes) total += m.triangle_count;
+    // Counters are cleared and then counted by atomics within the pass, so one pass holds
+    // the four steps with a shader barrier between dependent ones.
+    auto setup = g.addPass("csample-setup", PassKind::Compute);
+    setup.read(shared.projection).readWrite(shared.header).write(ids.triangles).write(ids.lists).write(ids.items);
+    setup.readWrite(ids.counters).write(ids.args);
+    if (fuse_) setup.write(shared.front).write(shared.back);
+    const std::uint32_t reset_groups = fuse_ ? groups(std::uint64_t(resolution_) * resolution_) : 1u;
+    setup.record([this, meshes, frame, total, reset_groups](PassContext& pc) {
+            bindAndPush(pc, args_, frame, 0, 0);
+            pc.fns().vkCmdDispatch(pc.cmd, reset_groups, 1, 1);
+            pc.shaderBarrier();
+            for (std::uint32_t i = 0; i < meshes.size(); ++i) {
+                bindAndPush(pc, setup_, frame, i);
+                pc.fns().vkCmdDispatch(pc.cmd, groups(meshes[i].triangle_count), 1, 1);
+            }
+            pc.shaderBarrier();
+            bindAndPush(pc, bin_, frame);
+            pc.fns().vkCmdDispatch(pc.cmd, groups(total), 1, 1);
+            pc.shaderBarrier();
+            bindAndPush(pc, args_, frame, 0, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        });
+    auto count = g.addPass("depth-complexity", PassKind::Compute);
+    count.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters).readWrite(shared.counts);
+    if (fuse_) count.readWrite(shared.front).readWrite(shared.back);
+    count.record([this, frame](PassContext& pc) {
+            bindAndPush(pc, count_, frame);
+            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
+        });
+}
+
+void ComputeSampling::addPeelStep(graph::Graph& g, const Ids& ids, const Shared& shared, std::uint32_t step, bool dual,
+                                  VkDeviceAddress frame) const {
+    if (step == 0 && fuse_) return;
+    auto peel = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Compute);
+    peel.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters);
+    peel.read(shared.state).readWrite(shared.front);
+    if (dual) peel.readWrite(shared.back);
+    peel.record([this, frame, step](PassContext& pc) {
+        bindAndPush(pc, peel_, frame, 0, step);
+        pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
+    });
+}
+
+}  // namespace vkcollide::passes

@@ -46,6 +46,9 @@ struct CollisionWorld::Impl {
         ObjectOptions options;
         bool host = false;
         vk::Buffer vertices, indices;  // host meshes: uploaded copies
+        // Host meshes: the indices again, for measuring after updateVertices (reading the
+        // upload buffer back would cross the bus: it may be write-combined device memory).
+        std::vector<std::uint32_t> host_indices;
         passes::GpuMesh gpu;           // addresses, counts, flags (transform set per run)
         // Host meshes: object-space box and mean edge length (object units).
         std::array<float, 6> box{};
@@ -155,6 +158,7 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     o.vertices = std::move(*vb);
     o.indices = std::move(*ib);
     Impl::measureHost(o, mesh.positions, mesh.indices);
+    o.host_indices = mesh.indices;
     w.objects.push_back(std::move(o));
     w.objectsChanged();
     return id;
@@ -274,8 +278,7 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
             return Error(ErrorCode::InvalidMesh, who + "vertex " + std::to_string(i) + " is NaN or infinite");
     std::memcpy(o.vertices.mapped(), positions.data(), positions.size_bytes());
     o.vertices.flush();
-    std::span<const std::uint32_t> indices(static_cast<const std::uint32_t*>(o.indices.mapped()), std::size_t(o.gpu.triangle_count) * 3);
-    Impl::measureHost(o, positions, indices);
+    Impl::measureHost(o, positions, o.host_indices);
     return {};
 }
 

@@ -23,8 +23,10 @@ awk -F, -v OFS=' ' 'NR==1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
 scenes=$(cut -d' ' -f1 "$tmp/points" | sort -u)
 plots=""
 for s in $scenes; do
-  awk -v s="$s" '$1 == s && ($2 == "single-raster" || $2 == "single-compute")' "$tmp/points" > "$tmp/f_$s"
-  plots="$plots '$tmp/f_$s' using 12:13 with linespoints title '$s',"
+  for b in raster compute; do
+    awk -v s="$s" -v v="single-$b" '$1 == s && $2 == v' "$tmp/points" > "$tmp/f_${s}_$b"
+    [ -s "$tmp/f_${s}_$b" ] && plots="$plots '$tmp/f_${s}_$b' using 12:13 with linespoints title '$s ($b)',"
+  done
 done
 gnuplot <<GP
 set terminal pngcairo size 1000,700

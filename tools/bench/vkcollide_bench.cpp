@@ -143,10 +143,10 @@ int main(int argc, char** argv) {
     csv << "device,scene,motion,triangles,objects,variant,backend,resolution,dual,layer_cap,packing,open,async,frame,"
            "sampling_ms,merging_ms,separation_ms,packing_ms,gpu_ms,readback_ms,narrow_ms,update_ms,total_ms,"
            "depth_complexity,layers,peel_passes,collision_rays,downloaded,pot_colliding,tests,pairs,reference_pairs,"
-           "recall,precision,gpu_mib,host_peak_mib,narrow_threads\n";
+           "recall,precision,gpu_mib,host_peak_mib,narrow_threads,reference_crossing,recall_crossing\n";
     const Progress progress;
-    std::printf("%-18s %-14s %-8s %5s %9s %9s %9s %9s %8s %8s\n", "scene", "variant", "backend", "res", "gpu ms", "narrow ms", "total ms",
-                "pairs", "recall", "prec.");
+    std::printf("%-18s %-14s %-8s %5s %9s %9s %9s %9s %8s %8s %8s\n", "scene", "variant", "backend", "res", "gpu ms", "narrow ms", "total ms",
+                "pairs", "recall", "crossing", "prec.");
     for (const std::string& name : scene_names) {
         const auto it = std::find_if(all.begin(), all.end(), [&](const SceneSpec& s) { return s.name == name; });
         if (it == all.end()) return std::fprintf(stderr, "vkcollide_bench: unknown scene '%s' (--list)\n", name.c_str()), 2;
@@ -156,6 +156,7 @@ int main(int argc, char** argv) {
         // Meshes and exact references per frame (rigid: one, reused).
         std::vector<std::vector<HostMesh>> meshes;
         std::vector<std::vector<TrianglePair>> reference;
+        std::vector<std::vector<TrianglePair>> crossing;  // the reference's crossing pairs (touching ones apart)
         for (int f = 0; f < scene_frames; ++f) {
             progress.show(scene.name + ": building frame " + std::to_string(f) + " and its exact reference");
             auto m = scene.build(f);
@@ -164,6 +165,12 @@ int main(int argc, char** argv) {
             for (const HostMesh& h : *m) objects.push_back({&h});
             auto ref = test::computeReferencePairs(objects, {.threads = threads});
             if (!ref) return std::fprintf(stderr, "\nvkcollide_bench: reference: %s\n", ref.error().message().c_str()), 1;
+            auto contacts = test::classifyPairs(objects, *ref);
+            if (!contacts) return std::fprintf(stderr, "\nvkcollide_bench: contacts: %s\n", contacts.error().message().c_str()), 1;
+            std::vector<TrianglePair> cross;
+            for (std::size_t k = 0; k < ref->size(); ++k)
+                if ((*contacts)[k] == test::Contact::Crossing) cross.push_back((*ref)[k]);
+            crossing.push_back(std::move(cross));
             reference.push_back(std::move(*ref));
             meshes.push_back(std::move(*m));
         }
@@ -208,11 +215,15 @@ int main(int argc, char** argv) {
                 if (f == 0) continue;
                 const DetectStats& st = r->stats;
                 const auto cmp = test::comparePairs(r->pairs, reference[mf]);
+                // Recall of crossing pairs: found crossing pairs over all crossing pairs.
+                std::size_t found_crossing = 0;
+                for (const TrianglePair& c : crossing[mf]) found_crossing += std::binary_search(r->pairs.begin(), r->pairs.end(), c);
+                const double recall_crossing = crossing[mf].empty() ? 1.0 : double(found_crossing) / double(crossing[mf].size());
                 double gpu_ms = 0;
                 for (const auto& pass : st.gpu_passes) gpu_ms += pass.gpu_ms;
                 char row[1024];
                 std::snprintf(row, sizeof row,
-                              "%s,%s,%s,%zu,%zu,%s,%s,%u,%d,%u,%s,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%u,%u,%u,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.2f,%.1f,%u\n",
+                              "%s,%s,%s,%zu,%zu,%s,%s,%u,%d,%u,%s,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%u,%u,%u,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.2f,%.1f,%u,%zu,%.6f\n",
                               device.c_str(), scene.name.c_str(), deforming ? "deforming" : "rigid", triangles, ids.size(),
                               p.variant.c_str(), st.backend.c_str(), st.resolution, st.dual ? 1 : 0, p.settings.layer_cap,
                               p.settings.packing == PackingMethod::Paper ? "paper" : "scan", p.open ? 1 : 0, p.async ? 1 : 0, f,
@@ -220,13 +231,14 @@ int main(int argc, char** argv) {
                               update_ms, total_ms, st.depth_complexity, st.layers, st.peel_passes, st.collision_rays,
                               st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, r->pairs.size(),
                               reference[mf].size(), cmp.recall, cmp.precision, double(st.gpu_memory_bytes) / (1024.0 * 1024.0),
-                              peakHostMiB(), st.narrow_threads);
+                              peakHostMiB(), st.narrow_threads, crossing[mf].size(), recall_crossing);
                 csv << row;
                 csv.flush();
                 if (f == frames) {
                     progress.done();
-                    std::printf("%-18s %-14s %-8s %5u %9.3f %9.3f %9.3f %9zu %8.4f %8.4f\n", scene.name.c_str(), p.variant.c_str(),
-                                st.backend.c_str(), st.resolution, gpu_ms, st.narrow_ms, total_ms, r->pairs.size(), cmp.recall, cmp.precision);
+                    std::printf("%-18s %-14s %-8s %5u %9.3f %9.3f %9.3f %9zu %8.4f %8.4f %8.4f\n", scene.name.c_str(), p.variant.c_str(),
+                                st.backend.c_str(), st.resolution, gpu_ms, st.narrow_ms, total_ms, r->pairs.size(), cmp.recall,
+                                recall_crossing, cmp.precision);
                     std::fflush(stdout);
                 }
             }

@@ -2,7 +2,7 @@
 // spheres, a torus threaded on a box, a separate sphere) on the device vkcollide finds
 // (lavapipe where no GPU is present). Prints the device, the paper's Table 1 statistics,
 // each GPU pass's time and the narrow phase's time.
-//   vkcollide_demo [--resolution N] [--dual] [--paper-packing] [--cap L]
+//   vkcollide_demo [--resolution N] [--dual] [--paper-packing] [--cap L] [--backend raster|compute|auto]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,7 +44,13 @@ int main(int argc, char** argv) {
         else if (a == "--cap" && i + 1 < argc) settings.layer_cap = static_cast<std::uint32_t>(std::atoi(argv[++i]));
         else if (a == "--dual") settings.dual = true;
         else if (a == "--paper-packing") settings.packing = passes::PackingMethod::Paper;
-        else return fail("unknown argument " + a + " (use --resolution N, --dual, --paper-packing, --cap L)");
+        else if (a == "--backend" && i + 1 < argc) {
+            const std::string b = argv[++i];
+            if (b == "raster") settings.backend = passes::SamplingBackend::Raster;
+            else if (b == "compute") settings.backend = passes::SamplingBackend::Compute;
+            else if (b == "auto") settings.backend = passes::SamplingBackend::Auto;
+            else return fail("unknown backend " + b + " (use raster, compute or auto)");
+        } else return fail("unknown argument " + a + " (use --resolution N, --dual, --paper-packing, --cap L, --backend B)");
     }
 
     auto ctx = Context::create();
@@ -91,6 +97,7 @@ int main(int argc, char** argv) {
     std::printf("Table 1: # tri's %zu | # coll. rays %u | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 triangles, broad->collision_rays, broad->records.size(), st.potentially_colliding_triangles,
                 st.triangle_tests, st.positive_tests);
+    std::printf("sampling backend: %s (%s)\n", passes::toString(broad->backend), broad->backend_reason.c_str());
     std::printf("colliding triangle pairs: %zu\n", narrow->pairs.size());
     std::printf("GPU passes (ms):");
     for (const auto& p : broad->passes) std::printf(" %s %.3f;", p.name.c_str(), p.gpu_ms);

@@ -183,7 +183,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     const auto triangles = static_cast<std::uint32_t>(total);
     const auto objects = static_cast<std::uint32_t>(meshes.size());
     if (auto ok = ensureBuffers(n, triangles, objects, s.keep_ray_image); !ok) return ok.error();
-    const BackendChoice backend = chooseSamplingBackend(device_->properties, s.backend, n, triangles,
+    const BackendChoice backend = chooseSamplingBackend(device_->properties, computeSamplingSupported(*device_), s.backend, n, triangles,
                                                         triangles == last_triangles_ ? last_fragments_per_triangle_ : -1.0);
     const bool compute = backend.backend == SamplingBackend::Compute;
     VkDeviceAddress compute_frame = 0;
@@ -323,6 +323,10 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     result.peel_steps = s.dual ? (result.layers + 1) / 2 : result.layers;
     result.fragments = h1.fragments;
     result.compute_small = h1.cs_small, result.compute_big = h1.cs_big, result.compute_items = h1.cs_items;
+    if (compute) {
+        if (auto ok = compute_->preparePeeling(h1.depth_complexity); !ok) return ok.error();
+        result.compute_fragment_lists = compute_->usesFragmentLists();
+    }
     last_triangles_ = triangles;
     last_fragments_per_triangle_ = double(h1.fragments) / double(std::max(triangles, 1u));
     for (auto& p : report1->passes) {

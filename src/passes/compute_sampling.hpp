@@ -17,7 +17,9 @@
 // Passes it records:
 //   submission 1: "csample-setup" (per triangle: setup, small/big lists, tile binning,
 //                 indirect arguments), then "depth-complexity" (compute, counts)
-//   submission 2: "peel[i]" (compute) in place of the raster peel of step i
+//   submission 2: with fragment lists, "csample-gather" (every key into its ray's list),
+//                 then per step "peel[i]" picking per pixel; otherwise per step "peel[i]"
+//                 drawing the triangles again (step 0 done by the count pass when fused)
 // Triangles whose pixel box has at most `small_box` pixels are drawn by one invocation
 // each; bigger ones are cut into 8x8-pixel tiles drawn by one workgroup each (one
 // invocation per pixel), so a big triangle does not serialise on one invocation.
@@ -44,9 +46,17 @@ struct ComputeSamplingTuning {
     // Most pixels in the pixel box of a triangle drawn by one invocation; bigger boxes are
     // drawn in tiles. 0 draws every triangle in tiles.
     std::uint32_t small_box = 64;
-    // The depth-complexity pass also does peeling step 0 (the nearest and farthest key of
-    // every ray): one traversal of the triangles fewer.
+    // Fragment lists: after the count, one more drawing stores every ray's keys (N^2 x
+    // depth complexity x 8 bytes) and each peeling step picks its keys per pixel, instead
+    // of drawing every triangle again per step. Used when that buffer needs at most this
+    // many bytes; 0: never.
+    std::uint64_t list_budget_bytes = std::uint64_t{1} << 30;
+    // Without fragment lists (budget 0): the depth-complexity pass also does peeling step 0
+    // (the nearest and farthest key of every ray), one drawing of the triangles fewer.
     bool fuse_first_step = true;
+    // The depth plane: through the snapped vertices (hardware rasterizers) or the unsnapped
+    // ones (llvmpipe's setup); Device picks by vendor (Mesa: unsnapped).
+    enum class DepthPlane { Device, Snapped, Unsnapped } depth_plane = DepthPlane::Device;
 };
 
 // The backend that runs and a one-line reason.
@@ -61,14 +71,23 @@ struct BackendChoice {
 //  2. Any other GPU (full raster hardware): raster, except for tiny triangles (fewer than
 //     kTinyTriangleFragments fragments per triangle), where quad-based rasterizers waste
 //     most of their work.
-//  3. A CPU implementation (lavapipe): raster.
+//  3. A CPU implementation (lavapipe): compute for triangles under kCpuComputeFragments
+//     pixels, raster for bigger ones (lavapipe on 2 cores, wall time per run: compute
+//     3-4x faster at 7 px per triangle, raster about 2x faster from 24 px up).
 // `fragments_per_triangle` is the scene's mean number of covered pixels per triangle:
 // measured by the previous run on the same triangle count (the depth-complexity counts
 // summed), or < 0 when unknown; then estimated as resolution^2 * 2 / triangles (a fitted
 // scene covering about half the image four layers deep).
 inline constexpr double kTinyTriangleFragments = 1.0;
-BackendChoice chooseSamplingBackend(const VkPhysicalDeviceProperties& device, SamplingBackend requested,
-                                    std::uint32_t resolution, std::uint32_t triangles, double fragments_per_triangle);
+inline constexpr double kCpuComputeFragments = 8.0;
+// A device without subgroup ballot and arithmetic in compute shaders gets raster (and an
+// error if Compute is requested).
+BackendChoice chooseSamplingBackend(const VkPhysicalDeviceProperties& device, bool compute_supported,
+                                    SamplingBackend requested, std::uint32_t resolution, std::uint32_t triangles,
+                                    double fragments_per_triangle);
+
+// Whether the device runs the compute backend: subgroup ballot and arithmetic in compute.
+bool computeSamplingSupported(const vk::Device& device);
 
 class ComputeSampling {
 public:
@@ -81,6 +100,9 @@ public:
     // Whether the prepared run does peeling step 0 in the depth-complexity pass: then
     // peel_init leaves the keys (its step 1) and step 0 records no peel pass.
     bool fusesFirstStep() const noexcept { return fuse_; }
+    // After submission 1: fragment lists or drawing per step, given the depth complexity.
+    [[nodiscard]] Result<void> preparePeeling(std::uint32_t depth_complexity);
+    bool usesFragmentLists() const noexcept { return fragment_lists_; }
 
     // The broad phase's resources these passes use.
     struct Shared {
@@ -88,7 +110,7 @@ public:
     };
     // This backend's buffers in one graph; import once per graph.
     struct Ids {
-        graph::ResourceId triangles, lists, items, counters, args;
+        graph::ResourceId triangles, lists, items, counters, args, fill, fragments;
     };
     Ids import(graph::Graph& g);
 
@@ -97,17 +119,20 @@ public:
     void addDepthComplexity(graph::Graph& g, const Ids& ids, const Shared& shared, std::span<const GpuMesh> meshes,
                             VkDeviceAddress frame) const;
     // Submission 2: one peeling step (pass "peel[step]"), before classify[step]; records
-    // nothing for step 0 when fusesFirstStep().
+    // nothing for step 0 when fusesFirstStep(). With fragment lists, step 0 is preceded by
+    // "csample-gather" and each step picks per pixel.
     void addPeelStep(graph::Graph& g, const Ids& ids, const Shared& shared, std::uint32_t step, bool dual,
                      VkDeviceAddress frame) const;
 
 private:
     explicit ComputeSampling(vk::Device& device) : device_(&device) {}
     vk::Device* device_;
-    vk::Pipeline setup_, bin_, args_, count_, peel_;
-    vk::Buffer frame_, triangles_, lists_, items_, counters_, args_buf_;
+    vk::Pipeline setup_, bin_, args_, count_, peel_, gather_, pick_;
+    vk::Buffer frame_, triangles_, lists_, items_, counters_, args_buf_, fill_, fragments_;
     std::uint32_t resolution_ = 0;
+    std::uint64_t list_budget_ = 0;
     bool fuse_ = false;
+    bool fragment_lists_ = false;
 };
 
 }  // namespace vkcollide::passes

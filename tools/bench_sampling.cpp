@@ -107,7 +107,7 @@ std::size_t triangleCount(const SceneDesc& s) {
 }
 
 struct Timing {
-    double setup = 0, count = 0, peel = 0, classify = 0, sampling = 0, wall = 0;
+    double setup = 0, count = 0, gather = 0, peel = 0, classify = 0, sampling = 0, wall = 0;
     std::vector<double> steps;  // count pass, then each peel pass
 };
 
@@ -116,6 +116,7 @@ Timing timingOf(const BroadPhaseResult& r) {
     t.sampling = r.sampling_ms;
     for (const auto& p : r.passes) {
         if (p.name == "csample-setup") t.setup += p.gpu_ms;
+        else if (p.name == "csample-gather") t.gather += p.gpu_ms;
         else if (p.name == "depth-complexity") t.count += p.gpu_ms, t.steps.insert(t.steps.begin(), p.gpu_ms);
         else if (p.name.rfind("peel[", 0) == 0) t.peel += p.gpu_ms, t.steps.push_back(p.gpu_ms);
         else if (p.name.rfind("classify[", 0) == 0) t.classify += p.gpu_ms;
@@ -155,6 +156,7 @@ Result<Measured> measure(passes::BroadPhase& bp, const std::vector<passes::GpuMe
     };
     m.median.setup = pick(&Timing::setup);
     m.median.count = pick(&Timing::count);
+    m.median.gather = pick(&Timing::gather);
     m.median.peel = pick(&Timing::peel);
     m.median.classify = pick(&Timing::classify);
     m.median.sampling = pick(&Timing::sampling);
@@ -181,9 +183,10 @@ void printRow(const SceneDesc& scene, std::size_t tris, const BroadPhaseSettings
               const std::string& same) {
     const auto& r = m.last;
     const double fpt = double(r.fragments) / double(std::max<std::size_t>(tris, 1));
-    std::printf("| %s | %zu | %u | %.1f | %u | %s | %s | %.3f | %.3f | %.3f | %.3f | **%.3f** | %s | %.1f | %s |\n", scene.name.c_str(),
-                tris, s.resolution, fpt, r.depth_complexity, s.dual ? "dual" : "single", label, m.median.setup, m.median.count,
-                m.median.peel, m.median.classify, m.median.sampling, stepsText(m.median.steps).c_str(), m.median.wall, same.c_str());
+    std::printf("| %s | %zu | %u | %.1f | %u | %s | %s | %.3f | %.3f | %.3f | %.3f | %.3f | **%.3f** | %s | %.1f | %s |\n",
+                scene.name.c_str(), tris, s.resolution, fpt, r.depth_complexity, s.dual ? "dual" : "single", label, m.median.setup,
+                m.median.count, m.median.gather, m.median.peel, m.median.classify, m.median.sampling, stepsText(m.median.steps).c_str(),
+                m.median.wall, same.c_str());
     std::fflush(stdout);
 }
 
@@ -254,8 +257,9 @@ int main(int argc, char** argv) {
 
     auto bp = passes::BroadPhase::create(dev);
     if (!bp) return fail(bp.error().message());
-    std::printf("| scene | triangles | N | px/tri | depth cx | mode | backend | setup ms | count ms | peel ms | classify ms | sampling ms | per pass: count, peel[i] (ms) | run wall ms | same rays + records |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::vector<std::string> details;
+    std::printf("| scene | triangles | N | px/tri | depth cx | mode | backend | setup ms | count ms | gather ms | peel ms | classify ms | sampling ms | per pass: count, peel[i] (ms) | run wall ms | same rays + records |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const SceneDesc& scene : scenes) {
         if (!only.empty() && scene.name.find(only) == std::string::npos) continue;
         std::vector<const HostMesh*> ptrs;
@@ -276,6 +280,16 @@ int main(int argc, char** argv) {
             auto compute = measure(**bp, up->meshes, s, reps);
             if (!compute) return fail(scene.name + ": " + compute.error().message());
             printRow(scene, tris, s, *compute, "compute", compareResults(raster->last, compute->last));
+            if (details.size() < 4)  // every pass of the first scene's last runs, for the record
+                for (const auto* m : {&*raster, &*compute}) {
+                    std::string line = scene.name + (dual ? " dual " : " single ") + toString(m->last.backend) + ":";
+                    char buf[64];
+                    for (const auto& p : m->last.passes) {
+                        std::snprintf(buf, sizeof(buf), " %s %.3f;", p.name.c_str(), p.gpu_ms);
+                        line += buf;
+                    }
+                    details.push_back(line);
+                }
             if (!sweep || !dual) continue;
             struct Variant {
                 const char* label;
@@ -295,6 +309,8 @@ int main(int argc, char** argv) {
             }
         }
     }
+    std::printf("\nPer pass (ms), last run:\n");
+    for (const auto& d : details) std::printf("- %s\n", d.c_str());
     {
         // What Auto picks here, for the record.
         const auto choice = passes::chooseSamplingBackend(dev.properties, passes::computeSamplingSupported(dev), SamplingBackend::Auto, 1024, 1'000'000, 6.0);

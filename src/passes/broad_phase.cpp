@@ -454,7 +454,8 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     result.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     for (auto& p : report->passes) {
         const std::string& name = p.name;
-        if (name.rfind("peel", 0) == 0 || name.rfind("classify", 0) == 0 || name == "finalize") result.sampling_ms += p.gpu_ms;
+        if (name.rfind("peel", 0) == 0 || name.rfind("classify", 0) == 0 || name.rfind("csample", 0) == 0 || name == "finalize")
+            result.sampling_ms += p.gpu_ms;
         else if (name == "merge") result.merging_ms += p.gpu_ms;
         else if (name == "separate") result.separation_ms += p.gpu_ms;
         else if (name.rfind("pack", 0) == 0) result.packing_ms += p.gpu_ms;

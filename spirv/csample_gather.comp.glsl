@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Compute sampling with fragment lists: every covered sample stores its key in its ray's
-// list (at most depth-complexity slots: the same samples were counted).
+// Compute sampling with fragment lists, when some ray had more keys than the count pass
+// stored: every covered sample stores its key in its ray's list again (at most depth
+// complexity slots: the same samples were counted). The fill counts start at 0 (step 0
+// of csample_args).
 #include "csample.glsl.inc"
 
 void visit(Frame f, uint p, uint64_t key) {

@@ -6,7 +6,8 @@
 //   vkcollide_bench_sampling [--quick] [--reps R] [--mesh PATH] [--only NAME] [--sweep]
 //
 //   --quick   small scenes (for lavapipe)
-//   --reps    timed runs per configuration after one warm-up (median reported; default 5)
+//   --reps    timed runs per configuration after one warm-up (median reported; default 5);
+//             the warm-up also sizes the compute backend's fragment lists (steady state)
 //   --mesh    a packaged mesh (e.g. data/cgal/bunny00.off): alone and as a 4x4 grid
 //   --only    run the scenes whose name contains NAME
 //   --sweep   also time the compute backend's tuning (small_box, drawing per step, depth plane)
@@ -296,7 +297,7 @@ int main(int argc, char** argv) {
                 passes::ComputeSamplingTuning tuning;
             };
             using Plane = passes::ComputeSamplingTuning::DepthPlane;
-            std::vector<Variant> variants = {{"compute box 16", {.small_box = 16}}, {"compute box 256", {.small_box = 256}},
+            std::vector<Variant> variants = {{"compute box 64", {.small_box = 64}}, {"compute box 1024", {.small_box = 1024}},
                                              {"compute draw/step", {.list_budget_bytes = 0}},
                                              {"compute draw/step unfused", {.list_budget_bytes = 0, .fuse_first_step = false}},
                                              {"compute z snapped", {.depth_plane = Plane::Snapped}},

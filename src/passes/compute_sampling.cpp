@@ -105,7 +105,7 @@ Result<std::unique_ptr<ComputeSampling>> ComputeSampling::create(vk::Device& dev
                    compute(cs->args_, shaders::csample_args_comp, "csample-args"),
                    compute(cs->count_, shaders::csample_count_comp, "csample-count"),
                    compute(cs->peel_, shaders::csample_peel_comp, "csample-peel"),
-                   compute(cs->gather_, shaders::csample_gather_comp, "csample-gather"),
+                   compute(cs->gather_pipe_, shaders::csample_gather_comp, "csample-gather"),
                    compute(cs->pick_, shaders::csample_pick_comp, "csample-pick")})
         if (!r) return r.error();
     return cs;
@@ -136,6 +136,16 @@ Result<VkDeviceAddress> ComputeSampling::prepare(std::uint32_t resolution, std::
     list_budget_ = tuning.list_budget_bytes;
     fuse_ = tuning.fuse_first_step && list_budget_ == 0;
     fragment_lists_ = false;
+    gather_ = false;
+    // Layers the count pass stores: as many as the last run needed (at least the tuning's),
+    // within the budget.
+    const std::uint64_t layer_bytes = std::uint64_t(resolution) * resolution * 8;
+    list_layers_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(std::max(next_list_layers_, tuning.list_layers),
+                                                                      list_budget_ / layer_bytes));
+    if (list_layers_ > 0) {
+        if (auto ok = make(fragments_, layer_bytes * list_layers_, 0, MemoryKind::DeviceLocal, "csample-fragments"); !ok)
+            return ok.error();
+    }
     bool snapped = device_->properties.vendorID != kMesaVendor;
     if (tuning.depth_plane != ComputeSamplingTuning::DepthPlane::Device)
         snapped = tuning.depth_plane == ComputeSamplingTuning::DepthPlane::Snapped;
@@ -153,6 +163,8 @@ Result<VkDeviceAddress> ComputeSampling::prepare(std::uint32_t resolution, std::
     cf.fuse_first_step = fuse_ ? 1u : 0u;
     cf.depth_snapped = snapped ? 1u : 0u;
     cf.fill = fill_.address();
+    cf.list_layers = list_layers_;
+    cf.fragments = list_layers_ > 0 ? fragments_.address() : 0;
     std::memcpy(frame_.mapped(), &cf, sizeof(cf));
     frame_.flush();
     return frame_.address();
@@ -160,9 +172,11 @@ Result<VkDeviceAddress> ComputeSampling::prepare(std::uint32_t resolution, std::
 
 Result<void> ComputeSampling::preparePeeling(std::uint32_t depth_complexity) {
     const std::uint64_t bytes = std::uint64_t(resolution_) * resolution_ * depth_complexity * 8;
-    fragment_lists_ = !fuse_ && depth_complexity > 0 && bytes <= list_budget_;
-    if (!fragment_lists_) return {};
-    if (!fragments_.valid() || fragments_.size() < bytes) {
+    fragment_lists_ = list_budget_ > 0 && depth_complexity > 0 && bytes <= list_budget_;
+    gather_ = fragment_lists_ && depth_complexity > list_layers_;
+    if (fragment_lists_) next_list_layers_ = std::max(next_list_layers_, depth_complexity);
+    if (!gather_) return {};
+    if (fragments_.size() < bytes) {
         fragments_.reset();  // free the old one before allocating the bigger one
         auto r = vk::Buffer::create(*device_, bytes, 0, vk::MemoryKind::DeviceLocal, "csample-fragments");
         if (!r) return r.error();
@@ -179,7 +193,7 @@ ComputeSampling::Ids ComputeSampling::import(graph::Graph& g) {
             g.importBuffer("csample-items", items_),         g.importBuffer("csample-counters", counters_),
             g.importBuffer("csample-args", args_buf_),       g.importBuffer("csample-fill", fill_),
             {}};
-    if (fragment_lists_) ids.fragments = g.importBuffer("csample-fragments", fragments_);
+    if (fragments_.valid()) ids.fragments = g.importBuffer("csample-fragments", fragments_);
     return ids;
 }
 
@@ -191,9 +205,9 @@ void ComputeSampling::addDepthComplexity(graph::Graph& g, const Ids& ids, const 
     // the four steps with a shader barrier between dependent ones.
     auto setup = g.addPass("csample-setup", PassKind::Compute);
     setup.read(shared.projection).readWrite(shared.header).write(ids.triangles).write(ids.lists).write(ids.items);
-    setup.readWrite(ids.counters).write(ids.args).write(ids.fill);
+    setup.readWrite(ids.counters).write(ids.args);
     if (fuse_) setup.write(shared.front).write(shared.back);
-    const std::uint32_t reset_groups = groups(std::uint64_t(resolution_) * resolution_);
+    const std::uint32_t reset_groups = fuse_ ? groups(std::uint64_t(resolution_) * resolution_) : 1u;
     setup.record([this, frame, total, reset_groups](PassContext& pc) {
             bindAndPush(pc, args_, frame, 0, 0);
             pc.fns().vkCmdDispatch(pc.cmd, reset_groups, 1, 1);
@@ -210,6 +224,7 @@ void ComputeSampling::addDepthComplexity(graph::Graph& g, const Ids& ids, const 
     auto count = g.addPass("depth-complexity", PassKind::Compute);
     count.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters).readWrite(shared.counts);
     if (fuse_) count.readWrite(shared.front).readWrite(shared.back);
+    if (list_layers_ > 0) count.write(ids.fragments);
     count.record([this, frame](PassContext& pc) {
             bindAndPush(pc, count_, frame);
             pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
@@ -219,7 +234,8 @@ void ComputeSampling::addDepthComplexity(graph::Graph& g, const Ids& ids, const 
 void ComputeSampling::addPeelStep(graph::Graph& g, const Ids& ids, const Shared& shared, std::uint32_t step, bool dual,
                                   VkDeviceAddress frame) const {
     if (fragment_lists_) {
-        if (step == 0) {
+        const std::uint32_t pixel_groups = groups(std::uint64_t(resolution_) * resolution_);
+        if (step == 0 && gather_) {
             g.addPass("csample-gather", PassKind::Compute)
                 .indirect(ids.args)
                 .read(ids.triangles)
@@ -228,15 +244,17 @@ void ComputeSampling::addPeelStep(graph::Graph& g, const Ids& ids, const Shared&
                 .read(ids.counters)
                 .readWrite(ids.fill)
                 .write(ids.fragments)
-                .record([this, frame](PassContext& pc) {
-                    bindAndPush(pc, gather_, frame);
+                .record([this, frame, pixel_groups](PassContext& pc) {
+                    bindAndPush(pc, args_, frame, 0, 2);  // fill counts to 0
+                    pc.fns().vkCmdDispatch(pc.cmd, pixel_groups, 1, 1);
+                    pc.shaderBarrier();
+                    bindAndPush(pc, gather_pipe_, frame);
                     pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
                 });
         }
         auto pick = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Compute);
         pick.read(ids.fragments).read(shared.counts).read(shared.state).readWrite(shared.front);
         if (dual) pick.readWrite(shared.back);
-        const std::uint32_t pixel_groups = groups(std::uint64_t(resolution_) * resolution_);
         pick.record([this, frame, step, pixel_groups](PassContext& pc) {
             bindAndPush(pc, pick_, frame, 0, step);
             pc.fns().vkCmdDispatch(pc.cmd, pixel_groups, 1, 1);

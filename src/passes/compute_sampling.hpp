@@ -17,9 +17,10 @@
 // Passes it records:
 //   submission 1: "csample-setup" (per triangle: setup, small/big lists, tile binning,
 //                 indirect arguments), then "depth-complexity" (compute, counts)
-//   submission 2: with fragment lists, "csample-gather" (every key into its ray's list),
-//                 then per step "peel[i]" picking per pixel; otherwise per step "peel[i]"
-//                 drawing the triangles again (step 0 done by the count pass when fused)
+//   submission 2: with fragment lists (stored by the count pass; "csample-gather" again
+//                 if a ray had more than it stored), per step "peel[i]" picking per
+//                 pixel; otherwise per step "peel[i]" drawing the triangles again (step 0
+//                 done by the count pass when fused)
 // Triangles whose pixel box has at most `small_box` pixels are drawn by one invocation
 // each; bigger ones are cut into 8x8-pixel tiles drawn by one workgroup each (one
 // invocation per pixel), so a big triangle does not serialise on one invocation.
@@ -44,13 +45,16 @@ const char* toString(SamplingBackend backend) noexcept;
 
 struct ComputeSamplingTuning {
     // Most pixels in the pixel box of a triangle drawn by one invocation; bigger boxes are
-    // drawn in tiles. 0 draws every triangle in tiles.
-    std::uint32_t small_box = 64;
-    // Fragment lists: after the count, one more drawing stores every ray's keys (N^2 x
-    // depth complexity x 8 bytes) and each peeling step picks its keys per pixel, instead
-    // of drawing every triangle again per step. Used when that buffer needs at most this
-    // many bytes; 0: never.
+    // drawn in tiles. 0 draws every triangle in tiles. (H200: 256 beats 64 by 0.2 ms on
+    // 24-50 px triangles, within noise elsewhere; docs/results.md.)
+    std::uint32_t small_box = 256;
+    // Fragment lists: the count pass stores the first `list_layers` keys of every ray
+    // (N^2 x layers x 8 bytes) and each peeling step picks its keys per pixel, instead of
+    // drawing every triangle again per step. A ray with more keys costs one more drawing
+    // (gather) in that run, and the next run stores as many layers as this one needed.
+    // Lists are used while the buffer needs at most `list_budget_bytes`; 0: never.
     std::uint64_t list_budget_bytes = std::uint64_t{1} << 30;
+    std::uint32_t list_layers = 8;
     // Without fragment lists (budget 0): the depth-complexity pass also does peeling step 0
     // (the nearest and farthest key of every ray), one drawing of the triangles fewer.
     bool fuse_first_step = true;
@@ -100,9 +104,11 @@ public:
     // Whether the prepared run does peeling step 0 in the depth-complexity pass: then
     // peel_init leaves the keys (its step 1) and step 0 records no peel pass.
     bool fusesFirstStep() const noexcept { return fuse_; }
-    // After submission 1: fragment lists or drawing per step, given the depth complexity.
+    // After submission 1: fragment lists (complete, or to gather again) or drawing per
+    // step, given the depth complexity.
     [[nodiscard]] Result<void> preparePeeling(std::uint32_t depth_complexity);
     bool usesFragmentLists() const noexcept { return fragment_lists_; }
+    bool gathers() const noexcept { return gather_; }
 
     // The broad phase's resources these passes use.
     struct Shared {
@@ -119,20 +125,23 @@ public:
     void addDepthComplexity(graph::Graph& g, const Ids& ids, const Shared& shared, std::span<const GpuMesh> meshes,
                             VkDeviceAddress frame) const;
     // Submission 2: one peeling step (pass "peel[step]"), before classify[step]; records
-    // nothing for step 0 when fusesFirstStep(). With fragment lists, step 0 is preceded by
-    // "csample-gather" and each step picks per pixel.
+    // nothing for step 0 when fusesFirstStep(). With fragment lists each step picks per
+    // pixel, and step 0 is preceded by "csample-gather" when gathers().
     void addPeelStep(graph::Graph& g, const Ids& ids, const Shared& shared, std::uint32_t step, bool dual,
                      VkDeviceAddress frame) const;
 
 private:
     explicit ComputeSampling(vk::Device& device) : device_(&device) {}
     vk::Device* device_;
-    vk::Pipeline setup_, bin_, args_, count_, peel_, gather_, pick_;
+    vk::Pipeline setup_, bin_, args_, count_, peel_, gather_pipe_, pick_;
     vk::Buffer frame_, triangles_, lists_, items_, counters_, args_buf_, fill_, fragments_;
     std::uint32_t resolution_ = 0;
     std::uint64_t list_budget_ = 0;
+    std::uint32_t list_layers_ = 0;       // stored by the count pass this run
+    std::uint32_t next_list_layers_ = 0;  // what the last run needed
     bool fuse_ = false;
     bool fragment_lists_ = false;
+    bool gather_ = false;
 };
 
 }  // namespace vkcollide::passes

@@ -212,11 +212,17 @@ TEST_CASE_METHOD(Fixture, "compute sampling equals raster whether triangles take
         s.resolution = 256;
         s.dual = small_box == 64u;
         s.compute.small_box = small_box;
-        // Fragment lists; drawing per step with step 0 in the count pass; drawing every step.
+        // Fragment lists, one layer stored by the count pass and the rest gathered (this is
+        // the first compute run of this broad phase); drawing per step with step 0 in the
+        // count pass; drawing every step.
         s.compute.list_budget_bytes = small_box == 0u ? s.compute.list_budget_bytes : 0u;
+        s.compute.list_layers = 1;
         s.compute.fuse_first_step = small_box != 64u;
         Compared c = compareBackends(ctx, bp, scene, s);
         CHECK(c.compute.compute_fragment_lists == (small_box == 0u));
+        const bool gathered = std::any_of(c.compute.passes.begin(), c.compute.passes.end(),
+                                          [](const graph::PassTiming& p) { return p.name == "csample-gather"; });
+        CHECK(gathered == (small_box == 0u));
         CHECK(c.raster.collision_rays > 0);
         if (small_box == 0u) CHECK(c.compute.compute_small == 0);
         CHECK(c.compute.compute_big > 0);  // at 256, the boxes' faces exceed the 64-px extent
@@ -253,10 +259,11 @@ TEST_CASE_METHOD(Fixture, "the backend is reported with a reason, and Auto follo
     };
     auto has = [](const std::vector<std::string>& v, const char* name) { return std::find(v.begin(), v.end(), name) != v.end(); };
     REQUIRE(c->peel_steps >= 2);
+    REQUIRE(c->depth_complexity <= s.compute.list_layers);
     CHECK(c->compute_fragment_lists);
     const auto listed = names(*c);
-    for (const char* name : {"csample-setup", "depth-complexity", "csample-gather", "peel[0]", "classify[0]", "peel[1]"})
-        CHECK(has(listed, name));
+    for (const char* name : {"csample-setup", "depth-complexity", "peel[0]", "classify[0]", "peel[1]"}) CHECK(has(listed, name));
+    CHECK_FALSE(has(listed, "csample-gather"));  // the count pass stored every key
     s.compute.list_budget_bytes = 0;  // draw per step, step 0 in the count pass
     auto fused = bp.run(up->meshes, s);
     REQUIRE(fused);
@@ -275,6 +282,39 @@ TEST_CASE_METHOD(Fixture, "the backend is reported with a reason, and Auto follo
     CHECK_FALSE(fallback->compute_fragment_lists);
     CHECK(has(names(*fallback), "peel[0]"));
     for (const auto* other : {&*fused, &*unfused, &*fallback}) CHECK(other->collision_rays == c->collision_rays);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE_METHOD(Fixture, "fragment lists grow to the depth complexity a run needed", "[gpu][compute-sampling]") {
+    Scene scene;
+    for (int i = 0; i < 4; ++i)
+        scene.meshes.push_back(placed(uvSphere(0.5f, 12, 6), 0.3f, 1, 0.2f, 0.2f, {0.02f, 0.03f, -1.8f + 1.2f * float(i)}));
+    std::vector<const HostMesh*> ptrs;
+    for (const auto& m : scene.meshes) ptrs.push_back(&m);
+    auto up = uploadMeshes(ctx.device(), ptrs);
+    REQUIRE(up);
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    s.backend = SamplingBackend::Compute;
+    s.keep_ray_image = true;
+    s.compute.list_layers = 2;
+    auto gathered = [](const BroadPhaseResult& r) {
+        return std::any_of(r.passes.begin(), r.passes.end(), [](const graph::PassTiming& p) { return p.name == "csample-gather"; });
+    };
+    auto first = bp.run(up->meshes, s);
+    REQUIRE(first);
+    CHECK(first->depth_complexity == 8);
+    CHECK(gathered(*first));  // 2 layers stored, 8 needed
+    auto second = bp.run(up->meshes, s);
+    REQUIRE(second);
+    CHECK_FALSE(gathered(*second));  // 8 stored now
+    CHECK(second->ray_image == first->ray_image);
+    CHECK(second->collision_rays == 0);
+    s.compute.list_budget_bytes = 64 * 64 * 8 * 4;  // room for 4 layers: no lists at all
+    auto drawn = bp.run(up->meshes, s);
+    REQUIRE(drawn);
+    CHECK_FALSE(drawn->compute_fragment_lists);
+    CHECK(drawn->ray_image == first->ray_image);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

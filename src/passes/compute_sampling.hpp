@@ -7,9 +7,10 @@
 // (VkPhysicalDeviceLimits::subPixelPrecisionBits, round to nearest even), and a pixel is
 // covered when its centre is inside the snapped triangle, with the top-left rule for
 // centres exactly on an edge. Facing is the sign of the snapped area, as in Vulkan.
-// Depth is the plane through the unsnapped window positions, evaluated at the pixel
-// centre in float: it can differ from the rasterizer's gl_FragCoord.z by a few ulps, so two
-// fragments of one ray whose depths are that close may be peeled in the other order.
+// Depth is a plane evaluated at the pixel centre in float, through the snapped vertices
+// (hardware rasterizers; the H200 matches) or the unsnapped ones (llvmpipe): it can differ
+// from the rasterizer's gl_FragCoord.z by a few ulps, so two fragments of one ray whose
+// depths are that close may be peeled in the other order (the tie tolerance).
 // Fragments with depth outside [0, 1] are dropped (the rasterizer clips them); window
 // positions farther than 2^(29 - subpixel bits) pixels are clamped (the rasterizer clips at
 // its guard band). Neither happens with the automatic fit.
@@ -24,6 +25,7 @@
 // Triangles whose pixel box has at most `small_box` pixels are drawn by one invocation
 // each; bigger ones are cut into 8x8-pixel tiles drawn by one workgroup each (one
 // invocation per pixel), so a big triangle does not serialise on one invocation.
+// docs/broadphase.md ("Sampling backends") has the whole design and its measurements.
 //
 // Not thread-safe; one instance per BroadPhase.
 #pragma once
@@ -45,8 +47,8 @@ const char* toString(SamplingBackend backend) noexcept;
 
 struct ComputeSamplingTuning {
     // Most pixels in the pixel box of a triangle drawn by one invocation; bigger boxes are
-    // drawn in tiles. 0 draws every triangle in tiles. (H200: 256 beats 64 by 0.2 ms on
-    // 24-50 px triangles, within noise elsewhere; docs/results.md.)
+    // drawn in tiles. 0 draws every triangle in tiles. (H200, docs/results.md: 256 is
+    // 0.07 ms faster than 64 on 24-50 px triangles, 0.6 ms slower on 91 px ones at 4096^2.)
     std::uint32_t small_box = 256;
     // Fragment lists: the count pass stores the first `list_layers` keys of every ray
     // (N^2 x layers x 8 bytes) and each peeling step picks its keys per pixel, instead of
@@ -71,10 +73,11 @@ struct BackendChoice {
 
 // What Auto picks (Raster and Compute are returned as asked):
 //  1. A GPU whose graphics pipeline runs on a small part of the chip -- NVIDIA GH100 parts
-//     (H100, H200, H800, GH200, H20): 2 of their TPCs run graphics. Compute always.
+//     (H100, H200, H800, GH200, H20): 2 of their TPCs run graphics. Compute always (H200:
+//     6-57x faster from 0.8 to 1600 px per triangle, docs/results.md).
 //  2. Any other GPU (full raster hardware): raster, except for tiny triangles (fewer than
 //     kTinyTriangleFragments fragments per triangle), where quad-based rasterizers waste
-//     most of their work.
+//     most of their work (an inference; not measured on such a GPU).
 //  3. A CPU implementation (lavapipe): compute for triangles under kCpuComputeFragments
 //     pixels, raster for bigger ones (lavapipe on 2 cores, wall time per run: compute
 //     3-4x faster at 7 px per triangle, raster about 2x faster from 24 px up).

@@ -129,8 +129,7 @@ Result<VkDeviceAddress> ComputeSampling::prepare(std::uint32_t resolution, std::
                    make(lists_, VkDeviceSize(tris) * 8, 0, MemoryKind::DeviceLocal, "csample-lists"),
                    make(items_, items * 8, 0, MemoryKind::DeviceLocal, "csample-items"),
                    make(counters_, sizeof(gpu::CsCounters), 0, MemoryKind::DeviceLocal, "csample-counters"),
-                   make(args_buf_, 16, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryKind::DeviceLocal, "csample-args"),
-                   make(fill_, VkDeviceSize(resolution) * resolution * 4, 0, MemoryKind::DeviceLocal, "csample-fill")})
+                   make(args_buf_, 16, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryKind::DeviceLocal, "csample-args")})
         if (!r) return r.error();
     resolution_ = resolution;
     list_budget_ = tuning.list_budget_bytes;
@@ -162,7 +161,6 @@ Result<VkDeviceAddress> ComputeSampling::prepare(std::uint32_t resolution, std::
     cf.tie_rule = gpu::kCsTieTopLeft;  // lavapipe and (measured) the H200: see tests
     cf.fuse_first_step = fuse_ ? 1u : 0u;
     cf.depth_snapped = snapped ? 1u : 0u;
-    cf.fill = fill_.address();
     cf.list_layers = list_layers_;
     cf.fragments = list_layers_ > 0 ? fragments_.address() : 0;
     std::memcpy(frame_.mapped(), &cf, sizeof(cf));
@@ -176,23 +174,32 @@ Result<void> ComputeSampling::preparePeeling(std::uint32_t depth_complexity) {
     gather_ = fragment_lists_ && depth_complexity > list_layers_;
     if (fragment_lists_) next_list_layers_ = std::max(next_list_layers_, depth_complexity);
     if (!gather_) return {};
+    // Free the old buffers before allocating bigger ones.
     if (fragments_.size() < bytes) {
-        fragments_.reset();  // free the old one before allocating the bigger one
+        fragments_.reset();
         auto r = vk::Buffer::create(*device_, bytes, 0, vk::MemoryKind::DeviceLocal, "csample-fragments");
         if (!r) return r.error();
         fragments_ = std::move(*r);
     }
+    const VkDeviceSize fill_bytes = VkDeviceSize(resolution_) * resolution_ * 4;
+    if (fill_.size() < fill_bytes) {
+        fill_.reset();
+        auto r = vk::Buffer::create(*device_, fill_bytes, 0, vk::MemoryKind::DeviceLocal, "csample-fill");
+        if (!r) return r.error();
+        fill_ = std::move(*r);
+    }
     auto* cf = static_cast<gpu::CsFrame*>(frame_.mapped());
     cf->fragments = fragments_.address();
+    cf->fill = fill_.address();
     frame_.flush();
     return {};
 }
 
 ComputeSampling::Ids ComputeSampling::import(graph::Graph& g) {
     Ids ids{g.importBuffer("csample-triangles", triangles_), g.importBuffer("csample-lists", lists_),
-            g.importBuffer("csample-items", items_),         g.importBuffer("csample-counters", counters_),
-            g.importBuffer("csample-args", args_buf_),       g.importBuffer("csample-fill", fill_),
-            {}};
+            g.importBuffer("csample-items", items_), g.importBuffer("csample-counters", counters_),
+            g.importBuffer("csample-args", args_buf_), {}, {}};
+    if (fill_.valid()) ids.fill = g.importBuffer("csample-fill", fill_);
     if (fragments_.valid()) ids.fragments = g.importBuffer("csample-fragments", fragments_);
     return ids;
 }

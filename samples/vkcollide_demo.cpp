@@ -2,7 +2,7 @@
 // spheres, a torus threaded on a box, a separate sphere) on the device vkcollide finds
 // (lavapipe where no GPU is present), through the public API. Prints the device, the
 // paper's Table 1 statistics, each GPU pass's time and the narrow phase's time.
-//   vkcollide_demo [--resolution N] [--dual] [--paper-packing] [--cap L] [--frames K]
+//   vkcollide_demo [--resolution N] [--dual] [--paper-packing] [--cap L] [--frames K] [--backend raster|compute|auto]
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -41,9 +41,15 @@ int main(int argc, char** argv) {
         if (a == "--resolution" && i + 1 < argc) settings.resolution = static_cast<std::uint32_t>(std::atoi(argv[++i]));
         else if (a == "--cap" && i + 1 < argc) settings.layer_cap = static_cast<std::uint32_t>(std::atoi(argv[++i]));
         else if (a == "--frames" && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--dual") settings.dual = true;
+        else if (a == "--backend" && i + 1 < argc) {
+            const std::string b = argv[++i];
+            if (b == "raster") settings.backend = SamplingBackend::Raster;
+            else if (b == "compute") settings.backend = SamplingBackend::Compute;
+            else if (b == "auto") settings.backend = SamplingBackend::Auto;
+            else return fail("--backend takes raster, compute or auto");
+        } else if (a == "--dual") settings.dual = true;
         else if (a == "--paper-packing") settings.packing = PackingMethod::Paper;
-        else return fail("unknown argument " + a + " (use --resolution N, --dual, --paper-packing, --cap L, --frames K)");
+        else return fail("unknown argument " + a + " (use --resolution N, --dual, --paper-packing, --cap L, --frames K, --backend B)");
     }
 
     auto ctx = Context::create();
@@ -71,6 +77,7 @@ int main(int argc, char** argv) {
         if (result = (*world)->detect(settings); !result) return fail(result.error().message());
 
     const DetectStats& st = result->stats;
+    std::printf("sampling backend: %s (%s)\n", st.backend.c_str(), st.backend_reason.c_str());
     std::printf("scene: %u objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u peeling passes%s\n",
                 st.objects, st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",

@@ -125,7 +125,10 @@ struct Push {
 // Object sampling without the graphics pipeline: edge-function rasterization in compute
 // with the rasterizer's coverage rule. Triangles whose pixel box is small are drawn by one
 // invocation each; bigger ones are cut into kCsTile x kCsTile pixel tiles, one workgroup
-// (one invocation per pixel) per work item of `tiles_per_item` consecutive tiles.
+// (one invocation per pixel) per work item of `tiles_per_item` consecutive tiles. Peeling
+// either draws the triangles again per step, or (fragment lists) the count pass stores
+// every ray's keys (a gather pass redraws when a ray had more than list_layers) and each
+// step picks the next keys per pixel from them.
 VKC_CONST kCsGroupSize = 64;         // invocations per workgroup (= kCsTile^2)
 VKC_CONST kCsTile = 8;               // tile side in pixels
 VKC_CONST kCsMaxGroupsX = 65535;     // indirect dispatch width (the guaranteed minimum limit)
@@ -164,11 +167,15 @@ struct CsFrame {
     VKC_ADDRESS(uint64_t) items;      // uvec2[item_capacity]: (triangle, item of it)
     VKC_ADDRESS(uint64_t) counters;   // CsCounters
     VKC_ADDRESS(uint64_t) args;       // VkDispatchIndirectCommand of the draw dispatches
+    VKC_ADDRESS(uint64_t) fill;       // uint[N*N]: keys stored so far per ray (gather pass)
+    VKC_ADDRESS(uint64_t) fragments;  // uint64[layers * N*N]: key k of ray p at k*N*N + p
     uint item_capacity;               // > triangle_count
     uint subpixel_bits;               // VkPhysicalDeviceLimits::subPixelPrecisionBits
     uint small_box;                   // most pixels in a one-invocation triangle's box
     uint tie_rule;                    // kCsTieTopLeft or kCsTieBottomLeft
     uint fuse_first_step;             // 1: the count pass also does peeling step 0
+    uint depth_snapped;               // 1: depth plane through the snapped vertices
+    uint list_layers;                 // keys the count pass stores per ray (0: none)
     uint pad0;
 };
 

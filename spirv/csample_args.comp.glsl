@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Compute sampling. Step 0 (one invocation per pixel): clears the counters before setup
 // and, when the count pass also does peeling step 0, the ray's keys as peel_init would.
+// Step 2 (one invocation per pixel): clears the gather pass's fill counts.
 // Step 1 (one invocation): turns the counters into the indirect dispatch of the draw
 // passes (x at most kCsMaxGroupsX, rows in y) and copies the list sizes to the header.
 #include "csample.glsl.inc"
@@ -12,6 +13,10 @@ void main() {
     CsFrame cs = csFrame(f);
     CsCountersRef counters = CsCountersRef(cs.counters);
     uint p = gl_GlobalInvocationID.x;
+    if (pc.step == 2u) {  // before a gather pass: its fill counts
+        if (p < f.resolution * f.resolution) UintsRef(cs.fill).v[p] = 0u;
+        return;
+    }
     if (pc.step == 0u && cs.fuse_first_step != 0u && p < f.resolution * f.resolution) {
         Uint64sRef(f.front_keys).v[p] = ~0ul;
         Uint64sRef(f.back_keys).v[p] = 0ul;

@@ -191,7 +191,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     const auto triangles = static_cast<std::uint32_t>(total);
     const auto objects = static_cast<std::uint32_t>(meshes.size());
     if (auto ok = ensureBuffers(n, triangles, objects, s.keep_ray_image); !ok) return ok.error();
-    const BackendChoice backend = chooseSamplingBackend(device_->properties, s.backend, n, triangles,
+    const BackendChoice backend = chooseSamplingBackend(device_->properties, computeSamplingSupported(*device_), s.backend, n, triangles,
                                                         triangles == last_triangles_ ? last_fragments_per_triangle_ : -1.0);
     const bool compute = backend.backend == SamplingBackend::Compute;
     VkDeviceAddress compute_frame = 0;
@@ -483,7 +483,7 @@ void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionRepo
     for (const auto& p : report.passes) {
         const std::string& name = p.name;
         if (name == "depth-complexity" || name.rfind("peel", 0) == 0 || name.rfind("classify", 0) == 0 || name == "finalize" ||
-            name == "clear" || name == "validate" || name == "bounds" || name == "fit" || name == "reduce-max" || name == "csample-setup")
+            name == "clear" || name == "validate" || name == "bounds" || name == "fit" || name == "reduce-max" || name.rfind("csample", 0) == 0)
             result.sampling_ms += p.gpu_ms;
         else if (name == "merge") result.merging_ms += p.gpu_ms;
         else if (name == "separate") result.separation_ms += p.gpu_ms;
@@ -505,6 +505,9 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     if (!report1) return report1.error();
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
+    // The compute backend sizes its per-ray fragment lists for the measured depth.
+    if (computeBackend())
+        if (auto ok = compute_->preparePeeling(h1.depth_complexity); !ok) return ok.error();
     frame_.first = BroadPhaseResult{};
     addTimings(frame_.first, *report1);
     frame_.measured_layers = s.layer_cap ? std::min(h1.depth_complexity, s.layer_cap) : h1.depth_complexity;
@@ -524,6 +527,10 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
     if (s.layer_cap) layers = std::min(layers, s.layer_cap);
+    // Unknown depth: the compute backend draws each peeling step (fragment lists could be
+    // incomplete if the scene got deeper, and that would not be conservative).
+    if (computeBackend())
+        if (auto ok = compute_->preparePeeling(0); !ok) return ok.error();
     frame_.first = BroadPhaseResult{};
     frame_.measured_layers = layers;
     frame_.steps = s.dual ? (layers + 1) / 2 : layers;
@@ -558,6 +565,7 @@ Result<BroadPhaseResult> BroadPhase::collect() {
     result.backend_reason = frame_.backend.reason;
     result.fragments = h.fragments;
     result.compute_small = h.cs_small, result.compute_big = h.cs_big, result.compute_items = h.cs_items;
+    if (computeBackend()) result.compute_fragment_lists = compute_->usesFragmentLists();
     last_triangles_ = fr.triangle_count;
     last_fragments_per_triangle_ = double(h.fragments) / double(std::max(fr.triangle_count, 1u));
     result.layers = frame_.measured_layers;

@@ -70,7 +70,8 @@ struct BroadPhaseResult {
     SamplingBackend backend = SamplingBackend::Raster;  // the one that ran (never Auto)
     std::string backend_reason;              // one line: why
     std::uint64_t fragments = 0;             // covered pixels summed over all triangles
-    std::uint32_t compute_small = 0, compute_big = 0, compute_items = 0;  // compute backend's lists
+    std::uint32_t compute_small = 0, compute_big = 0, compute_items = 0;  // compute backend's triangle lists
+    bool compute_fragment_lists = false;     // compute backend peeled from per-ray fragment lists
     double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
 };
 

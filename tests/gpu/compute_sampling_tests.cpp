@@ -153,6 +153,7 @@ TEST_CASE_METHOD(Fixture, "compute sampling equals raster: layer caps", "[gpu][c
             s.resolution = 64;
             s.layer_cap = cap;
             s.dual = dual;
+            if (cap == 3u) s.compute.list_budget_bytes = 0;  // drawing per step
             Compared c = compareBackends(ctx, bp, scene, s);
             CHECK(c.raster.depth_complexity == 8);
             CHECK(c.compute.layers == cap);
@@ -171,6 +172,7 @@ TEST_CASE_METHOD(Fixture, "compute sampling equals raster: open cloth by depth p
         s.resolution = 128;
         s.dual = dual;
         s.open_epsilon = 0.05f;
+        if (dual) s.compute.list_budget_bytes = 0;  // drawing per step
         Compared c = compareBackends(ctx, bp, scene, s);
         CHECK(c.raster.collision_rays > 0);
     }
@@ -198,7 +200,7 @@ TEST_CASE_METHOD(Fixture, "compute sampling equals raster: samples exactly on ed
     }
 }
 
-TEST_CASE_METHOD(Fixture, "compute sampling equals raster whether triangles take one invocation or tiles", "[gpu][compute-sampling]") {
+TEST_CASE_METHOD(Fixture, "compute sampling equals raster whether triangles take one invocation or tiles, peeled from lists or by drawing", "[gpu][compute-sampling]") {
     // Coarse boxes have faces of a few big triangles; the fine sphere has small ones.
     Scene scene;
     scene.meshes.push_back(placed(box({1.2f, 1.2f, 1.2f}, 1), 0.3f, 1, 0.2f, 0.41f, {-0.3f, 0.02f, 0.03f}));
@@ -210,8 +212,17 @@ TEST_CASE_METHOD(Fixture, "compute sampling equals raster whether triangles take
         s.resolution = 256;
         s.dual = small_box == 64u;
         s.compute.small_box = small_box;
+        // Fragment lists, one layer stored by the count pass and the rest gathered (this is
+        // the first compute run of this broad phase); drawing per step with step 0 in the
+        // count pass; drawing every step.
+        s.compute.list_budget_bytes = small_box == 0u ? s.compute.list_budget_bytes : 0u;
+        s.compute.list_layers = 1;
         s.compute.fuse_first_step = small_box != 64u;
         Compared c = compareBackends(ctx, bp, scene, s);
+        CHECK(c.compute.compute_fragment_lists == (small_box == 0u));
+        const bool gathered = std::any_of(c.compute.passes.begin(), c.compute.passes.end(),
+                                          [](const graph::PassTiming& p) { return p.name == "csample-gather"; });
+        CHECK(gathered == (small_box == 0u));
         CHECK(c.raster.collision_rays > 0);
         if (small_box == 0u) CHECK(c.compute.compute_small == 0);
         CHECK(c.compute.compute_big > 0);  // at 256, the boxes' faces exceed the 64-px extent
@@ -232,7 +243,7 @@ TEST_CASE_METHOD(Fixture, "the backend is reported with a reason, and Auto follo
     CHECK(r->backend != SamplingBackend::Auto);
     CHECK_FALSE(r->backend_reason.empty());
     const auto& props = ctx.device().properties;
-    const BackendChoice expected = chooseSamplingBackend(props, SamplingBackend::Auto, 64, r->triangles, -1.0);
+    const BackendChoice expected = chooseSamplingBackend(props, computeSamplingSupported(ctx.device()), SamplingBackend::Auto, 64, r->triangles, -1.0);
     CHECK(r->backend == expected.backend);
     s.backend = SamplingBackend::Compute;
     auto c = bp.run(up->meshes, s);
@@ -248,18 +259,66 @@ TEST_CASE_METHOD(Fixture, "the backend is reported with a reason, and Auto follo
     };
     auto has = [](const std::vector<std::string>& v, const char* name) { return std::find(v.begin(), v.end(), name) != v.end(); };
     REQUIRE(c->peel_steps >= 2);
-    const auto fused = names(*c);
-    for (const char* name : {"csample-setup", "depth-complexity", "classify[0]", "peel[1]", "classify[1]"}) CHECK(has(fused, name));
-    CHECK_FALSE(has(fused, "peel[0]"));
+    REQUIRE(c->depth_complexity <= s.compute.list_layers);
+    CHECK(c->compute_fragment_lists);
+    const auto listed = names(*c);
+    for (const char* name : {"csample-setup", "depth-complexity", "peel[0]", "classify[0]", "peel[1]"}) CHECK(has(listed, name));
+    CHECK_FALSE(has(listed, "csample-gather"));  // the count pass stored every key
+    s.compute.list_budget_bytes = 0;  // draw per step, step 0 in the count pass
+    auto fused = bp.run(up->meshes, s);
+    REQUIRE(fused);
+    CHECK_FALSE(fused->compute_fragment_lists);
+    CHECK_FALSE(has(names(*fused), "peel[0]"));
+    CHECK_FALSE(has(names(*fused), "csample-gather"));
+    CHECK(has(names(*fused), "peel[1]"));
     s.compute.fuse_first_step = false;
     auto unfused = bp.run(up->meshes, s);
     REQUIRE(unfused);
     CHECK(has(names(*unfused), "peel[0]"));
-    CHECK(unfused->collision_rays == c->collision_rays);
+    s.compute = {};
+    s.compute.list_budget_bytes = 1;  // the lists do not fit: drawing per step
+    auto fallback = bp.run(up->meshes, s);
+    REQUIRE(fallback);
+    CHECK_FALSE(fallback->compute_fragment_lists);
+    CHECK(has(names(*fallback), "peel[0]"));
+    for (const auto* other : {&*fused, &*unfused, &*fallback}) CHECK(other->collision_rays == c->collision_rays);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("Auto picks compute on GH100 parts, raster on CPUs, by triangle size elsewhere", "[compute-sampling]") {
+TEST_CASE_METHOD(Fixture, "fragment lists grow to the depth complexity a run needed", "[gpu][compute-sampling]") {
+    Scene scene;
+    for (int i = 0; i < 4; ++i)
+        scene.meshes.push_back(placed(uvSphere(0.5f, 12, 6), 0.3f, 1, 0.2f, 0.2f, {0.02f, 0.03f, -1.8f + 1.2f * float(i)}));
+    std::vector<const HostMesh*> ptrs;
+    for (const auto& m : scene.meshes) ptrs.push_back(&m);
+    auto up = uploadMeshes(ctx.device(), ptrs);
+    REQUIRE(up);
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    s.backend = SamplingBackend::Compute;
+    s.keep_ray_image = true;
+    s.compute.list_layers = 2;
+    auto gathered = [](const BroadPhaseResult& r) {
+        return std::any_of(r.passes.begin(), r.passes.end(), [](const graph::PassTiming& p) { return p.name == "csample-gather"; });
+    };
+    auto first = bp.run(up->meshes, s);
+    REQUIRE(first);
+    CHECK(first->depth_complexity == 8);
+    CHECK(gathered(*first));  // 2 layers stored, 8 needed
+    auto second = bp.run(up->meshes, s);
+    REQUIRE(second);
+    CHECK_FALSE(gathered(*second));  // 8 stored now
+    CHECK(second->ray_image == first->ray_image);
+    CHECK(second->collision_rays == 0);
+    s.compute.list_budget_bytes = 64 * 64 * 8 * 4;  // room for 4 layers: no lists at all
+    auto drawn = bp.run(up->meshes, s);
+    REQUIRE(drawn);
+    CHECK_FALSE(drawn->compute_fragment_lists);
+    CHECK(drawn->ray_image == first->ray_image);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("Auto picks compute on GH100 parts, by triangle size elsewhere", "[compute-sampling]") {
     VkPhysicalDeviceProperties p{};
     auto named = [&](std::uint32_t vendor, VkPhysicalDeviceType type, const char* name) {
         p.vendorID = vendor;
@@ -267,15 +326,17 @@ TEST_CASE("Auto picks compute on GH100 parts, raster on CPUs, by triangle size e
         std::snprintf(p.deviceName, sizeof(p.deviceName), "%s", name);
     };
     named(0x10DE, VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, "NVIDIA H200");
-    CHECK(chooseSamplingBackend(p, SamplingBackend::Auto, 1024, 1000, 50.0).backend == SamplingBackend::Compute);
-    CHECK(chooseSamplingBackend(p, SamplingBackend::Raster, 1024, 1000, 50.0).backend == SamplingBackend::Raster);
+    CHECK(chooseSamplingBackend(p, true, SamplingBackend::Auto, 1024, 1000, 50.0).backend == SamplingBackend::Compute);
+    CHECK(chooseSamplingBackend(p, true, SamplingBackend::Raster, 1024, 1000, 50.0).backend == SamplingBackend::Raster);
     named(0x10005, VK_PHYSICAL_DEVICE_TYPE_CPU, "llvmpipe (LLVM 15.0.6, 256 bits)");
-    CHECK(chooseSamplingBackend(p, SamplingBackend::Auto, 1024, 1000, 50.0).backend == SamplingBackend::Raster);
-    CHECK(chooseSamplingBackend(p, SamplingBackend::Compute, 1024, 1000, 50.0).backend == SamplingBackend::Compute);
+    CHECK(chooseSamplingBackend(p, true, SamplingBackend::Auto, 1024, 1000, 50.0).backend == SamplingBackend::Raster);
+    CHECK(chooseSamplingBackend(p, true, SamplingBackend::Auto, 1024, 1000, 5.0).backend == SamplingBackend::Compute);
+    CHECK(chooseSamplingBackend(p, false, SamplingBackend::Auto, 1024, 1000, 5.0).backend == SamplingBackend::Raster);
+    CHECK(chooseSamplingBackend(p, true, SamplingBackend::Compute, 1024, 1000, 50.0).backend == SamplingBackend::Compute);
     named(0x10DE, VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, "NVIDIA GeForce RTX 4090");
-    CHECK(chooseSamplingBackend(p, SamplingBackend::Auto, 1024, 1000, 50.0).backend == SamplingBackend::Raster);
-    CHECK(chooseSamplingBackend(p, SamplingBackend::Auto, 1024, 1000, 0.5).backend == SamplingBackend::Compute);
+    CHECK(chooseSamplingBackend(p, true, SamplingBackend::Auto, 1024, 1000, 50.0).backend == SamplingBackend::Raster);
+    CHECK(chooseSamplingBackend(p, true, SamplingBackend::Auto, 1024, 1000, 0.5).backend == SamplingBackend::Compute);
     // Unknown size: estimated from resolution and triangle count.
-    CHECK(chooseSamplingBackend(p, SamplingBackend::Auto, 256, 10'000'000, -1.0).backend == SamplingBackend::Compute);
-    CHECK_FALSE(chooseSamplingBackend(p, SamplingBackend::Auto, 256, 10'000'000, -1.0).reason.empty());
+    CHECK(chooseSamplingBackend(p, true, SamplingBackend::Auto, 256, 10'000'000, -1.0).backend == SamplingBackend::Compute);
+    CHECK_FALSE(chooseSamplingBackend(p, true, SamplingBackend::Auto, 256, 10'000'000, -1.0).reason.empty());
 }

@@ -1,0 +1,190 @@
+// CGAL's box_intersection_d over triangle boxes as the broad phase, an exact triangle
+// test as the narrow phase: the exact CPU baseline.
+//
+// Boxes are closed (CGAL's default topology), so triangles that only touch are
+// candidates. Coordinates stay float: the boxes of float triangles are exact in float.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/intersections.h>
+
+#if defined(CGAL_LINKED_WITH_TBB)
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/task_arena.h>
+#endif
+
+#include <algorithm>
+#include <cstdint>
+#include <utility>
+
+#include "narrow/thread_pool.hpp"
+#include "narrow/triangle_intersection.hpp"
+#include "peer_common.hpp"
+#include "peers.hpp"
+
+namespace vkcollide::bench {
+namespace {
+
+using detail::Stopwatch;
+
+// The handle points into an array of global triangle numbers, so the box id (the
+// handle's address) is unique and the global number is one load away.
+using Box = CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const std::uint32_t*>;
+
+#if defined(CGAL_LINKED_WITH_TBB)
+using Concurrency = CGAL::Parallel_tag;
+// CGAL 5.5's parallel box intersection splits both ranges 4 ways and copies each range
+// 4 times (box_intersection_d.h), so it holds 8 copies of the boxes while it runs.
+constexpr std::size_t kBoxCopies = 1 + 8;
+#else
+using Concurrency = CGAL::Sequential_tag;
+constexpr std::size_t kBoxCopies = 2;  // ours + the copy box_self_intersection_d makes
+#endif
+
+bool epickTest(const Float3 (&a)[3], const Float3 (&b)[3]) {
+    using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+    const auto point = [](const Float3& p) { return K::Point_3(p.x, p.y, p.z); };
+    const K::Triangle_3 ta(point(a[0]), point(a[1]), point(a[2]));
+    const K::Triangle_3 tb(point(b[0]), point(b[1]), point(b[2]));
+    // do_intersect requires non-degenerate triangles.
+    if (ta.is_degenerate() || tb.is_degenerate()) return detail::exactTest(a, b);
+    return CGAL::do_intersect(ta, tb);
+}
+
+class CgalPeer final : public Peer {
+public:
+    CgalPeer(CgalTest test, const PeerMode& mode, unsigned threads)
+        : test_(test),
+          mode_(mode),
+          pool_(threads)
+#if defined(CGAL_LINKED_WITH_TBB)
+          ,
+          arena_(threads ? static_cast<int>(threads) : tbb::task_arena::automatic)
+#endif
+    {
+    }
+
+    std::string_view name() const noexcept override { return test_ == CgalTest::Epick ? "cgal-epick" : "cgal"; }
+
+    Result<PeerFrame> frame(std::span<const HostMesh> meshes) override {
+        if (Result<void> ok = detail::validateScene(meshes); !ok) return ok.error();
+        if (mode_.motion == Motion::Deforming) {
+            if (first_frame_done_) {
+                if (Result<void> ok = topology_.check(meshes); !ok) return ok.error();
+            } else {
+                topology_.remember(meshes);
+            }
+        }
+        first_frame_done_ = true;
+
+        PeerFrame out;
+        // Build: one box per triangle. CGAL keeps no structure between calls, so this is
+        // all a deforming frame redoes.
+        const Stopwatch build_clock;
+        std::size_t triangle_count = 0;
+        first_triangle_.resize(meshes.size() + 1);
+        for (std::size_t o = 0; o < meshes.size(); ++o) {
+            first_triangle_[o] = static_cast<std::uint32_t>(triangle_count);
+            triangle_count += meshes[o].triangleCount();
+        }
+        first_triangle_[meshes.size()] = static_cast<std::uint32_t>(triangle_count);
+        if (ids_.size() != triangle_count) {
+            ids_.resize(triangle_count);
+            for (std::size_t i = 0; i < triangle_count; ++i) ids_[i] = static_cast<std::uint32_t>(i);
+        }
+        boxes_.resize(triangle_count);
+        pool_.parallelFor(meshes.size(), 1, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t o = begin; o < end; ++o) {
+                const HostMesh& m = meshes[o];
+                for (std::uint32_t t = 0; t < m.triangleCount(); ++t) {
+                    Float3 v[3];
+                    detail::triangleVertices(m, t, v);
+                    float lo[3] = {std::min({v[0].x, v[1].x, v[2].x}), std::min({v[0].y, v[1].y, v[2].y}),
+                                   std::min({v[0].z, v[1].z, v[2].z})};
+                    float hi[3] = {std::max({v[0].x, v[1].x, v[2].x}), std::max({v[0].y, v[1].y, v[2].y}),
+                                   std::max({v[0].z, v[1].z, v[2].z})};
+                    const std::size_t g = first_triangle_[o] + std::size_t{t};
+                    boxes_[g] = Box(lo, hi, &ids_[g]);
+                }
+            }
+        });
+        out.timings.build_ms = build_clock.ms();
+
+        const Stopwatch query_clock;
+        std::vector<TrianglePair> candidates = findCandidates();
+        const detail::TriangleTest& test = test_ == CgalTest::Epick ? detail::TriangleTest(epickTest)
+                                                                    : detail::TriangleTest(detail::exactTest);
+        out.pairs = detail::exactPairs(meshes, candidates, mode_.self_collision, test, pool_);
+        out.timings.query_ms = query_clock.ms();
+        out.timings.total_ms = out.timings.build_ms + out.timings.query_ms;
+        out.timings.candidates = candidates.size();
+        out.timings.memory_bytes = kBoxCopies * boxes_.size() * sizeof(Box) + ids_.size() * sizeof(std::uint32_t) +
+                                   candidates.capacity() * sizeof(TrianglePair);
+        return out;
+    }
+
+private:
+    // Object and triangle of global triangle number g.
+    std::pair<std::uint32_t, std::uint32_t> locate(std::uint32_t g) const {
+        const auto it = std::upper_bound(first_triangle_.begin(), first_triangle_.end(), g);
+        const auto object = static_cast<std::uint32_t>(it - first_triangle_.begin() - 1);
+        return {object, g - first_triangle_[object]};
+    }
+
+    std::vector<TrianglePair> findCandidates() {
+        const bool self = mode_.self_collision;
+        const auto candidate = [&](const Box& a, const Box& b, TrianglePair& out) {
+            std::uint32_t ga = *a.handle(), gb = *b.handle();
+            if (ga == gb) return false;
+            if (gb < ga) std::swap(ga, gb);
+            const auto [oa, ta] = locate(ga);
+            const auto [ob, tb] = locate(gb);
+            // Without self-collision, pairs within one object would only be thrown away.
+            if (oa == ob && !self) return false;
+            out = {oa, ta, ob, tb};
+            return true;
+        };
+#if defined(CGAL_LINKED_WITH_TBB)
+        tbb::enumerable_thread_specific<std::vector<TrianglePair>> found;
+        // The arena caps CGAL's TBB tasks at the session's thread count.
+        arena_.execute([&] {
+            CGAL::box_self_intersection_d<Concurrency>(boxes_.begin(), boxes_.end(), [&](const Box& a, const Box& b) {
+                TrianglePair p;
+                if (candidate(a, b, p)) found.local().push_back(p);
+            });
+        });
+        std::vector<TrianglePair> out;
+        std::size_t total = 0;
+        for (const auto& part : found) total += part.size();
+        out.reserve(total);
+        for (const auto& part : found) out.insert(out.end(), part.begin(), part.end());
+        return out;
+#else
+        std::vector<TrianglePair> out;
+        CGAL::box_self_intersection_d<Concurrency>(boxes_.begin(), boxes_.end(), [&](const Box& a, const Box& b) {
+            TrianglePair p;
+            if (candidate(a, b, p)) out.push_back(p);
+        });
+        return out;
+#endif
+    }
+
+    CgalTest test_;
+    PeerMode mode_;
+    ThreadPool pool_;
+    bool first_frame_done_ = false;
+    detail::TopologyCheck topology_;
+    std::vector<std::uint32_t> first_triangle_;  // per object, plus the total at the end
+    std::vector<std::uint32_t> ids_;             // ids_[g] == g: what box handles point to
+    std::vector<Box> boxes_;
+#if defined(CGAL_LINKED_WITH_TBB)
+    tbb::task_arena arena_;
+#endif
+};
+
+}  // namespace
+
+Result<std::unique_ptr<Peer>> createCgalPeer(CgalTest test, const PeerMode& mode, unsigned threads) {
+    return std::unique_ptr<Peer>(std::make_unique<CgalPeer>(test, mode, threads));
+}
+
+}  // namespace vkcollide::bench

@@ -77,8 +77,9 @@ struct NamedFactory {
 
 std::vector<NamedFactory> exactPeers() {
     return {
-        {"cgal", [](const PeerMode& m) { return createCgalPeer(CgalTest::Exact, m, 2); }},
-        {"cgal-epick", [](const PeerMode& m) { return createCgalPeer(CgalTest::Epick, m, 2); }},
+        {"cgal", [](const PeerMode& m) { return createCgalPeer({CgalTest::Exact, true}, m, 2); }},
+        {"cgal-seqbox", [](const PeerMode& m) { return createCgalPeer({CgalTest::Exact, false}, m, 2); }},
+        {"cgal-epick", [](const PeerMode& m) { return createCgalPeer({CgalTest::Epick, true}, m, 2); }},
         {"embree", [](const PeerMode& m) { return createEmbreePeer(EmbreeUpdate::Rebuild, m, 2); }},
         {"embree-refit", [](const PeerMode& m) { return createEmbreePeer(EmbreeUpdate::Refit, m, 2); }},
     };
@@ -175,6 +176,55 @@ TEST_CASE("Peers: FCL's pairs between objects, measured against the reference", 
     }
 }
 
+TEST_CASE("Peers: touching triangle pairs, worked by hand", "[peers]") {
+    const auto triangle = [](Float3 a, Float3 b, Float3 c) {
+        HostMesh m;
+        m.name = "triangle";
+        m.positions = {a, b, c};
+        m.indices = {0, 1, 2};
+        return m;
+    };
+    const HostMesh floor = triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    const float above = std::nextafter(0.0f, 1.0f);
+    struct Case {
+        const char* what;
+        HostMesh other;
+        bool touches;
+    };
+    const std::vector<Case> cases = {
+        {"a vertex on the face", triangle({0.25f, 0.25f, 0}, {0.25f, 0.25f, 1}, {1, 1, 1}), true},
+        {"a vertex one float above the face", triangle({0.25f, 0.25f, above}, {0.25f, 0.25f, 1}, {1, 1, 1}), false},
+        {"an edge crossing an edge at one point", triangle({0.5f, 0, -1}, {0.5f, 0, 1}, {0.5f, -1, 0}), true},
+        {"coplanar, sharing the long edge", triangle({1, 0, 0}, {1, 1, 0}, {0, 1, 0}), true},
+        {"coplanar, overlapping", triangle({0.25f, 0.25f, 0}, {1, 0.25f, 0}, {0.25f, 1, 0}), true},
+        {"coplanar, apart", triangle({0.75f, 0.75f, 0}, {1, 0.75f, 0}, {0.75f, 1, 0}), false},
+        {"one shared corner", triangle({1, 0, 0}, {2, 0, 1}, {2, 1, 0}), true},
+    };
+    for (const Case& c : cases) {
+        const std::vector<HostMesh> meshes = {floor, c.other};
+        const std::vector<TrianglePair> expected =
+            c.touches ? std::vector<TrianglePair>{{0, 0, 1, 0}} : std::vector<TrianglePair>{};
+        INFO(c.what);
+        REQUIRE(reference(meshes, true) == expected);
+        for (const NamedFactory& factory : exactPeers()) {
+            INFO(factory.name);
+            auto peer = factory.create({true, Motion::Rigid});
+            REQUIRE(peer);
+            Result<PeerFrame> frame = (*peer)->frame(meshes);
+            REQUIRE(frame);
+            CHECK(frame->pairs == expected);
+        }
+        for (const FclVolume volume : {FclVolume::Aabb, FclVolume::Obbrss}) {
+            auto peer = createFclPeer(volume, {false, Motion::Rigid}, 1);
+            REQUIRE(peer);
+            INFO((*peer)->name());
+            Result<PeerFrame> frame = (*peer)->frame(meshes);
+            REQUIRE(frame);
+            CHECK(frame->pairs == expected);
+        }
+    }
+}
+
 TEST_CASE("Peers: FCL refuses self-collision", "[peers][fcl]") {
     for (const FclVolume volume : {FclVolume::Aabb, FclVolume::Obbrss}) {
         auto peer = createFclPeer(volume, {true, Motion::Rigid});
@@ -189,7 +239,7 @@ TEST_CASE("Peers: a deforming frame must keep the topology", "[peers]") {
     std::vector<HostMesh> changed = scene.meshes;
     changed[1].indices.resize(changed[1].indices.size() - 3);
     const std::vector<std::vector<HostMesh>> bad_frames = {changed, {scene.meshes[0]}};
-    auto cgal = createCgalPeer(CgalTest::Exact, {true, Motion::Deforming}, 2);
+    auto cgal = createCgalPeer({}, {true, Motion::Deforming}, 2);
     auto embree = createEmbreePeer(EmbreeUpdate::Refit, {true, Motion::Deforming}, 2);
     auto fcl = createFclPeer(FclVolume::Aabb, {false, Motion::Deforming}, 2);
     for (Peer* peer : {cgal->get(), embree->get(), fcl->get()}) {
@@ -208,7 +258,7 @@ TEST_CASE("Peers: an invalid mesh is refused by name", "[peers]") {
     broken.name = "broken";
     broken.indices.back() = static_cast<std::uint32_t>(broken.positions.size());
     const std::vector<HostMesh> meshes = {broken};
-    auto cgal = createCgalPeer(CgalTest::Exact, {}, 2);
+    auto cgal = createCgalPeer({}, {}, 2);
     auto embree = createEmbreePeer(EmbreeUpdate::Rebuild, {}, 2);
     auto fcl = createFclPeer(FclVolume::Obbrss, {false, Motion::Rigid}, 2);
     for (Peer* peer : {cgal->get(), embree->get(), fcl->get()}) {

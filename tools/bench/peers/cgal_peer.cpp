@@ -7,10 +7,8 @@
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
-#if defined(CGAL_LINKED_WITH_TBB)
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
-#endif
 
 #include <algorithm>
 #include <cstdint>
@@ -30,15 +28,15 @@ using detail::Stopwatch;
 // handle's address) is unique and the global number is one load away.
 using Box = CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const std::uint32_t*>;
 
-#if defined(CGAL_LINKED_WITH_TBB)
-using Concurrency = CGAL::Parallel_tag;
-// CGAL 5.5's parallel box intersection splits both ranges 4 ways and copies each range
-// 4 times (box_intersection_d.h), so it holds 8 copies of the boxes while it runs.
-constexpr std::size_t kBoxCopies = 1 + 8;
-#else
-using Concurrency = CGAL::Sequential_tag;
-constexpr std::size_t kBoxCopies = 2;  // ours + the copy box_self_intersection_d makes
+#if !defined(CGAL_LINKED_WITH_TBB)
+#error "the CGAL peer needs CGAL::TBB_support (CGAL_LINKED_WITH_TBB) for Parallel_tag"
 #endif
+
+// CGAL 5.5's parallel box intersection splits both ranges 4 ways and copies each range
+// 4 times (box_intersection_d.h), so it holds 8 copies of the boxes while it runs; the
+// sequential one copies the range once.
+constexpr std::size_t kParallelBoxCopies = 1 + 8;
+constexpr std::size_t kSequentialBoxCopies = 1 + 1;
 
 bool epickTest(const Float3 (&a)[3], const Float3 (&b)[3]) {
     using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -52,18 +50,16 @@ bool epickTest(const Float3 (&a)[3], const Float3 (&b)[3]) {
 
 class CgalPeer final : public Peer {
 public:
-    CgalPeer(CgalTest test, const PeerMode& mode, unsigned threads)
-        : test_(test),
+    CgalPeer(const CgalOptions& options, const PeerMode& mode, unsigned threads)
+        : options_(options),
           mode_(mode),
-          pool_(threads)
-#if defined(CGAL_LINKED_WITH_TBB)
-          ,
-          arena_(threads ? static_cast<int>(threads) : tbb::task_arena::automatic)
-#endif
-    {
-    }
+          pool_(threads),
+          arena_(threads ? static_cast<int>(threads) : tbb::task_arena::automatic) {}
 
-    std::string_view name() const noexcept override { return test_ == CgalTest::Epick ? "cgal-epick" : "cgal"; }
+    std::string_view name() const noexcept override {
+        if (options_.test == CgalTest::Epick) return options_.parallel_boxes ? "cgal-epick" : "cgal-epick-seqbox";
+        return options_.parallel_boxes ? "cgal" : "cgal-seqbox";
+    }
 
     Result<PeerFrame> frame(std::span<const HostMesh> meshes) override {
         if (Result<void> ok = detail::validateScene(meshes); !ok) return ok.error();
@@ -111,13 +107,14 @@ public:
 
         const Stopwatch query_clock;
         std::vector<TrianglePair> candidates = findCandidates();
-        const detail::TriangleTest& test = test_ == CgalTest::Epick ? detail::TriangleTest(epickTest)
+        const detail::TriangleTest& test = options_.test == CgalTest::Epick ? detail::TriangleTest(epickTest)
                                                                     : detail::TriangleTest(detail::exactTest);
         out.pairs = detail::exactPairs(meshes, candidates, mode_.self_collision, test, pool_);
         out.timings.query_ms = query_clock.ms();
         out.timings.total_ms = out.timings.build_ms + out.timings.query_ms;
         out.timings.candidates = candidates.size();
-        out.timings.memory_bytes = kBoxCopies * boxes_.size() * sizeof(Box) + ids_.size() * sizeof(std::uint32_t) +
+        const std::size_t copies = options_.parallel_boxes ? kParallelBoxCopies : kSequentialBoxCopies;
+        out.timings.memory_bytes = copies * boxes_.size() * sizeof(Box) + ids_.size() * sizeof(std::uint32_t) +
                                    candidates.capacity() * sizeof(TrianglePair);
         return out;
     }
@@ -143,14 +140,18 @@ private:
             out = {oa, ta, ob, tb};
             return true;
         };
-#if defined(CGAL_LINKED_WITH_TBB)
         tbb::enumerable_thread_specific<std::vector<TrianglePair>> found;
+        const auto callback = [&](const Box& a, const Box& b) {
+            TrianglePair p;
+            if (candidate(a, b, p)) found.local().push_back(p);
+        };
         // The arena caps CGAL's TBB tasks at the session's thread count.
         arena_.execute([&] {
-            CGAL::box_self_intersection_d<Concurrency>(boxes_.begin(), boxes_.end(), [&](const Box& a, const Box& b) {
-                TrianglePair p;
-                if (candidate(a, b, p)) found.local().push_back(p);
-            });
+            if (options_.parallel_boxes) {
+                CGAL::box_self_intersection_d<CGAL::Parallel_tag>(boxes_.begin(), boxes_.end(), callback);
+            } else {
+                CGAL::box_self_intersection_d<CGAL::Sequential_tag>(boxes_.begin(), boxes_.end(), callback);
+            }
         });
         std::vector<TrianglePair> out;
         std::size_t total = 0;
@@ -158,17 +159,9 @@ private:
         out.reserve(total);
         for (const auto& part : found) out.insert(out.end(), part.begin(), part.end());
         return out;
-#else
-        std::vector<TrianglePair> out;
-        CGAL::box_self_intersection_d<Concurrency>(boxes_.begin(), boxes_.end(), [&](const Box& a, const Box& b) {
-            TrianglePair p;
-            if (candidate(a, b, p)) out.push_back(p);
-        });
-        return out;
-#endif
     }
 
-    CgalTest test_;
+    CgalOptions options_;
     PeerMode mode_;
     ThreadPool pool_;
     bool first_frame_done_ = false;
@@ -176,15 +169,13 @@ private:
     std::vector<std::uint32_t> first_triangle_;  // per object, plus the total at the end
     std::vector<std::uint32_t> ids_;             // ids_[g] == g: what box handles point to
     std::vector<Box> boxes_;
-#if defined(CGAL_LINKED_WITH_TBB)
     tbb::task_arena arena_;
-#endif
 };
 
 }  // namespace
 
-Result<std::unique_ptr<Peer>> createCgalPeer(CgalTest test, const PeerMode& mode, unsigned threads) {
-    return std::unique_ptr<Peer>(std::make_unique<CgalPeer>(test, mode, threads));
+Result<std::unique_ptr<Peer>> createCgalPeer(const CgalOptions& options, const PeerMode& mode, unsigned threads) {
+    return std::unique_ptr<Peer>(std::make_unique<CgalPeer>(options, mode, threads));
 }
 
 }  // namespace vkcollide::bench

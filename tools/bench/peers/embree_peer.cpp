@@ -39,17 +39,21 @@ void boundsOfTriangle(const RTCBoundsFunctionArguments* args) {
 }
 
 struct CollideContext {
+    bool self_collision = true;
     tbb::enumerable_thread_specific<std::vector<TrianglePair>> found;
 };
 
 // Called concurrently from Embree's (TBB) workers.
 void collectCandidates(void* user, RTCCollision* collisions, unsigned int count) {
-    std::vector<TrianglePair>& out = static_cast<CollideContext*>(user)->found.local();
+    auto* context = static_cast<CollideContext*>(user);
+    std::vector<TrianglePair>& out = context->found.local();
     for (unsigned int i = 0; i < count; ++i) {
         const RTCCollision& c = collisions[i];
         const std::pair a(c.geomID0, c.primID0), b(c.geomID1, c.primID1);
-        // Both orders of a pair come back from a scene collided with itself; keep a < b.
+        // Both orders of a pair come back from a scene collided with itself (and never
+        // (t, t)); keep a < b. Pairs within one object are dropped here when they cannot count.
         if (!(a < b)) continue;
+        if (a.first == b.first && !context->self_collision) continue;
         out.push_back({a.first, a.second, b.first, b.second});
     }
 }
@@ -116,6 +120,7 @@ public:
 
         const Stopwatch query_clock;
         CollideContext context;
+        context.self_collision = mode_.self_collision;
         rtcCollide(scene_, scene_, collectCandidates, &context);
         std::vector<TrianglePair> candidates;
         {

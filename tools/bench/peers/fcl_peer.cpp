@@ -63,11 +63,21 @@ public:
         out.pairs = query();
         out.timings.query_ms = query_clock.ms();
         out.timings.total_ms = out.timings.build_ms + out.timings.query_ms;
-        for (const auto& m : models_) out.timings.memory_bytes += static_cast<std::size_t>(std::max(0, m->memUsage(0)));
+        for (const auto& m : models_) out.timings.memory_bytes += memoryOf(*m);
         return out;
     }
 
 private:
+    // BVHModel::memUsage returns BVH_OK, not the size it prints (fcl 0.7.0), so count as it
+    // does: nodes, triangles, vertices (twice once a model has been updated: FCL keeps the
+    // previous vertices).
+    std::size_t memoryOf(const Model& m) const {
+        const std::size_t vertex_copies = mode_.motion == Motion::Deforming ? 2 : 1;
+        return sizeof(Model) + static_cast<std::size_t>(m.getNumBVs()) * sizeof(fcl::BVNode<BV>) +
+               static_cast<std::size_t>(m.num_tris) * sizeof(fcl::Triangle) +
+               vertex_copies * static_cast<std::size_t>(m.num_vertices) * sizeof(fcl::Vector3d);
+    }
+
     Result<void> build(std::span<const HostMesh> meshes) {
         manager_.reset();  // it points at the objects replaced below
         models_.assign(meshes.size(), nullptr);

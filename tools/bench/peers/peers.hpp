@@ -16,7 +16,7 @@
 //                            triangle; rtcCollide(scene, scene) hands out candidate pairs,
 //                            our exact test (narrow/triangle_intersection.hpp) decides.
 //   CGAL (box_intersection_d) box_self_intersection_d over all triangle boxes, closed
-//                            boxes, Parallel_tag when CGAL is linked with TBB; our exact
+//                            boxes, Parallel_tag (TBB) or Sequential_tag; our exact
 //                            test (or, as a cross-check, CGAL's do_intersect with the
 //                            Epick kernel) decides. The exact CPU baseline.
 //
@@ -89,7 +89,7 @@ public:
     // Errors: InvalidMesh (validateMesh's rules), InvalidArgument when a deforming frame
     // changes a mesh's vertex count, triangle count or indices, or the object count.
     virtual Result<PeerFrame> frame(std::span<const HostMesh> in_meshes) = 0;
-    // Short name for tables and CSV: "fcl-aabb", "embree", "cgal", ...
+    // Short name for tables and CSV: "fcl-aabb", "embree", "cgal", "cgal-seqbox", ...
     virtual std::string_view name() const noexcept = 0;
 };
 
@@ -103,11 +103,17 @@ enum class CgalTest {
     Epick,  // CGAL::do_intersect on Exact_predicates_inexact_constructions_kernel triangles;
             // a degenerate (collinear) triangle falls back to ours (CGAL's precondition)
 };
+struct CgalOptions {
+    CgalTest test = CgalTest::Exact;
+    // box_self_intersection_d<Parallel_tag> (CGAL 5.5: a fixed 4 x 4 split over TBB) or
+    // <Sequential_tag>. The exact tests run on all threads either way.
+    bool parallel_boxes = true;
+};
 
 // One entry point per peer. Error: InvalidArgument for a mode the peer cannot run
 // (FCL with self_collision on).
 Result<std::unique_ptr<Peer>> createFclPeer(FclVolume volume, const PeerMode& mode, unsigned threads = 0);
 Result<std::unique_ptr<Peer>> createEmbreePeer(EmbreeUpdate update, const PeerMode& mode, unsigned threads = 0);
-Result<std::unique_ptr<Peer>> createCgalPeer(CgalTest test, const PeerMode& mode, unsigned threads = 0);
+Result<std::unique_ptr<Peer>> createCgalPeer(const CgalOptions& options, const PeerMode& mode, unsigned threads = 0);
 
 }  // namespace vkcollide::bench

@@ -7,6 +7,7 @@
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
 
+#include <tbb/cache_aligned_allocator.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
 
@@ -24,9 +25,17 @@ namespace {
 
 using detail::Stopwatch;
 
-// The handle points into an array of global triangle numbers, so the box id (the
-// handle's address) is unique and the global number is one load away.
-using Box = CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const std::uint32_t*>;
+// Which triangle a box bounds. Boxes hold a pointer into an array of these: the box id
+// (the handle's address) is unique, and the callback needs no search to name the pair.
+struct TriangleRef {
+    std::uint32_t object, triangle;
+};
+using Box = CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const TriangleRef*>;
+// Per-thread candidate lists; a native TLS key per instance keeps local() cheap in a
+// callback that runs once per overlapping box pair.
+using PerThreadPairs = tbb::enumerable_thread_specific<std::vector<TrianglePair>,
+                                                       tbb::cache_aligned_allocator<std::vector<TrianglePair>>,
+                                                       tbb::ets_key_per_instance>;
 
 #if !defined(CGAL_LINKED_WITH_TBB)
 #error "the CGAL peer needs CGAL::TBB_support (CGAL_LINKED_WITH_TBB) for Parallel_tag"
@@ -76,16 +85,16 @@ public:
         // Build: one box per triangle. CGAL keeps no structure between calls, so this is
         // all a deforming frame redoes.
         const Stopwatch build_clock;
-        std::size_t triangle_count = 0;
-        first_triangle_.resize(meshes.size() + 1);
-        for (std::size_t o = 0; o < meshes.size(); ++o) {
-            first_triangle_[o] = static_cast<std::uint32_t>(triangle_count);
-            triangle_count += meshes[o].triangleCount();
-        }
-        first_triangle_[meshes.size()] = static_cast<std::uint32_t>(triangle_count);
-        if (ids_.size() != triangle_count) {
-            ids_.resize(triangle_count);
-            for (std::size_t i = 0; i < triangle_count; ++i) ids_[i] = static_cast<std::uint32_t>(i);
+        std::vector<std::size_t> first_triangle(meshes.size() + 1, 0);
+        for (std::size_t o = 0; o < meshes.size(); ++o) first_triangle[o + 1] = first_triangle[o] + meshes[o].triangleCount();
+        const std::size_t triangle_count = first_triangle.back();
+        if (refs_.size() != triangle_count) {
+            refs_.resize(triangle_count);
+            for (std::size_t o = 0; o < meshes.size(); ++o) {
+                for (std::uint32_t t = 0; t < meshes[o].triangleCount(); ++t) {
+                    refs_[first_triangle[o] + t] = {static_cast<std::uint32_t>(o), t};
+                }
+            }
         }
         boxes_.resize(triangle_count);
         pool_.parallelFor(meshes.size(), 1, [&](std::size_t begin, std::size_t end) {
@@ -98,8 +107,8 @@ public:
                                    std::min({v[0].z, v[1].z, v[2].z})};
                     float hi[3] = {std::max({v[0].x, v[1].x, v[2].x}), std::max({v[0].y, v[1].y, v[2].y}),
                                    std::max({v[0].z, v[1].z, v[2].z})};
-                    const std::size_t g = first_triangle_[o] + std::size_t{t};
-                    boxes_[g] = Box(lo, hi, &ids_[g]);
+                    const std::size_t g = first_triangle[o] + t;
+                    boxes_[g] = Box(lo, hi, &refs_[g]);
                 }
             }
         });
@@ -114,46 +123,41 @@ public:
         out.timings.total_ms = out.timings.build_ms + out.timings.query_ms;
         out.timings.candidates = candidates.size();
         const std::size_t copies = options_.parallel_boxes ? kParallelBoxCopies : kSequentialBoxCopies;
-        out.timings.memory_bytes = copies * boxes_.size() * sizeof(Box) + ids_.size() * sizeof(std::uint32_t) +
+        out.timings.memory_bytes = copies * boxes_.size() * sizeof(Box) + refs_.size() * sizeof(TriangleRef) +
                                    candidates.capacity() * sizeof(TrianglePair);
         return out;
     }
 
 private:
-    // Object and triangle of global triangle number g.
-    std::pair<std::uint32_t, std::uint32_t> locate(std::uint32_t g) const {
-        const auto it = std::upper_bound(first_triangle_.begin(), first_triangle_.end(), g);
-        const auto object = static_cast<std::uint32_t>(it - first_triangle_.begin() - 1);
-        return {object, g - first_triangle_[object]};
-    }
-
     std::vector<TrianglePair> findCandidates() {
         const bool self = mode_.self_collision;
-        const auto candidate = [&](const Box& a, const Box& b, TrianglePair& out) {
-            std::uint32_t ga = *a.handle(), gb = *b.handle();
-            if (ga == gb) return false;
-            if (gb < ga) std::swap(ga, gb);
-            const auto [oa, ta] = locate(ga);
-            const auto [ob, tb] = locate(gb);
-            // Without self-collision, pairs within one object would only be thrown away.
-            if (oa == ob && !self) return false;
-            out = {oa, ta, ob, tb};
+        // Each unordered pair comes once; order it. Without self-collision, pairs within
+        // one object would only be thrown away later.
+        const auto candidate = [self](const Box& box_a, const Box& box_b, TrianglePair& out) {
+            const TriangleRef a = *box_a.handle(), b = *box_b.handle();
+            if (a.object == b.object && !self) return false;
+            out = std::pair(a.object, a.triangle) < std::pair(b.object, b.triangle)
+                      ? TrianglePair{a.object, a.triangle, b.object, b.triangle}
+                      : TrianglePair{b.object, b.triangle, a.object, a.triangle};
             return true;
         };
-        tbb::enumerable_thread_specific<std::vector<TrianglePair>> found;
-        const auto callback = [&](const Box& a, const Box& b) {
-            TrianglePair p;
-            if (candidate(a, b, p)) found.local().push_back(p);
-        };
+        std::vector<TrianglePair> out;
+        if (!options_.parallel_boxes) {
+            CGAL::box_self_intersection_d<CGAL::Sequential_tag>(boxes_.begin(), boxes_.end(),
+                                                                [&](const Box& a, const Box& b) {
+                                                                    TrianglePair p;
+                                                                    if (candidate(a, b, p)) out.push_back(p);
+                                                                });
+            return out;
+        }
+        PerThreadPairs found;
         // The arena caps CGAL's TBB tasks at the session's thread count.
         arena_.execute([&] {
-            if (options_.parallel_boxes) {
-                CGAL::box_self_intersection_d<CGAL::Parallel_tag>(boxes_.begin(), boxes_.end(), callback);
-            } else {
-                CGAL::box_self_intersection_d<CGAL::Sequential_tag>(boxes_.begin(), boxes_.end(), callback);
-            }
+            CGAL::box_self_intersection_d<CGAL::Parallel_tag>(boxes_.begin(), boxes_.end(), [&](const Box& a, const Box& b) {
+                TrianglePair p;
+                if (candidate(a, b, p)) found.local().push_back(p);
+            });
         });
-        std::vector<TrianglePair> out;
         std::size_t total = 0;
         for (const auto& part : found) total += part.size();
         out.reserve(total);
@@ -166,8 +170,7 @@ private:
     ThreadPool pool_;
     bool first_frame_done_ = false;
     detail::TopologyCheck topology_;
-    std::vector<std::uint32_t> first_triangle_;  // per object, plus the total at the end
-    std::vector<std::uint32_t> ids_;             // ids_[g] == g: what box handles point to
+    std::vector<TriangleRef> refs_;  // one per triangle of the scene: what box handles point to
     std::vector<Box> boxes_;
     tbb::task_arena arena_;
 };

@@ -5,6 +5,7 @@
 // with itself reports leaf pairs whose boxes overlap (closed boxes: touching counts),
 // including (t, t) and both orders of a pair; we keep one order.
 #include <embree3/rtcore.h>
+#include <tbb/cache_aligned_allocator.h>
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
@@ -40,7 +41,10 @@ void boundsOfTriangle(const RTCBoundsFunctionArguments* args) {
 
 struct CollideContext {
     bool self_collision = true;
-    tbb::enumerable_thread_specific<std::vector<TrianglePair>> found;
+    // A native TLS key per instance keeps local() cheap; the callback runs per leaf pair.
+    tbb::enumerable_thread_specific<std::vector<TrianglePair>, tbb::cache_aligned_allocator<std::vector<TrianglePair>>,
+                                    tbb::ets_key_per_instance>
+        found;
 };
 
 // Called concurrently from Embree's (TBB) workers.

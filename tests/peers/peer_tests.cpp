@@ -4,7 +4,6 @@
 // object: its pairs between objects are measured against the reference with
 // self-collision off, and guarded at what was measured (docs/peers.md).
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -40,7 +39,8 @@ Scene twoSpheres() {
 
 // A torus whose tube passes through a box's side walls.
 Scene torusThroughBox() {
-    return {"torus through box", {moved(torus(1.0f, 0.25f, 48, 16), 0, 0, 0), moved(box({0.35f, 0.3f, 0.5f}, 3), 1.0f, 0, 0)}};
+    return {"torus through box",
+            {moved(torus(1.0f, 0.25f, 48, 16), 0, 0, 0), moved(box({0.35f, 0.3f, 0.5f}, 3), 1.0f, 0, 0)}};
 }
 
 // One tube crossing itself near the origin: pairs within one object only.
@@ -77,9 +77,18 @@ struct NamedFactory {
 
 std::vector<NamedFactory> exactPeers() {
     return {
-        {"cgal", [](const PeerMode& m) { return createCgalPeer({CgalTest::Exact, true}, m, 2); }},
-        {"cgal-seqbox", [](const PeerMode& m) { return createCgalPeer({CgalTest::Exact, false}, m, 2); }},
-        {"cgal-epick", [](const PeerMode& m) { return createCgalPeer({CgalTest::Epick, true}, m, 2); }},
+        {"cgal",
+         [](const PeerMode& m) {
+             return createCgalPeer({CgalTest::Exact, true}, m, 2);
+         }},
+        {"cgal-seqbox",
+         [](const PeerMode& m) {
+             return createCgalPeer({CgalTest::Exact, false}, m, 2);
+         }},
+        {"cgal-epick",
+         [](const PeerMode& m) {
+             return createCgalPeer({CgalTest::Epick, true}, m, 2);
+         }},
         {"embree", [](const PeerMode& m) { return createEmbreePeer(EmbreeUpdate::Rebuild, m, 2); }},
         {"embree-refit", [](const PeerMode& m) { return createEmbreePeer(EmbreeUpdate::Refit, m, 2); }},
     };
@@ -149,8 +158,10 @@ TEST_CASE("Peers: FCL's pairs between objects, measured against the reference", 
         double min_recall, min_precision;
     };
     // Measured with Debian's libfcl 0.7.0 (docs/peers.md); a drop means FCL or our use of it changed.
-    const std::vector<Guard> guards = {
-        {"two spheres", 1.0, 1.0}, {"torus through box", 1.0, 1.0}, {"twisted tube", 1.0, 1.0}, {"touching boxes", 1.0, 1.0}};
+    const std::vector<Guard> guards = {{"two spheres", 1.0, 1.0},
+                                       {"torus through box", 1.0, 1.0},
+                                       {"twisted tube", 1.0, 1.0},
+                                       {"touching boxes", 1.0, 1.0}};
     std::vector<Scene> scenes = allScenes();
     for (std::size_t s = 0; s < scenes.size(); ++s) {
         const Scene& scene = scenes[s];
@@ -161,8 +172,10 @@ TEST_CASE("Peers: FCL's pairs between objects, measured against the reference", 
                 REQUIRE(peer);
                 INFO(scene.name << ", " << (*peer)->name() << (motion == Motion::Rigid ? " rigid" : " deforming"));
                 for (int f = 0; f < (motion == Motion::Rigid ? 1 : 3); ++f) {
-                    const std::vector<HostMesh> meshes = motion == Motion::Rigid ? scene.meshes : deformed(scene.meshes, f);
-                    const std::vector<TrianglePair> truth = motion == Motion::Rigid ? expected : reference(meshes, false);
+                    const std::vector<HostMesh> meshes =
+                        motion == Motion::Rigid ? scene.meshes : deformed(scene.meshes, f);
+                    const std::vector<TrianglePair> truth =
+                        motion == Motion::Rigid ? expected : reference(meshes, false);
                     Result<PeerFrame> frame = (*peer)->frame(meshes);
                     REQUIRE(frame);
                     const test::PairComparison c = test::comparePairs(frame->pairs, truth);

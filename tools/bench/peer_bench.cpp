@@ -82,8 +82,8 @@ Result<std::vector<HostMesh>> sphereGrid(std::uint32_t count, std::uint32_t segm
         m.name = "sphere" + std::to_string(i);
         const Float3 t{spacing * static_cast<float>(i % side), spacing * static_cast<float>((i / side) % side),
                        spacing * static_cast<float>(i / (side * side))};
-        const Transform3x4 xf = rotationTranslation(hash01(3 * i) - 0.5, hash01(3 * i + 1) - 0.5, hash01(3 * i + 2) + 0.1,
-                                                    2 * kPi * hash01(7 * i + 5), t);
+        const Transform3x4 xf = rotationTranslation(hash01(3 * i) - 0.5, hash01(3 * i + 1) - 0.5,
+                                                    hash01(3 * i + 2) + 0.1, 2 * kPi * hash01(7 * i + 5), t);
         if (Result<void> ok = transformMesh(m, xf); !ok) return ok.error();
         meshes.push_back(std::move(m));
     }
@@ -102,8 +102,8 @@ Result<std::vector<HostMesh>> meshRing(const std::string& path, std::uint32_t co
     const Float3 lo = stats->bounds_min, hi = stats->bounds_max;
     const float size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     // Centre on the origin first.
-    if (Result<void> ok = transformMesh(base, Transform3x4{1, 0, 0, -0.5f * (lo.x + hi.x), 0, 1, 0, -0.5f * (lo.y + hi.y),
-                                                           0, 0, 1, -0.5f * (lo.z + hi.z)});
+    if (Result<void> ok = transformMesh(base, Transform3x4{1, 0, 0, -0.5f * (lo.x + hi.x), 0, 1, 0,
+                                                           -0.5f * (lo.y + hi.y), 0, 0, 1, -0.5f * (lo.z + hi.z)});
         !ok) {
         return ok.error();
     }
@@ -130,7 +130,8 @@ Result<std::vector<HostMesh>> meshTwin(const std::string& path, double angle) {
     if (!one) return one.error();
     HostMesh twin = one->front();
     twin.name += "_twin";
-    if (Result<void> ok = transformMesh(twin, rotationTranslation(0.3, 1, 0.2, angle, {0, 0, 0})); !ok) return ok.error();
+    if (Result<void> ok = transformMesh(twin, rotationTranslation(0.3, 1, 0.2, angle, {0, 0, 0})); !ok)
+        return ok.error();
     one->push_back(std::move(twin));
     return one;
 }
@@ -160,9 +161,7 @@ Result<std::vector<HostMesh>> wobblingPair(std::uint32_t segments, std::uint32_t
 
 std::vector<SceneSpec> allScenes(const std::string& data) {
     const std::string bunny = data + "/bunny00.off";
-    const auto rigid = [](auto build) {
-        return [build](int) -> Result<std::vector<HostMesh>> { return build(); };
-    };
+    const auto rigid = [](auto build) { return [build](int) -> Result<std::vector<HostMesh>> { return build(); }; };
     return {
         {"spheres-8x10K", Motion::Rigid, "8 overlapping spheres of 9,940 triangles",
          rigid([] { return sphereGrid(8, 70, 72); })},
@@ -202,13 +201,24 @@ struct PeerSpec {
 std::vector<PeerSpec> allPeers() {
     return {
         {"fcl-aabb", false, false, [](const PeerMode& m, unsigned t) { return createFclPeer(FclVolume::Aabb, m, t); }},
-        {"fcl-obbrss", false, false, [](const PeerMode& m, unsigned t) { return createFclPeer(FclVolume::Obbrss, m, t); }},
-        {"embree", true, false, [](const PeerMode& m, unsigned t) { return createEmbreePeer(EmbreeUpdate::Rebuild, m, t); }},
-        {"embree-refit", true, true, [](const PeerMode& m, unsigned t) { return createEmbreePeer(EmbreeUpdate::Refit, m, t); }},
-        {"cgal", true, false, [](const PeerMode& m, unsigned t) { return createCgalPeer({CgalTest::Exact, true}, m, t); }},
+        {"fcl-obbrss", false, false,
+         [](const PeerMode& m, unsigned t) { return createFclPeer(FclVolume::Obbrss, m, t); }},
+        {"embree", true, false,
+         [](const PeerMode& m, unsigned t) { return createEmbreePeer(EmbreeUpdate::Rebuild, m, t); }},
+        {"embree-refit", true, true,
+         [](const PeerMode& m, unsigned t) { return createEmbreePeer(EmbreeUpdate::Refit, m, t); }},
+        {"cgal", true, false,
+         [](const PeerMode& m, unsigned t) {
+             return createCgalPeer({CgalTest::Exact, true}, m, t);
+         }},
         {"cgal-seqbox", true, false,
-         [](const PeerMode& m, unsigned t) { return createCgalPeer({CgalTest::Exact, false}, m, t); }},
-        {"cgal-epick", true, false, [](const PeerMode& m, unsigned t) { return createCgalPeer({CgalTest::Epick, true}, m, t); }},
+         [](const PeerMode& m, unsigned t) {
+             return createCgalPeer({CgalTest::Exact, false}, m, t);
+         }},
+        {"cgal-epick", true, false,
+         [](const PeerMode& m, unsigned t) {
+             return createCgalPeer({CgalTest::Epick, true}, m, t);
+         }},
     };
 }
 
@@ -283,9 +293,10 @@ std::optional<Options> parseOptions(int argc, char** argv) {
             ok = false;
         }
         if (!ok) {
-            std::cerr << "vkcollide_peer_bench: bad argument '" << arg << "'\n"
-                      << "usage: vkcollide_peer_bench [--scenes a,b] [--peers a,b] [--modes self,between] [--frames K]\n"
-                      << "                            [--threads N] [--budget-s S] [--data DIR] [--csv FILE] [--list]\n";
+            std::cerr
+                << "vkcollide_peer_bench: bad argument '" << arg << "'\n"
+                << "usage: vkcollide_peer_bench [--scenes a,b] [--peers a,b] [--modes self,between] [--frames K]\n"
+                << "                            [--threads N] [--budget-s S] [--data DIR] [--csv FILE] [--list]\n";
             return std::nullopt;
         }
     }
@@ -400,7 +411,8 @@ int main(int argc, char** argv) {
         std::cerr << "vkcollide_peer_bench: cannot write " << opt.csv << '\n';
         return 1;
     }
-    const std::string host = cpuModel() + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
+    const std::string host =
+        cpuModel() + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
     csv << "# vkcollide_peer_bench: " << host << "; peers run with " << opt.threads << " threads\n";
     csv << "scene,triangles,objects,peer,mode,frame,build_ms,query_ms,total_ms,pairs,recall,precision,"
            "candidates,memory_mb,reference_pairs,threads\n";
@@ -421,7 +433,8 @@ int main(int argc, char** argv) {
             Result<std::vector<HostMesh>> meshes = scene->build(f);
             if (!meshes) {
                 progress.done();
-                std::cerr << "vkcollide_peer_bench: scene " << scene->name << " skipped: " << meshes.error().message() << '\n';
+                std::cerr << "vkcollide_peer_bench: scene " << scene->name << " skipped: " << meshes.error().message()
+                          << '\n';
                 scene_ok = false;
                 break;
             }
@@ -432,7 +445,8 @@ int main(int argc, char** argv) {
                 Result<std::vector<TrianglePair>> ref = referencePairs(frames.back(), self, opt.threads);
                 if (!ref) {
                     progress.done();
-                    std::cerr << "vkcollide_peer_bench: reference for " << scene->name << ": " << ref.error().message() << '\n';
+                    std::cerr << "vkcollide_peer_bench: reference for " << scene->name << ": " << ref.error().message()
+                              << '\n';
                     scene_ok = false;
                     break;
                 }
@@ -494,8 +508,9 @@ int main(int argc, char** argv) {
                         << ',' << row.frame << ',' << fixed(row.timings.build_ms, 3) << ','
                         << fixed(row.timings.query_ms, 3) << ',' << fixed(row.timings.total_ms, 3) << ',' << row.pairs
                         << ',' << fixed(row.recall, 6) << ',' << fixed(row.precision, 6) << ','
-                        << row.timings.candidates << ',' << fixed(static_cast<double>(row.timings.memory_bytes) / 1048576.0, 1)
-                        << ',' << row.reference_pairs << ',' << opt.threads << '\n';
+                        << row.timings.candidates << ','
+                        << fixed(static_cast<double>(row.timings.memory_bytes) / 1048576.0, 1) << ','
+                        << row.reference_pairs << ',' << opt.threads << '\n';
                     csv.flush();
                     rows.push_back(row);
                 }

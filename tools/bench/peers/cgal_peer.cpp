@@ -6,7 +6,6 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 #include <CGAL/intersections.h>
-
 #include <tbb/cache_aligned_allocator.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/task_arena.h>
@@ -33,9 +32,9 @@ struct TriangleRef {
 using Box = CGAL::Box_intersection_d::Box_with_handle_d<float, 3, const TriangleRef*>;
 // Per-thread candidate lists; a native TLS key per instance keeps local() cheap in a
 // callback that runs once per overlapping box pair.
-using PerThreadPairs = tbb::enumerable_thread_specific<std::vector<TrianglePair>,
-                                                       tbb::cache_aligned_allocator<std::vector<TrianglePair>>,
-                                                       tbb::ets_key_per_instance>;
+using PerThreadPairs =
+    tbb::enumerable_thread_specific<std::vector<TrianglePair>, tbb::cache_aligned_allocator<std::vector<TrianglePair>>,
+                                    tbb::ets_key_per_instance>;
 
 #if !defined(CGAL_LINKED_WITH_TBB)
 #error "the CGAL peer needs CGAL::TBB_support (CGAL_LINKED_WITH_TBB) for Parallel_tag"
@@ -86,7 +85,8 @@ public:
         // all a deforming frame redoes.
         const Stopwatch build_clock;
         std::vector<std::size_t> first_triangle(meshes.size() + 1, 0);
-        for (std::size_t o = 0; o < meshes.size(); ++o) first_triangle[o + 1] = first_triangle[o] + meshes[o].triangleCount();
+        for (std::size_t o = 0; o < meshes.size(); ++o)
+            first_triangle[o + 1] = first_triangle[o] + meshes[o].triangleCount();
         const std::size_t triangle_count = first_triangle.back();
         if (refs_.size() != triangle_count) {
             refs_.resize(triangle_count);
@@ -117,7 +117,7 @@ public:
         const Stopwatch query_clock;
         std::vector<TrianglePair> candidates = findCandidates();
         const detail::TriangleTest& test = options_.test == CgalTest::Epick ? detail::TriangleTest(epickTest)
-                                                                    : detail::TriangleTest(detail::exactTest);
+                                                                            : detail::TriangleTest(detail::exactTest);
         out.pairs = detail::exactPairs(meshes, candidates, mode_.self_collision, test, pool_);
         out.timings.query_ms = query_clock.ms();
         out.timings.total_ms = out.timings.build_ms + out.timings.query_ms;
@@ -153,10 +153,11 @@ private:
         PerThreadPairs found;
         // The arena caps CGAL's TBB tasks at the session's thread count.
         arena_.execute([&] {
-            CGAL::box_self_intersection_d<CGAL::Parallel_tag>(boxes_.begin(), boxes_.end(), [&](const Box& a, const Box& b) {
-                TrianglePair p;
-                if (candidate(a, b, p)) found.local().push_back(p);
-            });
+            CGAL::box_self_intersection_d<CGAL::Parallel_tag>(boxes_.begin(), boxes_.end(),
+                                                              [&](const Box& a, const Box& b) {
+                                                                  TrianglePair p;
+                                                                  if (candidate(a, b, p)) found.local().push_back(p);
+                                                              });
         });
         std::size_t total = 0;
         for (const auto& part : found) total += part.size();

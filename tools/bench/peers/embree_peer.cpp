@@ -80,7 +80,8 @@ public:
             device_,
             [](void* self, RTCError code, const char* what) {
                 auto* peer = static_cast<EmbreePeer*>(self);
-                if (peer->error_.empty()) peer->error_ = "embree error " + std::to_string(code) + ": " + (what ? what : "");
+                if (peer->error_.empty())
+                    peer->error_ = "embree error " + std::to_string(code) + ": " + (what ? what : "");
             },
             this);
         rtcSetDeviceMemoryMonitorFunction(
@@ -152,7 +153,8 @@ private:
         rtcSetSceneFlags(scene_, dynamic ? RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_NONE);
         rtcSetSceneBuildQuality(scene_, dynamic ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
         RTCBuildQuality geometry_quality = RTC_BUILD_QUALITY_MEDIUM;
-        if (dynamic) geometry_quality = update_ == EmbreeUpdate::Refit ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_LOW;
+        if (dynamic)
+            geometry_quality = update_ == EmbreeUpdate::Refit ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_LOW;
         objects_.assign(meshes.size(), ObjectData{});
         for (std::size_t o = 0; o < meshes.size(); ++o) {
             objects_[o].mesh = &meshes[o];

@@ -146,7 +146,8 @@ private:
         // Broad phase over objects (cheap, serial), then one fcl::collide per object pair.
         std::vector<std::pair<fcl::CollisionObjectd*, fcl::CollisionObjectd*>> object_pairs;
         manager_->collide(&object_pairs, [](fcl::CollisionObjectd* a, fcl::CollisionObjectd* b, void* data) {
-            static_cast<std::vector<std::pair<fcl::CollisionObjectd*, fcl::CollisionObjectd*>>*>(data)->emplace_back(a, b);
+            static_cast<std::vector<std::pair<fcl::CollisionObjectd*, fcl::CollisionObjectd*>>*>(data)->emplace_back(a,
+                                                                                                                     b);
             return false;  // keep going
         });
         std::vector<std::vector<TrianglePair>> found(object_pairs.size());
@@ -200,7 +201,8 @@ Result<std::unique_ptr<Peer>> createFclPeer(FclVolume volume, const PeerMode& mo
         return Error(ErrorCode::InvalidArgument,
                      "fcl: FCL finds no triangle pairs within one object (fcl#333); run it with self_collision off");
     }
-    if (volume == FclVolume::Aabb) return std::unique_ptr<Peer>(std::make_unique<FclPeer<fcl::AABBd>>("fcl-aabb", mode, threads));
+    if (volume == FclVolume::Aabb)
+        return std::unique_ptr<Peer>(std::make_unique<FclPeer<fcl::AABBd>>("fcl-aabb", mode, threads));
     return std::unique_ptr<Peer>(std::make_unique<FclPeer<fcl::OBBRSSd>>("fcl-obbrss", mode, threads));
 }
 

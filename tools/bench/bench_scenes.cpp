@@ -33,9 +33,10 @@ double hash01(std::uint32_t i) {
     return static_cast<double>(h) / 4294967296.0;
 }
 
-// `count` unit spheres of about `triangles` triangles each on a grid whose spacing 1.8
-// makes neighbours overlap; each turned by its own rotation so seams do not line up.
-Result<std::vector<HostMesh>> sphereGrid(std::uint32_t count, std::uint32_t segments, std::uint32_t rings) {
+// `count` unit spheres on a grid whose spacing (< 2) makes neighbours overlap; each
+// turned by its own rotation so seams do not line up.
+Result<std::vector<HostMesh>> sphereGrid(std::uint32_t count, std::uint32_t segments, std::uint32_t rings,
+                                         float spacing = 1.8f) {
     Result<HostMesh> base = uvSphere(1.0f, segments, rings);
     if (!base) return base.error();
     const auto side = static_cast<std::uint32_t>(std::ceil(std::cbrt(static_cast<double>(count))));
@@ -43,10 +44,10 @@ Result<std::vector<HostMesh>> sphereGrid(std::uint32_t count, std::uint32_t segm
     for (std::uint32_t i = 0; i < count; ++i) {
         HostMesh m = *base;
         m.name = "sphere" + std::to_string(i);
-        const Float3 t{1.8f * static_cast<float>(i % side), 1.8f * static_cast<float>((i / side) % side),
-                       1.8f * static_cast<float>(i / (side * side))};
-        const Transform3x4 xf = rotationTranslation(hash01(3 * i) - 0.5, hash01(3 * i + 1) - 0.5, hash01(3 * i + 2) + 0.1,
-                                                    2 * kPi * hash01(7 * i + 5), t);
+        const Float3 t{spacing * static_cast<float>(i % side), spacing * static_cast<float>((i / side) % side),
+                       spacing * static_cast<float>(i / (side * side))};
+        const Transform3x4 xf = rotationTranslation(hash01(3 * i) - 0.5, hash01(3 * i + 1) - 0.5,
+                                                    hash01(3 * i + 2) + 0.1, 2 * kPi * hash01(7 * i + 5), t);
         if (Result<void> ok = transformMesh(m, xf); !ok) return ok.error();
         meshes.push_back(std::move(m));
     }
@@ -54,8 +55,8 @@ Result<std::vector<HostMesh>> sphereGrid(std::uint32_t count, std::uint32_t segm
 }
 
 // `count` copies of a packaged mesh around a ring (each turned about the vertical axis),
-// spaced so that each copy overlaps its neighbours by about a third of its size.
-Result<std::vector<HostMesh>> meshRing(const std::string& path, std::uint32_t count) {
+// neighbours `step` times the mesh's size apart: 0.65 overlaps them by about a third.
+Result<std::vector<HostMesh>> meshRing(const std::string& path, std::uint32_t count, double step_fraction = 0.65) {
     Result<std::vector<HostMesh>> read = readMeshFile(path);
     if (!read) return read.error();
     if (read->size() != 1) return Error(ErrorCode::InvalidArgument, path + ": expected one mesh");
@@ -65,14 +66,14 @@ Result<std::vector<HostMesh>> meshRing(const std::string& path, std::uint32_t co
     const Float3 lo = stats->bounds_min, hi = stats->bounds_max;
     const float size = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     // Centre on the origin first.
-    if (Result<void> ok = transformMesh(base, Transform3x4{1, 0, 0, -0.5f * (lo.x + hi.x), 0, 1, 0, -0.5f * (lo.y + hi.y),
-                                                           0, 0, 1, -0.5f * (lo.z + hi.z)});
+    if (Result<void> ok = transformMesh(base, Transform3x4{1, 0, 0, -0.5f * (lo.x + hi.x), 0, 1, 0,
+                                                           -0.5f * (lo.y + hi.y), 0, 0, 1, -0.5f * (lo.z + hi.z)});
         !ok) {
         return ok.error();
     }
     std::vector<HostMesh> meshes;
-    // Neighbours 0.65 * size apart on a circle of `count` copies (two copies: a segment).
-    const double step = 0.65 * size;
+    // Neighbours step apart on a circle of `count` copies (two copies: a segment).
+    const double step = step_fraction * size;
     const double radius = count > 2 ? step / (2 * std::sin(kPi / count)) : 0.5 * step;
     for (std::uint32_t i = 0; i < count; ++i) {
         const double a = 2 * kPi * i / count;
@@ -84,6 +85,19 @@ Result<std::vector<HostMesh>> meshRing(const std::string& path, std::uint32_t co
         meshes.push_back(std::move(m));
     }
     return meshes;
+}
+
+// A packaged mesh and a copy of it turned by `angle` radians about a tilted axis through
+// its centre: the two surfaces cross each other all over (a worst case for any method).
+Result<std::vector<HostMesh>> meshTwin(const std::string& path, double angle) {
+    Result<std::vector<HostMesh>> one = meshRing(path, 1, 0);
+    if (!one) return one.error();
+    HostMesh twin = one->front();
+    twin.name += "_twin";
+    if (Result<void> ok = transformMesh(twin, rotationTranslation(0.3, 1, 0.2, angle, {0, 0, 0})); !ok)
+        return ok.error();
+    one->push_back(std::move(twin));
+    return one;
 }
 
 // Two unit spheres that overlap and wobble: every vertex moves every frame. The radius
@@ -113,16 +127,20 @@ Result<std::vector<HostMesh>> wobblingPair(std::uint32_t segments, std::uint32_t
 
 std::vector<SceneSpec> allScenes(const std::string& data) {
     const std::string bunny = data + "/bunny00.off";
-    const auto rigid = [](auto build) {
-        return [build](int) -> Result<std::vector<HostMesh>> { return build(); };
-    };
+    const auto rigid = [](auto build) { return [build](int) -> Result<std::vector<HostMesh>> { return build(); }; };
     return {
         {"spheres-8x10K", Motion::Rigid, "8 overlapping spheres of 9,940 triangles",
          rigid([] { return sphereGrid(8, 70, 72); })},
         {"bunnies-2x75K", Motion::Rigid, "two overlapping bunny00.off (75,408 triangles each)",
          rigid([bunny] { return meshRing(bunny, 2); })},
+        {"bunnies-2x75K-deep", Motion::Rigid, "two bunny00.off overlapping by 85% of their size",
+         rigid([bunny] { return meshRing(bunny, 2, 0.15); })},
+        {"bunnies-2x75K-twin", Motion::Rigid, "bunny00.off and a copy turned by 3 degrees: surfaces cross all over",
+         rigid([bunny] { return meshTwin(bunny, 3 * kPi / 180); })},
         {"spheres-60x10K", Motion::Rigid, "60 overlapping spheres of 9,940 triangles (596K)",
          rigid([] { return sphereGrid(60, 70, 72); })},
+        {"spheres-60x10K-dense", Motion::Rigid, "60 spheres of 9,940 triangles, 1.25 apart (radius 1)",
+         rigid([] { return sphereGrid(60, 70, 72, 1.25f); })},
         {"spheres-100x10K", Motion::Rigid, "100 overlapping spheres of 9,940 triangles (994K)",
          rigid([] { return sphereGrid(100, 70, 72); })},
         {"bunnies-14x75K", Motion::Rigid, "14 bunny00.off in an overlapping ring (1.06M)",

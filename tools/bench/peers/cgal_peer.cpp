@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <utility>
 
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "peer_common.hpp"
 #include "peers.hpp"

@@ -20,7 +20,7 @@
 #include <string>
 #include <utility>
 
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "peer_common.hpp"
 #include "peers.hpp"
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "narrow/neighbours.hpp"
-#include "narrow/thread_pool.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "narrow/triangle_intersection.hpp"
 
 namespace vkcollide::bench::detail {

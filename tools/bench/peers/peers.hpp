@@ -51,10 +51,10 @@
 #include "vkcollide/mesh.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/result.hpp"
+#include "../bench_scenes.hpp"  // Motion
 
 namespace vkcollide::bench {
 
-enum class Motion { Rigid, Deforming };
 
 struct PeerMode {
     // Pairs of triangles within one object (non-neighbours) are reported too. Applies to

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -63,6 +64,12 @@ Vec3d unitNormal(const CandidateTriangle& c) {
     return {n.x / length, n.y / length, n.z / length};
 }
 
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point from, Clock::time_point to) {
+    return std::chrono::duration<double, std::milli>(to - from).count();
+}
+
 bool keyLess(const CandidateTriangle& a, const CandidateTriangle& b) {
     return a.object != b.object ? a.object < b.object : a.triangle < b.triangle;
 }
@@ -71,10 +78,19 @@ bool keyLess(const CandidateTriangle& a, const CandidateTriangle& b) {
 
 Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
                                     ThreadPool& pool) {
+    const Clock::time_point t_start = Clock::now();
     if (Result<void> valid = validateCandidates(in_candidates); !valid) return valid.error();
 
     NarrowResult result;
     NarrowStats& stats = result.stats;
+    NarrowTimings& timings = result.timings;
+    Clock::time_point t_mark = Clock::now();
+    timings.validate_ms = msBetween(t_start, t_mark);
+    const auto lap = [&](double& out_ms) {
+        const Clock::time_point now = Clock::now();
+        out_ms = msBetween(t_mark, now);
+        t_mark = now;
+    };
     stats.candidates = in_candidates.size();
 
     // Phase 1 (calling thread): sweep and prune, then the cheap filters. The user's
@@ -105,6 +121,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     stats.potentially_colliding_triangles =
         static_cast<std::size_t>(std::count(potentially_colliding.begin(), potentially_colliding.end(), 1));
     stats.triangle_tests = tests.size();
+    lap(timings.sweep_ms);
 
     // Phase 2 (workers): exact tests. Each writes only its own slot, so the outcome does
     // not depend on scheduling.
@@ -114,6 +131,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
             hit[k] = narrow::trianglesIntersect(in_candidates[tests[k].i].v, in_candidates[tests[k].j].v) ? 1 : 0;
         }
     });
+    lap(timings.test_ms);
 
     // Phase 3: pairs in canonical order.
     std::vector<narrow::IndexPair> colliding;  // (lower key, higher key) candidate indices
@@ -133,6 +151,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     result.pairs.reserve(colliding.size());
     for (const narrow::IndexPair& p : colliding) result.pairs.push_back(pair_of(p));
     stats.positive_tests = result.pairs.size();
+    lap(timings.sort_ms);
 
     // Phase 4: responses, summed in the order of the sorted pairs.
     std::vector<Vec3d> sum(in_candidates.size());
@@ -170,6 +189,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         }
         result.responses.push_back(r);
     }
+    lap(timings.response_ms);
+    timings.total_ms = msBetween(t_start, t_mark);
     return result;
 }
 

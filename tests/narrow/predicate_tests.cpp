@@ -165,6 +165,21 @@ TEST_CASE("orient3d and orient2d agree with big-integer arithmetic", "[narrow][p
         REQUIRE(orient3d(p[0], p[1], p[2], p[3]) == expected);
         REQUIRE(orient3dExact(p[0], p[1], p[2], p[3]) == expected);
         REQUIRE(orient3d(p[1], p[0], p[2], p[3]) == -expected);
+        // The shared-plane form gives the same signs, and its collinearity filter is
+        // right whenever it answers.
+        const PlaneOrientation plane(p[0], p[1], p[2]);
+        REQUIRE(plane.side(p[3]) == expected);
+        REQUIRE(plane.side(p[0]) == 0);
+        if (plane.certainlyNotCollinear()) {
+            const auto projected = [&](int i, int axis) {
+                return axis == 0 ? Float2{p[i].y, p[i].z} : (axis == 1 ? Float2{p[i].z, p[i].x} : Float2{p[i].x, p[i].y});
+            };
+            bool some_nonzero = false;
+            for (int axis = 0; axis < 3; ++axis) {
+                some_nonzero = some_nonzero || bigOrient2d(projected(0, axis), projected(1, axis), projected(2, axis)) != 0;
+            }
+            REQUIRE(some_nonzero);
+        }
 
         const Float2 a{p[0].x, p[0].y}, b{p[1].x, p[1].y}, c{p[2].x, p[2].y};
         const int expected2 = bigOrient2d(a, b, c);

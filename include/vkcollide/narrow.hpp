@@ -104,8 +104,9 @@ struct NarrowTimings {
 
 struct NarrowOptions {
     // Whether objects a and b (a < b) may collide at all. Empty: every pair may.
-    // Called on the thread that calls runNarrowPhase, never concurrently, at most once
-    // per candidate pair whose boxes overlap; it must not call back into the pool.
+    // Called on the thread that calls runNarrowPhase, never concurrently, once per
+    // distinct object pair that has candidates whose boxes overlap, in ascending (a, b)
+    // order; it must not call back into the pool.
     std::function<bool(std::uint32_t object_a, std::uint32_t object_b)> may_collide;
     // Per-object self-collision switch, indexed by object; objects past the end use
     // default_self_collision. Triangles of one object are only tested when it is on.

@@ -214,6 +214,35 @@ TEST_CASE("NarrowOptions filter object pairs and self-collision", "[narrow][phas
     }
 }
 
+TEST_CASE("may_collide is asked once per object pair with overlapping boxes, in ascending order", "[narrow][phase][filter]") {
+    // Objects 0..3: 0, 1 and 2 stack their floors on each other (many overlapping pairs per
+    // object pair), 3 is far away (never asked).
+    std::vector<CandidateTriangle> c;
+    for (std::uint32_t object : {2u, 0u, 1u}) {
+        for (std::uint32_t t = 0; t < 40; ++t) {
+            const float x = float(t % 8) * 0.5f, z = float(object) * 0.1f;
+            c.push_back(candidate(object, t, {x, 0, z}, {x + 1, 0, z + 0.25f}, {x, 1, z}, {3 * t, 3 * t + 1, 3 * t + 2}));
+        }
+    }
+    c.push_back(candidate(3, 0, {50, 50, 0}, {51, 50, 0}, {50, 51, 0}));
+    for (unsigned threads : {1u, 4u}) {
+        ThreadPool pool(threads);
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> asked;
+        NarrowOptions options;
+        options.may_collide = [&](std::uint32_t a, std::uint32_t b) {
+            asked.emplace_back(a, b);
+            return !(a == 0 && b == 2);
+        };
+        const auto r = runNarrowPhase(c, options, pool);
+        REQUIRE(r);
+        INFO(threads << " threads");
+        CHECK(asked == std::vector<std::pair<std::uint32_t, std::uint32_t>>{{0, 1}, {0, 2}, {1, 2}});
+        for (const TrianglePair& p : r->pairs) CHECK_FALSE((p.object_a == 0 && p.object_b == 2));
+        CHECK(r->stats.filtered_pairs > 0);
+        CHECK(r->stats.sap_pairs == r->stats.filtered_pairs + r->stats.neighbour_pairs + r->stats.triangle_tests);
+    }
+}
+
 TEST_CASE("Response of coplanar same-facing partners is zero", "[narrow][phase][response]") {
     ThreadPool pool(1);
     const std::vector<CandidateTriangle> c = {flat(0, 0), candidate(1, 0, {0.5f, 0.5f, 0}, {3, 0.5f, 0}, {0.5f, 3, 0})};

@@ -16,7 +16,7 @@
 
 // Stages (docs/narrow_phase.md has the measurements behind these choices):
 //   1. validate and rank: every candidate checked, its (object, triangle) key radix sorted
-//      once; a key's rank orders pairs and responses canonically without comparing
+//      once (unless already in order, as the GPU writes them); a key's rank orders pairs and responses canonically without comparing
 //      candidates again, and equal neighbours in the sorted keys are the duplicates.
 //   2. sweep and prune per strip (sweep_and_prune.hpp), in parallel; the same tasks apply
 //      the self-collision switch and the neighbour rule.
@@ -85,6 +85,14 @@ Vec3d unitNormal(const CandidateTriangle& c) {
     return {n.x / length, n.y / length, n.z / length};
 }
 
+// What the sweep's visitor needs of a candidate, 16 bytes: most reported pairs are
+// decided from these alone (neighbours through a shared vertex index, pairs of different
+// objects), without touching the 80-byte candidates, which are read in no useful order.
+struct Meta {
+    std::uint32_t object;
+    std::uint32_t vertex_index[3];
+};
+
 // What one sweep task found.
 struct SweepTask {
     std::vector<narrow::IndexPair> tests;     // pairs to test (object filter still to apply)
@@ -105,31 +113,46 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     // Stage 1: validate (in parallel; the error names the first bad candidate, as a serial
     // check would) and rank the keys.
     std::vector<narrow::KeyIndex> keys(n);
+    std::vector<Meta> meta(n);
+    std::vector<std::uint32_t> rank(n);
+    bool keys_ascending = true;
     {
         const std::size_t tasks = n == 0 ? 0 : (n - 1) / kValidateGrain + 1;
         std::vector<std::size_t> first_bad(tasks, n);
+        std::vector<char> ascending(tasks, 1);
         pool.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
             std::size_t bad = n;
+            bool task_ascending = true;
             for (std::size_t i = begin; i < end; ++i) {
                 const CandidateTriangle& c = in_candidates[i];
                 if (bad == n && !isValid(c)) bad = i;
                 keys[i] = {keyOf(c.object, c.triangle), static_cast<std::uint32_t>(i)};
+                task_ascending = task_ascending && (i == begin || keys[i - 1].key < keys[i].key);
+                meta[i] = {c.object, {c.vertex_index[0], c.vertex_index[1], c.vertex_index[2]}};
+                rank[i] = static_cast<std::uint32_t>(i);  // right if the keys turn out ascending
             }
             first_bad[begin / kValidateGrain] = bad;
+            ascending[begin / kValidateGrain] = task_ascending ? 1 : 0;
         });
         const auto bad = std::min_element(first_bad.begin(), first_bad.end());
         if (bad != first_bad.end() && *bad < n) return invalidCandidate(in_candidates[*bad]);
-    }
-    narrow::radixSort(keys);
-    for (std::size_t r = 1; r < n; ++r) {
-        if (keys[r].key == keys[r - 1].key) {
-            return Error(ErrorCode::InvalidArgument, "runNarrowPhase: object " + std::to_string(keys[r].key >> 32) +
-                                                         " triangle " + std::to_string(keys[r].key & 0xffffffffu) +
-                                                         " appears more than once");
+        for (std::size_t t = 0; t < tasks; ++t) {
+            keys_ascending = keys_ascending && ascending[t] && (t == 0 || keys[t * kValidateGrain - 1].key < keys[t * kValidateGrain].key);
         }
     }
-    std::vector<std::uint32_t> rank(n);
-    for (std::size_t r = 0; r < n; ++r) rank[keys[r].index] = static_cast<std::uint32_t>(r);
+    // The GPU writes its records in (object, triangle) order: then the keys are already
+    // sorted and unique, and rank is the identity. Otherwise sort, find duplicates, rank.
+    if (!keys_ascending) {
+        narrow::radixSort(keys);
+        for (std::size_t r = 1; r < n; ++r) {
+            if (keys[r].key == keys[r - 1].key) {
+                return Error(ErrorCode::InvalidArgument, "runNarrowPhase: object " + std::to_string(keys[r].key >> 32) +
+                                                             " triangle " + std::to_string(keys[r].key & 0xffffffffu) +
+                                                             " appears more than once");
+            }
+        }
+        for (std::size_t r = 0; r < n; ++r) rank[keys[r].index] = static_cast<std::uint32_t>(r);
+    }
 
     NarrowResult result;
     NarrowStats& stats = result.stats;
@@ -159,14 +182,16 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
             ++task.sap_pairs;
             in_pair[i].store(1, std::memory_order_relaxed);
             in_pair[j].store(1, std::memory_order_relaxed);
-            const CandidateTriangle& a = in_candidates[i];
-            const CandidateTriangle& b = in_candidates[j];
+            const Meta& a = meta[i];
+            const Meta& b = meta[j];
             if (a.object == b.object) {
                 if (!options.selfCollides(a.object)) {
                     ++task.filtered_pairs;
                     return;
                 }
-                if (narrow::areNeighbours(a.vertex_index, a.v, b.vertex_index, b.v)) {
+                // A shared index decides most neighbours; the positions only the rest.
+                if (narrow::shareIndex(a.vertex_index, b.vertex_index) ||
+                    narrow::areNeighbours(a.vertex_index, in_candidates[i].v, b.vertex_index, in_candidates[j].v)) {
                     ++task.neighbour_pairs;
                     return;
                 }

@@ -13,6 +13,15 @@ namespace vkcollide::narrow {
 // neighbours, so this deliberately is not operator== on floats.
 inline bool bitIdentical(const Float3& a, const Float3& b) noexcept { return std::memcmp(&a, &b, sizeof(Float3)) == 0; }
 
+// Whether two triangles share a vertex index (the cheap half of the neighbour rule).
+inline bool shareIndex(const std::uint32_t (&index_a)[3], const std::uint32_t (&index_b)[3]) noexcept {
+    unsigned shared = 0;
+    for (int k = 0; k < 3; ++k) {
+        for (int l = 0; l < 3; ++l) shared |= static_cast<unsigned>(index_a[k] == index_b[l]);
+    }
+    return shared != 0;
+}
+
 // Two triangles of the same object are neighbours (touching by construction, not a
 // collision) when they share a vertex index or a bit-identical vertex position.
 //

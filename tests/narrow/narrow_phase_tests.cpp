@@ -109,6 +109,27 @@ TEST_CASE("runNarrowPhase rejects bad candidates and names them", "[narrow][phas
     }
 }
 
+TEST_CASE("runNarrowPhase finds duplicates in sorted and unsorted input", "[narrow][phase][errors]") {
+    // Candidates in (object, triangle) order, as the GPU writes them, except for one
+    // repeated key; at a task border of the parallel validation and inside a task.
+    ThreadPool pool(3);
+    for (std::uint32_t repeat_at : {1u, 4000u, 8192u, 8193u, 11999u}) {
+        std::vector<CandidateTriangle> c;
+        for (std::uint32_t i = 0; i < 12000; ++i) {
+            const float x = float(i) * 3;
+            c.push_back(candidate(i / 5000, i % 5000, {x, 0, 0}, {x + 1, 0, 0}, {x, 1, 0}));
+        }
+        c[repeat_at].object = c[repeat_at - 1].object;
+        c[repeat_at].triangle = c[repeat_at - 1].triangle;
+        const auto r = runNarrowPhase(c, {}, pool);
+        REQUIRE_FALSE(r);
+        CHECK_THAT(r.error().message(), Catch::Contains("triangle " + std::to_string((repeat_at - 1) % 5000) + " appears more than once"));
+    }
+    std::vector<CandidateTriangle> ok;
+    for (std::uint32_t i = 0; i < 12000; ++i) ok.push_back(candidate(0, 11999 - i, {float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i), 1, 0}));
+    CHECK(runNarrowPhase(ok, {}, pool));  // descending keys: sorted, no duplicate
+}
+
 TEST_CASE("runNarrowPhase finds a crossing pair with paper statistics", "[narrow][phase]") {
     ThreadPool pool(2);
     const std::vector<CandidateTriangle> c = {wall(5, 9), flat(2, 4), candidate(3, 0, {10, 10, 0}, {11, 10, 0}, {10, 11, 0})};

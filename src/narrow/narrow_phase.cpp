@@ -18,7 +18,7 @@
 //   1. validate and rank: every candidate checked, its (object, triangle) key radix sorted
 //      once (unless already in order, as the GPU writes them); a key's rank orders pairs and responses canonically without comparing
 //      candidates again, and equal neighbours in the sorted keys are the duplicates.
-//   2. sweep and prune per strip (sweep_and_prune.hpp), in parallel; the same tasks apply
+//   2. sweep and prune per grid cell (sweep_and_prune.hpp), in parallel; the same tasks apply
 //      the self-collision switch and the neighbour rule.
 //   3. the object-pair filter, called once per distinct object pair on this thread.
 //   4. exact tests in parallel; each task keeps its hits as (rank, rank) keys.
@@ -85,14 +85,6 @@ Vec3d unitNormal(const CandidateTriangle& c) {
     return {n.x / length, n.y / length, n.z / length};
 }
 
-// What the sweep's visitor needs of a candidate, 16 bytes: most reported pairs are
-// decided from these alone (neighbours through a shared vertex index, pairs of different
-// objects), without touching the 80-byte candidates, which are read in no useful order.
-struct Meta {
-    std::uint32_t object;
-    std::uint32_t vertex_index[3];
-};
-
 // What one sweep task found.
 struct SweepTask {
     std::vector<narrow::IndexPair> tests;     // pairs to test (object filter still to apply)
@@ -113,7 +105,6 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     // Stage 1: validate (in parallel; the error names the first bad candidate, as a serial
     // check would) and rank the keys.
     std::vector<narrow::KeyIndex> keys(n);
-    std::vector<Meta> meta(n);
     std::vector<std::uint32_t> rank(n);
     bool keys_ascending = true;
     {
@@ -128,7 +119,6 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
                 if (bad == n && !isValid(c)) bad = i;
                 keys[i] = {keyOf(c.object, c.triangle), static_cast<std::uint32_t>(i)};
                 task_ascending = task_ascending && (i == begin || keys[i - 1].key < keys[i].key);
-                meta[i] = {c.object, {c.vertex_index[0], c.vertex_index[1], c.vertex_index[2]}};
                 rank[i] = static_cast<std::uint32_t>(i);  // right if the keys turn out ascending
             }
             first_bad[begin / kValidateGrain] = bad;
@@ -167,7 +157,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     };
 
     // Stage 2: sweep and prune, self-collision switch, neighbour rule.
-    narrow::StripSweep sweep;
+    narrow::CellSweep sweep;
     sweep.build(in_candidates, &pool);
     const std::size_t entries = sweep.entryCount();
     const std::size_t sweep_grain =
@@ -178,12 +168,11 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     pool.parallelFor(entries, sweep_grain, [&](std::size_t begin, std::size_t end) {
         SweepTask& task = sweep_tasks[begin / sweep_grain];
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
-        sweep.sweepRange(begin, end, [&](std::uint32_t i, std::uint32_t j) {
+        sweep.sweepRange(begin, end, [&](std::uint32_t i, std::uint32_t j, const narrow::CandidateTag& a,
+                                         const narrow::CandidateTag& b) {
             ++task.sap_pairs;
             in_pair[i].store(1, std::memory_order_relaxed);
             in_pair[j].store(1, std::memory_order_relaxed);
-            const Meta& a = meta[i];
-            const Meta& b = meta[j];
             if (a.object == b.object) {
                 if (!options.selfCollides(a.object)) {
                     ++task.filtered_pairs;

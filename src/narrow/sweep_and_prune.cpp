@@ -1,28 +1,30 @@
 #include "narrow/sweep_and_prune.hpp"
 
+#include "narrow/radix_sort.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <memory>
 
 #include "vkcollide/thread_pool.hpp"
 
 namespace vkcollide::narrow {
 namespace {
 
-// Strip height in typical (median) box heights. Lower means fewer boxes per strip to
-// sweep past but more boxes listed in two strips; 1-4 measure about the same
-// (docs/narrow_phase.md), 2 is in the middle.
-constexpr double kStripHeight = 2.0;
-// At most this many strips (bounds the per-chunk histograms) and at most one per
-// kCandidatesPerStrip candidates.
-constexpr std::size_t kMaxStrips = 4096;
-constexpr std::size_t kCandidatesPerStrip = 4;
-// Average strips per box allowed by the estimate (tall boxes are listed many times).
+// Cell size in typical (median) box extents, per axis. Smaller cells mean fewer boxes to
+// sweep past but more boxes listed in several cells (docs/narrow_phase.md).
+constexpr double kCellExtent = 2.0;
+// At most this many cells (bounds the per-chunk histograms) and at most one per
+// kCandidatesPerCell candidates.
+constexpr std::size_t kMaxCells = 4096;
+constexpr std::size_t kCandidatesPerCell = 4;
+// Average cells per box allowed by the estimate (tall or deep boxes are listed often).
 constexpr double kMaxListingsPerBox = 3.0;
-// Boxes sampled to choose the strips: enough for a stable median, independent of n.
-constexpr std::size_t kSampleSize = 4096;
-// Candidates per task while building the strips (histograms of kMaxStrips counters).
+// Boxes sampled to choose the grid: enough for a stable median, independent of n.
+constexpr std::size_t kSampleSize = 1024;
+// Candidates per task while building the cells (histograms of up to kMaxCells counters).
 constexpr std::size_t kBuildGrain = 16384;
 
 void forChunks(ThreadPool* pool, std::size_t count, std::size_t grain,
@@ -34,53 +36,100 @@ void forChunks(ThreadPool* pool, std::size_t count, std::size_t grain,
     }
 }
 
-// Maps y to a strip: monotone in y (a rounded subtraction, a multiplication by a positive
-// constant and a truncation are each monotone), so a box [y0, y1] touches exactly the
-// strips strip(y0)..strip(y1), and strip(max(y0a, y0b)) = max(strip(y0a), strip(y0b)).
-struct StripMap {
+// Cuts one axis into `count` equal slabs. Monotone (a rounded subtraction, a
+// multiplication by a positive constant and a truncation are each monotone), so an
+// interval [lo, hi] touches exactly the slabs slab(lo)..slab(hi), and slab(max(loa, lob))
+// = max(slab(loa), slab(lob)).
+struct SlabMap {
     double origin = 0, scale = 0;
-    std::uint32_t last = 0;  // strip count - 1
+    std::uint32_t last = 0;  // slab count - 1
 
-    std::uint32_t operator()(float y) const {
-        const double t = (double(y) - origin) * scale;  // >= 0: origin is the lowest y0
+    std::uint32_t count() const { return last + 1; }
+    std::uint32_t operator()(float v) const {
+        const double t = (double(v) - origin) * scale;  // >= 0: origin is the lowest low end
         return t >= double(last) ? last : static_cast<std::uint32_t>(t);
+    }
+    void setCount(double slabs, double range) {
+        last = static_cast<std::uint32_t>(slabs) - 1;
+        scale = range > 0 ? slabs / range : 0;
     }
 };
 
-StripMap chooseStrips(std::span<const CandidateTriangle> in_candidates, float y_min, float y_max) {
+struct Grid {
+    SlabMap y, z;  // cell of (y, z) = slab_y * z.count() + slab_z
+    std::size_t cells() const { return std::size_t{y.count()} * z.count(); }
+};
+
+struct Range {
+    float y_min, y_max, z_min, z_max;
+};
+
+double medianOf(std::vector<float>& v) {
+    const auto middle = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), middle, v.end());
+    return double(*middle);
+}
+
+Grid chooseGrid(std::span<const CandidateTriangle> in_candidates, const Range& range) {
     const std::size_t n = in_candidates.size();
-    StripMap map;
-    map.origin = y_min;
-    const double range = double(y_max) - double(y_min);
-    const std::size_t max_strips = std::clamp<std::size_t>(n / kCandidatesPerStrip, 1, kMaxStrips);
-    if (!(range > 0) || max_strips == 1) return map;  // one strip
+    Grid grid;
+    grid.y.origin = range.y_min;
+    grid.z.origin = range.z_min;
+    const double range_y = double(range.y_max) - double(range.y_min);
+    const double range_z = double(range.z_max) - double(range.z_min);
+    const double max_cells = double(std::clamp<std::size_t>(n / kCandidatesPerCell, 1, kMaxCells));
+    if (max_cells == 1) return grid;
 
-    // Median height of an evenly spaced sample.
+    // Median extents of an evenly spaced sample.
     const std::size_t step = std::max<std::size_t>(1, n / kSampleSize);
-    std::vector<float> heights;
-    heights.reserve(n / step + 1);
-    for (std::size_t i = 0; i < n; i += step) heights.push_back(in_candidates[i].box[3] - in_candidates[i].box[1]);
-    const auto middle = heights.begin() + static_cast<std::ptrdiff_t>(heights.size() / 2);
-    std::nth_element(heights.begin(), middle, heights.end());
-    const double strip_height = kStripHeight * double(*middle);
-
-    double strips = strip_height > 0 ? std::ceil(range / strip_height) : double(max_strips);
-    strips = std::clamp(strips, 1.0, double(max_strips));
-    // Fewer strips while the sample says boxes would be listed too often.
+    std::vector<float> heights, depths;
+    for (std::size_t i = 0; i < n; i += step) {
+        heights.push_back(in_candidates[i].box[3] - in_candidates[i].box[1]);
+        depths.push_back(in_candidates[i].zmax - in_candidates[i].zmin);
+    }
+    const double cell_y = kCellExtent * medianOf(heights), cell_z = kCellExtent * medianOf(depths);
+    const auto slabsFor = [&](double extent, double cell) {
+        if (!(extent > 0)) return 1.0;
+        return std::clamp(cell > 0 ? std::ceil(extent / cell) : max_cells, 1.0, max_cells);
+    };
+    double slabs_y = slabsFor(range_y, cell_y), slabs_z = slabsFor(range_z, cell_z);
+    if (slabs_y * slabs_z > max_cells) {  // too many: shrink both by the same factor
+        const double f = std::sqrt(max_cells / (slabs_y * slabs_z));
+        slabs_y = std::max(1.0, std::floor(slabs_y * f));
+        slabs_z = std::max(1.0, std::floor(slabs_z * f));
+    }
+    // Coarser while the sample says boxes would be listed too often, on the axis whose
+    // boxes span more slabs.
     for (;;) {
-        map.last = static_cast<std::uint32_t>(strips) - 1;
-        map.scale = strips / range;
-        if (map.last == 0) break;
-        double listings = 0;
+        grid.y.setCount(slabs_y, range_y);
+        grid.z.setCount(slabs_z, range_z);
+        double listings = 0, span_y = 0, span_z = 0;
         std::size_t sampled = 0;
         for (std::size_t i = 0; i < n; i += step, ++sampled) {
-            listings += double(map(in_candidates[i].box[3]) - map(in_candidates[i].box[1]) + 1);
+            const CandidateTriangle& c = in_candidates[i];
+            const double sy = grid.y(c.box[3]) - grid.y(c.box[1]) + 1, sz = grid.z(c.zmax) - grid.z(c.zmin) + 1;
+            listings += sy * sz;
+            span_y += sy;
+            span_z += sz;
         }
-        if (listings <= kMaxListingsPerBox * double(sampled)) break;
-        strips = std::floor(strips / 2);
+        if (listings <= kMaxListingsPerBox * double(sampled) || (slabs_y == 1 && slabs_z == 1)) break;
+        if ((span_y >= span_z && slabs_y > 1) || slabs_z == 1) {
+            slabs_y = std::ceil(slabs_y / 2);
+        } else {
+            slabs_z = std::ceil(slabs_z / 2);
+        }
     }
-    return map;
+    return grid;
 }
+
+// A box's sort key and the cells it touches: strips span[0]..span[1], slabs
+// span[2]..span[3] (fewer than 2^16 each: kMaxCells).
+struct Listing {
+    std::uint64_t key;  // orderedBits(x0) << 32 | candidate index
+    std::uint16_t span[4];
+};
+static_assert(kMaxCells <= 0xffff);
+std::uint64_t radixKey(const Listing& l) { return l.key; }
 
 // A float's bits as an unsigned integer with the same order (-0 and +0 both map to +0's).
 std::uint32_t orderedBits(float x) {
@@ -92,83 +141,101 @@ std::uint32_t orderedBits(float x) {
 
 }  // namespace
 
-void StripSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPool* pool) {
+void CellSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPool* pool) {
     const std::size_t n = in_candidates.size();
-    entries_.clear();
-    strip_begin_.assign(2, 0);
+    entry_count_ = 0;
+    cell_begin_.assign(2, 0);
     if (n == 0) return;
 
-    // The y range (per chunk, then combined).
+    // The y and z ranges (per chunk, then combined), then the grid.
     const std::size_t chunks = (n - 1) / kBuildGrain + 1;
-    std::vector<float> chunk_min(chunks), chunk_max(chunks);
+    std::vector<Range> chunk_range(chunks);
     forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
-        float lo = in_candidates[begin].box[1], hi = in_candidates[begin].box[3];
-        for (std::size_t i = begin; i < end; ++i) {
-            lo = std::min(lo, in_candidates[i].box[1]);
-            hi = std::max(hi, in_candidates[i].box[3]);
-        }
-        chunk_min[begin / kBuildGrain] = lo;
-        chunk_max[begin / kBuildGrain] = hi;
-    });
-    const float y_min = *std::min_element(chunk_min.begin(), chunk_min.end());
-    const float y_max = *std::max_element(chunk_max.begin(), chunk_max.end());
-    const StripMap strip_of = chooseStrips(in_candidates, y_min, y_max);
-    const std::size_t strips = std::size_t{strip_of.last} + 1;
-
-    // Counting sort into strips, stable and parallel: each chunk counts its listings per
-    // strip, a prefix sum (strip-major, chunk-minor) gives each chunk its slots.
-    std::vector<std::size_t> slots(chunks * strips, 0);
-    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
-        std::size_t* count = &slots[(begin / kBuildGrain) * strips];
-        for (std::size_t i = begin; i < end; ++i) {
-            const std::uint32_t s0 = strip_of(in_candidates[i].box[1]), s1 = strip_of(in_candidates[i].box[3]);
-            for (std::uint32_t s = s0; s <= s1; ++s) ++count[s];
-        }
-    });
-    strip_begin_.assign(strips + 1, 0);
-    std::size_t total = 0;
-    for (std::size_t s = 0; s < strips; ++s) {
-        strip_begin_[s] = total;
-        for (std::size_t c = 0; c < chunks; ++c) {
-            const std::size_t count = slots[c * strips + s];
-            slots[c * strips + s] = total;
-            total += count;
-        }
-    }
-    strip_begin_[strips] = total;
-    // Scatter, remembering each listing's sort key: x0's bits made orderable as an
-    // unsigned integer, then the position in the strip (which follows the candidate
-    // index), so equal x0 keep index order and the sort needs no tie-break.
-    std::vector<Entry> unsorted(total);
-    std::vector<std::uint64_t> sort_keys(total);
-    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
-        std::size_t* next = &slots[(begin / kBuildGrain) * strips];
+        const CandidateTriangle& first = in_candidates[begin];
+        Range r{first.box[1], first.box[3], first.zmin, first.zmax};
         for (std::size_t i = begin; i < end; ++i) {
             const CandidateTriangle& c = in_candidates[i];
-            const std::uint32_t s0 = strip_of(c.box[1]), s1 = strip_of(c.box[3]);
-            const std::uint64_t x_key = std::uint64_t{orderedBits(c.box[0])} << 32;
-            for (std::uint32_t s = s0; s <= s1; ++s) {
-                const std::size_t slot = next[s]++;
-                unsorted[slot] = Entry{c.box[0], c.box[2], c.box[1], c.box[3], c.zmin, c.zmax,
-                                       static_cast<std::uint32_t>(i), s == s0 ? 1u : 0u};
-                sort_keys[slot] = x_key | (slot - strip_begin_[s]);
+            r = {std::min(r.y_min, c.box[1]), std::max(r.y_max, c.box[3]), std::min(r.z_min, c.zmin),
+                 std::max(r.z_max, c.zmax)};
+        }
+        chunk_range[begin / kBuildGrain] = r;
+    });
+    Range range = chunk_range[0];
+    for (const Range& r : chunk_range) {
+        range = {std::min(range.y_min, r.y_min), std::max(range.y_max, r.y_max), std::min(range.z_min, r.z_min),
+                 std::max(range.z_max, r.z_max)};
+    }
+    const Grid grid = chooseGrid(in_candidates, range);
+    const std::size_t cells = grid.cells();
+    const std::uint32_t slabs_z = grid.z.count();
+
+    // Each box's sort key (x0's bits made orderable as an unsigned integer, then the
+    // candidate index) and cell span, read in index order; then all of them in (x0,
+    // index) order, once: a stable sort on x0 alone keeps the index order of equal x0.
+    // The counting sort below is stable too, so every cell comes out in (x0, index) order
+    // without sorting cells one by one. The candidates are read in index order only; the
+    // last pass reads their packed entries (48 of their 80 bytes) in x0 order.
+    std::vector<Listing> order(n);
+    const std::unique_ptr<Entry[]> packed(new Entry[n]);  // each candidate's entry, in index order
+    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const CandidateTriangle& c = in_candidates[i];
+            packed[i] = Entry{c.box[0], c.box[2], c.box[1], c.box[3], c.zmin, c.zmax, static_cast<std::uint32_t>(i), 0,
+                              {c.object, {c.vertex_index[0], c.vertex_index[1], c.vertex_index[2]}}};
+            order[i] = {(std::uint64_t{orderedBits(c.box[0])} << 32) | i,
+                        {static_cast<std::uint16_t>(grid.y(c.box[1])), static_cast<std::uint16_t>(grid.y(c.box[3])),
+                         static_cast<std::uint16_t>(grid.z(c.zmin)), static_cast<std::uint16_t>(grid.z(c.zmax))}};
+        }
+    });
+    radixSort(order, 4);
+
+    // Counting sort into cells, parallel over chunks of the x0 order: each chunk counts
+    // its listings per cell, a prefix sum (cell-major, chunk-minor) gives each chunk its
+    // slots, then each chunk writes its entries.
+    std::vector<std::size_t> slots(chunks * cells, 0);
+    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
+        std::size_t* count = &slots[(begin / kBuildGrain) * cells];
+        for (std::size_t p = begin; p < end; ++p) {
+            const Listing& l = order[p];
+            for (std::size_t y = l.span[0]; y <= l.span[1]; ++y) {
+                for (std::size_t z = l.span[2]; z <= l.span[3]; ++z) ++count[y * slabs_z + z];
             }
         }
     });
-
-    // Sort each strip by (x0, index): plain integer keys, then one gather.
-    entries_.resize(total);
-    forChunks(pool, strips, 1, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t s = begin; s < end; ++s) {
-            const std::size_t first = strip_begin_[s], last = strip_begin_[s + 1];
-            std::sort(sort_keys.begin() + static_cast<std::ptrdiff_t>(first), sort_keys.begin() + static_cast<std::ptrdiff_t>(last));
-            for (std::size_t k = first; k < last; ++k) entries_[k] = unsorted[first + (sort_keys[k] & 0xffffffffu)];
+    cell_begin_.assign(cells + 1, 0);
+    std::size_t total = 0;
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+        cell_begin_[cell] = total;
+        for (std::size_t c = 0; c < chunks; ++c) {
+            const std::size_t count = slots[c * cells + cell];
+            slots[c * cells + cell] = total;
+            total += count;
+        }
+    }
+    cell_begin_[cells] = total;
+    // A plain array: every entry is written before it is read, nothing to zero first.
+    if (total > entry_capacity_) {
+        entries_.reset(new Entry[total]);
+        entry_capacity_ = total;
+    }
+    entry_count_ = total;
+    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
+        std::size_t* next = &slots[(begin / kBuildGrain) * cells];
+        for (std::size_t p = begin; p < end; ++p) {
+            const Listing& l = order[p];
+            Entry entry = packed[static_cast<std::uint32_t>(l.key)];
+            for (std::size_t y = l.span[0]; y <= l.span[1]; ++y) {
+                for (std::size_t z = l.span[2]; z <= l.span[3]; ++z) {
+                    entry.starts = (y == l.span[0] ? 1u : 0u) | (z == l.span[2] ? 2u : 0u);
+                    entries_[next[y * slabs_z + z]++] = entry;
+                }
+            }
         }
     });
 }
 
 std::vector<IndexPair> sweepAndPrunePairs(std::span<const CandidateTriangle> in_candidates, ThreadPool* pool) {
-    StripSweep sweep;
+    CellSweep sweep;
     sweep.build(in_candidates, pool);
     std::vector<IndexPair> pairs;
     sweep.sweepRange(0, sweep.entryCount(), [&](std::uint32_t i, std::uint32_t j) { pairs.push_back({i, j}); });

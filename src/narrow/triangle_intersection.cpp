@@ -175,7 +175,18 @@ bool segmentTriangleIntersect(const Float3& s0, const Float3& s1, std::span<cons
 bool trianglesIntersect(std::span<const Float3, 3> a, std::span<const Float3, 3> b) noexcept {
     // Each plane's filter products are shared by its three side tests and by the
     // degeneracy check (the normal's components are the projected orientations).
-    const PlaneOrientation plane_a(a[0], a[1], a[2]), plane_b(b[0], b[1], b[2]);
+    //
+    // Sides of a's vertices against b's plane; reject if all strictly on one side. This
+    // is valid before the degeneracy checks: a degenerate b has every side 0 (exactly),
+    // and a degenerate a strictly on one side of b's plane cannot meet b. Most pairs end
+    // here or at the same test the other way round.
+    const PlaneOrientation plane_b(b[0], b[1], b[2]);
+    int side_a[3], side_b[3];
+    for (int i = 0; i < 3; ++i) side_a[i] = plane_b.side(a[i]);
+    if (sameStrictSign(side_a[0], side_a[1], side_a[2])) return false;
+    const PlaneOrientation plane_a(a[0], a[1], a[2]);
+    for (int i = 0; i < 3; ++i) side_b[i] = plane_a.side(b[i]);
+    if (sameStrictSign(side_b[0], side_b[1], side_b[2])) return false;
 
     // Degenerate triangles are segments (or points).
     if (!plane_a.certainlyNotCollinear() && collinear(a[0], a[1], a[2])) {
@@ -186,13 +197,6 @@ bool trianglesIntersect(std::span<const Float3, 3> a, std::span<const Float3, 3>
         const auto [lo, hi] = collinearEnds(b);
         return segmentTriangleIntersect(lo, hi, a);
     }
-
-    // Sides of a's vertices against b's plane; reject if all strictly on one side.
-    int side_a[3], side_b[3];
-    for (int i = 0; i < 3; ++i) side_a[i] = plane_b.side(a[i]);
-    if (sameStrictSign(side_a[0], side_a[1], side_a[2])) return false;
-    for (int i = 0; i < 3; ++i) side_b[i] = plane_a.side(b[i]);
-    if (sameStrictSign(side_b[0], side_b[1], side_b[2])) return false;
 
     if (side_a[0] == 0 && side_a[1] == 0 && side_a[2] == 0) return coplanarTrianglesIntersect(a, b);
 

@@ -73,9 +73,9 @@ TEST_CASE("Sweep and prune equals the all-pairs definition on random boxes", "[n
     }
 }
 
-TEST_CASE("Sweep and prune in strips: tall, wide, flat and touching boxes, any thread count", "[narrow][sap][random]") {
-    // Enough boxes for many strips; a mix of sizes so that boxes span several strips, and
-    // boxes whose y0 or y1 fall exactly on shared grid values (and on strip borders).
+TEST_CASE("Sweep and prune in cells: tall, deep, wide, flat and touching boxes, any thread count", "[narrow][sap][random]") {
+    // Enough boxes for many cells; a mix of sizes so that boxes span several cells, and
+    // boxes whose ends fall exactly on shared grid values (and on cell borders).
     std::mt19937 rng(2006);
     std::uniform_int_distribution<int> grid(-40, 40), small(0, 2), kind(0, 9);
     ThreadPool pool1(1), pool3(3);
@@ -83,31 +83,34 @@ TEST_CASE("Sweep and prune in strips: tall, wide, flat and touching boxes, any t
         std::vector<CandidateTriangle> c;
         for (std::uint32_t i = 0; i < 900; ++i) {
             const float x = float(grid(rng)) / 40, y = float(grid(rng)) / 40, z = float(grid(rng)) / 40;
-            float w = float(small(rng)) / 40, h = float(small(rng)) / 40;
+            float w = float(small(rng)) / 40, h = float(small(rng)) / 40, d = float(small(rng)) / 40;
             const int k = kind(rng);
             if (k == 0) h = 1.5f;                 // tall: many strips
             if (k == 1) w = 2.0f;                 // wide: long sweeps
             if (k == 2) h = 0;                    // flat in y
-            if (round % 4 == 3) h = 0;            // all flat: one strip or many empty ones
-            const float y0 = (round % 6 == 5) ? 0.25f : y;  // all at one y: one strip
-            c.push_back(boxCandidate(i, x, y0, x + w, y0 + h, z, z + float(small(rng)) / 40));
+            if (k == 3) d = 1.5f;                 // deep: many slabs
+            if (round % 4 == 3) h = d = 0;        // all flat: one cell or many empty ones
+            const float y0 = (round % 6 == 5) ? 0.25f : y;  // all at one y
+            const float z0 = (round % 6 == 4) ? 0.5f : z;   // all at one depth
+            c.push_back(boxCandidate(i, x, y0, x + w, y0 + h, z0, z0 + d));
         }
         if (round == 1) c[7].box[1] = -0.0f;  // -0 next to +0
+        if (round == 2) c[9].zmin = -0.0f;
         const std::vector<IndexPair> expected = allPairs(c);
         INFO("round " << round);
         REQUIRE(narrow::sweepAndPrunePairs(c) == expected);
         REQUIRE(narrow::sweepAndPrunePairs(c, &pool1) == expected);
         REQUIRE(narrow::sweepAndPrunePairs(c, &pool3) == expected);
     }
-    // The strips are really used (the tests above would pass with a single strip).
+    // The cells are really used (the tests above would pass with a single cell).
     std::vector<CandidateTriangle> c;
     for (std::uint32_t i = 0; i < 1000; ++i) {
-        const float y = float(i) / 1000;
-        c.push_back(boxCandidate(i, 0, y, 1, y + 0.002f, 0, 1));
+        const float y = float(i % 100) / 100, z = float(i / 100) / 10;
+        c.push_back(boxCandidate(i, 0, y, 1, y + 0.005f, z, z + 0.05f));
     }
-    narrow::StripSweep sweep;
+    narrow::CellSweep sweep;
     sweep.build(c, &pool3);
-    CHECK(sweep.stripCount() > 50);
+    CHECK(sweep.cellCount() > 50);
     CHECK(sweep.entryCount() < 3 * c.size());
     CHECK(narrow::sweepAndPrunePairs(c, &pool3) == allPairs(c));
 }
@@ -120,7 +123,7 @@ TEST_CASE("Sweep and prune ranges tile the pairs exactly once", "[narrow][sap]")
         const float x = unit(rng), y = unit(rng), z = unit(rng);
         c.push_back(boxCandidate(i, x, y, x + size(rng), y + size(rng), z, z + size(rng)));
     }
-    narrow::StripSweep sweep;
+    narrow::CellSweep sweep;
     sweep.build(c, nullptr);
     std::vector<IndexPair> pairs;
     for (std::size_t begin = 0; begin < sweep.entryCount(); begin += 37) {
@@ -151,5 +154,18 @@ TEST_CASE("Radix sort orders 64-bit keys stably", "[narrow][sort]") {
             REQUIRE(items[i].key == expected[i].key);
             REQUIRE(items[i].index == expected[i].index);
         }
+    }
+}
+
+TEST_CASE("Radix sort can leave a payload in the low bytes unsorted", "[narrow][sort]") {
+    std::mt19937 rng(9);
+    for (std::size_t n : {std::size_t(100), std::size_t(3000)}) {
+        // High half: a key with many ties; low half: the original position.
+        std::vector<std::uint64_t> items(n);
+        for (std::size_t i = 0; i < n; ++i) items[i] = (std::uint64_t{rng() % 40} << 32) | i;
+        std::vector<std::uint64_t> expected = items;
+        std::stable_sort(expected.begin(), expected.end(), [](auto a, auto b) { return (a >> 32) < (b >> 32); });
+        narrow::radixSort(items, 4);
+        CHECK(items == expected);  // ties keep their order: sorted by the whole key
     }
 }

@@ -27,6 +27,12 @@
 // Every parallel stage writes per-task state that is combined in a fixed order or sorted,
 // so the result does not depend on the thread count or on how tasks were scheduled.
 
+#if defined(__GNUC__) || defined(__clang__)
+#define VKCOLLIDE_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define VKCOLLIDE_ALWAYS_INLINE
+#endif
+
 namespace vkcollide {
 namespace {
 
@@ -165,23 +171,28 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     std::vector<SweepTask> sweep_tasks(entries == 0 ? 0 : (entries - 1) / sweep_grain + 1);
     const std::unique_ptr<std::atomic<std::uint8_t>[]> in_pair(new std::atomic<std::uint8_t>[n]());
     const bool filter_objects = static_cast<bool>(options.may_collide);
+    // The self-collision switch, when it is the same for every object.
+    const bool uniform_self = options.self_collision.empty();
+    const bool self_default = options.default_self_collision;
     pool.parallelFor(entries, sweep_grain, [&](std::size_t begin, std::size_t end) {
         SweepTask& task = sweep_tasks[begin / sweep_grain];
+        std::size_t sap_pairs = 0, filtered_pairs = 0, neighbour_pairs = 0;  // in registers, not in `task`
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
+        // Runs for every reported pair, most of them neighbours: inlined into the sweep.
         sweep.sweepRange(begin, end, [&](std::uint32_t i, std::uint32_t j, const narrow::CandidateTag& a,
-                                         const narrow::CandidateTag& b) {
-            ++task.sap_pairs;
+                                         const narrow::CandidateTag& b) VKCOLLIDE_ALWAYS_INLINE {
+            ++sap_pairs;
             in_pair[i].store(1, std::memory_order_relaxed);
             in_pair[j].store(1, std::memory_order_relaxed);
             if (a.object == b.object) {
-                if (!options.selfCollides(a.object)) {
-                    ++task.filtered_pairs;
+                if (!(uniform_self ? self_default : options.selfCollides(a.object))) {
+                    ++filtered_pairs;
                     return;
                 }
                 // A shared index decides most neighbours; the positions only the rest.
                 if (narrow::shareIndex(a.vertex_index, b.vertex_index) ||
                     narrow::areNeighbours(a.vertex_index, in_candidates[i].v, b.vertex_index, in_candidates[j].v)) {
-                    ++task.neighbour_pairs;
+                    ++neighbour_pairs;
                     return;
                 }
             } else if (filter_objects) {
@@ -191,6 +202,9 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
             }
             task.tests.push_back({i, j});
         });
+        task.sap_pairs = sap_pairs;
+        task.filtered_pairs = filtered_pairs;
+        task.neighbour_pairs = neighbour_pairs;
         std::sort(task.object_pairs.begin(), task.object_pairs.end());
         task.object_pairs.erase(std::unique(task.object_pairs.begin(), task.object_pairs.end()), task.object_pairs.end());
     });

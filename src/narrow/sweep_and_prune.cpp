@@ -1,7 +1,5 @@
 #include "narrow/sweep_and_prune.hpp"
 
-#include "narrow/radix_sort.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -24,8 +22,11 @@ constexpr std::size_t kCandidatesPerCell = 4;
 constexpr double kMaxListingsPerBox = 3.0;
 // Boxes sampled to choose the grid: enough for a stable median, independent of n.
 constexpr std::size_t kSampleSize = 1024;
-// Candidates per task while building the cells (histograms of up to kMaxCells counters).
-constexpr std::size_t kBuildGrain = 16384;
+// Candidates per task while building the cells: about kTasksPerThread tasks per thread,
+// within these bounds (each task has a histogram of up to kMaxCells counters).
+constexpr std::size_t kTasksPerThread = 4;
+constexpr std::size_t kMinBuildGrain = 1024;
+constexpr std::size_t kMaxBuildGrain = 16384;
 
 void forChunks(ThreadPool* pool, std::size_t count, std::size_t grain,
                const std::function<void(std::size_t, std::size_t)>& body) {
@@ -122,14 +123,21 @@ Grid chooseGrid(std::span<const CandidateTriangle> in_candidates, const Range& r
     return grid;
 }
 
-// A box's sort key and the cells it touches: strips span[0]..span[1], slabs
-// span[2]..span[3] (fewer than 2^16 each: kMaxCells).
-struct Listing {
-    std::uint64_t key;  // orderedBits(x0) << 32 | candidate index
-    std::uint16_t span[4];
-};
-static_assert(kMaxCells <= 0xffff);
-std::uint64_t radixKey(const Listing& l) { return l.key; }
+// Sorts one cell's keys. Cells are small and their keys arrive in candidate order, which
+// follows the meshes and so is partly sorted already: insertion sort (adaptive, no
+// recursion) up to a few dozen keys, std::sort above.
+void sortKeys(std::uint64_t* first, std::uint64_t* last) {
+    if (last - first > 48) {
+        std::sort(first, last);
+        return;
+    }
+    for (std::uint64_t* i = first + (first != last); i < last; ++i) {
+        const std::uint64_t key = *i;
+        std::uint64_t* j = i;
+        for (; j > first && *(j - 1) > key; --j) *j = *(j - 1);
+        *j = key;
+    }
+}
 
 // A float's bits as an unsigned integer with the same order (-0 and +0 both map to +0's).
 std::uint32_t orderedBits(float x) {
@@ -146,11 +154,14 @@ void CellSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPo
     entry_count_ = 0;
     cell_begin_.assign(2, 0);
     if (n == 0) return;
+    // Tasks of candidates: a few per thread, not too small to be worth handing out.
+    const std::size_t threads = pool ? pool->threadCount() : 1;
+    const std::size_t grain = std::clamp<std::size_t>(n / (threads * kTasksPerThread), kMinBuildGrain, kMaxBuildGrain);
+    const std::size_t chunks = (n - 1) / grain + 1;
 
     // The y and z ranges (per chunk, then combined), then the grid.
-    const std::size_t chunks = (n - 1) / kBuildGrain + 1;
     std::vector<Range> chunk_range(chunks);
-    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
+    forChunks(pool, n, grain, [&](std::size_t begin, std::size_t end) {
         const CandidateTriangle& first = in_candidates[begin];
         Range r{first.box[1], first.box[3], first.zmin, first.zmax};
         for (std::size_t i = begin; i < end; ++i) {
@@ -158,7 +169,7 @@ void CellSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPo
             r = {std::min(r.y_min, c.box[1]), std::max(r.y_max, c.box[3]), std::min(r.z_min, c.zmin),
                  std::max(r.z_max, c.zmax)};
         }
-        chunk_range[begin / kBuildGrain] = r;
+        chunk_range[begin / grain] = r;
     });
     Range range = chunk_range[0];
     for (const Range& r : chunk_range) {
@@ -168,39 +179,20 @@ void CellSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPo
     const Grid grid = chooseGrid(in_candidates, range);
     const std::size_t cells = grid.cells();
     const std::uint32_t slabs_z = grid.z.count();
-
-    // Each box's sort key (x0's bits made orderable as an unsigned integer, then the
-    // candidate index) and cell span, read in index order; then all of them in (x0,
-    // index) order, once: a stable sort on x0 alone keeps the index order of equal x0.
-    // The counting sort below is stable too, so every cell comes out in (x0, index) order
-    // without sorting cells one by one. The candidates are read in index order only; the
-    // last pass reads their packed entries (48 of their 80 bytes) in x0 order.
-    std::vector<Listing> order(n);
-    const std::unique_ptr<Entry[]> packed(new Entry[n]);  // each candidate's entry, in index order
-    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-            const CandidateTriangle& c = in_candidates[i];
-            packed[i] = Entry{c.box[0], c.box[2], c.box[1], c.box[3], c.zmin, c.zmax, static_cast<std::uint32_t>(i), 0,
-                              {c.object, {c.vertex_index[0], c.vertex_index[1], c.vertex_index[2]}}};
-            order[i] = {(std::uint64_t{orderedBits(c.box[0])} << 32) | i,
-                        {static_cast<std::uint16_t>(grid.y(c.box[1])), static_cast<std::uint16_t>(grid.y(c.box[3])),
-                         static_cast<std::uint16_t>(grid.z(c.zmin)), static_cast<std::uint16_t>(grid.z(c.zmax))}};
+    const auto forEachCell = [&](const CandidateTriangle& c, auto&& f) {
+        const std::uint32_t y0 = grid.y(c.box[1]), y1 = grid.y(c.box[3]);
+        const std::uint32_t z0 = grid.z(c.zmin), z1 = grid.z(c.zmax);
+        for (std::uint32_t y = y0; y <= y1; ++y) {
+            for (std::uint32_t z = z0; z <= z1; ++z) f(std::size_t{y} * slabs_z + z, (y == y0 ? 1u : 0u) | (z == z0 ? 2u : 0u));
         }
-    });
-    radixSort(order, 4);
+    };
 
-    // Counting sort into cells, parallel over chunks of the x0 order: each chunk counts
-    // its listings per cell, a prefix sum (cell-major, chunk-minor) gives each chunk its
-    // slots, then each chunk writes its entries.
+    // Counting sort into cells, stable and parallel: each chunk counts its listings per
+    // cell, a prefix sum (cell-major, chunk-minor) gives each chunk its slots.
     std::vector<std::size_t> slots(chunks * cells, 0);
-    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
-        std::size_t* count = &slots[(begin / kBuildGrain) * cells];
-        for (std::size_t p = begin; p < end; ++p) {
-            const Listing& l = order[p];
-            for (std::size_t y = l.span[0]; y <= l.span[1]; ++y) {
-                for (std::size_t z = l.span[2]; z <= l.span[3]; ++z) ++count[y * slabs_z + z];
-            }
-        }
+    forChunks(pool, n, grain, [&](std::size_t begin, std::size_t end) {
+        std::size_t* count = &slots[(begin / grain) * cells];
+        for (std::size_t i = begin; i < end; ++i) forEachCell(in_candidates[i], [&](std::size_t cell, std::uint32_t) { ++count[cell]; });
     });
     cell_begin_.assign(cells + 1, 0);
     std::size_t total = 0;
@@ -213,23 +205,42 @@ void CellSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPo
         }
     }
     cell_begin_[cells] = total;
-    // A plain array: every entry is written before it is read, nothing to zero first.
+
+    // Scatter the entries (candidates read in order) with their sort keys: x0's bits made
+    // orderable as an unsigned integer, then the position in the cell, which follows the
+    // candidate index, so equal x0 keep index order and the sort needs no tie-break.
+    // Plain arrays: every element is written before it is read, nothing to zero first.
     if (total > entry_capacity_) {
         entries_.reset(new Entry[total]);
         entry_capacity_ = total;
     }
     entry_count_ = total;
-    forChunks(pool, n, kBuildGrain, [&](std::size_t begin, std::size_t end) {
-        std::size_t* next = &slots[(begin / kBuildGrain) * cells];
-        for (std::size_t p = begin; p < end; ++p) {
-            const Listing& l = order[p];
-            Entry entry = packed[static_cast<std::uint32_t>(l.key)];
-            for (std::size_t y = l.span[0]; y <= l.span[1]; ++y) {
-                for (std::size_t z = l.span[2]; z <= l.span[3]; ++z) {
-                    entry.starts = (y == l.span[0] ? 1u : 0u) | (z == l.span[2] ? 2u : 0u);
-                    entries_[next[y * slabs_z + z]++] = entry;
-                }
-            }
+    const std::unique_ptr<Entry[]> unsorted(new Entry[total]);
+    const std::unique_ptr<std::uint64_t[]> sort_keys(new std::uint64_t[total]);
+    forChunks(pool, n, grain, [&](std::size_t begin, std::size_t end) {
+        std::size_t* next = &slots[(begin / grain) * cells];
+        for (std::size_t i = begin; i < end; ++i) {
+            const CandidateTriangle& c = in_candidates[i];
+            const std::uint64_t x_key = std::uint64_t{orderedBits(c.box[0])} << 32;
+            Entry entry{c.box[0], c.box[2], c.box[1], c.box[3], c.zmin, c.zmax, static_cast<std::uint32_t>(i), 0,
+                        {c.object, {c.vertex_index[0], c.vertex_index[1], c.vertex_index[2]}}};
+            forEachCell(c, [&](std::size_t cell, std::uint32_t starts) {
+                const std::size_t slot = next[cell]++;
+                entry.starts = starts;
+                unsorted[slot] = entry;
+                sort_keys[slot] = x_key | (slot - cell_begin_[cell]);
+            });
+        }
+    });
+
+    // Sort each cell by (x0, index): small arrays of integer keys, then a gather within
+    // the cell. Cells are independent, so this is parallel too.
+    const std::size_t cell_grain = std::max<std::size_t>(1, cells / (threads * kTasksPerThread));
+    forChunks(pool, cells, cell_grain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t cell = begin; cell < end; ++cell) {
+            const std::size_t first = cell_begin_[cell], last = cell_begin_[cell + 1];
+            sortKeys(sort_keys.get() + first, sort_keys.get() + last);
+            for (std::size_t k = first; k < last; ++k) entries_[k] = unsorted[first + (sort_keys[k] & 0xffffffffu)];
         }
     });
 }

@@ -110,8 +110,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
 
     // Stage 1: validate (in parallel; the error names the first bad candidate, as a serial
     // check would) and rank the keys.
-    std::vector<narrow::KeyIndex> keys(n);
-    std::vector<std::uint32_t> rank(n);
+    const auto keyAt = [&](std::size_t i) { return keyOf(in_candidates[i].object, in_candidates[i].triangle); };
     bool keys_ascending = true;
     {
         const std::size_t tasks = n == 0 ? 0 : (n - 1) / kValidateGrain + 1;
@@ -120,12 +119,12 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         pool.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
             std::size_t bad = n;
             bool task_ascending = true;
+            std::uint64_t previous = keyAt(begin);
             for (std::size_t i = begin; i < end; ++i) {
-                const CandidateTriangle& c = in_candidates[i];
-                if (bad == n && !isValid(c)) bad = i;
-                keys[i] = {keyOf(c.object, c.triangle), static_cast<std::uint32_t>(i)};
-                task_ascending = task_ascending && (i == begin || keys[i - 1].key < keys[i].key);
-                rank[i] = static_cast<std::uint32_t>(i);  // right if the keys turn out ascending
+                if (bad == n && !isValid(in_candidates[i])) bad = i;
+                const std::uint64_t key = keyAt(i);
+                task_ascending = task_ascending && (i == begin || previous < key);
+                previous = key;
             }
             first_bad[begin / kValidateGrain] = bad;
             ascending[begin / kValidateGrain] = task_ascending ? 1 : 0;
@@ -133,12 +132,18 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         const auto bad = std::min_element(first_bad.begin(), first_bad.end());
         if (bad != first_bad.end() && *bad < n) return invalidCandidate(in_candidates[*bad]);
         for (std::size_t t = 0; t < tasks; ++t) {
-            keys_ascending = keys_ascending && ascending[t] && (t == 0 || keys[t * kValidateGrain - 1].key < keys[t * kValidateGrain].key);
+            keys_ascending = keys_ascending && ascending[t] &&
+                             (t == 0 || keyAt(t * kValidateGrain - 1) < keyAt(t * kValidateGrain));
         }
     }
     // The GPU writes its records in (object, triangle) order: then the keys are already
-    // sorted and unique, and rank is the identity. Otherwise sort, find duplicates, rank.
+    // sorted and unique, and a candidate's rank is its index. Otherwise sort, find
+    // duplicates, rank.
+    std::vector<narrow::KeyIndex> keys;      // sorted; empty when the keys are ascending
+    std::vector<std::uint32_t> rank_of;      // candidate -> rank; empty when the keys are ascending
     if (!keys_ascending) {
+        keys.resize(n);
+        for (std::size_t i = 0; i < n; ++i) keys[i] = {keyAt(i), static_cast<std::uint32_t>(i)};
         narrow::radixSort(keys);
         for (std::size_t r = 1; r < n; ++r) {
             if (keys[r].key == keys[r - 1].key) {
@@ -147,8 +152,14 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
                                                              " appears more than once");
             }
         }
-        for (std::size_t r = 0; r < n; ++r) rank[keys[r].index] = static_cast<std::uint32_t>(r);
+        rank_of.resize(n);
+        for (std::size_t r = 0; r < n; ++r) rank_of[keys[r].index] = static_cast<std::uint32_t>(r);
     }
+    const auto rankOf = [&](std::uint32_t i) { return keys_ascending ? i : rank_of[i]; };
+    const auto candidateOfRank = [&](std::uint64_t r) -> const CandidateTriangle& {
+        const auto rank = static_cast<std::uint32_t>(r);
+        return in_candidates[keys_ascending ? rank : keys[rank].index];
+    };
 
     NarrowResult result;
     NarrowStats& stats = result.stats;
@@ -265,7 +276,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
                 }
             }
             if (narrow::trianglesIntersect(a.v, b.v)) {
-                const std::uint32_t ri = rank[p.i], rj = rank[p.j];
+                const std::uint32_t ri = rankOf(p.i), rj = rankOf(p.j);
                 out.push_back(ri < rj ? keyOf(ri, rj) : keyOf(rj, ri));
             }
         }
@@ -285,13 +296,10 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     colliding.reserve(hit_count);
     for (const auto& part : hits) colliding.insert(colliding.end(), part.begin(), part.end());
     narrow::radixSort(colliding);
-    const auto candidate_of_rank = [&](std::uint64_t r) -> const CandidateTriangle& {
-        return in_candidates[keys[static_cast<std::size_t>(r)].index];
-    };
     result.pairs.reserve(colliding.size());
     for (const std::uint64_t key : colliding) {
-        const CandidateTriangle& a = candidate_of_rank(key >> 32);
-        const CandidateTriangle& b = candidate_of_rank(key & 0xffffffffu);
+        const CandidateTriangle& a = candidateOfRank(key >> 32);
+        const CandidateTriangle& b = candidateOfRank(key & 0xffffffffu);
         result.pairs.push_back({a.object, a.triangle, b.object, b.triangle});
     }
     stats.positive_tests = result.pairs.size();
@@ -312,7 +320,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     std::vector<std::uint32_t> partners(responders.size(), 0);
     for (std::size_t k = 0; k < responders.size(); ++k) {
         slot[responders[k]] = static_cast<std::uint32_t>(k);
-        normal[k] = unitNormal(candidate_of_rank(responders[k]));
+        normal[k] = unitNormal(candidateOfRank(responders[k]));
     }
     for (const std::uint64_t key : colliding) {
         const std::uint32_t i = slot[key >> 32], j = slot[key & 0xffffffffu];
@@ -324,7 +332,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     }
     result.responses.reserve(responders.size());
     for (std::size_t k = 0; k < responders.size(); ++k) {
-        const CandidateTriangle& c = candidate_of_rank(responders[k]);
+        const CandidateTriangle& c = candidateOfRank(responders[k]);
         const Vec3d& s = sum[k];
         const double length = std::sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
         TriangleResponse r;

@@ -90,20 +90,29 @@ std::array<Float2, 3> projectTriangle(std::span<const Float3, 3> t, int axis) {
     return {project(t[0], axis), project(t[1], axis), project(t[2], axis)};
 }
 
-// Two coplanar, non-degenerate triangles. Every extreme point of the intersection is a
-// vertex of one triangle inside the other or a crossing of two edges.
+// Whether all of `t` lies strictly outside the edge (p, q) of a triangle whose
+// orientation is `winding` (+1 or -1): a separating line along that edge.
+bool strictlyOutside(const Float2& p, const Float2& q, int winding, const std::array<Float2, 3>& t) {
+    for (const Float2& v : t) {
+        if (orient2d(p, q, v) * winding >= 0) return false;
+    }
+    return true;
+}
+
+// Two coplanar, non-degenerate triangles, projected to 2D where the projection is
+// injective on their plane. Separating axis test: two disjoint convex polygons are
+// strictly separated by a line parallel to one of their edges, so the closed triangles
+// intersect iff no edge of either has the whole other triangle strictly outside. At most
+// 20 orientations (vertex-in-triangle plus edge-crossing tests would take up to 54).
 bool coplanarTrianglesIntersect(std::span<const Float3, 3> a, std::span<const Float3, 3> b) {
     const int axis = normalAxis(a[0], a[1], a[2]);  // not -1: a is not degenerate
     const std::array<Float2, 3> pa = projectTriangle(a, axis), pb = projectTriangle(b, axis);
+    const int winding_a = orient2d(pa[0], pa[1], pa[2]), winding_b = orient2d(pb[0], pb[1], pb[2]);  // both non-zero
     for (int i = 0; i < 3; ++i) {
-        if (pointInTriangle2d(pa[i], pb) || pointInTriangle2d(pb[i], pa)) return true;
+        if (strictlyOutside(pa[i], pa[(i + 1) % 3], winding_a, pb)) return false;
+        if (strictlyOutside(pb[i], pb[(i + 1) % 3], winding_b, pa)) return false;
     }
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-            if (segmentsIntersect2d(pa[i], pa[(i + 1) % 3], pb[j], pb[(j + 1) % 3])) return true;
-        }
-    }
-    return false;
+    return true;
 }
 
 // The two ends of a collinear point triple.

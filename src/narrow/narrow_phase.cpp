@@ -186,15 +186,19 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     const bool uniform_self = options.self_collision.empty();
     const bool self_default = options.default_self_collision;
     pool.parallelFor(entries, sweep_grain, [&](std::size_t begin, std::size_t end) {
-        SweepTask& task = sweep_tasks[begin / sweep_grain];
+        // Built in locals and moved into the task at the end: tasks sit next to each other
+        // in memory, and growing vectors in place would share cache lines between threads.
+        SweepTask task;
         std::size_t sap_pairs = 0, filtered_pairs = 0, neighbour_pairs = 0;  // in registers, not in `task`
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
         // Runs for every reported pair, most of them neighbours: inlined into the sweep.
         sweep.sweepRange(begin, end, [&](std::uint32_t i, std::uint32_t j, const narrow::CandidateTag& a,
                                          const narrow::CandidateTag& b) VKCOLLIDE_ALWAYS_INLINE {
             ++sap_pairs;
-            in_pair[i].store(1, std::memory_order_relaxed);
-            in_pair[j].store(1, std::memory_order_relaxed);
+            // Store only when not set yet: most pairs find both flags set, and reading keeps
+            // the cache line shared instead of bouncing it between threads.
+            if (!in_pair[i].load(std::memory_order_relaxed)) in_pair[i].store(1, std::memory_order_relaxed);
+            if (!in_pair[j].load(std::memory_order_relaxed)) in_pair[j].store(1, std::memory_order_relaxed);
             if (a.object == b.object) {
                 if (!(uniform_self ? self_default : options.selfCollides(a.object))) {
                     ++filtered_pairs;
@@ -218,6 +222,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         task.neighbour_pairs = neighbour_pairs;
         std::sort(task.object_pairs.begin(), task.object_pairs.end());
         task.object_pairs.erase(std::unique(task.object_pairs.begin(), task.object_pairs.end()), task.object_pairs.end());
+        sweep_tasks[begin / sweep_grain] = std::move(task);
     });
     std::vector<std::size_t> test_begin(sweep_tasks.size() + 1, 0);  // tests of task t: [test_begin[t], test_begin[t+1])
     for (std::size_t t = 0; t < sweep_tasks.size(); ++t) {
@@ -253,7 +258,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     std::vector<std::size_t> object_filtered(test_tasks, 0);
     pool.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
         const std::size_t task_index = begin / kTestGrain;
-        std::vector<std::uint64_t>& out = hits[task_index];
+        std::vector<std::uint64_t> out;  // moved into hits[task_index] at the end (see the sweep)
+        std::size_t filtered = 0;
         std::size_t source = static_cast<std::size_t>(std::upper_bound(test_begin.begin(), test_begin.end(), begin) -
                                                       test_begin.begin()) - 1;
         std::uint64_t cached_pair = std::numeric_limits<std::uint64_t>::max();
@@ -271,7 +277,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
                     cached_allowed = object_pair_allowed[static_cast<std::size_t>(it - object_pairs.begin())] != 0;
                 }
                 if (!cached_allowed) {
-                    ++object_filtered[task_index];
+                    ++filtered;
                     continue;
                 }
             }
@@ -280,6 +286,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
                 out.push_back(ri < rj ? keyOf(ri, rj) : keyOf(rj, ri));
             }
         }
+        hits[task_index] = std::move(out);
+        object_filtered[task_index] = filtered;
     });
     std::size_t filtered_late = 0, hit_count = 0;
     for (std::size_t t = 0; t < test_tasks; ++t) {

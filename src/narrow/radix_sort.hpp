@@ -27,7 +27,7 @@ inline std::uint64_t radixKey(const KeyIndex& item) { return item.key; }
 template <typename T>
 void radixSort(std::vector<T>& io, int ignored_low_bytes = 0) {
     const std::size_t n = io.size();
-    if (n < 256) {
+    if (n < 2048) {
         const int shift = 8 * ignored_low_bytes;
         std::stable_sort(io.begin(), io.end(), [shift](const T& a, const T& b) {
             return (radixKey(a) >> shift) < (radixKey(b) >> shift);

@@ -131,7 +131,7 @@ struct NarrowResult {
 
 // Scratch memory that runNarrowPhase keeps between calls. Passing the same workspace
 // every frame reuses its arrays instead of allocating them anew, which for large arrays
-// also means new pages from the system: a fifth of the narrow phase's time on the demo's
+// also means new pages from the system: 20-30 % of the narrow phase's time on the demo's
 // candidates (docs/narrow_phase.md). Holds no results; its size follows the largest call.
 // Thread safety: one runNarrowPhase call at a time per workspace.
 class NarrowWorkspace {

@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -128,6 +129,25 @@ struct NarrowResult {
     NarrowTimings timings;  // not part of the result proper: differs from run to run
 };
 
+// Scratch memory that runNarrowPhase keeps between calls. Passing the same workspace
+// every frame reuses its arrays instead of allocating them anew, which for large arrays
+// also means new pages from the system: 20-30 % of the narrow phase's time on the demo's
+// candidates (docs/narrow_phase.md). Holds no results; its size follows the largest call.
+// Thread safety: one runNarrowPhase call at a time per workspace.
+class NarrowWorkspace {
+public:
+    NarrowWorkspace();
+    ~NarrowWorkspace();
+    NarrowWorkspace(NarrowWorkspace&&) noexcept;
+    NarrowWorkspace& operator=(NarrowWorkspace&&) noexcept;
+
+    struct Impl;   // src/narrow/narrow_phase.cpp
+    Impl& impl();  // for runNarrowPhase (a moved-from workspace gets a new Impl)
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
 // Runs the narrow phase on the candidates that the GPU broad phase kept.
 //
 // Preconditions (checked; a broken one returns ErrorCode::InvalidArgument naming the
@@ -140,8 +160,11 @@ struct NarrowResult {
 // a vertex index or a bit-identical vertex position. The result is bit-identical for
 // every thread count of `pool` and every order of `in_candidates`.
 //
-// Thread safety: reentrant; `in_candidates` must not change during the call.
+// Thread safety: reentrant; `in_candidates` must not change during the call. The first
+// form uses a workspace of its own; the second reuses `io_workspace` (same results).
 Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
                                     ThreadPool& pool);
+Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
+                                    ThreadPool& pool, NarrowWorkspace& io_workspace);
 
 }  // namespace vkcollide

@@ -100,8 +100,39 @@ struct SweepTask {
 
 }  // namespace
 
+// Everything here is overwritten (or cleared) before it is read in a call; only the
+// capacity carries over.
+struct NarrowWorkspace::Impl {
+    narrow::CellSweep sweep;
+    std::vector<SweepTask> sweep_tasks;
+    std::vector<std::uint8_t> in_pair;  // per candidate: in a pair whose boxes overlap (std::atomic_ref)
+    std::vector<std::size_t> test_begin, object_filtered;
+    std::vector<std::vector<std::uint64_t>> hits;
+    std::vector<std::uint64_t> colliding, responders;
+    std::vector<std::uint32_t> slot;
+    std::vector<narrow::KeyIndex> keys;
+    std::vector<std::uint32_t> rank_of;
+};
+
+NarrowWorkspace::NarrowWorkspace() : impl_(std::make_unique<Impl>()) {}
+NarrowWorkspace::~NarrowWorkspace() = default;
+NarrowWorkspace::NarrowWorkspace(NarrowWorkspace&&) noexcept = default;
+NarrowWorkspace& NarrowWorkspace::operator=(NarrowWorkspace&&) noexcept = default;
+
+NarrowWorkspace::Impl& NarrowWorkspace::impl() {
+    if (!impl_) impl_ = std::make_unique<Impl>();
+    return *impl_;
+}
+
 Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
                                     ThreadPool& pool) {
+    NarrowWorkspace workspace;
+    return runNarrowPhase(in_candidates, options, pool, workspace);
+}
+
+Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
+                                    ThreadPool& pool, NarrowWorkspace& io_workspace) {
+    NarrowWorkspace::Impl& ws = io_workspace.impl();
     const Clock::time_point t_start = Clock::now();
     const std::size_t n = in_candidates.size();
     if (n > std::numeric_limits<std::uint32_t>::max()) {
@@ -139,8 +170,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     // The GPU writes its records in (object, triangle) order: then the keys are already
     // sorted and unique, and a candidate's rank is its index. Otherwise sort, find
     // duplicates, rank.
-    std::vector<narrow::KeyIndex> keys;      // sorted; empty when the keys are ascending
-    std::vector<std::uint32_t> rank_of;      // candidate -> rank; empty when the keys are ascending
+    std::vector<narrow::KeyIndex>& keys = ws.keys;     // sorted; unused when the keys are ascending
+    std::vector<std::uint32_t>& rank_of = ws.rank_of;  // candidate -> rank; unused when the keys are ascending
     if (!keys_ascending) {
         keys.resize(n);
         for (std::size_t i = 0; i < n; ++i) keys[i] = {keyAt(i), static_cast<std::uint32_t>(i)};
@@ -174,21 +205,27 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     };
 
     // Stage 2: sweep and prune, self-collision switch, neighbour rule.
-    narrow::CellSweep sweep;
+    narrow::CellSweep& sweep = ws.sweep;
     sweep.build(in_candidates, &pool);
     const std::size_t entries = sweep.entryCount();
     const std::size_t sweep_grain =
         std::clamp<std::size_t>(entries / (std::size_t{pool.threadCount()} * kTasksPerThread), kMinSweepGrain, kMaxSweepGrain);
-    std::vector<SweepTask> sweep_tasks(entries == 0 ? 0 : (entries - 1) / sweep_grain + 1);
-    const std::unique_ptr<std::atomic<std::uint8_t>[]> in_pair(new std::atomic<std::uint8_t>[n]());
+    std::vector<SweepTask>& sweep_tasks = ws.sweep_tasks;
+    sweep_tasks.resize(entries == 0 ? 0 : (entries - 1) / sweep_grain + 1);
+    std::vector<std::uint8_t>& in_pair = ws.in_pair;
+    in_pair.assign(n, 0);
+    static_assert(std::atomic_ref<std::uint8_t>::required_alignment == 1);
     const bool filter_objects = static_cast<bool>(options.may_collide);
     // The self-collision switch, when it is the same for every object.
     const bool uniform_self = options.self_collision.empty();
     const bool self_default = options.default_self_collision;
     pool.parallelFor(entries, sweep_grain, [&](std::size_t begin, std::size_t end) {
-        // Built in locals and moved into the task at the end: tasks sit next to each other
-        // in memory, and growing vectors in place would share cache lines between threads.
-        SweepTask task;
+        // Moved into a local (keeping the capacity of the last call) and back at the end:
+        // tasks sit next to each other in memory, and growing vectors in place would share
+        // cache lines between threads.
+        SweepTask task = std::move(sweep_tasks[begin / sweep_grain]);
+        task.tests.clear();
+        task.object_pairs.clear();
         std::size_t sap_pairs = 0, filtered_pairs = 0, neighbour_pairs = 0;  // in registers, not in `task`
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
         // Runs for every reported pair, most of them neighbours: inlined into the sweep.
@@ -197,8 +234,10 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
             ++sap_pairs;
             // Store only when not set yet: most pairs find both flags set, and reading keeps
             // the cache line shared instead of bouncing it between threads.
-            if (!in_pair[i].load(std::memory_order_relaxed)) in_pair[i].store(1, std::memory_order_relaxed);
-            if (!in_pair[j].load(std::memory_order_relaxed)) in_pair[j].store(1, std::memory_order_relaxed);
+            for (const std::uint32_t k : {i, j}) {
+                const std::atomic_ref<std::uint8_t> flag(in_pair[k]);
+                if (!flag.load(std::memory_order_relaxed)) flag.store(1, std::memory_order_relaxed);
+            }
             if (a.object == b.object) {
                 if (!(uniform_self ? self_default : options.selfCollides(a.object))) {
                     ++filtered_pairs;
@@ -224,7 +263,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         task.object_pairs.erase(std::unique(task.object_pairs.begin(), task.object_pairs.end()), task.object_pairs.end());
         sweep_tasks[begin / sweep_grain] = std::move(task);
     });
-    std::vector<std::size_t> test_begin(sweep_tasks.size() + 1, 0);  // tests of task t: [test_begin[t], test_begin[t+1])
+    std::vector<std::size_t>& test_begin = ws.test_begin;  // tests of task t: [test_begin[t], test_begin[t+1])
+    test_begin.assign(sweep_tasks.size() + 1, 0);
     for (std::size_t t = 0; t < sweep_tasks.size(); ++t) {
         const SweepTask& task = sweep_tasks[t];
         stats.sap_pairs += task.sap_pairs;
@@ -232,7 +272,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         stats.neighbour_pairs += task.neighbour_pairs;
         test_begin[t + 1] = test_begin[t] + task.tests.size();
     }
-    for (std::size_t i = 0; i < n; ++i) stats.potentially_colliding_triangles += in_pair[i].load(std::memory_order_relaxed);
+    // The loop's end ordered every flag store before this (plain) read.
+    for (std::size_t i = 0; i < n; ++i) stats.potentially_colliding_triangles += in_pair[i];
     lap(timings.sweep_ms);
 
     // Stage 3: the object-pair filter, once per distinct pair of objects with overlapping
@@ -254,11 +295,14 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     // Stage 4: exact tests over all tasks' pairs, as one index range.
     const std::size_t total_tests = test_begin.back();
     const std::size_t test_tasks = total_tests == 0 ? 0 : (total_tests - 1) / kTestGrain + 1;
-    std::vector<std::vector<std::uint64_t>> hits(test_tasks);  // (lower rank, higher rank) per hit
-    std::vector<std::size_t> object_filtered(test_tasks, 0);
+    std::vector<std::vector<std::uint64_t>>& hits = ws.hits;  // (lower rank, higher rank) per hit
+    hits.resize(test_tasks);
+    std::vector<std::size_t>& object_filtered = ws.object_filtered;
+    object_filtered.assign(test_tasks, 0);
     pool.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
         const std::size_t task_index = begin / kTestGrain;
-        std::vector<std::uint64_t> out;  // moved into hits[task_index] at the end (see the sweep)
+        std::vector<std::uint64_t> out = std::move(hits[task_index]);  // and back at the end (see the sweep)
+        out.clear();
         std::size_t filtered = 0;
         std::size_t source = static_cast<std::size_t>(std::upper_bound(test_begin.begin(), test_begin.end(), begin) -
                                                       test_begin.begin()) - 1;
@@ -300,7 +344,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
 
     // Stage 5: canonical order. Ranks follow (object, triangle), so sorting the
     // (lower rank, higher rank) keys sorts the pairs.
-    std::vector<std::uint64_t> colliding;
+    std::vector<std::uint64_t>& colliding = ws.colliding;
+    colliding.clear();
     colliding.reserve(hit_count);
     for (const auto& part : hits) colliding.insert(colliding.end(), part.begin(), part.end());
     narrow::radixSort(colliding);
@@ -315,7 +360,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
 
     // Stage 6: responses, summed in the order of the sorted pairs. Responders are the
     // ranks in pairs, in rank order, i.e. sorted by (object, triangle).
-    std::vector<std::uint64_t> responders;
+    std::vector<std::uint64_t>& responders = ws.responders;
+    responders.clear();
     responders.reserve(2 * colliding.size());
     for (const std::uint64_t key : colliding) {
         responders.push_back(key >> 32);
@@ -323,7 +369,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     }
     narrow::radixSort(responders);
     responders.erase(std::unique(responders.begin(), responders.end()), responders.end());
-    const std::unique_ptr<std::uint32_t[]> slot(new std::uint32_t[n]);  // rank -> responder; read only where written
+    std::vector<std::uint32_t>& slot = ws.slot;  // rank -> responder; read only where written this call
+    if (slot.size() < n) slot.resize(n);
     std::vector<Vec3d> normal(responders.size()), sum(responders.size());
     std::vector<std::uint32_t> partners(responders.size(), 0);
     for (std::size_t k = 0; k < responders.size(); ++k) {

@@ -189,7 +189,8 @@ void CellSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPo
 
     // Counting sort into cells, stable and parallel: each chunk counts its listings per
     // cell, a prefix sum (cell-major, chunk-minor) gives each chunk its slots.
-    std::vector<std::size_t> slots(chunks * cells, 0);
+    std::vector<std::size_t>& slots = slots_;
+    slots.assign(chunks * cells, 0);
     forChunks(pool, n, grain, [&](std::size_t begin, std::size_t end) {
         std::size_t* count = &slots[(begin / grain) * cells];
         for (std::size_t i = begin; i < end; ++i) forEachCell(in_candidates[i], [&](std::size_t cell, std::uint32_t) { ++count[cell]; });
@@ -210,13 +211,16 @@ void CellSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPo
     // orderable as an unsigned integer, then the position in the cell, which follows the
     // candidate index, so equal x0 keep index order and the sort needs no tie-break.
     // Plain arrays: every element is written before it is read, nothing to zero first.
+    // Kept from call to call (a build reuses the arrays of the previous one).
     if (total > entry_capacity_) {
         entries_.reset(new Entry[total]);
+        unsorted_.reset(new Entry[total]);
+        sort_keys_.reset(new std::uint64_t[total]);
         entry_capacity_ = total;
     }
     entry_count_ = total;
-    const std::unique_ptr<Entry[]> unsorted(new Entry[total]);
-    const std::unique_ptr<std::uint64_t[]> sort_keys(new std::uint64_t[total]);
+    Entry* const unsorted = unsorted_.get();
+    std::uint64_t* const sort_keys = sort_keys_.get();
     forChunks(pool, n, grain, [&](std::size_t begin, std::size_t end) {
         std::size_t* next = &slots[(begin / grain) * cells];
         for (std::size_t i = begin; i < end; ++i) {
@@ -239,7 +243,7 @@ void CellSweep::build(std::span<const CandidateTriangle> in_candidates, ThreadPo
     forChunks(pool, cells, cell_grain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t cell = begin; cell < end; ++cell) {
             const std::size_t first = cell_begin_[cell], last = cell_begin_[cell + 1];
-            sortKeys(sort_keys.get() + first, sort_keys.get() + last);
+            sortKeys(sort_keys + first, sort_keys + last);
             for (std::size_t k = first; k < last; ++k) entries_[k] = unsorted[first + (sort_keys[k] & 0xffffffffu)];
         }
     });

@@ -53,7 +53,7 @@ public:
     // Preconditions: no NaN in box/zmin/zmax; box[0] <= box[2], box[1] <= box[3]; at most
     // 2^32 - 1 candidates. `pool` may be null (runs on the calling thread). The layout
     // (cell count, order of visits) may depend on the input order and thread count; the
-    // set of pairs does not.
+    // set of pairs does not. Building again reuses the memory of the previous build.
     void build(std::span<const CandidateTriangle> in_candidates, ThreadPool* pool);
 
     std::size_t entryCount() const noexcept { return entry_count_; }
@@ -87,6 +87,10 @@ private:
 
     std::unique_ptr<Entry[]> entries_;      // cell by cell, each sorted by (x0, id)
     std::size_t entry_count_ = 0, entry_capacity_ = 0;
+    // Build scratch, kept so that a CellSweep built again reuses its memory.
+    std::unique_ptr<Entry[]> unsorted_;          // entries in candidate order within each cell
+    std::unique_ptr<std::uint64_t[]> sort_keys_;  // (x0 bits, position in cell) per entry
+    std::vector<std::size_t> slots_;             // per task and cell: count, then next slot
     std::vector<std::size_t> cell_begin_;   // entries of cell c: [cell_begin_[c], cell_begin_[c + 1])
 };
 

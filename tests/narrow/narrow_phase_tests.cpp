@@ -346,3 +346,46 @@ TEST_CASE("runNarrowPhase gives identical results for any thread count and input
     REQUIRE(r);
     requireIdentical(*reference, *r);
 }
+
+TEST_CASE("A reused workspace gives the results of fresh calls", "[narrow][phase][workspace]") {
+    // Inputs of different sizes and orders through one workspace: nothing of an earlier
+    // call may leak into a later one.
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> pos(0.0f, 1.0f), offset(-0.06f, 0.06f);
+    const auto scene = [&](std::uint32_t count) {
+        std::vector<CandidateTriangle> c;
+        for (std::uint32_t i = 0; i < count; ++i) {
+            const Float3 base{pos(rng), pos(rng), pos(rng)};
+            Float3 v[3];
+            for (Float3& p : v) p = {base.x + offset(rng), base.y + offset(rng), base.z + offset(rng)};
+            c.push_back(candidate(i % 4, i / 4, v[0], v[1], v[2], {3 * i, 3 * i + 1, 3 * i + 2}));
+        }
+        return c;
+    };
+    std::vector<std::vector<CandidateTriangle>> inputs = {scene(4000), scene(300), scene(2500)};
+    inputs.push_back(inputs[0]);
+    std::shuffle(inputs.back().begin(), inputs.back().end(), rng);  // unsorted keys: the sorting path
+    inputs.push_back({});                                            // empty
+    inputs.push_back(scene(1000));
+    NarrowOptions options;
+    options.may_collide = [](std::uint32_t a, std::uint32_t b) { return a + b != 3; };
+    options.self_collision = {true, false};
+    for (unsigned threads : {1u, 3u}) {
+        ThreadPool pool(threads);
+        NarrowWorkspace workspace;
+        for (std::size_t k = 0; k < inputs.size(); ++k) {
+            INFO(threads << " threads, input " << k);
+            const auto fresh = runNarrowPhase(inputs[k], options, pool);
+            const auto reused = runNarrowPhase(inputs[k], options, pool, workspace);
+            REQUIRE((fresh && reused));
+            requireIdentical(*fresh, *reused);
+            if (k == 2) {  // a moved-from workspace still works
+                NarrowWorkspace other = std::move(workspace);
+                const auto moved = runNarrowPhase(inputs[k], options, pool, workspace);
+                REQUIRE(moved);
+                requireIdentical(*fresh, *moved);
+                workspace = std::move(other);
+            }
+        }
+    }
+}

@@ -1,7 +1,7 @@
 // Benchmark of the CPU narrow phase (runNarrowPhase) on generated scenes; host only, no GPU.
 //
 //   bench_narrow [--threads 1,2,16] [--sizes 10000,100000,1000000] [--scenes demo,spheres,torus-box]
-//                [--modes all,near,contact] [--repeat 7] [--margin 1.0] [--filter]
+//                [--modes all,near,contact] [--repeat 7] [--margin 1.0] [--filter] [--fresh]
 //                [--candidates FILE]... [--resolution N] [--dump PREFIX] [--csv PATH]
 //
 // Candidates come from tests/support/exact_reference.hpp's allTrianglesAsCandidates: every
@@ -28,7 +28,8 @@
 // of each stage (ms), the fastest total, the median process CPU time (all threads,
 // polling workers included) and checks that every thread count gives the same pairs.
 // --filter sets NarrowOptions::may_collide (allowing everything) to time the object-pair
-// filter.
+// filter. Calls reuse one NarrowWorkspace per configuration, as an engine would from frame
+// to frame; --fresh uses the overload without one (every call allocates its arrays).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -65,6 +66,7 @@ struct Options {
     std::uint32_t resolution = 512;
     float margin = 1.0f;
     bool filter = false;
+    bool fresh = false;  // no NarrowWorkspace: allocate every call
     std::string csv;
     std::string dump;  // prefix for raw candidate files, empty: none
 };
@@ -123,6 +125,8 @@ Options parseArgs(int argc, char** argv) {
             o.margin = std::stof(value());
         } else if (a == "--resolution") {
             o.resolution = static_cast<std::uint32_t>(std::stoul(value()));
+        } else if (a == "--fresh") {
+            o.fresh = true;
         } else if (a == "--filter") {
             o.filter = true;
         } else if (a == "--dump") {
@@ -131,7 +135,7 @@ Options parseArgs(int argc, char** argv) {
             o.csv = value();
         } else {
             die("unknown argument " + a +
-                " (use --threads, --sizes, --scenes, --modes, --candidates, --repeat, --resolution, --margin, --filter, --dump, --csv)");
+                " (use --threads, --sizes, --scenes, --modes, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --dump, --csv)");
         }
     }
     if (o.threads.empty()) die("--threads needs at least one count");
@@ -335,12 +339,14 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
     bool first = true;
     for (unsigned threads : o.threads) {
         ThreadPool pool(threads);
+        NarrowWorkspace workspace;
         std::vector<NarrowTimings> times;
         std::vector<double> cpu;
         NarrowStats stats;
         for (unsigned r = 0; r <= o.repeat; ++r) {
             const double cpu_start = processCpuMs();
-            Result<NarrowResult> result = runNarrowPhase(w.candidates, options, pool);
+            Result<NarrowResult> result =
+                o.fresh ? runNarrowPhase(w.candidates, options, pool) : runNarrowPhase(w.candidates, options, pool, workspace);
             const double cpu_ms = processCpuMs() - cpu_start;
             if (!result) die(w.scene + ": " + result.error().message());
             if (r == 0) {  // warm-up run: check it, do not time it
@@ -390,7 +396,8 @@ int main(int argc, char** argv) {
         std::fprintf(csv, "scene,mode,triangles,candidates,threads,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
                           "positive_tests,validate_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
     }
-    std::printf("median of %u runs (ms)%s\n", o.repeat, o.filter ? ", with may_collide" : "");
+    std::printf("median of %u runs (ms)%s%s\n", o.repeat, o.filter ? ", with may_collide" : "",
+                o.fresh ? ", no workspace" : ", one workspace per row");
     std::printf("%-12s %-8s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode", "tris",
                 "cands", "thr", "sap pairs", "tests", "pairs", "validate", "sweep", "filter", "test", "sort", "response",
                 "total", "total min", "cpu");

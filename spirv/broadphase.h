@@ -36,6 +36,19 @@ VKC_CONST kObjectOpen = 1u;
 VKC_CONST kObjectIndex16 = 2u;
 VKC_CONST kObjectCheckOnGpu = 4u;  // geometry only on the GPU: check indices and positions there
 VKC_CONST kMaxLevels = 16u;
+// Push.coverage: how the sampling passes treat thin triangles (docs/stability.md).
+// A triangle is thin when its projected inradius is below kThinInradiusPx pixels: it may
+// cover no pixel centre (sub-pixel, sliver, zero-area, edge-on), so sampling cannot
+// resolve it. With coverage on, every ray a thin triangle touches becomes a collision ray.
+VKC_CONST kCoverageCentre = 0u;         // the hardware rule only (pixel centres)
+VKC_CONST kCoverageDilate = 1u;         // thin triangles enlarged in sample.vert (any device)
+VKC_CONST kCoverageSkipThin = 2u;       // conservative raster, pass 1: every triangle but thin ones
+VKC_CONST kCoverageOnlyThin = 3u;       // conservative raster, pass 2 (overestimating pipeline): thin ones
+#ifdef __cplusplus
+inline constexpr float kThinInradiusPx = 0.70710678f;  // half a pixel diagonal
+#else
+const float kThinInradiusPx = 0.70710678;
+#endif
 
 // One registered mesh instance.
 struct ObjectGpu {
@@ -55,7 +68,8 @@ struct Projection {
     vec4 row[3];
     float open_epsilon;  // depth-proximity threshold of open surfaces, in normalised depth
     float world_to_depth;
-    uint pad0, pad1;
+    float closed_epsilon;  // closed surfaces: a gap this small (normalised depth) between leaving one and entering the next touches
+    uint pad1;
 };
 
 // Per-ray state of the peeling.
@@ -102,6 +116,7 @@ struct Frame {
     float direction_basis[12];          // u, v, d rows and (unused) for auto fit
     float open_epsilon_world;           // open-surface proximity in world units
     float fit_margin;                   // relative margin of the auto fit
+    float closed_epsilon_world;         // closed-surface touching gap in world units (0: exact ties only)
     uint level_offset[kMaxLevels];      // first texel of each mip level in `bundles`
 };
 
@@ -111,7 +126,7 @@ struct Push {
     uint object;
     uint step;
     uint level;
-    uint pad0;
+    uint coverage;  // kCoverage* (sampling passes only)
 };
 
 #ifdef __cplusplus

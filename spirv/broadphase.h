@@ -24,8 +24,12 @@ VKC_CONST kKeyBackFacing = 0x80000000u;
 VKC_CONST kKeyOpen = 0x40000000u;
 VKC_CONST kKeyTriangleMask = 0x3FFFFFFFu;
 VKC_CONST kMaxTriangles = 0x40000000u;
-// Per-pixel fragment counts: closed surfaces in the low half, open ones in the high half.
+// Per-pixel fragment counts: closed surfaces in the low 15 bits, open ones in the high half;
+// bit 15 flags a ray that a thin triangle touches (coverage on): it is a collision ray, done
+// at once, and left out of the depth complexity.
 VKC_CONST kOpenCountUnit = 0x10000u;
+VKC_CONST kCountClosedMask = 0x7FFFu;
+VKC_CONST kCountThin = 0x8000u;
 // PixelState.flags
 VKC_CONST kRayDone = 1u;
 VKC_CONST kRayCollision = 2u;
@@ -39,7 +43,8 @@ VKC_CONST kMaxLevels = 16u;
 // Push.coverage: how the sampling passes treat thin triangles (docs/stability.md).
 // A triangle is thin when its projected inradius is below kThinInradiusPx pixels: it may
 // cover no pixel centre (sub-pixel, sliver, zero-area, edge-on), so sampling cannot
-// resolve it. With coverage on, every ray a thin triangle touches becomes a collision ray.
+// resolve it. With coverage on, every ray a thin triangle touches becomes a collision ray
+// (count.frag flags it, peel_init marks it).
 VKC_CONST kCoverageCentre = 0u;         // the hardware rule only (pixel centres)
 VKC_CONST kCoverageDilate = 1u;         // thin triangles enlarged in sample.vert (any device)
 VKC_CONST kCoverageSkipThin = 2u;       // conservative raster, pass 1: every triangle but thin ones

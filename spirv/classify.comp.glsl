@@ -35,7 +35,7 @@ void main() {
     float eps = ProjectionRef(f.projection).p.open_epsilon;
     float closed_eps = ProjectionRef(f.projection).p.closed_epsilon;
     uint counts = UintsRef(f.counts).v[p];
-    uint closed_total = counts & 0xFFFFu;
+    uint closed_total = counts & kCountClosedMask;
     uint total = closed_total + (counts >> 16);
     uint n_front = st.peeled & 0xFFFFu, n_back = st.peeled >> 16;
     bool collide = false;

@@ -1,6 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Resets the per-ray peeling state; rays with no fragment are done at once.
+// Resets the per-ray peeling state; rays with no fragment are done at once, and so are
+// rays a thin triangle touches (coverage on): those collide.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
 
@@ -12,7 +13,8 @@ void main() {
     st.last_front = 0ul;
     st.last_back = ~0ul;
     st.peeled = 0u;
-    st.flags = UintsRef(f.counts).v[p] == 0u ? kRayDone : 0u;
+    uint c = UintsRef(f.counts).v[p];
+    st.flags = (c & kCountThin) != 0u ? (kRayCollision | kRayDone) : (c == 0u ? kRayDone : 0u);
     StatesRef(f.state).s[p] = st;
     Uint64sRef(f.front_keys).v[p] = ~0ul;
     Uint64sRef(f.back_keys).v[p] = 0ul;

@@ -455,9 +455,7 @@ void BroadPhase::recordPeelToPack(graph::Graph& g, const Resources& r, std::uint
     });
     for (std::uint32_t step = 0; step < steps; ++step) {
         auto peel = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Raster);
-        peel.renderArea(n, n).read(r.projection).readWrite(r.front);
-        // Fragments of thin triangles mark their rays (coverage on).
-        if (frame_.settings.coverage == Coverage::Centre) peel.read(r.state); else peel.readWrite(r.state);
+        peel.renderArea(n, n).read(r.projection).read(r.state).readWrite(r.front);
         if (dual) peel.readWrite(r.back);
         peel.record([&, step, frame_addr](PassContext& pc) {
             for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.peel, P.peel_conservative, frame_addr, i, step);

@@ -7,7 +7,7 @@
 // thin triangle touches were marked colliding by peel_init (docs/stability.md, coverage).
 #include "common.glsl.inc"
 layout(location = 0) flat in uint v_key_low;
-layout(location = 1) flat in uint v_thin;  // a thin triangle (sample.vert): its rays are done already
+layout(location = 1) flat in uint v_thin;  // never set here: peeling passes skip thin triangles
 
 void main() {
     Frame f = frame();

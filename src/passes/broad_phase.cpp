@@ -171,11 +171,8 @@ Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device) {
                    compute(P.scan_blocksum, shaders::scan_blocksum_comp, "scan-blocksum"),
                    compute(P.scan_scatter, shaders::scan_scatter_comp, "scan-scatter")})
         if (!r) return r.error();
-    if (device.conservative_rasterization) {
-        for (auto r : {raster(P.count_conservative, shaders::count_frag, "count-conservative", true),
-                       raster(P.peel_conservative, shaders::peel_frag, "peel-conservative", true)})
-            if (!r) return r.error();
-    }
+    if (device.conservative_rasterization)
+        if (auto r = raster(P.count_conservative, shaders::count_frag, "count-conservative", true); !r) return r.error();
     return bp;
 }
 
@@ -361,12 +358,18 @@ BroadPhase::Resources BroadPhase::importResources(graph::Graph& g, bool full) {
     return r;
 }
 
-// One object's triangles in a sampling pass, with the run's coverage: one draw, or with
-// conservative rasterisation two (the plain pipeline skips thin triangles, the
-// overestimating one draws only them). Count and peel passes must draw alike.
+// One object's triangles in a sampling pass, with the run's coverage. The count pass
+// draws thin triangles enlarged (dilation) or through the overestimating pipeline (a
+// second draw), so they flag every ray they touch; those rays are done before peeling,
+// so the peeling passes draw only the other triangles, exactly as the count pass did.
 void BroadPhase::drawObject(const PassContext& pc, const vk::Pipeline& plain, const vk::Pipeline& conservative,
-                            VkDeviceAddress frame_addr, std::uint32_t object, std::uint32_t step) const {
+                            VkDeviceAddress frame_addr, std::uint32_t object, std::uint32_t step, bool count_pass) const {
     const std::uint32_t vertices = frame_.meshes[object].triangle_count * 3;
+    if (!count_pass && frame_.settings.coverage != Coverage::Centre) {
+        bindAndPush(pc, plain, frame_addr, object, step, 0, gpu::kCoverageSkipThin);
+        pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+        return;
+    }
     switch (frame_.settings.coverage) {
         case Coverage::Centre:
             bindAndPush(pc, plain, frame_addr, object, step);
@@ -432,7 +435,7 @@ void BroadPhase::recordMeasure(graph::Graph& g, const Resources& r) const {
     }
     const std::uint32_t n = frame_.frame.resolution;
     g.addPass("depth-complexity", PassKind::Raster).renderArea(n, n).read(r.projection).readWrite(r.counts).record([&, frame_addr](PassContext& pc) {
-        for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.count, P.count_conservative, frame_addr, i, 0);
+        for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.count, P.count_conservative, frame_addr, i, 0, true);
     });
     g.addPass("reduce-max", PassKind::Compute).read(r.counts).readWrite(r.header).record([&, frame_addr, pixels](PassContext& pc) {
         bindAndPush(pc, P.reduce_max, frame_addr);
@@ -458,7 +461,7 @@ void BroadPhase::recordPeelToPack(graph::Graph& g, const Resources& r, std::uint
         peel.renderArea(n, n).read(r.projection).read(r.state).readWrite(r.front);
         if (dual) peel.readWrite(r.back);
         peel.record([&, step, frame_addr](PassContext& pc) {
-            for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.peel, P.peel_conservative, frame_addr, i, step);
+            for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.peel, P.peel, frame_addr, i, step, false);  // no conservative draw when peeling
         });
         auto classify = g.addPass("classify[" + std::to_string(step) + "]", PassKind::Compute);
         classify.read(r.counts).read(r.projection).readWrite(r.state).readWrite(r.front);

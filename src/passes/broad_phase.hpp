@@ -122,7 +122,7 @@ private:
     // The small result header, copied where the host can read it.
     void addHeaderReadback(graph::Graph& g, graph::ResourceId header, graph::ResourceId header_rb) const;
     void drawObject(const graph::PassContext& pc, const vk::Pipeline& plain, const vk::Pipeline& conservative,
-                    VkDeviceAddress frame_addr, std::uint32_t object, std::uint32_t step) const;
+                    VkDeviceAddress frame_addr, std::uint32_t object, std::uint32_t step, bool count_pass) const;
     gpu::Header readHeader();
     std::array<float, 16> hostProjection(const gpu::Header& h) const;
     Result<void> checkInputs(const gpu::Header& header);
@@ -144,7 +144,7 @@ private:
     } frame_;
     struct Pipelines {
         vk::Pipeline validate, bounds, fit, count, peel, reduce_max, peel_init, classify, finalize, merge, separate;
-        vk::Pipeline count_conservative, peel_conservative;  // only where the device rasterises conservatively
+        vk::Pipeline count_conservative;  // only where the device rasterises conservatively
         vk::Pipeline pack_rowcount, scan_counts, pack_shift, pack_move, scan_blocksum, scan_scatter;
     } pipes_;
     struct Buffers {

@@ -7,6 +7,7 @@
 // non-zero on any unexpected error.
 //
 //   vkcollide_leak_run [frames=1000] [--validation]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -149,12 +150,12 @@ int main(int argc, char** argv) {
             must(w2->addMesh(ball, {.name = "ball-2", .transform = at(0.5f, 0, 0)}), "second add 2");
             must(w2->detect(s), "second detect");
         }
-        if (frame == 9) rss_first = residentKiB();
+        if (frame == std::min(9, frames - 1)) rss_first = residentKiB();
         if (frame == 9 || frame % 100 == 99 || frame + 1 == frames)
             std::printf("frame %4d: resident %ld KiB, %zu pairs so far\n", frame + 1, residentKiB(), pairs);
     }
     std::printf("frames %d, pairs %zu, objects excluded %zu, huge resolutions refused %zu, validation messages %zu\n", frames, pairs,
                 excluded, refused, messages);
-    std::printf("resident growth from frame 10 to the end: %ld KiB\n", residentKiB() - rss_first);
+    std::printf("resident growth from frame %d to the end: %ld KiB\n", std::min(10, frames), residentKiB() - rss_first);
     return messages == 0 ? 0 : 1;
 }

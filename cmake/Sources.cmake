@@ -19,6 +19,7 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/vk/resources.cpp
   ${S}/graph/executor.cpp
   ${S}/passes/broad_phase.cpp
+  ${S}/passes/compute_sampling.cpp
   ${S}/passes/mesh_upload.cpp
   ${S}/api/world.cpp
 )

@@ -7,6 +7,7 @@
 #include <cstdint>
 namespace vkcollide::gpu {
 using uint = std::uint32_t;
+using uint64_t = std::uint64_t;
 struct vec4 { float x, y, z, w; };
 #define VKC_ADDRESS(type) std::uint64_t
 #define VKC_CONST inline constexpr uint
@@ -95,6 +96,11 @@ struct Header {
     // GPU-side input checks (kObjectCheckOnGpu): how many triangles failed, and one of them.
     uint bad_index_count, bad_index_object, bad_index_triangle;
     uint bad_vertex_count, bad_vertex_object, bad_vertex_triangle;
+    uint cs_small;          // compute sampling: triangles drawn by one invocation each
+    uint cs_big;            // ... triangles drawn in tiles
+    uint cs_items;          // ... tile work items (workgroups) for the big ones
+    uint pad0;
+    uint64_t fragments;     // sum over rays of their fragment counts (reduce-max)
 };
 
 // Everything a broad-phase shader needs, uploaded once per detection.
@@ -123,6 +129,7 @@ struct Frame {
     float fit_margin;                   // relative margin of the auto fit
     float closed_epsilon_world;         // closed-surface touching gap in world units (0: exact ties only)
     uint level_offset[kMaxLevels];      // first texel of each mip level in `bundles`
+    VKC_ADDRESS(uint64_t) compute_sampling;  // CsFrame (compute sampling backend), or 0
 };
 
 // Pushed per dispatch or draw.
@@ -132,6 +139,64 @@ struct Push {
     uint step;
     uint level;
     uint coverage;  // kCoverage* (sampling passes only)
+};
+
+// ---- Compute sampling backend (src/passes/compute_sampling.hpp) -----------------------
+// Object sampling without the graphics pipeline: edge-function rasterization in compute
+// with the rasterizer's coverage rule. Triangles whose pixel box is small are drawn by one
+// invocation each; bigger ones are cut into kCsTile x kCsTile pixel tiles, one workgroup
+// (one invocation per pixel) per work item of `tiles_per_item` consecutive tiles. Peeling
+// either draws the triangles again per step, or (fragment lists) the count pass stores
+// every ray's keys (a gather pass redraws when a ray had more than list_layers) and each
+// step picks the next keys per pixel from them.
+VKC_CONST kCsGroupSize = 64;         // invocations per workgroup (= kCsTile^2)
+VKC_CONST kCsTile = 8;               // tile side in pixels
+VKC_CONST kCsMaxGroupsX = 65535;     // indirect dispatch width (the guaranteed minimum limit)
+VKC_CONST kCsSmallExtent = 16384;    // one-invocation triangles span at most this many
+                                     // sub-pixel units per axis (edge functions fit 32 bits)
+VKC_CONST kCsTieTopLeft = 0u;        // sample on an edge: covered by left and top edges
+VKC_CONST kCsTieBottomLeft = 1u;     // ... by left and bottom edges
+
+// One triangle after setup, 48 bytes. Pixel (i, j)'s sample sits at (i, j) << subpixel
+// bits in these coordinates; vertices are ordered so the edge functions are positive inside.
+struct CsTriangle {
+    int x[3];
+    int y[3];
+    uint box_lo;        // first pixel of the box: x | y << 16 (box_lo > box_hi: culled)
+    uint box_hi;        // last pixel (inclusive)
+    uint key_low;       // triangle id | kKeyOpen | kKeyBackFacing
+    float z;            // depth at the centre of pixel box_lo
+    float dzdx, dzdy;   // depth step per pixel
+};
+
+struct CsCounters {
+    uint small_count;     // entries of CsFrame.small
+    uint big_count;       // entries of CsFrame.big
+    uint item_count;      // entries of CsFrame.items
+    uint tiles_per_item;  // tiles one workgroup draws (1 unless the item budget is short)
+    uint small_groups;    // workgroups of the one-invocation triangles
+    uint total_groups;    // small_groups + item_count
+    uint pad0, pad1;
+    uint64_t tiles;       // tiles of all big triangles
+};
+
+struct CsFrame {
+    VKC_ADDRESS(uint64_t) triangles;  // CsTriangle[triangle_count]
+    VKC_ADDRESS(uint64_t) small;      // uint[triangle_count]: one-invocation triangles
+    VKC_ADDRESS(uint64_t) big;        // uint[triangle_count]: tiled triangles
+    VKC_ADDRESS(uint64_t) items;      // uvec2[item_capacity]: (triangle, item of it)
+    VKC_ADDRESS(uint64_t) counters;   // CsCounters
+    VKC_ADDRESS(uint64_t) args;       // VkDispatchIndirectCommand of the draw dispatches
+    VKC_ADDRESS(uint64_t) fill;       // uint[N*N]: keys stored so far per ray (gather pass)
+    VKC_ADDRESS(uint64_t) fragments;  // uint64[layers * N*N]: key k of ray p at k*N*N + p
+    uint item_capacity;               // > triangle_count
+    uint subpixel_bits;               // VkPhysicalDeviceLimits::subPixelPrecisionBits
+    uint small_box;                   // most pixels in a one-invocation triangle's box
+    uint tie_rule;                    // kCsTieTopLeft or kCsTieBottomLeft
+    uint fuse_first_step;             // 1: the count pass also does peeling step 0
+    uint depth_snapped;               // 1: depth plane through the snapped vertices
+    uint list_layers;                 // keys the count pass stores per ray (0: none)
+    uint pad0;
 };
 
 #ifdef __cplusplus

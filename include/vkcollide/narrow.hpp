@@ -90,10 +90,23 @@ struct NarrowStats {
     std::size_t positive_tests = 0;                   // "# pos. tests": tests that found an intersection (= pairs.size())
 };
 
+// Wall-clock time of each stage of one runNarrowPhase call, in milliseconds (host
+// steady clock). For benchmarks and the statistics; never affects the result.
+struct NarrowTimings {
+    double validate_ms = 0;  // input checks, duplicate detection
+    double sweep_ms = 0;     // sweep and prune, self-collision switch and neighbour rule
+    double filter_ms = 0;    // NarrowOptions::may_collide
+    double test_ms = 0;      // exact triangle-triangle tests
+    double sort_ms = 0;      // colliding pairs into canonical order
+    double response_ms = 0;  // response vectors
+    double total_ms = 0;     // the whole call
+};
+
 struct NarrowOptions {
     // Whether objects a and b (a < b) may collide at all. Empty: every pair may.
-    // Called on the thread that calls runNarrowPhase, never concurrently, at most once
-    // per candidate pair whose boxes overlap; it must not call back into the pool.
+    // Called on the thread that calls runNarrowPhase, never concurrently, once per
+    // distinct object pair that has candidates whose boxes overlap, in ascending (a, b)
+    // order; it must not call back into the pool.
     std::function<bool(std::uint32_t object_a, std::uint32_t object_b)> may_collide;
     // Per-object self-collision switch, indexed by object; objects past the end use
     // default_self_collision. Triangles of one object are only tested when it is on.
@@ -109,6 +122,7 @@ struct NarrowResult {
     std::vector<TrianglePair> pairs;           // sorted ascending, no duplicates
     std::vector<TriangleResponse> responses;   // one per triangle in pairs, sorted by (object, triangle)
     NarrowStats stats;
+    NarrowTimings timings;  // not part of the result proper: differs from run to run
 };
 
 // Runs the narrow phase on the candidates that the GPU broad phase kept.

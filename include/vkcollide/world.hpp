@@ -99,6 +99,11 @@ enum class BadObjectPolicy {
     Fail,     // the whole detection fails with that error
 };
 
+// How object sampling (paper §4) runs: depth peeling on the graphics pipeline, or the
+// same rays and keys computed by compute shaders (edge functions with the rasterizer's
+// coverage rule). Auto chooses per device and scene; DetectStats says which and why.
+enum class SamplingBackend { Auto, Raster, Compute };
+
 // Every field left empty is chosen from the scene (DetectStats::settings_note says how).
 struct DetectSettings {
     // Rays per image side, a power of two in [4, 16384]. Automatic: about four pixels
@@ -112,6 +117,7 @@ struct DetectSettings {
     std::uint32_t layer_cap = 0;
     bool dual = false;  // peel from the front and the back at once (half the passes)
     PackingMethod packing = PackingMethod::Scan;
+    SamplingBackend backend = SamplingBackend::Auto;
     // Open surfaces: two hits closer than this along a ray (world units) may collide.
     // Automatic: half the typical edge length of the open objects.
     std::optional<float> open_epsilon;
@@ -162,7 +168,8 @@ struct DetectStats {
     std::uint32_t axes = 1;              // sampling directions run (counts above are summed over them,
                                          // depth complexity and layers are their maximum)
     std::string coverage = "centre";     // "centre", "dilate" or "conservative"
-    std::string backend = "raster";      // object-sampling backend
+    std::string backend;                 // object-sampling backend that ran: "raster" or "compute"
+    std::string backend_reason;          // why (Auto's rule, or "asked for")
     std::string settings_note;           // how automatic settings were chosen
     // Times.
     std::vector<PassTime> gpu_passes;    // GPU timestamps of every pass, in order
@@ -171,6 +178,9 @@ struct DetectStats {
     double narrow_ms = 0;                // host: the CPU narrow phase
     double total_ms = 0;                 // host wall time from submit to result
     unsigned narrow_threads = 0;
+    // Memory: GPU buffers held by the world (uploaded meshes and the broad phase's buffers;
+    // engine-owned buffers not counted).
+    std::uint64_t gpu_memory_bytes = 0;
 };
 
 // A colliding pair; objects are ObjectIds, triangles index the object's triangle list.

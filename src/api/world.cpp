@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "passes/broad_phase.hpp"
+#include "passes/compute_sampling.hpp"
 #include "vk/device.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -45,6 +46,9 @@ struct CollisionWorld::Impl {
         ObjectOptions options;
         bool host = false;
         vk::Buffer vertices, indices;  // host meshes: uploaded copies
+        // Host meshes: the indices again, for measuring after updateVertices (reading the
+        // upload buffer back would cross the bus: it may be write-combined device memory).
+        std::vector<std::uint32_t> host_indices;
         passes::GpuMesh gpu;           // addresses, counts, flags (transform set per run)
         // Host meshes: object-space box and mean edge length (object units).
         std::array<float, 6> box{};
@@ -168,6 +172,7 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     o.vertices = std::move(*vb);
     o.indices = std::move(*ib);
     Impl::measureHost(o, mesh.positions, mesh.indices);
+    o.host_indices = mesh.indices;
     w.objects.push_back(std::move(o));
     w.objectsChanged();
     return id;
@@ -287,8 +292,7 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
             return Error(ErrorCode::InvalidMesh, who + "vertex " + std::to_string(i) + " is NaN or infinite");
     std::memcpy(o.vertices.mapped(), positions.data(), positions.size_bytes());
     o.vertices.flush();
-    std::span<const std::uint32_t> indices(static_cast<const std::uint32_t*>(o.indices.mapped()), std::size_t(o.gpu.triangle_count) * 3);
-    Impl::measureHost(o, positions, indices);
+    Impl::measureHost(o, positions, o.host_indices);
     return {};
 }
 
@@ -433,6 +437,7 @@ passes::BroadPhaseSettings CollisionWorld::Impl::broadSettings(std::uint32_t axi
     b.layer_cap = s.layer_cap;
     b.dual = s.dual;
     b.packing = s.packing;
+    b.backend = s.backend;
     b.open_epsilon = *s.open_epsilon;
     b.closed_epsilon = s.closed_epsilon;
     b.coverage = s.coverage == Coverage::Dilate         ? passes::Coverage::Dilate
@@ -611,6 +616,10 @@ Result<DetectResult> CollisionWorld::Impl::finish(std::vector<passes::BroadPhase
                   : run_settings.coverage == Coverage::Conservative ? "conservative"
                                                                     : "centre";
     st.settings_note = run_note;
+    st.backend = passes::toString(broad[0].backend);
+    st.backend_reason = broad[0].backend_reason;
+    for (std::uint32_t k = 1; k < broad.size(); ++k)
+        if (broad[k].backend != broad[0].backend) st.backend_reason += "; axis " + std::to_string(k) + ": " + passes::toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
     const std::uint32_t cap = run_settings.layer_cap;
     for (std::uint32_t k = 0; k < broad.size(); ++k) {
         const passes::BroadPhaseResult& b = broad[k];
@@ -653,6 +662,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(std::vector<passes::BroadPhase
     for (TrianglePair& p : out.pairs) p.object_a = run_ids[p.object_a], p.object_b = run_ids[p.object_b];
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = run_ids[r.object];
+    for (const auto& bp : broads)
+        if (bp) st.gpu_memory_bytes += bp->memoryBytes();
+    for (const Object& o : objects) st.gpu_memory_bytes += (o.vertices.valid() ? o.vertices.size() : 0) + (o.indices.valid() ? o.indices.size() : 0);
     st.total_ms = msSince(run_start);
     return out;
 }

@@ -111,9 +111,52 @@ inline Expansion<16> det3(const Float3& p, const Float3& q, const Float3& r, con
 
 inline int signOf(double x) { return (x > 0) - (x < 0); }
 
+
+// The nine differences b - a, c - a, d - a, rounded to double; true when all are exact,
+// which is the rule for float inputs (a float difference fits a double unless the two
+// exponents are more than 29 apart).
+bool exactDifferences(const Float3& a, const Float3& b, const Float3& c, const Float3& d, double (&out)[9]) {
+    const Float3* const points[3] = {&b, &c, &d};
+    bool exact = true;
+    for (int k = 0; k < 3; ++k) {
+        const double coords[3][2] = {{points[k]->x, a.x}, {points[k]->y, a.y}, {points[k]->z, a.z}};
+        for (int axis = 0; axis < 3; ++axis) {
+            double err;
+            twoSum(coords[axis][0], -coords[axis][1], out[3 * k + axis], err);
+            exact = exact && err == 0;
+        }
+    }
+    return exact;
+}
+
+// p * q - r * s, exactly (a four-component expansion).
+Expansion<4> differenceOfProducts(double p, double q, double r, double s) {
+    double pq, pq_err, rs, rs_err;
+    twoProduct(p, q, pq, pq_err);
+    twoProduct(r, s, rs, rs_err);
+    Expansion<4> e;
+    e.add(pq_err);
+    e.add(pq);
+    e.add(-rs_err);
+    e.add(-rs);
+    return e;
+}
+
 }  // namespace
 
 int orient3dExact(const Float3& a, const Float3& b, const Float3& c, const Float3& d) noexcept {
+    double diff[9];
+    if (exactDifferences(a, b, c, d, diff)) {
+        // The usual case: det[u, v, w] = w . (u x v) on the exact differences u = b - a,
+        // v = c - a, w = d - a. Products and their errors are multiples of 2^-447 and below
+        // 2^390 (same argument as above), so this stays exact; at most 24 components.
+        const double ux = diff[0], uy = diff[1], uz = diff[2], vx = diff[3], vy = diff[4], vz = diff[5];
+        Expansion<24> det;
+        det.addScaled(differenceOfProducts(uy, vz, uz, vy), diff[6]);
+        det.addScaled(differenceOfProducts(uz, vx, ux, vz), diff[7]);
+        det.addScaled(differenceOfProducts(ux, vy, uy, vx), diff[8]);
+        return det.sign();
+    }
     // det[b-a, c-a, d-a] = -det4[(a,1);(b,1);(c,1);(d,1)]
     //                    = det3(b,c,d) - det3(a,c,d) + det3(a,b,d) - det3(a,b,c).
     // Working on the raw coordinates (not differences) keeps every product a product of
@@ -129,6 +172,12 @@ int orient3dExact(const Float3& a, const Float3& b, const Float3& c, const Float
 }
 
 int orient2dExact(const Float2& a, const Float2& b, const Float2& c) noexcept {
+    double bax, bay, cax, cay, e0, e1, e2, e3;
+    twoSum(b.x, -double(a.x), bax, e0);
+    twoSum(b.y, -double(a.y), bay, e1);
+    twoSum(c.x, -double(a.x), cax, e2);
+    twoSum(c.y, -double(a.y), cay, e3);
+    if (e0 == 0 && e1 == 0 && e2 == 0 && e3 == 0) return differenceOfProducts(bax, cay, bay, cax).sign();
     // det[b-a, c-a] = M(a,b) + M(b,c) + M(c,a).
     Expansion<8> det;
     det.add(minorXY(a.x, a.y, b.x, b.y));
@@ -152,6 +201,38 @@ int orient3d(const Float3& a, const Float3& b, const Float3& c, const Float3& d)
     const double bound = kOrient3dBound * permanent;
     if (det > bound || -det > bound) return signOf(det);
     return orient3dExact(a, b, c, d);
+}
+
+PlaneOrientation::PlaneOrientation(const Float3& a, const Float3& b, const Float3& c) noexcept : a_(a), b_(b), c_(c) {
+    const double ux = double(b.x) - a.x, uy = double(b.y) - a.y, uz = double(b.z) - a.z;
+    const double vx = double(c.x) - a.x, vy = double(c.y) - a.y, vz = double(c.z) - a.z;
+    // n = u x v, each component exactly as orient2d evaluates the projected triangle.
+    const double p[6] = {uy * vz, uz * vy, uz * vx, ux * vz, ux * vy, uy * vx};
+    for (int k = 0; k < 3; ++k) {
+        normal_[k] = p[2 * k] - p[2 * k + 1];
+        magnitude_[k] = std::fabs(p[2 * k]) + std::fabs(p[2 * k + 1]);
+    }
+}
+
+int PlaneOrientation::side(const Float3& d) const noexcept {
+    // det[u, v, w] = w . (u x v): Shewchuk's orient3d filter expanded along w instead of
+    // along the first row. The error analysis only uses the shape "rounded difference
+    // times (difference of two products of rounded differences), summed", so the same
+    // bound holds.
+    const double wx = double(d.x) - a_.x, wy = double(d.y) - a_.y, wz = double(d.z) - a_.z;
+    const double det = wx * normal_[0] + wy * normal_[1] + wz * normal_[2];
+    const double permanent = std::fabs(wx) * magnitude_[0] + std::fabs(wy) * magnitude_[1] + std::fabs(wz) * magnitude_[2];
+    const double bound = kOrient3dBound * permanent;
+    if (det > bound || -det > bound) return signOf(det);
+    return orient3dExact(a_, b_, c_, d);
+}
+
+bool PlaneOrientation::certainlyNotCollinear() const noexcept {
+    for (int k = 0; k < 3; ++k) {
+        const double bound = kOrient2dBound * magnitude_[k];
+        if (normal_[k] > bound || -normal_[k] > bound) return true;
+    }
+    return false;
 }
 
 int orient2d(const Float2& a, const Float2& b, const Float2& c) noexcept {

@@ -23,6 +23,22 @@ int orient3d(const Float3& a, const Float3& b, const Float3& c, const Float3& d)
 // 0 collinear. Exact for all finite floats.
 int orient2d(const Float2& a, const Float2& b, const Float2& c) noexcept;
 
+// orient3d(a, b, c, d) for many d against one plane: the filter's products for a, b, c
+// are computed once. side(d) returns exactly orient3d(a, b, c, d).
+class PlaneOrientation {
+public:
+    PlaneOrientation(const Float3& a, const Float3& b, const Float3& c) noexcept;
+    int side(const Float3& d) const noexcept;
+    // True when the filter alone proves a, b, c not collinear (some component of
+    // (b - a) x (c - a) is certainly non-zero); false means "maybe collinear".
+    bool certainlyNotCollinear() const noexcept;
+
+private:
+    Float3 a_, b_, c_;
+    double normal_[3];     // (b - a) x (c - a), rounded
+    double magnitude_[3];  // per component, the sum of the two products' magnitudes
+};
+
 // The exact fallbacks alone (no filter), exposed so tests can check filter and
 // fallback against each other.
 int orient3dExact(const Float3& a, const Float3& b, const Float3& c, const Float3& d) noexcept;

@@ -1,20 +1,56 @@
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "narrow/neighbours.hpp"
+#include "narrow/radix_sort.hpp"
 #include "narrow/sweep_and_prune.hpp"
-#include "vkcollide/thread_pool.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "vkcollide/narrow.hpp"
+#include "vkcollide/thread_pool.hpp"
+
+// Stages (docs/narrow_phase.md has the measurements behind these choices):
+//   1. validate and rank: every candidate checked, its (object, triangle) key radix sorted
+//      once (unless already in order, as the GPU writes them); a key's rank orders pairs and responses canonically without comparing
+//      candidates again, and equal neighbours in the sorted keys are the duplicates.
+//   2. sweep and prune per grid cell (sweep_and_prune.hpp), in parallel; the same tasks apply
+//      the self-collision switch and the neighbour rule.
+//   3. the object-pair filter, called once per distinct object pair on this thread.
+//   4. exact tests in parallel; each task keeps its hits as (rank, rank) keys.
+//   5. the hit keys radix sorted: the canonical pair order.
+//   6. responses, summed in that order.
+// Every parallel stage writes per-task state that is combined in a fixed order or sorted,
+// so the result does not depend on the thread count or on how tasks were scheduled.
+
+#if defined(__GNUC__) || defined(__clang__)
+#define VKCOLLIDE_ALWAYS_INLINE __attribute__((always_inline))
+#else
+#define VKCOLLIDE_ALWAYS_INLINE
+#endif
 
 namespace vkcollide {
 namespace {
 
+// Candidates per validation task.
+constexpr std::size_t kValidateGrain = 8192;
+// Sweep positions per task: about kTasksPerThread tasks per thread, within these bounds.
+constexpr std::size_t kMinSweepGrain = 64;
+constexpr std::size_t kMaxSweepGrain = 8192;
+constexpr std::size_t kTasksPerThread = 8;
 // Exact tests per task: large enough to amortise the hand-out, small enough to balance
-// (a test costs about 0.1 to 1 microseconds, more when the exact fallback runs).
-constexpr std::size_t kTestsPerTask = 512;
+// (a test costs 0.1 to 1 microseconds, more when the exact fallback runs).
+constexpr std::size_t kTestGrain = 256;
+
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point from, Clock::time_point to) {
+    return std::chrono::duration<double, std::milli>(to - from).count();
+}
 
 std::string describe(const CandidateTriangle& c) {
     return "object " + std::to_string(c.object) + " triangle " + std::to_string(c.triangle);
@@ -22,33 +58,25 @@ std::string describe(const CandidateTriangle& c) {
 
 bool isFinite(const Float3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
-Result<void> validateCandidates(std::span<const CandidateTriangle> in_candidates) {
-    if (in_candidates.size() > std::numeric_limits<std::uint32_t>::max()) {
-        return Error(ErrorCode::InvalidArgument, "runNarrowPhase: more than 2^32-1 candidates");
-    }
-    for (const CandidateTriangle& c : in_candidates) {
-        for (const Float3& p : c.v) {
-            if (!isFinite(p)) return Error(ErrorCode::InvalidArgument, "runNarrowPhase: " + describe(c) + " has a non-finite vertex");
-        }
-        const bool finite_box = std::isfinite(c.box[0]) && std::isfinite(c.box[1]) && std::isfinite(c.box[2]) &&
-                                std::isfinite(c.box[3]) && std::isfinite(c.zmin) && std::isfinite(c.zmax);
-        if (!finite_box) return Error(ErrorCode::InvalidArgument, "runNarrowPhase: " + describe(c) + " has a non-finite box or depth");
-        if (!(c.box[0] <= c.box[2] && c.box[1] <= c.box[3] && c.zmin <= c.zmax)) {
-            return Error(ErrorCode::InvalidArgument,
-                         "runNarrowPhase: " + describe(c) + " has an empty box (needs x0 <= x1, y0 <= y1, zmin <= zmax)");
-        }
-    }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> ids;
-    ids.reserve(in_candidates.size());
-    for (const CandidateTriangle& c : in_candidates) ids.emplace_back(c.object, c.triangle);
-    std::sort(ids.begin(), ids.end());
-    const auto dup = std::adjacent_find(ids.begin(), ids.end());
-    if (dup != ids.end()) {
-        return Error(ErrorCode::InvalidArgument, "runNarrowPhase: object " + std::to_string(dup->first) + " triangle " +
-                                                     std::to_string(dup->second) + " appears more than once");
-    }
-    return {};
+bool isValid(const CandidateTriangle& c) {
+    return isFinite(c.v[0]) && isFinite(c.v[1]) && isFinite(c.v[2]) && std::isfinite(c.box[0]) &&
+           std::isfinite(c.box[1]) && std::isfinite(c.box[2]) && std::isfinite(c.box[3]) && std::isfinite(c.zmin) &&
+           std::isfinite(c.zmax) && c.box[0] <= c.box[2] && c.box[1] <= c.box[3] && c.zmin <= c.zmax;
 }
+
+// The error for a candidate that failed isValid, naming the first broken rule.
+Error invalidCandidate(const CandidateTriangle& c) {
+    for (const Float3& p : c.v) {
+        if (!isFinite(p)) return Error(ErrorCode::InvalidArgument, "runNarrowPhase: " + describe(c) + " has a non-finite vertex");
+    }
+    const bool finite_box = std::isfinite(c.box[0]) && std::isfinite(c.box[1]) && std::isfinite(c.box[2]) &&
+                            std::isfinite(c.box[3]) && std::isfinite(c.zmin) && std::isfinite(c.zmax);
+    if (!finite_box) return Error(ErrorCode::InvalidArgument, "runNarrowPhase: " + describe(c) + " has a non-finite box or depth");
+    return Error(ErrorCode::InvalidArgument,
+                 "runNarrowPhase: " + describe(c) + " has an empty box (needs x0 <= x1, y0 <= y1, zmin <= zmax)");
+}
+
+std::uint64_t keyOf(std::uint32_t high, std::uint32_t low) { return (std::uint64_t{high} << 32) | low; }
 
 struct Vec3d {
     double x = 0, y = 0, z = 0;
@@ -63,113 +91,270 @@ Vec3d unitNormal(const CandidateTriangle& c) {
     return {n.x / length, n.y / length, n.z / length};
 }
 
-bool keyLess(const CandidateTriangle& a, const CandidateTriangle& b) {
-    return a.object != b.object ? a.object < b.object : a.triangle < b.triangle;
-}
+// What one sweep task found.
+struct SweepTask {
+    std::vector<narrow::IndexPair> tests;     // pairs to test (object filter still to apply)
+    std::vector<std::uint64_t> object_pairs;  // distinct (object_a, object_b), a < b, when may_collide is set
+    std::size_t sap_pairs = 0, filtered_pairs = 0, neighbour_pairs = 0;
+};
 
 }  // namespace
 
 Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
                                     ThreadPool& pool) {
-    if (Result<void> valid = validateCandidates(in_candidates); !valid) return valid.error();
+    const Clock::time_point t_start = Clock::now();
+    const std::size_t n = in_candidates.size();
+    if (n > std::numeric_limits<std::uint32_t>::max()) {
+        return Error(ErrorCode::InvalidArgument, "runNarrowPhase: more than 2^32-1 candidates");
+    }
+
+    // Stage 1: validate (in parallel; the error names the first bad candidate, as a serial
+    // check would) and rank the keys.
+    const auto keyAt = [&](std::size_t i) { return keyOf(in_candidates[i].object, in_candidates[i].triangle); };
+    bool keys_ascending = true;
+    {
+        const std::size_t tasks = n == 0 ? 0 : (n - 1) / kValidateGrain + 1;
+        std::vector<std::size_t> first_bad(tasks, n);
+        std::vector<char> ascending(tasks, 1);
+        pool.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
+            std::size_t bad = n;
+            bool task_ascending = true;
+            std::uint64_t previous = keyAt(begin);
+            for (std::size_t i = begin; i < end; ++i) {
+                if (bad == n && !isValid(in_candidates[i])) bad = i;
+                const std::uint64_t key = keyAt(i);
+                task_ascending = task_ascending && (i == begin || previous < key);
+                previous = key;
+            }
+            first_bad[begin / kValidateGrain] = bad;
+            ascending[begin / kValidateGrain] = task_ascending ? 1 : 0;
+        });
+        const auto bad = std::min_element(first_bad.begin(), first_bad.end());
+        if (bad != first_bad.end() && *bad < n) return invalidCandidate(in_candidates[*bad]);
+        for (std::size_t t = 0; t < tasks; ++t) {
+            keys_ascending = keys_ascending && ascending[t] &&
+                             (t == 0 || keyAt(t * kValidateGrain - 1) < keyAt(t * kValidateGrain));
+        }
+    }
+    // The GPU writes its records in (object, triangle) order: then the keys are already
+    // sorted and unique, and a candidate's rank is its index. Otherwise sort, find
+    // duplicates, rank.
+    std::vector<narrow::KeyIndex> keys;      // sorted; empty when the keys are ascending
+    std::vector<std::uint32_t> rank_of;      // candidate -> rank; empty when the keys are ascending
+    if (!keys_ascending) {
+        keys.resize(n);
+        for (std::size_t i = 0; i < n; ++i) keys[i] = {keyAt(i), static_cast<std::uint32_t>(i)};
+        narrow::radixSort(keys);
+        for (std::size_t r = 1; r < n; ++r) {
+            if (keys[r].key == keys[r - 1].key) {
+                return Error(ErrorCode::InvalidArgument, "runNarrowPhase: object " + std::to_string(keys[r].key >> 32) +
+                                                             " triangle " + std::to_string(keys[r].key & 0xffffffffu) +
+                                                             " appears more than once");
+            }
+        }
+        rank_of.resize(n);
+        for (std::size_t r = 0; r < n; ++r) rank_of[keys[r].index] = static_cast<std::uint32_t>(r);
+    }
+    const auto rankOf = [&](std::uint32_t i) { return keys_ascending ? i : rank_of[i]; };
+    const auto candidateOfRank = [&](std::uint64_t r) -> const CandidateTriangle& {
+        const auto rank = static_cast<std::uint32_t>(r);
+        return in_candidates[keys_ascending ? rank : keys[rank].index];
+    };
 
     NarrowResult result;
     NarrowStats& stats = result.stats;
-    stats.candidates = in_candidates.size();
-
-    // Phase 1 (calling thread): sweep and prune, then the cheap filters. The user's
-    // may_collide callback therefore never runs concurrently.
-    std::vector<char> potentially_colliding(in_candidates.size(), 0);
-    std::vector<narrow::IndexPair> tests;
-    narrow::sweepAndPrune(in_candidates, [&](std::uint32_t i, std::uint32_t j) {
-        ++stats.sap_pairs;
-        potentially_colliding[i] = potentially_colliding[j] = 1;
-        const CandidateTriangle& a = in_candidates[i];
-        const CandidateTriangle& b = in_candidates[j];
-        if (a.object == b.object) {
-            if (!options.selfCollides(a.object)) {
-                ++stats.filtered_pairs;
-                return;
-            }
-            if (narrow::areNeighbours(a.vertex_index, a.v, b.vertex_index, b.v)) {
-                ++stats.neighbour_pairs;
-                return;
-            }
-        } else if (options.may_collide &&
-                   !options.may_collide(std::min(a.object, b.object), std::max(a.object, b.object))) {
-            ++stats.filtered_pairs;
-            return;
-        }
-        tests.push_back({i, j});
-    });
-    stats.potentially_colliding_triangles =
-        static_cast<std::size_t>(std::count(potentially_colliding.begin(), potentially_colliding.end(), 1));
-    stats.triangle_tests = tests.size();
-
-    // Phase 2 (workers): exact tests. Each writes only its own slot, so the outcome does
-    // not depend on scheduling.
-    std::vector<char> hit(tests.size(), 0);
-    pool.parallelFor(tests.size(), kTestsPerTask, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) {
-            hit[k] = narrow::trianglesIntersect(in_candidates[tests[k].i].v, in_candidates[tests[k].j].v) ? 1 : 0;
-        }
-    });
-
-    // Phase 3: pairs in canonical order.
-    std::vector<narrow::IndexPair> colliding;  // (lower key, higher key) candidate indices
-    for (std::size_t k = 0; k < tests.size(); ++k) {
-        if (!hit[k]) continue;
-        narrow::IndexPair p = tests[k];
-        if (keyLess(in_candidates[p.j], in_candidates[p.i])) std::swap(p.i, p.j);
-        colliding.push_back(p);
-    }
-    const auto pair_of = [&](const narrow::IndexPair& p) {
-        const CandidateTriangle& a = in_candidates[p.i];
-        const CandidateTriangle& b = in_candidates[p.j];
-        return TrianglePair{a.object, a.triangle, b.object, b.triangle};
+    NarrowTimings& timings = result.timings;
+    stats.candidates = n;
+    Clock::time_point t_mark = Clock::now();
+    timings.validate_ms = msBetween(t_start, t_mark);
+    const auto lap = [&](double& out_ms) {
+        const Clock::time_point now = Clock::now();
+        out_ms = msBetween(t_mark, now);
+        t_mark = now;
     };
-    std::sort(colliding.begin(), colliding.end(),
-              [&](const narrow::IndexPair& x, const narrow::IndexPair& y) { return pair_of(x) < pair_of(y); });
-    result.pairs.reserve(colliding.size());
-    for (const narrow::IndexPair& p : colliding) result.pairs.push_back(pair_of(p));
-    stats.positive_tests = result.pairs.size();
 
-    // Phase 4: responses, summed in the order of the sorted pairs.
-    std::vector<Vec3d> sum(in_candidates.size());
-    std::vector<std::uint32_t> partners(in_candidates.size(), 0);
-    std::vector<Vec3d> normal(in_candidates.size());
-    for (const narrow::IndexPair& p : colliding) {
-        for (std::uint32_t idx : {p.i, p.j}) {
-            if (partners[idx] == 0) normal[idx] = unitNormal(in_candidates[idx]);
+    // Stage 2: sweep and prune, self-collision switch, neighbour rule.
+    narrow::CellSweep sweep;
+    sweep.build(in_candidates, &pool);
+    const std::size_t entries = sweep.entryCount();
+    const std::size_t sweep_grain =
+        std::clamp<std::size_t>(entries / (std::size_t{pool.threadCount()} * kTasksPerThread), kMinSweepGrain, kMaxSweepGrain);
+    std::vector<SweepTask> sweep_tasks(entries == 0 ? 0 : (entries - 1) / sweep_grain + 1);
+    const std::unique_ptr<std::atomic<std::uint8_t>[]> in_pair(new std::atomic<std::uint8_t>[n]());
+    const bool filter_objects = static_cast<bool>(options.may_collide);
+    // The self-collision switch, when it is the same for every object.
+    const bool uniform_self = options.self_collision.empty();
+    const bool self_default = options.default_self_collision;
+    pool.parallelFor(entries, sweep_grain, [&](std::size_t begin, std::size_t end) {
+        // Built in locals and moved into the task at the end: tasks sit next to each other
+        // in memory, and growing vectors in place would share cache lines between threads.
+        SweepTask task;
+        std::size_t sap_pairs = 0, filtered_pairs = 0, neighbour_pairs = 0;  // in registers, not in `task`
+        std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
+        // Runs for every reported pair, most of them neighbours: inlined into the sweep.
+        sweep.sweepRange(begin, end, [&](std::uint32_t i, std::uint32_t j, const narrow::CandidateTag& a,
+                                         const narrow::CandidateTag& b) VKCOLLIDE_ALWAYS_INLINE {
+            ++sap_pairs;
+            // Store only when not set yet: most pairs find both flags set, and reading keeps
+            // the cache line shared instead of bouncing it between threads.
+            if (!in_pair[i].load(std::memory_order_relaxed)) in_pair[i].store(1, std::memory_order_relaxed);
+            if (!in_pair[j].load(std::memory_order_relaxed)) in_pair[j].store(1, std::memory_order_relaxed);
+            if (a.object == b.object) {
+                if (!(uniform_self ? self_default : options.selfCollides(a.object))) {
+                    ++filtered_pairs;
+                    return;
+                }
+                // A shared index decides most neighbours; the positions only the rest.
+                if (narrow::shareIndex(a.vertex_index, b.vertex_index) ||
+                    narrow::areNeighbours(a.vertex_index, in_candidates[i].v, b.vertex_index, in_candidates[j].v)) {
+                    ++neighbour_pairs;
+                    return;
+                }
+            } else if (filter_objects) {
+                const std::uint64_t object_pair = keyOf(std::min(a.object, b.object), std::max(a.object, b.object));
+                if (object_pair != last_object_pair) task.object_pairs.push_back(object_pair);
+                last_object_pair = object_pair;
+            }
+            task.tests.push_back({i, j});
+        });
+        task.sap_pairs = sap_pairs;
+        task.filtered_pairs = filtered_pairs;
+        task.neighbour_pairs = neighbour_pairs;
+        std::sort(task.object_pairs.begin(), task.object_pairs.end());
+        task.object_pairs.erase(std::unique(task.object_pairs.begin(), task.object_pairs.end()), task.object_pairs.end());
+        sweep_tasks[begin / sweep_grain] = std::move(task);
+    });
+    std::vector<std::size_t> test_begin(sweep_tasks.size() + 1, 0);  // tests of task t: [test_begin[t], test_begin[t+1])
+    for (std::size_t t = 0; t < sweep_tasks.size(); ++t) {
+        const SweepTask& task = sweep_tasks[t];
+        stats.sap_pairs += task.sap_pairs;
+        stats.filtered_pairs += task.filtered_pairs;
+        stats.neighbour_pairs += task.neighbour_pairs;
+        test_begin[t + 1] = test_begin[t] + task.tests.size();
+    }
+    for (std::size_t i = 0; i < n; ++i) stats.potentially_colliding_triangles += in_pair[i].load(std::memory_order_relaxed);
+    lap(timings.sweep_ms);
+
+    // Stage 3: the object-pair filter, once per distinct pair of objects with overlapping
+    // boxes, in ascending order, on this thread.
+    std::vector<std::uint64_t> object_pairs;
+    std::vector<char> object_pair_allowed;
+    if (filter_objects) {
+        for (const SweepTask& task : sweep_tasks) object_pairs.insert(object_pairs.end(), task.object_pairs.begin(), task.object_pairs.end());
+        std::sort(object_pairs.begin(), object_pairs.end());
+        object_pairs.erase(std::unique(object_pairs.begin(), object_pairs.end()), object_pairs.end());
+        object_pair_allowed.resize(object_pairs.size());
+        for (std::size_t k = 0; k < object_pairs.size(); ++k) {
+            const auto a = static_cast<std::uint32_t>(object_pairs[k] >> 32), b = static_cast<std::uint32_t>(object_pairs[k]);
+            object_pair_allowed[k] = options.may_collide(a, b) ? 1 : 0;
         }
-        ++partners[p.i];
-        ++partners[p.j];
     }
-    for (const narrow::IndexPair& p : colliding) {
-        const Vec3d &ni = normal[p.i], &nj = normal[p.j];
-        sum[p.i].x += nj.x - ni.x; sum[p.i].y += nj.y - ni.y; sum[p.i].z += nj.z - ni.z;
-        sum[p.j].x += ni.x - nj.x; sum[p.j].y += ni.y - nj.y; sum[p.j].z += ni.z - nj.z;
+    lap(timings.filter_ms);
+
+    // Stage 4: exact tests over all tasks' pairs, as one index range.
+    const std::size_t total_tests = test_begin.back();
+    const std::size_t test_tasks = total_tests == 0 ? 0 : (total_tests - 1) / kTestGrain + 1;
+    std::vector<std::vector<std::uint64_t>> hits(test_tasks);  // (lower rank, higher rank) per hit
+    std::vector<std::size_t> object_filtered(test_tasks, 0);
+    pool.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
+        const std::size_t task_index = begin / kTestGrain;
+        std::vector<std::uint64_t> out;  // moved into hits[task_index] at the end (see the sweep)
+        std::size_t filtered = 0;
+        std::size_t source = static_cast<std::size_t>(std::upper_bound(test_begin.begin(), test_begin.end(), begin) -
+                                                      test_begin.begin()) - 1;
+        std::uint64_t cached_pair = std::numeric_limits<std::uint64_t>::max();
+        bool cached_allowed = true;
+        for (std::size_t k = begin; k < end; ++k) {
+            while (test_begin[source + 1] <= k) ++source;
+            const narrow::IndexPair p = sweep_tasks[source].tests[k - test_begin[source]];
+            const CandidateTriangle& a = in_candidates[p.i];
+            const CandidateTriangle& b = in_candidates[p.j];
+            if (filter_objects && a.object != b.object) {
+                const std::uint64_t object_pair = keyOf(std::min(a.object, b.object), std::max(a.object, b.object));
+                if (object_pair != cached_pair) {
+                    cached_pair = object_pair;
+                    const auto it = std::lower_bound(object_pairs.begin(), object_pairs.end(), object_pair);
+                    cached_allowed = object_pair_allowed[static_cast<std::size_t>(it - object_pairs.begin())] != 0;
+                }
+                if (!cached_allowed) {
+                    ++filtered;
+                    continue;
+                }
+            }
+            if (narrow::trianglesIntersect(a.v, b.v)) {
+                const std::uint32_t ri = rankOf(p.i), rj = rankOf(p.j);
+                out.push_back(ri < rj ? keyOf(ri, rj) : keyOf(rj, ri));
+            }
+        }
+        hits[task_index] = std::move(out);
+        object_filtered[task_index] = filtered;
+    });
+    std::size_t filtered_late = 0, hit_count = 0;
+    for (std::size_t t = 0; t < test_tasks; ++t) {
+        filtered_late += object_filtered[t];
+        hit_count += hits[t].size();
     }
-    std::vector<std::uint32_t> responders;
-    for (std::uint32_t idx = 0; idx < in_candidates.size(); ++idx) {
-        if (partners[idx] > 0) responders.push_back(idx);
+    stats.filtered_pairs += filtered_late;
+    stats.triangle_tests = total_tests - filtered_late;
+    lap(timings.test_ms);
+
+    // Stage 5: canonical order. Ranks follow (object, triangle), so sorting the
+    // (lower rank, higher rank) keys sorts the pairs.
+    std::vector<std::uint64_t> colliding;
+    colliding.reserve(hit_count);
+    for (const auto& part : hits) colliding.insert(colliding.end(), part.begin(), part.end());
+    narrow::radixSort(colliding);
+    result.pairs.reserve(colliding.size());
+    for (const std::uint64_t key : colliding) {
+        const CandidateTriangle& a = candidateOfRank(key >> 32);
+        const CandidateTriangle& b = candidateOfRank(key & 0xffffffffu);
+        result.pairs.push_back({a.object, a.triangle, b.object, b.triangle});
     }
-    std::sort(responders.begin(), responders.end(),
-              [&](std::uint32_t x, std::uint32_t y) { return keyLess(in_candidates[x], in_candidates[y]); });
+    stats.positive_tests = result.pairs.size();
+    lap(timings.sort_ms);
+
+    // Stage 6: responses, summed in the order of the sorted pairs. Responders are the
+    // ranks in pairs, in rank order, i.e. sorted by (object, triangle).
+    std::vector<std::uint64_t> responders;
+    responders.reserve(2 * colliding.size());
+    for (const std::uint64_t key : colliding) {
+        responders.push_back(key >> 32);
+        responders.push_back(key & 0xffffffffu);
+    }
+    narrow::radixSort(responders);
+    responders.erase(std::unique(responders.begin(), responders.end()), responders.end());
+    const std::unique_ptr<std::uint32_t[]> slot(new std::uint32_t[n]);  // rank -> responder; read only where written
+    std::vector<Vec3d> normal(responders.size()), sum(responders.size());
+    std::vector<std::uint32_t> partners(responders.size(), 0);
+    for (std::size_t k = 0; k < responders.size(); ++k) {
+        slot[responders[k]] = static_cast<std::uint32_t>(k);
+        normal[k] = unitNormal(candidateOfRank(responders[k]));
+    }
+    for (const std::uint64_t key : colliding) {
+        const std::uint32_t i = slot[key >> 32], j = slot[key & 0xffffffffu];
+        const Vec3d &ni = normal[i], &nj = normal[j];
+        sum[i].x += nj.x - ni.x; sum[i].y += nj.y - ni.y; sum[i].z += nj.z - ni.z;
+        sum[j].x += ni.x - nj.x; sum[j].y += ni.y - nj.y; sum[j].z += ni.z - nj.z;
+        ++partners[i];
+        ++partners[j];
+    }
     result.responses.reserve(responders.size());
-    for (std::uint32_t idx : responders) {
-        const Vec3d& s = sum[idx];
+    for (std::size_t k = 0; k < responders.size(); ++k) {
+        const CandidateTriangle& c = candidateOfRank(responders[k]);
+        const Vec3d& s = sum[k];
         const double length = std::sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
         TriangleResponse r;
-        r.object = in_candidates[idx].object;
-        r.triangle = in_candidates[idx].triangle;
-        r.partner_count = partners[idx];
+        r.object = c.object;
+        r.triangle = c.triangle;
+        r.partner_count = partners[k];
         if (length > 0) {
             r.direction = {static_cast<float>(s.x / length), static_cast<float>(s.y / length),
                            static_cast<float>(s.z / length)};
         }
         result.responses.push_back(r);
     }
+    lap(timings.response_ms);
+    timings.total_ms = msBetween(t_start, t_mark);
     return result;
 }
 

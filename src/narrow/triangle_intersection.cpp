@@ -90,20 +90,29 @@ std::array<Float2, 3> projectTriangle(std::span<const Float3, 3> t, int axis) {
     return {project(t[0], axis), project(t[1], axis), project(t[2], axis)};
 }
 
-// Two coplanar, non-degenerate triangles. Every extreme point of the intersection is a
-// vertex of one triangle inside the other or a crossing of two edges.
+// Whether all of `t` lies strictly outside the edge (p, q) of a triangle whose
+// orientation is `winding` (+1 or -1): a separating line along that edge.
+bool strictlyOutside(const Float2& p, const Float2& q, int winding, const std::array<Float2, 3>& t) {
+    for (const Float2& v : t) {
+        if (orient2d(p, q, v) * winding >= 0) return false;
+    }
+    return true;
+}
+
+// Two coplanar, non-degenerate triangles, projected to 2D where the projection is
+// injective on their plane. Separating axis test: two disjoint convex polygons are
+// strictly separated by a line parallel to one of their edges, so the closed triangles
+// intersect iff no edge of either has the whole other triangle strictly outside. At most
+// 20 orientations (vertex-in-triangle plus edge-crossing tests would take up to 54).
 bool coplanarTrianglesIntersect(std::span<const Float3, 3> a, std::span<const Float3, 3> b) {
     const int axis = normalAxis(a[0], a[1], a[2]);  // not -1: a is not degenerate
     const std::array<Float2, 3> pa = projectTriangle(a, axis), pb = projectTriangle(b, axis);
+    const int winding_a = orient2d(pa[0], pa[1], pa[2]), winding_b = orient2d(pb[0], pb[1], pb[2]);  // both non-zero
     for (int i = 0; i < 3; ++i) {
-        if (pointInTriangle2d(pa[i], pb) || pointInTriangle2d(pb[i], pa)) return true;
+        if (strictlyOutside(pa[i], pa[(i + 1) % 3], winding_a, pb)) return false;
+        if (strictlyOutside(pb[i], pb[(i + 1) % 3], winding_b, pa)) return false;
     }
-    for (int i = 0; i < 3; ++i) {
-        for (int j = 0; j < 3; ++j) {
-            if (segmentsIntersect2d(pa[i], pa[(i + 1) % 3], pb[j], pb[(j + 1) % 3])) return true;
-        }
-    }
-    return false;
+    return true;
 }
 
 // The two ends of a collinear point triple.
@@ -173,22 +182,30 @@ bool segmentTriangleIntersect(const Float3& s0, const Float3& s1, std::span<cons
 }
 
 bool trianglesIntersect(std::span<const Float3, 3> a, std::span<const Float3, 3> b) noexcept {
+    // Each plane's filter products are shared by its three side tests and by the
+    // degeneracy check (the normal's components are the projected orientations).
+    //
+    // Sides of a's vertices against b's plane; reject if all strictly on one side. This
+    // is valid before the degeneracy checks: a degenerate b has every side 0 (exactly),
+    // and a degenerate a strictly on one side of b's plane cannot meet b. Most pairs end
+    // here or at the same test the other way round.
+    const PlaneOrientation plane_b(b[0], b[1], b[2]);
+    int side_a[3], side_b[3];
+    for (int i = 0; i < 3; ++i) side_a[i] = plane_b.side(a[i]);
+    if (sameStrictSign(side_a[0], side_a[1], side_a[2])) return false;
+    const PlaneOrientation plane_a(a[0], a[1], a[2]);
+    for (int i = 0; i < 3; ++i) side_b[i] = plane_a.side(b[i]);
+    if (sameStrictSign(side_b[0], side_b[1], side_b[2])) return false;
+
     // Degenerate triangles are segments (or points).
-    if (collinear(a[0], a[1], a[2])) {
+    if (!plane_a.certainlyNotCollinear() && collinear(a[0], a[1], a[2])) {
         const auto [lo, hi] = collinearEnds(a);
         return segmentTriangleIntersect(lo, hi, b);
     }
-    if (collinear(b[0], b[1], b[2])) {
+    if (!plane_b.certainlyNotCollinear() && collinear(b[0], b[1], b[2])) {
         const auto [lo, hi] = collinearEnds(b);
         return segmentTriangleIntersect(lo, hi, a);
     }
-
-    // Sides of a's vertices against b's plane; reject if all strictly on one side.
-    int side_a[3], side_b[3];
-    for (int i = 0; i < 3; ++i) side_a[i] = orient3d(b[0], b[1], b[2], a[i]);
-    if (sameStrictSign(side_a[0], side_a[1], side_a[2])) return false;
-    for (int i = 0; i < 3; ++i) side_b[i] = orient3d(a[0], a[1], a[2], b[i]);
-    if (sameStrictSign(side_b[0], side_b[1], side_b[2])) return false;
 
     if (side_a[0] == 0 && side_a[1] == 0 && side_a[2] == 0) return coplanarTrianglesIntersect(a, b);
 

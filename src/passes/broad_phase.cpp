@@ -266,6 +266,26 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     const auto triangles = static_cast<std::uint32_t>(total);
     const auto objects = static_cast<std::uint32_t>(meshes.size());
     if (auto ok = ensureBuffers(n, triangles, objects, s.keep_ray_image); !ok) return ok.error();
+    BackendChoice backend = chooseSamplingBackend(device_->properties, computeSamplingSupported(*device_), s.backend, n, triangles,
+                                                  triangles == last_triangles_ ? last_fragments_per_triangle_ : -1.0);
+    if (s.coverage != Coverage::Centre && backend.backend == SamplingBackend::Compute) {
+        // Thin-triangle coverage is drawn by sample.vert (or a conservative pipeline): raster only.
+        if (s.backend == SamplingBackend::Compute)
+            return Error(ErrorCode::UnsupportedFeature, "thin-triangle coverage (dilate or conservative) needs the raster sampling backend");
+        backend = {SamplingBackend::Raster, "thin-triangle coverage needs raster (Auto would take compute: " + backend.reason + ")"};
+    }
+    const bool compute = backend.backend == SamplingBackend::Compute;
+    VkDeviceAddress compute_frame = 0;
+    if (compute) {
+        if (!compute_) {
+            auto created = ComputeSampling::create(*device_);
+            if (!created) return created.error();
+            compute_ = std::move(*created);
+        }
+        auto prepared = compute_->prepare(n, triangles, s.compute);
+        if (!prepared) return prepared.error();
+        compute_frame = *prepared;
+    }
 
     // Objects and the frame description.
     auto* objs = static_cast<gpu::ObjectGpu*>(buf_.objects_buf.mapped());
@@ -313,6 +333,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     fr.open_epsilon_world = s.open_epsilon;
     fr.fit_margin = s.fit_margin;
     fr.closed_epsilon_world = s.closed_epsilon;
+    fr.compute_sampling = compute_frame;
     VkDeviceSize offset = 0;
     for (std::uint32_t l = 0; l < levels; ++l) {
         fr.level_offset[l] = static_cast<std::uint32_t>(offset);
@@ -337,6 +358,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     frame_.settings = s;
     frame_.meshes.assign(meshes.begin(), meshes.end());
     frame_.any_gpu_check = std::any_of(meshes.begin(), meshes.end(), [](const GpuMesh& m) { return m.check_on_gpu; });
+    frame_.backend = backend;
     return {};
 }
 
@@ -346,9 +368,10 @@ BroadPhase::Resources BroadPhase::importResources(graph::Graph& g, bool full) {
     r.header_rb = g.importBuffer("header-readback", buf_.header_rb, true);
     r.counts = g.importBuffer("counts", buf_.counts);
     r.projection = g.importBuffer("projection", buf_.projection);
-    if (!full) return r;
-    r.front = g.importBuffer("front-keys", buf_.front);
+    r.front = g.importBuffer("front-keys", buf_.front);  // the compute backend's depth complexity uses them
     r.back = g.importBuffer("back-keys", buf_.back);
+    if (computeBackend()) r.compute = compute_->import(g);
+    if (!full) return r;
     r.state = g.importBuffer("ray-state", buf_.state);
     r.bundles = g.importBuffer("bundles", buf_.bundles);
     r.sparse = g.importBuffer("sparse", buf_.sparse);
@@ -434,9 +457,13 @@ void BroadPhase::recordMeasure(graph::Graph& g, const Resources& r) const {
         });
     }
     const std::uint32_t n = frame_.frame.resolution;
-    g.addPass("depth-complexity", PassKind::Raster).renderArea(n, n).read(r.projection).readWrite(r.counts).record([&, frame_addr](PassContext& pc) {
-        for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.count, P.count_conservative, frame_addr, i, 0, true);
-    });
+    if (computeBackend()) {
+        compute_->addDepthComplexity(g, r.compute, {r.projection, r.header, r.counts, {}, r.front, r.back}, meshes, frame_addr);
+    } else {
+        g.addPass("depth-complexity", PassKind::Raster).renderArea(n, n).read(r.projection).readWrite(r.counts).record([&, frame_addr](PassContext& pc) {
+            for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.count, P.count_conservative, frame_addr, i, 0, true);
+        });
+    }
     g.addPass("reduce-max", PassKind::Compute).read(r.counts).readWrite(r.header).record([&, frame_addr, pixels](PassContext& pc) {
         bindAndPush(pc, P.reduce_max, frame_addr);
         pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
@@ -452,17 +479,23 @@ void BroadPhase::recordPeelToPack(graph::Graph& g, const Resources& r, std::uint
     const auto& meshes = frame_.meshes;
     const auto& P = pipes_;
 
-    g.addPass("peel-init", PassKind::Compute).read(r.counts).write(r.state).write(r.front).write(r.back).record([&, frame_addr, pixels](PassContext& pc) {
-        bindAndPush(pc, P.peel_init, frame_addr);
+    const bool compute = computeBackend();
+    const std::uint32_t fused = compute && compute_->fusesFirstStep() ? 1u : 0u;
+    g.addPass("peel-init", PassKind::Compute).read(r.counts).write(r.state).write(r.front).write(r.back).record([&, frame_addr, pixels, fused](PassContext& pc) {
+        bindAndPush(pc, P.peel_init, frame_addr, 0, fused);
         pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
     });
     for (std::uint32_t step = 0; step < steps; ++step) {
-        auto peel = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Raster);
-        peel.renderArea(n, n).read(r.projection).read(r.state).readWrite(r.front);
-        if (dual) peel.readWrite(r.back);
-        peel.record([&, step, frame_addr](PassContext& pc) {
-            for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.peel, P.peel, frame_addr, i, step, false);  // no conservative draw when peeling
-        });
+        if (compute) {
+            compute_->addPeelStep(g, r.compute, {r.projection, r.header, r.counts, r.state, r.front, r.back}, step, dual, frame_addr);
+        } else {
+            auto peel = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Raster);
+            peel.renderArea(n, n).read(r.projection).read(r.state).readWrite(r.front);
+            if (dual) peel.readWrite(r.back);
+            peel.record([&, step, frame_addr](PassContext& pc) {
+                for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.peel, P.peel, frame_addr, i, step, false);  // no conservative draw when peeling
+            });
+        }
         auto classify = g.addPass("classify[" + std::to_string(step) + "]", PassKind::Compute);
         classify.read(r.counts).read(r.projection).readWrite(r.state).readWrite(r.front);
         if (dual) classify.readWrite(r.back);
@@ -523,6 +556,15 @@ void BroadPhase::recordPeelToPack(graph::Graph& g, const Resources& r, std::uint
     }
 }
 
+std::uint64_t BroadPhase::memoryBytes() const noexcept {
+    std::uint64_t n = 0;
+    for (const vk::Buffer* b : {&buf_.frame, &buf_.objects_buf, &buf_.projection, &buf_.header, &buf_.header_rb, &buf_.counts,
+                                &buf_.front, &buf_.back, &buf_.state, &buf_.bundles, &buf_.sparse, &buf_.records, &buf_.scratch,
+                                &buf_.ray_image})
+        n += b->valid() ? b->size() : 0;
+    return n;
+}
+
 gpu::Header BroadPhase::readHeader() {
     buf_.header_rb.invalidate();
     gpu::Header h;
@@ -580,7 +622,7 @@ void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionRepo
     for (const auto& p : report.passes) {
         const std::string& name = p.name;
         if (name == "depth-complexity" || name.rfind("peel", 0) == 0 || name.rfind("classify", 0) == 0 || name == "finalize" ||
-            name == "clear" || name == "validate" || name == "bounds" || name == "fit" || name == "reduce-max")
+            name == "clear" || name == "validate" || name == "bounds" || name == "fit" || name == "reduce-max" || name.rfind("csample", 0) == 0)
             result.sampling_ms += p.gpu_ms;
         else if (name == "merge") result.merging_ms += p.gpu_ms;
         else if (name == "separate") result.separation_ms += p.gpu_ms;
@@ -602,6 +644,9 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     if (!report1) return report1.error();
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
+    // The compute backend sizes its per-ray fragment lists for the measured depth.
+    if (computeBackend())
+        if (auto ok = compute_->preparePeeling(h1.depth_complexity); !ok) return ok.error();
     frame_.first = BroadPhaseResult{};
     addTimings(frame_.first, *report1);
     frame_.measured_layers = s.layer_cap ? std::min(h1.depth_complexity, s.layer_cap) : h1.depth_complexity;
@@ -621,6 +666,10 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
     if (s.layer_cap) layers = std::min(layers, s.layer_cap);
+    // Unknown depth: the compute backend draws each peeling step (fragment lists could be
+    // incomplete if the scene got deeper, and that would not be conservative).
+    if (computeBackend())
+        if (auto ok = compute_->preparePeeling(0); !ok) return ok.error();
     frame_.first = BroadPhaseResult{};
     frame_.measured_layers = layers;
     frame_.steps = s.dual ? (layers + 1) / 2 : layers;
@@ -652,6 +701,13 @@ Result<BroadPhaseResult> BroadPhase::collect() {
     // separate measuring submission, the second header keeps the first's value.
     result.depth_complexity = h.depth_complexity;
     result.projection = hostProjection(h);
+    result.backend = frame_.backend.backend;
+    result.backend_reason = frame_.backend.reason;
+    result.fragments = h.fragments;
+    result.compute_small = h.cs_small, result.compute_big = h.cs_big, result.compute_items = h.cs_items;
+    if (computeBackend()) result.compute_fragment_lists = compute_->usesFragmentLists();
+    last_triangles_ = fr.triangle_count;
+    last_fragments_per_triangle_ = double(h.fragments) / double(std::max(fr.triangle_count, 1u));
     result.layers = frame_.measured_layers;
     result.peel_steps = frame_.steps;
     result.triangles = triangles;

@@ -15,6 +15,7 @@
 
 #include "broadphase.h"
 #include "graph/executor.hpp"
+#include "passes/compute_sampling.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/world.hpp"
 #include "vk/resources.hpp"
@@ -60,6 +61,10 @@ struct BroadPhaseSettings {
     bool keep_ray_image = false;                    // read back the collision-ray image
     // Sample this world box instead of fitting the scene: min x,y,z then max x,y,z.
     std::optional<std::array<float, 6>> region;
+    // Object sampling on the graphics pipeline or in compute (same rays and records);
+    // Auto picks per device and scene (chooseSamplingBackend in compute_sampling.hpp).
+    SamplingBackend backend = SamplingBackend::Auto;
+    ComputeSamplingTuning compute;
 };
 
 struct BroadPhaseResult {
@@ -74,6 +79,11 @@ struct BroadPhaseResult {
     // lays it out; computed on the host from the fitted bounds (an ulp may differ from the GPU's).
     std::array<float, 16> projection{};
     std::vector<graph::PassTiming> passes;   // both submissions, in order
+    SamplingBackend backend = SamplingBackend::Raster;  // the one that ran (never Auto)
+    std::string backend_reason;              // one line: why
+    std::uint64_t fragments = 0;             // covered pixels summed over all triangles
+    std::uint32_t compute_small = 0, compute_big = 0, compute_items = 0;  // compute backend's triangle lists
+    bool compute_fragment_lists = false;     // compute backend peeled from per-ray fragment lists
     double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
 };
 
@@ -108,11 +118,14 @@ public:
         Error error;
     };
     const std::vector<BadObject>& badObjects() const noexcept { return bad_objects_; }
+    // Bytes of the GPU buffers the broad phase holds (its own, not the meshes').
+    std::uint64_t memoryBytes() const noexcept;
 
 private:
     explicit BroadPhase(vk::Device& device) : device_(&device), executor_(device) {}
     struct Resources {
         graph::ResourceId header, header_rb, counts, projection, front, back, state, bundles, sparse, records, scratch, rays;
+        ComputeSampling::Ids compute;  // the compute backend's buffers, when it runs
     };
     // Checks the run's inputs, sizes the buffers, uploads objects, frame and projection.
     Result<void> prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
@@ -127,6 +140,7 @@ private:
     std::array<float, 16> hostProjection(const gpu::Header& h) const;
     Result<void> checkInputs(const gpu::Header& header);
     static void addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report);
+    bool computeBackend() const noexcept { return frame_.backend.backend == SamplingBackend::Compute; }
     Result<void> ensureBuffers(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects, bool ray_image);
 
     vk::Device* device_;
@@ -139,9 +153,13 @@ private:
         BroadPhaseSettings settings;
         std::vector<GpuMesh> meshes;
         bool any_gpu_check = false;
+        BackendChoice backend;
         std::uint32_t measured_layers = 0, steps = 0;
         BroadPhaseResult first;  // timings of a separate measuring submission
     } frame_;
+    std::unique_ptr<ComputeSampling> compute_;  // created on first use
+    std::uint32_t last_triangles_ = 0;          // the previous run's scene, for Auto
+    double last_fragments_per_triangle_ = -1;
     struct Pipelines {
         vk::Pipeline validate, bounds, fit, count, peel, reduce_max, peel_init, classify, finalize, merge, separate;
         vk::Pipeline count_conservative;  // only where the device rasterises conservatively

@@ -206,3 +206,20 @@ TEST_CASE("Reference handles 200K triangles in seconds", "[.][narrow][reference]
     WARN(a.triangleCount() + b.triangleCount() << " triangles, " << pairs->size() << " pairs, " << seconds << " s");
     CHECK(seconds < 10.0);
 }
+
+TEST_CASE("classifyContact tells crossing pairs from touching ones", "[reference]") {
+    using test::Contact;
+    const std::array<Float3, 3> floor{Float3{-1, -1, 0}, Float3{1, -1, 0}, Float3{0, 1, 0}};
+    // Through the floor: vertices on both sides of each other's plane.
+    CHECK(test::classifyContact(floor, {Float3{0, 0, -1}, Float3{0, 0, 1}, Float3{0.5f, -2, 0.2f}}) == Contact::Crossing);
+    // A vertex resting on the floor, the rest above.
+    CHECK(test::classifyContact(floor, {Float3{0, 0, 0}, Float3{0, 0.5f, 1}, Float3{0.5f, 0, 1}}) == Contact::Touching);
+    // An edge lying in the floor.
+    CHECK(test::classifyContact(floor, {Float3{-0.2f, 0, 0}, Float3{0.2f, 0, 0}, Float3{0, 0, 1}}) == Contact::Touching);
+    // Coplanar overlap.
+    CHECK(test::classifyContact(floor, {Float3{0, 0, 0}, Float3{2, 0, 0}, Float3{0, 2, 0}}) == Contact::Touching);
+    // A wall through the floor's plane that meets the floor only at the floor's corner
+    // (-1, -1, 0): the wall straddles the floor's plane, the floor does not straddle the wall's.
+    CHECK(test::classifyContact(floor, {Float3{-1, -2, -1}, Float3{-1, 2, -1}, Float3{-1, 0, 1}}) == Contact::Touching);
+    CHECK(test::classifyContact({Float3{-1, -2, -1}, Float3{-1, 2, -1}, Float3{-1, 0, 1}}, floor) == Contact::Touching);
+}

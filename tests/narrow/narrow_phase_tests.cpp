@@ -109,6 +109,27 @@ TEST_CASE("runNarrowPhase rejects bad candidates and names them", "[narrow][phas
     }
 }
 
+TEST_CASE("runNarrowPhase finds duplicates in sorted and unsorted input", "[narrow][phase][errors]") {
+    // Candidates in (object, triangle) order, as the GPU writes them, except for one
+    // repeated key; at a task border of the parallel validation and inside a task.
+    ThreadPool pool(3);
+    for (std::uint32_t repeat_at : {1u, 4000u, 8192u, 8193u, 11999u}) {
+        std::vector<CandidateTriangle> c;
+        for (std::uint32_t i = 0; i < 12000; ++i) {
+            const float x = float(i) * 3;
+            c.push_back(candidate(i / 5000, i % 5000, {x, 0, 0}, {x + 1, 0, 0}, {x, 1, 0}));
+        }
+        c[repeat_at].object = c[repeat_at - 1].object;
+        c[repeat_at].triangle = c[repeat_at - 1].triangle;
+        const auto r = runNarrowPhase(c, {}, pool);
+        REQUIRE_FALSE(r);
+        CHECK_THAT(r.error().message(), Catch::Contains("triangle " + std::to_string((repeat_at - 1) % 5000) + " appears more than once"));
+    }
+    std::vector<CandidateTriangle> ok;
+    for (std::uint32_t i = 0; i < 12000; ++i) ok.push_back(candidate(0, 11999 - i, {float(i), 0, 0}, {float(i) + 1, 0, 0}, {float(i), 1, 0}));
+    CHECK(runNarrowPhase(ok, {}, pool));  // descending keys: sorted, no duplicate
+}
+
 TEST_CASE("runNarrowPhase finds a crossing pair with paper statistics", "[narrow][phase]") {
     ThreadPool pool(2);
     const std::vector<CandidateTriangle> c = {wall(5, 9), flat(2, 4), candidate(3, 0, {10, 10, 0}, {11, 10, 0}, {10, 11, 0})};
@@ -211,6 +232,35 @@ TEST_CASE("NarrowOptions filter object pairs and self-collision", "[narrow][phas
         CHECK(r->pairs == std::vector<TrianglePair>{{0, 0, 0, 1}, {0, 0, 1, 0}});
         for (const auto& [a, b] : asked) CHECK(a < b);
         CHECK(r->stats.filtered_pairs == 1);
+    }
+}
+
+TEST_CASE("may_collide is asked once per object pair with overlapping boxes, in ascending order", "[narrow][phase][filter]") {
+    // Objects 0..3: 0, 1 and 2 stack their floors on each other (many overlapping pairs per
+    // object pair), 3 is far away (never asked).
+    std::vector<CandidateTriangle> c;
+    for (std::uint32_t object : {2u, 0u, 1u}) {
+        for (std::uint32_t t = 0; t < 40; ++t) {
+            const float x = float(t % 8) * 0.5f, z = float(object) * 0.1f;
+            c.push_back(candidate(object, t, {x, 0, z}, {x + 1, 0, z + 0.25f}, {x, 1, z}, {3 * t, 3 * t + 1, 3 * t + 2}));
+        }
+    }
+    c.push_back(candidate(3, 0, {50, 50, 0}, {51, 50, 0}, {50, 51, 0}));
+    for (unsigned threads : {1u, 4u}) {
+        ThreadPool pool(threads);
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> asked;
+        NarrowOptions options;
+        options.may_collide = [&](std::uint32_t a, std::uint32_t b) {
+            asked.emplace_back(a, b);
+            return !(a == 0 && b == 2);
+        };
+        const auto r = runNarrowPhase(c, options, pool);
+        REQUIRE(r);
+        INFO(threads << " threads");
+        CHECK(asked == std::vector<std::pair<std::uint32_t, std::uint32_t>>{{0, 1}, {0, 2}, {1, 2}});
+        for (const TrianglePair& p : r->pairs) CHECK_FALSE((p.object_a == 0 && p.object_b == 2));
+        CHECK(r->stats.filtered_pairs > 0);
+        CHECK(r->stats.sap_pairs == r->stats.filtered_pairs + r->stats.neighbour_pairs + r->stats.triangle_tests);
     }
 }
 

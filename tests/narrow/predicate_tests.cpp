@@ -165,6 +165,21 @@ TEST_CASE("orient3d and orient2d agree with big-integer arithmetic", "[narrow][p
         REQUIRE(orient3d(p[0], p[1], p[2], p[3]) == expected);
         REQUIRE(orient3dExact(p[0], p[1], p[2], p[3]) == expected);
         REQUIRE(orient3d(p[1], p[0], p[2], p[3]) == -expected);
+        // The shared-plane form gives the same signs, and its collinearity filter is
+        // right whenever it answers.
+        const PlaneOrientation plane(p[0], p[1], p[2]);
+        REQUIRE(plane.side(p[3]) == expected);
+        REQUIRE(plane.side(p[0]) == 0);
+        if (plane.certainlyNotCollinear()) {
+            const auto projected = [&](int i, int axis) {
+                return axis == 0 ? Float2{p[i].y, p[i].z} : (axis == 1 ? Float2{p[i].z, p[i].x} : Float2{p[i].x, p[i].y});
+            };
+            bool some_nonzero = false;
+            for (int axis = 0; axis < 3; ++axis) {
+                some_nonzero = some_nonzero || bigOrient2d(projected(0, axis), projected(1, axis), projected(2, axis)) != 0;
+            }
+            REQUIRE(some_nonzero);
+        }
 
         const Float2 a{p[0].x, p[0].y}, b{p[1].x, p[1].y}, c{p[2].x, p[2].y};
         const int expected2 = bigOrient2d(a, b, c);
@@ -172,4 +187,47 @@ TEST_CASE("orient3d and orient2d agree with big-integer arithmetic", "[narrow][p
         REQUIRE(orient2dExact(a, b, c) == expected2);
     }
     CHECK(zeros > 100);  // the degenerate cases were actually exercised
+}
+
+TEST_CASE("Exact predicates on coordinates spanning 10 to 70 binades", "[narrow][predicates]") {
+    // Differences that are exact in double (narrow spans) and that are not (wide spans),
+    // with coplanar or collinear constructions and one-ulp nudges: both expansion paths of
+    // the exact fallback against big integers.
+    std::mt19937 rng(4242);
+    std::uniform_int_distribution<int> small(-3, 3), spread(10, 70), coin(0, 1);
+    std::uniform_real_distribution<float> unit(0.5f, 1.0f);
+    int zeros = 0;
+    for (int iter = 0; iter < 4000; ++iter) {
+        const int width = spread(rng);  // binades spanned
+        const int top = std::uniform_int_distribution<int>(-100, 100)(rng);
+        const auto value = [&] {
+            const int e = top - std::uniform_int_distribution<int>(0, width)(rng);
+            float v = std::ldexp(unit(rng), e);
+            if (coin(rng)) v = -v;
+            if (small(rng) == 0) v = 0;
+            return v;
+        };
+        Float3 p[4];
+        for (Float3& q : p) q = {value(), value(), value()};
+        if (iter % 2 == 0) {
+            // d = a + s (b - a) + t (c - a) with small integers, where exact in float.
+            const float s = float(small(rng)), t = float(small(rng));
+            p[3] = {p[0].x + s * (p[1].x - p[0].x) + t * (p[2].x - p[0].x), p[0].y + s * (p[1].y - p[0].y) + t * (p[2].y - p[0].y),
+                    p[0].z + s * (p[1].z - p[0].z) + t * (p[2].z - p[0].z)};
+            if (!std::isfinite(p[3].x) || !std::isfinite(p[3].y) || !std::isfinite(p[3].z)) p[3] = p[0];
+            if (iter % 4 == 2) p[3] = nudge(p[3], rng);
+        }
+        const int expected = bigOrient3d(p[0], p[1], p[2], p[3]);
+        zeros += expected == 0;
+        INFO("iteration " << iter << " width " << width);
+        REQUIRE(orient3dExact(p[0], p[1], p[2], p[3]) == expected);
+        REQUIRE(orient3d(p[0], p[1], p[2], p[3]) == expected);
+        const Float2 a{p[0].x, p[0].y}, b{p[1].x, p[1].y};
+        Float2 c{p[2].x, p[2].y};
+        if (iter % 2 == 0) c = {p[3].x, p[3].y};
+        const int expected2 = bigOrient2d(a, b, c);
+        REQUIRE(orient2dExact(a, b, c) == expected2);
+        REQUIRE(orient2d(a, b, c) == expected2);
+    }
+    CHECK(zeros > 20);  // coplanar cases occur (many constructions round off the plane)
 }

@@ -51,3 +51,36 @@ TEST_CASE("ThreadPool serialises loops submitted from several threads", "[narrow
     for (std::thread& t : submitters) t.join();
     CHECK(total.load() == 4L * 50L * 100L);
 }
+
+TEST_CASE("ThreadPool counts the calling thread and runs one-chunk loops on it", "[narrow][threads]") {
+    for (unsigned threads : {1u, 3u}) {
+        ThreadPool pool(threads);
+        CHECK(pool.threadCount() == threads);
+        const std::thread::id caller = std::this_thread::get_id();
+        std::thread::id ran_on;
+        pool.parallelFor(10, 10, [&](std::size_t, std::size_t) { ran_on = std::this_thread::get_id(); });
+        CHECK(ran_on == caller);
+        // With one thread every chunk runs on the caller.
+        if (threads == 1) {
+            std::atomic<bool> elsewhere{false};
+            pool.parallelFor(100, 3, [&](std::size_t, std::size_t) {
+                if (std::this_thread::get_id() != caller) elsewhere = true;
+            });
+            CHECK_FALSE(elsewhere.load());
+        }
+    }
+}
+
+TEST_CASE("ThreadPool runs many short loops back to back", "[narrow][threads]") {
+    // Workers that are still polling or asleep when a loop ends must join the next one
+    // correctly; every item of every loop is counted once.
+    ThreadPool pool(4);
+    std::atomic<long> total{0};
+    for (int loop = 0; loop < 2000; ++loop) {
+        const std::size_t count = static_cast<std::size_t>(loop % 9);
+        pool.parallelFor(count, 1, [&](std::size_t begin, std::size_t end) { total.fetch_add(static_cast<long>(end - begin)); });
+    }
+    long expected = 0;
+    for (int loop = 0; loop < 2000; ++loop) expected += loop % 9;
+    CHECK(total.load() == expected);
+}

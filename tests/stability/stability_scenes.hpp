@@ -68,7 +68,7 @@ Result<Measured> measureScene(Context& context, const TestScene& scene, const st
                               const DetectSettings& settings, int runs = 1);
 
 // One line: case, variant, recall (found of reference), precision, collision rays,
-// triangles downloaded, exact tests, host wall time.
+// triangles downloaded, exact tests, host wall time, sampling backend.
 std::string describe(const std::string& case_name, const std::string& variant, const Measured& m);
 
 // The variants every case is measured under: the paper, then each mitigation alone, then all.

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <string>
 
+#include "narrow/exact_predicates.hpp"
 #include "narrow/neighbours.hpp"
 #include "vkcollide/thread_pool.hpp"
 #include "narrow/triangle_intersection.hpp"
@@ -256,6 +257,42 @@ PairComparison comparePairs(std::span<const TrianglePair> found, std::span<const
         c.recall = static_cast<double>(c.true_positives) / static_cast<double>(c.true_positives + c.false_negatives);
     }
     return c;
+}
+
+Contact classifyContact(const std::array<Float3, 3>& a, const std::array<Float3, 3>& b) {
+    auto straddles = [](const std::array<Float3, 3>& plane, const std::array<Float3, 3>& t) {
+        bool below = false, above = false;
+        for (const Float3& p : t) {
+            const int o = narrow::orient3d(plane[0], plane[1], plane[2], p);
+            below |= o < 0, above |= o > 0;
+        }
+        return below && above;
+    };
+    return straddles(a, b) && straddles(b, a) ? Contact::Crossing : Contact::Touching;
+}
+
+Result<std::vector<Contact>> classifyPairs(std::span<const ReferenceObject> objects, std::span<const TrianglePair> pairs) {
+    std::vector<std::vector<Float3>> world;
+    for (const ReferenceObject& o : objects) {
+        if (!o.mesh) return Error(ErrorCode::InvalidMesh, "classifyPairs: null mesh");
+        world.push_back(worldPositions(*o.mesh, o.transform));
+    }
+    auto corners = [&](std::uint32_t object, std::uint32_t triangle) -> Result<std::array<Float3, 3>> {
+        if (object >= objects.size() || std::size_t(triangle) * 3 + 2 >= objects[object].mesh->indices.size())
+            return Error(ErrorCode::InvalidArgument, "classifyPairs: pair outside the scene");
+        const auto& idx = objects[object].mesh->indices;
+        return std::array<Float3, 3>{world[object][idx[triangle * 3]], world[object][idx[triangle * 3 + 1]],
+                                     world[object][idx[triangle * 3 + 2]]};
+    };
+    std::vector<Contact> out;
+    out.reserve(pairs.size());
+    for (const TrianglePair& p : pairs) {
+        auto a = corners(p.object_a, p.triangle_a), b = corners(p.object_b, p.triangle_b);
+        if (!a) return a.error();
+        if (!b) return b.error();
+        out.push_back(classifyContact(*a, *b));
+    }
+    return out;
 }
 
 }  // namespace vkcollide::test

@@ -72,4 +72,14 @@ struct PairComparison {
 };
 PairComparison comparePairs(std::span<const TrianglePair> found, std::span<const TrianglePair> reference);
 
+// How two intersecting triangles meet. Crossing: each has vertices strictly on both sides
+// of the other's plane (the surfaces pass through each other). Touching: anything else
+// (a vertex or an edge lying on the other's face, coplanar overlap) — contacts that
+// image-space sampling cannot be expected to see and that benchmarks count apart.
+// Decided with exact orientation predicates.
+enum class Contact { Crossing, Touching };
+Contact classifyContact(const std::array<Float3, 3>& a, const std::array<Float3, 3>& b);
+// The contact of each pair of `pairs` (world positions of the scene's objects).
+Result<std::vector<Contact>> classifyPairs(std::span<const ReferenceObject> objects, std::span<const TrianglePair> pairs);
+
 }  // namespace vkcollide::test

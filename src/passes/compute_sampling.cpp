@@ -1,0 +1,282 @@
+#include "passes/compute_sampling.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <string_view>
+
+#include "broadphase.h"
+#include "passes/broad_phase.hpp"
+#include "shaders/all.hpp"
+
+namespace vkcollide::passes {
+namespace {
+
+using graph::PassContext;
+using graph::PassKind;
+using graph::Use;
+
+constexpr std::uint32_t kNvidiaVendor = 0x10DE;
+constexpr std::uint32_t kMesaVendor = 0x10005;  // VK_VENDOR_ID_MESA: llvmpipe
+// Extra work items beyond one per triangle, so a scene of few big triangles keeps one
+// tile per item.
+constexpr std::uint32_t kExtraItems = 65536;
+
+void bindAndPush(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint32_t object = 0,
+                 std::uint32_t step = 0) {
+    gpu::Push push{frame, object, step, 0, 0};
+    pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+    pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+}
+
+std::uint32_t groups(std::uint64_t items) {
+    return static_cast<std::uint32_t>((items + gpu::kGroupSize - 1) / gpu::kGroupSize);
+}
+
+bool contains(std::string_view haystack, std::string_view needle) { return haystack.find(needle) != std::string_view::npos; }
+
+}  // namespace
+
+const char* toString(SamplingBackend backend) noexcept {
+    switch (backend) {
+        case SamplingBackend::Auto: return "auto";
+        case SamplingBackend::Raster: return "raster";
+        case SamplingBackend::Compute: return "compute";
+    }
+    return "?";
+}
+
+bool computeSamplingSupported(const vk::Device& device) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &subgroup;
+    device.instance_fns.vkGetPhysicalDeviceProperties2(device.physical, &props);
+    const VkSubgroupFeatureFlags needed = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+    return (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) && (subgroup.supportedOperations & needed) == needed &&
+           props.properties.limits.subPixelPrecisionBits <= 16;
+}
+
+BackendChoice chooseSamplingBackend(const VkPhysicalDeviceProperties& device, bool compute_supported,
+                                    SamplingBackend requested, std::uint32_t resolution, std::uint32_t triangles,
+                                    double fragments_per_triangle) {
+    if (requested == SamplingBackend::Raster) return {SamplingBackend::Raster, "requested"};
+    if (requested == SamplingBackend::Compute) return {SamplingBackend::Compute, "requested"};
+    if (!compute_supported) return {SamplingBackend::Raster, "auto: no subgroup ballot/arithmetic in compute, raster"};
+    const std::string_view name = device.deviceName;
+    if (device.vendorID == kNvidiaVendor) {
+        for (std::string_view part : {"H100", "H200", "H800", "GH200", "H20"})
+            if (contains(name, part))
+                return {SamplingBackend::Compute,
+                        "auto: " + std::string(part) + " (GH100) runs graphics on 2 of its TPCs; compute uses every SM"};
+    }
+    const bool measured = fragments_per_triangle >= 0;
+    const double fpt = measured ? fragments_per_triangle
+                                : 2.0 * double(resolution) * double(resolution) / double(std::max(triangles, 1u));
+    char text[160];
+    if (device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
+        const bool small = fpt < kCpuComputeFragments;
+        std::snprintf(text, sizeof(text), "auto: CPU device, triangles of %.1f px (%s): %s", fpt, measured ? "measured" : "estimated",
+                      small ? "compute" : "raster");
+        return {small ? SamplingBackend::Compute : SamplingBackend::Raster, text};
+    }
+    if (fpt < kTinyTriangleFragments) {
+        std::snprintf(text, sizeof(text), "auto: GPU with raster hardware but tiny triangles (%.2f px each, %s)", fpt,
+                      measured ? "measured" : "estimated");
+        return {SamplingBackend::Compute, text};
+    }
+    std::snprintf(text, sizeof(text), "auto: GPU with raster hardware, triangles of %.1f px (%s)", fpt,
+                  measured ? "measured" : "estimated");
+    return {SamplingBackend::Raster, text};
+}
+
+Result<std::unique_ptr<ComputeSampling>> ComputeSampling::create(vk::Device& device) {
+    if (!computeSamplingSupported(device))
+        return Error(ErrorCode::UnsupportedFeature,
+                     "compute sampling needs subgroup ballot and arithmetic in compute shaders and at most 16 sub-pixel bits");
+    std::unique_ptr<ComputeSampling> cs(new ComputeSampling(device));
+    const std::span<const vk::Pipeline::Binding> none;
+    auto compute = [&](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) -> Result<void> {
+        auto p = vk::Pipeline::createCompute(device, code, none, sizeof(gpu::Push), name);
+        if (!p) return p.error();
+        out = std::move(*p);
+        return {};
+    };
+    for (auto r : {compute(cs->setup_, shaders::csample_setup_comp, "csample-setup"),
+                   compute(cs->bin_, shaders::csample_bin_comp, "csample-bin"),
+                   compute(cs->args_, shaders::csample_args_comp, "csample-args"),
+                   compute(cs->count_, shaders::csample_count_comp, "csample-count"),
+                   compute(cs->peel_, shaders::csample_peel_comp, "csample-peel"),
+                   compute(cs->gather_pipe_, shaders::csample_gather_comp, "csample-gather"),
+                   compute(cs->pick_, shaders::csample_pick_comp, "csample-pick")})
+        if (!r) return r.error();
+    return cs;
+}
+
+Result<VkDeviceAddress> ComputeSampling::prepare(std::uint32_t resolution, std::uint32_t triangles,
+                                                 const ComputeSamplingTuning& tuning) {
+    using vk::MemoryKind;
+    const std::uint32_t bits = device_->properties.limits.subPixelPrecisionBits;
+    const std::uint32_t tris = std::max(triangles, 1u);
+    auto make = [&](vk::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind, const char* name) -> Result<void> {
+        if (b.valid() && b.size() >= size) return {};
+        auto r = vk::Buffer::create(*device_, size, usage, kind, name);
+        if (!r) return r.error();
+        b = std::move(*r);
+        return {};
+    };
+    const VkDeviceSize items = VkDeviceSize(tris) + kExtraItems;
+    for (auto r : {make(frame_, sizeof(gpu::CsFrame), 0, MemoryKind::Upload, "csample-frame"),
+                   make(triangles_, VkDeviceSize(tris) * sizeof(gpu::CsTriangle), 0, MemoryKind::DeviceLocal, "csample-triangles"),
+                   make(lists_, VkDeviceSize(tris) * 8, 0, MemoryKind::DeviceLocal, "csample-lists"),
+                   make(items_, items * 8, 0, MemoryKind::DeviceLocal, "csample-items"),
+                   make(counters_, sizeof(gpu::CsCounters), 0, MemoryKind::DeviceLocal, "csample-counters"),
+                   make(args_buf_, 16, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryKind::DeviceLocal, "csample-args")})
+        if (!r) return r.error();
+    resolution_ = resolution;
+    list_budget_ = tuning.list_budget_bytes;
+    fuse_ = tuning.fuse_first_step && list_budget_ == 0;
+    fragment_lists_ = false;
+    gather_ = false;
+    // Layers the count pass stores: as many as the last run needed (at least the tuning's),
+    // within the budget.
+    const std::uint64_t layer_bytes = std::uint64_t(resolution) * resolution * 8;
+    list_layers_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(std::max(next_list_layers_, tuning.list_layers),
+                                                                      list_budget_ / layer_bytes));
+    if (list_layers_ > 0) {
+        if (auto ok = make(fragments_, layer_bytes * list_layers_, 0, MemoryKind::DeviceLocal, "csample-fragments"); !ok)
+            return ok.error();
+    }
+    bool snapped = device_->properties.vendorID != kMesaVendor;
+    if (tuning.depth_plane != ComputeSamplingTuning::DepthPlane::Device)
+        snapped = tuning.depth_plane == ComputeSamplingTuning::DepthPlane::Snapped;
+    gpu::CsFrame cf{};
+    cf.triangles = triangles_.address();
+    cf.small = lists_.address();
+    cf.big = lists_.address() + VkDeviceSize(tris) * 4;
+    cf.items = items_.address();
+    cf.counters = counters_.address();
+    cf.args = args_buf_.address();
+    cf.item_capacity = static_cast<std::uint32_t>(items_.size() / 8);
+    cf.subpixel_bits = bits;
+    cf.small_box = tuning.small_box;
+    cf.tie_rule = gpu::kCsTieTopLeft;  // lavapipe and (measured) the H200: see tests
+    cf.fuse_first_step = fuse_ ? 1u : 0u;
+    cf.depth_snapped = snapped ? 1u : 0u;
+    cf.list_layers = list_layers_;
+    cf.fragments = list_layers_ > 0 ? fragments_.address() : 0;
+    std::memcpy(frame_.mapped(), &cf, sizeof(cf));
+    frame_.flush();
+    return frame_.address();
+}
+
+Result<void> ComputeSampling::preparePeeling(std::uint32_t depth_complexity) {
+    const std::uint64_t bytes = std::uint64_t(resolution_) * resolution_ * depth_complexity * 8;
+    fragment_lists_ = list_budget_ > 0 && depth_complexity > 0 && bytes <= list_budget_;
+    gather_ = fragment_lists_ && depth_complexity > list_layers_;
+    if (fragment_lists_) next_list_layers_ = std::max(next_list_layers_, depth_complexity);
+    if (!gather_) return {};
+    // Free the old buffers before allocating bigger ones.
+    if (fragments_.size() < bytes) {
+        fragments_.reset();
+        auto r = vk::Buffer::create(*device_, bytes, 0, vk::MemoryKind::DeviceLocal, "csample-fragments");
+        if (!r) return r.error();
+        fragments_ = std::move(*r);
+    }
+    const VkDeviceSize fill_bytes = VkDeviceSize(resolution_) * resolution_ * 4;
+    if (fill_.size() < fill_bytes) {
+        fill_.reset();
+        auto r = vk::Buffer::create(*device_, fill_bytes, 0, vk::MemoryKind::DeviceLocal, "csample-fill");
+        if (!r) return r.error();
+        fill_ = std::move(*r);
+    }
+    auto* cf = static_cast<gpu::CsFrame*>(frame_.mapped());
+    cf->fragments = fragments_.address();
+    cf->fill = fill_.address();
+    frame_.flush();
+    return {};
+}
+
+ComputeSampling::Ids ComputeSampling::import(graph::Graph& g) {
+    Ids ids{g.importBuffer("csample-triangles", triangles_), g.importBuffer("csample-lists", lists_),
+            g.importBuffer("csample-items", items_), g.importBuffer("csample-counters", counters_),
+            g.importBuffer("csample-args", args_buf_), {}, {}};
+    if (fill_.valid()) ids.fill = g.importBuffer("csample-fill", fill_);
+    if (fragments_.valid()) ids.fragments = g.importBuffer("csample-fragments", fragments_);
+    return ids;
+}
+
+void ComputeSampling::addDepthComplexity(graph::Graph& g, const Ids& ids, const Shared& shared,
+                                         std::span<const GpuMesh> meshes, VkDeviceAddress frame) const {
+    std::uint32_t total = 0;
+    for (const GpuMesh& m : meshes) total += m.triangle_count;
+    // Counters are cleared and then counted by atomics within the pass, so one pass holds
+    // the four steps with a shader barrier between dependent ones.
+    auto setup = g.addPass("csample-setup", PassKind::Compute);
+    setup.read(shared.projection).readWrite(shared.header).write(ids.triangles).write(ids.lists).write(ids.items);
+    setup.readWrite(ids.counters).write(ids.args);
+    if (fuse_) setup.write(shared.front).write(shared.back);
+    const std::uint32_t reset_groups = fuse_ ? groups(std::uint64_t(resolution_) * resolution_) : 1u;
+    setup.record([this, frame, total, reset_groups](PassContext& pc) {
+            bindAndPush(pc, args_, frame, 0, 0);
+            pc.fns().vkCmdDispatch(pc.cmd, reset_groups, 1, 1);
+            pc.shaderBarrier();
+            bindAndPush(pc, setup_, frame);
+            pc.fns().vkCmdDispatch(pc.cmd, groups(total), 1, 1);
+            pc.shaderBarrier();
+            bindAndPush(pc, bin_, frame);
+            pc.fns().vkCmdDispatch(pc.cmd, groups(total), 1, 1);
+            pc.shaderBarrier();
+            bindAndPush(pc, args_, frame, 0, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        });
+    auto count = g.addPass("depth-complexity", PassKind::Compute);
+    count.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters).readWrite(shared.counts);
+    if (fuse_) count.readWrite(shared.front).readWrite(shared.back);
+    if (list_layers_ > 0) count.write(ids.fragments);
+    count.record([this, frame](PassContext& pc) {
+            bindAndPush(pc, count_, frame);
+            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
+        });
+}
+
+void ComputeSampling::addPeelStep(graph::Graph& g, const Ids& ids, const Shared& shared, std::uint32_t step, bool dual,
+                                  VkDeviceAddress frame) const {
+    if (fragment_lists_) {
+        const std::uint32_t pixel_groups = groups(std::uint64_t(resolution_) * resolution_);
+        if (step == 0 && gather_) {
+            g.addPass("csample-gather", PassKind::Compute)
+                .indirect(ids.args)
+                .read(ids.triangles)
+                .read(ids.lists)
+                .read(ids.items)
+                .read(ids.counters)
+                .readWrite(ids.fill)
+                .write(ids.fragments)
+                .record([this, frame, pixel_groups](PassContext& pc) {
+                    bindAndPush(pc, args_, frame, 0, 2);  // fill counts to 0
+                    pc.fns().vkCmdDispatch(pc.cmd, pixel_groups, 1, 1);
+                    pc.shaderBarrier();
+                    bindAndPush(pc, gather_pipe_, frame);
+                    pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
+                });
+        }
+        auto pick = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Compute);
+        pick.read(ids.fragments).read(shared.counts).read(shared.state).readWrite(shared.front);
+        if (dual) pick.readWrite(shared.back);
+        pick.record([this, frame, step, pixel_groups](PassContext& pc) {
+            bindAndPush(pc, pick_, frame, 0, step);
+            pc.fns().vkCmdDispatch(pc.cmd, pixel_groups, 1, 1);
+        });
+        return;
+    }
+    if (step == 0 && fuse_) return;
+    auto peel = g.addPass("peel[" + std::to_string(step) + "]", PassKind::Compute);
+    peel.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters);
+    peel.read(shared.state).readWrite(shared.front);
+    if (dual) peel.readWrite(shared.back);
+    peel.record([this, frame, step](PassContext& pc) {
+        bindAndPush(pc, peel_, frame, 0, step);
+        pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
+    });
+}
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,121 @@
+// `vkcollide detect` end to end: a scene written as OBJ and OFF files, the tool run as a
+// process, its CSV pairs (global triangle indices) and JSON statistics checked against
+// the exact reference.
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "support/exact_reference.hpp"
+#include "support/test_scenes.hpp"
+#include "vkcollide/io.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratchDir(const std::string& name) {
+    fs::path dir = fs::temp_directory_path() / ("vkcollide-cli-" + name + "-" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return dir;
+}
+
+void writeText(const fs::path& p, const std::string& text) {
+    std::ofstream f(p, std::ios::binary);
+    f << text;
+    REQUIRE(f.good());
+}
+
+std::string readText(const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+}
+
+int runCli(const std::string& args, const fs::path& log) {
+    const std::string cmd = std::string(VKCOLLIDE_CLI_PATH) + " " + args + " > " + log.string() + " 2>&1";
+    UNSCOPED_INFO(cmd);
+    return std::system(cmd.c_str());
+}
+
+}  // namespace
+
+TEST_CASE("vkcollide detect writes the exact pairs as global triangle indices", "[cli][gpu]") {
+    auto scene = overlappingSpheres();
+    REQUIRE(scene);
+    // World-space meshes: the first two objects in one OBJ (two `o` groups), the third as OFF.
+    std::vector<HostMesh> world;
+    for (const SceneObject& o : scene->objects) {
+        HostMesh m = o.mesh;
+        m.name = o.options.name;
+        REQUIRE(transformMesh(m, o.options.transform));
+        world.push_back(std::move(m));
+    }
+    const fs::path dir = scratchDir("pairs");
+    writeText(dir / "two.obj", writeObj(std::span<const HostMesh>(world.data(), 2)));
+    writeText(dir / "third.off", writeOff(world[2]));
+    writeText(dir / "fourth.off", writeOff(world[3]));
+    const fs::path csv = dir / "pairs.csv", json = dir / "stats.json", log = dir / "log.txt";
+    const int rc = runCli("detect " + (dir / "two.obj").string() + " " + (dir / "third.off").string() + " " + (dir / "fourth.off").string() +
+                              " --resolution 256 --direction 0.15,-0.2,1 --pairs " + csv.string() + " --stats " + json.string(),
+                          log);
+    INFO(readText(log));
+    REQUIRE(rc == 0);
+
+    // Expected: the exact reference on the same world-space meshes (self-collision on, the default).
+    std::vector<ReferenceObject> objects;
+    for (const HostMesh& m : world) objects.push_back({&m});
+    auto reference = computeReferencePairs(objects);
+    REQUIRE(reference);
+    std::vector<std::uint64_t> base{0};
+    for (const HostMesh& m : world) base.push_back(base.back() + m.triangleCount());
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> expected, got;
+    for (const auto& p : *reference) expected.emplace_back(base[p.object_a] + p.triangle_a, base[p.object_b] + p.triangle_b);
+    std::istringstream lines(readText(csv));
+    std::string line;
+    while (std::getline(lines, line)) {
+        const auto comma = line.find(',');
+        REQUIRE(comma != std::string::npos);
+        got.emplace_back(std::stoull(line.substr(0, comma)), std::stoull(line.substr(comma + 1)));
+        CHECK(got.back().first < got.back().second);
+    }
+    CHECK(std::is_sorted(got.begin(), got.end()));
+    std::size_t found = 0;
+    for (const auto& p : got) {
+        const bool exact = std::binary_search(expected.begin(), expected.end(), p);
+        CHECK(exact);  // precision 100 %
+        found += exact;
+    }
+    CHECK(double(found) / double(expected.size()) >= 0.99);  // recall at 256² (see recall_tests.cpp)
+    const std::string stats = readText(json);
+    CHECK(stats.find("\"positive_tests\": " + std::to_string(got.size())) != std::string::npos);
+    CHECK(stats.find("\"resolution\": 256") != std::string::npos);
+    CHECK(stats.find("\"objects\": [\"sphere-a\", \"sphere-b\", \"third\", \"fourth\"]") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("vkcollide detect names bad input and bad options", "[cli][gpu]") {
+    const fs::path dir = scratchDir("errors");
+    const fs::path log = dir / "log.txt";
+    writeText(dir / "broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
+    CHECK(runCli("detect " + (dir / "broken.obj").string(), log) != 0);
+    CHECK(readText(log).find("broken.obj") != std::string::npos);
+    CHECK(runCli("detect " + (dir / "missing.off").string(), log) != 0);
+    CHECK(readText(log).find("missing.off") != std::string::npos);
+    CHECK(runCli("detect --resolution", log) != 0);
+    CHECK(runCli("", log) != 0);
+    writeText(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    CHECK(runCli("detect " + (dir / "tri.obj").string() + " --resolution 100", log) != 0);
+    CHECK(readText(log).find("power of two") != std::string::npos);
+    CHECK(runCli("detect " + (dir / "tri.obj").string() + " --bogus", log) != 0);
+    CHECK(runCli("detect " + (dir / "tri.obj").string(), log) == 0);
+    CHECK(readText(log).find("colliding triangle pairs: 0") != std::string::npos);
+    fs::remove_all(dir);
+}

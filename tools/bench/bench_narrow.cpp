@@ -1,0 +1,410 @@
+// Benchmark of the CPU narrow phase (runNarrowPhase) on generated scenes; host only, no GPU.
+//
+//   bench_narrow [--threads 1,2,16] [--sizes 10000,100000,1000000] [--scenes demo,spheres,torus-box]
+//                [--modes all,near,contact] [--repeat 7] [--margin 1.0] [--filter]
+//                [--candidates FILE]... [--resolution N] [--dump PREFIX] [--csv PATH]
+//
+// Candidates come from tests/support/exact_reference.hpp's allTrianglesAsCandidates: every
+// triangle with its world AABB mapped to [0,1] as box and depth (an orthographic camera
+// looking down -z). Modes choose which triangles the "broad phase" keeps:
+//   all      every triangle (self-collision on: mostly neighbour pairs),
+//   near     triangles whose AABB overlaps another object's AABB,
+//   contact  triangles whose AABB, grown by `margin` median triangle extents, shares a
+//            voxel of that size with a triangle of another object (close to what the GPU
+//            keeps: the triangles along the intersection curves).
+// Scenes: `demo` is samples/vkcollide_demo.cpp's five objects (31,520 triangles, sizes do
+// not apply); `spheres` (two overlapping UV spheres) and `torus-box` (a torus threaded on a
+// subdivided box) are generated with about `size` triangles in all. --candidates reads a
+// raw array of CandidateTriangle (80 bytes each, e.g. the records of a GPU broad phase).
+//
+// `gpu-demo` takes the demo's candidates from the real GPU broad phase instead (the
+// Vulkan device vkcollide finds, lavapipe without a GPU; resolution 512 unless
+// --resolution; the only scene that needs Vulkan, so it is not in the default list).
+//
+// --dump writes each workload's candidates to PREFIX<scene>-<size>-<mode>.bin (the format
+// --candidates reads), e.g. to profile the GPU's candidates without the GPU.
+//
+// Each configuration runs once to warm up, then `repeat` times; the table shows the median
+// of each stage (ms), the fastest total, the median process CPU time (all threads,
+// polling workers included) and checks that every thread count gives the same pairs.
+// --filter sets NarrowOptions::may_collide (allowing everything) to time the object-pair
+// filter.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "passes/broad_phase.hpp"
+#include "passes/mesh_upload.hpp"
+#include "support/exact_reference.hpp"
+#include "vkcollide/context.hpp"
+#include "vkcollide/narrow.hpp"
+#include "vkcollide/scene.hpp"
+#include "vkcollide/thread_pool.hpp"
+
+using namespace vkcollide;
+
+namespace {
+
+struct Options {
+    std::vector<unsigned> threads = {1, 2};
+    std::vector<std::size_t> sizes = {10000, 100000, 1000000};
+    std::vector<std::string> scenes = {"demo", "spheres", "torus-box"};
+    std::vector<std::string> modes = {"all", "near", "contact"};
+    std::vector<std::string> files;
+    unsigned repeat = 7;
+    std::uint32_t resolution = 512;
+    float margin = 1.0f;
+    bool filter = false;
+    std::string csv;
+    std::string dump;  // prefix for raw candidate files, empty: none
+};
+
+struct Workload {
+    std::string scene, mode;
+    std::size_t triangles = 0;
+    std::vector<CandidateTriangle> candidates;
+};
+
+[[noreturn]] void die(const std::string& what) {
+    std::fprintf(stderr, "bench_narrow: %s\n", what.c_str());
+    std::exit(1);
+}
+
+template <typename T>
+T take(Result<T> r, const char* what) {
+    if (!r) die(std::string(what) + ": " + r.error().message());
+    return std::move(*r);
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+    std::vector<std::string> out;
+    std::size_t begin = 0;
+    while (begin <= s.size()) {
+        const std::size_t end = std::min(s.find(',', begin), s.size());
+        if (end > begin) out.push_back(s.substr(begin, end - begin));
+        begin = end + 1;
+    }
+    return out;
+}
+
+Options parseArgs(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto value = [&]() -> std::string {
+            if (i + 1 >= argc) die(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--threads") {
+            o.threads.clear();
+            for (const std::string& t : splitList(value())) o.threads.push_back(static_cast<unsigned>(std::stoul(t)));
+        } else if (a == "--sizes") {
+            o.sizes.clear();
+            for (const std::string& t : splitList(value())) o.sizes.push_back(std::stoul(t));
+        } else if (a == "--scenes") {
+            o.scenes = splitList(value());
+        } else if (a == "--modes") {
+            o.modes = splitList(value());
+        } else if (a == "--candidates") {
+            o.files.push_back(value());
+        } else if (a == "--repeat") {
+            o.repeat = std::max(1u, static_cast<unsigned>(std::stoul(value())));
+        } else if (a == "--margin") {
+            o.margin = std::stof(value());
+        } else if (a == "--resolution") {
+            o.resolution = static_cast<std::uint32_t>(std::stoul(value()));
+        } else if (a == "--filter") {
+            o.filter = true;
+        } else if (a == "--dump") {
+            o.dump = value();
+        } else if (a == "--csv") {
+            o.csv = value();
+        } else {
+            die("unknown argument " + a +
+                " (use --threads, --sizes, --scenes, --modes, --candidates, --repeat, --resolution, --margin, --filter, --dump, --csv)");
+        }
+    }
+    if (o.threads.empty()) die("--threads needs at least one count");
+    return o;
+}
+
+// Rotation about y, then a translation: the demo's placement of its parts.
+HostMesh moved(Result<HostMesh> mesh, float angle, Float3 t) {
+    HostMesh m = take(std::move(mesh), "generator");
+    const float c = std::cos(angle), s = std::sin(angle);
+    const Transform3x4 tr = {c, 0, s, t.x, 0, 1, 0, t.y, -s, 0, c, t.z};
+    if (auto ok = transformMesh(m, tr); !ok) die(ok.error().message());
+    return m;
+}
+
+std::uint32_t atLeast(double x, std::uint32_t lo) { return std::max(lo, static_cast<std::uint32_t>(std::lround(x))); }
+
+std::vector<HostMesh> buildScene(const std::string& scene, std::size_t size) {
+    std::vector<HostMesh> meshes;
+    if (scene == "demo") {
+        meshes.push_back(moved(uvSphere(1.0f, 96, 48), 0.3f, {-0.6f, 0.05f, 0.0f}));
+        meshes.push_back(moved(uvSphere(0.9f, 96, 48), 0.7f, {0.55f, -0.1f, 0.2f}));
+        meshes.push_back(moved(torus(0.9f, 0.25f, 128, 32), 0.2f, {0.1f, 1.6f, 0.0f}));
+        meshes.push_back(moved(box({0.3f, 0.3f, 1.4f}, 16), 0.1f, {0.1f + 0.9f, 1.6f, 0.0f}));
+        meshes.push_back(moved(uvSphere(0.5f, 48, 24), 0.0f, {-2.2f, -1.5f, 0.0f}));
+    } else if (scene == "spheres") {
+        // Two spheres of 2 s (s/2 - 1) ~ s^2 triangles each.
+        const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
+        meshes.push_back(moved(uvSphere(1.0f, s, s / 2), 0.3f, {-0.5f, 0.0f, 0.0f}));
+        meshes.push_back(moved(uvSphere(0.9f, s, s / 2), 0.7f, {0.5f, 0.1f, 0.05f}));
+    } else if (scene == "torus-box") {
+        // Half the triangles in the torus (2 a (a/4) = a^2 / 2), half in the box (12 k^2).
+        const std::uint32_t a = atLeast(std::sqrt(double(size)), 12);
+        const std::uint32_t k = atLeast(std::sqrt(double(size) / 24.0), 1);
+        meshes.push_back(moved(torus(0.9f, 0.25f, a, std::max(3u, a / 4)), 0.2f, {0.0f, 0.0f, 0.0f}));
+        meshes.push_back(moved(box({0.3f, 0.3f, 1.4f}, k), 0.1f, {0.9f, 0.0f, 0.0f}));
+    } else {
+        die("unknown scene " + scene + " (use demo, spheres, torus-box)");
+    }
+    return meshes;
+}
+
+struct Aabb {
+    Float3 lo, hi;
+};
+
+Aabb boundsOf(const CandidateTriangle& c) {
+    Aabb b{c.v[0], c.v[0]};
+    for (const Float3& p : c.v) {
+        b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y), std::min(b.lo.z, p.z)};
+        b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y), std::max(b.hi.z, p.z)};
+    }
+    return b;
+}
+
+bool overlap(const Aabb& a, const Aabb& b) {
+    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y && a.lo.z <= b.hi.z &&
+           b.lo.z <= a.hi.z;
+}
+
+// Keeps the candidates the mode selects (see the file comment).
+std::vector<CandidateTriangle> selectCandidates(std::vector<CandidateTriangle> all, const std::string& mode, float margin) {
+    if (mode == "all") return all;
+    std::vector<Aabb> boxes(all.size());
+    for (std::size_t i = 0; i < all.size(); ++i) boxes[i] = boundsOf(all[i]);
+    std::vector<char> keep(all.size(), 0);
+    if (mode == "near") {
+        std::vector<Aabb> object_box;
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            const std::uint32_t o = all[i].object;
+            if (o >= object_box.size()) object_box.resize(o + 1, Aabb{{1, 1, 1}, {-1, -1, -1}});
+            Aabb& b = object_box[o];
+            if (b.lo.x > b.hi.x) {
+                b = boxes[i];
+            } else {
+                b.lo = {std::min(b.lo.x, boxes[i].lo.x), std::min(b.lo.y, boxes[i].lo.y), std::min(b.lo.z, boxes[i].lo.z)};
+                b.hi = {std::max(b.hi.x, boxes[i].hi.x), std::max(b.hi.y, boxes[i].hi.y), std::max(b.hi.z, boxes[i].hi.z)};
+            }
+        }
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            for (std::uint32_t o = 0; o < object_box.size(); ++o) {
+                if (o != all[i].object && object_box[o].lo.x <= object_box[o].hi.x && overlap(boxes[i], object_box[o])) keep[i] = 1;
+            }
+        }
+    } else if (mode == "contact") {
+        // Voxels of `margin` median extents: a triangle is kept when a voxel its AABB
+        // touches is also touched by another object's triangle.
+        std::vector<float> extent(all.size());
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            extent[i] = std::max({boxes[i].hi.x - boxes[i].lo.x, boxes[i].hi.y - boxes[i].lo.y, boxes[i].hi.z - boxes[i].lo.z});
+        }
+        std::nth_element(extent.begin(), extent.begin() + static_cast<std::ptrdiff_t>(extent.size() / 2), extent.end());
+        const double voxel = std::max(1e-6, double(extent[extent.size() / 2]) * std::max(0.01f, margin));
+        constexpr std::uint32_t kMixed = 0xffffffffu;
+        std::unordered_map<std::uint64_t, std::uint32_t> owner;  // voxel -> object, or kMixed
+        const auto forVoxels = [&](std::size_t i, auto&& f) {
+            const auto cell = [&](float x) { return static_cast<std::int64_t>(std::floor(double(x) / voxel)) + (1 << 20); };
+            for (std::int64_t x = cell(boxes[i].lo.x); x <= cell(boxes[i].hi.x); ++x) {
+                for (std::int64_t y = cell(boxes[i].lo.y); y <= cell(boxes[i].hi.y); ++y) {
+                    for (std::int64_t z = cell(boxes[i].lo.z); z <= cell(boxes[i].hi.z); ++z) {
+                        f((std::uint64_t(x) << 42) | (std::uint64_t(y) << 21) | std::uint64_t(z));
+                    }
+                }
+            }
+        };
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            forVoxels(i, [&](std::uint64_t key) {
+                auto [it, inserted] = owner.try_emplace(key, all[i].object);
+                if (!inserted && it->second != all[i].object) it->second = kMixed;
+            });
+        }
+        for (std::size_t i = 0; i < all.size(); ++i) {
+            forVoxels(i, [&](std::uint64_t key) {
+                if (owner[key] == kMixed) keep[i] = 1;
+            });
+        }
+    } else {
+        die("unknown mode " + mode + " (use all, near, contact)");
+    }
+    std::vector<CandidateTriangle> out;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        if (keep[i]) out.push_back(all[i]);
+    }
+    return out;
+}
+
+Workload makeWorkload(const std::string& scene, std::size_t size, const std::string& mode, float margin) {
+    const std::vector<HostMesh> meshes = buildScene(scene, size);
+    std::vector<test::ReferenceObject> objects;
+    Workload w;
+    w.scene = scene;
+    w.mode = mode;
+    for (const HostMesh& m : meshes) {
+        objects.push_back({&m});
+        w.triangles += m.triangleCount();
+    }
+    w.candidates = selectCandidates(take(test::allTrianglesAsCandidates(objects), "candidates"), mode, margin);
+    return w;
+}
+
+// The demo's candidates as the GPU broad phase keeps them (samples/vkcollide_demo.cpp's
+// settings): the workload the narrow phase sees in the demo.
+Workload gpuWorkload(std::uint32_t resolution) {
+    const std::vector<HostMesh> meshes = buildScene("demo", 0);
+    std::vector<const HostMesh*> mesh_ptrs;
+    Workload w;
+    w.scene = "gpu-demo-" + std::to_string(resolution);
+    w.mode = "gpu";
+    for (const HostMesh& m : meshes) {
+        mesh_ptrs.push_back(&m);
+        w.triangles += m.triangleCount();
+    }
+    auto ctx = take(Context::create(), "Vulkan context");
+    vk::Device& dev = ctx->device();
+    const auto uploaded = take(passes::uploadMeshes(dev, mesh_ptrs), "mesh upload");
+    auto broad_phase = take(passes::BroadPhase::create(dev), "broad phase");
+    passes::BroadPhaseSettings settings;
+    settings.resolution = resolution;
+    settings.direction = {0.15f, -0.2f, 1.0f};
+    w.candidates = take(broad_phase->run(uploaded.meshes, settings), "broad phase").records;
+    return w;
+}
+
+Workload loadWorkload(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) die("cannot open " + path);
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.size() % sizeof(CandidateTriangle) != 0) die(path + ": size is not a multiple of 80 bytes");
+    Workload w;
+    w.scene = "file:" + path;
+    w.mode = "file";
+    w.candidates.resize(bytes.size() / sizeof(CandidateTriangle));
+    if (!bytes.empty()) std::memcpy(w.candidates.data(), bytes.data(), bytes.size());
+    w.triangles = w.candidates.size();
+    return w;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+struct Row {
+    double validate, sweep, filter, test, sort, response, total, total_min, cpu;
+};
+
+// CPU time of the whole process (all threads), in ms.
+double processCpuMs() { return 1000.0 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
+    if (!o.dump.empty() && w.mode != "file") {
+        const std::string path = o.dump + w.scene + "-" + std::to_string(w.triangles) + "-" + w.mode + ".bin";
+        std::ofstream out(path, std::ios::binary);
+        out.write(reinterpret_cast<const char*>(w.candidates.data()),
+                  static_cast<std::streamsize>(w.candidates.size() * sizeof(CandidateTriangle)));
+        if (!out) die("cannot write " + path);
+    }
+    NarrowOptions options;
+    if (o.filter) options.may_collide = [](std::uint32_t, std::uint32_t) { return true; };
+    std::vector<TrianglePair> reference_pairs;
+    bool first = true;
+    for (unsigned threads : o.threads) {
+        ThreadPool pool(threads);
+        std::vector<NarrowTimings> times;
+        std::vector<double> cpu;
+        NarrowStats stats;
+        for (unsigned r = 0; r <= o.repeat; ++r) {
+            const double cpu_start = processCpuMs();
+            Result<NarrowResult> result = runNarrowPhase(w.candidates, options, pool);
+            const double cpu_ms = processCpuMs() - cpu_start;
+            if (!result) die(w.scene + ": " + result.error().message());
+            if (r == 0) {  // warm-up run: check it, do not time it
+                if (first) reference_pairs = result->pairs;
+                if (result->pairs != reference_pairs) die(w.scene + ": different pairs with " + std::to_string(threads) + " threads");
+                stats = result->stats;
+                continue;
+            }
+            times.push_back(result->timings);
+            cpu.push_back(cpu_ms);
+        }
+        first = false;
+        const auto med = [&](double NarrowTimings::*field) {
+            std::vector<double> v;
+            for (const NarrowTimings& t : times) v.push_back(t.*field);
+            return median(v);
+        };
+        Row row{med(&NarrowTimings::validate_ms), med(&NarrowTimings::sweep_ms), med(&NarrowTimings::filter_ms),
+                med(&NarrowTimings::test_ms),     med(&NarrowTimings::sort_ms),  med(&NarrowTimings::response_ms),
+                med(&NarrowTimings::total_ms),    0, median(cpu)};
+        row.total_min = times.front().total_ms;
+        for (const NarrowTimings& t : times) row.total_min = std::min(row.total_min, t.total_ms);
+        std::printf("%-12s %-8s %9zu %9zu %4u %10zu %9zu %7zu | %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f | %9.3f %9.3f %8.3f\n",
+                    w.scene.c_str(), w.mode.c_str(), w.triangles, w.candidates.size(), pool.threadCount(), stats.sap_pairs,
+                    stats.triangle_tests, stats.positive_tests, row.validate, row.sweep, row.filter, row.test, row.sort,
+                    row.response, row.total, row.total_min, row.cpu);
+        std::fflush(stdout);
+        if (csv) {
+            std::fprintf(csv, "%s,%s,%zu,%zu,%u,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                         w.scene.c_str(), w.mode.c_str(), w.triangles, w.candidates.size(), pool.threadCount(),
+                         stats.sap_pairs, stats.filtered_pairs, stats.neighbour_pairs, stats.triangle_tests,
+                         stats.positive_tests, row.validate, row.sweep, row.filter, row.test, row.sort, row.response,
+                         row.total, row.total_min, row.cpu);
+            std::fflush(csv);
+        }
+    }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    const Options o = parseArgs(argc, argv);
+    std::FILE* csv = nullptr;
+    if (!o.csv.empty()) {
+        csv = std::fopen(o.csv.c_str(), "w");
+        if (!csv) die("cannot write " + o.csv);
+        std::fprintf(csv, "scene,mode,triangles,candidates,threads,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
+                          "positive_tests,validate_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
+    }
+    std::printf("median of %u runs (ms)%s\n", o.repeat, o.filter ? ", with may_collide" : "");
+    std::printf("%-12s %-8s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode", "tris",
+                "cands", "thr", "sap pairs", "tests", "pairs", "validate", "sweep", "filter", "test", "sort", "response",
+                "total", "total min", "cpu");
+    for (const std::string& path : o.files) runWorkload(loadWorkload(path), o, csv);
+    for (const std::string& scene : o.scenes) {
+        if (scene == "gpu-demo") {
+            runWorkload(gpuWorkload(o.resolution), o, csv);
+            continue;
+        }
+        const std::vector<std::size_t> sizes = scene == "demo" ? std::vector<std::size_t>{0} : o.sizes;
+        for (std::size_t size : sizes) {
+            for (const std::string& mode : o.modes) runWorkload(makeWorkload(scene, size, mode, o.margin), o, csv);
+        }
+    }
+    if (csv) std::fclose(csv);
+    return 0;
+}

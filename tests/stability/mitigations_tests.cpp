@@ -156,6 +156,18 @@ TEST_CASE("mitigation settings are checked and reported", "[stability][gpu]") {
     REQUIRE(best);
     CHECK(best->stats.coverage == (hardware ? "conservative" : "dilate"));
     CHECK(best->stats.settings_note.find("coverage") != std::string::npos);
+    // Thin-triangle coverage is drawn on the raster backend: Auto falls back to it, an
+    // explicit Compute is refused.
+    s = coarse();
+    s.coverage = Coverage::Dilate;
+    s.backend = SamplingBackend::Compute;
+    auto compute_dilate = world->detect(s);
+    REQUIRE_FALSE(compute_dilate);
+    CHECK(compute_dilate.error().code() == ErrorCode::UnsupportedFeature);
+    s.backend = SamplingBackend::Auto;
+    auto auto_dilate = world->detect(s);
+    REQUIRE(auto_dilate);
+    CHECK(auto_dilate->stats.backend == "raster");
     // The world is still usable after the refused settings.
     auto plain = world->detect(coarse());
     REQUIRE(plain);

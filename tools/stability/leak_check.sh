@@ -7,9 +7,9 @@
 # lsan: builds build-lsan (Release + -fsanitize=leak, only the leak_run target) and runs
 #       it; LeakSanitizer checks every allocation of the process at exit (ours, the
 #       loader's and the driver's: a Vulkan object we never destroy is a leaked driver
-#       allocation). About 40 s for 1000 frames on 2 cores after a 3-minute build.
+#       allocation). 20-40 s for 1000 frames on 2 cores after a 3-minute build.
 # valgrind: builds build-valgrind (RelWithDebInfo, no sanitizer) and runs it under
-#       memcheck; lavapipe's JIT is far slower there, so give it few frames (e.g. 20).
+#       memcheck; lavapipe's JIT is far slower there: 260 frames (every path once) take ~4 min.
 # Not part of CI (tools/test.sh): too slow for its budget.
 set -euo pipefail
 frames="${1:-1000}"

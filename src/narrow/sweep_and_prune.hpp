@@ -160,9 +160,8 @@ void CellSweep::sweepRange(std::size_t begin, std::size_t end, Visit&& visit) co
             // of max(y0a, y0b), where one of the boxes starts in y, and the slab of
             // max(z0a, z0b), where one starts in z ((a | b) == 3 exactly when the sum
             // below is 4).
-            batch[count] = static_cast<std::uint32_t>(t);
+            batch[count] = static_cast<std::uint32_t>(t);  // kept only if count grows
             count += overlaps(b) & (((a_starts | b.starts) + 1) >> 2);
-            batch[count] = static_cast<std::uint32_t>(t);
             if (count == kBatch) {
                 flush(count);
                 count = 0;

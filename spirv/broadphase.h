@@ -25,8 +25,12 @@ VKC_CONST kKeyBackFacing = 0x80000000u;
 VKC_CONST kKeyOpen = 0x40000000u;
 VKC_CONST kKeyTriangleMask = 0x3FFFFFFFu;
 VKC_CONST kMaxTriangles = 0x40000000u;
-// Per-pixel fragment counts: closed surfaces in the low half, open ones in the high half.
+// Per-pixel fragment counts: closed surfaces in the low 15 bits, open ones in the high half;
+// bit 15 flags a ray that a thin triangle touches (coverage on): it is a collision ray, done
+// at once, and left out of the depth complexity.
 VKC_CONST kOpenCountUnit = 0x10000u;
+VKC_CONST kCountClosedMask = 0x7FFFu;
+VKC_CONST kCountThin = 0x8000u;
 // PixelState.flags
 VKC_CONST kRayDone = 1u;
 VKC_CONST kRayCollision = 2u;
@@ -37,6 +41,20 @@ VKC_CONST kObjectOpen = 1u;
 VKC_CONST kObjectIndex16 = 2u;
 VKC_CONST kObjectCheckOnGpu = 4u;  // geometry only on the GPU: check indices and positions there
 VKC_CONST kMaxLevels = 16u;
+// Push.coverage: how the sampling passes treat thin triangles (docs/stability.md).
+// A triangle is thin when its projected inradius is below kThinInradiusPx pixels: it may
+// cover no pixel centre (sub-pixel, sliver, zero-area, edge-on), so sampling cannot
+// resolve it. With coverage on, every ray a thin triangle touches becomes a collision ray
+// (count.frag flags it, peel_init marks it).
+VKC_CONST kCoverageCentre = 0u;         // the hardware rule only (pixel centres)
+VKC_CONST kCoverageDilate = 1u;         // thin triangles enlarged in sample.vert (any device)
+VKC_CONST kCoverageSkipThin = 2u;       // conservative raster, pass 1: every triangle but thin ones
+VKC_CONST kCoverageOnlyThin = 3u;       // conservative raster, pass 2 (overestimating pipeline): thin ones
+#ifdef __cplusplus
+inline constexpr float kThinInradiusPx = 0.70710678f;  // half a pixel diagonal
+#else
+const float kThinInradiusPx = 0.70710678;
+#endif
 
 // One registered mesh instance.
 struct ObjectGpu {
@@ -56,7 +74,8 @@ struct Projection {
     vec4 row[3];
     float open_epsilon;  // depth-proximity threshold of open surfaces, in normalised depth
     float world_to_depth;
-    uint pad0, pad1;
+    float closed_epsilon;  // closed surfaces: a gap this small (normalised depth) between leaving one and entering the next touches
+    uint pad1;
 };
 
 // Per-ray state of the peeling.
@@ -108,6 +127,7 @@ struct Frame {
     float direction_basis[12];          // u, v, d rows and (unused) for auto fit
     float open_epsilon_world;           // open-surface proximity in world units
     float fit_margin;                   // relative margin of the auto fit
+    float closed_epsilon_world;         // closed-surface touching gap in world units (0: exact ties only)
     uint level_offset[kMaxLevels];      // first texel of each mip level in `bundles`
     VKC_ADDRESS(uint64_t) compute_sampling;  // CsFrame (compute sampling backend), or 0
 };
@@ -118,7 +138,7 @@ struct Push {
     uint object;
     uint step;
     uint level;
-    uint pad0;
+    uint coverage;  // kCoverage* (sampling passes only)
 };
 
 // ---- Compute sampling backend (src/passes/compute_sampling.hpp) -----------------------

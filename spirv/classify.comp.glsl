@@ -5,6 +5,9 @@
 // Open surfaces: two consecutive fragments within the depth epsilon collide, and so does
 // an open fragment inside a closed object (odd closed parity before it): a sheet that
 // enters a solid crosses its surface, however thin the band where the depths are close.
+// Closed surfaces touching (depth-epsilon policy, docs/stability.md): a back face followed
+// by a front face within closed_epsilon (leaving one closed surface and entering the next
+// across a gap that small) collide; at 0 only the key order decides ties.
 // A ray is done when every fragment counted by the depth-complexity pass was peeled.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
@@ -17,6 +20,11 @@ bool tooClose(uint64_t a, uint64_t b, float eps) {
     return (keyOpen(a) || keyOpen(b)) && abs(keyDepth(a) - keyDepth(b)) <= eps;
 }
 
+bool touching(uint64_t earlier, uint64_t later, float eps) {
+    return eps > 0.0 && !keyOpen(earlier) && !keyOpen(later) && keyBack(earlier) && !keyBack(later) &&
+           keyDepth(later) - keyDepth(earlier) <= eps;
+}
+
 void main() {
     Frame f = frame();
     uint p = gl_GlobalInvocationID.x;
@@ -25,8 +33,9 @@ void main() {
     PixelState st = states.s[p];
     if ((st.flags & kRayDone) != 0u) return;
     float eps = ProjectionRef(f.projection).p.open_epsilon;
+    float closed_eps = ProjectionRef(f.projection).p.closed_epsilon;
     uint counts = UintsRef(f.counts).v[p];
-    uint closed_total = counts & 0xFFFFu;
+    uint closed_total = counts & kCountClosedMask;
     uint total = closed_total + (counts >> 16);
     uint n_front = st.peeled & 0xFFFFu, n_back = st.peeled >> 16;
     bool collide = false;
@@ -41,7 +50,7 @@ void main() {
         } else if ((st.flags & kParityFront) != 0u) {
             collide = true;
         }
-        if (n_front > 0u && tooClose(st.last_front, kf, eps)) collide = true;
+        if (n_front > 0u && (tooClose(st.last_front, kf, eps) || touching(st.last_front, kf, closed_eps))) collide = true;
         st.last_front = kf;
         ++n_front;
     }
@@ -57,7 +66,7 @@ void main() {
             } else if ((st.flags & kParityBack) != 0u) {
                 collide = true;
             }
-            if (n_back > 0u && tooClose(kb, st.last_back, eps)) collide = true;
+            if (n_back > 0u && (tooClose(kb, st.last_back, eps) || touching(kb, st.last_back, closed_eps))) collide = true;
             if (kb == kf) {
                 met_in_middle = true;  // the same fragment, counted once (by the front)
             } else {
@@ -69,7 +78,8 @@ void main() {
     if (n_front + n_back >= total) {
         st.flags |= kRayDone;
         if ((closed_total & 1u) != 0u) collide = true;  // a closed ray must enter and leave
-        if (f.dual != 0u && !met_in_middle && n_front > 0u && n_back > 0u && tooClose(st.last_front, st.last_back, eps))
+        if (f.dual != 0u && !met_in_middle && n_front > 0u && n_back > 0u &&
+            (tooClose(st.last_front, st.last_back, eps) || touching(st.last_front, st.last_back, closed_eps)))
             collide = true;
     }
     if (collide) st.flags |= kRayCollision | kRayDone;

@@ -23,7 +23,7 @@ void main() {
     pr.row[2] = vec4(basisRow(f, 2u) * (0.9 / depth), 0.05 - 0.9 * lo.z / depth);
     pr.world_to_depth = 0.9 / depth;
     pr.open_epsilon = f.open_epsilon_world * pr.world_to_depth;
-    pr.pad0 = 0u;
+    pr.closed_epsilon = f.closed_epsilon_world * pr.world_to_depth;
     pr.pad1 = 0u;
     ProjectionRef(f.projection).p = pr;
 }

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Resets the per-ray peeling state; rays with no fragment are done at once. Step 1: the
-// keys were written by a count pass that did peeling step 0; leave them.
+// Resets the per-ray peeling state; rays with no fragment are done at once, and so are
+// rays a thin triangle touches (coverage on): those collide. Step 1: the keys were written
+// by a count pass that did peeling step 0; leave them.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
 
@@ -13,7 +14,8 @@ void main() {
     st.last_front = 0ul;
     st.last_back = ~0ul;
     st.peeled = 0u;
-    st.flags = UintsRef(f.counts).v[p] == 0u ? kRayDone : 0u;
+    uint c = UintsRef(f.counts).v[p];
+    st.flags = (c & kCountThin) != 0u ? (kRayCollision | kRayDone) : (c == 0u ? kRayDone : 0u);
     StatesRef(f.state).s[p] = st;
     if (pc.step != 0u) return;  // the keys already hold peeling step 0 (compute sampling)
     Uint64sRef(f.front_keys).v[p] = ~0ul;

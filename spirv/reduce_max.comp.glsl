@@ -11,8 +11,9 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     uint n = f.resolution * f.resolution;
     uint c = i < n ? UintsRef(f.counts).v[i] : 0u;
-    uint most = groupReduceMax((c & 0xFFFFu) + (c >> 16));
-    uint sum = groupReduceAdd((c & 0xFFFFu) + (c >> 16));
+    // Rays flagged by a thin triangle are collision rays without peeling.
+    uint most = groupReduceMax((c & kCountThin) != 0u ? 0u : (c & kCountClosedMask) + (c >> 16));
+    uint sum = groupReduceAdd((c & kCountClosedMask) + (c >> 16));
     if (gl_LocalInvocationIndex == 0u) {
         atomicMax(HeaderRef(f.header).h.depth_complexity, most);
         atomicAdd(HeaderRef(f.header).h.fragments, uint64_t(sum));

@@ -62,6 +62,9 @@ struct AdoptedDevice {
     VkQueue queue = VK_NULL_HANDLE;
     // The Vulkan API version the engine created its instance with (>= 1.3).
     std::uint32_t api_version = VK_API_VERSION_1_3;
+    // Optional: the engine enabled VK_EXT_conservative_rasterization on the device, so
+    // DetectSettings::coverage may use it (ignored when the device lacks it).
+    bool conservative_rasterization = false;
 };
 
 struct DeviceInfo {
@@ -71,7 +74,7 @@ struct DeviceInfo {
     std::string driver;           // driverName and driverInfo
     double timestamp_period_ns = 1.0;
     std::uint32_t subgroup_size = 0;
-    bool conservative_rasterization = false;
+    bool conservative_rasterization = false;  // VK_EXT_conservative_rasterization is available
     // Empty when the device meets every requirement; otherwise what it lacks.
     std::vector<std::string> missing;
 };

@@ -79,6 +79,26 @@ struct GpuMeshDesc {
 
 enum class PackingMethod { Scan, Paper };
 
+// How sampling treats thin triangles: those whose projected inradius is below half a
+// pixel diagonal (sub-pixel triangles, slivers, zero-area and edge-on triangles). They may
+// cover no pixel centre, so the rays cannot see what they intersect (docs/stability.md).
+enum class Coverage {
+    Centre,        // the paper: the hardware rule, pixel centres only
+    Dilate,        // thin triangles are grown by half a pixel diagonal in the vertex shader,
+                   // and every ray they touch is a collision ray (any device)
+    Conservative,  // the same through VK_EXT_conservative_rasterization: fails with
+                   // UnsupportedFeature where the Context has not enabled it
+    Best,          // Conservative where the Context has it, else Dilate
+};
+
+// What a detection does when the GPU check of an engine-owned mesh (addGpuMesh) finds an
+// index out of range or a NaN or infinite position.
+enum class BadObjectPolicy {
+    Exclude,  // detect the other objects as if it were absent (one extra GPU run per bad
+              // object, that frame); DetectResult::excluded names it and the problem
+    Fail,     // the whole detection fails with that error
+};
+
 // How object sampling (paper §4) runs: depth peeling on the graphics pipeline, or the
 // same rays and keys computed by compute shaders (edge functions with the rasterizer's
 // coverage rule). Auto chooses per device and scene; DetectStats says which and why.
@@ -108,6 +128,18 @@ struct DetectSettings {
     // last detection measured (rays that need more become collision rays and the
     // statistics say so); the first detection of a world measures.
     bool measure_layers = true;
+
+    // Beyond the paper (docs/stability.md measures each on the failure cases):
+    // Sampling directions: 1 (the paper), or 3: also the two directions perpendicular to
+    // `direction`; each triangle's candidates from the three are united (their kept
+    // regions mapped back to world boxes) and tested once. About 3x the GPU time.
+    std::uint32_t axes = 1;
+    Coverage coverage = Coverage::Centre;
+    // Depth-epsilon policy for closed surfaces (world units): leaving one closed surface
+    // and entering the next across a gap of at most this along a ray counts as touching
+    // (a collision ray). 0: only exact depth ties, ordered front before back, do.
+    float closed_epsilon = 0;
+    BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
 };
 
 struct PassTime {
@@ -133,6 +165,9 @@ struct DetectStats {
     std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
     bool dual = false;
     bool layers_short = false;           // depth complexity exceeded the layers peeled (no cap asked)
+    std::uint32_t axes = 1;              // sampling directions run (counts above are summed over them,
+                                         // depth complexity and layers are their maximum)
+    std::string coverage = "centre";     // "centre", "dilate" or "conservative"
     std::string backend;                 // object-sampling backend that ran: "raster" or "compute"
     std::string backend_reason;          // why (Auto's rule, or "asked for")
     std::string settings_note;           // how automatic settings were chosen
@@ -150,9 +185,16 @@ struct DetectStats {
 
 // A colliding pair; objects are ObjectIds, triangles index the object's triangle list.
 // Sorted, (object_a, triangle_a) < (object_b, triangle_b).
+// An object a detection left out (BadObjectPolicy::Exclude), and why.
+struct ExcludedObject {
+    ObjectId object = 0;
+    Error error{ErrorCode::InvalidMesh, {}};  // names the object, a bad triangle and the problem
+};
+
 struct DetectResult {
     std::vector<TrianglePair> pairs;
     std::vector<TriangleResponse> responses;  // one per colliding triangle, world space
+    std::vector<ExcludedObject> excluded;     // engine meshes that failed the GPU check this time
     DetectStats stats;
 };
 
@@ -171,8 +213,9 @@ public:
     // Host arrays, checked (validateMesh) and uploaded. The world keeps no pointer to `mesh`.
     [[nodiscard]] Result<ObjectId> addMesh(const HostMesh& mesh, const ObjectOptions& options = {});
     // Engine-owned buffers; checked against the declared sizes and formats. Index values
-    // and vertex values live only on the GPU: each detection checks them there and fails
-    // naming the object and triangle if an index is out of range or a position not finite.
+    // and vertex values live only on the GPU: each detection checks them there; an object
+    // with an index out of range or a position not finite is left out of that detection
+    // and named in DetectResult::excluded (or fails it: DetectSettings::bad_objects).
     [[nodiscard]] Result<ObjectId> addGpuMesh(const GpuMeshDesc& mesh, const ObjectOptions& options = {});
     [[nodiscard]] Result<void> removeObject(ObjectId id);
 
@@ -189,7 +232,10 @@ public:
     // The settings detect() would use now, with every automatic field filled in.
     [[nodiscard]] Result<DetectSettings> resolveSettings(const DetectSettings& settings = {}) const;
 
-    // Records, submits, waits and runs the narrow phase.
+    // Records, submits, waits and runs the narrow phase. Errors: InvalidArgument for bad
+    // settings, OutOfMemory when the resolution or scene needs more device memory than the
+    // device has (nothing is allocated then; the world stays usable), DeviceLost (create a
+    // new Context), InvalidMesh for a bad engine mesh under BadObjectPolicy::Fail.
     [[nodiscard]] Result<DetectResult> detect(const DetectSettings& settings = {});
     // Records and submits the GPU work and returns; collect() waits for it and runs the
     // narrow phase. One detection in flight at a time; objects must not change until

@@ -56,20 +56,27 @@ struct CollisionWorld::Impl {
     };
 
     Context* context = nullptr;
-    std::unique_ptr<passes::BroadPhase> broad;
+    // One broad phase per sampling direction (the second and third only for axes = 3).
+    std::array<std::unique_ptr<passes::BroadPhase>, 3> broads;
     std::unique_ptr<ThreadPool> pool;
     std::vector<Object> objects;
     std::function<bool(ObjectId, ObjectId)> pair_filter;
-    std::uint32_t last_depth_complexity = 0;
-    bool depth_complexity_known = false;
+    std::array<std::uint32_t, 3> last_depth_complexity{};
+    std::array<bool, 3> depth_complexity_known{};
 
     // The detection in flight.
     bool pending = false;
     std::vector<ObjectId> run_ids;  // broad-phase object index -> ObjectId
+    std::vector<passes::GpuMesh> run_meshes;
+    std::vector<ExcludedObject> run_excluded;
     DetectSettings run_settings;
     std::string run_note;
     Clock::time_point run_start;
-    std::optional<passes::BroadPhaseResult> run_ready;  // a measuring submit() finished at once
+    std::uint32_t run_axes = 1;
+    std::array<std::array<float, 3>, 3> run_directions{};
+    std::array<bool, 3> axis_pending{};                               // submitted, to collect
+    std::array<std::optional<passes::BroadPhaseResult>, 3> run_ready;  // measured runs, already complete
+    std::uint32_t failed_axis = 0;                                    // the axis whose error the last call returned
 
     vk::Device& device() { return context->device(); }
 
@@ -89,7 +96,7 @@ struct CollisionWorld::Impl {
         out.name = options.name.empty() ? "object " + std::to_string(id) : options.name;
         return id;
     }
-    void objectsChanged() { depth_complexity_known = false; }
+    void objectsChanged() { depth_complexity_known.fill(false); }
 
     static void measureHost(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices) {
         float lo[3] = {positions[0].x, positions[0].y, positions[0].z}, hi[3] = {lo[0], lo[1], lo[2]};
@@ -109,15 +116,22 @@ struct CollisionWorld::Impl {
     }
 
     Result<DetectSettings> resolve(const DetectSettings& in, std::string* note) const;
-    Result<passes::BroadPhaseResult> runBroad(const DetectSettings& s, bool measure, std::vector<passes::GpuMesh>& meshes);
-    Result<DetectResult> finish(passes::BroadPhaseResult broad);
+    Error named(const Error& e) const;
+    void collectRunObjects();
+    passes::BroadPhaseSettings broadSettings(std::uint32_t axis) const;
+    Result<void> submitAxes(bool measure);
+    Result<std::vector<passes::BroadPhaseResult>> gather();
+    bool excludable(const Error& e) const;
+    Result<void> excludeBad();
+    Result<std::vector<passes::BroadPhaseResult>> runExcluding();
+    Result<DetectResult> finish(std::vector<passes::BroadPhaseResult> broad);
     Result<void> start(const DetectSettings& settings, bool measure);
 };
 
 CollisionWorld::CollisionWorld(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 CollisionWorld::~CollisionWorld() {
     // Never free buffers the GPU may still read.
-    if (impl_ && impl_->pending) (void)impl_->broad->collect();
+    if (impl_ && impl_->pending) (void)impl_->gather();
 }
 
 Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context, const WorldOptions& options) {
@@ -125,7 +139,7 @@ Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context,
     impl->context = &context;
     auto bp = passes::BroadPhase::create(context.device());
     if (!bp) return bp.error();
-    impl->broad = std::move(*bp);
+    impl->broads[0] = std::move(*bp);
     impl->pool = std::make_unique<ThreadPool>(options.threads);
     return std::unique_ptr<CollisionWorld>(new CollisionWorld(std::move(impl)));
 }
@@ -329,6 +343,7 @@ Result<DetectSettings> CollisionWorld::Impl::resolve(const DetectSettings& in, s
         }
     }
     if (!any) return Error(ErrorCode::InvalidArgument, "the world has no objects to test");
+    if (s.axes != 1 && s.axes != 3) return Error(ErrorCode::InvalidArgument, "axes must be 1 or 3, not " + std::to_string(s.axes));
     std::string why;
     if (!s.direction) {
         if (any_box) {
@@ -374,79 +389,257 @@ Result<DetectSettings> CollisionWorld::Impl::resolve(const DetectSettings& in, s
         s.open_epsilon = open_triangles > 0 ? static_cast<float>(0.5 * open_edge / open_triangles) : 0.0f;
         if (open_triangles > 0) why += (why.empty() ? "" : "; ") + std::string("open epsilon half the open objects' typical edge");
     }
+    if (s.coverage == Coverage::Best) {
+        s.coverage = context->device().conservative_rasterization ? Coverage::Conservative : Coverage::Dilate;
+        why += (why.empty() ? "" : "; ") + std::string(s.coverage == Coverage::Conservative
+                                                           ? "coverage conservative (the device rasterises conservatively)"
+                                                           : "coverage dilate (no conservative rasterisation on this device)");
+    }
     if (note) *note = why;
     return s;
 }
 
-Result<passes::BroadPhaseResult> CollisionWorld::Impl::runBroad(const DetectSettings& s, bool measure,
-                                                              std::vector<passes::GpuMesh>& meshes) {
-    meshes.clear();
+// The broad phase names objects by their index in the run; name them by id.
+Error CollisionWorld::Impl::named(const Error& e) const {
+    std::string m = e.message();
+    const std::size_t end = m.rfind("object ", 0) == 0 ? m.find_first_not_of("0123456789", 7) : std::string::npos;
+    if (end != std::string::npos && end > 7) {
+        const std::size_t idx = std::stoul(m.substr(7, end - 7));
+        if (idx < run_ids.size()) {
+            const Object& o = objects[run_ids[idx]];
+            m = "object " + std::to_string(run_ids[idx]) + " ('" + o.name + "')" + m.substr(end);
+        }
+    }
+    return Error(e.code(), m, e.vkResult());
+}
+
+// The objects of this run: every live one that this detection has not excluded.
+void CollisionWorld::Impl::collectRunObjects() {
+    run_meshes.clear();
     run_ids.clear();
     for (std::size_t i = 0; i < objects.size(); ++i) {
-        if (!objects[i].alive) continue;
+        const auto id = static_cast<ObjectId>(i);
+        if (!objects[i].alive ||
+            std::any_of(run_excluded.begin(), run_excluded.end(), [&](const ExcludedObject& e) { return e.object == id; }))
+            continue;
         passes::GpuMesh m = objects[i].gpu;
         m.transform = objects[i].options.transform;
-        meshes.push_back(m);
-        run_ids.push_back(static_cast<ObjectId>(i));
+        run_meshes.push_back(m);
+        run_ids.push_back(id);
     }
+}
+
+passes::BroadPhaseSettings CollisionWorld::Impl::broadSettings(std::uint32_t axis) const {
+    const DetectSettings& s = run_settings;
     passes::BroadPhaseSettings b;
     b.resolution = *s.resolution;
-    b.direction = *s.direction;
+    b.direction = run_directions[axis];
     b.layer_cap = s.layer_cap;
     b.dual = s.dual;
     b.packing = s.packing;
     b.backend = s.backend;
     b.open_epsilon = *s.open_epsilon;
+    b.closed_epsilon = s.closed_epsilon;
+    b.coverage = s.coverage == Coverage::Dilate         ? passes::Coverage::Dilate
+                 : s.coverage == Coverage::Conservative ? passes::Coverage::Conservative
+                                                        : passes::Coverage::Centre;
     b.region = s.region;
-    auto named = [&](Error e) {
-        // The broad phase names objects by their index in the run; name them by id.
-        std::string m = e.message();
-        const std::size_t end = m.rfind("object ", 0) == 0 ? m.find_first_not_of("0123456789", 7) : std::string::npos;
-        if (end != std::string::npos && end > 7) {
-            const std::size_t idx = std::stoul(m.substr(7, end - 7));
-            if (idx < run_ids.size()) {
-                const Object& o = objects[run_ids[idx]];
-                m = "object " + std::to_string(run_ids[idx]) + " ('" + o.name + "')" + m.substr(end);
-            }
-        }
-        return Error(e.code(), m, e.vkResult());
-    };
-    if (measure || !depth_complexity_known) {
-        auto r = broad->run(meshes, b);
-        if (!r) return named(r.error());
-        return r;
-    }
-    if (auto ok = broad->submit(meshes, b, std::max(last_depth_complexity, 1u)); !ok) return named(ok.error());
-    pending = true;
-    return passes::BroadPhaseResult{};
+    return b;
 }
 
-Result<DetectResult> CollisionWorld::Impl::finish(passes::BroadPhaseResult broad_result) {
+// Starts every axis: measured (two submissions, waited for) or with the layers predicted
+// by the last detection (one submission, left in flight). Stops at the first error; the
+// axes already started stay for gather() to drain.
+Result<void> CollisionWorld::Impl::submitAxes(bool measure) {
+    for (std::uint32_t k = 0; k < run_axes; ++k) {
+        failed_axis = k;
+        if (!broads[k]) {
+            auto bp = passes::BroadPhase::create(device());
+            if (!bp) return bp.error();
+            broads[k] = std::move(*bp);
+        }
+        const passes::BroadPhaseSettings b = broadSettings(k);
+        if (measure || !depth_complexity_known[k]) {
+            auto r = broads[k]->run(run_meshes, b);
+            if (!r) return r.error();
+            run_ready[k] = std::move(*r);
+        } else {
+            if (auto ok = broads[k]->submit(run_meshes, b, std::max(last_depth_complexity[k], 1u)); !ok) return ok.error();
+            axis_pending[k] = true;
+        }
+    }
+    return {};
+}
+
+// Waits for every axis started; always drains all of them and returns the first error.
+Result<std::vector<passes::BroadPhaseResult>> CollisionWorld::Impl::gather() {
+    std::vector<passes::BroadPhaseResult> out;
+    std::optional<Error> first;
+    for (std::uint32_t k = 0; k < broads.size(); ++k) {
+        if (run_ready[k]) {
+            out.push_back(std::move(*run_ready[k]));
+            run_ready[k].reset();
+        } else if (axis_pending[k]) {
+            axis_pending[k] = false;
+            auto r = broads[k]->collect();
+            if (r) {
+                out.push_back(std::move(*r));
+            } else if (!first) {
+                first = r.error();
+                failed_axis = k;
+            }
+        }
+    }
+    pending = false;
+    if (first) return *first;
+    return out;
+}
+
+bool CollisionWorld::Impl::excludable(const Error& e) const {
+    return run_settings.bad_objects == BadObjectPolicy::Exclude && e.code() == ErrorCode::InvalidMesh && broads[failed_axis] &&
+           !broads[failed_axis]->badObjects().empty();
+}
+
+// Leaves out the objects the GPU check named, each with its own error. Why exclude and
+// go on rather than fail: a bad engine buffer (a simulation that produced NaN) should not
+// blind collision detection for every other object; re-running without it gives the
+// others exactly the pairs they would have alone (tests/stability/faults_tests.cpp).
+Result<void> CollisionWorld::Impl::excludeBad() {
+    const std::size_t before = run_excluded.size();
+    for (const auto& bad : broads[failed_axis]->badObjects())
+        if (bad.object < run_ids.size()) run_excluded.push_back({run_ids[bad.object], named(bad.error)});
+    if (run_excluded.size() == before) return Error(ErrorCode::InvalidMesh, "the GPU input check failed without naming an object");
+    collectRunObjects();
+    if (run_meshes.empty()) return Error(ErrorCode::InvalidMesh, "no object left to test: " + run_excluded.front().error.message());
+    return {};
+}
+
+// Measured runs of every axis, leaving out bad engine meshes until the check passes: one
+// more run per bad object (two when two are named at once), only in frames that have one.
+Result<std::vector<passes::BroadPhaseResult>> CollisionWorld::Impl::runExcluding() {
+    for (;;) {
+        const Result<void> ok = submitAxes(true);
+        const std::uint32_t failed = failed_axis;
+        auto r = gather();  // drains what submitAxes started, even after an error
+        if (!ok) {
+            failed_axis = failed;
+            r = ok.error();
+        }
+        if (r || !excludable(r.error())) return r;
+        if (auto ex = excludeBad(); !ex) return ex.error();
+    }
+}
+
+namespace {
+
+// A kept region mapped back to world space. A record's kept box and depth extent are a
+// box in its direction's sampling space; the projection rows are orthogonal, so the
+// region's world points are sum over a of unit_a * (s_a - offset_a) / scale_a, and the
+// world AABB of that sum is the sum of the AABBs of its three segments. Cut to the
+// triangle's own AABB; padded by 1e-4 of the image width against rounding.
+std::array<double, 6> keptWorldBox(const CandidateTriangle& c, const std::array<float, 16>& rows) {
+    const double s_lo[3] = {c.box[0], c.box[1], c.zmin}, s_hi[3] = {c.box[2], c.box[3], c.zmax};
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, image_width = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double r[3] = {rows[a * 4], rows[a * 4 + 1], rows[a * 4 + 2]};
+        const double scale = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+        if (a == 0) image_width = 1.0 / scale;
+        for (int w = 0; w < 3; ++w) {
+            const double unit = r[w] / scale;
+            const double t0 = unit * (s_lo[a] - rows[a * 4 + 3]) / scale, t1 = unit * (s_hi[a] - rows[a * 4 + 3]) / scale;
+            lo[w] += std::min(t0, t1);
+            hi[w] += std::max(t0, t1);
+        }
+    }
+    const double pad = 1e-4 * image_width;
+    std::array<double, 6> out;
+    for (int w = 0; w < 3; ++w) {
+        double t_lo = INFINITY, t_hi = -INFINITY;
+        for (const Float3& v : c.v) {
+            const double x = w == 0 ? v.x : (w == 1 ? v.y : v.z);
+            t_lo = std::min(t_lo, x), t_hi = std::max(t_hi, x);
+        }
+        out[w] = std::max(lo[w] - pad, t_lo);
+        out[w + 3] = std::min(hi[w] + pad, t_hi);
+        if (!(out[w] <= out[w + 3])) out[w] = t_lo, out[w + 3] = t_hi;  // rounding only: keep the triangle's box
+    }
+    return out;
+}
+
+// The candidates of several sampling directions, one record per triangle, with world
+// boxes (keptWorldBox; the union over the directions that kept it). A pair that any one
+// direction would test has overlapping boxes here too, so the exact narrow phase sees at
+// least the union of the directions' tests, each once; boxes in one direction's image
+// space would mean nothing next to another's.
+std::vector<CandidateTriangle> uniteAxes(const std::vector<passes::BroadPhaseResult>& runs) {
+    struct Entry {
+        const CandidateTriangle* record;
+        std::array<double, 6> box;
+    };
+    std::vector<Entry> all;
+    for (const auto& run : runs)
+        for (const CandidateTriangle& c : run.records) all.push_back({&c, keptWorldBox(c, run.projection)});
+    std::sort(all.begin(), all.end(), [](const Entry& a, const Entry& b) {
+        return a.record->object != b.record->object ? a.record->object < b.record->object : a.record->triangle < b.record->triangle;
+    });
+    std::vector<CandidateTriangle> out;
+    for (std::size_t i = 0; i < all.size();) {
+        std::array<double, 6> box = all[i].box;
+        std::size_t j = i + 1;
+        for (; j < all.size() && all[j].record->object == all[i].record->object && all[j].record->triangle == all[i].record->triangle; ++j)
+            for (int w = 0; w < 3; ++w) box[w] = std::min(box[w], all[j].box[w]), box[w + 3] = std::max(box[w + 3], all[j].box[w + 3]);
+        CandidateTriangle c = *all[i].record;
+        // Outward to float: boxes that touch in double still touch.
+        auto down = [](double x) { const float f = static_cast<float>(x); return double(f) > x ? std::nextafter(f, -INFINITY) : f; };
+        auto up = [](double x) { const float f = static_cast<float>(x); return double(f) < x ? std::nextafter(f, INFINITY) : f; };
+        c.box[0] = down(box[0]), c.box[1] = down(box[1]), c.box[2] = up(box[3]), c.box[3] = up(box[4]);
+        c.zmin = down(box[2]), c.zmax = up(box[5]);
+        out.push_back(c);
+        i = j;
+    }
+    return out;
+}
+
+}  // namespace
+
+Result<DetectResult> CollisionWorld::Impl::finish(std::vector<passes::BroadPhaseResult> broad) {
     DetectResult out;
+    out.excluded = std::move(run_excluded);
+    run_excluded.clear();
     DetectStats& st = out.stats;
-    st.triangles = broad_result.triangles;
-    st.collision_rays = broad_result.collision_rays;
-    st.triangles_downloaded = broad_result.records.size();
     st.objects = static_cast<std::uint32_t>(run_ids.size());
     st.resolution = *run_settings.resolution;
-    st.direction = *run_settings.direction;
-    st.depth_complexity = broad_result.depth_complexity;
-    st.layers = broad_result.layers;
-    st.peel_passes = broad_result.peel_steps;
+    st.direction = run_directions[0];
     st.dual = run_settings.dual;
-    const std::uint32_t cap = run_settings.layer_cap;
-    st.layers_short = broad_result.depth_complexity > broad_result.layers && (cap == 0 || broad_result.layers < cap);
+    st.axes = run_axes;
+    st.coverage = run_settings.coverage == Coverage::Dilate         ? "dilate"
+                  : run_settings.coverage == Coverage::Conservative ? "conservative"
+                                                                    : "centre";
     st.settings_note = run_note;
-    st.backend = passes::toString(broad_result.backend);
-    st.backend_reason = broad_result.backend_reason;
-    for (const auto& p : broad_result.passes) st.gpu_passes.push_back({p.name, p.gpu_ms});
-    st.sampling_ms = broad_result.sampling_ms;
-    st.merging_ms = broad_result.merging_ms;
-    st.separation_ms = broad_result.separation_ms;
-    st.packing_ms = broad_result.packing_ms;
-    st.readback_ms = broad_result.readback_ms;
-    last_depth_complexity = broad_result.depth_complexity;
-    depth_complexity_known = true;
+    st.backend = passes::toString(broad[0].backend);
+    st.backend_reason = broad[0].backend_reason;
+    for (std::uint32_t k = 1; k < broad.size(); ++k)
+        if (broad[k].backend != broad[0].backend) st.backend_reason += "; axis " + std::to_string(k) + ": " + passes::toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
+    const std::uint32_t cap = run_settings.layer_cap;
+    for (std::uint32_t k = 0; k < broad.size(); ++k) {
+        const passes::BroadPhaseResult& b = broad[k];
+        st.triangles = b.triangles;
+        st.collision_rays += b.collision_rays;
+        st.triangles_downloaded += b.records.size();
+        st.depth_complexity = std::max(st.depth_complexity, b.depth_complexity);
+        st.layers = std::max(st.layers, b.layers);
+        st.peel_passes += b.peel_steps;
+        st.layers_short = st.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap));
+        const std::string prefix = broad.size() > 1 ? "axis " + std::to_string(k) + ": " : "";
+        for (const auto& p : b.passes) st.gpu_passes.push_back({prefix + p.name, p.gpu_ms});
+        st.sampling_ms += b.sampling_ms;
+        st.merging_ms += b.merging_ms;
+        st.separation_ms += b.separation_ms;
+        st.packing_ms += b.packing_ms;
+        st.readback_ms += b.readback_ms;
+        last_depth_complexity[k] = b.depth_complexity;
+        depth_complexity_known[k] = true;
+    }
 
     NarrowOptions options;
     for (ObjectId id : run_ids) options.self_collision.push_back(objects[id].options.self_collision);
@@ -454,7 +647,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::BroadPhaseResult broad
         options.may_collide = [this](std::uint32_t a, std::uint32_t b) { return pair_filter(run_ids[a], run_ids[b]); };
     }
     const auto t0 = Clock::now();
-    auto narrow = runNarrowPhase(broad_result.records, options, *pool);
+    std::vector<CandidateTriangle> united;
+    if (broad.size() > 1) united = uniteAxes(broad);
+    auto narrow = runNarrowPhase(broad.size() > 1 ? std::span<const CandidateTriangle>(united) : broad[0].records, options, *pool);
     st.narrow_ms = msSince(t0);
     if (!narrow) return narrow.error();
     st.narrow_threads = pool->threadCount();
@@ -467,7 +662,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::BroadPhaseResult broad
     for (TrianglePair& p : out.pairs) p.object_a = run_ids[p.object_a], p.object_b = run_ids[p.object_b];
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = run_ids[r.object];
-    st.gpu_memory_bytes = broad->memoryBytes();
+    for (const auto& bp : broads)
+        if (bp) st.gpu_memory_bytes += bp->memoryBytes();
     for (const Object& o : objects) st.gpu_memory_bytes += (o.vertices.valid() ? o.vertices.size() : 0) + (o.indices.valid() ? o.indices.size() : 0);
     st.total_ms = msSince(run_start);
     return out;
@@ -479,10 +675,27 @@ Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool me
     auto s = resolve(settings, &run_note);
     if (!s) return s.error();
     run_settings = *s;
-    std::vector<passes::GpuMesh> meshes;
-    auto r = runBroad(*s, measure, meshes);
-    if (!r) return r.error();
-    if (!pending) run_ready = std::move(*r);  // measured: already complete
+    run_axes = s->axes;
+    run_directions[0] = *s->direction;
+    if (run_axes == 3) {
+        // The other two: the image axes of the first direction (world axes when it is one).
+        const auto basis = passes::projectionBasis(*s->direction);
+        run_directions[1] = {basis[0], basis[1], basis[2]};
+        run_directions[2] = {basis[3], basis[4], basis[5]};
+    }
+    run_excluded.clear();
+    collectRunObjects();
+    if (measure) {
+        auto r = runExcluding();
+        if (!r) return named(r.error());
+        for (std::uint32_t k = 0; k < r->size(); ++k) run_ready[k] = std::move((*r)[k]);
+        pending = true;
+        return {};
+    }
+    if (auto ok = submitAxes(false); !ok) {
+        (void)gather();
+        return named(ok.error());
+    }
     pending = true;
     return {};
 }
@@ -497,18 +710,14 @@ Result<void> CollisionWorld::submit(const DetectSettings& settings) { return imp
 Result<DetectResult> CollisionWorld::collect() {
     Impl& w = *impl_;
     if (!w.pending) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
-    passes::BroadPhaseResult broad;
-    if (w.run_ready) {
-        broad = std::move(*w.run_ready);
-        w.run_ready.reset();
-    } else {
-        auto r = w.broad->collect();
-        w.pending = false;
-        if (!r) return r.error();
-        broad = std::move(*r);
+    auto r = w.gather();
+    if (!r && w.excludable(r.error())) {
+        // Found by the check of this submission: leave the object out and run again now.
+        if (auto ex = w.excludeBad(); !ex) return ex.error();
+        r = w.runExcluding();
     }
-    w.pending = false;
-    return w.finish(std::move(broad));
+    if (!r) return w.named(r.error());
+    return w.finish(std::move(*r));
 }
 
 }  // namespace vkcollide

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <iterator>
+#include <string>
 
 #include "broadphase.h"
 #include "shaders/all.hpp"
@@ -22,8 +25,8 @@ std::uint32_t groups(std::uint64_t items, std::uint32_t size = gpu::kGroupSize) 
 }
 
 void bindAndPush(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint32_t object = 0,
-                 std::uint32_t step = 0, std::uint32_t level = 0) {
-    gpu::Push push{frame, object, step, level, 0};
+                 std::uint32_t step = 0, std::uint32_t level = 0, std::uint32_t coverage = gpu::kCoverageCentre) {
+    gpu::Push push{frame, object, step, level, coverage};
     pc.fns().vkCmdBindPipeline(pc.cmd, p.bindPoint(), p.handle());
     const VkShaderStageFlags stages = p.bindPoint() == VK_PIPELINE_BIND_POINT_COMPUTE
                                           ? VkShaderStageFlags(VK_SHADER_STAGE_COMPUTE_BIT)
@@ -31,7 +34,59 @@ void bindAndPush(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress f
     pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), stages, 0, sizeof(push), &push);
 }
 
+double gib(VkDeviceSize bytes) { return double(bytes) / double(1ull << 30); }
+
+std::string gibText(VkDeviceSize bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f GiB", gib(bytes));
+    return buf;
+}
+
+// Every buffer the broad phase allocates, sized for a run (one list for ensureBuffers and
+// the memory check).
+struct BufferPlan {
+    const char* name;
+    VkDeviceSize size;
+    vk::MemoryKind kind;
+};
+std::vector<BufferPlan> planBuffers(std::uint32_t n, std::uint32_t triangles, std::uint32_t objects) {
+    using vk::MemoryKind;
+    const VkDeviceSize pixels = VkDeviceSize(n) * n;
+    VkDeviceSize texels = 0;
+    for (std::uint32_t s = n; s >= 1; s /= 2) texels += VkDeviceSize(s) * s;
+    const VkDeviceSize tris = std::max<std::uint32_t>(triangles, 1);
+    const VkDeviceSize rows = (tris + gpu::kPackRowWidth - 1) / gpu::kPackRowWidth;
+    const VkDeviceSize blocks = (tris + gpu::kGroupSize - 1) / gpu::kGroupSize;
+    const VkDeviceSize scratch = std::max(2 * rows + 2 * rows * gpu::kPackRowWidth, 2 * blocks);
+    return {{"frame", sizeof(gpu::Frame), MemoryKind::Upload},
+            {"objects", sizeof(gpu::ObjectGpu) * std::max<std::uint32_t>(objects, 1), MemoryKind::Upload},
+            {"projection", sizeof(gpu::Projection), MemoryKind::Upload},
+            {"header", sizeof(gpu::Header), MemoryKind::DeviceLocal},
+            {"header-readback", sizeof(gpu::Header), MemoryKind::Readback},
+            {"counts", pixels * 4, MemoryKind::DeviceLocal},
+            {"front-keys", pixels * 8, MemoryKind::DeviceLocal},
+            {"back-keys", pixels * 8, MemoryKind::DeviceLocal},
+            {"ray-state", pixels * sizeof(gpu::PixelState), MemoryKind::DeviceLocal},
+            {"bundles", texels * 16, MemoryKind::DeviceLocal},
+            {"sparse", tris * 16, MemoryKind::DeviceLocal},
+            {"records", tris * sizeof(CandidateTriangle), MemoryKind::Readback},
+            {"pack-scratch", scratch * 4, MemoryKind::DeviceLocal}};
+}
+
+float floatFromOrdered(std::uint32_t u) {
+    const std::uint32_t bits = (u & 0x80000000u) ? (u & 0x7FFFFFFFu) : ~u;
+    float f;
+    std::memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
 }  // namespace
+
+VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects) {
+    VkDeviceSize total = 0;
+    for (const BufferPlan& b : planBuffers(resolution, triangles, objects)) total += b.size;
+    return total;
+}
 
 // Orthonormal u, v, d with u x v = d (so outward faces seen along d are front-facing).
 std::array<float, 9> projectionBasis(const std::array<float, 3>& dir) {
@@ -49,7 +104,8 @@ std::array<float, 9> projectionBasis(const std::array<float, 3>& dir) {
             float(d[0]), float(d[1]), float(d[2])};
 }
 
-SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const std::array<float, 6>& b, float open_epsilon) {
+SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const std::array<float, 6>& b, float open_epsilon,
+                                       float closed_epsilon) {
     float lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
         float mn = 0, mx = 0;
@@ -76,6 +132,7 @@ SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const 
     out.rows[11] = 0.05f - 0.9f * lo[2] / depth;
     out.rows[13] = 0.9f / depth;
     out.rows[12] = open_epsilon * out.rows[13];
+    out.rows[14] = closed_epsilon * out.rows[13];
     return out;
 }
 
@@ -89,10 +146,11 @@ Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device) {
         out = std::move(*p);
         return {};
     };
-    auto raster = [&](vk::Pipeline& out, std::span<const std::uint32_t> frag, const char* name) -> Result<void> {
+    auto raster = [&](vk::Pipeline& out, std::span<const std::uint32_t> frag, const char* name, bool conservative = false) -> Result<void> {
         vk::Pipeline::RasterDesc rd;
         rd.vertex_spirv = shaders::sample_vert;
         rd.fragment_spirv = frag;
+        rd.conservative = conservative;
         auto p = vk::Pipeline::createRaster(device, rd, none, push, name);
         if (!p) return p.error();
         out = std::move(*p);
@@ -113,41 +171,53 @@ Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device) {
                    compute(P.scan_blocksum, shaders::scan_blocksum_comp, "scan-blocksum"),
                    compute(P.scan_scatter, shaders::scan_scatter_comp, "scan-scatter")})
         if (!r) return r.error();
+    if (device.conservative_rasterization)
+        if (auto r = raster(P.count_conservative, shaders::count_frag, "count-conservative", true); !r) return r.error();
     return bp;
 }
 
 Result<void> BroadPhase::ensureBuffers(std::uint32_t n, std::uint32_t triangles, std::uint32_t objects, bool ray_image) {
     using vk::MemoryKind;
-    auto make = [&](vk::Buffer& b, VkDeviceSize size, MemoryKind kind, const char* name) -> Result<void> {
-        if (b.valid() && b.size() >= size) return {};
-        auto r = vk::Buffer::create(*device_, size, 0, kind, name);
+    const std::vector<BufferPlan> plan = planBuffers(n, triangles, objects);
+    // Refuse what the device cannot hold before allocating anything: a clear
+    // OutOfMemory instead of a driver failure half-way (or a validation error for a
+    // buffer above maxBufferSize). The heap size is an upper bound: the engine's own
+    // allocations live there too, and vkAllocateMemory may still fail (OutOfMemory).
+    std::vector<VkDeviceSize> per_heap(device_->memory.memoryHeapCount, 0);
+    VkDeviceSize total = 0;
+    const VkDeviceSize limit = std::min(device_->max_buffer_size, device_->max_allocation_size);
+    for (const BufferPlan& b : plan) {
+        if (b.size > limit)
+            return Error(ErrorCode::OutOfMemory, "resolution " + std::to_string(n) + " with " + std::to_string(triangles) +
+                                                     " triangles needs a '" + b.name + "' buffer of " + gibText(b.size) +
+                                                     ", more than the device's largest buffer (" + gibText(limit) +
+                                                     "): lower the resolution or split the scene");
+        const VkMemoryPropertyFlags required = b.kind == MemoryKind::DeviceLocal ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT
+                                                                                 : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
+        if (auto type = device_->findMemoryType(~0u, required)) per_heap[device_->memory.memoryTypes[*type].heapIndex] += b.size;
+        total += b.size;
+    }
+    for (std::uint32_t h = 0; h < per_heap.size(); ++h)
+        if (per_heap[h] > device_->memory.memoryHeaps[h].size)
+            return Error(ErrorCode::OutOfMemory, "resolution " + std::to_string(n) + " with " + std::to_string(triangles) +
+                                                     " triangles needs " + gibText(total) + " of device memory, more than the " +
+                                                     gibText(device_->memory.memoryHeaps[h].size) +
+                                                     " memory heap holds: lower the resolution or split the scene");
+    auto make = [&](vk::Buffer& b, const BufferPlan& p) -> Result<void> {
+        if (b.valid() && b.size() >= p.size) return {};
+        b.reset();  // free the smaller one first: peak memory is the new size, not both
+        auto r = vk::Buffer::create(*device_, p.size, 0, p.kind, p.name);
         if (!r) return r.error();
         b = std::move(*r);
         return {};
     };
-    const VkDeviceSize pixels = VkDeviceSize(n) * n;
-    VkDeviceSize texels = 0;
-    for (std::uint32_t s = n; s >= 1; s /= 2) texels += VkDeviceSize(s) * s;
-    const VkDeviceSize tris = std::max<std::uint32_t>(triangles, 1);
-    const VkDeviceSize rows = (tris + gpu::kPackRowWidth - 1) / gpu::kPackRowWidth;
-    const VkDeviceSize blocks = (tris + gpu::kGroupSize - 1) / gpu::kGroupSize;
-    const VkDeviceSize scratch = std::max(2 * rows + 2 * rows * gpu::kPackRowWidth, 2 * blocks);
-    for (auto r : {make(buf_.frame, sizeof(gpu::Frame), MemoryKind::Upload, "frame"),
-                   make(buf_.objects_buf, sizeof(gpu::ObjectGpu) * std::max<std::uint32_t>(objects, 1), MemoryKind::Upload, "objects"),
-                   make(buf_.projection, sizeof(gpu::Projection), MemoryKind::Upload, "projection"),
-                   make(buf_.header, sizeof(gpu::Header), MemoryKind::DeviceLocal, "header"),
-                   make(buf_.header_rb, sizeof(gpu::Header), MemoryKind::Readback, "header-readback"),
-                   make(buf_.counts, pixels * 4, MemoryKind::DeviceLocal, "counts"),
-                   make(buf_.front, pixels * 8, MemoryKind::DeviceLocal, "front-keys"),
-                   make(buf_.back, pixels * 8, MemoryKind::DeviceLocal, "back-keys"),
-                   make(buf_.state, pixels * sizeof(gpu::PixelState), MemoryKind::DeviceLocal, "ray-state"),
-                   make(buf_.bundles, texels * 16, MemoryKind::DeviceLocal, "bundles"),
-                   make(buf_.sparse, tris * 16, MemoryKind::DeviceLocal, "sparse"),
-                   make(buf_.records, tris * sizeof(CandidateTriangle), MemoryKind::Readback, "records"),
-                   make(buf_.scratch, scratch * 4, MemoryKind::DeviceLocal, "pack-scratch")})
-        if (!r) return r.error();
+    vk::Buffer* targets[] = {&buf_.frame, &buf_.objects_buf, &buf_.projection, &buf_.header, &buf_.header_rb, &buf_.counts,
+                             &buf_.front, &buf_.back, &buf_.state, &buf_.bundles, &buf_.sparse, &buf_.records, &buf_.scratch};
+    static_assert(std::size(targets) == 13);
+    for (std::size_t i = 0; i < plan.size(); ++i)
+        if (auto r = make(*targets[i], plan[i]); !r) return r.error();
     if (ray_image) {
-        if (auto r = make(buf_.ray_image, pixels * 4, MemoryKind::Readback, "ray-image"); !r) return r.error();
+        if (auto r = make(buf_.ray_image, {"ray-image", VkDeviceSize(n) * n * 4, MemoryKind::Readback}); !r) return r.error();
     }
     return {};
 }
@@ -167,6 +237,11 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     if (!(dl > 0) || !std::isfinite(dl)) return Error(ErrorCode::InvalidArgument, "projection direction must be finite and non-zero");
     if (meshes.empty()) return Error(ErrorCode::InvalidArgument, "no objects to test (zero meshes)");
     if (!(s.open_epsilon >= 0) || !std::isfinite(s.open_epsilon)) return Error(ErrorCode::InvalidArgument, "open_epsilon must be finite and >= 0");
+    if (!(s.closed_epsilon >= 0) || !std::isfinite(s.closed_epsilon))
+        return Error(ErrorCode::InvalidArgument, "closed_epsilon must be finite and >= 0");
+    if (s.coverage == Coverage::Conservative && !device_->conservative_rasterization)
+        return Error(ErrorCode::UnsupportedFeature, "conservative coverage needs VK_EXT_conservative_rasterization, which " +
+                                                        device_->info.name + " lacks (or the adopted device did not enable): use dilation");
     if (s.region) {
         const auto& r = *s.region;
         for (int a = 0; a < 3; ++a)
@@ -191,8 +266,14 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     const auto triangles = static_cast<std::uint32_t>(total);
     const auto objects = static_cast<std::uint32_t>(meshes.size());
     if (auto ok = ensureBuffers(n, triangles, objects, s.keep_ray_image); !ok) return ok.error();
-    const BackendChoice backend = chooseSamplingBackend(device_->properties, computeSamplingSupported(*device_), s.backend, n, triangles,
-                                                        triangles == last_triangles_ ? last_fragments_per_triangle_ : -1.0);
+    BackendChoice backend = chooseSamplingBackend(device_->properties, computeSamplingSupported(*device_), s.backend, n, triangles,
+                                                  triangles == last_triangles_ ? last_fragments_per_triangle_ : -1.0);
+    if (s.coverage != Coverage::Centre && backend.backend == SamplingBackend::Compute) {
+        // Thin-triangle coverage is drawn by sample.vert (or a conservative pipeline): raster only.
+        if (s.backend == SamplingBackend::Compute)
+            return Error(ErrorCode::UnsupportedFeature, "thin-triangle coverage (dilate or conservative) needs the raster sampling backend");
+        backend = {SamplingBackend::Raster, "thin-triangle coverage needs raster (Auto would take compute: " + backend.reason + ")"};
+    }
     const bool compute = backend.backend == SamplingBackend::Compute;
     VkDeviceAddress compute_frame = 0;
     if (compute) {
@@ -251,6 +332,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     std::memcpy(fr.direction_basis, basis.data(), sizeof(float) * 9);
     fr.open_epsilon_world = s.open_epsilon;
     fr.fit_margin = s.fit_margin;
+    fr.closed_epsilon_world = s.closed_epsilon;
     fr.compute_sampling = compute_frame;
     VkDeviceSize offset = 0;
     for (std::uint32_t l = 0; l < levels; ++l) {
@@ -259,11 +341,12 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     }
     if (s.region) {
         // The caller's box: the same mapping the fit shader computes, done here.
-        const SamplingProjection sp = projectionForRegion(basis, *s.region, s.open_epsilon);
+        const SamplingProjection sp = projectionForRegion(basis, *s.region, s.open_epsilon, s.closed_epsilon);
         gpu::Projection pr{};
         for (int a = 0; a < 3; ++a) pr.row[a] = {sp.rows[a * 4], sp.rows[a * 4 + 1], sp.rows[a * 4 + 2], sp.rows[a * 4 + 3]};
         pr.open_epsilon = sp.rows[12];
         pr.world_to_depth = sp.rows[13];
+        pr.closed_epsilon = sp.rows[14];
         std::memcpy(buf_.projection.mapped(), &pr, sizeof(pr));
         buf_.projection.flush();
     }
@@ -296,6 +379,36 @@ BroadPhase::Resources BroadPhase::importResources(graph::Graph& g, bool full) {
     r.scratch = g.importBuffer("pack-scratch", buf_.scratch);
     if (frame_.settings.keep_ray_image) r.rays = g.importBuffer("ray-image", buf_.ray_image, true);
     return r;
+}
+
+// One object's triangles in a sampling pass, with the run's coverage. The count pass
+// draws thin triangles enlarged (dilation) or through the overestimating pipeline (a
+// second draw), so they flag every ray they touch; those rays are done before peeling,
+// so the peeling passes draw only the other triangles, exactly as the count pass did.
+void BroadPhase::drawObject(const PassContext& pc, const vk::Pipeline& plain, const vk::Pipeline& conservative,
+                            VkDeviceAddress frame_addr, std::uint32_t object, std::uint32_t step, bool count_pass) const {
+    const std::uint32_t vertices = frame_.meshes[object].triangle_count * 3;
+    if (!count_pass && frame_.settings.coverage != Coverage::Centre) {
+        bindAndPush(pc, plain, frame_addr, object, step, 0, gpu::kCoverageSkipThin);
+        pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+        return;
+    }
+    switch (frame_.settings.coverage) {
+        case Coverage::Centre:
+            bindAndPush(pc, plain, frame_addr, object, step);
+            pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+            break;
+        case Coverage::Dilate:
+            bindAndPush(pc, plain, frame_addr, object, step, 0, gpu::kCoverageDilate);
+            pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+            break;
+        case Coverage::Conservative:
+            bindAndPush(pc, plain, frame_addr, object, step, 0, gpu::kCoverageSkipThin);
+            pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+            bindAndPush(pc, conservative, frame_addr, object, step, 0, gpu::kCoverageOnlyThin);
+            pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+            break;
+    }
 }
 
 // Clear, input checks, fit and depth complexity.
@@ -348,10 +461,7 @@ void BroadPhase::recordMeasure(graph::Graph& g, const Resources& r) const {
         compute_->addDepthComplexity(g, r.compute, {r.projection, r.header, r.counts, {}, r.front, r.back}, meshes, frame_addr);
     } else {
         g.addPass("depth-complexity", PassKind::Raster).renderArea(n, n).read(r.projection).readWrite(r.counts).record([&, frame_addr](PassContext& pc) {
-            for (std::uint32_t i = 0; i < meshes.size(); ++i) {
-                bindAndPush(pc, P.count, frame_addr, i);
-                pc.fns().vkCmdDraw(pc.cmd, meshes[i].triangle_count * 3, 1, 0, 0);
-            }
+            for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.count, P.count_conservative, frame_addr, i, 0, true);
         });
     }
     g.addPass("reduce-max", PassKind::Compute).read(r.counts).readWrite(r.header).record([&, frame_addr, pixels](PassContext& pc) {
@@ -383,10 +493,7 @@ void BroadPhase::recordPeelToPack(graph::Graph& g, const Resources& r, std::uint
             peel.renderArea(n, n).read(r.projection).read(r.state).readWrite(r.front);
             if (dual) peel.readWrite(r.back);
             peel.record([&, step, frame_addr](PassContext& pc) {
-                for (std::uint32_t i = 0; i < meshes.size(); ++i) {
-                    bindAndPush(pc, P.peel, frame_addr, i, step);
-                    pc.fns().vkCmdDraw(pc.cmd, meshes[i].triangle_count * 3, 1, 0, 0);
-                }
+                for (std::uint32_t i = 0; i < meshes.size(); ++i) drawObject(pc, P.peel, P.peel, frame_addr, i, step, false);  // no conservative draw when peeling
             });
         }
         auto classify = g.addPass("classify[" + std::to_string(step) + "]", PassKind::Compute);
@@ -466,17 +573,49 @@ gpu::Header BroadPhase::readHeader() {
 }
 
 // The GPU input checks' verdict, naming the object (its index in the run) and triangle.
-Result<void> BroadPhase::checkInputs(const gpu::Header& h) const {
+Result<void> BroadPhase::checkInputs(const gpu::Header& h) {
+    bad_objects_.clear();
     if (h.bad_index_count)
-        return Error(ErrorCode::InvalidMesh, "object " + std::to_string(h.bad_index_object) + ": triangle " +
-                                                 std::to_string(h.bad_index_triangle) + " has an index >= the vertex count " +
-                                                 std::to_string(frame_.meshes.at(h.bad_index_object).vertex_count) + " (" +
-                                                 std::to_string(h.bad_index_count) + " triangles affected)");
-    if (h.bad_vertex_count)
-        return Error(ErrorCode::InvalidMesh, "object " + std::to_string(h.bad_vertex_object) + ": triangle " +
-                                                 std::to_string(h.bad_vertex_triangle) + " has a NaN or infinite vertex position (" +
-                                                 std::to_string(h.bad_vertex_count) + " triangles affected)");
+        bad_objects_.push_back({h.bad_index_object,
+                                Error(ErrorCode::InvalidMesh, "object " + std::to_string(h.bad_index_object) + ": triangle " +
+                                                                  std::to_string(h.bad_index_triangle) + " has an index >= the vertex count " +
+                                                                  std::to_string(frame_.meshes.at(h.bad_index_object).vertex_count) + " (" +
+                                                                  std::to_string(h.bad_index_count) + " triangles affected)")});
+    if (h.bad_vertex_count && !(h.bad_index_count && h.bad_vertex_object == h.bad_index_object))
+        bad_objects_.push_back({h.bad_vertex_object,
+                                Error(ErrorCode::InvalidMesh, "object " + std::to_string(h.bad_vertex_object) + ": triangle " +
+                                                                  std::to_string(h.bad_vertex_triangle) + " has a NaN or infinite vertex position (" +
+                                                                  std::to_string(h.bad_vertex_count) + " triangles affected)")});
+    if (!bad_objects_.empty()) return bad_objects_.front().error;
     return {};
+}
+
+// The projection the run used: the caller's region, or fit.comp's computation repeated on
+// the host from the bounds it read.
+std::array<float, 16> BroadPhase::hostProjection(const gpu::Header& h) const {
+    const BroadPhaseSettings& s = frame_.settings;
+    std::array<float, 9> basis;
+    std::memcpy(basis.data(), frame_.frame.direction_basis, sizeof(float) * 9);
+    if (s.region) return projectionForRegion(basis, *s.region, s.open_epsilon, s.closed_epsilon).rows;
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = floatFromOrdered(h.bounds[a]), hi[a] = floatFromOrdered(h.bounds[a + 3]);
+    float size = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+    if (!(size > 0)) size = 1;
+    size *= 1.0f + 2.0f * s.fit_margin;
+    float depth = hi[2] - lo[2];
+    if (!(depth > 0)) depth = 1;
+    std::array<float, 16> rows{};
+    for (int a = 0; a < 2; ++a) {
+        const float origin = 0.5f * (lo[a] + hi[a]) - 0.5f * size;
+        for (int k = 0; k < 3; ++k) rows[a * 4 + k] = basis[a * 3 + k] / size;
+        rows[a * 4 + 3] = -origin / size;
+    }
+    for (int k = 0; k < 3; ++k) rows[8 + k] = basis[6 + k] * (0.9f / depth);
+    rows[11] = 0.05f - 0.9f * lo[2] / depth;
+    rows[13] = 0.9f / depth;
+    rows[12] = s.open_epsilon * rows[13];
+    rows[14] = s.closed_epsilon * rows[13];
+    return rows;
 }
 
 void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report) {
@@ -561,6 +700,7 @@ Result<BroadPhaseResult> BroadPhase::collect() {
     // A single submission measures the depth complexity in the same run; with a
     // separate measuring submission, the second header keeps the first's value.
     result.depth_complexity = h.depth_complexity;
+    result.projection = hostProjection(h);
     result.backend = frame_.backend.backend;
     result.backend_reason = frame_.backend.reason;
     result.fragments = h.fragments;

@@ -41,6 +41,13 @@ struct GpuMesh {
     bool check_on_gpu = false;
 };
 
+// How sampling treats thin triangles (projected inradius below half a pixel diagonal).
+enum class Coverage {
+    Centre,        // the hardware rule: pixel centres only (the paper)
+    Dilate,        // thin triangles enlarged in the vertex shader; their rays collide
+    Conservative,  // thin triangles drawn by a VK_EXT_conservative_rasterization pipeline
+};
+
 struct BroadPhaseSettings {
     std::uint32_t resolution = 256;                 // power of two, 4..16384
     std::array<float, 3> direction{0, 0, 1};        // projection direction (any length > 0)
@@ -48,6 +55,8 @@ struct BroadPhaseSettings {
     bool dual = false;                              // front and back peeling at once
     PackingMethod packing = PackingMethod::Scan;
     float open_epsilon = 0;                         // world units; open-surface depth proximity
+    float closed_epsilon = 0;                       // world units; closed surfaces this close touch
+    Coverage coverage = Coverage::Centre;
     float fit_margin = 1.0f / 64.0f;                // relative margin of the automatic fit
     bool keep_ray_image = false;                    // read back the collision-ray image
     // Sample this world box instead of fitting the scene: min x,y,z then max x,y,z.
@@ -66,6 +75,9 @@ struct BroadPhaseResult {
     std::uint32_t peel_steps = 0;            // peeling passes recorded (half with dual)
     std::uint32_t collision_rays = 0;
     std::uint32_t triangles = 0;
+    // The sampling projection used (world -> [0,1]^2 image, depth), as projectionForRegion
+    // lays it out; computed on the host from the fitted bounds (an ulp may differ from the GPU's).
+    std::array<float, 16> projection{};
     std::vector<graph::PassTiming> passes;   // both submissions, in order
     SamplingBackend backend = SamplingBackend::Raster;  // the one that ran (never Auto)
     std::string backend_reason;              // one line: why
@@ -82,7 +94,9 @@ struct SamplingProjection {
 };
 std::array<float, 9> projectionBasis(const std::array<float, 3>& direction);
 SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const std::array<float, 6>& region,
-                                       float open_epsilon);
+                                       float open_epsilon, float closed_epsilon = 0);
+// Device memory the broad phase needs for a resolution and triangle count (bytes, all buffers).
+VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects);
 
 class BroadPhase {
 public:
@@ -97,6 +111,13 @@ public:
     [[nodiscard]] Result<void> submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings, std::uint32_t layers);
     [[nodiscard]] Result<BroadPhaseResult> collect();
     bool pending() const noexcept { return pending_; }
+    // After an InvalidMesh error from the GPU input check: the objects it named (run
+    // indices), each with its own error; at most one per kind of problem, so others may be bad too.
+    struct BadObject {
+        std::uint32_t object;
+        Error error;
+    };
+    const std::vector<BadObject>& badObjects() const noexcept { return bad_objects_; }
     // Bytes of the GPU buffers the broad phase holds (its own, not the meshes').
     std::uint64_t memoryBytes() const noexcept;
 
@@ -113,8 +134,11 @@ private:
     void recordPeelToPack(graph::Graph& g, const Resources& r, std::uint32_t steps) const;
     // The small result header, copied where the host can read it.
     void addHeaderReadback(graph::Graph& g, graph::ResourceId header, graph::ResourceId header_rb) const;
+    void drawObject(const graph::PassContext& pc, const vk::Pipeline& plain, const vk::Pipeline& conservative,
+                    VkDeviceAddress frame_addr, std::uint32_t object, std::uint32_t step, bool count_pass) const;
     gpu::Header readHeader();
-    Result<void> checkInputs(const gpu::Header& header) const;
+    std::array<float, 16> hostProjection(const gpu::Header& h) const;
+    Result<void> checkInputs(const gpu::Header& header);
     static void addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report);
     bool computeBackend() const noexcept { return frame_.backend.backend == SamplingBackend::Compute; }
     Result<void> ensureBuffers(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects, bool ray_image);
@@ -122,6 +146,7 @@ private:
     vk::Device* device_;
     graph::Executor executor_;
     bool pending_ = false;
+    std::vector<BadObject> bad_objects_;
     // The run being recorded or in flight.
     struct Prepared {
         gpu::Frame frame{};
@@ -137,6 +162,7 @@ private:
     double last_fragments_per_triangle_ = -1;
     struct Pipelines {
         vk::Pipeline validate, bounds, fit, count, peel, reduce_max, peel_init, classify, finalize, merge, separate;
+        vk::Pipeline count_conservative;  // only where the device rasterises conservatively
         vk::Pipeline pack_rowcount, scan_counts, pack_shift, pack_move, scan_blocksum, scan_scatter;
     } pipes_;
     struct Buffers {

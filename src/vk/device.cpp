@@ -182,6 +182,14 @@ Result<void> finishDevice(Device& d) {
         return Error(ErrorCode::InvalidArgument, "queue family " + std::to_string(d.queue_family) +
                                                      " does not exist (the device has " + std::to_string(family_count) + ")");
     d.timestamp_valid_bits = families[d.queue_family].timestampValidBits;
+    VkPhysicalDeviceVulkan13Properties p13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
+    VkPhysicalDeviceVulkan11Properties p11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES};
+    p11.pNext = &p13;
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &p11;
+    d.instance_fns.vkGetPhysicalDeviceProperties2(d.physical, &props);
+    if (p13.maxBufferSize) d.max_buffer_size = p13.maxBufferSize;
+    if (p11.maxMemoryAllocationSize) d.max_allocation_size = p11.maxMemoryAllocationSize;
     return {};
 }
 
@@ -344,16 +352,19 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     queue_info.pQueuePriorities = &priority;
     FeatureChain features;
     features.requireAll();
-    const char* device_exts[] = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    // Optional: conservative rasterisation, only where the device has it (coverage setting).
+    std::vector<const char*> device_exts = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    if (d->info.conservative_rasterization) device_exts.push_back(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     dci.pNext = &features.core;
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &queue_info;
-    dci.enabledExtensionCount = 1;
-    dci.ppEnabledExtensionNames = device_exts;
+    dci.enabledExtensionCount = static_cast<std::uint32_t>(device_exts.size());
+    dci.ppEnabledExtensionNames = device_exts.data();
     r = d->instance_fns.vkCreateDevice(d->physical, &dci, nullptr, &d->device);
     if (r != VK_SUCCESS) return vulkanError(r, "vkCreateDevice on " + d->info.name);
     d->owns_device = true;
+    d->conservative_rasterization = d->info.conservative_rasterization;
     auto dev = loadDeviceFunctions(d->instance_fns, d->device);
     if (!dev) return dev.error();
     d->fns = *dev;
@@ -390,6 +401,8 @@ Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& in, Message
     auto dev = loadDeviceFunctions(d->instance_fns, d->device);
     if (!dev) return dev.error();
     d->fns = *dev;
+    // The engine says whether it enabled the extension; vkcollide cannot see that itself.
+    d->conservative_rasterization = in.conservative_rasterization && d->info.conservative_rasterization;
     if (auto ok = finishDevice(*d); !ok) return ok.error();
     if (d->timestamp_valid_bits == 0)
         return Error(ErrorCode::UnsupportedFeature, "the adopted queue family " + std::to_string(in.queue_family) +

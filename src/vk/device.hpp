@@ -34,6 +34,11 @@ struct Device {
     VkPhysicalDeviceProperties properties{};
     VkPhysicalDeviceMemoryProperties memory{};
     std::uint32_t timestamp_valid_bits = 0;
+    // Largest single buffer and allocation (Vulkan 1.3 maxBufferSize, 1.1 maxMemoryAllocationSize).
+    VkDeviceSize max_buffer_size = ~VkDeviceSize(0);
+    VkDeviceSize max_allocation_size = ~VkDeviceSize(0);
+    // VK_EXT_conservative_rasterization is enabled on this device (pipelines may overestimate).
+    bool conservative_rasterization = false;
 
     Device() = default;
     ~Device();

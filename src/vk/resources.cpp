@@ -1,5 +1,7 @@
 #include "vk/resources.hpp"
 
+#include <algorithm>
+
 namespace vkcollide::vk {
 
 // ---- Buffer ---------------------------------------------------------------
@@ -7,6 +9,10 @@ namespace vkcollide::vk {
 Result<Buffer> Buffer::create(Device& device, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind,
                               const std::string& name) {
     if (size == 0) return Error(ErrorCode::InvalidArgument, "buffer '" + name + "' has size 0");
+    if (size > device.max_buffer_size || size > device.max_allocation_size)
+        return Error(ErrorCode::OutOfMemory, "buffer '" + name + "' of " + std::to_string(size) + " bytes exceeds the device's limit of " +
+                                                 std::to_string(std::min(device.max_buffer_size, device.max_allocation_size)) +
+                                                 " bytes per buffer (maxBufferSize / maxMemoryAllocationSize)");
     Buffer b;
     b.device_ = &device;
     b.size_ = size;
@@ -292,6 +298,14 @@ Result<Pipeline> Pipeline::createRaster(Device& device, const RasterDesc& desc, 
     raster.cullMode = desc.cull;
     raster.frontFace = desc.front_face;
     raster.lineWidth = 1.0f;
+    VkPipelineRasterizationConservativeStateCreateInfoEXT conservative{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_CONSERVATIVE_STATE_CREATE_INFO_EXT};
+    conservative.conservativeRasterizationMode = VK_CONSERVATIVE_RASTERIZATION_MODE_OVERESTIMATE_EXT;
+    if (desc.conservative) {
+        if (!device.conservative_rasterization)
+            return Error(ErrorCode::UnsupportedFeature, "pipeline '" + name + "' asks for conservative rasterisation, which the device has not enabled");
+        raster.pNext = &conservative;
+    }
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};

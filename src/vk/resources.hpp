@@ -107,6 +107,8 @@ public:
         VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
         VkCullModeFlags cull = VK_CULL_MODE_NONE;
         VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+        // Overestimating conservative rasterisation (needs VK_EXT_conservative_rasterization enabled).
+        bool conservative = false;
     };
     static Result<Pipeline> createRaster(Device& device, const RasterDesc& desc, std::span<const Binding> bindings,
                                          std::uint32_t push_constant_bytes, const std::string& name);

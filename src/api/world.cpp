@@ -9,6 +9,7 @@
 
 #include "passes/broad_phase.hpp"
 #include "passes/compute_sampling.hpp"
+#include "passes/mesh_upload.hpp"
 #include "vk/device.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -150,27 +151,16 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     Impl::Object o;
     const ObjectId id = w.newId(options, o);
     const std::string who = "object " + std::to_string(id) + " ('" + o.name + "'): ";
-    if (auto ok = validateMesh(mesh); !ok) return Error(ok.error().code(), who + ok.error().message());
+    // The same checked upload the broad-phase tests use (validateMesh, then the copies).
+    auto uploaded = passes::uploadMeshes(w.device(), {&mesh}, {.open = {options.open}});
+    if (!uploaded) return Error(uploaded.error().code(), who + uploaded.error().message(), uploaded.error().vkResult());
     for (float t : options.transform)
         if (!std::isfinite(t)) return Error(ErrorCode::InvalidArgument, who + "transform is not finite");
     if (mesh.triangleCount() >= gpu::kMaxTriangles) return Error(ErrorCode::InvalidMesh, who + "has 2^30 triangles or more");
-    auto vb = vk::Buffer::create(w.device(), mesh.positions.size() * sizeof(Float3), 0, vk::MemoryKind::Upload, o.name + "-vertices");
-    if (!vb) return Error(vb.error().code(), who + vb.error().message(), vb.error().vkResult());
-    auto ib = vk::Buffer::create(w.device(), mesh.indices.size() * 4, 0, vk::MemoryKind::Upload, o.name + "-indices");
-    if (!ib) return Error(ib.error().code(), who + ib.error().message(), ib.error().vkResult());
-    std::memcpy(vb->mapped(), mesh.positions.data(), mesh.positions.size() * sizeof(Float3));
-    std::memcpy(ib->mapped(), mesh.indices.data(), mesh.indices.size() * 4);
-    vb->flush();
-    ib->flush();
     o.host = true;
-    o.gpu.vertices = vb->address();
-    o.gpu.vertex_stride = sizeof(Float3);
-    o.gpu.vertex_count = static_cast<std::uint32_t>(mesh.positions.size());
-    o.gpu.indices = ib->address();
-    o.gpu.triangle_count = static_cast<std::uint32_t>(mesh.triangleCount());
-    o.gpu.open = options.open;
-    o.vertices = std::move(*vb);
-    o.indices = std::move(*ib);
+    o.gpu = uploaded->meshes[0];
+    o.vertices = std::move(uploaded->buffers[0]);
+    o.indices = std::move(uploaded->buffers[1]);
     Impl::measureHost(o, mesh.positions, mesh.indices);
     o.host_indices = mesh.indices;
     w.objects.push_back(std::move(o));

@@ -81,5 +81,6 @@ std::vector<SceneSpec> deepOverlapScenes(const std::string& data, double scale);
 std::vector<SceneSpec> deformingPairScenes(const std::string& data, double scale);
 std::vector<SceneSpec> ballClothScenes(double scale);
 std::vector<SceneSpec> mixedScenes(double scale);
+std::vector<SceneSpec> touchingScenes(double scale);
 
 }  // namespace vkcollide::bench

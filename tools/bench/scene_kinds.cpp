@@ -215,4 +215,61 @@ std::vector<SceneSpec> mixedScenes(double scale) {
     };
 }
 
+
+std::vector<SceneSpec> touchingScenes(double scale) {
+    const std::uint32_t n = scaledCount(24, scale, 2, 2), seg = scaledCount(64, scale, 2, 8);
+    // Every coordinate below is a multiple of a power of two: the contacts are exact in
+    // float (coplanar faces, a vertex on a face), not just close.
+    const auto boxAt = [](float hx, float hy, float hz, std::uint32_t subdivisions, Float3 at, std::string name) -> Result<BenchObject> {
+        Result<HostMesh> m = box({hx, hy, hz}, subdivisions);
+        if (!m) return m.error();
+        return object(std::move(*m), std::move(name), Transform3x4{1, 0, 0, at.x, 0, 1, 0, at.y, 0, 0, 1, at.z});
+    };
+    return {
+        {"stack-touching", Motion::Rigid, SceneSet::Tuning, 1,
+         "3 x 3 x 2 unit boxes stacked face to face (exactly coplanar contacts), 4 spheres resting on the top with a pole vertex, a small box "
+         "sunk 0.107 into the stack",
+         [=](int) -> Result<std::vector<BenchObject>> {
+             std::vector<BenchObject> out;
+             for (int k = 0; k < 18; ++k) {
+                 auto b = boxAt(0.5f, 0.5f, 0.5f, n, {float(k % 3), float(k / 3 % 3), float(k / 9)}, "box" + std::to_string(k));
+                 if (!b) return b.error();
+                 out.push_back(std::move(*b));
+             }
+             for (int k = 0; k < 4; ++k) {
+                 Result<HostMesh> ball = uvSphere(0.25f, seg, seg / 2);
+                 if (!ball) return ball.error();
+                 out.push_back(object(std::move(*ball), "ball" + std::to_string(k),
+                                      Transform3x4{1, 0, 0, 0.5f + float(k % 2), 0, 1, 0, 0.5f + float(k / 2), 0, 0, 1, 1.75f}));
+             }
+             // Sunk by 0.1069: not a multiple of any lattice step, so its side faces cross the top.
+             auto sunk = boxAt(0.25f, 0.25f, 0.25f, n, {2.0f, 2.0f, 1.6431f}, "sunk");
+             if (!sunk) return sunk.error();
+             out.push_back(std::move(*sunk));
+             return out;
+         }},
+        {"wall-touching", Motion::Rigid, SceneSet::HeldOut, 1,
+         "held-out: a running-bond wall of 4 x 5 bricks (half a brick offset per row, 0.5 x 0.25 x 0.125) touching face to face, a ball "
+         "on top touching with a pole vertex, a thin plate standing on the wall's top face",
+         [=](int) -> Result<std::vector<BenchObject>> {
+             std::vector<BenchObject> out;
+             for (int row = 0; row < 4; ++row)
+                 for (int k = 0; k < 5; ++k) {
+                     const float x = 0.5f * float(k) + (row % 2 ? 0.25f : 0.0f);
+                     auto b = boxAt(0.25f, 0.125f, 0.0625f, n, {x, 0.0f, 0.125f * float(row)}, "brick" + std::to_string(row * 5 + k));
+                     if (!b) return b.error();
+                     out.push_back(std::move(*b));
+                 }
+             Result<HostMesh> ball = uvSphere(0.125f, seg, seg / 2);
+             if (!ball) return ball.error();
+             out.push_back(object(std::move(*ball), "ball", Transform3x4{1, 0, 0, 0.25f, 0, 1, 0, 0, 0, 0, 1, 0.5625f}));
+             // A thin upright plate whose bottom face lies on the wall's top face.
+             Result<HostMesh> plate = box({0.5f, 0.03125f, 0.25f}, n);
+             if (!plate) return plate.error();
+             out.push_back(object(std::move(*plate), "plate", Transform3x4{1, 0, 0, 1.0f, 0, 1, 0, 0.0625f, 0, 0, 1, 0.6875f}));
+             return out;
+         }},
+    };
+}
+
 }  // namespace vkcollide::bench

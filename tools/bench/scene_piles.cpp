@@ -59,11 +59,18 @@ Result<std::vector<BenchObject>> pile(const std::vector<HostMesh>& shapes, const
         const std::size_t shape = i % shapes.size();
         const double s = o.size_lo + (o.size_hi - o.size_lo) * hash01(key + 3);
         const double r = radius[shape] * s;
-        const double x = r + (o.box_width - 2 * r) * hash01(key + 4), y = r + (o.box_width - 2 * r) * hash01(key + 5);
-        double z = r * (1 - o.overlap);  // resting on the floor (z = 0), sunk in a little
-        for (const Placed& p : placed) {
-            const double reach = (r + p.r) * (1 - o.overlap), d2 = (x - p.x) * (x - p.x) + (y - p.y) * (y - p.y);
-            if (d2 < reach * reach) z = std::max(z, p.z + std::sqrt(reach * reach - d2));
+        // Settling: of kTries random drop points, the one where the object comes to rest
+        // lowest (it rolls into a gap), instead of a porous tower of first contacts.
+        constexpr std::uint32_t kTries = 12;
+        double x = 0, y = 0, z = 0;
+        for (std::uint32_t t = 0; t < kTries; ++t) {
+            const double tx = r + (o.box_width - 2 * r) * hash01(key + 100 * t + 4), ty = r + (o.box_width - 2 * r) * hash01(key + 100 * t + 5);
+            double tz = r * (1 - o.overlap);  // resting on the floor (z = 0), sunk in a little
+            for (const Placed& p : placed) {
+                const double reach = (r + p.r) * (1 - o.overlap), d2 = (tx - p.x) * (tx - p.x) + (ty - p.y) * (ty - p.y);
+                if (d2 < reach * reach) tz = std::max(tz, p.z + std::sqrt(reach * reach - d2));
+            }
+            if (t == 0 || tz < z) x = tx, y = ty, z = tz;
         }
         placed.push_back({x, y, z, r});
         BenchObject b;

@@ -9,3 +9,6 @@ set(VKCOLLIDE_BENCH_SCENE_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/scene_pairs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/reference_cache.cpp
 )
+
+# Adding a scene to a CollisionWorld (engine buffers included): needs the GPU library.
+set(VKCOLLIDE_BENCH_WORLD_SOURCES ${CMAKE_CURRENT_LIST_DIR}/bench_world.cpp)

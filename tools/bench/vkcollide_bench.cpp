@@ -2,8 +2,10 @@
 //
 //   vkcollide_bench [--set tuning|held-out|all] [--scenes a,b,...] [--variants default,mitigations,...]
 //                   [--resolutions 512,1024,...] [--scale S] [--frames K] [--threads N]
-//                   [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--list]
+//                   [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--list] [--reference-only]
 //
+// --reference-only builds the chosen scenes and their exact references (filling the cache)
+// and prints per frame the triangles, reference pairs, crossing pairs and seconds; no GPU.
 // For each scene (bench_scenes.hpp) and settings variant (bench_variants.cpp) it runs one
 // warm-up detection and then the timed ones: rigid scenes K times, deforming and moving
 // scenes once per frame of their motion (new vertices through updateVertices or the engine
@@ -16,6 +18,7 @@
 // means per scene and variant goes to stdout (tools/bench/summary.sh makes the same from
 // the CSV). Every object is self-colliding, as the peers run.
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -30,10 +33,10 @@
 #include <vector>
 
 #include "bench_scenes.hpp"
+#include "bench_world.hpp"
 #include "bench_variants.hpp"
 #include "reference_cache.hpp"
 #include "support/exact_reference.hpp"
-#include "vk/resources.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/world.hpp"
 
@@ -67,65 +70,13 @@ std::string csvField(std::string s) {
     return s;
 }
 
-void progress(const std::string& line) { std::fprintf(stderr, "\r\033[K%s", line.c_str()), std::fflush(stderr); }
-void progressDone() { std::fprintf(stderr, "\r\033[K"); }
-
-// Rigid and deforming scenes are benchmarked in world space (transforms baked into the
-// vertices, as the peers see them): the reference and the GPU then start from the same
-// floats. Moving scenes keep their transforms (setTransform every frame).
-Result<void> bakeTransforms(std::vector<BenchObject>& objects) {
-    for (BenchObject& o : objects) {
-        double stretch = 0;
-        for (int r = 0; r < 3; ++r)
-            stretch = std::max(stretch, std::sqrt(double{o.transform[4 * r]} * o.transform[4 * r] + double{o.transform[4 * r + 1]} * o.transform[4 * r + 1] +
-                                                  double{o.transform[4 * r + 2]} * o.transform[4 * r + 2]));
-        if (Result<void> ok = transformMesh(o.mesh, o.transform); !ok) return ok;
-        o.typical_edge_length *= static_cast<float>(stretch);
-        o.transform = kIdentity3x4;
-    }
-    return {};
+// A progress line on a terminal only (logs of the GPU run stay clean).
+const bool kProgress = isatty(2) != 0;
+void progress(const std::string& line) {
+    if (kProgress) std::fprintf(stderr, "\r\033[K%s", line.c_str()), std::fflush(stderr);
 }
-
-// An engine mesh: positions and indices in host-visible buffers the bench owns.
-struct EngineMesh {
-    vk::Buffer vertices, indices;
-    GpuMeshDesc desc;
-};
-
-void writeVertices(EngineMesh& e, const BenchObject& o) {
-    auto* dst = static_cast<std::uint8_t*>(e.vertices.mapped());
-    for (std::size_t i = 0; i < o.mesh.positions.size(); ++i) std::memcpy(dst + i * o.gpu_stride, &o.mesh.positions[i], 12);
-    e.vertices.flush();
-}
-
-Result<EngineMesh> makeEngineMesh(vk::Device& device, const BenchObject& o) {
-    EngineMesh e;
-    auto vb = vk::Buffer::create(device, o.mesh.positions.size() * o.gpu_stride, 0, vk::MemoryKind::Upload, "bench-engine-vertices");
-    if (!vb) return vb.error();
-    e.vertices = std::move(*vb);
-    std::memset(e.vertices.mapped(), 0, e.vertices.size());
-    writeVertices(e, o);
-    const std::size_t index_bytes = o.gpu_index16 ? (o.mesh.indices.size() * 2 + 3) / 4 * 4 : o.mesh.indices.size() * 4;
-    auto ib = vk::Buffer::create(device, index_bytes, 0, vk::MemoryKind::Upload, "bench-engine-indices");
-    if (!ib) return ib.error();
-    e.indices = std::move(*ib);
-    if (o.gpu_index16) {
-        auto* idx = static_cast<std::uint16_t*>(e.indices.mapped());
-        for (std::size_t k = 0; k < o.mesh.indices.size(); ++k) idx[k] = static_cast<std::uint16_t>(o.mesh.indices[k]);
-    } else {
-        std::memcpy(e.indices.mapped(), o.mesh.indices.data(), o.mesh.indices.size() * 4);
-    }
-    e.indices.flush();
-    e.desc.vertex_buffer = e.vertices.handle();
-    e.desc.vertex_buffer_size = e.vertices.size();
-    e.desc.vertex_stride = o.gpu_stride;
-    e.desc.vertex_count = static_cast<std::uint32_t>(o.mesh.positions.size());
-    e.desc.position_format = o.gpu_stride == 16 ? VK_FORMAT_R32G32B32A32_SFLOAT : VK_FORMAT_R32G32B32_SFLOAT;
-    e.desc.index_buffer = e.indices.handle();
-    e.desc.index_buffer_size = e.indices.size();
-    e.desc.index_type = o.gpu_index16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32;
-    e.desc.index_count = static_cast<std::uint32_t>(o.mesh.indices.size());
-    return e;
+void progressDone() {
+    if (kProgress) std::fprintf(stderr, "\r\033[K");
 }
 
 // Means over the timed frames of one (scene, variant), for the closing table.
@@ -144,12 +95,13 @@ struct Options {
     int frames = 3;
     unsigned threads = 0;
     bool list = false;
+    bool reference_only = false;
 };
 
 int usage() {
     std::fprintf(stderr, "usage: vkcollide_bench [--set tuning|held-out|all] [--scenes a,b] [--variants names|groups|all] "
                          "[--resolutions 512,1024] [--scale S] [--frames K] [--threads N] [--data DIR] [--cache DIR | --no-cache] "
-                         "[--csv FILE] [--list]\n");
+                         "[--csv FILE] [--list] [--reference-only]\n");
     return 2;
 }
 
@@ -161,6 +113,7 @@ int main(int argc, char** argv) {
         const std::string a = argv[i];
         const bool has = i + 1 < argc;
         if (a == "--list") opt.list = true;
+        else if (a == "--reference-only") opt.reference_only = true;
         else if (a == "--no-cache") opt.cache.clear();
         else if (!has) return usage();
         else if (a == "--set") opt.set = argv[++i];
@@ -198,6 +151,25 @@ int main(int argc, char** argv) {
         if (std::none_of(all.begin(), all.end(), [&](const SceneSpec& s) { return s.name == n; }))
             return std::fprintf(stderr, "vkcollide_bench: unknown scene '%s' (--list)\n", n.c_str()), 2;
 
+    if (opt.reference_only) {
+        std::printf("%-9s %-24s %5s %10s %8s %12s %12s %9s %s\n", "set", "scene", "frame", "triangles", "objects", "exact pairs", "crossing",
+                    "seconds", "cached");
+        for (const SceneSpec* scene : chosen)
+            for (int f = 0; f < scene->frames; ++f) {
+                auto objects = scene->build(f);
+                if (!objects) return std::fprintf(stderr, "vkcollide_bench: %s: %s\n", scene->name.c_str(), objects.error().message().c_str()), 1;
+                if (scene->motion != Motion::Moving)
+                    if (auto ok = bakeTransforms(*objects); !ok) return std::fprintf(stderr, "vkcollide_bench: %s\n", ok.error().message().c_str()), 1;
+                auto ref = referenceFor(*objects, opt.cache, opt.threads);
+                if (!ref) return std::fprintf(stderr, "vkcollide_bench: %s: %s\n", scene->name.c_str(), ref.error().message().c_str()), 1;
+                std::size_t triangles = 0;
+                for (const BenchObject& o : *objects) triangles += o.mesh.triangleCount();
+                std::printf("%-9s %-24s %5d %10zu %8zu %12zu %12zu %9.2f %s\n", setName(scene->set), scene->name.c_str(), f, triangles,
+                            objects->size(), ref->pairs.size(), ref->crossingCount(), ref->seconds, ref->from_cache ? "yes" : "no");
+                std::fflush(stdout);
+            }
+        return 0;
+    }
     auto ctx = Context::create();
     if (!ctx) return std::fprintf(stderr, "vkcollide_bench: %s\n", ctx.error().message().c_str()), 1;
     const std::string device = csvField((*ctx)->deviceInfo().name);
@@ -231,28 +203,9 @@ int main(int argc, char** argv) {
         for (const Variant& v : *variants) {
             auto world = CollisionWorld::create(**ctx, {.threads = opt.threads});
             if (!world) return std::fprintf(stderr, "\nvkcollide_bench: %s\n", world.error().message().c_str()), 1;
-            std::vector<ObjectId> ids;
-            std::vector<EngineMesh> engine(frames[0].size());
-            for (std::size_t k = 0; k < frames[0].size(); ++k) {
-                const BenchObject& o = frames[0][k];
-                ObjectOptions oo;
-                oo.name = o.mesh.name;
-                oo.self_collision = o.self_collision;
-                oo.open = o.open || v.open;
-                oo.transform = o.transform;
-                oo.typical_edge_length = o.typical_edge_length;
-                Result<ObjectId> id = Error(ErrorCode::InvalidArgument, "");
-                if (o.gpu) {
-                    auto e = makeEngineMesh((*ctx)->device(), o);
-                    if (!e) return std::fprintf(stderr, "\nvkcollide_bench: %s\n", e.error().message().c_str()), 1;
-                    engine[k] = std::move(*e);
-                    id = (*world)->addGpuMesh(engine[k].desc, oo);
-                } else {
-                    id = (*world)->addMesh(o.mesh, oo);
-                }
-                if (!id) return std::fprintf(stderr, "\nvkcollide_bench: %s: %s\n", scene->name.c_str(), id.error().message().c_str()), 1;
-                ids.push_back(*id);
-            }
+            auto in_world = addToWorld(**world, **ctx, frames[0], v.open);
+            if (!in_world) return std::fprintf(stderr, "\nvkcollide_bench: %s: %s\n", scene->name.c_str(), in_world.error().message().c_str()), 1;
+            const std::vector<ObjectId>& ids = in_world->ids;
             DetectSettings settings;
             v.apply(settings);
             Summary sum{setName(scene->set), scene->name, v.name, "", 0, 0, triangles};
@@ -260,14 +213,8 @@ int main(int argc, char** argv) {
                 const int mf = scene->motion == Motion::Rigid ? 0 : std::max(f, 0);
                 progress(scene->name + " [" + std::to_string(triangles) + " tris] " + v.name + ": frame " + std::to_string(f + 1) + "/" + std::to_string(timed));
                 const auto t0 = Clock::now();
-                for (std::size_t k = 0; k < ids.size() && scene->motion != Motion::Rigid; ++k) {
-                    const BenchObject& o = frames[mf][k];
-                    Result<void> ok{};
-                    if (scene->motion == Motion::Moving) ok = (*world)->setTransform(ids[k], o.transform);
-                    else if (o.gpu) writeVertices(engine[k], o);
-                    else ok = (*world)->updateVertices(ids[k], o.mesh.positions);
-                    if (!ok) return std::fprintf(stderr, "\nvkcollide_bench: %s\n", ok.error().message().c_str()), 1;
-                }
+                if (auto ok = applyFrame(**world, *in_world, scene->motion, frames[mf]); !ok)
+                    return std::fprintf(stderr, "\nvkcollide_bench: %s\n", ok.error().message().c_str()), 1;
                 const double update_ms = ms(t0, Clock::now());
                 Result<DetectResult> r = Error(ErrorCode::InvalidArgument, "");
                 if (v.async) {

@@ -182,6 +182,14 @@ int main(int argc, char** argv) {
     std::vector<Summary> summaries;
     std::printf("%-9s %-24s %-14s %-8s %5s %9s %9s %9s %9s %8s %8s %8s\n", "set", "scene", "variant", "backend", "res", "gpu ms", "narrow ms",
                 "total ms", "downl.", "recall", "crossing", "prec.");
+    // A failing scene or (scene, variant) is reported and skipped, so one missing mesh file
+    // or one out-of-memory setting does not cost a whole GPU run; the exit code says so.
+    int failures = 0;
+    const auto failed = [&](const std::string& what, const Error& e) {
+        progressDone();
+        std::fprintf(stderr, "vkcollide_bench: %s: %s (skipped)\n", what.c_str(), e.message().c_str());
+        ++failures;
+    };
     for (const SceneSpec* scene : chosen) {
         // Every frame's objects and exact reference first (rigid: one frame).
         std::vector<std::vector<BenchObject>> frames;
@@ -189,14 +197,21 @@ int main(int argc, char** argv) {
         for (int f = 0; f < scene->frames; ++f) {
             progress(scene->name + ": building frame " + std::to_string(f) + " and its exact reference");
             auto objects = scene->build(f);
-            if (!objects) return std::fprintf(stderr, "\nvkcollide_bench: %s: %s\n", scene->name.c_str(), objects.error().message().c_str()), 1;
-            if (scene->motion != Motion::Moving)
-                if (auto ok = bakeTransforms(*objects); !ok) return std::fprintf(stderr, "\nvkcollide_bench: %s\n", ok.error().message().c_str()), 1;
+            if (objects && scene->motion != Motion::Moving)
+                if (auto ok = bakeTransforms(*objects); !ok) objects = ok.error();
+            if (!objects) {
+                failed(scene->name, objects.error());
+                break;
+            }
             auto ref = referenceFor(*objects, opt.cache, opt.threads);
-            if (!ref) return std::fprintf(stderr, "\nvkcollide_bench: %s: reference: %s\n", scene->name.c_str(), ref.error().message().c_str()), 1;
+            if (!ref) {
+                failed(scene->name + ": reference", ref.error());
+                break;
+            }
             refs.push_back(std::move(*ref));
             frames.push_back(std::move(*objects));
         }
+        if (static_cast<int>(frames.size()) != scene->frames) continue;
         std::size_t triangles = 0, gpu_objects = 0;
         for (const BenchObject& o : frames[0]) triangles += o.mesh.triangleCount(), gpu_objects += o.gpu;
         const int timed = scene->motion == Motion::Rigid ? opt.frames : scene->frames;
@@ -204,7 +219,10 @@ int main(int argc, char** argv) {
             auto world = CollisionWorld::create(**ctx, {.threads = opt.threads});
             if (!world) return std::fprintf(stderr, "\nvkcollide_bench: %s\n", world.error().message().c_str()), 1;
             auto in_world = addToWorld(**world, **ctx, frames[0], v.open);
-            if (!in_world) return std::fprintf(stderr, "\nvkcollide_bench: %s: %s\n", scene->name.c_str(), in_world.error().message().c_str()), 1;
+            if (!in_world) {
+                failed(scene->name + ", " + v.name, in_world.error());
+                continue;
+            }
             const std::vector<ObjectId>& ids = in_world->ids;
             DetectSettings settings;
             v.apply(settings);
@@ -213,8 +231,10 @@ int main(int argc, char** argv) {
                 const int mf = scene->motion == Motion::Rigid ? 0 : std::max(f, 0);
                 progress(scene->name + " [" + std::to_string(triangles) + " tris] " + v.name + ": frame " + std::to_string(f + 1) + "/" + std::to_string(timed));
                 const auto t0 = Clock::now();
-                if (auto ok = applyFrame(**world, *in_world, scene->motion, frames[mf]); !ok)
-                    return std::fprintf(stderr, "\nvkcollide_bench: %s\n", ok.error().message().c_str()), 1;
+                if (auto ok = applyFrame(**world, *in_world, scene->motion, frames[mf]); !ok) {
+                    failed(scene->name + ", " + v.name, ok.error());
+                    break;
+                }
                 const double update_ms = ms(t0, Clock::now());
                 Result<DetectResult> r = Error(ErrorCode::InvalidArgument, "");
                 if (v.async) {
@@ -224,7 +244,10 @@ int main(int argc, char** argv) {
                     r = (*world)->detect(settings);
                 }
                 const double total_ms = ms(t0, Clock::now());
-                if (!r) return std::fprintf(stderr, "\nvkcollide_bench: %s, %s: %s\n", scene->name.c_str(), v.name.c_str(), r.error().message().c_str()), 1;
+                if (!r) {
+                    failed(scene->name + ", " + v.name, r.error());
+                    break;
+                }
                 if (f < 0) continue;
                 const DetectStats& st = r->stats;
                 const FrameReference& ref = refs[mf];
@@ -260,7 +283,8 @@ int main(int argc, char** argv) {
                 sum.precision_min = std::min(sum.precision_min, cmp.precision);
             }
             progressDone();
-            const double n = double(std::max<std::size_t>(1, sum.frames));
+            if (sum.frames == 0) continue;
+            const double n = double(sum.frames);
             std::printf("%-9s %-24s %-14s %-8s %5u %9.3f %9.3f %9.3f %9.0f %8.4f %8.4f %8.4f\n", sum.set.c_str(), sum.scene.c_str(), sum.variant.c_str(),
                         sum.backend.c_str(), sum.resolution, sum.gpu_ms / n, sum.narrow_ms / n, sum.total_ms / n, double(sum.downloaded) / n,
                         sum.reference ? double(sum.found) / double(sum.reference) : 1.0, sum.crossing ? double(sum.found_crossing) / double(sum.crossing) : 1.0,
@@ -270,6 +294,6 @@ int main(int argc, char** argv) {
         }
     }
     progressDone();
-    std::printf("\nCSV: %s (%zu scene x variant points)\n", opt.csv.c_str(), summaries.size());
-    return 0;
+    std::printf("\nCSV: %s (%zu scene x variant points, %d skipped)\n", opt.csv.c_str(), summaries.size(), failures);
+    return failures ? 1 : 0;
 }

@@ -242,8 +242,9 @@ std::vector<SceneSpec> touchingScenes(double scale) {
                  out.push_back(object(std::move(*ball), "ball" + std::to_string(k),
                                       Transform3x4{1, 0, 0, 0.5f + float(k % 2), 0, 1, 0, 0.5f + float(k / 2), 0, 0, 1, 1.75f}));
              }
-             // Sunk by 0.1069: not a multiple of any lattice step, so its side faces cross the top.
-             auto sunk = boxAt(0.25f, 0.25f, 0.25f, n, {2.0f, 2.0f, 1.6431f}, "sunk");
+             // Sunk by 0.1069 and off the lattice in x and y, so no vertex of either box lies on
+             // the other's face planes: its side faces cross the top (crossing pairs).
+             auto sunk = boxAt(0.25f, 0.25f, 0.25f, n, {2.0431f, 1.9687f, 1.6431f}, "sunk");
              if (!sunk) return sunk.error();
              out.push_back(std::move(*sunk));
              return out;

@@ -322,7 +322,8 @@ int main(int argc, char** argv) {
             for (const std::string& mode_name : opt.modes) {
                 const bool self = mode_name == "self";
                 if (self && !peer_spec->self_collision_capable) continue;
-                const PeerMode mode{self, scene->motion};
+                // The peers see world-space meshes: a moving scene is a deforming one to them.
+                const PeerMode mode{self, deforming ? Motion::Deforming : Motion::Rigid};
                 const std::string mode_label = std::string(deforming ? "deforming-" : "rigid-") + mode_name;
                 Result<std::unique_ptr<Peer>> peer = peer_spec->create(mode, opt.threads);
                 if (!peer) {

@@ -55,7 +55,7 @@ TEST_CASE("bench scenes build at small scale with constant topology and exact pa
     CHECK(held_out >= 8);
 }
 
-TEST_CASE("reference cache: a stored frame reads back identical; a changed scene misses", "[scene][bench]") {
+TEST_CASE("reference cache: a stored frame reads back identical and a changed scene misses", "[scene][bench]") {
     const std::string dir = (std::filesystem::temp_directory_path() / "vkcollide_ref_cache_test").string();
     std::filesystem::remove_all(dir);
     const auto specs = allScenes("", 0.01);

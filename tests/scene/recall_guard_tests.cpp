@@ -42,7 +42,7 @@ const std::map<std::string, double> kFloor = {
 
 }  // namespace
 
-TEST_CASE("default settings keep crossing recall at its floor on reduced issue-12 scenes; precision is 100 %",
+TEST_CASE("default settings keep crossing recall at its floor on reduced issue-12 scenes, with 100 % precision",
           "[scene][gpu][recall-guard]") {
     test::ValidatedContext ctx;
     const std::vector<SceneSpec> all = allScenes("", kGuardScale);

@@ -100,7 +100,7 @@ TEST_CASE("subdivide: 4^levels triangles, still closed, same shape and volume", 
     CHECK_FALSE(subdivide(*t, 20));  // over kMaxGeneratedTriangles
 }
 
-TEST_CASE("twist and bend keep the mesh closed and outward; a bend past a full turn with a small pitch self-intersects",
+TEST_CASE("twist and bend keep the mesh closed and outward, and a bend past a full turn with a small pitch self-intersects",
           "[scene][deform]") {
     auto bar = frustum(0.2f, 0.2f, 8.0f, 24, 200);
     REQUIRE(bar);
@@ -131,7 +131,7 @@ TEST_CASE("twist and bend keep the mesh closed and outward; a bend past a full t
     CHECK_FALSE(twistMesh(fold, std::numeric_limits<float>::infinity()));
 }
 
-TEST_CASE("drapedCloth: an open sheet over the sphere; the flap passes through it", "[scene][drape]") {
+TEST_CASE("drapedCloth: an open sheet over the sphere whose flap passes through it", "[scene][drape]") {
     DrapeOptions o;
     o.quads = 40;
     o.gap = 0.01f;

@@ -8,8 +8,8 @@
 #     PHASES  any of: references tuning held-out (default: all three, in that order)
 #   Environment: BENCH (default build/tools/vkcollide_bench), DATA (data/cgal),
 #   CACHE (reference cache, default bench-cache), THREADS (16), FRAMES (rigid repetitions, 3),
-#   SCALE (1), EXTRA_VARIANTS (e.g. "reliable,depth-sep" once those variants exist: added
-#   to both sets).
+#   SCALE (1), TUNING_VARIANTS / HELD_OUT_VARIANTS (override the lists below),
+#   EXTRA_VARIANTS (e.g. "reliable,depth-sep" once those variants exist: added to both sets).
 #
 # Each phase stays well under 10 minutes on the H200 host (estimate: references 1 min on 16
 # cores, tuning 3-5 min, held-out 1-2 min; every row is written as soon as it is measured, so
@@ -34,10 +34,10 @@ for phase in $phases; do
     references)
       "$bench" --reference-only --set all "${common[@]}" | tee "$out/references.txt" || status=1 ;;
     tuning)
-      "$bench" --set tuning --variants "default,mitigations,backends,resolutions$extra" --resolutions 1024,2048,4096 \
+      "$bench" --set tuning --variants "${TUNING_VARIANTS:-default,mitigations,backends,resolutions}$extra" --resolutions 1024,2048,4096 \
         "${common[@]}" --csv "$out/tuning.csv" | tee "$out/tuning.txt" || status=1 ;;
     held-out)
-      "$bench" --set held-out --variants "default,axes3-best,res-2048,res-4096$extra" --resolutions 2048,4096 \
+      "$bench" --set held-out --variants "${HELD_OUT_VARIANTS:-default,axes3-best,res-2048,res-4096}$extra" --resolutions 2048,4096 \
         "${common[@]}" --csv "$out/held_out.csv" | tee "$out/held_out.txt" || status=1 ;;
     *) echo "run_h200.sh: unknown phase '$phase' (references, tuning, held-out)" >&2; exit 2 ;;
   esac

@@ -53,7 +53,7 @@ n=$(echo "$scenes" | wc -l); cols=$(( n < 4 ? n : 4 )); rows=$(( (n + cols - 1) 
   done
   echo "unset multiplot"
 } > "$tmp/frontier.gp"
-gnuplot "$tmp/frontier.gp"
+gnuplot "$tmp/frontier.gp" 2>&1 | { grep -v "empty . range" >&2 || true; }  # one-point panels warn
 awk '$2 == "default"' "$tmp/points" | sort -k4,4n > "$tmp/stages"
 if [ -s "$tmp/stages" ]; then gnuplot <<GP
 set terminal pngcairo size 1000,700

@@ -69,6 +69,63 @@ struct ClothOptions {
 Result<HostMesh> clothGrid(float width, float depth, std::uint32_t nx, std::uint32_t ny,
                            const ClothOptions& options = {});
 
+// Sphere from a subdivided icosahedron: every level splits each triangle into four at
+// its edge midpoints, which are pushed out onto the sphere. Triangles are nearly equal in
+// size (no poles). `levels` <= 12. Triangles: 20 * 4^levels. Vertices: 10 * 4^levels + 2.
+Result<HostMesh> icosphere(float radius, std::uint32_t levels);
+
+// Closed frustum around the Z axis from z = -height/2 (radius `radius_bottom`) to
+// z = +height/2 (radius `radius_top`), capped by fans on flat ends: a cylinder when the
+// radii are equal, a cone when radius_top is 0 (the apex is one vertex). radius_bottom > 0,
+// radius_top >= 0, height > 0, `segments` >= 3 around, `stacks` >= 1 along.
+// Triangles: 2 * segments * stacks + 2 * segments (cone: 2 * segments * stacks).
+Result<HostMesh> frustum(float radius_bottom, float radius_top, float height, std::uint32_t segments,
+                         std::uint32_t stacks);
+
+// `levels` rounds of midpoint subdivision: each triangle becomes four (three corner
+// triangles and the middle one), winding kept; a midpoint is made once per edge (keyed by
+// the two vertex indices), so a closed mesh stays closed and shares its seams. The shape
+// does not change (no smoothing). Errors: InvalidMesh for a mesh validateMesh refuses,
+// InvalidArgument when the result would exceed kMaxGeneratedTriangles.
+// Triangles: 4^levels times the input's.
+Result<HostMesh> subdivide(const HostMesh& mesh, std::uint32_t levels);
+
+// Deformers, in place; they move vertices and keep indices (so closedness and neighbours
+// stay). Errors (the mesh is left unchanged): InvalidArgument for non-finite parameters or
+// a result that leaves the float range.
+//
+// Twist about the Z axis: a vertex at height z turns by `radians_per_unit * z` about Z.
+Result<void> twistMesh(HostMesh& io_mesh, float radians_per_unit);
+// Bend along X around an axis parallel to Z through (0, radius, 0): the vertex (x, y, z)
+// goes to angle theta = x / radius on the circle of radius (radius - y), and up by
+// pitch * theta / (2 pi): a bar longer than 2 pi radius wraps round more than once and, with
+// a pitch smaller than its thickness along Z, passes through itself. The plane x = 0 stays
+// where it is. Needs radius > 0 and every vertex at y < radius (else it would fold inside
+// out: InvalidArgument naming the vertex).
+Result<void> bendMesh(HostMesh& io_mesh, float radius, float pitch = 0.0f);
+
+// An open square cloth draped over a sphere centred on the origin, with an optional flap
+// folded through the cloth itself. The flat cloth (side `size`, quads x quads, centred over
+// the sphere's top) is mapped by arc length: within `contact_angle` of the top it lies on
+// the sphere at distance radius + gap from the centre (a negative gap sinks it in); beyond,
+// it hangs down the cone tangent there, with `folds` waves around whose depth grows to
+// `fold_depth` * radius. The flap is the corner u + v > size * (1 - 2 * flap) (u, v the flat
+// coordinates from the centre): it is turned over onto the cloth about that line, rises up
+// to `flap_lift` * radius off it and curls back down through it. Front face: away from the
+// sphere. Triangles: 2 * quads^2.
+struct DrapeOptions {
+    float radius = 1.0f;
+    float size = 3.0f;
+    std::uint32_t quads = 100;
+    float gap = 0.0f;
+    float contact_angle = 1.0f;  // radians, in (0, pi/2]
+    std::uint32_t folds = 7;
+    float fold_depth = 0.12f;  // below 0.5 keeps inward waves off the sphere
+    float flap = 0.15f;  // in [0, 0.5); 0: no flap
+    float flap_lift = 0.08f;
+};
+Result<HostMesh> drapedCloth(const DrapeOptions& options);
+
 // Row-major affine transforms: p' = M * (x, y, z, 1).
 using Transform3x4 = std::array<float, 12>;
 using Transform4x4 = std::array<float, 16>;  // the last row must be (0, 0, 0, 1)

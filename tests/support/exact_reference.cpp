@@ -14,9 +14,9 @@
 namespace vkcollide::test {
 namespace {
 
-// Sweep positions per task: each position scans its overlapping successors, so tasks
-// are cheap to hand out yet uneven; many small ones balance better.
-constexpr std::size_t kSweepPerTask = 1024;
+// Grid cells per task: cells are uneven (a few hold many triangles), so many small tasks
+// balance better across threads.
+constexpr std::size_t kCellsPerTask = 256;
 
 struct WorldTriangle {
     std::uint32_t object, triangle;
@@ -27,6 +27,75 @@ struct WorldTriangle {
 struct Box {
     float lo[3], hi[3];
     std::uint32_t id;  // index into the WorldTriangle list
+};
+
+// A uniform grid over the scene's triangle boxes. Cells are about twice the median
+// triangle box, grown until there are at most kCellsPerTriangle cells per triangle, so
+// memory stays linear for scenes that are mostly empty space. Cell coordinates come
+// from a monotone function of the position, so a point inside a box always falls in one
+// of the cells the box is listed in.
+struct Grid {
+    static constexpr double kCellsPerTriangle = 4.0;
+    double lo[3] = {0, 0, 0};
+    double size = 1;
+    std::uint64_t dim[3] = {1, 1, 1};
+
+    static Grid fit(const std::vector<Box>& boxes) {
+        Grid g;
+        double hi[3];
+        for (int a = 0; a < 3; ++a) {
+            g.lo[a] = boxes[0].lo[a];
+            hi[a] = boxes[0].hi[a];
+        }
+        for (const Box& b : boxes)
+            for (int a = 0; a < 3; ++a) {
+                g.lo[a] = std::min(g.lo[a], double(b.lo[a]));
+                hi[a] = std::max(hi[a], double(b.hi[a]));
+            }
+        // Median of the boxes' largest extents, from an even sample for big scenes.
+        std::vector<double> extents;
+        const std::size_t step = std::max<std::size_t>(1, boxes.size() / 65536);
+        for (std::size_t i = 0; i < boxes.size(); i += step) {
+            const Box& b = boxes[i];
+            extents.push_back(std::max({double(b.hi[0]) - b.lo[0], double(b.hi[1]) - b.lo[1], double(b.hi[2]) - b.lo[2]}));
+        }
+        std::nth_element(extents.begin(), extents.begin() + static_cast<std::ptrdiff_t>(extents.size() / 2), extents.end());
+        const double span = std::max({hi[0] - g.lo[0], hi[1] - g.lo[1], hi[2] - g.lo[2]});
+        g.size = std::max(2.0 * extents[extents.size() / 2], span * 1e-6);
+        if (!(g.size > 0)) g.size = 1;  // every triangle a point at one place
+        const double budget = kCellsPerTriangle * static_cast<double>(boxes.size()) + 8.0;
+        for (;;) {
+            double cells = 1;
+            for (int a = 0; a < 3; ++a) {
+                g.dim[a] = static_cast<std::uint64_t>(std::floor((hi[a] - g.lo[a]) / g.size)) + 1;
+                cells *= static_cast<double>(g.dim[a]);
+            }
+            if (cells <= budget) break;
+            g.size *= 1.25;
+        }
+        return g;
+    }
+
+    std::uint64_t cellCount() const { return dim[0] * dim[1] * dim[2]; }
+
+    std::uint64_t coord(double x, int a) const {
+        const double c = std::floor((x - lo[a]) / size);
+        return c <= 0 ? 0 : std::min(dim[a] - 1, static_cast<std::uint64_t>(c));
+    }
+
+    std::uint64_t cellOf(double x, double y, double z) const {
+        return (coord(z, 2) * dim[1] + coord(y, 1)) * dim[0] + coord(x, 0);
+    }
+
+    template <typename F>
+    void forEachCell(const Box& b, F&& f) const {
+        const std::uint64_t x0 = coord(b.lo[0], 0), x1 = coord(b.hi[0], 0);
+        const std::uint64_t y0 = coord(b.lo[1], 1), y1 = coord(b.hi[1], 1);
+        const std::uint64_t z0 = coord(b.lo[2], 2), z1 = coord(b.hi[2], 2);
+        for (std::uint64_t z = z0; z <= z1; ++z)
+            for (std::uint64_t y = y0; y <= y1; ++y)
+                for (std::uint64_t x = x0; x <= x1; ++x) f((z * dim[1] + y) * dim[0] + x);
+    }
 };
 
 std::string objectName(std::size_t index, const HostMesh* mesh) {
@@ -130,55 +199,57 @@ Result<std::vector<TrianglePair>> computeReferencePairs(std::span<const Referenc
     Result<std::vector<WorldTriangle>> gathered = gatherTriangles(objects);
     if (!gathered) return gathered.error();
     const std::vector<WorldTriangle>& tris = *gathered;
+    if (tris.empty()) return std::vector<TrianglePair>{};
 
     std::vector<Box> boxes(tris.size());
     for (std::size_t i = 0; i < tris.size(); ++i) boxes[i] = boxOf(tris[i], static_cast<std::uint32_t>(i));
+    const Grid grid = Grid::fit(boxes);
 
-    // Sweep along the axis where box centres spread most: fewer false overlaps than a
-    // fixed x axis for elongated scenes.
-    int axis = 0;
+    // Bucket the triangles by the cells their boxes cover (a counting sort by cell).
+    std::vector<std::uint32_t> first(grid.cellCount() + 1, 0);
+    for (const Box& b : boxes) grid.forEachCell(b, [&](std::uint64_t cell) { ++first[cell + 1]; });
+    for (std::size_t c = 1; c < first.size(); ++c) first[c] += first[c - 1];
+    std::vector<std::uint32_t> entries(first.back());
     {
-        double best = -1;
-        for (int a = 0; a < 3; ++a) {
-            double mean = 0, sq = 0;
-            for (const Box& b : boxes) {
-                const double c = 0.5 * (double(b.lo[a]) + b.hi[a]);
-                mean += c;
-                sq += c * c;
-            }
-            const double n = std::max<double>(1.0, static_cast<double>(boxes.size()));
-            const double variance = sq / n - (mean / n) * (mean / n);
-            if (variance > best) {
-                best = variance;
-                axis = a;
-            }
-        }
+        std::vector<std::uint32_t> cursor(first.begin(), first.end() - 1);
+        for (const Box& b : boxes) grid.forEachCell(b, [&](std::uint64_t cell) { entries[cursor[cell]++] = b.id; });
     }
-    const int axis1 = (axis + 1) % 3, axis2 = (axis + 2) % 3;
-    std::sort(boxes.begin(), boxes.end(),
-              [&](const Box& a, const Box& b) { return a.lo[axis] != b.lo[axis] ? a.lo[axis] < b.lo[axis] : a.id < b.id; });
+    std::vector<std::uint64_t> busy;  // cells holding two triangles or more
+    for (std::uint64_t c = 0; c + 1 < first.size(); ++c)
+        if (first[c + 1] - first[c] >= 2) busy.push_back(c);
 
+    // Each pair is tested in one cell only: the one holding the low corner of the
+    // intersection of the two boxes (it lies in both boxes, so both are listed there).
     ThreadPool pool(options.threads);
-    const std::size_t task_count = (boxes.size() + kSweepPerTask - 1) / kSweepPerTask;
+    const std::size_t task_count = (busy.size() + kCellsPerTask - 1) / kCellsPerTask;
     std::vector<std::vector<TrianglePair>> found(task_count);
-    pool.parallelFor(boxes.size(), kSweepPerTask, [&](std::size_t begin, std::size_t end) {
-        std::vector<TrianglePair>& out = found[begin / kSweepPerTask];
-        for (std::size_t s = begin; s < end; ++s) {
-            const Box& a = boxes[s];
-            const WorldTriangle& ta = tris[a.id];
-            for (std::size_t t = s + 1; t < boxes.size() && boxes[t].lo[axis] <= a.hi[axis]; ++t) {
-                const Box& b = boxes[t];
-                if (b.lo[axis1] > a.hi[axis1] || a.lo[axis1] > b.hi[axis1]) continue;
-                if (b.lo[axis2] > a.hi[axis2] || a.lo[axis2] > b.hi[axis2]) continue;
-                const WorldTriangle& tb = tris[b.id];
-                if (ta.object == tb.object) {
-                    if (!objects[ta.object].self_collision) continue;
-                    if (narrow::areNeighbours(ta.vertex_index, ta.v, tb.vertex_index, tb.v)) continue;
-                } else if (options.may_collide &&
-                           !options.may_collide(std::min(ta.object, tb.object), std::max(ta.object, tb.object))) {
-                    continue;
+    pool.parallelFor(busy.size(), kCellsPerTask, [&](std::size_t begin, std::size_t end) {
+        std::vector<TrianglePair>& out = found[begin / kCellsPerTask];
+        std::vector<std::uint32_t> here;
+        for (std::size_t k = begin; k < end; ++k) {
+            const std::uint64_t cell = busy[k];
+            here.assign(entries.begin() + first[cell], entries.begin() + first[cell + 1]);
+            // Sorted along x, a triangle meets only the run of successors that start
+            // before it ends: big cells cost their overlaps, not their square.
+            std::sort(here.begin(), here.end(), [&](std::uint32_t a, std::uint32_t b) { return boxes[a].lo[0] < boxes[b].lo[0]; });
+            for (std::size_t i = 0; i < here.size(); ++i) {
+                const Box& a = boxes[here[i]];
+                const WorldTriangle& ta = tris[a.id];
+                for (std::size_t j = i + 1; j < here.size() && boxes[here[j]].lo[0] <= a.hi[0]; ++j) {
+                    const Box& b = boxes[here[j]];
+                    if (b.lo[1] > a.hi[1] || a.lo[1] > b.hi[1] || b.lo[2] > a.hi[2] || a.lo[2] > b.hi[2]) continue;
+                    if (grid.cellOf(std::max(a.lo[0], b.lo[0]), std::max(a.lo[1], b.lo[1]), std::max(a.lo[2], b.lo[2])) != cell)
+                        continue;
+                    const WorldTriangle& tb = tris[b.id];
+                    if (ta.object == tb.object) {
+                        if (!objects[ta.object].self_collision) continue;
+                        if (narrow::areNeighbours(ta.vertex_index, ta.v, tb.vertex_index, tb.v)) continue;
+                    } else if (options.may_collide &&
+                               !options.may_collide(std::min(ta.object, tb.object), std::max(ta.object, tb.object))) {
+                        continue;
+                    }
+                    if (narrow::trianglesIntersect(ta.v, tb.v)) out.push_back(orderedPair(ta, tb));
                 }
-                if (narrow::trianglesIntersect(ta.v, tb.v)) out.push_back(orderedPair(ta, tb));
             }
         }
     });

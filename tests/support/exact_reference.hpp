@@ -50,8 +50,12 @@ std::vector<Float3> worldPositions(const HostMesh& mesh, const Transform& transf
 // bit-identical world position). Errors: ErrorCode::InvalidMesh for a null mesh, an
 // index count that is not a multiple of 3, an index out of range or a non-finite
 // vertex; ErrorCode::InvalidArgument for a non-finite or non-affine transform.
-// Cost: O(n log n) plus the pairs whose boxes overlap along the sweep axis; about a
-// second for 200K triangles on two cores.
+// Method: a uniform grid of cells about twice the median triangle box; each pair whose
+// boxes overlap is tested once, in the cell holding the low corner of the boxes'
+// intersection; cells are spread over `threads`. Cost: linear in triangles plus
+// box-overlapping pairs per cell (about 0.3 s per million triangles of two deeply
+// overlapping meshes on one core); memory about 30 bytes per triangle plus 4 per cell
+// (at most 4 cells per triangle).
 Result<std::vector<TrianglePair>> computeReferencePairs(std::span<const ReferenceObject> objects,
                                                        const ReferenceOptions& options = {});
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "vkcollide/io.hpp"
 
@@ -22,9 +23,6 @@ Transform3x4 rotationTranslation(double axis_x, double axis_y, double axis_z, do
             f(z * x * k - y * s), f(z * y * k + x * s), f(c + z * z * k),     t.z};
 }
 
-namespace {
-
-// A deterministic pseudo-random number in [0, 1) from an integer (no global state).
 double hash01(std::uint32_t i) {
     std::uint32_t h = i * 2654435761u;
     h ^= h >> 16;
@@ -32,6 +30,62 @@ double hash01(std::uint32_t i) {
     h ^= h >> 13;
     return static_cast<double>(h) / 4294967296.0;
 }
+
+Transform3x4 compose(const Transform3x4& a, const Transform3x4& b) {
+    Transform3x4 out{};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) {
+            double v = c == 3 ? a[4 * r + 3] : 0.0;
+            for (int k = 0; k < 3; ++k) v += double{a[4 * r + k]} * b[4 * k + c];
+            out[4 * r + c] = static_cast<float>(v);
+        }
+    return out;
+}
+
+std::uint32_t scaledCount(std::uint32_t n, double scale, int dims, std::uint32_t least) {
+    const double v = std::round(n * std::pow(scale, 1.0 / dims));
+    return std::max(least, static_cast<std::uint32_t>(std::min(v, 1e9)));
+}
+
+Result<HostMesh> loadMesh(const std::string& data, const std::string& file, float size) {
+    Result<std::vector<HostMesh>> read = readMeshFile(data + "/" + file);
+    if (!read) return Error(read.error().code(), read.error().message() + " (tools/fetch_cgal_data.sh " + data + ")");
+    if (read->size() != 1) return Error(ErrorCode::InvalidArgument, file + ": expected one mesh");
+    HostMesh m = std::move(read->front());
+    Result<MeshStats> st = computeMeshStats(m);
+    if (!st) return st.error();
+    const Float3 lo = st->bounds_min, hi = st->bounds_max;
+    const float k = size / std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    if (Result<void> ok = transformMesh(m, Transform3x4{k, 0, 0, -0.5f * k * (lo.x + hi.x), 0, k, 0, -0.5f * k * (lo.y + hi.y), 0, 0, k,
+                                                        -0.5f * k * (lo.z + hi.z)});
+        !ok)
+        return ok.error();
+    m.name = file.substr(0, file.find('.'));
+    return m;
+}
+
+Result<std::vector<HostMesh>> worldMeshes(const std::vector<BenchObject>& objects) {
+    std::vector<HostMesh> out;
+    for (const BenchObject& o : objects) {
+        HostMesh m = o.mesh;
+        if (Result<void> ok = transformMesh(m, o.transform); !ok) return ok.error();
+        out.push_back(std::move(m));
+    }
+    return out;
+}
+
+const char* motionName(Motion motion) {
+    switch (motion) {
+        case Motion::Rigid: return "rigid";
+        case Motion::Deforming: return "deforming";
+        case Motion::Moving: return "moving";
+    }
+    return "?";
+}
+
+const char* setName(SceneSet set) { return set == SceneSet::Tuning ? "tuning" : "held-out"; }
+
+namespace {
 
 // `count` unit spheres on a grid whose spacing (< 2) makes neighbours overlap; each
 // turned by its own rotation so seams do not line up.
@@ -125,33 +179,53 @@ Result<std::vector<HostMesh>> wobblingPair(std::uint32_t segments, std::uint32_t
 
 }  // namespace
 
-std::vector<SceneSpec> allScenes(const std::string& data) {
+namespace {
+
+// World-space meshes as bench objects (identity transforms, every one self-colliding).
+Result<std::vector<BenchObject>> asObjects(Result<std::vector<HostMesh>> meshes) {
+    if (!meshes) return meshes.error();
+    std::vector<BenchObject> out;
+    for (HostMesh& m : *meshes) out.push_back(BenchObject{.mesh = std::move(m)});
+    return out;
+}
+
+// The scenes of issue 7 (all in the tuning set: the defaults were chosen on them). The
+// names give the triangle counts at scale 1.
+std::vector<SceneSpec> issue7Scenes(const std::string& data, double scale) {
+    const auto n = [scale](std::uint32_t count) { return scaledCount(count, scale, 2); };
     const std::string bunny = data + "/bunny00.off";
-    const auto rigid = [](auto build) { return [build](int) -> Result<std::vector<HostMesh>> { return build(); }; };
-    return {
-        {"spheres-8x10K", Motion::Rigid, "8 overlapping spheres of 9,940 triangles",
-         rigid([] { return sphereGrid(8, 70, 72); })},
-        {"bunnies-2x75K", Motion::Rigid, "two overlapping bunny00.off (75,408 triangles each)",
-         rigid([bunny] { return meshRing(bunny, 2); })},
-        {"bunnies-2x75K-deep", Motion::Rigid, "two bunny00.off overlapping by 85% of their size",
-         rigid([bunny] { return meshRing(bunny, 2, 0.15); })},
-        {"bunnies-2x75K-twin", Motion::Rigid, "bunny00.off and a copy turned by 3 degrees: surfaces cross all over",
-         rigid([bunny] { return meshTwin(bunny, 3 * kPi / 180); })},
-        {"spheres-60x10K", Motion::Rigid, "60 overlapping spheres of 9,940 triangles (596K)",
-         rigid([] { return sphereGrid(60, 70, 72); })},
-        {"spheres-60x10K-dense", Motion::Rigid, "60 spheres of 9,940 triangles, 1.25 apart (radius 1)",
-         rigid([] { return sphereGrid(60, 70, 72, 1.25f); })},
-        {"spheres-100x10K", Motion::Rigid, "100 overlapping spheres of 9,940 triangles (994K)",
-         rigid([] { return sphereGrid(100, 70, 72); })},
-        {"bunnies-14x75K", Motion::Rigid, "14 bunny00.off in an overlapping ring (1.06M)",
-         rigid([bunny] { return meshRing(bunny, 14); })},
-        {"spheres-2x640K", Motion::Rigid, "two overlapping spheres of 640,000 triangles (1.28M)",
-         rigid([] { return sphereGrid(2, 640, 501); })},
-        {"deform-pair-100K", Motion::Deforming, "two wobbling spheres of 49,920 triangles, all vertices move",
-         [](int f) { return wobblingPair(160, 157, f); }},
-        {"deform-pair-1M", Motion::Deforming, "two wobbling spheres of 500,000 triangles, all vertices move",
-         [](int f) { return wobblingPair(500, 501, f); }},
+    const auto rigid = [](std::string name, std::string what, auto build) {
+        return SceneSpec{std::move(name), Motion::Rigid, SceneSet::Tuning, 1, std::move(what),
+                         [build](int) { return asObjects(build()); }};
     };
+    const auto deforming = [n](std::string name, std::string what, std::uint32_t segments, std::uint32_t rings) {
+        return SceneSpec{std::move(name), Motion::Deforming, SceneSet::Tuning, 6, std::move(what),
+                         [segments = n(segments), rings = n(rings)](int f) { return asObjects(wobblingPair(segments, rings, f)); }};
+    };
+    return {
+        rigid("spheres-8x10K", "8 overlapping spheres of 9,940 triangles", [n] { return sphereGrid(8, n(70), n(72)); }),
+        rigid("bunnies-2x75K", "two overlapping bunny00.off (75,408 triangles each)", [bunny] { return meshRing(bunny, 2); }),
+        rigid("bunnies-2x75K-deep", "two bunny00.off overlapping by 85% of their size", [bunny] { return meshRing(bunny, 2, 0.15); }),
+        rigid("bunnies-2x75K-twin", "bunny00.off and a copy turned by 3 degrees: surfaces cross all over",
+              [bunny] { return meshTwin(bunny, 3 * kPi / 180); }),
+        rigid("spheres-60x10K", "60 overlapping spheres of 9,940 triangles (596K)", [n] { return sphereGrid(60, n(70), n(72)); }),
+        rigid("spheres-60x10K-dense", "60 spheres of 9,940 triangles, 1.25 apart (radius 1)", [n] { return sphereGrid(60, n(70), n(72), 1.25f); }),
+        rigid("spheres-100x10K", "100 overlapping spheres of 9,940 triangles (994K)", [n] { return sphereGrid(100, n(70), n(72)); }),
+        rigid("bunnies-14x75K", "14 bunny00.off in an overlapping ring (1.06M)", [bunny] { return meshRing(bunny, 14); }),
+        rigid("spheres-2x640K", "two overlapping spheres of 640,000 triangles (1.28M)", [n] { return sphereGrid(2, n(640), n(501)); }),
+        deforming("deform-pair-100K", "two wobbling spheres of 49,920 triangles, all vertices move", 160, 157),
+        deforming("deform-pair-1M", "two wobbling spheres of 500,000 triangles, all vertices move", 500, 501),
+    };
+}
+
+}  // namespace
+
+std::vector<SceneSpec> allScenes(const std::string& data, double scale) {
+    std::vector<SceneSpec> all = issue7Scenes(data, scale);
+    for (auto part : {drapeScenes(scale), twistedScenes(scale), pileScenes(data, scale), deepOverlapScenes(data, scale),
+                      deformingPairScenes(data, scale), ballClothScenes(scale), mixedScenes(scale), touchingScenes(scale)})
+        for (SceneSpec& s : part) all.push_back(std::move(s));
+    return all;
 }
 
 }  // namespace vkcollide::bench

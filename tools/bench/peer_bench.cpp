@@ -234,7 +234,7 @@ int main(int argc, char** argv) {
     const std::vector<PeerSpec> peers = allPeers();
     if (opt.list) {
         for (const SceneSpec& s : scenes) {
-            std::cout << s.name << (s.motion == Motion::Rigid ? "  rigid      " : "  deforming  ") << s.what << '\n';
+            std::cout << s.name << "  " << setName(s.set) << "  " << motionName(s.motion) << "  " << s.what << '\n';
         }
         for (const PeerSpec& p : peers) std::cout << p.name << '\n';
         return 0;
@@ -274,7 +274,8 @@ int main(int argc, char** argv) {
     std::vector<Row> rows;
     int failures = 0;
     for (const SceneSpec* scene : chosen_scenes) {
-        const bool deforming = scene->motion == Motion::Deforming;
+        // Moving scenes too: the peers get world-space meshes, rebuilt every frame.
+        const bool deforming = scene->motion != Motion::Rigid;
         const int frame_count = opt.frames;
         // Meshes and exact references per frame (rigid scenes: one frame, reused).
         std::vector<std::vector<HostMesh>> frames;
@@ -282,7 +283,11 @@ int main(int argc, char** argv) {
         bool scene_ok = true;
         for (int f = 0; f < (deforming ? frame_count : 1) && scene_ok; ++f) {
             progress.show(scene->name + ": building frame " + std::to_string(f));
-            Result<std::vector<HostMesh>> meshes = scene->build(f);
+            Result<std::vector<HostMesh>> meshes = [&]() -> Result<std::vector<HostMesh>> {
+                auto objects = scene->build(f % scene->frames);
+                if (!objects) return objects.error();
+                return worldMeshes(*objects);
+            }();
             if (!meshes) {
                 progress.done();
                 std::cerr << "vkcollide_peer_bench: scene " << scene->name << " skipped: " << meshes.error().message()
@@ -317,7 +322,8 @@ int main(int argc, char** argv) {
             for (const std::string& mode_name : opt.modes) {
                 const bool self = mode_name == "self";
                 if (self && !peer_spec->self_collision_capable) continue;
-                const PeerMode mode{self, scene->motion};
+                // The peers see world-space meshes: a moving scene is a deforming one to them.
+                const PeerMode mode{self, deforming ? Motion::Deforming : Motion::Rigid};
                 const std::string mode_label = std::string(deforming ? "deforming-" : "rigid-") + mode_name;
                 Result<std::unique_ptr<Peer>> peer = peer_spec->create(mode, opt.threads);
                 if (!peer) {

@@ -1,22 +1,31 @@
-// vkcollide_bench: the speed-against-accuracy sweep of issue 7. Not a test: a program.
+// vkcollide_bench: the speed-against-accuracy sweep (issues 7 and 12). Not a test: a program.
 //
-//   vkcollide_bench [--scenes a,b,...] [--resolutions 256,512,...] [--frames K]
-//                   [--variants basic|full] [--threads N] [--data DIR] [--csv FILE] [--list]
+//   vkcollide_bench [--set tuning|held-out|all] [--scenes a,b,...] [--variants default,mitigations,...]
+//                   [--resolutions 512,1024,...] [--scale S] [--frames K] [--threads N]
+//                   [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--list] [--reference-only]
 //
-// For each scene (tools/bench/bench_scenes.hpp; every object self-colliding, as the peers
-// run) and each configuration point it runs one warm-up detection and K timed ones
-// (deforming scenes: new vertices every frame through updateVertices, timed from the
-// update to the pair list) and writes one CSV row per frame: per-stage times (GPU
-// timestamps per stage, readback, CPU narrow phase, total wall), GPU and host memory,
-// Table 1 counts, and recall and precision against the exact reference of that frame.
-// "basic" sweeps resolution x {single, dual} x {raster, compute}; "full" adds layer caps, paper packing,
-// open mode and the asynchronous form at 1024. A progress line goes to stderr.
+// --reference-only builds the chosen scenes and their exact references (filling the cache)
+// and prints per frame the triangles, reference pairs, crossing pairs and seconds; no GPU.
+// For each scene (bench_scenes.hpp) and settings variant (bench_variants.cpp) it runs one
+// warm-up detection and then the timed ones: rigid scenes K times, deforming and moving
+// scenes once per frame of their motion (new vertices through updateVertices or the engine
+// buffer, or new transforms through setTransform, timed from the update to the pair list).
+// One CSV row per timed detection: what ran (backend, resolution, direction, axes,
+// coverage, layers), every stage time (GPU timestamps per stage, readback, narrow phase,
+// update, total wall), the paper's Table 1 counts, GPU and host memory, and against the
+// exact reference of that frame: recall of all pairs, recall of crossing pairs, precision.
+// The reference pairs are cached per frame (reference_cache.hpp). At the end a table of
+// means per scene and variant goes to stdout (tools/bench/summary.sh makes the same from
+// the CSV). Every object is self-colliding, as the peers run.
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -24,6 +33,9 @@
 #include <vector>
 
 #include "bench_scenes.hpp"
+#include "bench_world.hpp"
+#include "bench_variants.hpp"
+#include "reference_cache.hpp"
 #include "support/exact_reference.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/world.hpp"
@@ -43,53 +55,7 @@ std::vector<std::string> splitList(const std::string& s) {
     return out;
 }
 
-struct Point {
-    std::string variant;  // what differs from the default
-    DetectSettings settings;
-    bool open = false;
-    bool async = false;
-};
-
-std::vector<Point> points(const std::vector<std::uint32_t>& resolutions, bool full) {
-    std::vector<Point> out;
-    for (std::uint32_t r : resolutions) {
-        for (bool dual : {false, true})
-            for (SamplingBackend b : {SamplingBackend::Raster, SamplingBackend::Compute}) {
-                Point p;
-                p.variant = dual ? "dual" : "single";
-                p.settings.resolution = r;
-                p.settings.dual = dual;
-                p.settings.backend = b;
-                out.push_back(p);
-            }
-    }
-    if (full) {
-        auto at1024 = [&](const std::string& name) {
-            Point p;
-            p.variant = name;
-            p.settings.resolution = 1024;
-            return p;
-        };
-        for (std::uint32_t cap : {2u, 4u}) {
-            Point p = at1024("cap" + std::to_string(cap));
-            p.settings.layer_cap = cap;
-            out.push_back(p);
-        }
-        Point paper = at1024("paper-packing");
-        paper.settings.packing = PackingMethod::Paper;
-        out.push_back(paper);
-        Point open = at1024("open");
-        open.open = true;
-        out.push_back(open);
-        Point async = at1024("async");
-        async.async = true;
-        out.push_back(async);
-        Point autos;
-        autos.variant = "auto";
-        out.push_back(autos);
-    }
-    return out;
-}
+double ms(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
 double peakHostMiB() {
     rusage u{};
@@ -97,153 +63,237 @@ double peakHostMiB() {
     return double(u.ru_maxrss) / 1024.0;
 }
 
-struct Progress {
-    void show(const std::string& line) const { std::fprintf(stderr, "\r\033[K%s", line.c_str()), std::fflush(stderr); }
-    void done() const { std::fprintf(stderr, "\r\033[K"); }
+std::string csvField(std::string s) {
+    std::replace(s.begin(), s.end(), ',', ';');
+    std::replace(s.begin(), s.end(), '"', '\'');
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    return s;
+}
+
+// A progress line on a terminal only (logs of the GPU run stay clean).
+const bool kProgress = isatty(2) != 0;
+void progress(const std::string& line) {
+    if (kProgress) std::fprintf(stderr, "\r\033[K%s", line.c_str()), std::fflush(stderr);
+}
+void progressDone() {
+    if (kProgress) std::fprintf(stderr, "\r\033[K");
+}
+
+// Means over the timed frames of one (scene, variant), for the closing table.
+struct Summary {
+    std::string set, scene, variant, backend;
+    std::uint32_t resolution = 0;
+    std::size_t frames = 0, triangles = 0, found_crossing = 0, crossing = 0, found = 0, reference = 0, downloaded = 0;
+    double total_ms = 0, gpu_ms = 0, narrow_ms = 0, precision_min = 1;
 };
+
+struct Options {
+    std::string set = "all", data = "data/cgal", csv = "vkcollide_bench.csv", cache = "bench-cache", variants = "default,mitigations,resolutions";
+    std::vector<std::string> scenes;
+    std::vector<std::uint32_t> resolutions = {512, 1024, 2048, 4096};
+    double scale = 1.0;
+    int frames = 3;
+    unsigned threads = 0;
+    bool list = false;
+    bool reference_only = false;
+};
+
+int usage() {
+    std::fprintf(stderr, "usage: vkcollide_bench [--set tuning|held-out|all] [--scenes a,b] [--variants names|groups|all] "
+                         "[--resolutions 512,1024] [--scale S] [--frames K] [--threads N] [--data DIR] [--cache DIR | --no-cache] "
+                         "[--csv FILE] [--list] [--reference-only]\n");
+    return 2;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    std::vector<std::string> scene_names = {"spheres-8x10K", "bunnies-2x75K", "deform-pair-100K"};
-    std::vector<std::uint32_t> resolutions = {256, 512, 1024, 2048, 4096};
-    int frames = 5;
-    bool full = true, list = false;
-    unsigned threads = 0;
-    std::string data = "data/cgal", csv_path = "vkcollide_bench.csv";
+    Options opt;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
-        if (a == "--list") list = true;
-        else if (a == "--scenes" && v) scene_names = splitList(argv[++i]);
-        else if (a == "--resolutions" && v) {
-            resolutions.clear();
-            for (const auto& r : splitList(argv[++i])) resolutions.push_back(static_cast<std::uint32_t>(std::stoul(r)));
-        } else if (a == "--frames" && v) frames = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--variants" && v) full = std::string(argv[++i]) == "full";
-        else if (a == "--threads" && v) threads = static_cast<unsigned>(std::atoi(argv[++i]));
-        else if (a == "--data" && v) data = argv[++i];
-        else if (a == "--csv" && v) csv_path = argv[++i];
-        else {
-            std::fprintf(stderr, "usage: vkcollide_bench [--scenes a,b] [--resolutions 256,512] [--frames K] [--variants basic|full] "
-                                 "[--threads N] [--data DIR] [--csv FILE] [--list]\n");
-            return 2;
-        }
+        const bool has = i + 1 < argc;
+        if (a == "--list") opt.list = true;
+        else if (a == "--reference-only") opt.reference_only = true;
+        else if (a == "--no-cache") opt.cache.clear();
+        else if (!has) return usage();
+        else if (a == "--set") opt.set = argv[++i];
+        else if (a == "--scenes") opt.scenes = splitList(argv[++i]);
+        else if (a == "--variants") opt.variants = argv[++i];
+        else if (a == "--resolutions") {
+            opt.resolutions.clear();
+            for (const auto& r : splitList(argv[++i])) opt.resolutions.push_back(static_cast<std::uint32_t>(std::stoul(r)));
+        } else if (a == "--scale") opt.scale = std::atof(argv[++i]);
+        else if (a == "--frames") opt.frames = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--threads") opt.threads = static_cast<unsigned>(std::atoi(argv[++i]));
+        else if (a == "--data") opt.data = argv[++i];
+        else if (a == "--cache") opt.cache = argv[++i];
+        else if (a == "--csv") opt.csv = argv[++i];
+        else return usage();
     }
-    const std::vector<SceneSpec> all = allScenes(data);
-    if (list) {
-        for (const SceneSpec& s : all) std::printf("%-18s %s\n", s.name.c_str(), s.what.c_str());
+    if (opt.set != "all" && opt.set != "tuning" && opt.set != "held-out") return usage();
+    if (!(opt.scale > 0 && opt.scale <= 4)) return std::fprintf(stderr, "vkcollide_bench: --scale must be in (0, 4]\n"), 2;
+    const std::vector<SceneSpec> all = allScenes(opt.data, opt.scale);
+    const std::vector<Variant> every_variant = allVariants(opt.resolutions);
+    if (opt.list) {
+        for (const SceneSpec& s : all) std::printf("%-24s %-8s %-9s %2d frames  %s\n", s.name.c_str(), setName(s.set), motionName(s.motion), s.frames, s.what.c_str());
+        std::printf("\nvariants (name group):\n");
+        for (const Variant& v : every_variant) std::printf("  %-16s %s\n", v.name.c_str(), v.group.c_str());
+        return 0;
+    }
+    auto variants = selectVariants(every_variant, opt.variants);
+    if (!variants) return std::fprintf(stderr, "vkcollide_bench: %s\n", variants.error().message().c_str()), 2;
+    std::vector<const SceneSpec*> chosen;
+    for (const SceneSpec& s : all) {
+        const bool named = opt.scenes.empty() || std::find(opt.scenes.begin(), opt.scenes.end(), s.name) != opt.scenes.end();
+        if (named && (opt.set == "all" || opt.set == setName(s.set))) chosen.push_back(&s);
+    }
+    for (const std::string& n : opt.scenes)
+        if (std::none_of(all.begin(), all.end(), [&](const SceneSpec& s) { return s.name == n; }))
+            return std::fprintf(stderr, "vkcollide_bench: unknown scene '%s' (--list)\n", n.c_str()), 2;
+
+    if (opt.reference_only) {
+        std::printf("%-9s %-24s %5s %10s %8s %12s %12s %9s %s\n", "set", "scene", "frame", "triangles", "objects", "exact pairs", "crossing",
+                    "seconds", "cached");
+        for (const SceneSpec* scene : chosen)
+            for (int f = 0; f < scene->frames; ++f) {
+                auto objects = scene->build(f);
+                if (!objects) return std::fprintf(stderr, "vkcollide_bench: %s: %s\n", scene->name.c_str(), objects.error().message().c_str()), 1;
+                if (scene->motion != Motion::Moving)
+                    if (auto ok = bakeTransforms(*objects); !ok) return std::fprintf(stderr, "vkcollide_bench: %s\n", ok.error().message().c_str()), 1;
+                auto ref = referenceFor(*objects, opt.cache, opt.threads);
+                if (!ref) return std::fprintf(stderr, "vkcollide_bench: %s: %s\n", scene->name.c_str(), ref.error().message().c_str()), 1;
+                std::size_t triangles = 0;
+                for (const BenchObject& o : *objects) triangles += o.mesh.triangleCount();
+                std::printf("%-9s %-24s %5d %10zu %8zu %12zu %12zu %9.2f %s\n", setName(scene->set), scene->name.c_str(), f, triangles,
+                            objects->size(), ref->pairs.size(), ref->crossingCount(), ref->seconds, ref->from_cache ? "yes" : "no");
+                std::fflush(stdout);
+            }
         return 0;
     }
     auto ctx = Context::create();
     if (!ctx) return std::fprintf(stderr, "vkcollide_bench: %s\n", ctx.error().message().c_str()), 1;
-    std::string device = (*ctx)->deviceInfo().name;
-    std::replace(device.begin(), device.end(), ',', ';');  // a plain CSV field
-    std::ofstream csv(csv_path);
-    csv << "device,scene,motion,triangles,objects,variant,backend,resolution,dual,layer_cap,packing,open,async,frame,"
+    const std::string device = csvField((*ctx)->deviceInfo().name);
+    std::ofstream csv(opt.csv);
+    csv << "device,set,scene,motion,triangles,objects,gpu_objects,scale,variant,frame,backend,resolution,direction,axes,coverage,dual,"
+           "layer_cap,packing,open,async,depth_complexity,layers,peel_passes,"
            "sampling_ms,merging_ms,separation_ms,packing_ms,gpu_ms,readback_ms,narrow_ms,update_ms,total_ms,"
-           "depth_complexity,layers,peel_passes,collision_rays,downloaded,pot_colliding,tests,pairs,reference_pairs,"
-           "recall,precision,gpu_mib,host_peak_mib,narrow_threads,reference_crossing,recall_crossing\n";
-    const Progress progress;
-    std::printf("%-18s %-14s %-8s %5s %9s %9s %9s %9s %8s %8s %8s\n", "scene", "variant", "backend", "res", "gpu ms", "narrow ms", "total ms",
-                "pairs", "recall", "crossing", "prec.");
-    for (const std::string& name : scene_names) {
-        const auto it = std::find_if(all.begin(), all.end(), [&](const SceneSpec& s) { return s.name == name; });
-        if (it == all.end()) return std::fprintf(stderr, "vkcollide_bench: unknown scene '%s' (--list)\n", name.c_str()), 2;
-        const SceneSpec& scene = *it;
-        const bool deforming = scene.motion == Motion::Deforming;
-        const int scene_frames = deforming ? frames + 1 : 1;
-        // Meshes and exact references per frame (rigid: one, reused).
-        std::vector<std::vector<HostMesh>> meshes;
-        std::vector<std::vector<TrianglePair>> reference;
-        std::vector<std::vector<TrianglePair>> crossing;  // the reference's crossing pairs (touching ones apart)
-        for (int f = 0; f < scene_frames; ++f) {
-            progress.show(scene.name + ": building frame " + std::to_string(f) + " and its exact reference");
-            auto m = scene.build(f);
-            if (!m) return std::fprintf(stderr, "\nvkcollide_bench: %s: %s\n", name.c_str(), m.error().message().c_str()), 1;
-            std::vector<test::ReferenceObject> objects;
-            for (const HostMesh& h : *m) objects.push_back({&h});
-            auto ref = test::computeReferencePairs(objects, {.threads = threads});
-            if (!ref) return std::fprintf(stderr, "\nvkcollide_bench: reference: %s\n", ref.error().message().c_str()), 1;
-            auto contacts = test::classifyPairs(objects, *ref);
-            if (!contacts) return std::fprintf(stderr, "\nvkcollide_bench: contacts: %s\n", contacts.error().message().c_str()), 1;
-            std::vector<TrianglePair> cross;
-            for (std::size_t k = 0; k < ref->size(); ++k)
-                if ((*contacts)[k] == test::Contact::Crossing) cross.push_back((*ref)[k]);
-            crossing.push_back(std::move(cross));
-            reference.push_back(std::move(*ref));
-            meshes.push_back(std::move(*m));
-        }
-        std::size_t triangles = 0;
-        for (const HostMesh& h : meshes[0]) triangles += h.triangleCount();
-        const auto pts = points(resolutions, full);
-        for (std::size_t pi = 0; pi < pts.size(); ++pi) {
-            const Point& p = pts[pi];
-            auto world = CollisionWorld::create(**ctx, {.threads = threads});
-            if (!world) return std::fprintf(stderr, "\nvkcollide_bench: %s\n", world.error().message().c_str()), 1;
-            std::vector<ObjectId> ids;
-            for (const HostMesh& h : meshes[0]) {
-                ObjectOptions o;
-                o.name = h.name;
-                o.self_collision = true;
-                o.open = p.open;
-                auto id = (*world)->addMesh(h, o);
-                if (!id) return std::fprintf(stderr, "\nvkcollide_bench: %s\n", id.error().message().c_str()), 1;
-                ids.push_back(*id);
+           "collision_rays,downloaded,pot_colliding,tests,positive_tests,pairs,reference_pairs,reference_crossing,"
+           "found_crossing,recall,recall_crossing,precision,gpu_mib,host_peak_mib,narrow_threads,reference_s,reference_cached,settings_note\n";
+    std::vector<Summary> summaries;
+    std::printf("%-9s %-24s %-14s %-8s %5s %9s %9s %9s %9s %8s %8s %8s\n", "set", "scene", "variant", "backend", "res", "gpu ms", "narrow ms",
+                "total ms", "downl.", "recall", "crossing", "prec.");
+    // A failing scene or (scene, variant) is reported and skipped, so one missing mesh file
+    // or one out-of-memory setting does not cost a whole GPU run; the exit code says so.
+    int failures = 0;
+    const auto failed = [&](const std::string& what, const Error& e) {
+        progressDone();
+        std::fprintf(stderr, "vkcollide_bench: %s: %s (skipped)\n", what.c_str(), e.message().c_str());
+        ++failures;
+    };
+    for (const SceneSpec* scene : chosen) {
+        // Every frame's objects and exact reference first (rigid: one frame).
+        std::vector<std::vector<BenchObject>> frames;
+        std::vector<FrameReference> refs;
+        for (int f = 0; f < scene->frames; ++f) {
+            progress(scene->name + ": building frame " + std::to_string(f) + " and its exact reference");
+            auto objects = scene->build(f);
+            if (objects && scene->motion != Motion::Moving)
+                if (auto ok = bakeTransforms(*objects); !ok) objects = ok.error();
+            if (!objects) {
+                failed(scene->name, objects.error());
+                break;
             }
-            for (int f = 0; f <= frames; ++f) {  // frame 0: warm-up, not written
-                progress.show(scene.name + " [" + std::to_string(triangles) + " tris]: point " + std::to_string(pi + 1) + "/" +
-                              std::to_string(pts.size()) + " " + p.variant + " " +
-                              std::to_string(p.settings.resolution.value_or(0)) + ", frame " + std::to_string(f) + "/" +
-                              std::to_string(frames));
-                const int mf = deforming ? f % scene_frames : 0;
+            auto ref = referenceFor(*objects, opt.cache, opt.threads);
+            if (!ref) {
+                failed(scene->name + ": reference", ref.error());
+                break;
+            }
+            refs.push_back(std::move(*ref));
+            frames.push_back(std::move(*objects));
+        }
+        if (static_cast<int>(frames.size()) != scene->frames) continue;
+        std::size_t triangles = 0, gpu_objects = 0;
+        for (const BenchObject& o : frames[0]) triangles += o.mesh.triangleCount(), gpu_objects += o.gpu;
+        const int timed = scene->motion == Motion::Rigid ? opt.frames : scene->frames;
+        for (const Variant& v : *variants) {
+            auto world = CollisionWorld::create(**ctx, {.threads = opt.threads});
+            if (!world) return std::fprintf(stderr, "\nvkcollide_bench: %s\n", world.error().message().c_str()), 1;
+            auto in_world = addToWorld(**world, **ctx, frames[0], v.open);
+            if (!in_world) {
+                failed(scene->name + ", " + v.name, in_world.error());
+                continue;
+            }
+            const std::vector<ObjectId>& ids = in_world->ids;
+            DetectSettings settings;
+            v.apply(settings);
+            Summary sum{setName(scene->set), scene->name, v.name, "", 0, 0, triangles};
+            for (int f = -1; f < timed; ++f) {  // f = -1: warm-up on frame 0, not written
+                const int mf = scene->motion == Motion::Rigid ? 0 : std::max(f, 0);
+                progress(scene->name + " [" + std::to_string(triangles) + " tris] " + v.name + ": frame " + std::to_string(f + 1) + "/" + std::to_string(timed));
                 const auto t0 = Clock::now();
-                if (deforming)
-                    for (std::size_t o = 0; o < ids.size(); ++o)
-                        if (auto ok = (*world)->updateVertices(ids[o], meshes[mf][o].positions); !ok)
-                            return std::fprintf(stderr, "\nvkcollide_bench: %s\n", ok.error().message().c_str()), 1;
-                const double update_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+                if (auto ok = applyFrame(**world, *in_world, scene->motion, frames[mf]); !ok) {
+                    failed(scene->name + ", " + v.name, ok.error());
+                    break;
+                }
+                const double update_ms = ms(t0, Clock::now());
                 Result<DetectResult> r = Error(ErrorCode::InvalidArgument, "");
-                if (p.async) {
-                    if (auto ok = (*world)->submit(p.settings); !ok) r = ok.error();
+                if (v.async) {
+                    if (auto ok = (*world)->submit(settings); !ok) r = ok.error();
                     else r = (*world)->collect();
                 } else {
-                    r = (*world)->detect(p.settings);
+                    r = (*world)->detect(settings);
                 }
-                const double total_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-                if (!r) return std::fprintf(stderr, "\nvkcollide_bench: %s: %s\n", name.c_str(), r.error().message().c_str()), 1;
-                if (f == 0) continue;
+                const double total_ms = ms(t0, Clock::now());
+                if (!r) {
+                    failed(scene->name + ", " + v.name, r.error());
+                    break;
+                }
+                if (f < 0) continue;
                 const DetectStats& st = r->stats;
-                const auto cmp = test::comparePairs(r->pairs, reference[mf]);
-                // Recall of crossing pairs: found crossing pairs over all crossing pairs.
+                const FrameReference& ref = refs[mf];
+                const auto cmp = test::comparePairs(r->pairs, ref.pairs);
                 std::size_t found_crossing = 0;
-                for (const TrianglePair& c : crossing[mf]) found_crossing += std::binary_search(r->pairs.begin(), r->pairs.end(), c);
-                const double recall_crossing = crossing[mf].empty() ? 1.0 : double(found_crossing) / double(crossing[mf].size());
+                for (std::size_t k = 0; k < ref.pairs.size(); ++k)
+                    if (ref.crossing[k]) found_crossing += std::binary_search(r->pairs.begin(), r->pairs.end(), ref.pairs[k]);
+                const std::size_t crossing = ref.crossingCount();
+                const double recall_crossing = crossing ? double(found_crossing) / double(crossing) : 1.0;
                 double gpu_ms = 0;
                 for (const auto& pass : st.gpu_passes) gpu_ms += pass.gpu_ms;
-                char row[1024];
+                char row[2048];
                 std::snprintf(row, sizeof row,
-                              "%s,%s,%s,%zu,%zu,%s,%s,%u,%d,%u,%s,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%u,%u,%u,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.2f,%.1f,%u,%zu,%.6f\n",
-                              device.c_str(), scene.name.c_str(), deforming ? "deforming" : "rigid", triangles, ids.size(),
-                              p.variant.c_str(), st.backend.c_str(), st.resolution, st.dual ? 1 : 0, p.settings.layer_cap,
-                              p.settings.packing == PackingMethod::Paper ? "paper" : "scan", p.open ? 1 : 0, p.async ? 1 : 0, f,
-                              st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms,
-                              update_ms, total_ms, st.depth_complexity, st.layers, st.peel_passes, st.collision_rays,
-                              st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, r->pairs.size(),
-                              reference[mf].size(), cmp.recall, cmp.precision, double(st.gpu_memory_bytes) / (1024.0 * 1024.0),
-                              peakHostMiB(), st.narrow_threads, crossing[mf].size(), recall_crossing);
-                csv << row;
+                              "%s,%s,%s,%s,%zu,%zu,%zu,%g,%s,%d,%s,%u,%.4f;%.4f;%.4f,%u,%s,%d,%u,%s,%d,%d,%u,%u,%u,"
+                              "%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,"
+                              "%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.6f,%.2f,%.1f,%u,%.3f,%d,",
+                              device.c_str(), setName(scene->set), scene->name.c_str(), motionName(scene->motion), triangles, ids.size(), gpu_objects,
+                              opt.scale, v.name.c_str(), f, st.backend.c_str(), st.resolution, st.direction[0], st.direction[1], st.direction[2],
+                              st.axes, st.coverage.c_str(), st.dual ? 1 : 0, settings.layer_cap, settings.packing == PackingMethod::Paper ? "paper" : "scan",
+                              v.open ? 1 : 0, v.async ? 1 : 0, st.depth_complexity, st.layers, st.peel_passes, st.sampling_ms, st.merging_ms,
+                              st.separation_ms, st.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms, update_ms, total_ms, st.collision_rays,
+                              st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, st.positive_tests, r->pairs.size(),
+                              ref.pairs.size(), crossing, found_crossing, cmp.recall, recall_crossing, cmp.precision,
+                              double(st.gpu_memory_bytes) / (1024.0 * 1024.0), peakHostMiB(), st.narrow_threads, ref.seconds, ref.from_cache ? 1 : 0);
+                csv << row << csvField(st.settings_note) << '\n';
                 csv.flush();
-                if (f == frames) {
-                    progress.done();
-                    std::printf("%-18s %-14s %-8s %5u %9.3f %9.3f %9.3f %9zu %8.4f %8.4f %8.4f\n", scene.name.c_str(), p.variant.c_str(),
-                                st.backend.c_str(), st.resolution, gpu_ms, st.narrow_ms, total_ms, r->pairs.size(), cmp.recall,
-                                recall_crossing, cmp.precision);
-                    std::fflush(stdout);
-                }
+                sum.backend = st.backend;
+                sum.resolution = st.resolution;
+                ++sum.frames;
+                sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += cmp.true_positives, sum.reference += ref.pairs.size();
+                sum.downloaded += st.triangles_downloaded;
+                sum.total_ms += total_ms, sum.gpu_ms += gpu_ms, sum.narrow_ms += st.narrow_ms;
+                sum.precision_min = std::min(sum.precision_min, cmp.precision);
             }
+            progressDone();
+            if (sum.frames == 0) continue;
+            const double n = double(sum.frames);
+            std::printf("%-9s %-24s %-14s %-8s %5u %9.3f %9.3f %9.3f %9.0f %8.4f %8.4f %8.4f\n", sum.set.c_str(), sum.scene.c_str(), sum.variant.c_str(),
+                        sum.backend.c_str(), sum.resolution, sum.gpu_ms / n, sum.narrow_ms / n, sum.total_ms / n, double(sum.downloaded) / n,
+                        sum.reference ? double(sum.found) / double(sum.reference) : 1.0, sum.crossing ? double(sum.found_crossing) / double(sum.crossing) : 1.0,
+                        sum.precision_min);
+            std::fflush(stdout);
+            summaries.push_back(sum);
         }
     }
-    progress.done();
-    return 0;
+    progressDone();
+    std::printf("\nCSV: %s (%zu scene x variant points, %d skipped)\n", opt.csv.c_str(), summaries.size(), failures);
+    return failures ? 1 : 0;
 }

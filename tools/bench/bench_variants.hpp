@@ -1,0 +1,29 @@
+// Settings variants of the sweep: each is a name, a group and what it changes from the
+// defaults. Adding one is one line in bench_variants.cpp; it then shows up in the CSV's
+// `variant` column, in summary.sh's table and as its own series in plot.sh's charts.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "vkcollide/world.hpp"
+
+namespace vkcollide::bench {
+
+struct Variant {
+    std::string name;   // CSV `variant`
+    std::string group;  // selectable as a whole with --variants GROUP
+    std::function<void(DetectSettings&)> apply;
+    bool open = false;   // every object added as an open surface
+    bool async = false;  // submit() + collect() instead of detect()
+};
+
+// Every named variant, plus one "res-N" (group "resolutions") per entry of `resolutions`.
+std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions);
+
+// The variants named in `selection` (names or group names, comma separated; "all": every one),
+// in table order. Unknown names: InvalidArgument naming them.
+Result<std::vector<Variant>> selectVariants(const std::vector<Variant>& all, const std::string& selection);
+
+}  // namespace vkcollide::bench

@@ -38,12 +38,22 @@ constexpr const char* kUsage =
     "  --no-self-collision skip pairs inside one object (default: tested)\n"
     "  --open              treat every object as an open surface\n"
     "  --frames K          run K detections (timings of the last; the first allocates)\n"
-    "  --threads T         narrow-phase threads (default: all)\n"
-    "  --device NAME       use the Vulkan device whose name contains NAME\n";
+    "  --threads T         narrow-phase threads, 1 to 1024 (default: all hardware threads)\n"
+    "  --device NAME       use the Vulkan device whose name contains NAME\n"
+    "  -h, --help          print this help\n";
+
+// More narrow-phase threads than any machine has cores for only costs memory and start-up
+// time; an absurd count (4294967295) would not even fit the thread table.
+constexpr std::uint32_t kMaxThreads = 1024;
 
 int usage() {
     std::fputs(kUsage, stderr);
     return 2;
+}
+
+int help() {
+    std::fputs(kUsage, stdout);
+    return 0;
 }
 
 int fail(const std::string& what) {
@@ -192,7 +202,9 @@ int detect(int argc, char** argv) {
             if (!v || !parseUint(v, frames) || frames == 0) return fail("--frames needs a positive number");
         } else if (a == "--threads") {
             const char* v = value();
-            if (!v || !parseUint(v, threads)) return fail("--threads needs a number");
+            if (!v || !parseUint(v, threads) || threads == 0 || threads > kMaxThreads)
+                return fail("--threads needs a number from 1 to " + std::to_string(kMaxThreads) +
+                            " (leave it out to use every hardware thread)");
         } else if (a == "--device") {
             const char* v = value();
             if (!v) return fail("--device needs a name");
@@ -204,6 +216,8 @@ int detect(int argc, char** argv) {
             else if (b == "compute") settings.backend = SamplingBackend::Compute;
             else if (b == "auto") settings.backend = SamplingBackend::Auto;
             else return fail("--backend needs raster, compute or auto");
+        } else if (a == "--help" || a == "-h") {
+            return help();
         } else if (a == "--dual") {
             settings.dual = true;
         } else if (a == "--paper-packing") {
@@ -288,9 +302,6 @@ int main(int argc, char** argv) {
     if (argc < 2) return usage();
     if (std::strcmp(argv[1], "info") == 0) return info();
     if (std::strcmp(argv[1], "detect") == 0) return detect(argc, argv);
-    if (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
-        std::fputs(kUsage, stdout);
-        return 0;
-    }
+    if (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) return help();
     return usage();
 }

@@ -69,7 +69,9 @@ int info() {
         std::printf("%s\n  type: %s\n  Vulkan %u.%u.%u, driver %s\n  timestamp period: %.3f ns, subgroup size: %u\n",
                     d.name.c_str(), toString(d.type), VK_API_VERSION_MAJOR(d.api_version), VK_API_VERSION_MINOR(d.api_version),
                     VK_API_VERSION_PATCH(d.api_version), d.driver.c_str(), d.timestamp_period_ns, d.subgroup_size);
-        std::printf("  conservative rasterization: %s\n", d.conservative_rasterization ? "yes" : "no");
+        const auto yes = [](bool b) { return b ? "yes" : "no"; };
+        std::printf("  optional: conservative rasterization %s, push descriptors %s, robustness2 %s, shaderFloat64 %s\n",
+                    yes(d.conservative_rasterization), yes(d.push_descriptor), yes(d.robustness2), yes(d.shader_float64));
         if (d.missing.empty()) {
             std::printf("  usable by vkcollide: yes\n");
         } else {

@@ -92,6 +92,9 @@ struct ContextCreateInfo {
     bool validation = false;
     // Default: warnings and errors are printed to stderr.
     MessageCallback on_message;
+    // Enable robustBufferAccess (and robustBufferAccess2) where the device has them: a
+    // second line of defence (see Robustness above). Off only to measure what it costs.
+    bool robust_buffer_access = true;
     // Optional: the loader entry point to use instead of opening libvulkan.so.1 (an engine
     // that links or wraps the loader; a test's fake driver). Must stay callable for the
     // Context's lifetime.
@@ -170,6 +173,9 @@ public:
     bool ownsDevice() const noexcept;
     // Validation warnings and errors seen since creation (0 when validation is off).
     std::uint64_t validationMessageCount() const noexcept;
+    // Bytes of device memory vkcollide holds on this device now, over all its worlds
+    // (every buffer and image it allocated; the engine's own buffers are not counted).
+    std::uint64_t deviceMemoryInUse() const noexcept;
 
     // Internal access for vkcollide's own subsystems.
     vk::Device& device() noexcept { return *device_; }

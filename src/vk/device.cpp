@@ -177,6 +177,7 @@ Context::~Context() = default;
 const DeviceInfo& Context::deviceInfo() const noexcept { return device_->info; }
 bool Context::ownsDevice() const noexcept { return device_->owns_device; }
 std::uint64_t Context::validationMessageCount() const noexcept { return device_->validation_messages.load(); }
+std::uint64_t Context::deviceMemoryInUse() const noexcept { return device_->memory_in_use.load(); }
 
 Result<std::vector<DeviceInfo>> Context::listDevices(PFN_vkGetInstanceProcAddr get_instance_proc_addr) {
     std::shared_ptr<LoaderLibrary> library;
@@ -347,7 +348,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     for (std::size_t i = 0; i < kFeatureCount; ++i)
         if (isRequired(static_cast<Feature>(i))) enable.set(static_cast<Feature>(i));
     d->shader_float64 = supported.has(Feature::ShaderFloat64);
-    d->robust_buffer_access = supported.has(Feature::RobustBufferAccess);
+    d->robust_buffer_access = info.robust_buffer_access && supported.has(Feature::RobustBufferAccess);
     d->robust_buffer_access2 = d->robust_buffer_access && d->info.robustness2;
     enable.set(Feature::ShaderFloat64, d->shader_float64);
     enable.set(Feature::RobustBufferAccess, d->robust_buffer_access);

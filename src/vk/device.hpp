@@ -31,6 +31,9 @@ struct Device {
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     MessageCallback on_message;
     std::atomic<std::uint64_t> validation_messages{0};
+    // Bytes of VkDeviceMemory that vk::Buffer and vk::Image hold on this device right now
+    // (every world of the Context): all of vkcollide's device memory goes through them.
+    std::atomic<std::uint64_t> memory_in_use{0};
 
     DeviceInfo info;
     VkPhysicalDeviceProperties properties{};

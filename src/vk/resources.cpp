@@ -52,6 +52,7 @@ Result<Buffer> Buffer::create(Device& device, VkDeviceSize size, VkBufferUsageFl
     if (r != VK_SUCCESS)
         return vulkanError(r, "vkAllocateMemory of " + std::to_string(req.size) + " bytes for '" + name + "'");
     b.allocation_size_ = req.size;
+    device.memory_in_use.fetch_add(req.size, std::memory_order_relaxed);
     r = f.vkBindBufferMemory(device.device, b.buffer_, b.memory_, 0);
     if (r != VK_SUCCESS) return vulkanError(r, "vkBindBufferMemory for '" + name + "'");
     VkMemoryPropertyFlags props = device.memory.memoryTypes[*type].propertyFlags;
@@ -110,7 +111,10 @@ void Buffer::reset() {
     if (!device_) return;
     const auto& f = device_->fns;
     if (buffer_) f.vkDestroyBuffer(device_->device, buffer_, nullptr);
-    if (memory_) f.vkFreeMemory(device_->device, memory_, nullptr);  // unmaps implicitly
+    if (memory_) {
+        f.vkFreeMemory(device_->device, memory_, nullptr);  // unmaps implicitly
+        device_->memory_in_use.fetch_sub(allocation_size_, std::memory_order_relaxed);
+    }
     buffer_ = VK_NULL_HANDLE;
     memory_ = VK_NULL_HANDLE;
     mapped_ = nullptr;
@@ -158,6 +162,8 @@ Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::st
     ai.memoryTypeIndex = *type;
     r = f.vkAllocateMemory(device.device, &ai, nullptr, &img.memory_);
     if (r != VK_SUCCESS) return vulkanError(r, "vkAllocateMemory for image '" + name + "'");
+    img.allocation_size_ = req.size;
+    device.memory_in_use.fetch_add(req.size, std::memory_order_relaxed);
     r = f.vkBindImageMemory(device.device, img.image_, img.memory_, 0);
     if (r != VK_SUCCESS) return vulkanError(r, "vkBindImageMemory for '" + name + "'");
 
@@ -185,6 +191,7 @@ Image& Image::operator=(Image&& o) noexcept {
         device_ = std::exchange(o.device_, nullptr);
         image_ = std::exchange(o.image_, VK_NULL_HANDLE);
         memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
+        allocation_size_ = std::exchange(o.allocation_size_, 0);
         view_ = std::exchange(o.view_, VK_NULL_HANDLE);
         level_views_ = std::move(o.level_views_);
         o.level_views_.clear();
@@ -200,7 +207,10 @@ void Image::reset() {
     level_views_.clear();
     if (view_) f.vkDestroyImageView(device_->device, view_, nullptr);
     if (image_) f.vkDestroyImage(device_->device, image_, nullptr);
-    if (memory_) f.vkFreeMemory(device_->device, memory_, nullptr);
+    if (memory_) {
+        f.vkFreeMemory(device_->device, memory_, nullptr);
+        device_->memory_in_use.fetch_sub(allocation_size_, std::memory_order_relaxed);
+    }
     view_ = VK_NULL_HANDLE;
     image_ = VK_NULL_HANDLE;
     memory_ = VK_NULL_HANDLE;

@@ -87,6 +87,7 @@ private:
     Device* device_ = nullptr;
     VkImage image_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    VkDeviceSize allocation_size_ = 0;
     VkImageView view_ = VK_NULL_HANDLE;
     std::vector<VkImageView> level_views_;
     ImageDesc desc_;

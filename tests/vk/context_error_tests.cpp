@@ -60,6 +60,19 @@ TEST_CASE("fake driver: a complete device is created with every required feature
     CHECK(fake.instances_alive == 0);
 }
 
+TEST_CASE("fake driver: robust buffer access can be turned off (to measure its cost)", "[contract][context]") {
+    FakeVulkanScope scope;
+    scope.fake().physical_devices[0].extensions = {VK_EXT_ROBUSTNESS_2_EXTENSION_NAME};
+    ContextCreateInfo info;
+    info.robust_buffer_access = false;
+    auto ctx = createOnFake(info);
+    REQUIRE(ctx);
+    CHECK_FALSE(scope.fake().device_features.has(vk::Feature::RobustBufferAccess));
+    CHECK_FALSE(scope.fake().device_features.has(vk::Feature::RobustBufferAccess2));
+    CHECK_FALSE(lists(scope.fake().device_extensions, VK_EXT_ROBUSTNESS_2_EXTENSION_NAME));
+    CHECK_FALSE((*ctx)->device().robust_buffer_access);
+}
+
 TEST_CASE("fake driver: optional features the device lacks are left off, not required", "[contract][context]") {
     FakeVulkanScope scope;
     auto& fake = scope.fake();
@@ -278,4 +291,22 @@ TEST_CASE("Buffer::flush is a no-op on coherent memory", "[contract][resources]"
     buffer->invalidate(0, 16);
     CHECK(scope.fake().flushed.empty());
     CHECK(scope.fake().invalidated.empty());
+}
+
+TEST_CASE("Context::deviceMemoryInUse counts every allocation vkcollide holds, until it is freed", "[contract][resources]") {
+    FakeVulkanScope scope;
+    auto ctx = createOnFake();
+    REQUIRE(ctx);
+    CHECK((*ctx)->deviceMemoryInUse() == 0);
+    auto a = vk::Buffer::create((*ctx)->device(), 1000, 0, vk::MemoryKind::DeviceLocal, "a");  // 1024 allocated
+    auto b = vk::Buffer::create((*ctx)->device(), 100, 0, vk::MemoryKind::Upload, "b");        // 256 allocated
+    REQUIRE(a);
+    REQUIRE(b);
+    CHECK((*ctx)->deviceMemoryInUse() == 1024 + 256);
+    vk::Buffer moved = std::move(*a);  // a move hands the allocation over, it is counted once
+    CHECK((*ctx)->deviceMemoryInUse() == 1024 + 256);
+    moved.reset();
+    CHECK((*ctx)->deviceMemoryInUse() == 256);
+    b->reset();
+    CHECK((*ctx)->deviceMemoryInUse() == 0);
 }

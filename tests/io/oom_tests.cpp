@@ -38,13 +38,25 @@ vkcollide::HostMesh bigGrid(std::uint32_t rows) {
 
 }  // namespace
 
+// Every replaceable form, so that no allocation is made by one allocator and freed by
+// another (AddressSanitizer checks that pairing).
 void* operator new(std::size_t bytes) {
     if (bytes > g_fail_above.load(std::memory_order_relaxed)) throw std::bad_alloc();
     if (void* p = std::malloc(bytes ? bytes : 1)) return p;
     throw std::bad_alloc();
 }
+void* operator new[](std::size_t bytes) { return ::operator new(bytes); }
+void* operator new(std::size_t bytes, const std::nothrow_t&) noexcept {
+    if (bytes > g_fail_above.load(std::memory_order_relaxed)) return nullptr;
+    return std::malloc(bytes ? bytes : 1);
+}
+void* operator new[](std::size_t bytes, const std::nothrow_t& tag) noexcept { return ::operator new(bytes, tag); }
 void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
 using namespace vkcollide;
 

@@ -26,6 +26,7 @@ constexpr const char* kUsage =
     "       vkcollide detect SCENE... [--resolution N] [--pairs out.csv] [--stats out.json]\n"
     "                        [--direction x,y,z] [--cap L] [--dual] [--paper-packing] [--backend raster|compute|auto]\n"
     "                        [--no-self-collision] [--open] [--frames K] [--threads T] [--device NAME]\n"
+    "                        [--no-robust-access]\n"
     "  SCENE: .obj (each o/g group is an object), .off or .ply (each file is an object)\n"
     "  --resolution N      rays per image side (power of two); default: chosen from the scene\n"
     "  --pairs FILE        write the colliding pairs as CSV lines a,b (global triangle indices, a<b)\n"
@@ -40,6 +41,7 @@ constexpr const char* kUsage =
     "  --frames K          run K detections (timings of the last; the first allocates)\n"
     "  --threads T         narrow-phase threads, 1 to 1024 (default: all hardware threads)\n"
     "  --device NAME       use the Vulkan device whose name contains NAME\n"
+    "  --no-robust-access  create the device without robustBufferAccess(2), to measure its cost\n"
     "  -h, --help          print this help\n";
 
 // More narrow-phase threads than any machine has cores for only costs memory and start-up
@@ -172,7 +174,7 @@ int detect(int argc, char** argv) {
     std::vector<std::string> files;
     DetectSettings settings;
     std::string pairs_path, stats_path, device;
-    bool self_collision = true, open = false;
+    bool self_collision = true, open = false, robust_access = true;
     std::uint32_t frames = 1, threads = 0;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
@@ -228,6 +230,8 @@ int detect(int argc, char** argv) {
             self_collision = false;
         } else if (a == "--open") {
             open = true;
+        } else if (a == "--no-robust-access") {
+            robust_access = false;
         } else if (!a.empty() && a[0] == '-') {
             std::fprintf(stderr, "vkcollide: unknown option %s\n", a.c_str());
             return usage();
@@ -248,6 +252,7 @@ int detect(int argc, char** argv) {
     }
     ContextCreateInfo ci;
     ci.device_name = device;
+    ci.robust_buffer_access = robust_access;
     auto ctx = Context::create(ci);
     if (!ctx) return fail(ctx.error().message());
     auto world = CollisionWorld::create(**ctx, {.threads = threads});

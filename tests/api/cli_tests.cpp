@@ -167,3 +167,18 @@ TEST_CASE("vkcollide detect refuses a mesh path that leads to /dev/zero instead 
     CHECK(text.find("bad_alloc") == std::string::npos);
     fs::remove_all(dir);
 }
+
+TEST_CASE("vkcollide detect --no-robust-access finds the same pairs", "[cli][gpu]") {
+    const fs::path dir = scratchDir("robust");
+    const fs::path log = dir / "log.txt";
+    // Two crossing triangles: one pair either way.
+    writeText(dir / "cross.obj", "o a\nv 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n"
+                                 "o b\nv 0.5 0.5 -1\nv 0.5 0.5 1\nv 1.5 -0.5 0\nf 4 5 6\n");
+    const std::string scene = (dir / "cross.obj").string();
+    for (const char* flag : {"", " --no-robust-access"}) {
+        INFO("flag:" << flag);
+        CHECK(exitCode(runCli("detect " + scene + " --pairs " + (dir / "p.csv").string() + flag, log)) == 0);
+        CHECK(readText(dir / "p.csv") == "0,1\n");
+    }
+    fs::remove_all(dir);
+}

@@ -50,9 +50,9 @@
 //            VMA_ALLOCATOR_CREATE_BUFFER_DEVICE_ADDRESS_BIT on the allocator).
 //  Sharing   VK_SHARING_MODE_EXCLUSIVE buffers must be owned by the Context's queue family
 //            while a detection reads them (or be CONCURRENT across that family).
-//  Checks    Vulkan has no query for a buffer's usage, memory flags or binding. vkcollide
-//            checks the usage the engine declares for each buffer and each declared size
-//            against vkGetBufferMemoryRequirements; the rest is the engine's promise, and a
+//  Checks    Vulkan has no query for a buffer's usage, memory flags or binding, so vkcollide
+//            can check only what the engine declares (GpuMeshDesc) and bound each declared
+//            size by vkGetBufferMemoryRequirements; the rest is the engine's promise, and a
 //            broken one is undefined behaviour that the validation layer sees only in part
 //            (it cannot follow device-address reads).
 //

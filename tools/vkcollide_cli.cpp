@@ -26,6 +26,7 @@ constexpr const char* kUsage =
     "       vkcollide detect SCENE... [--resolution N] [--pairs out.csv] [--stats out.json]\n"
     "                        [--direction x,y,z] [--cap L] [--dual] [--paper-packing] [--backend raster|compute|auto]\n"
     "                        [--no-self-collision] [--open] [--frames K] [--threads T] [--device NAME]\n"
+    "                        [--no-robust-access]\n"
     "  SCENE: .obj (each o/g group is an object), .off or .ply (each file is an object)\n"
     "  --resolution N      rays per image side (power of two); default: chosen from the scene\n"
     "  --pairs FILE        write the colliding pairs as CSV lines a,b (global triangle indices, a<b)\n"
@@ -38,12 +39,23 @@ constexpr const char* kUsage =
     "  --no-self-collision skip pairs inside one object (default: tested)\n"
     "  --open              treat every object as an open surface\n"
     "  --frames K          run K detections (timings of the last; the first allocates)\n"
-    "  --threads T         narrow-phase threads (default: all)\n"
-    "  --device NAME       use the Vulkan device whose name contains NAME\n";
+    "  --threads T         narrow-phase threads, 1 to 1024 (default: all hardware threads)\n"
+    "  --device NAME       use the Vulkan device whose name contains NAME\n"
+    "  --no-robust-access  create the device without robustBufferAccess(2), to measure its cost\n"
+    "  -h, --help          print this help\n";
+
+// More narrow-phase threads than any machine has cores for only costs memory and start-up
+// time; an absurd count (4294967295) would not even fit the thread table.
+constexpr std::uint32_t kMaxThreads = 1024;
 
 int usage() {
     std::fputs(kUsage, stderr);
     return 2;
+}
+
+int help() {
+    std::fputs(kUsage, stdout);
+    return 0;
 }
 
 int fail(const std::string& what) {
@@ -59,7 +71,9 @@ int info() {
         std::printf("%s\n  type: %s\n  Vulkan %u.%u.%u, driver %s\n  timestamp period: %.3f ns, subgroup size: %u\n",
                     d.name.c_str(), toString(d.type), VK_API_VERSION_MAJOR(d.api_version), VK_API_VERSION_MINOR(d.api_version),
                     VK_API_VERSION_PATCH(d.api_version), d.driver.c_str(), d.timestamp_period_ns, d.subgroup_size);
-        std::printf("  conservative rasterization: %s\n", d.conservative_rasterization ? "yes" : "no");
+        const auto yes = [](bool b) { return b ? "yes" : "no"; };
+        std::printf("  optional: conservative rasterization %s, push descriptors %s, robustness2 %s, shaderFloat64 %s\n",
+                    yes(d.conservative_rasterization), yes(d.push_descriptor), yes(d.robustness2), yes(d.shader_float64));
         if (d.missing.empty()) {
             std::printf("  usable by vkcollide: yes\n");
         } else {
@@ -160,7 +174,7 @@ int detect(int argc, char** argv) {
     std::vector<std::string> files;
     DetectSettings settings;
     std::string pairs_path, stats_path, device;
-    bool self_collision = true, open = false;
+    bool self_collision = true, open = false, robust_access = true;
     std::uint32_t frames = 1, threads = 0;
     for (int i = 2; i < argc; ++i) {
         const std::string a = argv[i];
@@ -192,7 +206,9 @@ int detect(int argc, char** argv) {
             if (!v || !parseUint(v, frames) || frames == 0) return fail("--frames needs a positive number");
         } else if (a == "--threads") {
             const char* v = value();
-            if (!v || !parseUint(v, threads)) return fail("--threads needs a number");
+            if (!v || !parseUint(v, threads) || threads == 0 || threads > kMaxThreads)
+                return fail("--threads needs a number from 1 to " + std::to_string(kMaxThreads) +
+                            " (leave it out to use every hardware thread)");
         } else if (a == "--device") {
             const char* v = value();
             if (!v) return fail("--device needs a name");
@@ -204,6 +220,8 @@ int detect(int argc, char** argv) {
             else if (b == "compute") settings.backend = SamplingBackend::Compute;
             else if (b == "auto") settings.backend = SamplingBackend::Auto;
             else return fail("--backend needs raster, compute or auto");
+        } else if (a == "--help" || a == "-h") {
+            return help();
         } else if (a == "--dual") {
             settings.dual = true;
         } else if (a == "--paper-packing") {
@@ -212,6 +230,8 @@ int detect(int argc, char** argv) {
             self_collision = false;
         } else if (a == "--open") {
             open = true;
+        } else if (a == "--no-robust-access") {
+            robust_access = false;
         } else if (!a.empty() && a[0] == '-') {
             std::fprintf(stderr, "vkcollide: unknown option %s\n", a.c_str());
             return usage();
@@ -232,6 +252,7 @@ int detect(int argc, char** argv) {
     }
     ContextCreateInfo ci;
     ci.device_name = device;
+    ci.robust_buffer_access = robust_access;
     auto ctx = Context::create(ci);
     if (!ctx) return fail(ctx.error().message());
     auto world = CollisionWorld::create(**ctx, {.threads = threads});
@@ -288,9 +309,6 @@ int main(int argc, char** argv) {
     if (argc < 2) return usage();
     if (std::strcmp(argv[1], "info") == 0) return info();
     if (std::strcmp(argv[1], "detect") == 0) return detect(argc, argv);
-    if (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
-        std::fputs(kUsage, stdout);
-        return 0;
-    }
+    if (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) return help();
     return usage();
 }

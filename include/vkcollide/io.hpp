@@ -8,6 +8,7 @@
 // Thread safety: all functions are reentrant; they share no state.
 #pragma once
 
+#include <cstdint>
 #include <span>
 #include <string>
 #include <string_view>
@@ -55,13 +56,19 @@ Result<MeshFormat> meshFormatFromPath(std::string_view path);
 // Errors: ParseError with "<source_name>:<line>: what" (binary PLY body:
 // "<source_name>: byte <offset>: what"), naming the object for out-of-range indices and
 // bad coordinates. Absurd counts, truncation and files without any triangle are
-// ParseErrors too.
+// ParseErrors too. OutOfMemory when host memory runs out (nothing is thrown).
 Result<std::vector<HostMesh>> readMesh(std::string_view in_data, MeshFormat format,
                                        std::string_view source_name);
 
-// Reads the file at `path` and parses it with the format its extension names.
-// Errors: IoError when the file cannot be opened or read, InvalidArgument for an
-// unknown extension, and everything readMesh() returns.
+// The largest file readMeshFile() reads (it holds the whole file in memory).
+inline constexpr std::uint64_t kMaxMeshFileBytes = std::uint64_t(4) << 30;  // 4 GiB
+
+// Reads the file at `path` and parses it with the format its extension names. Symbolic
+// links are followed; the file they lead to must be a regular file.
+// Errors: IoError when the file cannot be opened or read, is not a regular file (a
+// device such as /dev/zero, a pipe, a directory) or is larger than kMaxMeshFileBytes;
+// OutOfMemory when its bytes do not fit in memory; InvalidArgument for an unknown
+// extension; and everything readMesh() returns.
 Result<std::vector<HostMesh>> readMeshFile(const std::string& path);
 
 // --- Writers: exact round trip (shortest float text that reads back bit-exactly). ---

@@ -146,7 +146,9 @@ private:
         const auto defined = static_cast<std::int64_t>(positions_.size());
         std::int64_t resolved = -1;
         if (index > 0 && index <= defined) resolved = index - 1;
-        if (index < 0 && -index <= defined) resolved = defined + index;  // relative to the last vertex
+        // Relative to the last vertex. Compared as index >= -defined, never by negating
+        // index: -INT64_MIN overflows.
+        if (index < 0 && index >= -defined) resolved = defined + index;
         if (resolved < 0)
             return fail("object '" + currentName() + "': vertex index " + std::to_string(index) +
                         " is out of range (" + std::to_string(defined) + " vertices defined so far)");

@@ -45,46 +45,6 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBit
     return VK_FALSE;
 }
 
-// The features vkcollide turns on; also used to check what a device has.
-struct FeatureChain {
-    VkPhysicalDeviceFeatures2 core{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceVulkan13Features v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    FeatureChain() {
-        core.pNext = &v12;
-        v12.pNext = &v13;
-    }
-    FeatureChain(const FeatureChain&) = delete;
-    FeatureChain& operator=(const FeatureChain&) = delete;
-
-    void requireAll() {
-        core.features.shaderInt64 = VK_TRUE;
-        core.features.fragmentStoresAndAtomics = VK_TRUE;
-        core.features.vertexPipelineStoresAndAtomics = VK_FALSE;
-        v12.bufferDeviceAddress = VK_TRUE;
-        v12.scalarBlockLayout = VK_TRUE;
-        v12.shaderBufferInt64Atomics = VK_TRUE;
-        v12.hostQueryReset = VK_TRUE;
-        v13.dynamicRendering = VK_TRUE;
-        v13.synchronization2 = VK_TRUE;
-        v13.maintenance4 = VK_TRUE;
-    }
-
-    std::vector<std::string> missing() const {
-        std::vector<std::string> out;
-        if (!core.features.shaderInt64) out.push_back("shaderInt64");
-        if (!core.features.fragmentStoresAndAtomics) out.push_back("fragmentStoresAndAtomics");
-        if (!v12.bufferDeviceAddress) out.push_back("bufferDeviceAddress");
-        if (!v12.scalarBlockLayout) out.push_back("scalarBlockLayout");
-        if (!v12.shaderBufferInt64Atomics) out.push_back("shaderBufferInt64Atomics");
-        if (!v12.hostQueryReset) out.push_back("hostQueryReset");
-        if (!v13.dynamicRendering) out.push_back("dynamicRendering");
-        if (!v13.synchronization2) out.push_back("synchronization2");
-        if (!v13.maintenance4) out.push_back("maintenance4");
-        return out;
-    }
-};
-
 }  // namespace
 
 Device::~Device() {
@@ -119,9 +79,13 @@ void Device::message(MessageSeverity severity, std::string_view text) const {
                  static_cast<int>(text.size()), text.data());
 }
 
-DeviceInfo describePhysicalDevice(const InstanceFunctions& fns, VkPhysicalDevice physical,
-                                  std::optional<std::uint32_t>* out_queue_family) {
-    DeviceInfo info;
+bool listsExtension(std::span<const char* const> names, const char* name) noexcept {
+    return std::any_of(names.begin(), names.end(), [&](const char* n) { return n && std::strcmp(n, name) == 0; });
+}
+
+PhysicalDeviceReport describePhysicalDevice(const InstanceFunctions& fns, VkPhysicalDevice physical) {
+    PhysicalDeviceReport report;
+    DeviceInfo& info = report.info;
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     subgroup.pNext = &driver;
@@ -138,38 +102,37 @@ DeviceInfo describePhysicalDevice(const InstanceFunctions& fns, VkPhysicalDevice
     if (VK_API_VERSION_MAJOR(info.api_version) == 1 && VK_API_VERSION_MINOR(info.api_version) < 3) {
         info.missing.push_back("Vulkan 1.3 (device reports " + std::to_string(VK_API_VERSION_MAJOR(info.api_version)) +
                                "." + std::to_string(VK_API_VERSION_MINOR(info.api_version)) + ")");
-        return info;  // 1.3 feature structs cannot be queried
+        return report;  // 1.3 feature structs cannot be queried
     }
 
     std::uint32_t ext_count = 0;
     fns.vkEnumerateDeviceExtensionProperties(physical, nullptr, &ext_count, nullptr);
     std::vector<VkExtensionProperties> exts(ext_count);
     fns.vkEnumerateDeviceExtensionProperties(physical, nullptr, &ext_count, exts.data());
-    if (!hasExtension(exts, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) info.missing.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    exts.resize(ext_count);
     info.conservative_rasterization = hasExtension(exts, VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
+    info.push_descriptor = hasExtension(exts, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    const bool robustness2_extension = hasExtension(exts, VK_EXT_ROBUSTNESS_2_EXTENSION_NAME);
 
-    FeatureChain features;
-    fns.vkGetPhysicalDeviceFeatures2(physical, &features.core);
-    for (auto& m : features.missing()) info.missing.push_back(m);
+    report.supported = querySupported(fns, physical, robustness2_extension);
+    for (auto& m : report.supported.missingRequired()) info.missing.push_back(m);
+    info.shader_float64 = report.supported.has(Feature::ShaderFloat64);
+    info.robustness2 = robustness2_extension && report.supported.has(Feature::RobustBufferAccess2);
 
     std::uint32_t family_count = 0;
     fns.vkGetPhysicalDeviceQueueFamilyProperties(physical, &family_count, nullptr);
     std::vector<VkQueueFamilyProperties> families(family_count);
     fns.vkGetPhysicalDeviceQueueFamilyProperties(physical, &family_count, families.data());
-    std::optional<std::uint32_t> chosen;
     for (std::uint32_t i = 0; i < family_count; ++i) {
         const VkQueueFlags need = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
         if ((families[i].queueFlags & need) == need && families[i].timestampValidBits > 0) {
-            chosen = i;
+            report.queue_family = i;
             break;
         }
     }
-    if (!chosen) info.missing.push_back("a graphics+compute queue with timestamp queries");
-    if (out_queue_family) *out_queue_family = chosen;
-    return info;
+    if (!report.queue_family) info.missing.push_back("a graphics+compute queue with timestamp queries");
+    return report;
 }
-
-namespace {
 
 Result<void> finishDevice(Device& d) {
     d.instance_fns.vkGetPhysicalDeviceProperties(d.physical, &d.properties);
@@ -182,6 +145,7 @@ Result<void> finishDevice(Device& d) {
         return Error(ErrorCode::InvalidArgument, "queue family " + std::to_string(d.queue_family) +
                                                      " does not exist (the device has " + std::to_string(family_count) + ")");
     d.timestamp_valid_bits = families[d.queue_family].timestampValidBits;
+    d.queue_flags = families[d.queue_family].queueFlags;
     VkPhysicalDeviceVulkan13Properties p13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_PROPERTIES};
     VkPhysicalDeviceVulkan11Properties p11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_PROPERTIES};
     p11.pNext = &p13;
@@ -192,8 +156,6 @@ Result<void> finishDevice(Device& d) {
     if (p11.maxMemoryAllocationSize) d.max_allocation_size = p11.maxMemoryAllocationSize;
     return {};
 }
-
-}  // namespace
 
 }  // namespace vkcollide::vk
 
@@ -215,11 +177,17 @@ Context::~Context() = default;
 const DeviceInfo& Context::deviceInfo() const noexcept { return device_->info; }
 bool Context::ownsDevice() const noexcept { return device_->owns_device; }
 std::uint64_t Context::validationMessageCount() const noexcept { return device_->validation_messages.load(); }
+std::uint64_t Context::deviceMemoryInUse() const noexcept { return device_->memory_in_use.load(); }
 
-Result<std::vector<DeviceInfo>> Context::listDevices() {
-    auto lib = LoaderLibrary::open();
-    if (!lib) return lib.error();
-    auto global = loadGlobalFunctions((*lib)->getInstanceProcAddr());
+Result<std::vector<DeviceInfo>> Context::listDevices(PFN_vkGetInstanceProcAddr get_instance_proc_addr) {
+    std::shared_ptr<LoaderLibrary> library;
+    if (!get_instance_proc_addr) {
+        auto lib = LoaderLibrary::open();
+        if (!lib) return lib.error();
+        library = *lib;
+        get_instance_proc_addr = library->getInstanceProcAddr();
+    }
+    auto global = loadGlobalFunctions(get_instance_proc_addr);
     if (!global) return global.error();
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "vkcollide";
@@ -229,14 +197,20 @@ Result<std::vector<DeviceInfo>> Context::listDevices() {
     VkInstance instance = VK_NULL_HANDLE;
     VkResult r = global->vkCreateInstance(&ci, nullptr, &instance);
     if (r != VK_SUCCESS) return vulkanError(r, "vkCreateInstance");
-    auto fns = loadInstanceFunctions((*lib)->getInstanceProcAddr(), instance);
-    if (!fns) return fns.error();
+    auto fns = loadInstanceFunctions(get_instance_proc_addr, instance);
+    if (!fns) {
+        // The instance must go even though its table is incomplete.
+        if (auto destroy = reinterpret_cast<PFN_vkDestroyInstance>(get_instance_proc_addr(instance, "vkDestroyInstance")))
+            destroy(instance, nullptr);
+        return fns.error();
+    }
     std::uint32_t count = 0;
     fns->vkEnumeratePhysicalDevices(instance, &count, nullptr);
     std::vector<VkPhysicalDevice> physicals(count);
     fns->vkEnumeratePhysicalDevices(instance, &count, physicals.data());
+    physicals.resize(count);
     std::vector<DeviceInfo> out;
-    for (VkPhysicalDevice p : physicals) out.push_back(describePhysicalDevice(*fns, p));
+    for (VkPhysicalDevice p : physicals) out.push_back(describePhysicalDevice(*fns, p).info);
     fns->vkDestroyInstance(instance, nullptr);
     return out;
 }
@@ -244,10 +218,14 @@ Result<std::vector<DeviceInfo>> Context::listDevices() {
 Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) {
     auto d = std::make_unique<Device>();
     d->on_message = info.on_message;
-    auto lib = LoaderLibrary::open();
-    if (!lib) return lib.error();
-    d->library = *lib;
-    auto global = loadGlobalFunctions(d->library->getInstanceProcAddr());
+    PFN_vkGetInstanceProcAddr gipa = info.get_instance_proc_addr;
+    if (!gipa) {
+        auto lib = LoaderLibrary::open();
+        if (!lib) return lib.error();
+        d->library = *lib;
+        gipa = d->library->getInstanceProcAddr();
+    }
+    auto global = loadGlobalFunctions(gipa);
     if (!global) return global.error();
     d->global = *global;
 
@@ -275,6 +253,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
         d->global.vkEnumerateInstanceLayerProperties(&count, nullptr);
         std::vector<VkLayerProperties> props(count);
         d->global.vkEnumerateInstanceLayerProperties(&count, props.data());
+        props.resize(count);
         bool found = std::any_of(props.begin(), props.end(),
                                  [](const VkLayerProperties& p) { return std::strcmp(p.layerName, kValidationLayer) == 0; });
         if (!found)
@@ -298,11 +277,20 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     ci.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
     VkResult r = d->global.vkCreateInstance(&ci, nullptr, &d->instance);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateInstance");
-    d->owns_instance = true;
-    auto inst = loadInstanceFunctions(d->library->getInstanceProcAddr(), d->instance);
-    if (!inst) return inst.error();
+    if (r != VK_SUCCESS) {
+        d->instance = VK_NULL_HANDLE;
+        return vulkanError(r, "vkCreateInstance");
+    }
+    auto inst = loadInstanceFunctions(gipa, d->instance);
+    if (!inst) {
+        // ~Device cannot destroy an instance without its table: do it here.
+        if (auto destroy = reinterpret_cast<PFN_vkDestroyInstance>(gipa(d->instance, "vkDestroyInstance")))
+            destroy(d->instance, nullptr);
+        d->instance = VK_NULL_HANDLE;
+        return inst.error();
+    }
     d->instance_fns = *inst;
+    d->owns_instance = true;
     if (info.validation) {
         r = d->instance_fns.vkCreateDebugUtilsMessengerEXT(d->instance, &messenger_info, nullptr, &d->messenger);
         if (r != VK_SUCCESS) return vulkanError(r, "vkCreateDebugUtilsMessengerEXT");
@@ -310,9 +298,11 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
 
     // Pick the device: by name if asked, else by type preference among suitable ones.
     std::uint32_t count = 0;
-    d->instance_fns.vkEnumeratePhysicalDevices(d->instance, &count, nullptr);
+    r = d->instance_fns.vkEnumeratePhysicalDevices(d->instance, &count, nullptr);
+    if (r != VK_SUCCESS && r != VK_INCOMPLETE) return vulkanError(r, "vkEnumeratePhysicalDevices");
     std::vector<VkPhysicalDevice> physicals(count);
     d->instance_fns.vkEnumeratePhysicalDevices(d->instance, &count, physicals.data());
+    physicals.resize(count);
     if (physicals.empty()) return Error(ErrorCode::NoSuitableDevice, "the Vulkan loader found no physical device (is a driver such as mesa-vulkan-drivers installed?)");
 
     std::string wanted = info.device_name;
@@ -321,22 +311,23 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     }
     int best_rank = 1 << 30;
     std::string report;
+    FeatureSet supported;
     for (VkPhysicalDevice p : physicals) {
-        std::optional<std::uint32_t> family;
-        DeviceInfo di = describePhysicalDevice(d->instance_fns, p, &family);
-        report += "\n  " + di.name + " (" + toString(di.type) + ")";
-        if (!wanted.empty() && lower(di.name).find(lower(wanted)) == std::string::npos) continue;
-        if (!di.missing.empty()) {
+        PhysicalDeviceReport pd = describePhysicalDevice(d->instance_fns, p);
+        report += "\n  " + pd.info.name + " (" + toString(pd.info.type) + ")";
+        if (!wanted.empty() && lower(pd.info.name).find(lower(wanted)) == std::string::npos) continue;
+        if (!pd.info.missing.empty()) {
             report += ": lacks";
-            for (auto& m : di.missing) report += " " + m;
+            for (auto& m : pd.info.missing) report += " " + m;
             continue;
         }
-        int rank = typeRank(di.type);
+        int rank = typeRank(pd.info.type);
         if (rank < best_rank) {
             best_rank = rank;
             d->physical = p;
-            d->queue_family = *family;
-            d->info = di;
+            d->queue_family = *pd.queue_family;
+            d->info = pd.info;
+            supported = pd.supported;
         }
     }
     if (!d->physical) {
@@ -350,63 +341,47 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     queue_info.queueFamilyIndex = d->queue_family;
     queue_info.queueCount = 1;
     queue_info.pQueuePriorities = &priority;
-    FeatureChain features;
-    features.requireAll();
-    // Optional: conservative rasterisation, only where the device has it (coverage setting).
-    std::vector<const char*> device_exts = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
-    if (d->info.conservative_rasterization) device_exts.push_back(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
+    // Every required feature, and the optional ones the device has: shaderFloat64 for the
+    // double-precision filters; robust buffer access as a second line of defence behind
+    // the passes' own checks (it covers descriptor accesses only, not device addresses).
+    FeatureSet enable;
+    for (std::size_t i = 0; i < kFeatureCount; ++i)
+        if (isRequired(static_cast<Feature>(i))) enable.set(static_cast<Feature>(i));
+    d->shader_float64 = supported.has(Feature::ShaderFloat64);
+    d->robust_buffer_access = info.robust_buffer_access && supported.has(Feature::RobustBufferAccess);
+    d->robust_buffer_access2 = d->robust_buffer_access && d->info.robustness2;
+    enable.set(Feature::ShaderFloat64, d->shader_float64);
+    enable.set(Feature::RobustBufferAccess, d->robust_buffer_access);
+    enable.set(Feature::RobustBufferAccess2, d->robust_buffer_access2);
+    const DeviceCreateChain features(enable, d->robust_buffer_access2);
+    std::vector<const char*> device_exts;
+    d->conservative_rasterization = d->info.conservative_rasterization;
+    d->push_descriptor = d->info.push_descriptor;
+    if (d->conservative_rasterization) device_exts.push_back(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
+    if (d->push_descriptor) device_exts.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
+    if (d->robust_buffer_access2) device_exts.push_back(VK_EXT_ROBUSTNESS_2_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    dci.pNext = &features.core;
+    dci.pNext = features.head();
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &queue_info;
     dci.enabledExtensionCount = static_cast<std::uint32_t>(device_exts.size());
     dci.ppEnabledExtensionNames = device_exts.data();
     r = d->instance_fns.vkCreateDevice(d->physical, &dci, nullptr, &d->device);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateDevice on " + d->info.name);
-    d->owns_device = true;
-    d->conservative_rasterization = d->info.conservative_rasterization;
-    auto dev = loadDeviceFunctions(d->instance_fns, d->device);
-    if (!dev) return dev.error();
+    if (r != VK_SUCCESS) {
+        d->device = VK_NULL_HANDLE;
+        return vulkanError(r, "vkCreateDevice on " + d->info.name);
+    }
+    auto dev = loadDeviceFunctions(d->instance_fns, d->device, d->push_descriptor);
+    if (!dev) {
+        if (auto destroy = reinterpret_cast<PFN_vkDestroyDevice>(d->instance_fns.vkGetDeviceProcAddr(d->device, "vkDestroyDevice")))
+            destroy(d->device, nullptr);
+        d->device = VK_NULL_HANDLE;
+        return dev.error();
+    }
     d->fns = *dev;
+    d->owns_device = true;
     d->fns.vkGetDeviceQueue(d->device, d->queue_family, 0, &d->queue);
     if (auto ok = finishDevice(*d); !ok) return ok.error();
-    return std::unique_ptr<Context>(new Context(std::move(d)));
-}
-
-Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& in, MessageCallback on_message) {
-    if (!in.get_instance_proc_addr || !in.instance || !in.physical_device || !in.device || !in.queue)
-        return Error(ErrorCode::InvalidArgument,
-                     "AdoptedDevice needs get_instance_proc_addr, instance, physical_device, device and queue (one is null)");
-    auto d = std::make_unique<Device>();
-    d->on_message = std::move(on_message);
-    auto global = loadGlobalFunctions(in.get_instance_proc_addr);
-    if (!global) return global.error();
-    d->global = *global;
-    d->instance = in.instance;
-    d->physical = in.physical_device;
-    d->device = in.device;
-    d->queue = in.queue;
-    d->queue_family = in.queue_family;
-    auto inst = loadInstanceFunctions(in.get_instance_proc_addr, in.instance);
-    if (!inst) return inst.error();
-    d->instance_fns = *inst;
-    d->info = describePhysicalDevice(d->instance_fns, d->physical);
-    if (VK_API_VERSION_MINOR(in.api_version) < 3 && VK_API_VERSION_MAJOR(in.api_version) == 1)
-        d->info.missing.push_back("an instance created for Vulkan 1.3 (AdoptedDevice::api_version is lower)");
-    if (!d->info.missing.empty()) {
-        std::string what;
-        for (auto& m : d->info.missing) what += " " + m;
-        return Error(ErrorCode::UnsupportedFeature, "the adopted device " + d->info.name + " lacks:" + what);
-    }
-    auto dev = loadDeviceFunctions(d->instance_fns, d->device);
-    if (!dev) return dev.error();
-    d->fns = *dev;
-    // The engine says whether it enabled the extension; vkcollide cannot see that itself.
-    d->conservative_rasterization = in.conservative_rasterization && d->info.conservative_rasterization;
-    if (auto ok = finishDevice(*d); !ok) return ok.error();
-    if (d->timestamp_valid_bits == 0)
-        return Error(ErrorCode::UnsupportedFeature, "the adopted queue family " + std::to_string(in.queue_family) +
-                                                        " has no timestamp support (timestampValidBits = 0)");
     return std::unique_ptr<Context>(new Context(std::move(d)));
 }
 

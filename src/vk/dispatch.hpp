@@ -84,7 +84,6 @@ namespace vkcollide::vk {
     X(vkCmdEndRendering)                    \
     X(vkCmdBindPipeline)                    \
     X(vkCmdPushConstants)                   \
-    X(vkCmdPushDescriptorSetKHR)            \
     X(vkCmdDispatch)                        \
     X(vkCmdDispatchIndirect)                \
     X(vkCmdDraw)                            \
@@ -97,6 +96,10 @@ namespace vkcollide::vk {
     X(vkCmdClearColorImage)                 \
     X(vkCmdResetQueryPool)                  \
     X(vkCmdWriteTimestamp2)
+
+// VK_KHR_push_descriptor (optional): loaded only where the device enables it, else null.
+#define VKC_PUSH_DESCRIPTOR_FUNCTIONS(X) \
+    X(vkCmdPushDescriptorSetKHR)
 
 #define VKC_DECLARE_PFN(name) PFN_##name name = nullptr;
 
@@ -112,6 +115,7 @@ struct InstanceFunctions {
 
 struct DeviceFunctions {
     VKC_DEVICE_FUNCTIONS(VKC_DECLARE_PFN)
+    VKC_PUSH_DESCRIPTOR_FUNCTIONS(VKC_DECLARE_PFN)
 };
 
 #undef VKC_DECLARE_PFN

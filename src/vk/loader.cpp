@@ -52,7 +52,7 @@ Result<InstanceFunctions> loadInstanceFunctions(PFN_vkGetInstanceProcAddr gipa, 
     return fns;
 }
 
-Result<DeviceFunctions> loadDeviceFunctions(const InstanceFunctions& instance_fns, VkDevice device) {
+Result<DeviceFunctions> loadDeviceFunctions(const InstanceFunctions& instance_fns, VkDevice device, bool push_descriptor) {
     DeviceFunctions fns;
 #define VKC_LOAD(name)                                                                                  \
     fns.name = reinterpret_cast<PFN_##name>(instance_fns.vkGetDeviceProcAddr(device, #name));           \
@@ -60,6 +60,9 @@ Result<DeviceFunctions> loadDeviceFunctions(const InstanceFunctions& instance_fn
         return Error(ErrorCode::UnsupportedFeature,                                                     \
                      "device entry point " #name " is unavailable (is the extension or Vulkan 1.3 core enabled?)");
     VKC_DEVICE_FUNCTIONS(VKC_LOAD)
+    if (push_descriptor) {
+        VKC_PUSH_DESCRIPTOR_FUNCTIONS(VKC_LOAD)
+    }
 #undef VKC_LOAD
     return fns;
 }

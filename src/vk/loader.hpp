@@ -32,7 +32,8 @@ Result<GlobalFunctions> loadGlobalFunctions(PFN_vkGetInstanceProcAddr gipa);
 Result<InstanceFunctions> loadInstanceFunctions(PFN_vkGetInstanceProcAddr gipa, VkInstance instance);
 
 // Device entry points through vkGetDeviceProcAddr, so calls skip the loader trampoline.
-Result<DeviceFunctions> loadDeviceFunctions(const InstanceFunctions& instance_fns, VkDevice device);
+// push_descriptor: VK_KHR_push_descriptor is enabled, so its entry point is required too.
+Result<DeviceFunctions> loadDeviceFunctions(const InstanceFunctions& instance_fns, VkDevice device, bool push_descriptor);
 
 // "VK_ERROR_DEVICE_LOST" etc.
 const char* resultName(VkResult result) noexcept;

@@ -51,6 +51,8 @@ Result<Buffer> Buffer::create(Device& device, VkDeviceSize size, VkBufferUsageFl
     r = f.vkAllocateMemory(device.device, &ai, nullptr, &b.memory_);
     if (r != VK_SUCCESS)
         return vulkanError(r, "vkAllocateMemory of " + std::to_string(req.size) + " bytes for '" + name + "'");
+    b.allocation_size_ = req.size;
+    device.memory_in_use.fetch_add(req.size, std::memory_order_relaxed);
     r = f.vkBindBufferMemory(device.device, b.buffer_, b.memory_, 0);
     if (r != VK_SUCCESS) return vulkanError(r, "vkBindBufferMemory for '" + name + "'");
     VkMemoryPropertyFlags props = device.memory.memoryTypes[*type].propertyFlags;
@@ -72,6 +74,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
         buffer_ = std::exchange(o.buffer_, VK_NULL_HANDLE);
         memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
         size_ = std::exchange(o.size_, 0);
+        allocation_size_ = std::exchange(o.allocation_size_, 0);
         address_ = std::exchange(o.address_, 0);
         mapped_ = std::exchange(o.mapped_, nullptr);
         coherent_ = o.coherent_;
@@ -79,27 +82,28 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
     return *this;
 }
 
-void Buffer::invalidate(VkDeviceSize offset, VkDeviceSize size) const {
-    if (coherent_ || !mapped_) return;
-    // Non-coherent ranges must be aligned to nonCoherentAtomSize.
-    VkDeviceSize atom = device_->properties.limits.nonCoherentAtomSize;
-    VkDeviceSize begin = offset / atom * atom;
+VkMappedMemoryRange Buffer::atomRange(VkDeviceSize offset, VkDeviceSize size) const {
+    // Non-coherent ranges start and end on multiples of nonCoherentAtomSize, or end at the
+    // end of the allocation (VUID-VkMappedMemoryRange-offset-00687, -size-01390).
+    const VkDeviceSize atom = std::max<VkDeviceSize>(device_->properties.limits.nonCoherentAtomSize, 1);
     VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
     range.memory = memory_;
-    range.offset = begin;
-    range.size = size == VK_WHOLE_SIZE ? VK_WHOLE_SIZE : ((offset + size - begin + atom - 1) / atom * atom);
-    if (range.size != VK_WHOLE_SIZE && begin + range.size > size_) range.size = VK_WHOLE_SIZE;
+    range.offset = std::min(offset, size_) / atom * atom;
+    const VkDeviceSize end = size == VK_WHOLE_SIZE || size >= size_ - std::min(offset, size_) ? size_ : offset + size;
+    const VkDeviceSize end_up = (end + atom - 1) / atom * atom;
+    range.size = end_up >= allocation_size_ ? VK_WHOLE_SIZE : end_up - range.offset;
+    return range;
+}
+
+void Buffer::invalidate(VkDeviceSize offset, VkDeviceSize size) const {
+    if (coherent_ || !mapped_) return;
+    const VkMappedMemoryRange range = atomRange(offset, size);
     device_->fns.vkInvalidateMappedMemoryRanges(device_->device, 1, &range);
 }
 
 void Buffer::flush(VkDeviceSize offset, VkDeviceSize size) const {
     if (coherent_ || !mapped_) return;
-    VkMappedMemoryRange range{VK_STRUCTURE_TYPE_MAPPED_MEMORY_RANGE};
-    range.memory = memory_;
-    range.offset = 0;
-    range.size = VK_WHOLE_SIZE;
-    (void)offset;
-    (void)size;
+    const VkMappedMemoryRange range = atomRange(offset, size);
     device_->fns.vkFlushMappedMemoryRanges(device_->device, 1, &range);
 }
 
@@ -107,7 +111,10 @@ void Buffer::reset() {
     if (!device_) return;
     const auto& f = device_->fns;
     if (buffer_) f.vkDestroyBuffer(device_->device, buffer_, nullptr);
-    if (memory_) f.vkFreeMemory(device_->device, memory_, nullptr);  // unmaps implicitly
+    if (memory_) {
+        f.vkFreeMemory(device_->device, memory_, nullptr);  // unmaps implicitly
+        device_->memory_in_use.fetch_sub(allocation_size_, std::memory_order_relaxed);
+    }
     buffer_ = VK_NULL_HANDLE;
     memory_ = VK_NULL_HANDLE;
     mapped_ = nullptr;
@@ -155,6 +162,8 @@ Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::st
     ai.memoryTypeIndex = *type;
     r = f.vkAllocateMemory(device.device, &ai, nullptr, &img.memory_);
     if (r != VK_SUCCESS) return vulkanError(r, "vkAllocateMemory for image '" + name + "'");
+    img.allocation_size_ = req.size;
+    device.memory_in_use.fetch_add(req.size, std::memory_order_relaxed);
     r = f.vkBindImageMemory(device.device, img.image_, img.memory_, 0);
     if (r != VK_SUCCESS) return vulkanError(r, "vkBindImageMemory for '" + name + "'");
 
@@ -182,6 +191,7 @@ Image& Image::operator=(Image&& o) noexcept {
         device_ = std::exchange(o.device_, nullptr);
         image_ = std::exchange(o.image_, VK_NULL_HANDLE);
         memory_ = std::exchange(o.memory_, VK_NULL_HANDLE);
+        allocation_size_ = std::exchange(o.allocation_size_, 0);
         view_ = std::exchange(o.view_, VK_NULL_HANDLE);
         level_views_ = std::move(o.level_views_);
         o.level_views_.clear();
@@ -197,175 +207,13 @@ void Image::reset() {
     level_views_.clear();
     if (view_) f.vkDestroyImageView(device_->device, view_, nullptr);
     if (image_) f.vkDestroyImage(device_->device, image_, nullptr);
-    if (memory_) f.vkFreeMemory(device_->device, memory_, nullptr);
+    if (memory_) {
+        f.vkFreeMemory(device_->device, memory_, nullptr);
+        device_->memory_in_use.fetch_sub(allocation_size_, std::memory_order_relaxed);
+    }
     view_ = VK_NULL_HANDLE;
     image_ = VK_NULL_HANDLE;
     memory_ = VK_NULL_HANDLE;
-    device_ = nullptr;
-}
-
-// ---- Pipeline -------------------------------------------------------------
-
-Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bindings, std::uint32_t push_bytes,
-                                    VkShaderStageFlags stages) {
-    device_ = &device;
-    std::vector<VkDescriptorSetLayoutBinding> b;
-    for (const Binding& x : bindings) b.push_back({x.binding, x.type, 1, stages, nullptr});
-    VkDescriptorSetLayoutCreateInfo sl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-    sl.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-    sl.bindingCount = static_cast<std::uint32_t>(b.size());
-    sl.pBindings = b.data();
-    VkResult r = device.fns.vkCreateDescriptorSetLayout(device.device, &sl, nullptr, &set_layout_);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateDescriptorSetLayout");
-    VkPushConstantRange range{stages, 0, push_bytes};
-    VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    li.setLayoutCount = 1;
-    li.pSetLayouts = &set_layout_;
-    li.pushConstantRangeCount = push_bytes ? 1 : 0;
-    li.pPushConstantRanges = &range;
-    r = device.fns.vkCreatePipelineLayout(device.device, &li, nullptr, &layout_);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreatePipelineLayout");
-    return {};
-}
-
-namespace {
-struct ShaderModule {
-    Device* device = nullptr;
-    VkShaderModule module = VK_NULL_HANDLE;
-    ~ShaderModule() {
-        if (module) device->fns.vkDestroyShaderModule(device->device, module, nullptr);
-    }
-};
-
-Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, ShaderModule& out, const std::string& name) {
-    out.device = &device;
-    VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    ci.codeSize = spirv.size_bytes();
-    ci.pCode = spirv.data();
-    VkResult r = device.fns.vkCreateShaderModule(device.device, &ci, nullptr, &out.module);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateShaderModule for '" + name + "'");
-    return {};
-}
-}  // namespace
-
-Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::uint32_t> spirv,
-                                         std::span<const Binding> bindings, std::uint32_t push_constant_bytes,
-                                         const std::string& name) {
-    Pipeline p;
-    if (auto ok = p.createLayout(device, bindings, push_constant_bytes, VK_SHADER_STAGE_COMPUTE_BIT); !ok) return ok.error();
-    ShaderModule module;
-    if (auto ok = makeModule(device, spirv, module, name); !ok) return ok.error();
-    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    ci.stage.module = module.module;
-    ci.stage.pName = "main";
-    ci.layout = p.layout_;
-    VkResult r = device.fns.vkCreateComputePipelines(device.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
-    p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
-    return p;
-}
-
-Result<Pipeline> Pipeline::createRaster(Device& device, const RasterDesc& desc, std::span<const Binding> bindings,
-                                        std::uint32_t push_constant_bytes, const std::string& name) {
-    Pipeline p;
-    if (auto ok = p.createLayout(device, bindings, push_constant_bytes,
-                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
-        !ok)
-        return ok.error();
-    ShaderModule vs, fs;
-    if (auto ok = makeModule(device, desc.vertex_spirv, vs, name + ".vert"); !ok) return ok.error();
-    if (auto ok = makeModule(device, desc.fragment_spirv, fs, name + ".frag"); !ok) return ok.error();
-    VkPipelineShaderStageCreateInfo stages[2]{};
-    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
-    stages[0].module = vs.module;
-    stages[0].pName = "main";
-    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
-    stages[1].module = fs.module;
-    stages[1].pName = "main";
-
-    VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-    viewport.viewportCount = 1;
-    viewport.scissorCount = 1;
-    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-    raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = desc.cull;
-    raster.frontFace = desc.front_face;
-    raster.lineWidth = 1.0f;
-    VkPipelineRasterizationConservativeStateCreateInfoEXT conservative{
-        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_CONSERVATIVE_STATE_CREATE_INFO_EXT};
-    conservative.conservativeRasterizationMode = VK_CONSERVATIVE_RASTERIZATION_MODE_OVERESTIMATE_EXT;
-    if (desc.conservative) {
-        if (!device.conservative_rasterization)
-            return Error(ErrorCode::UnsupportedFeature, "pipeline '" + name + "' asks for conservative rasterisation, which the device has not enabled");
-        raster.pNext = &conservative;
-    }
-    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-    VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    ds.depthTestEnable = desc.depth_test;
-    ds.depthWriteEnable = desc.depth_write;
-    ds.depthCompareOp = desc.depth_compare;
-    std::vector<VkPipelineColorBlendAttachmentState> blend(desc.color_formats.size());
-    for (auto& b : blend) b.colorWriteMask = 0xF;
-    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-    cb.attachmentCount = static_cast<std::uint32_t>(blend.size());
-    cb.pAttachments = blend.data();
-    VkDynamicState dyn_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-    VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-    dyn.dynamicStateCount = 2;
-    dyn.pDynamicStates = dyn_states;
-    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-    rendering.colorAttachmentCount = static_cast<std::uint32_t>(desc.color_formats.size());
-    rendering.pColorAttachmentFormats = desc.color_formats.data();
-    rendering.depthAttachmentFormat = desc.depth_format;
-
-    VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-    ci.pNext = &rendering;
-    ci.stageCount = 2;
-    ci.pStages = stages;
-    ci.pVertexInputState = &vertex_input;
-    ci.pInputAssemblyState = &assembly;
-    ci.pViewportState = &viewport;
-    ci.pRasterizationState = &raster;
-    ci.pMultisampleState = &ms;
-    ci.pDepthStencilState = &ds;
-    ci.pColorBlendState = &cb;
-    ci.pDynamicState = &dyn;
-    ci.layout = p.layout_;
-    VkResult r = device.fns.vkCreateGraphicsPipelines(device.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateGraphicsPipelines for '" + name + "'");
-    p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    return p;
-}
-
-Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
-    if (this != &o) {
-        reset();
-        device_ = std::exchange(o.device_, nullptr);
-        set_layout_ = std::exchange(o.set_layout_, VK_NULL_HANDLE);
-        layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
-        pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
-        bind_point_ = o.bind_point_;
-    }
-    return *this;
-}
-
-void Pipeline::reset() {
-    if (!device_) return;
-    const auto& f = device_->fns;
-    if (pipeline_) f.vkDestroyPipeline(device_->device, pipeline_, nullptr);
-    if (layout_) f.vkDestroyPipelineLayout(device_->device, layout_, nullptr);
-    if (set_layout_) f.vkDestroyDescriptorSetLayout(device_->device, set_layout_, nullptr);
-    pipeline_ = VK_NULL_HANDLE;
-    layout_ = VK_NULL_HANDLE;
-    set_layout_ = VK_NULL_HANDLE;
     device_ = nullptr;
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vk/device.hpp"
+#include "vk/pipeline.hpp"
 
 namespace vkcollide::vk {
 
@@ -35,10 +36,14 @@ public:
     void* mapped() const noexcept { return mapped_; }
     bool valid() const noexcept { return buffer_ != VK_NULL_HANDLE; }
 
-    // Makes GPU writes visible to the host (no-op for coherent memory).
+    // Makes GPU writes to bytes [offset, offset + size) visible to the host; flush() makes
+    // host writes there visible to the GPU. Both are no-ops for coherent memory; otherwise
+    // the range is widened to whole nonCoherentAtomSize blocks (never past the allocation).
+    // size = VK_WHOLE_SIZE: to the end of the buffer.
     void invalidate(VkDeviceSize offset = 0, VkDeviceSize size = VK_WHOLE_SIZE) const;
-    // Makes host writes visible to the GPU (no-op for coherent memory).
     void flush(VkDeviceSize offset = 0, VkDeviceSize size = VK_WHOLE_SIZE) const;
+    // The VkMappedMemoryRange invalidate() and flush() pass (public for the tests).
+    VkMappedMemoryRange atomRange(VkDeviceSize offset, VkDeviceSize size) const;
     void reset();
 
 private:
@@ -46,6 +51,7 @@ private:
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
     VkDeviceSize size_ = 0;
+    VkDeviceSize allocation_size_ = 0;  // VkMemoryRequirements::size (>= size_)
     VkDeviceAddress address_ = 0;
     void* mapped_ = nullptr;
     bool coherent_ = true;
@@ -81,54 +87,10 @@ private:
     Device* device_ = nullptr;
     VkImage image_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    VkDeviceSize allocation_size_ = 0;
     VkImageView view_ = VK_NULL_HANDLE;
     std::vector<VkImageView> level_views_;
     ImageDesc desc_;
-};
-
-// A compute or graphics pipeline with its layout; descriptors are pushed (VK_KHR_push_descriptor).
-class Pipeline {
-public:
-    Pipeline() = default;
-    struct Binding {
-        std::uint32_t binding;
-        VkDescriptorType type;
-    };
-    static Result<Pipeline> createCompute(Device& device, std::span<const std::uint32_t> spirv,
-                                          std::span<const Binding> bindings, std::uint32_t push_constant_bytes,
-                                          const std::string& name);
-    struct RasterDesc {
-        std::span<const std::uint32_t> vertex_spirv;
-        std::span<const std::uint32_t> fragment_spirv;
-        std::vector<VkFormat> color_formats;
-        VkFormat depth_format = VK_FORMAT_UNDEFINED;
-        bool depth_test = false;
-        bool depth_write = false;
-        VkCompareOp depth_compare = VK_COMPARE_OP_LESS;
-        VkCullModeFlags cull = VK_CULL_MODE_NONE;
-        VkFrontFace front_face = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-        // Overestimating conservative rasterisation (needs VK_EXT_conservative_rasterization enabled).
-        bool conservative = false;
-    };
-    static Result<Pipeline> createRaster(Device& device, const RasterDesc& desc, std::span<const Binding> bindings,
-                                         std::uint32_t push_constant_bytes, const std::string& name);
-    ~Pipeline() { reset(); }
-    Pipeline(Pipeline&& o) noexcept { *this = std::move(o); }
-    Pipeline& operator=(Pipeline&& o) noexcept;
-
-    VkPipeline handle() const noexcept { return pipeline_; }
-    VkPipelineLayout layout() const noexcept { return layout_; }
-    VkPipelineBindPoint bindPoint() const noexcept { return bind_point_; }
-    void reset();
-
-private:
-    Result<void> createLayout(Device& device, std::span<const Binding> bindings, std::uint32_t push_bytes,
-                              VkShaderStageFlags stages);
-    Device* device_ = nullptr;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkPipelineBindPoint bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
 };
 
 // Command pool + one primary command buffer + fence: one submission in flight.

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "support/exact_reference.hpp"
@@ -43,6 +44,13 @@ int runCli(const std::string& args, const fs::path& log) {
     const std::string cmd = std::string(VKCOLLIDE_CLI_PATH) + " " + args + " > " + log.string() + " 2>&1";
     UNSCOPED_INFO(cmd);
     return std::system(cmd.c_str());
+}
+
+// The tool's exit code, or -signal when it did not exit (an abort is SIGABRT: -6).
+int exitCode(int system_status) {
+    if (WIFEXITED(system_status)) return WEXITSTATUS(system_status);
+    if (WIFSIGNALED(system_status)) return -WTERMSIG(system_status);
+    return -1000;
 }
 
 }  // namespace
@@ -117,5 +125,60 @@ TEST_CASE("vkcollide detect names bad input and bad options", "[cli][gpu]") {
     CHECK(runCli("detect " + (dir / "tri.obj").string() + " --bogus", log) != 0);
     CHECK(runCli("detect " + (dir / "tri.obj").string(), log) == 0);
     CHECK(readText(log).find("colliding triangle pairs: 0") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("vkcollide detect --help prints the help and succeeds", "[cli]") {
+    const fs::path dir = scratchDir("help");
+    const fs::path log = dir / "log.txt";
+    for (const char* args : {"detect --help", "detect -h", "--help", "detect scene.obj --help"}) {
+        INFO(args);
+        CHECK(exitCode(runCli(args, log)) == 0);
+        const std::string text = readText(log);
+        CHECK(text.find("usage: vkcollide info") != std::string::npos);
+        CHECK(text.find("--threads T") != std::string::npos);
+        CHECK(text.find("unknown option") == std::string::npos);
+    }
+    fs::remove_all(dir);
+}
+
+TEST_CASE("vkcollide detect refuses an absurd --threads by name instead of aborting", "[cli][gpu]") {
+    const fs::path dir = scratchDir("threads");
+    const fs::path log = dir / "log.txt";
+    writeText(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string scene = (dir / "tri.obj").string();
+    for (const char* threads : {"4294967295", "1025", "0", "-1", "99999999999"}) {
+        INFO("--threads " << threads);
+        CHECK(exitCode(runCli("detect " + scene + " --threads " + threads, log)) == 1);
+        CHECK(readText(log).find("--threads needs a number from 1 to 1024") != std::string::npos);
+    }
+    CHECK(exitCode(runCli("detect " + scene + " --threads 2", log)) == 0);
+    CHECK(readText(log).find("(2 threads)") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("vkcollide detect refuses a mesh path that leads to /dev/zero instead of aborting", "[cli]") {
+    const fs::path dir = scratchDir("zero");
+    const fs::path log = dir / "log.txt";
+    fs::create_symlink("/dev/zero", dir / "zero.obj");
+    CHECK(exitCode(runCli("detect " + (dir / "zero.obj").string(), log)) == 1);
+    const std::string text = readText(log);
+    CHECK(text.find("zero.obj: not a regular file") != std::string::npos);
+    CHECK(text.find("bad_alloc") == std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("vkcollide detect --no-robust-access finds the same pairs", "[cli][gpu]") {
+    const fs::path dir = scratchDir("robust");
+    const fs::path log = dir / "log.txt";
+    // Two crossing triangles: one pair either way.
+    writeText(dir / "cross.obj", "o a\nv 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n"
+                                 "o b\nv 0.5 0.5 -1\nv 0.5 0.5 1\nv 1.5 -0.5 0\nf 4 5 6\n");
+    const std::string scene = (dir / "cross.obj").string();
+    for (const char* flag : {"", " --no-robust-access"}) {
+        INFO("flag:" << flag);
+        CHECK(exitCode(runCli("detect " + scene + " --pairs " + (dir / "p.csv").string() + flag, log)) == 0);
+        CHECK(readText(dir / "p.csv") == "0,1\n");
+    }
     fs::remove_all(dir);
 }

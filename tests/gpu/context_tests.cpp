@@ -55,7 +55,15 @@ TEST_CASE("adopting an engine's device borrows it without owning it", "[gpu][con
     // Play the engine: make a device through vkcollide's own context, then lend its handles.
     test::ValidatedContext engine;
     vk::Device& d = engine.device();
+    // vkcollide's own device has at least the required features on.
+    VkPhysicalDeviceVulkan13Features v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features.pNext = &v12;
+    v12.pNext = &v13;
+    enableRequiredFeatures(features, v12, v13);
     AdoptedDevice lent;
+    lent.enabled_features = &features;
     lent.get_instance_proc_addr = d.global.vkGetInstanceProcAddr;
     lent.instance = d.instance;
     lent.physical_device = d.physical;

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <string>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "vkcollide/io.hpp"
@@ -130,4 +131,51 @@ TEST_CASE("Writers round-trip exactly through the readers", "[io]") {
         REQUIRE(ply);
         checkSameMesh(ply->front(), sphere);
     }
+}
+
+TEST_CASE("readMeshFile refuses what is not a regular file, by name, before reading it", "[io]") {
+    const ScratchDir dir;
+    // A symbolic link to /dev/zero used to be read until memory ran out (std::bad_alloc).
+    const std::filesystem::path zero = dir.path / "zero.obj";
+    std::filesystem::create_symlink("/dev/zero", zero);
+    const auto from_zero = readMeshFile(zero.string());
+    REQUIRE_FALSE(from_zero);
+    CHECK(from_zero.error().code() == ErrorCode::IoError);
+    CHECK(from_zero.error().message() == zero.string() + ": not a regular file (a device, pipe, socket or directory); "
+                                                         "mesh files are read from regular files only");
+
+    // A FIFO: opening it would block until a writer comes, so it is refused unopened.
+    const std::filesystem::path fifo = dir.path / "pipe.off";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    const auto from_fifo = readMeshFile(fifo.string());
+    REQUIRE_FALSE(from_fifo);
+    CHECK(from_fifo.error().code() == ErrorCode::IoError);
+    CHECK_THAT(from_fifo.error().message(), Catch::Contains("not a regular file"));
+
+    // A symbolic link to a regular mesh file is followed.
+    const std::string real = dir.write("real.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::filesystem::create_symlink(real, dir.path / "link.obj");
+    const auto linked = readMeshFile((dir.path / "link.obj").string());
+    REQUIRE(linked);
+    CHECK(linked->front().triangleCount() == 1);
+
+    // A dangling link: the target cannot be opened.
+    std::filesystem::create_symlink(dir.path / "gone.obj", dir.path / "dangling.obj");
+    const auto dangling = readMeshFile((dir.path / "dangling.obj").string());
+    REQUIRE_FALSE(dangling);
+    CHECK(dangling.error().code() == ErrorCode::IoError);
+    CHECK_THAT(dangling.error().message(), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("readMeshFile refuses a file larger than kMaxMeshFileBytes without reading it", "[io]") {
+    const ScratchDir dir;
+    const std::string path = dir.write("huge.ply", "ply\n");
+    // A sparse file: its size is past the limit, its disk use nothing.
+    std::filesystem::resize_file(path, kMaxMeshFileBytes + 1);
+    const auto huge = readMeshFile(path);
+    REQUIRE_FALSE(huge);
+    CHECK(huge.error().code() == ErrorCode::IoError);
+    CHECK(huge.error().message() == path + ": " + std::to_string(kMaxMeshFileBytes + 1) +
+                                        " bytes exceed the readers' limit of " + std::to_string(kMaxMeshFileBytes) +
+                                        " bytes (kMaxMeshFileBytes)");
 }

@@ -113,6 +113,13 @@ TEST_CASE("OBJ: out-of-range indices name the object and the line", "[io][obj]")
           "m.obj:5: object 'wing': vertex index 4 is out of range (3 vertices defined so far)");
     CHECK(errorOf(readObjText(head + "f 0 1 2\n")).find("vertex index 0 is out of range") != std::string::npos);
     CHECK(errorOf(readObjText(head + "f -1 -2 -4\n")).find("vertex index -4 is out of range") != std::string::npos);
+    // The extremes of int64: refused by name, without overflowing (UBSan checks the
+    // arithmetic in the sanitizer job).
+    CHECK(errorOf(readObjText(head + "f 1 2 -9223372036854775808\n"))
+              .find("vertex index -9223372036854775808 is out of range") != std::string::npos);
+    CHECK(errorOf(readObjText(head + "f 1 2 9223372036854775807\n"))
+              .find("vertex index 9223372036854775807 is out of range") != std::string::npos);
+    CHECK(errorOf(readObjText(head + "f 1 2 -9223372036854775809\n")).find("is not v, v/vt") != std::string::npos);
     CHECK(errorOf(readObjText(head + "f 1 2 99999999999999999999\n")).find("is not v, v/vt") != std::string::npos);
 }
 

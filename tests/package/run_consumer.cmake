@@ -1,15 +1,46 @@
-# Installs the build tree into a scratch prefix, configures and builds tests/package/consumer
-# against it with find_package(vkcollide) and runs the result.
-#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -P run_consumer.cmake
+# Builds tests/package/consumer against an installed vkcollide and runs it, then runs the
+# installed command-line tool.
+#   cmake -DSOURCE_DIR=... -DWORK_DIR=... [-DBUILD_DIR=...] [-DSHARED=ON] -P run_consumer.cmake
+# BUILD_DIR: install that (already built) build tree.
+# SHARED=ON: first configure and build vkcollide itself with -DBUILD_SHARED_LIBS=ON in
+#            WORK_DIR (library and CLI only), and install that: a shared libvkcollide.
+# The consumer is configured with Eigen3 made unfindable: consumers must not need it.
 file(REMOVE_RECURSE ${WORK_DIR})
-foreach(step
-    "${CMAKE_COMMAND};--install;${BUILD_DIR};--prefix;${WORK_DIR}/prefix"
-    "${CMAKE_COMMAND};-S;${SOURCE_DIR}/tests/package/consumer;-B;${WORK_DIR}/build;-G;Ninja;-DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix;-DCMAKE_BUILD_TYPE=Release"
-    "${CMAKE_COMMAND};--build;${WORK_DIR}/build"
-    "${WORK_DIR}/build/consumer")
-  execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+set(prefix ${WORK_DIR}/prefix)
+set(expect STATIC_LIBRARY)
+
+# Runs one command given as a list; stops the script when it fails.
+function(step)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   message("${out}${err}")
   if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "step failed (${rc}): ${step}")
+    message(FATAL_ERROR "step failed (${rc}): ${ARGN}")
   endif()
-endforeach()
+endfunction()
+
+if(SHARED)
+  set(expect SHARED_LIBRARY)
+  set(BUILD_DIR ${WORK_DIR}/vkcollide)
+  step(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON
+       -DVKCOLLIDE_BUILD_TESTS=OFF -DVKCOLLIDE_BUILD_SAMPLES=OFF -DVKCOLLIDE_BUILD_TOOLS=ON -DVKCOLLIDE_INSTALL=ON
+       -DVKCOLLIDE_WERROR=ON)
+  step(${CMAKE_COMMAND} --build ${BUILD_DIR} --target vkcollide vkcollide_cli)
+endif()
+step(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+step(${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package/consumer -B ${WORK_DIR}/build -G Ninja -DCMAKE_PREFIX_PATH=${prefix}
+     -DCMAKE_BUILD_TYPE=Release -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=TRUE -DEXPECT_LIBRARY_TYPE=${expect} --no-warn-unused-cli)
+step(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
+step(${WORK_DIR}/build/consumer)
+if(SHARED)
+  file(GLOB shared_lib ${prefix}/lib*/libvkcollide.so*)
+  if(NOT shared_lib)
+    message(FATAL_ERROR "no libvkcollide.so installed under ${prefix}")
+  endif()
+endif()
+# The installed tool (built unless VKCOLLIDE_BUILD_TOOLS is off) runs from the prefix.
+if(EXISTS ${prefix}/bin/vkcollide)
+  step(${prefix}/bin/vkcollide detect --help)
+  step(${prefix}/bin/vkcollide info)
+elseif(SHARED)
+  message(FATAL_ERROR "the command-line tool was not installed to ${prefix}/bin")
+endif()

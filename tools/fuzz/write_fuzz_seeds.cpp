@@ -55,6 +55,13 @@ int main(int argc, char** argv) {
                          "element vertex 3\nproperty double x\nproperty uchar r\nproperty float y\nproperty float z\n"
                          "element face 1\nproperty uchar flags\nproperty list uint int vertex_index\nend_header\n"
                          "2 0.5 0.5\n0 1 0 0\n1 2 0 0\n0 3 1 0\n7 3 0 1 2\n");
+    // Integer extremes in every index position: the readers must refuse them without
+    // overflowing (UBSan found -9223372036854775808 negated in the OBJ reader).
+    ok = ok && writeFile(folder + "/extremes.obj",
+                         "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9223372036854775808\nf 9223372036854775807 1 2\n"
+                         "f -1 -2 -3/-9223372036854775808/9223372036854775807\n");
+    ok = ok && writeFile(folder + "/extremes.off",
+                         "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -9223372036854775808\n");
     if (!ok) {
         std::fprintf(stderr, "cannot write into %s\n", folder.c_str());
         return 1;

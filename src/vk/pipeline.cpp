@@ -1,0 +1,180 @@
+// Compute and graphics pipelines with their layouts (src/vk/pipeline.hpp).
+#include "vk/pipeline.hpp"
+
+#include <vector>
+
+namespace vkcollide::vk {
+
+Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bindings, std::uint32_t push_bytes,
+                                    VkShaderStageFlags stages, const std::string& name) {
+    device_ = &device;
+    // Detection reaches its buffers through device addresses and push constants: its
+    // pipelines have no descriptor set at all. Only pipelines with bindings (test shaders)
+    // need pushed descriptors, hence VK_KHR_push_descriptor.
+    if (!bindings.empty()) {
+        if (!device.push_descriptor)
+            return Error(ErrorCode::UnsupportedFeature, "pipeline '" + name + "' has descriptor bindings, which need "
+                                                        "VK_KHR_push_descriptor; the device has not enabled it");
+        std::vector<VkDescriptorSetLayoutBinding> b;
+        for (const Binding& x : bindings) b.push_back({x.binding, x.type, 1, stages, nullptr});
+        VkDescriptorSetLayoutCreateInfo sl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        sl.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+        sl.bindingCount = static_cast<std::uint32_t>(b.size());
+        sl.pBindings = b.data();
+        VkResult r = device.fns.vkCreateDescriptorSetLayout(device.device, &sl, nullptr, &set_layout_);
+        if (r != VK_SUCCESS) return vulkanError(r, "vkCreateDescriptorSetLayout for '" + name + "'");
+    }
+    VkPushConstantRange range{stages, 0, push_bytes};
+    VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    li.setLayoutCount = set_layout_ ? 1 : 0;
+    li.pSetLayouts = set_layout_ ? &set_layout_ : nullptr;
+    li.pushConstantRangeCount = push_bytes ? 1 : 0;
+    li.pPushConstantRanges = &range;
+    VkResult r = device.fns.vkCreatePipelineLayout(device.device, &li, nullptr, &layout_);
+    if (r != VK_SUCCESS) return vulkanError(r, "vkCreatePipelineLayout for '" + name + "'");
+    return {};
+}
+
+namespace {
+struct ShaderModule {
+    Device* device = nullptr;
+    VkShaderModule module = VK_NULL_HANDLE;
+    ~ShaderModule() {
+        if (module) device->fns.vkDestroyShaderModule(device->device, module, nullptr);
+    }
+};
+
+Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, ShaderModule& out, const std::string& name) {
+    out.device = &device;
+    VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    ci.codeSize = spirv.size_bytes();
+    ci.pCode = spirv.data();
+    VkResult r = device.fns.vkCreateShaderModule(device.device, &ci, nullptr, &out.module);
+    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateShaderModule for '" + name + "'");
+    return {};
+}
+}  // namespace
+
+Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::uint32_t> spirv,
+                                         std::span<const Binding> bindings, std::uint32_t push_constant_bytes,
+                                         const std::string& name) {
+    Pipeline p;
+    if (auto ok = p.createLayout(device, bindings, push_constant_bytes, VK_SHADER_STAGE_COMPUTE_BIT, name); !ok)
+        return ok.error();
+    ShaderModule module;
+    if (auto ok = makeModule(device, spirv, module, name); !ok) return ok.error();
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = module.module;
+    ci.stage.pName = "main";
+    ci.layout = p.layout_;
+    VkResult r = device.fns.vkCreateComputePipelines(device.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
+    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
+    p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+    return p;
+}
+
+Result<Pipeline> Pipeline::createRaster(Device& device, const RasterDesc& desc, std::span<const Binding> bindings,
+                                        std::uint32_t push_constant_bytes, const std::string& name) {
+    Pipeline p;
+    if (auto ok = p.createLayout(device, bindings, push_constant_bytes,
+                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, name);
+        !ok)
+        return ok.error();
+    ShaderModule vs, fs;
+    if (auto ok = makeModule(device, desc.vertex_spirv, vs, name + ".vert"); !ok) return ok.error();
+    if (auto ok = makeModule(device, desc.fragment_spirv, fs, name + ".frag"); !ok) return ok.error();
+    VkPipelineShaderStageCreateInfo stages[2]{};
+    stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+    stages[0].module = vs.module;
+    stages[0].pName = "main";
+    stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+    stages[1].module = fs.module;
+    stages[1].pName = "main";
+
+    VkPipelineVertexInputStateCreateInfo vertex_input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+    VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+    assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+    viewport.viewportCount = 1;
+    viewport.scissorCount = 1;
+    VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+    raster.polygonMode = VK_POLYGON_MODE_FILL;
+    raster.cullMode = desc.cull;
+    raster.frontFace = desc.front_face;
+    raster.lineWidth = 1.0f;
+    VkPipelineRasterizationConservativeStateCreateInfoEXT conservative{
+        VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_CONSERVATIVE_STATE_CREATE_INFO_EXT};
+    conservative.conservativeRasterizationMode = VK_CONSERVATIVE_RASTERIZATION_MODE_OVERESTIMATE_EXT;
+    if (desc.conservative) {
+        if (!device.conservative_rasterization)
+            return Error(ErrorCode::UnsupportedFeature, "pipeline '" + name + "' asks for conservative rasterisation, which the device has not enabled");
+        raster.pNext = &conservative;
+    }
+    VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+    ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+    VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    ds.depthTestEnable = desc.depth_test;
+    ds.depthWriteEnable = desc.depth_write;
+    ds.depthCompareOp = desc.depth_compare;
+    std::vector<VkPipelineColorBlendAttachmentState> blend(desc.color_formats.size());
+    for (auto& b : blend) b.colorWriteMask = 0xF;
+    VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+    cb.attachmentCount = static_cast<std::uint32_t>(blend.size());
+    cb.pAttachments = blend.data();
+    VkDynamicState dyn_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+    VkPipelineDynamicStateCreateInfo dyn{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+    dyn.dynamicStateCount = 2;
+    dyn.pDynamicStates = dyn_states;
+    VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+    rendering.colorAttachmentCount = static_cast<std::uint32_t>(desc.color_formats.size());
+    rendering.pColorAttachmentFormats = desc.color_formats.data();
+    rendering.depthAttachmentFormat = desc.depth_format;
+
+    VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+    ci.pNext = &rendering;
+    ci.stageCount = 2;
+    ci.pStages = stages;
+    ci.pVertexInputState = &vertex_input;
+    ci.pInputAssemblyState = &assembly;
+    ci.pViewportState = &viewport;
+    ci.pRasterizationState = &raster;
+    ci.pMultisampleState = &ms;
+    ci.pDepthStencilState = &ds;
+    ci.pColorBlendState = &cb;
+    ci.pDynamicState = &dyn;
+    ci.layout = p.layout_;
+    VkResult r = device.fns.vkCreateGraphicsPipelines(device.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
+    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateGraphicsPipelines for '" + name + "'");
+    p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    return p;
+}
+
+Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
+    if (this != &o) {
+        reset();
+        device_ = std::exchange(o.device_, nullptr);
+        set_layout_ = std::exchange(o.set_layout_, VK_NULL_HANDLE);
+        layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
+        pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
+        bind_point_ = o.bind_point_;
+    }
+    return *this;
+}
+
+void Pipeline::reset() {
+    if (!device_) return;
+    const auto& f = device_->fns;
+    if (pipeline_) f.vkDestroyPipeline(device_->device, pipeline_, nullptr);
+    if (layout_) f.vkDestroyPipelineLayout(device_->device, layout_, nullptr);
+    if (set_layout_) f.vkDestroyDescriptorSetLayout(device_->device, set_layout_, nullptr);
+    pipeline_ = VK_NULL_HANDLE;
+    layout_ = VK_NULL_HANDLE;
+    set_layout_ = VK_NULL_HANDLE;
+    device_ = nullptr;
+}
+
+}  // namespace vkcollide::vk

@@ -4,6 +4,7 @@ set(S ${PROJECT_SOURCE_DIR}/src)
 set(VKCOLLIDE_HOST_SOURCES
   ${S}/core/result.cpp
   ${S}/core/mesh.cpp
+  ${S}/core/types.cpp
   ${S}/graph/graph.cpp
 )
 # Subsystems owned elsewhere append to VKCOLLIDE_HOST_SOURCES in their own list file.

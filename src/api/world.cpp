@@ -430,9 +430,7 @@ passes::BroadPhaseSettings CollisionWorld::Impl::broadSettings(std::uint32_t axi
     b.backend = s.backend;
     b.open_epsilon = *s.open_epsilon;
     b.closed_epsilon = s.closed_epsilon;
-    b.coverage = s.coverage == Coverage::Dilate         ? passes::Coverage::Dilate
-                 : s.coverage == Coverage::Conservative ? passes::Coverage::Conservative
-                                                        : passes::Coverage::Centre;
+    b.coverage = s.coverage;  // resolve() turned Best into Conservative or Dilate
     b.region = s.region;
     return b;
 }
@@ -602,14 +600,12 @@ Result<DetectResult> CollisionWorld::Impl::finish(std::vector<passes::BroadPhase
     st.direction = run_directions[0];
     st.dual = run_settings.dual;
     st.axes = run_axes;
-    st.coverage = run_settings.coverage == Coverage::Dilate         ? "dilate"
-                  : run_settings.coverage == Coverage::Conservative ? "conservative"
-                                                                    : "centre";
+    st.coverage = run_settings.coverage;
     st.settings_note = run_note;
-    st.backend = passes::toString(broad[0].backend);
+    st.backend = broad[0].backend;
     st.backend_reason = broad[0].backend_reason;
     for (std::uint32_t k = 1; k < broad.size(); ++k)
-        if (broad[k].backend != broad[0].backend) st.backend_reason += "; axis " + std::to_string(k) + ": " + passes::toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
+        if (broad[k].backend != broad[0].backend) st.backend_reason += "; axis " + std::to_string(k) + ": " + toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
     const std::uint32_t cap = run_settings.layer_cap;
     for (std::uint32_t k = 0; k < broad.size(); ++k) {
         const passes::BroadPhaseResult& b = broad[k];

@@ -239,6 +239,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     if (!(s.open_epsilon >= 0) || !std::isfinite(s.open_epsilon)) return Error(ErrorCode::InvalidArgument, "open_epsilon must be finite and >= 0");
     if (!(s.closed_epsilon >= 0) || !std::isfinite(s.closed_epsilon))
         return Error(ErrorCode::InvalidArgument, "closed_epsilon must be finite and >= 0");
+    if (s.coverage == Coverage::Best) return Error(ErrorCode::InvalidArgument, "coverage Best is a setting: resolve it first");
     if (s.coverage == Coverage::Conservative && !device_->conservative_rasterization)
         return Error(ErrorCode::UnsupportedFeature, "conservative coverage needs VK_EXT_conservative_rasterization, which " +
                                                         device_->info.name + " lacks (or the adopted device did not enable): use dilation");
@@ -403,6 +404,7 @@ void BroadPhase::drawObject(const PassContext& pc, const vk::Pipeline& plain, co
             pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
             break;
         case Coverage::Conservative:
+        case Coverage::Best:  // resolved by the API before a run; never here
             bindAndPush(pc, plain, frame_addr, object, step, 0, gpu::kCoverageSkipThin);
             pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
             bindAndPush(pc, conservative, frame_addr, object, step, 0, gpu::kCoverageOnlyThin);

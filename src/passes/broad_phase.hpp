@@ -17,11 +17,12 @@
 #include "graph/executor.hpp"
 #include "passes/compute_sampling.hpp"
 #include "vkcollide/narrow.hpp"
-#include "vkcollide/world.hpp"
+#include "vkcollide/types.hpp"
 #include "vk/resources.hpp"
 
 namespace vkcollide::passes {
 
+using vkcollide::Coverage;
 using vkcollide::PackingMethod;
 
 // A mesh as the GPU sees it. Addresses come from buffers created with
@@ -34,18 +35,11 @@ struct GpuMesh {
     VkDeviceAddress indices = 0;
     bool index16 = false;
     std::uint32_t triangle_count = 0;
-    std::array<float, 12> transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // row-major 3x4 object->world
+    Transform3x4 transform = kIdentity3x4;  // row-major 3x4 object->world
     bool open = false;
     // Geometry only the GPU holds (an engine's buffers): each run checks its indices and
     // positions there (host meshes are checked before upload).
     bool check_on_gpu = false;
-};
-
-// How sampling treats thin triangles (projected inradius below half a pixel diagonal).
-enum class Coverage {
-    Centre,        // the hardware rule: pixel centres only (the paper)
-    Dilate,        // thin triangles enlarged in the vertex shader; their rays collide
-    Conservative,  // thin triangles drawn by a VK_EXT_conservative_rasterization pipeline
 };
 
 struct BroadPhaseSettings {
@@ -56,7 +50,7 @@ struct BroadPhaseSettings {
     PackingMethod packing = PackingMethod::Scan;
     float open_epsilon = 0;                         // world units; open-surface depth proximity
     float closed_epsilon = 0;                       // world units; closed surfaces this close touch
-    Coverage coverage = Coverage::Centre;
+    Coverage coverage = Coverage::Centre;           // never Best (the API resolves it)
     float fit_margin = 1.0f / 64.0f;                // relative margin of the automatic fit
     bool keep_ray_image = false;                    // read back the collision-ray image
     // Sample this world box instead of fitting the scene: min x,y,z then max x,y,z.

@@ -36,15 +36,6 @@ bool contains(std::string_view haystack, std::string_view needle) { return hayst
 
 }  // namespace
 
-const char* toString(SamplingBackend backend) noexcept {
-    switch (backend) {
-        case SamplingBackend::Auto: return "auto";
-        case SamplingBackend::Raster: return "raster";
-        case SamplingBackend::Compute: return "compute";
-    }
-    return "?";
-}
-
 bool computeSamplingSupported(const vk::Device& device) {
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};

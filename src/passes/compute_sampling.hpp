@@ -37,14 +37,13 @@
 
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
-#include "vkcollide/world.hpp"
+#include "vkcollide/types.hpp"
 
 namespace vkcollide::passes {
 
 struct GpuMesh;
 
-using vkcollide::SamplingBackend;  // Auto, Raster, Compute (world.hpp)
-const char* toString(SamplingBackend backend) noexcept;
+using vkcollide::SamplingBackend;  // Auto, Raster, Compute (vkcollide/types.hpp)
 
 struct ComputeSamplingTuning {
     // Most pixels in the pixel box of a triangle drawn by one invocation; bigger boxes are

@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
                 std::snprintf(row, sizeof row,
                               "%s,%s,%s,%zu,%zu,%s,%s,%u,%d,%u,%s,%d,%d,%d,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%u,%u,%u,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.2f,%.1f,%u,%zu,%.6f\n",
                               device.c_str(), scene.name.c_str(), deforming ? "deforming" : "rigid", triangles, ids.size(),
-                              p.variant.c_str(), st.backend.c_str(), st.resolution, st.dual ? 1 : 0, p.settings.layer_cap,
+                              p.variant.c_str(), toString(st.backend), st.resolution, st.dual ? 1 : 0, p.settings.layer_cap,
                               p.settings.packing == PackingMethod::Paper ? "paper" : "scan", p.open ? 1 : 0, p.async ? 1 : 0, f,
                               st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms,
                               update_ms, total_ms, st.depth_complexity, st.layers, st.peel_passes, st.collision_rays,
@@ -237,7 +237,7 @@ int main(int argc, char** argv) {
                 if (f == frames) {
                     progress.done();
                     std::printf("%-18s %-14s %-8s %5u %9.3f %9.3f %9.3f %9zu %8.4f %8.4f %8.4f\n", scene.name.c_str(), p.variant.c_str(),
-                                st.backend.c_str(), st.resolution, gpu_ms, st.narrow_ms, total_ms, r->pairs.size(), cmp.recall,
+                                toString(st.backend), st.resolution, gpu_ms, st.narrow_ms, total_ms, r->pairs.size(), cmp.recall,
                                 recall_crossing, cmp.precision);
                     std::fflush(stdout);
                 }

@@ -24,3 +24,10 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/passes/mesh_upload.cpp
   ${S}/api/world.cpp
 )
+# Rooms of the broad phase (src/passes/<room>/, e.g. sampling/, cells/) list their own
+# sources and programs in a sources.cmake of their own: append to VKCOLLIDE_GPU_SOURCES and
+# VKCOLLIDE_SHADERS (spirv/<name>.<stage>.glsl). A new room needs no edit here.
+file(GLOB VKCOLLIDE_ROOM_LISTS CONFIGURE_DEPENDS ${S}/passes/*/sources.cmake)
+foreach(room_list ${VKCOLLIDE_ROOM_LISTS})
+  include(${room_list})
+endforeach()

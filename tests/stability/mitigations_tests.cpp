@@ -8,7 +8,7 @@
 #include <cstdio>
 
 #include "passes/broad_phase.hpp"
-#include "stability/stability_scenes.hpp"
+#include "support/stability_scenes.hpp"
 #include "support/gpu_fixture.hpp"
 
 using namespace vkcollide;

@@ -1,4 +1,4 @@
-#include "stability/stability_scenes.hpp"
+#include "support/stability_scenes.hpp"
 
 #include <algorithm>
 #include <chrono>

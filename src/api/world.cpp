@@ -34,9 +34,11 @@ std::uint32_t nextPowerOfTwo(double x) {
     return p;
 }
 
-// Automatic resolution: about this many pixels along a typical triangle edge.
-constexpr double kPixelsPerEdge = 4.0;
-constexpr std::uint32_t kMinAutoResolution = 64, kMaxAutoResolution = 2048;
+using gpu::kFallbackResolution;
+using gpu::kMaxAutoResolution;
+using gpu::kMinAutoResolution;
+using gpu::kOpenEpsilonPerEdge;
+using gpu::kPixelsPerEdge;
 
 }  // namespace
 
@@ -371,12 +373,13 @@ Result<DetectSettings> CollisionWorld::Impl::resolve(const DetectSettings& in, s
                           typical_edge, kPixelsPerEdge);
             why += (why.empty() ? "" : "; ") + std::string(buf);
         } else {
-            s.resolution = 512;
-            why += (why.empty() ? "" : "; ") + std::string("resolution 512 (no host geometry or edge length to measure)");
+            s.resolution = kFallbackResolution;
+            why += std::string(why.empty() ? "" : "; ") + "resolution " + std::to_string(kFallbackResolution) +
+                   " (no host geometry or edge length to measure)";
         }
     }
     if (!s.open_epsilon) {
-        s.open_epsilon = open_triangles > 0 ? static_cast<float>(0.5 * open_edge / open_triangles) : 0.0f;
+        s.open_epsilon = open_triangles > 0 ? static_cast<float>(kOpenEpsilonPerEdge * open_edge / open_triangles) : 0.0f;
         if (open_triangles > 0) why += (why.empty() ? "" : "; ") + std::string("open epsilon half the open objects' typical edge");
     }
     if (s.coverage == Coverage::Best) {
@@ -539,7 +542,7 @@ std::array<double, 6> keptWorldBox(const CandidateTriangle& c, const std::array<
             hi[w] += std::max(t0, t1);
         }
     }
-    const double pad = 1e-4 * image_width;
+    const double pad = gpu::kKeptBoxPad * image_width;
     std::array<double, 6> out;
     for (int w = 0; w < 3; ++w) {
         double t_lo = INFINITY, t_hi = -INFINITY;

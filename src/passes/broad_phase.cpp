@@ -128,9 +128,9 @@ SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const 
         for (int k = 0; k < 3; ++k) out.rows[a * 4 + k] = basis[a * 3 + k] / size;
         out.rows[a * 4 + 3] = -origin / size;
     }
-    for (int k = 0; k < 3; ++k) out.rows[8 + k] = basis[6 + k] * 0.9f / depth;
-    out.rows[11] = 0.05f - 0.9f * lo[2] / depth;
-    out.rows[13] = 0.9f / depth;
+    for (int k = 0; k < 3; ++k) out.rows[8 + k] = basis[6 + k] * gpu::kDepthSpan / depth;
+    out.rows[11] = gpu::kDepthNear - gpu::kDepthSpan * lo[2] / depth;
+    out.rows[13] = gpu::kDepthSpan / depth;
     out.rows[12] = open_epsilon * out.rows[13];
     out.rows[14] = closed_epsilon * out.rows[13];
     return out;
@@ -231,8 +231,9 @@ void BroadPhase::addHeaderReadback(graph::Graph& g, graph::ResourceId header, gr
 
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     const std::uint32_t n = s.resolution;
-    if (n < 4 || n > 16384 || (n & (n - 1)) != 0)
-        return Error(ErrorCode::InvalidArgument, "resolution " + std::to_string(n) + " is not a power of two in [4, 16384]");
+    if (n < gpu::kMinResolution || n > gpu::kMaxResolution || (n & (n - 1)) != 0)
+        return Error(ErrorCode::InvalidArgument, "resolution " + std::to_string(n) + " is not a power of two in [" +
+                                                     std::to_string(gpu::kMinResolution) + ", " + std::to_string(gpu::kMaxResolution) + "]");
     const float dl = s.direction[0] * s.direction[0] + s.direction[1] * s.direction[1] + s.direction[2] * s.direction[2];
     if (!(dl > 0) || !std::isfinite(dl)) return Error(ErrorCode::InvalidArgument, "projection direction must be finite and non-zero");
     if (meshes.empty()) return Error(ErrorCode::InvalidArgument, "no objects to test (zero meshes)");
@@ -612,9 +613,9 @@ std::array<float, 16> BroadPhase::hostProjection(const gpu::Header& h) const {
         for (int k = 0; k < 3; ++k) rows[a * 4 + k] = basis[a * 3 + k] / size;
         rows[a * 4 + 3] = -origin / size;
     }
-    for (int k = 0; k < 3; ++k) rows[8 + k] = basis[6 + k] * (0.9f / depth);
-    rows[11] = 0.05f - 0.9f * lo[2] / depth;
-    rows[13] = 0.9f / depth;
+    for (int k = 0; k < 3; ++k) rows[8 + k] = basis[6 + k] * (gpu::kDepthSpan / depth);
+    rows[11] = gpu::kDepthNear - gpu::kDepthSpan * lo[2] / depth;
+    rows[13] = gpu::kDepthSpan / depth;
     rows[12] = s.open_epsilon * rows[13];
     rows[14] = s.closed_epsilon * rows[13];
     return rows;

@@ -51,7 +51,7 @@ struct BroadPhaseSettings {
     float open_epsilon = 0;                         // world units; open-surface depth proximity
     float closed_epsilon = 0;                       // world units; closed surfaces this close touch
     Coverage coverage = Coverage::Centre;           // never Best (the API resolves it)
-    float fit_margin = 1.0f / 64.0f;                // relative margin of the automatic fit
+    float fit_margin = gpu::kFitMargin;             // relative margin of the automatic fit
     bool keep_ray_image = false;                    // read back the collision-ray image
     // Sample this world box instead of fitting the scene: min x,y,z then max x,y,z.
     std::optional<std::array<float, 6>> region;

@@ -17,9 +17,6 @@ using graph::Use;
 
 constexpr std::uint32_t kNvidiaVendor = 0x10DE;
 constexpr std::uint32_t kMesaVendor = 0x10005;  // VK_VENDOR_ID_MESA: llvmpipe
-// Extra work items beyond one per triangle, so a scene of few big triangles keeps one
-// tile per item.
-constexpr std::uint32_t kExtraItems = 65536;
 
 void bindAndPush(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint32_t object = 0,
                  std::uint32_t step = 0) {
@@ -64,12 +61,12 @@ BackendChoice chooseSamplingBackend(const VkPhysicalDeviceProperties& device, bo
                                 : 2.0 * double(resolution) * double(resolution) / double(std::max(triangles, 1u));
     char text[160];
     if (device.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU) {
-        const bool small = fpt < kCpuComputeFragments;
+        const bool small = fpt < gpu::kCpuComputeFragments;
         std::snprintf(text, sizeof(text), "auto: CPU device, triangles of %.1f px (%s): %s", fpt, measured ? "measured" : "estimated",
                       small ? "compute" : "raster");
         return {small ? SamplingBackend::Compute : SamplingBackend::Raster, text};
     }
-    if (fpt < kTinyTriangleFragments) {
+    if (fpt < gpu::kTinyTriangleFragments) {
         std::snprintf(text, sizeof(text), "auto: GPU with raster hardware but tiny triangles (%.2f px each, %s)", fpt,
                       measured ? "measured" : "estimated");
         return {SamplingBackend::Compute, text};
@@ -114,7 +111,7 @@ Result<VkDeviceAddress> ComputeSampling::prepare(std::uint32_t resolution, std::
         b = std::move(*r);
         return {};
     };
-    const VkDeviceSize items = VkDeviceSize(tris) + kExtraItems;
+    const VkDeviceSize items = VkDeviceSize(tris) + gpu::kCsExtraItems;
     for (auto r : {make(frame_, sizeof(gpu::CsFrame), 0, MemoryKind::Upload, "csample-frame"),
                    make(triangles_, VkDeviceSize(tris) * sizeof(gpu::CsTriangle), 0, MemoryKind::DeviceLocal, "csample-triangles"),
                    make(lists_, VkDeviceSize(tris) * 8, 0, MemoryKind::DeviceLocal, "csample-lists"),

@@ -35,6 +35,7 @@
 #include <span>
 #include <string>
 
+#include "config.h"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/types.hpp"
@@ -47,16 +48,15 @@ using vkcollide::SamplingBackend;  // Auto, Raster, Compute (vkcollide/types.hpp
 
 struct ComputeSamplingTuning {
     // Most pixels in the pixel box of a triangle drawn by one invocation; bigger boxes are
-    // drawn in tiles. 0 draws every triangle in tiles. (H200, docs/results.md: 256 is
-    // 0.07 ms faster than 64 on 24-50 px triangles, 0.6 ms slower on 91 px ones at 4096^2.)
-    std::uint32_t small_box = 256;
+    // drawn in tiles. 0 draws every triangle in tiles. (Defaults: spirv/config.h.)
+    std::uint32_t small_box = gpu::kCsSmallBox;
     // Fragment lists: the count pass stores the first `list_layers` keys of every ray
     // (N^2 x layers x 8 bytes) and each peeling step picks its keys per pixel, instead of
     // drawing every triangle again per step. A ray with more keys costs one more drawing
     // (gather) in that run, and the next run stores as many layers as this one needed.
     // Lists are used while the buffer needs at most `list_budget_bytes`; 0: never.
-    std::uint64_t list_budget_bytes = std::uint64_t{1} << 30;
-    std::uint32_t list_layers = 8;
+    std::uint64_t list_budget_bytes = gpu::kCsListBudgetBytes;
+    std::uint32_t list_layers = gpu::kCsListLayers;
     // Without fragment lists (budget 0): the depth-complexity pass also does peeling step 0
     // (the nearest and farthest key of every ray), one drawing of the triangles fewer.
     bool fuse_first_step = true;
@@ -84,9 +84,7 @@ struct BackendChoice {
 // `fragments_per_triangle` is the scene's mean number of covered pixels per triangle:
 // measured by the previous run on the same triangle count (the depth-complexity counts
 // summed), or < 0 when unknown; then estimated as resolution^2 * 2 / triangles (a fitted
-// scene covering about half the image four layers deep).
-inline constexpr double kTinyTriangleFragments = 1.0;
-inline constexpr double kCpuComputeFragments = 8.0;
+// scene covering about half the image four layers deep). Thresholds: spirv/config.h.
 // A device without subgroup ballot and arithmetic in compute shaders gets raster (and an
 // error if Compute is requested).
 BackendChoice chooseSamplingBackend(const VkPhysicalDeviceProperties& device, bool compute_supported,

@@ -22,6 +22,7 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/passes/broad_phase.cpp
   ${S}/passes/compute_sampling.cpp
   ${S}/passes/mesh_upload.cpp
+  ${S}/passes/projection.cpp
   ${S}/api/world.cpp
 )
 # Rooms of the broad phase (src/passes/<room>/, e.g. sampling/, cells/) list their own

@@ -10,6 +10,7 @@
 #include "passes/broad_phase.hpp"
 #include "passes/compute_sampling.hpp"
 #include "passes/mesh_upload.hpp"
+#include "passes/projection.hpp"
 #include "vk/device.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -528,20 +529,10 @@ namespace {
 // region's world points are sum over a of unit_a * (s_a - offset_a) / scale_a, and the
 // world AABB of that sum is the sum of the AABBs of its three segments. Cut to the
 // triangle's own AABB; padded by 1e-4 of the image width against rounding.
-std::array<double, 6> keptWorldBox(const CandidateTriangle& c, const std::array<float, 16>& rows) {
-    const double s_lo[3] = {c.box[0], c.box[1], c.zmin}, s_hi[3] = {c.box[2], c.box[3], c.zmax};
-    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, image_width = 0;
-    for (int a = 0; a < 3; ++a) {
-        const double r[3] = {rows[a * 4], rows[a * 4 + 1], rows[a * 4 + 2]};
-        const double scale = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-        if (a == 0) image_width = 1.0 / scale;
-        for (int w = 0; w < 3; ++w) {
-            const double unit = r[w] / scale;
-            const double t0 = unit * (s_lo[a] - rows[a * 4 + 3]) / scale, t1 = unit * (s_hi[a] - rows[a * 4 + 3]) / scale;
-            lo[w] += std::min(t0, t1);
-            hi[w] += std::max(t0, t1);
-        }
-    }
+std::array<double, 6> keptWorldBox(const CandidateTriangle& c, const gpu::Projection& projection) {
+    const std::array<double, 6> kept = passes::samplingBoxToWorld(projection, {c.box[0], c.box[1], c.zmin}, {c.box[2], c.box[3], c.zmax});
+    const double lo[3] = {kept[0], kept[1], kept[2]}, hi[3] = {kept[3], kept[4], kept[5]};
+    const double image_width = passes::imageWidth(projection);
     const double pad = gpu::kKeptBoxPad * image_width;
     std::array<double, 6> out;
     for (int w = 0; w < 3; ++w) {
@@ -668,9 +659,9 @@ Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool me
     run_directions[0] = *s->direction;
     if (run_axes == 3) {
         // The other two: the image axes of the first direction (world axes when it is one).
-        const auto basis = passes::projectionBasis(*s->direction);
-        run_directions[1] = {basis[0], basis[1], basis[2]};
-        run_directions[2] = {basis[3], basis[4], basis[5]};
+        const passes::ProjectionBasis basis = passes::projectionBasis(*s->direction);
+        run_directions[1] = basis.u;
+        run_directions[2] = basis.v;
     }
     run_excluded.clear();
     collectRunObjects();

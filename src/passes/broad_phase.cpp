@@ -9,6 +9,7 @@
 #include <string>
 
 #include "broadphase.h"
+#include "passes/projection.hpp"
 #include "shaders/all.hpp"
 
 namespace vkcollide::passes {
@@ -73,67 +74,12 @@ std::vector<BufferPlan> planBuffers(std::uint32_t n, std::uint32_t triangles, st
             {"pack-scratch", scratch * 4, MemoryKind::DeviceLocal}};
 }
 
-float floatFromOrdered(std::uint32_t u) {
-    const std::uint32_t bits = (u & 0x80000000u) ? (u & 0x7FFFFFFFu) : ~u;
-    float f;
-    std::memcpy(&f, &bits, sizeof f);
-    return f;
-}
-
 }  // namespace
 
 VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects) {
     VkDeviceSize total = 0;
     for (const BufferPlan& b : planBuffers(resolution, triangles, objects)) total += b.size;
     return total;
-}
-
-// Orthonormal u, v, d with u x v = d (so outward faces seen along d are front-facing).
-std::array<float, 9> projectionBasis(const std::array<float, 3>& dir) {
-    double d[3] = {dir[0], dir[1], dir[2]};
-    double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (double& x : d) x /= len;
-    double a[3] = {1, 0, 0};
-    if (std::fabs(d[0]) > 0.9) a[0] = 0, a[1] = 1;
-    double dot = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
-    double u[3] = {a[0] - d[0] * dot, a[1] - d[1] * dot, a[2] - d[2] * dot};
-    double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    for (double& x : u) x /= ul;
-    double v[3] = {d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2], d[0] * u[1] - d[1] * u[0]};
-    return {float(u[0]), float(u[1]), float(u[2]), float(v[0]), float(v[1]), float(v[2]),
-            float(d[0]), float(d[1]), float(d[2])};
-}
-
-SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const std::array<float, 6>& b, float open_epsilon,
-                                       float closed_epsilon) {
-    float lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) {
-        float mn = 0, mx = 0;
-        for (int c = 0; c < 8; ++c) {
-            float p[3] = {(c & 1) ? b[3] : b[0], (c & 2) ? b[4] : b[1], (c & 4) ? b[5] : b[2]};
-            float dot = basis[a * 3] * p[0] + basis[a * 3 + 1] * p[1] + basis[a * 3 + 2] * p[2];
-            mn = c == 0 ? dot : std::min(mn, dot);
-            mx = c == 0 ? dot : std::max(mx, dot);
-        }
-        lo[a] = mn;
-        hi[a] = mx;
-    }
-    float size = std::max(hi[0] - lo[0], hi[1] - lo[1]);
-    if (!(size > 0)) size = 1;
-    float depth = hi[2] - lo[2];
-    if (!(depth > 0)) depth = 1;
-    SamplingProjection out;
-    for (int a = 0; a < 2; ++a) {
-        float origin = 0.5f * (lo[a] + hi[a]) - 0.5f * size;
-        for (int k = 0; k < 3; ++k) out.rows[a * 4 + k] = basis[a * 3 + k] / size;
-        out.rows[a * 4 + 3] = -origin / size;
-    }
-    for (int k = 0; k < 3; ++k) out.rows[8 + k] = basis[6 + k] * gpu::kDepthSpan / depth;
-    out.rows[11] = gpu::kDepthNear - gpu::kDepthSpan * lo[2] / depth;
-    out.rows[13] = gpu::kDepthSpan / depth;
-    out.rows[12] = open_epsilon * out.rows[13];
-    out.rows[14] = closed_epsilon * out.rows[13];
-    return out;
 }
 
 Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device) {
@@ -330,8 +276,9 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     fr.dual = s.dual ? 1u : 0u;
     fr.pack_rows = (std::max(triangles, 1u) + gpu::kPackRowWidth - 1) / gpu::kPackRowWidth;
     fr.pack_blocks = (std::max(triangles, 1u) + gpu::kGroupSize - 1) / gpu::kGroupSize;
-    const auto basis = projectionBasis(s.direction);
-    std::memcpy(fr.direction_basis, basis.data(), sizeof(float) * 9);
+    const ProjectionBasis basis = projectionBasis(s.direction);
+    for (int k = 0; k < 3; ++k)
+        fr.direction_basis[k] = basis.u[k], fr.direction_basis[3 + k] = basis.v[k], fr.direction_basis[6 + k] = basis.d[k];
     fr.open_epsilon_world = s.open_epsilon;
     fr.fit_margin = s.fit_margin;
     fr.closed_epsilon_world = s.closed_epsilon;
@@ -343,12 +290,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     }
     if (s.region) {
         // The caller's box: the same mapping the fit shader computes, done here.
-        const SamplingProjection sp = projectionForRegion(basis, *s.region, s.open_epsilon, s.closed_epsilon);
-        gpu::Projection pr{};
-        for (int a = 0; a < 3; ++a) pr.row[a] = {sp.rows[a * 4], sp.rows[a * 4 + 1], sp.rows[a * 4 + 2], sp.rows[a * 4 + 3]};
-        pr.open_epsilon = sp.rows[12];
-        pr.world_to_depth = sp.rows[13];
-        pr.closed_epsilon = sp.rows[14];
+        const gpu::Projection pr = regionProjection(basis, *s.region, s.open_epsilon, s.closed_epsilon);
         std::memcpy(buf_.projection.mapped(), &pr, sizeof(pr));
         buf_.projection.flush();
     }
@@ -595,30 +537,11 @@ Result<void> BroadPhase::checkInputs(const gpu::Header& h) {
 
 // The projection the run used: the caller's region, or fit.comp's computation repeated on
 // the host from the bounds it read.
-std::array<float, 16> BroadPhase::hostProjection(const gpu::Header& h) const {
+gpu::Projection BroadPhase::hostProjection(const gpu::Header& h) const {
     const BroadPhaseSettings& s = frame_.settings;
-    std::array<float, 9> basis;
-    std::memcpy(basis.data(), frame_.frame.direction_basis, sizeof(float) * 9);
-    if (s.region) return projectionForRegion(basis, *s.region, s.open_epsilon, s.closed_epsilon).rows;
-    float lo[3], hi[3];
-    for (int a = 0; a < 3; ++a) lo[a] = floatFromOrdered(h.bounds[a]), hi[a] = floatFromOrdered(h.bounds[a + 3]);
-    float size = std::max(hi[0] - lo[0], hi[1] - lo[1]);
-    if (!(size > 0)) size = 1;
-    size *= 1.0f + 2.0f * s.fit_margin;
-    float depth = hi[2] - lo[2];
-    if (!(depth > 0)) depth = 1;
-    std::array<float, 16> rows{};
-    for (int a = 0; a < 2; ++a) {
-        const float origin = 0.5f * (lo[a] + hi[a]) - 0.5f * size;
-        for (int k = 0; k < 3; ++k) rows[a * 4 + k] = basis[a * 3 + k] / size;
-        rows[a * 4 + 3] = -origin / size;
-    }
-    for (int k = 0; k < 3; ++k) rows[8 + k] = basis[6 + k] * (gpu::kDepthSpan / depth);
-    rows[11] = gpu::kDepthNear - gpu::kDepthSpan * lo[2] / depth;
-    rows[13] = gpu::kDepthSpan / depth;
-    rows[12] = s.open_epsilon * rows[13];
-    rows[14] = s.closed_epsilon * rows[13];
-    return rows;
+    const ProjectionBasis basis = projectionBasis(s.direction);
+    if (s.region) return regionProjection(basis, *s.region, s.open_epsilon, s.closed_epsilon);
+    return fitProjection(basis, boundsFromHeader(h), s.fit_margin, s.open_epsilon, s.closed_epsilon);
 }
 
 void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report) {

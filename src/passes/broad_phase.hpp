@@ -69,9 +69,9 @@ struct BroadPhaseResult {
     std::uint32_t peel_steps = 0;            // peeling passes recorded (half with dual)
     std::uint32_t collision_rays = 0;
     std::uint32_t triangles = 0;
-    // The sampling projection used (world -> [0,1]^2 image, depth), as projectionForRegion
-    // lays it out; computed on the host from the fitted bounds (an ulp may differ from the GPU's).
-    std::array<float, 16> projection{};
+    // The sampling projection used (world -> [0,1]^2 image, depth): the caller's region, or
+    // the fit repeated on the host from the bounds the GPU measured (passes/projection.hpp).
+    gpu::Projection projection{};
     std::vector<graph::PassTiming> passes;   // both submissions, in order
     SamplingBackend backend = SamplingBackend::Raster;  // the one that ran (never Auto)
     std::string backend_reason;              // one line: why
@@ -81,14 +81,6 @@ struct BroadPhaseResult {
     double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
 };
 
-// The sampling-space mapping for a world box, as the GPU fit computes it for the scene:
-// rows of x, y (image, [0,1]) and depth ([0.05, 0.95]); basis rows u, v, d.
-struct SamplingProjection {
-    std::array<float, 16> rows{};  // row-major 3x4 plus (open_epsilon, world_to_depth, 0, 0)
-};
-std::array<float, 9> projectionBasis(const std::array<float, 3>& direction);
-SamplingProjection projectionForRegion(const std::array<float, 9>& basis, const std::array<float, 6>& region,
-                                       float open_epsilon, float closed_epsilon = 0);
 // Device memory the broad phase needs for a resolution and triangle count (bytes, all buffers).
 VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects);
 
@@ -131,7 +123,7 @@ private:
     void drawObject(const graph::PassContext& pc, const vk::Pipeline& plain, const vk::Pipeline& conservative,
                     VkDeviceAddress frame_addr, std::uint32_t object, std::uint32_t step, bool count_pass) const;
     gpu::Header readHeader();
-    std::array<float, 16> hostProjection(const gpu::Header& h) const;
+    gpu::Projection hostProjection(const gpu::Header& h) const;
     Result<void> checkInputs(const gpu::Header& header);
     static void addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report);
     bool computeBackend() const noexcept { return frame_.backend.backend == SamplingBackend::Compute; }

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "passes/broad_phase.hpp"
+#include "passes/projection.hpp"
 #include "support/stability_scenes.hpp"
 #include "support/gpu_fixture.hpp"
 
@@ -45,8 +46,7 @@ TEST_CASE("three axes test at least what three one-axis detections would, each p
     const auto basis = passes::projectionBasis(*one.direction);
     std::vector<TrianglePair> united;
     std::size_t tests_of_three = 0;
-    for (const std::array<float, 3>& d : {*one.direction, std::array<float, 3>{basis[0], basis[1], basis[2]},
-                                          std::array<float, 3>{basis[3], basis[4], basis[5]}}) {
+    for (const std::array<float, 3>& d : {*one.direction, basis.u, basis.v}) {
         DetectSettings s = one;
         s.direction = d;
         auto r = world->detect(s);

@@ -20,9 +20,15 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/vk/resources.cpp
   ${S}/graph/executor.cpp
   ${S}/passes/broad_phase.cpp
-  ${S}/passes/compute_sampling.cpp
+  ${S}/passes/buffer_table.cpp
+  ${S}/passes/common_stages.cpp
+  ${S}/passes/merging.cpp
   ${S}/passes/mesh_upload.cpp
+  ${S}/passes/packing.cpp
+  ${S}/passes/peeling_method.cpp
   ${S}/passes/projection.cpp
+  ${S}/passes/separation.cpp
+  ${S}/passes/stage.cpp
   ${S}/api/world.cpp
 )
 # Rooms of the broad phase (src/passes/<room>/, e.g. sampling/, cells/) list their own

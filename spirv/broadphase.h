@@ -118,6 +118,7 @@ struct Frame {
     float closed_epsilon_world;         // closed-surface touching gap in world units (0: exact ties only)
     uint level_offset[kMaxLevels];      // first texel of each mip level in `bundles`
     VKC_ADDRESS(uint64_t) compute_sampling;  // CsFrame (compute sampling backend), or 0
+    VKC_ADDRESS(uint64_t) method;            // a broad-phase method's own frame (its layout), or 0
 };
 
 // Pushed per dispatch or draw.

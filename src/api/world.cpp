@@ -8,7 +8,6 @@
 #include <cstring>
 
 #include "passes/broad_phase.hpp"
-#include "passes/compute_sampling.hpp"
 #include "passes/mesh_upload.hpp"
 #include "passes/projection.hpp"
 #include "vk/device.hpp"
@@ -489,7 +488,7 @@ Result<std::vector<passes::BroadPhaseResult>> CollisionWorld::Impl::gather() {
 
 bool CollisionWorld::Impl::excludable(const Error& e) const {
     return run_settings.bad_objects == BadObjectPolicy::Exclude && e.code() == ErrorCode::InvalidMesh && broads[failed_axis] &&
-           !broads[failed_axis]->badObjects().empty();
+           !broads[failed_axis]->faults().empty();
 }
 
 // Leaves out the objects the GPU check named, each with its own error. Why exclude and
@@ -498,8 +497,8 @@ bool CollisionWorld::Impl::excludable(const Error& e) const {
 // others exactly the pairs they would have alone (tests/stability/faults_tests.cpp).
 Result<void> CollisionWorld::Impl::excludeBad() {
     const std::size_t before = run_excluded.size();
-    for (const auto& bad : broads[failed_axis]->badObjects())
-        if (bad.object < run_ids.size()) run_excluded.push_back({run_ids[bad.object], named(bad.error)});
+    for (const passes::ObjectFault& f : broads[failed_axis]->faults())
+        if (f.object < run_ids.size()) run_excluded.push_back({run_ids[f.object], named(Error(ErrorCode::InvalidMesh, "object " + std::to_string(f.object) + ": " + passes::describe(f)))});
     if (run_excluded.size() == before) return Error(ErrorCode::InvalidMesh, "the GPU input check failed without naming an object");
     collectRunObjects();
     if (run_meshes.empty()) return Error(ErrorCode::InvalidMesh, "no object left to test: " + run_excluded.front().error.message());

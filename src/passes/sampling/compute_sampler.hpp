@@ -1,6 +1,6 @@
-// Object sampling (paper §4, pass 1) without the graphics pipeline: a compute backend that
-// produces the raster backend's depth-complexity counts and peeling keys, so the shared
-// passes after it (classify, finalize, merge, separate, pack) see the same data.
+// The compute sampling backend: object sampling (paper §4, pass 1) without the graphics
+// pipeline. It produces the raster backend's depth-complexity counts and peeling keys, so
+// the shared passes after it (classify, finalize, merge, separate, pack) see the same data.
 //
 // Coverage is the rasterizer's: vertices go through sample.vert's transform and the
 // viewport transform, are snapped to the device's sub-pixel grid
@@ -32,110 +32,41 @@
 
 #include <cstdint>
 #include <memory>
-#include <span>
-#include <string>
 
-#include "config.h"
-#include "graph/executor.hpp"
-#include "vk/resources.hpp"
-#include "vkcollide/types.hpp"
+#include "passes/sampling/sampler.hpp"
 
 namespace vkcollide::passes {
 
-struct GpuMesh;
-
-using vkcollide::SamplingBackend;  // Auto, Raster, Compute (vkcollide/types.hpp)
-
-struct ComputeSamplingTuning {
-    // Most pixels in the pixel box of a triangle drawn by one invocation; bigger boxes are
-    // drawn in tiles. 0 draws every triangle in tiles. (Defaults: spirv/config.h.)
-    std::uint32_t small_box = gpu::kCsSmallBox;
-    // Fragment lists: the count pass stores the first `list_layers` keys of every ray
-    // (N^2 x layers x 8 bytes) and each peeling step picks its keys per pixel, instead of
-    // drawing every triangle again per step. A ray with more keys costs one more drawing
-    // (gather) in that run, and the next run stores as many layers as this one needed.
-    // Lists are used while the buffer needs at most `list_budget_bytes`; 0: never.
-    std::uint64_t list_budget_bytes = gpu::kCsListBudgetBytes;
-    std::uint32_t list_layers = gpu::kCsListLayers;
-    // Without fragment lists (budget 0): the depth-complexity pass also does peeling step 0
-    // (the nearest and farthest key of every ray), one drawing of the triangles fewer.
-    bool fuse_first_step = true;
-    // The depth plane: through the snapped vertices (hardware rasterizers) or the unsnapped
-    // ones (llvmpipe's setup); Device picks by vendor (Mesa: unsnapped).
-    enum class DepthPlane { Device, Snapped, Unsnapped } depth_plane = DepthPlane::Device;
-};
-
-// The backend that runs and a one-line reason.
-struct BackendChoice {
-    SamplingBackend backend = SamplingBackend::Raster;
-    std::string reason;
-};
-
-// What Auto picks (Raster and Compute are returned as asked):
-//  1. A GPU whose graphics pipeline runs on a small part of the chip -- NVIDIA GH100 parts
-//     (H100, H200, H800, GH200, H20): 2 of their TPCs run graphics. Compute always (H200:
-//     6-57x faster from 0.8 to 1600 px per triangle, docs/results.md).
-//  2. Any other GPU (full raster hardware): raster, except for tiny triangles (fewer than
-//     kTinyTriangleFragments fragments per triangle), where quad-based rasterizers waste
-//     most of their work (an inference; not measured on such a GPU).
-//  3. A CPU implementation (lavapipe): compute for triangles under kCpuComputeFragments
-//     pixels, raster for bigger ones (lavapipe on 2 cores, wall time per run: compute
-//     3-4x faster at 7 px per triangle, raster about 2x faster from 24 px up).
-// `fragments_per_triangle` is the scene's mean number of covered pixels per triangle:
-// measured by the previous run on the same triangle count (the depth-complexity counts
-// summed), or < 0 when unknown; then estimated as resolution^2 * 2 / triangles (a fitted
-// scene covering about half the image four layers deep). Thresholds: spirv/config.h.
-// A device without subgroup ballot and arithmetic in compute shaders gets raster (and an
-// error if Compute is requested).
-BackendChoice chooseSamplingBackend(const VkPhysicalDeviceProperties& device, bool compute_supported,
-                                    SamplingBackend requested, std::uint32_t resolution, std::uint32_t triangles,
-                                    double fragments_per_triangle);
-
-// Whether the device runs the compute backend: subgroup ballot and arithmetic in compute.
-bool computeSamplingSupported(const vk::Device& device);
-
-class ComputeSampling {
+class ComputeSampler final : public Sampler {
 public:
-    static Result<std::unique_ptr<ComputeSampling>> create(vk::Device& device);
+    // UnsupportedFeature where computeSamplingSupported() is false.
+    static Result<std::unique_ptr<ComputeSampler>> create(vk::Device& device);
 
-    // Sizes the buffers for `triangles` and writes the CsFrame. Returns its address (for
-    // Frame::compute_sampling). Call before recording either submission.
-    [[nodiscard]] Result<VkDeviceAddress> prepare(std::uint32_t resolution, std::uint32_t triangles,
-                                                  const ComputeSamplingTuning& tuning);
-    // Whether the prepared run does peeling step 0 in the depth-complexity pass: then
-    // peel_init leaves the keys (its step 1) and step 0 records no peel pass.
-    bool fusesFirstStep() const noexcept { return fuse_; }
-    // After submission 1: fragment lists (complete, or to gather again) or drawing per
-    // step, given the depth complexity.
-    [[nodiscard]] Result<void> preparePeeling(std::uint32_t depth_complexity);
-    bool usesFragmentLists() const noexcept { return fragment_lists_; }
-    bool gathers() const noexcept { return gather_; }
-
-    // The broad phase's resources these passes use.
-    struct Shared {
-        graph::ResourceId projection, header, counts, state, front, back;
-    };
-    // This backend's buffers in one graph; import once per graph.
-    struct Ids {
-        graph::ResourceId triangles, lists, items, counters, args, fill, fragments;
-    };
-    Ids import(graph::Graph& g);
-
-    // Submission 1: setup, then the depth-complexity counts (pass "depth-complexity");
-    // with fusesFirstStep() also step 0's keys (shared.front, shared.back).
-    void addDepthComplexity(graph::Graph& g, const Ids& ids, const Shared& shared, std::span<const GpuMesh> meshes,
-                            VkDeviceAddress frame) const;
-    // Submission 2: one peeling step (pass "peel[step]"), before classify[step]; records
-    // nothing for step 0 when fusesFirstStep(). With fragment lists each step picks per
-    // pixel, and step 0 is preceded by "csample-gather" when gathers().
-    void addPeelStep(graph::Graph& g, const Ids& ids, const Shared& shared, std::uint32_t step, bool dual,
-                     VkDeviceAddress frame) const;
+    SamplingBackend backend() const noexcept override { return SamplingBackend::Compute; }
+    // Sizes the buffers for the run and writes the CsFrame; returns its address.
+    Result<VkDeviceAddress> prepare(const BroadPhaseSettings& settings, const RunShape& shape) override;
+    void import(graph::Graph& g) override;
+    // Setup, then the depth-complexity counts; when fused also step 0's keys.
+    void recordDepthComplexity(graph::Graph& g, const RunView& run, const SamplingBuffers& b) const override;
+    // Fragment lists (complete, or to gather again) or drawing per step.
+    Result<void> preparePeeling(std::uint32_t depth_complexity) override;
+    // 1 when the depth-complexity pass did peeling step 0 (fused): peel-init leaves the
+    // keys and step 0 records no peel pass.
+    std::uint32_t stepsDoneByCount() const noexcept override { return fuse_ ? 1u : 0u; }
+    // With fragment lists each step picks per pixel, and step 0 is preceded by
+    // "csample-gather" when the lists were too short.
+    void recordPeelStep(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t step) const override;
+    void report(BroadPhaseResult& io_result) const override { io_result.compute_fragment_lists = fragment_lists_; }
 
 private:
-    explicit ComputeSampling(vk::Device& device) : device_(&device) {}
+    explicit ComputeSampler(vk::Device& device) : device_(&device) {}
     vk::Device* device_;
     vk::Pipeline setup_, bin_, args_, count_, peel_, gather_pipe_, pick_;
     vk::Buffer frame_, triangles_, lists_, items_, counters_, args_buf_, fill_, fragments_;
+    // This backend's buffers in the graph being recorded.
+    struct Ids {
+        graph::ResourceId triangles, lists, items, counters, args, fill, fragments;
+    } ids_;
     std::uint32_t resolution_ = 0;
     std::uint64_t list_budget_ = 0;
     std::uint32_t list_layers_ = 0;       // stored by the count pass this run

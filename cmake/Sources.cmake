@@ -19,9 +19,12 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/vk/device.cpp
   ${S}/vk/resources.cpp
   ${S}/graph/executor.cpp
+  ${S}/passes/axis_union.cpp
   ${S}/passes/broad_phase.cpp
   ${S}/passes/buffer_table.cpp
   ${S}/passes/common_stages.cpp
+  ${S}/passes/detection.cpp
+  ${S}/passes/engine_mesh.cpp
   ${S}/passes/merging.cpp
   ${S}/passes/mesh_upload.cpp
   ${S}/passes/packing.cpp
@@ -29,6 +32,9 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/passes/projection.cpp
   ${S}/passes/separation.cpp
   ${S}/passes/stage.cpp
+  ${S}/api/detect.cpp
+  ${S}/api/settings.cpp
+  ${S}/api/validation.cpp
   ${S}/api/world.cpp
 )
 # Rooms of the broad phase (src/passes/<room>/, e.g. sampling/, cells/) list their own

@@ -50,45 +50,6 @@ CoreBuffers addCoreRows(BufferTable& t) {
     return ok && total < gpu::kMaxTriangles;
 }
 
-// Moves to the API's validation in the next step (kept here so this step changes nothing).
-Result<void> checkRun(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s, const vk::Device& device) {
-    const std::uint32_t n = s.resolution;
-    if (n < gpu::kMinResolution || n > gpu::kMaxResolution || (n & (n - 1)) != 0)
-        return Error(ErrorCode::InvalidArgument, "resolution " + std::to_string(n) + " is not a power of two in [" +
-                                                     std::to_string(gpu::kMinResolution) + ", " + std::to_string(gpu::kMaxResolution) + "]");
-    const float dl = s.direction[0] * s.direction[0] + s.direction[1] * s.direction[1] + s.direction[2] * s.direction[2];
-    if (!(dl > 0) || !std::isfinite(dl)) return Error(ErrorCode::InvalidArgument, "projection direction must be finite and non-zero");
-    if (meshes.empty()) return Error(ErrorCode::InvalidArgument, "no objects to test (zero meshes)");
-    if (!(s.open_epsilon >= 0) || !std::isfinite(s.open_epsilon)) return Error(ErrorCode::InvalidArgument, "open_epsilon must be finite and >= 0");
-    if (!(s.closed_epsilon >= 0) || !std::isfinite(s.closed_epsilon))
-        return Error(ErrorCode::InvalidArgument, "closed_epsilon must be finite and >= 0");
-    if (s.coverage == Coverage::Best) return Error(ErrorCode::InvalidArgument, "coverage Best is a setting: resolve it first");
-    if (s.coverage == Coverage::Conservative && !device.conservative_rasterization)
-        return Error(ErrorCode::UnsupportedFeature, "conservative coverage needs VK_EXT_conservative_rasterization, which " +
-                                                        device.info.name + " lacks (or the adopted device did not enable): use dilation");
-    if (s.region) {
-        const auto& r = *s.region;
-        for (int a = 0; a < 3; ++a)
-            if (!std::isfinite(r[a]) || !std::isfinite(r[a + 3]) || !(r[a] <= r[a + 3]))
-                return Error(ErrorCode::InvalidArgument, "sampling region must be finite with min <= max on every axis");
-    }
-    std::uint64_t total = 0;
-    for (std::size_t i = 0; i < meshes.size(); ++i) {
-        const GpuMesh& m = meshes[i];
-        const std::string who = "object " + std::to_string(i) + ": ";
-        if (m.triangle_count == 0) return Error(ErrorCode::InvalidMesh, who + "has no triangles (empty mesh)");
-        if (m.vertex_count == 0) return Error(ErrorCode::InvalidMesh, who + "has no vertices");
-        if (!m.vertices || !m.indices) return Error(ErrorCode::InvalidArgument, who + "vertex or index address is null");
-        if (m.vertex_stride < 12 || m.vertex_stride % 4 != 0 || m.vertices % 4 != 0 || m.indices % 4 != 0)
-            return Error(ErrorCode::InvalidArgument, who + "positions and indices must be 4-byte aligned, with a vertex stride of at least 12 bytes");
-        for (float t : m.transform)
-            if (!std::isfinite(t)) return Error(ErrorCode::InvalidArgument, who + "transform is not finite");
-        total += m.triangle_count;
-    }
-    if (total >= gpu::kMaxTriangles) return Error(ErrorCode::InvalidArgument, "scene has more than 2^30 triangles");
-    return {};
-}
-
 }  // namespace
 
 std::string describe(const ObjectFault& f) {
@@ -123,7 +84,6 @@ Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device, Metho
 
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     assert(meetsPreconditions(meshes, s, device_->conservative_rasterization));
-    if (auto ok = checkRun(meshes, s, *device_); !ok) return ok.error();
     std::uint64_t total = 0;
     for (const GpuMesh& m : meshes) total += m.triangle_count;
     const RunShape shape{s.resolution, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(meshes.size()), s.keep_ray_image};

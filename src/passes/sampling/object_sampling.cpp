@@ -1,6 +1,7 @@
 #include "passes/sampling/object_sampling.hpp"
 
 #include <algorithm>
+#include <cassert>
 
 #include "passes/sampling/backend_choice.hpp"
 #include "passes/sampling/compute_sampler.hpp"
@@ -29,9 +30,9 @@ Result<VkDeviceAddress> ObjectSampling::prepare(const BroadPhaseSettings& s, con
     choice_ = chooseSamplingBackend(device_->properties, computeSamplingSupported(*device_), s.backend, shape.resolution,
                                     shape.triangles, shape.triangles == last_triangles_ ? last_fragments_per_triangle_ : -1.0);
     if (s.coverage != Coverage::Centre && choice_.backend == SamplingBackend::Compute) {
-        // Thin-triangle coverage is drawn by sample.vert (or a conservative pipeline): raster only.
-        if (s.backend == SamplingBackend::Compute)
-            return Error(ErrorCode::UnsupportedFeature, "thin-triangle coverage (dilate or conservative) needs the raster sampling backend");
+        // Thin-triangle coverage is drawn by sample.vert (or a conservative pipeline): raster
+        // only. An explicit Compute with it is refused by the API (validation.cpp).
+        assert(s.backend != SamplingBackend::Compute);
         choice_ = {SamplingBackend::Raster, "thin-triangle coverage needs raster (Auto would take compute: " + choice_.reason + ")"};
     }
     if (choice_.backend == SamplingBackend::Compute) {

@@ -22,8 +22,8 @@ public:
     static Result<std::unique_ptr<ObjectSampling>> create(vk::Device& device);
 
     // Chooses the backend for the run (Auto: backend_choice.hpp) and prepares it. Returns
-    // the address for gpu::Frame::compute_sampling (0 for raster). UnsupportedFeature for
-    // thin-triangle coverage with an explicit Compute backend.
+    // the address for gpu::Frame::compute_sampling (0 for raster). Precondition: no
+    // thin-triangle coverage with an explicit Compute backend (Auto then picks raster).
     [[nodiscard]] Result<VkDeviceAddress> prepare(const BroadPhaseSettings& settings, const RunShape& shape);
     // The active backend's own buffers into a graph about to be recorded.
     void import(graph::Graph& g);

@@ -12,6 +12,7 @@ Result<std::unique_ptr<Detection>> Detection::create(vk::Device& device) {
     auto bp = BroadPhase::create(device);
     if (!bp) return bp.error();
     d->broads_[0] = std::move(*bp);
+    d->broad_methods_[0] = PeelingMethod::create;
     return d;
 }
 
@@ -56,10 +57,13 @@ Error Detection::failed(Error e) {
 Result<void> Detection::startAxes(bool measure) {
     for (std::uint32_t k = 0; k < axes_; ++k) {
         failed_axis_ = k;
-        if (!broads_[k]) {
-            auto bp = BroadPhase::create(*device_);
+        if (!broads_[k] || broad_methods_[k] != settings_.method) {
+            broads_[k].reset();
+            auto bp = BroadPhase::create(*device_, settings_.method);
             if (!bp) return bp.error();
             broads_[k] = std::move(*bp);
+            broad_methods_[k] = settings_.method;
+            depth_known_[k] = false;
         }
         BroadPhaseSettings b = settings_.broad;
         b.direction = directions_[k];

@@ -25,6 +25,8 @@ struct DetectionSettings {
     BroadPhaseSettings broad;  // `direction` is the first direction
     std::uint32_t axes = 1;    // 1, or 3: also the first direction's image axes u and v
     BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
+    // The broad-phase method every direction runs (a change recreates the broad phases).
+    MethodFactory method = PeelingMethod::create;
 };
 
 struct DetectionResult {
@@ -82,6 +84,7 @@ private:
     vk::Device* device_;
     // One broad phase per direction (the second and third only for three axes).
     std::array<std::unique_ptr<BroadPhase>, 3> broads_;
+    std::array<MethodFactory, 3> broad_methods_{};  // the method each was created with
     std::array<std::uint32_t, 3> last_depth_{};
     std::array<bool, 3> depth_known_{};
     // The detection in flight.

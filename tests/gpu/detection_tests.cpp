@@ -62,7 +62,36 @@ std::vector<TrianglePair> narrow(const DetectionResult& r) {
     return pairs;
 }
 
+// The paper's method, counting how often a broad phase is made with it.
+int peeling_made = 0;
+Result<std::unique_ptr<BroadPhaseMethod>> countingPeeling(vk::Device& device, BufferTable& table, const CoreBuffers& core) {
+    ++peeling_made;
+    return PeelingMethod::create(device, table, core);
+}
+
 }  // namespace
+
+TEST_CASE("a detection runs the method it is given on every direction", "[gpu][detection]") {
+    test::ValidatedContext ctx;
+    Row row = makeRow(ctx.device());
+    auto det = Detection::create(ctx.device());
+    REQUIRE(det);
+    REQUIRE((*det)->start(row.up.meshes, settings(1), true));
+    auto plain = (*det)->collect();
+    REQUIRE(plain);
+    DetectionSettings s = settings(3);
+    s.method = countingPeeling;
+    peeling_made = 0;
+    REQUIRE((*det)->start(row.up.meshes, s, true));
+    auto counted = (*det)->collect();
+    REQUIRE(counted);
+    CHECK(peeling_made == 3);  // one broad phase per direction, made anew for the new method
+    REQUIRE((*det)->start(row.up.meshes, s, false));
+    REQUIRE((*det)->collect());
+    CHECK(peeling_made == 3);  // and kept while the method stays
+    CHECK(counted->axes[0].records.size() == plain->axes[0].records.size());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
 
 TEST_CASE("a detection runs one or three directions without a world", "[gpu][detection]") {
     test::ValidatedContext ctx;

@@ -319,6 +319,21 @@ TEST_CASE_METHOD(BroadPhaseFixture, "per-pass GPU times and the Table 1 counts a
         CHECK(std::find(names.begin(), names.end(), expected) != names.end());
     CHECK(r.gpu.sampling_ms > 0);
     CHECK(r.gpu.packing_ms > 0);
+    // Every pass declares its stage; the stage times are the sums of their passes' times.
+    BroadPhaseResult summed;
+    for (const auto& p : r.gpu.passes) {
+        INFO(p.name << ": " << toString(static_cast<Stage>(p.stage)));
+        CHECK(static_cast<Stage>(p.stage) != Stage::None);
+        if (p.name == "merge") CHECK(static_cast<Stage>(p.stage) == Stage::Merging);
+        if (p.name == "separate") CHECK(static_cast<Stage>(p.stage) == Stage::Separation);
+        if (p.name.rfind("pack", 0) == 0) CHECK(static_cast<Stage>(p.stage) == Stage::Packing);
+        if (p.name == "fit" || p.name == "clear") CHECK(static_cast<Stage>(p.stage) == Stage::Prepare);
+        addStageTime(summed, p);
+    }
+    CHECK(summed.sampling_ms == Approx(r.gpu.sampling_ms));
+    CHECK(summed.merging_ms == Approx(r.gpu.merging_ms));
+    CHECK(summed.separation_ms == Approx(r.gpu.separation_ms));
+    CHECK(summed.packing_ms == Approx(r.gpu.packing_ms));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

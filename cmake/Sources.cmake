@@ -4,6 +4,7 @@ set(S ${PROJECT_SOURCE_DIR}/src)
 set(VKCOLLIDE_HOST_SOURCES
   ${S}/core/result.cpp
   ${S}/core/mesh.cpp
+  ${S}/core/types.cpp
   ${S}/graph/graph.cpp
 )
 # Subsystems owned elsewhere append to VKCOLLIDE_HOST_SOURCES in their own list file.
@@ -18,8 +19,28 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/vk/device.cpp
   ${S}/vk/resources.cpp
   ${S}/graph/executor.cpp
+  ${S}/passes/axis_union.cpp
   ${S}/passes/broad_phase.cpp
-  ${S}/passes/compute_sampling.cpp
+  ${S}/passes/buffer_table.cpp
+  ${S}/passes/common_stages.cpp
+  ${S}/passes/detection.cpp
+  ${S}/passes/engine_mesh.cpp
+  ${S}/passes/merging.cpp
   ${S}/passes/mesh_upload.cpp
+  ${S}/passes/packing.cpp
+  ${S}/passes/peeling_method.cpp
+  ${S}/passes/projection.cpp
+  ${S}/passes/separation.cpp
+  ${S}/passes/stage.cpp
+  ${S}/api/detect.cpp
+  ${S}/api/settings.cpp
+  ${S}/api/validation.cpp
   ${S}/api/world.cpp
 )
+# Rooms of the broad phase (src/passes/<room>/, e.g. sampling/, cells/) list their own
+# sources and programs in a sources.cmake of their own: append to VKCOLLIDE_GPU_SOURCES and
+# VKCOLLIDE_SHADERS (spirv/<name>.<stage>.glsl). A new room needs no edit here.
+file(GLOB VKCOLLIDE_ROOM_LISTS CONFIGURE_DEPENDS ${S}/passes/*/sources.cmake)
+foreach(room_list ${VKCOLLIDE_ROOM_LISTS})
+  include(${room_list})
+endforeach()

@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
         if (result = (*world)->detect(settings); !result) return fail(result.error().message());
 
     const DetectStats& st = result->stats;
-    std::printf("sampling backend: %s (%s)\n", st.backend.c_str(), st.backend_reason.c_str());
+    std::printf("sampling backend: %s (%s)\n", toString(st.backend), st.backend_reason.c_str());
     std::printf("scene: %u objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u peeling passes%s\n",
                 st.objects, st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",

@@ -1,25 +1,20 @@
 // Data shared by the broad-phase shaders (GLSL) and the host (C++): one definition of
-// every buffer layout and tunable. GLSL sees buffer references; C++ sees 64-bit addresses.
+// every buffer layout. GLSL sees buffer references; C++ sees 64-bit addresses. The
+// tunables (work shape, thresholds, automatic settings) are in config.h.
 #ifndef VKCOLLIDE_BROADPHASE_H
 #define VKCOLLIDE_BROADPHASE_H
+
+#include "config.h"
 
 #ifdef __cplusplus
 #include <cstdint>
 namespace vkcollide::gpu {
-using uint = std::uint32_t;
 using uint64_t = std::uint64_t;
 struct vec4 { float x, y, z, w; };
 #define VKC_ADDRESS(type) std::uint64_t
-#define VKC_CONST inline constexpr uint
 #else
 #define VKC_ADDRESS(type) type
-#define VKC_CONST const uint
 #endif
-
-// Workgroup size of every per-pixel and per-triangle compute shader.
-VKC_CONST kGroupSize = 256;
-// Row width of the paper's packing texture (count / shift / move).
-VKC_CONST kPackRowWidth = 256;
 // Key layout, low word: bit 31 = back-facing, bit 30 = open surface, bits 0..29 = triangle.
 VKC_CONST kKeyBackFacing = 0x80000000u;
 VKC_CONST kKeyOpen = 0x40000000u;
@@ -41,20 +36,13 @@ VKC_CONST kObjectOpen = 1u;
 VKC_CONST kObjectIndex16 = 2u;
 VKC_CONST kObjectCheckOnGpu = 4u;  // geometry only on the GPU: check indices and positions there
 VKC_CONST kMaxLevels = 16u;
-// Push.coverage: how the sampling passes treat thin triangles (docs/stability.md).
-// A triangle is thin when its projected inradius is below kThinInradiusPx pixels: it may
-// cover no pixel centre (sub-pixel, sliver, zero-area, edge-on), so sampling cannot
-// resolve it. With coverage on, every ray a thin triangle touches becomes a collision ray
-// (count.frag flags it, peel_init marks it).
+// Push.coverage: how the sampling passes treat thin triangles (kThinInradiusPx in
+// config.h; docs/stability.md). With coverage on, every ray a thin triangle touches
+// becomes a collision ray (count.frag flags it, peel_init marks it).
 VKC_CONST kCoverageCentre = 0u;         // the hardware rule only (pixel centres)
 VKC_CONST kCoverageDilate = 1u;         // thin triangles enlarged in sample.vert (any device)
 VKC_CONST kCoverageSkipThin = 2u;       // conservative raster, pass 1: every triangle but thin ones
 VKC_CONST kCoverageOnlyThin = 3u;       // conservative raster, pass 2 (overestimating pipeline): thin ones
-#ifdef __cplusplus
-inline constexpr float kThinInradiusPx = 0.70710678f;  // half a pixel diagonal
-#else
-const float kThinInradiusPx = 0.70710678;
-#endif
 
 // One registered mesh instance.
 struct ObjectGpu {
@@ -130,6 +118,7 @@ struct Frame {
     float closed_epsilon_world;         // closed-surface touching gap in world units (0: exact ties only)
     uint level_offset[kMaxLevels];      // first texel of each mip level in `bundles`
     VKC_ADDRESS(uint64_t) compute_sampling;  // CsFrame (compute sampling backend), or 0
+    VKC_ADDRESS(uint64_t) method;            // a broad-phase method's own frame (its layout), or 0
 };
 
 // Pushed per dispatch or draw.
@@ -149,8 +138,6 @@ struct Push {
 // either draws the triangles again per step, or (fragment lists) the count pass stores
 // every ray's keys (a gather pass redraws when a ray had more than list_layers) and each
 // step picks the next keys per pixel from them.
-VKC_CONST kCsGroupSize = 64;         // invocations per workgroup (= kCsTile^2)
-VKC_CONST kCsTile = 8;               // tile side in pixels
 VKC_CONST kCsMaxGroupsX = 65535;     // indirect dispatch width (the guaranteed minimum limit)
 VKC_CONST kCsSmallExtent = 16384;    // one-invocation triangles span at most this many
                                      // sub-pixel units per axis (edge functions fit 32 bits)

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Auto fit, step 2: the orthographic projection that maps the scene's extent to the
-// square image (with a margin) and its depth range to [0.05, 0.95].
+// square image (with a margin) and its depth range to [kDepthNear, kDepthNear + kDepthSpan].
+// The host repeats it (passes/projection.cpp, fitProjection); tests check they agree.
 #include "common.glsl.inc"
 layout(local_size_x = 1) in;
 
@@ -20,8 +21,8 @@ void main() {
     for (uint axis = 0u; axis < 2u; ++axis) {
         pr.row[axis] = vec4(basisRow(f, axis) / size, -origin[axis] / size);
     }
-    pr.row[2] = vec4(basisRow(f, 2u) * (0.9 / depth), 0.05 - 0.9 * lo.z / depth);
-    pr.world_to_depth = 0.9 / depth;
+    pr.row[2] = vec4(basisRow(f, 2u) * (kDepthSpan / depth), kDepthNear - kDepthSpan * lo.z / depth);
+    pr.world_to_depth = kDepthSpan / depth;
     pr.open_epsilon = f.open_epsilon_world * pr.world_to_depth;
     pr.closed_epsilon = f.closed_epsilon_world * pr.world_to_depth;
     pr.pad1 = 0u;

@@ -142,7 +142,7 @@ std::string statsJson(const DetectStats& st, const std::vector<std::string>& nam
     num("layers", st.layers);
     num("peel_passes", st.peel_passes);
     j += std::string("  \"dual\": ") + (st.dual ? "true" : "false") + ",\n";
-    j += "  \"backend\": \"" + jsonEscape(st.backend) + "\",\n";
+    j += "  \"backend\": \"" + std::string(toString(st.backend)) + "\",\n";
     j += "  \"backend_reason\": \"" + jsonEscape(st.backend_reason) + "\",\n";
     j += "  \"settings_note\": \"" + jsonEscape(st.settings_note) + "\",\n";
     num("sampling_ms", st.sampling_ms);
@@ -281,7 +281,7 @@ int detect(int argc, char** argv) {
     std::printf("scene: %zu objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u passes%s\n",
                 meshes.size(), st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
     if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
-    std::printf("sampling backend: %s (%s)\n", st.backend.c_str(), st.backend_reason.c_str());
+    std::printf("sampling backend: %s (%s)\n", toString(st.backend), st.backend_reason.c_str());
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);

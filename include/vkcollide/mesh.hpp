@@ -6,12 +6,9 @@
 #include <vector>
 
 #include "vkcollide/result.hpp"
+#include "vkcollide/types.hpp"
 
 namespace vkcollide {
-
-struct Float3 {
-    float x = 0, y = 0, z = 0;
-};
 
 // An indexed triangle mesh in host memory. Triangles wind counter-clockwise seen from
 // outside (outward normals) when the mesh is a closed surface.

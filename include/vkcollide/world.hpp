@@ -36,10 +36,11 @@
 #include <vulkan/vulkan_core.h>
 
 #include "vkcollide/context.hpp"
+#include "vkcollide/gpu_mesh.hpp"
 #include "vkcollide/mesh.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/result.hpp"
-#include "vkcollide/scene.hpp"
+#include "vkcollide/types.hpp"
 
 namespace vkcollide {
 
@@ -50,59 +51,14 @@ struct ObjectOptions {
     std::string name;             // used in error messages; default "object <id>"
     bool self_collision = false;  // test the object's own triangles against each other
     bool open = false;            // an open surface (cloth, terrain): depth proximity, not facing
-    Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};  // object -> world, row-major
+    Transform3x4 transform = kIdentity3x4;  // object -> world, row-major (vkcollide/types.hpp)
     // GPU meshes only: a typical edge length in object units, for the automatic
     // resolution (host meshes are measured). 0: unknown.
     float typical_edge_length = 0;
 };
 
-// Geometry that lives only in the engine's GPU buffers, on the Context's device.
-// Both buffers need VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT and
-// VK_BUFFER_USAGE_STORAGE_BUFFER_BIT and memory bound before use. The engine must not
-// write them while a detection that reads them is in flight (between submit() and
-// collect()); writes it submitted earlier to the Context's queue are made visible by a
-// barrier at the start of each detection.
-struct GpuMeshDesc {
-    VkBuffer vertex_buffer = VK_NULL_HANDLE;
-    VkDeviceSize vertex_buffer_size = 0;  // size the buffer was created with
-    VkDeviceSize vertex_offset = 0;       // byte offset of vertex 0's position; multiple of 4
-    std::uint32_t vertex_stride = 12;     // bytes between positions; multiple of 4
-    std::uint32_t vertex_count = 0;
-    VkFormat position_format = VK_FORMAT_R32G32B32_SFLOAT;  // or R32G32B32A32_SFLOAT (w ignored)
-
-    VkBuffer index_buffer = VK_NULL_HANDLE;
-    VkDeviceSize index_buffer_size = 0;
-    VkDeviceSize index_offset = 0;  // multiple of 4
-    VkIndexType index_type = VK_INDEX_TYPE_UINT32;  // or VK_INDEX_TYPE_UINT16
-    std::uint32_t index_count = 0;  // 3 per triangle
-};
-
-enum class PackingMethod { Scan, Paper };
-
-// How sampling treats thin triangles: those whose projected inradius is below half a
-// pixel diagonal (sub-pixel triangles, slivers, zero-area and edge-on triangles). They may
-// cover no pixel centre, so the rays cannot see what they intersect (docs/stability.md).
-enum class Coverage {
-    Centre,        // the paper: the hardware rule, pixel centres only
-    Dilate,        // thin triangles are grown by half a pixel diagonal in the vertex shader,
-                   // and every ray they touch is a collision ray (any device)
-    Conservative,  // the same through VK_EXT_conservative_rasterization: fails with
-                   // UnsupportedFeature where the Context has not enabled it
-    Best,          // Conservative where the Context has it, else Dilate
-};
-
-// What a detection does when the GPU check of an engine-owned mesh (addGpuMesh) finds an
-// index out of range or a NaN or infinite position.
-enum class BadObjectPolicy {
-    Exclude,  // detect the other objects as if it were absent (one extra GPU run per bad
-              // object, that frame); DetectResult::excluded names it and the problem
-    Fail,     // the whole detection fails with that error
-};
-
-// How object sampling (paper §4) runs: depth peeling on the graphics pipeline, or the
-// same rays and keys computed by compute shaders (edge functions with the rasterizer's
-// coverage rule). Auto chooses per device and scene; DetectStats says which and why.
-enum class SamplingBackend { Auto, Raster, Compute };
+// GpuMeshDesc (an engine's vertex and index buffers): vkcollide/gpu_mesh.hpp.
+// PackingMethod, Coverage, BadObjectPolicy, SamplingBackend: vkcollide/types.hpp.
 
 // Every field left empty is chosen from the scene (DetectStats::settings_note says how).
 struct DetectSettings {
@@ -167,8 +123,8 @@ struct DetectStats {
     bool layers_short = false;           // depth complexity exceeded the layers peeled (no cap asked)
     std::uint32_t axes = 1;              // sampling directions run (counts above are summed over them,
                                          // depth complexity and layers are their maximum)
-    std::string coverage = "centre";     // "centre", "dilate" or "conservative"
-    std::string backend;                 // object-sampling backend that ran: "raster" or "compute"
+    Coverage coverage = Coverage::Centre;  // that ran: Centre, Dilate or Conservative (never Best)
+    SamplingBackend backend = SamplingBackend::Raster;  // object sampling that ran (never Auto); toString names it
     std::string backend_reason;          // why (Auto's rule, or "asked for")
     std::string settings_note;           // how automatic settings were chosen
     // Times.

@@ -148,12 +148,14 @@ Result<void> Executor::submit(const Graph& graph) {
     ctx.cmd = *cmd;
 
     pending_names_.clear();
+    pending_stages_.clear();
     pending_culled_.clear();
     for (std::uint32_t c : plan->culled) pending_culled_.push_back(graph.passes()[c].name);
     std::uint32_t q = 0;
     for (const PlannedPass& planned : plan->order) {
         const PassDecl& p = graph.passes()[planned.pass];
         pending_names_.push_back(p.name);
+        pending_stages_.push_back(p.stage);
         recordBarriers(ctx.cmd, planned.barriers, ctx);
         f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries_, q++);
         if (p.kind == PassKind::Raster) {
@@ -222,7 +224,7 @@ Result<ExecutionReport> Executor::collect() {
     const double period_ms = device_->properties.limits.timestampPeriod * 1e-6;
     for (std::size_t i = 0; i < pending_names_.size(); ++i) {
         const std::uint64_t t0 = stamps[2 * i] & mask, t1 = stamps[2 * i + 1] & mask;
-        report.passes.push_back({pending_names_[i], double((t1 - t0) & mask) * period_ms});
+        report.passes.push_back({pending_names_[i], double((t1 - t0) & mask) * period_ms, pending_stages_[i]});
     }
     report.total_gpu_ms = double(((stamps[count - 1] & mask) - (stamps[0] & mask)) & mask) * period_ms;
     return report;

@@ -36,6 +36,7 @@ private:
 struct PassTiming {
     std::string name;
     double gpu_ms = 0;
+    StageTag stage = 0;  // as the pass declared it
 };
 
 struct ExecutionReport {
@@ -80,6 +81,7 @@ private:
     std::map<std::string, CachedBuffer> buffers_;
     std::map<std::string, CachedImage> images_;
     std::vector<std::string> pending_names_;
+    std::vector<StageTag> pending_stages_;
     std::vector<std::string> pending_culled_;
 };
 

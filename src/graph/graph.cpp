@@ -172,6 +172,11 @@ PassBuilder& PassBuilder::sideEffects() {
     return *this;
 }
 
+PassBuilder& PassBuilder::stage(StageTag tag) {
+    graph_->passes_[pass_].stage = tag;
+    return *this;
+}
+
 PassBuilder& PassBuilder::record(RecordFn fn) {
     graph_->passes_[pass_].record = std::move(fn);
     return *this;

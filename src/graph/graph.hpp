@@ -75,12 +75,17 @@ struct Access {
 class PassContext;  // defined by the executor
 using RecordFn = std::function<void(PassContext&)>;
 
+// What a pass belongs to, in the terms of the code that builds the graph (the broad phase
+// casts its Stage enum); reported with the pass's GPU time. The graph never reads it.
+using StageTag = std::uint8_t;
+
 struct PassDecl {
     std::string name;
     PassKind kind = PassKind::Compute;
     std::vector<Access> accesses;
     std::uint32_t render_width = 0, render_height = 0;  // raster: defaults to the attachments' size
     bool side_effects = false;  // never culled (e.g. writes only memory the graph does not track)
+    StageTag stage = 0;         // 0: none given
     RecordFn record;
 };
 
@@ -100,6 +105,7 @@ public:
     PassBuilder& depthAttachment(ResourceId r, VkAttachmentLoadOp load = VK_ATTACHMENT_LOAD_OP_CLEAR, float clear_depth = 1.0f);
     PassBuilder& renderArea(std::uint32_t width, std::uint32_t height);
     PassBuilder& sideEffects();
+    PassBuilder& stage(StageTag tag);
     PassBuilder& record(RecordFn fn);
     std::uint32_t index() const noexcept { return pass_; }
 

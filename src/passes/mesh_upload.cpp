@@ -1,6 +1,7 @@
 #include "passes/mesh_upload.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cstring>
 #include <limits>
 
@@ -9,14 +10,12 @@ namespace vkcollide::passes {
 Result<UploadedMeshes> uploadMeshes(vk::Device& device, const std::vector<const HostMesh*>& meshes,
                                     const MeshUploadOptions& options) {
     const std::uint32_t stride = options.vertex_stride;
-    if (stride < 12 || stride % 4 != 0)
-        return Error(ErrorCode::InvalidArgument, "vertex stride " + std::to_string(stride) + " must be >= 12 and a multiple of 4");
+    assert(stride >= 12 && stride % 4 == 0);
     UploadedMeshes out;
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const HostMesh& m = *meshes[i];
-        if (auto ok = validateMesh(m); !ok) return ok.error();
-        if (options.index16 && m.positions.size() > std::numeric_limits<std::uint16_t>::max() + 1u)
-            return Error(ErrorCode::InvalidArgument, "mesh '" + m.name + "' has too many vertices for 16-bit indices");
+        assert(validateMesh(m));
+        assert(!options.index16 || m.positions.size() <= std::numeric_limits<std::uint16_t>::max() + 1u);
         auto vb = vk::Buffer::create(device, m.positions.size() * stride, 0, vk::MemoryKind::Upload, m.name + "-vertices");
         if (!vb) return vb.error();
         auto* dst = static_cast<std::uint8_t*>(vb->mapped());

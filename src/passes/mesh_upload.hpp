@@ -4,7 +4,8 @@
 
 #include <vector>
 
-#include "passes/broad_phase.hpp"
+#include "passes/broad_phase_types.hpp"
+#include "vk/resources.hpp"
 #include "vkcollide/mesh.hpp"
 
 namespace vkcollide::passes {
@@ -20,7 +21,9 @@ struct UploadedMeshes {
     std::vector<GpuMesh> meshes;
 };
 
-// Checks each mesh (validateMesh) and uploads it. The error names the mesh.
+// Uploads each mesh. Preconditions (the API checks them, validation.cpp; asserted here):
+// every mesh passes validateMesh, the stride is >= 12 and a multiple of 4, and with index16
+// no mesh has more than 65536 vertices. Errors: buffer creation only (OutOfMemory, ...).
 Result<UploadedMeshes> uploadMeshes(vk::Device& device, const std::vector<const HostMesh*>& meshes,
                                     const MeshUploadOptions& options = {});
 

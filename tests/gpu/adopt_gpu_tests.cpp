@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "shaders/all.hpp"
+#include "test_shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/scene.hpp"

@@ -5,7 +5,7 @@
 #include <cstring>
 
 #include "graph/executor.hpp"
-#include "shaders/all.hpp"
+#include "test_shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
 
 using namespace vkcollide;

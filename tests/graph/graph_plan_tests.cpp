@@ -284,3 +284,13 @@ TEST_CASE("malformed graphs are rejected with a plain message", "[graph]") {
         CHECK_THAT(compileError(g), Catch::Contains("indirect"));
     }
 }
+
+TEST_CASE("a pass keeps the stage tag it declares; untagged passes have 0", "[graph]") {
+    Graph g;
+    const ResourceId buf = g.importBuffer("buf", 64);
+    g.addPass("tagged", PassKind::Compute).stage(3).write(buf).record(kNoop);
+    g.addPass("plain", PassKind::Compute).readWrite(buf).record(kNoop);
+    CHECK(g.passes()[0].stage == 3);
+    CHECK(g.passes()[1].stage == 0);
+    compileOk(g);
+}

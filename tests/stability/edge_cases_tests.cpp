@@ -7,7 +7,7 @@
 
 #include <cstdio>
 
-#include "stability/stability_scenes.hpp"
+#include "support/stability_scenes.hpp"
 #include "support/gpu_fixture.hpp"
 
 using namespace vkcollide;

@@ -8,7 +8,8 @@
 #include <cstdio>
 
 #include "passes/broad_phase.hpp"
-#include "stability/stability_scenes.hpp"
+#include "passes/projection.hpp"
+#include "support/stability_scenes.hpp"
 #include "support/gpu_fixture.hpp"
 
 using namespace vkcollide;
@@ -45,8 +46,7 @@ TEST_CASE("three axes test at least what three one-axis detections would, each p
     const auto basis = passes::projectionBasis(*one.direction);
     std::vector<TrianglePair> united;
     std::size_t tests_of_three = 0;
-    for (const std::array<float, 3>& d : {*one.direction, std::array<float, 3>{basis[0], basis[1], basis[2]},
-                                          std::array<float, 3>{basis[3], basis[4], basis[5]}}) {
+    for (const std::array<float, 3>& d : {*one.direction, basis.u, basis.v}) {
         DetectSettings s = one;
         s.direction = d;
         auto r = world->detect(s);
@@ -145,7 +145,7 @@ TEST_CASE("mitigation settings are checked and reported", "[stability][gpu]") {
     auto conservative = world->detect(s);
     if (hardware) {
         REQUIRE(conservative);
-        CHECK(conservative->stats.coverage == "conservative");
+        CHECK(conservative->stats.coverage == Coverage::Conservative);
     } else {  // lavapipe: no VK_EXT_conservative_rasterization
         REQUIRE_FALSE(conservative);
         CHECK(conservative.error().code() == ErrorCode::UnsupportedFeature);
@@ -154,7 +154,7 @@ TEST_CASE("mitigation settings are checked and reported", "[stability][gpu]") {
     s.coverage = Coverage::Best;
     auto best = world->detect(s);
     REQUIRE(best);
-    CHECK(best->stats.coverage == (hardware ? "conservative" : "dilate"));
+    CHECK(best->stats.coverage == (hardware ? Coverage::Conservative : Coverage::Dilate));
     CHECK(best->stats.settings_note.find("coverage") != std::string::npos);
     // Thin-triangle coverage is drawn on the raster backend: Auto falls back to it, an
     // explicit Compute is refused.
@@ -167,11 +167,11 @@ TEST_CASE("mitigation settings are checked and reported", "[stability][gpu]") {
     s.backend = SamplingBackend::Auto;
     auto auto_dilate = world->detect(s);
     REQUIRE(auto_dilate);
-    CHECK(auto_dilate->stats.backend == "raster");
+    CHECK(auto_dilate->stats.backend == SamplingBackend::Raster);
     // The world is still usable after the refused settings.
     auto plain = world->detect(coarse());
     REQUIRE(plain);
-    CHECK(plain->stats.coverage == "centre");
+    CHECK(plain->stats.coverage == Coverage::Centre);
     CHECK(plain->stats.axes == 1);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

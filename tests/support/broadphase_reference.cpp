@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "passes/projection.hpp"
+
 namespace vkcollide::test {
 namespace {
 
@@ -29,9 +31,10 @@ std::size_t ReferenceResult::ambiguousCount() const {
 ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects, const passes::BroadPhaseSettings& s,
                                     std::uint32_t layers, const std::vector<std::uint8_t>* gpu_rays) {
     const std::uint32_t n = s.resolution;
-    const auto proj = passes::projectionForRegion(passes::projectionBasis(s.direction), *s.region, s.open_epsilon);
-    const float* rows = proj.rows.data();
-    const float eps = proj.rows[12];
+    const gpu::Projection proj = passes::regionProjection(passes::projectionBasis(s.direction), *s.region, s.open_epsilon, 0);
+    float rows[12];
+    for (int a = 0; a < 3; ++a) rows[a * 4] = proj.row[a].x, rows[a * 4 + 1] = proj.row[a].y, rows[a * 4 + 2] = proj.row[a].z, rows[a * 4 + 3] = proj.row[a].w;
+    const float eps = proj.open_epsilon;
     ReferenceResult out;
     out.rays.assign(std::size_t(n) * n, 0);
     out.ambiguous.assign(std::size_t(n) * n, 0);

@@ -283,7 +283,7 @@ int main(int argc, char** argv) {
             printRow(scene, tris, s, *compute, "compute", compareResults(raster->last, compute->last));
             if (details.size() < 4)  // every pass of the first scene's last runs, for the record
                 for (const auto* m : {&*raster, &*compute}) {
-                    std::string line = scene.name + (dual ? " dual " : " single ") + passes::toString(m->last.backend) + ":";
+                    std::string line = scene.name + (dual ? " dual " : " single ") + toString(m->last.backend) + ":";
                     char buf[64];
                     for (const auto& p : m->last.passes) {
                         std::snprintf(buf, sizeof(buf), " %s %.3f;", p.name.c_str(), p.gpu_ms);
@@ -315,7 +315,7 @@ int main(int argc, char** argv) {
     {
         // What Auto picks here, for the record.
         const auto choice = passes::chooseSamplingBackend(dev.properties, passes::computeSamplingSupported(dev), SamplingBackend::Auto, 1024, 1'000'000, 6.0);
-        std::printf("\nAuto on this device (1M triangles of 6 px at 1024^2): %s (%s)\n", passes::toString(choice.backend), choice.reason.c_str());
+        std::printf("\nAuto on this device (1M triangles of 6 px at 1024^2): %s (%s)\n", toString(choice.backend), choice.reason.c_str());
     }
     return 0;
 }

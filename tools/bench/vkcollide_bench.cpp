@@ -265,8 +265,8 @@ int main(int argc, char** argv) {
                               "%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,"
                               "%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.6f,%.2f,%.1f,%u,%.3f,%d,",
                               device.c_str(), setName(scene->set), scene->name.c_str(), motionName(scene->motion), triangles, ids.size(), gpu_objects,
-                              opt.scale, v.name.c_str(), f, st.backend.c_str(), st.resolution, st.direction[0], st.direction[1], st.direction[2],
-                              st.axes, st.coverage.c_str(), st.dual ? 1 : 0, settings.layer_cap, settings.packing == PackingMethod::Paper ? "paper" : "scan",
+                              opt.scale, v.name.c_str(), f, toString(st.backend), st.resolution, st.direction[0], st.direction[1], st.direction[2],
+                              st.axes, toString(st.coverage), st.dual ? 1 : 0, settings.layer_cap, settings.packing == PackingMethod::Paper ? "paper" : "scan",
                               v.open ? 1 : 0, v.async ? 1 : 0, st.depth_complexity, st.layers, st.peel_passes, st.sampling_ms, st.merging_ms,
                               st.separation_ms, st.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms, update_ms, total_ms, st.collision_rays,
                               st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, st.positive_tests, r->pairs.size(),
@@ -274,7 +274,7 @@ int main(int argc, char** argv) {
                               double(st.gpu_memory_bytes) / (1024.0 * 1024.0), peakHostMiB(), st.narrow_threads, ref.seconds, ref.from_cache ? 1 : 0);
                 csv << row << csvField(st.settings_note) << '\n';
                 csv.flush();
-                sum.backend = st.backend;
+                sum.backend = toString(st.backend);
                 sum.resolution = st.resolution;
                 ++sum.frames;
                 sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += cmp.true_positives, sum.reference += ref.pairs.size();

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "stability/stability_scenes.hpp"
+#include "support/stability_scenes.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::test;

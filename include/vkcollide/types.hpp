@@ -1,0 +1,58 @@
+// vkcollide: the small types and enums shared by every public header and by every layer
+// below the API (the broad phase takes the same enums the settings hold).
+//
+// Thread safety: plain values; toString returns a static string.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace vkcollide {
+
+// A position or direction in object or world units.
+struct Float3 {
+    float x = 0, y = 0, z = 0;
+};
+
+// An affine object-to-world transform, row-major 3x4: rows x, y, z of [R | t], so a point
+// p maps to (row_r[0] p.x + row_r[1] p.y + row_r[2] p.z + row_r[3]) for r = x, y, z.
+using Transform3x4 = std::array<float, 12>;
+inline constexpr Transform3x4 kIdentity3x4{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+
+// How the broad phase compacts the kept triangles before the readback: a prefix-sum scan
+// (default), or the paper's count / shift / move over a packing texture. Same records.
+enum class PackingMethod { Scan, Paper };
+
+// How sampling treats thin triangles: those whose projected inradius is below half a
+// pixel diagonal (sub-pixel triangles, slivers, zero-area and edge-on triangles). They may
+// cover no pixel centre, so the rays cannot see what they intersect (docs/stability.md).
+enum class Coverage {
+    Centre,        // the paper: the hardware rule, pixel centres only
+    Dilate,        // thin triangles are grown by half a pixel diagonal in the vertex shader,
+                   // and every ray they touch is a collision ray (any device)
+    Conservative,  // the same through VK_EXT_conservative_rasterization: fails with
+                   // UnsupportedFeature where the Context has not enabled it
+    Best,          // settings only: Conservative where the Context has it, else Dilate
+};
+
+// What a detection does when the GPU check of an engine-owned mesh (addGpuMesh) finds an
+// index out of range or a NaN or infinite position.
+enum class BadObjectPolicy {
+    Exclude,  // detect the other objects as if it were absent (one extra GPU run per bad
+              // object, that frame); DetectResult::excluded names it and the problem
+    Fail,     // the whole detection fails with that error
+};
+
+// How object sampling (paper §4) runs: depth peeling on the graphics pipeline, or the
+// same rays and keys computed by compute shaders (edge functions with the rasterizer's
+// coverage rule). Auto (settings only) chooses per device and scene; DetectStats says
+// which ran and why.
+enum class SamplingBackend { Auto, Raster, Compute };
+
+// Lower-case names as the command-line options spell them: "scan", "paper"; "centre",
+// "dilate", "conservative", "best"; "auto", "raster", "compute".
+const char* toString(PackingMethod method) noexcept;
+const char* toString(Coverage coverage) noexcept;
+const char* toString(SamplingBackend backend) noexcept;
+
+}  // namespace vkcollide

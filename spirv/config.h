@@ -1,0 +1,85 @@
+// Every tunable of vkcollide in one place, shared by the shaders (GLSL) and the host (C++),
+// each with why it has its value. Buffer layouts and bit assignments are not tunables:
+// they live in broadphase.h. Changing a value here changes speed or the automatic
+// settings, never the contract (a value that would break one says so).
+#ifndef VKCOLLIDE_CONFIG_H
+#define VKCOLLIDE_CONFIG_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace vkcollide::gpu {
+using uint = std::uint32_t;
+#define VKC_CONST inline constexpr uint
+#define VKC_CONST_FLOAT inline constexpr float
+#else
+#define VKC_CONST const uint
+#define VKC_CONST_FLOAT const float
+#endif
+
+// ---- GPU work shape --------------------------------------------------------------------
+// Workgroup size of every per-pixel and per-triangle compute shader (a multiple of every
+// subgroup size in use; the workgroup reduce/scan helpers assume a power of two).
+VKC_CONST kGroupSize = 256;
+// Row width of the paper's packing texture (count / shift / move). pack_rowcount reduces a
+// row with the workgroup helpers, so it must equal kGroupSize.
+VKC_CONST kPackRowWidth = 256;
+
+// ---- Image-space sampling --------------------------------------------------------------
+// A triangle is thin when its projected inradius is below this many pixels: half a pixel
+// diagonal, below which it may cover no pixel centre (sub-pixel, sliver, zero-area,
+// edge-on); coverage Dilate/Conservative treats exactly these (docs/stability.md).
+VKC_CONST_FLOAT kThinInradiusPx = 0.70710678f;
+// The fitted projection maps the scene's depth range to [kDepthNear, kDepthNear +
+// kDepthSpan]: a margin from 0 and 1, which the rasterizer clips.
+VKC_CONST_FLOAT kDepthNear = 0.05f;
+VKC_CONST_FLOAT kDepthSpan = 0.9f;
+
+// ---- Compute sampling backend ----------------------------------------------------------
+// Big triangles are drawn in kCsTile x kCsTile pixel tiles, one workgroup of kCsGroupSize
+// (= kCsTile^2) invocations, one per pixel.
+VKC_CONST kCsGroupSize = 64;
+VKC_CONST kCsTile = 8;
+
+#ifdef __cplusplus
+// ---- Host only -------------------------------------------------------------------------
+// Automatic resolution (CollisionWorld::resolveSettings): about this many pixels along a
+// typical triangle edge across the scene's extent, a power of two within the bounds; the
+// fallback when nothing can be measured (GPU meshes without typical_edge_length).
+inline constexpr double kPixelsPerEdge = 4.0;
+inline constexpr std::uint32_t kMinAutoResolution = 64, kMaxAutoResolution = 2048;
+inline constexpr std::uint32_t kFallbackResolution = 512;
+// Automatic open epsilon: this fraction of the open objects' typical edge length.
+inline constexpr double kOpenEpsilonPerEdge = 0.5;
+// Resolutions the broad phase accepts (powers of two); the mip chain of ray bundles needs
+// log2(kMaxResolution) + 1 <= kMaxLevels levels.
+inline constexpr std::uint32_t kMinResolution = 4, kMaxResolution = 16384;
+// Relative margin of the automatic fit on each side of the image, so triangles on the
+// scene's silhouette do not sit on the image border.
+inline constexpr float kFitMargin = 1.0f / 64.0f;
+// Multi-axis union (DetectSettings::axes = 3): kept boxes mapped back to world space are
+// padded by this fraction of the image width against rounding.
+inline constexpr double kKeptBoxPad = 1e-4;
+
+// Sampling backend Auto (passes/sampling/backend_choice.hpp has the rule): compute below
+// this many covered pixels per triangle on a GPU with raster hardware (quad-based
+// rasterizers waste most of their work on tiny triangles: an inference, not measured) and
+// on a CPU implementation (lavapipe on 2 cores: compute 3-4x faster at 7 px per triangle,
+// raster about 2x faster from 24 px up).
+inline constexpr double kTinyTriangleFragments = 1.0;
+inline constexpr double kCpuComputeFragments = 8.0;
+// Compute backend, defaults of ComputeSamplingTuning (H200 measurements in docs/results.md):
+// most pixels in the box of a triangle drawn by one invocation (256 is 0.07 ms faster than
+// 64 on 24-50 px triangles, 0.6 ms slower on 91 px ones at 4096^2);
+inline constexpr std::uint32_t kCsSmallBox = 256;
+// per-ray fragment lists while they need at most this many bytes, storing at least this
+// many layers per ray in the count pass;
+inline constexpr std::uint64_t kCsListBudgetBytes = std::uint64_t{1} << 30;
+inline constexpr std::uint32_t kCsListLayers = 8;
+// work items beyond one per triangle, so a scene of few big triangles keeps one tile per item.
+inline constexpr std::uint32_t kCsExtraItems = 65536;
+#endif
+
+#ifdef __cplusplus
+}  // namespace vkcollide::gpu
+#endif
+#endif

@@ -1,0 +1,125 @@
+// One detection through the API: settings resolved and checked, the GPU part run by
+// passes::Detection, its findings named, the narrow phase on its candidates, the statistics.
+#include <algorithm>
+
+#include "api/validation.hpp"
+#include "api/world_impl.hpp"
+#include "vk/device.hpp"
+
+namespace vkcollide {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+// An error of the detection, with the objects the GPU check named (indices in the run's
+// meshes) named by id: the only place the API words those findings.
+Error CollisionWorld::Impl::describeFailure(const Error& e) const {
+    const passes::Detection::Failure& f = detection->failure();
+    if (f.faults.empty()) return e;
+    const passes::ObjectFault& first = f.faults.front();
+    const std::string named_fault = who(run_ids.at(first.object), objects.at(run_ids.at(first.object)).name) + ": " + passes::describe(first);
+    return Error(e.code(), f.none_left ? "no object left to test: " + named_fault : named_fault, e.vkResult());
+}
+
+Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool measure) {
+    if (pending()) return Error(ErrorCode::InvalidArgument, "submit while a detection is in flight: collect() it first");
+    run_start = Clock::now();
+    std::vector<passes::GpuMesh> meshes;
+    liveMeshes(meshes, run_ids);
+    run_settings = resolve(settings, &run_note);
+    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run_settings, context->device())})
+        if (!ok) return ok.error();
+    const DetectSettings& s = run_settings;
+    passes::DetectionSettings d;
+    d.broad.resolution = *s.resolution;
+    d.broad.direction = *s.direction;
+    d.broad.layer_cap = s.layer_cap;
+    d.broad.dual = s.dual;
+    d.broad.packing = s.packing;
+    d.broad.backend = s.backend;
+    d.broad.open_epsilon = *s.open_epsilon;
+    d.broad.closed_epsilon = s.closed_epsilon;
+    d.broad.coverage = s.coverage;  // resolve() turned Best into Conservative or Dilate
+    d.broad.region = s.region;
+    d.axes = s.axes;
+    d.bad_objects = s.bad_objects;
+    if (auto ok = detection->start(meshes, d, measure); !ok) return describeFailure(ok.error());
+    return {};
+}
+
+Result<DetectResult> CollisionWorld::Impl::collect() {
+    auto r = detection->collect();
+    if (!r) return describeFailure(r.error());
+    return finish(std::move(*r));
+}
+
+Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detected) {
+    const std::vector<passes::BroadPhaseResult>& broad = detected.axes;
+    // Broad-phase object index -> ObjectId.
+    std::vector<ObjectId> ids;
+    for (std::uint32_t i : detected.objects) ids.push_back(run_ids[i]);
+    DetectResult out;
+    for (const passes::ObjectFault& f : detected.excluded) {
+        const ObjectId id = run_ids[f.object];
+        out.excluded.push_back({id, named(id, Error(ErrorCode::InvalidMesh, passes::describe(f)))});
+    }
+    DetectStats& st = out.stats;
+    st.objects = static_cast<std::uint32_t>(ids.size());
+    st.resolution = *run_settings.resolution;
+    st.direction = detected.directions[0];
+    st.dual = run_settings.dual;
+    st.axes = static_cast<std::uint32_t>(broad.size());
+    st.coverage = run_settings.coverage;
+    st.settings_note = run_note;
+    st.backend = broad[0].backend;
+    st.backend_reason = broad[0].backend_reason;
+    for (std::uint32_t k = 1; k < broad.size(); ++k)
+        if (broad[k].backend != broad[0].backend)
+            st.backend_reason += "; axis " + std::to_string(k) + ": " + toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
+    const std::uint32_t cap = run_settings.layer_cap;
+    for (std::uint32_t k = 0; k < broad.size(); ++k) {
+        const passes::BroadPhaseResult& b = broad[k];
+        st.triangles = b.triangles;
+        st.collision_rays += b.collision_rays;
+        st.triangles_downloaded += b.records.size();
+        st.depth_complexity = std::max(st.depth_complexity, b.depth_complexity);
+        st.layers = std::max(st.layers, b.layers);
+        st.peel_passes += b.peel_steps;
+        st.layers_short = st.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap));
+        const std::string prefix = broad.size() > 1 ? "axis " + std::to_string(k) + ": " : "";
+        for (const auto& p : b.passes) st.gpu_passes.push_back({prefix + p.name, p.gpu_ms});
+        st.sampling_ms += b.sampling_ms;
+        st.merging_ms += b.merging_ms;
+        st.separation_ms += b.separation_ms;
+        st.packing_ms += b.packing_ms;
+        st.readback_ms += b.readback_ms;
+    }
+
+    NarrowOptions options;
+    for (ObjectId id : ids) options.self_collision.push_back(objects[id].options.self_collision);
+    if (pair_filter) options.may_collide = [this, &ids](std::uint32_t a, std::uint32_t b) { return pair_filter(ids[a], ids[b]); };
+    const auto t0 = Clock::now();
+    auto narrow = runNarrowPhase(detected.candidates(), options, *pool, narrow_workspace);
+    st.narrow_ms = msSince(t0);
+    if (!narrow) return narrow.error();
+    st.narrow_threads = pool->threadCount();
+    st.narrow = narrow->stats;
+    st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;
+    st.triangle_tests = narrow->stats.triangle_tests;
+    st.positive_tests = narrow->stats.positive_tests;
+    // Run indices grow with ids, so the sorted order survives the mapping.
+    out.pairs = std::move(narrow->pairs);
+    for (TrianglePair& p : out.pairs) p.object_a = ids[p.object_a], p.object_b = ids[p.object_b];
+    out.responses = std::move(narrow->responses);
+    for (TriangleResponse& r : out.responses) r.object = ids[r.object];
+    st.gpu_memory_bytes = detection->memoryBytes();
+    for (const Object& o : objects) st.gpu_memory_bytes += (o.vertices.valid() ? o.vertices.size() : 0) + (o.indices.valid() ? o.indices.size() : 0);
+    st.total_ms = msSince(run_start);
+    return out;
+}
+
+}  // namespace vkcollide

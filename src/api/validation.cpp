@@ -1,0 +1,130 @@
+#include "api/validation.hpp"
+
+#include <cmath>
+#include <string>
+#include <tuple>
+
+#include "broadphase.h"
+#include "core/mesh_rules.hpp"
+#include "vk/device.hpp"
+
+namespace vkcollide::validation {
+namespace {
+
+Error invalid(const std::string& rule) { return Error(ErrorCode::InvalidArgument, rule); }
+bool finiteNonNegative(float x) { return x >= 0 && std::isfinite(x); }
+
+}  // namespace
+
+Result<void> checkTransform(const Transform3x4& transform) {
+    for (float t : transform)
+        if (!std::isfinite(t)) return invalid("transform is not finite");
+    return {};
+}
+
+Result<void> checkHostMesh(const HostMesh& mesh) {
+    if (auto ok = checkMeshRules(mesh); !ok) return ok;
+    if (mesh.triangleCount() >= gpu::kMaxTriangles) return Error(ErrorCode::InvalidMesh, "has 2^30 triangles or more");
+    return {};
+}
+
+Result<void> checkVertices(std::span<const Float3> positions, std::uint32_t vertex_count) {
+    if (positions.size() != vertex_count)
+        return invalid(std::to_string(positions.size()) + " positions given for " + std::to_string(vertex_count) + " vertices");
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
+            return Error(ErrorCode::InvalidMesh, "vertex " + std::to_string(i) + " is NaN or infinite");
+    return {};
+}
+
+Result<void> checkTypicalEdge(float typical_edge_length) {
+    if (!finiteNonNegative(typical_edge_length)) return invalid("typical_edge_length must be finite and >= 0");
+    return {};
+}
+
+Result<void> checkGpuMeshDesc(const GpuMeshDesc& d) {
+    if (d.vertex_buffer == VK_NULL_HANDLE || d.index_buffer == VK_NULL_HANDLE)
+        return invalid("vertex or index buffer is VK_NULL_HANDLE");
+    if (d.index_count == 0 || d.vertex_count == 0) return Error(ErrorCode::InvalidMesh, "empty mesh (no indices or no vertices)");
+    if (d.index_count % 3 != 0)
+        return Error(ErrorCode::InvalidMesh, "index count " + std::to_string(d.index_count) + " is not a multiple of 3");
+    if (d.index_count / 3 >= gpu::kMaxTriangles) return Error(ErrorCode::InvalidMesh, "has 2^30 triangles or more");
+    std::uint32_t position_bytes = 0;
+    if (d.position_format == VK_FORMAT_R32G32B32_SFLOAT) position_bytes = 12;
+    else if (d.position_format == VK_FORMAT_R32G32B32A32_SFLOAT) position_bytes = 16;
+    else
+        return Error(ErrorCode::UnsupportedFeature, "position format " + std::to_string(int(d.position_format)) +
+                                                        " is not supported (use VK_FORMAT_R32G32B32_SFLOAT or R32G32B32A32_SFLOAT)");
+    if (d.vertex_stride < position_bytes || d.vertex_stride % 4 != 0 || d.vertex_offset % 4 != 0 || d.index_offset % 4 != 0)
+        return invalid("vertex stride " + std::to_string(d.vertex_stride) +
+                       " must hold a position and be a multiple of 4; offsets must be multiples of 4");
+    if (d.index_type != VK_INDEX_TYPE_UINT32 && d.index_type != VK_INDEX_TYPE_UINT16)
+        return Error(ErrorCode::UnsupportedFeature, "index type must be VK_INDEX_TYPE_UINT16 or VK_INDEX_TYPE_UINT32");
+    const bool index16 = d.index_type == VK_INDEX_TYPE_UINT16;
+    if (index16 && d.vertex_count > 65536)
+        return Error(ErrorCode::InvalidMesh, std::to_string(d.vertex_count) + " vertices cannot be reached by 16-bit indices");
+    const VkDeviceSize vertex_end = d.vertex_offset + VkDeviceSize(d.vertex_count - 1) * d.vertex_stride + position_bytes;
+    // 16-bit indices are read in whole 4-byte words.
+    const VkDeviceSize index_end = d.index_offset + (index16 ? (VkDeviceSize(d.index_count) * 2 + 3) / 4 * 4 : VkDeviceSize(d.index_count) * 4);
+    if (vertex_end > d.vertex_buffer_size)
+        return Error(ErrorCode::BufferTooSmall, "vertex buffer of " + std::to_string(d.vertex_buffer_size) + " bytes is smaller than the " +
+                                                    std::to_string(vertex_end) + " bytes its " + std::to_string(d.vertex_count) + " vertices need");
+    if (index_end > d.index_buffer_size)
+        return Error(ErrorCode::BufferTooSmall, "index buffer of " + std::to_string(d.index_buffer_size) + " bytes is smaller than the " +
+                                                    std::to_string(index_end) + " bytes its " + std::to_string(d.index_count) + " indices need" +
+                                                    (index16 ? " (16-bit indices are read in whole 4-byte words: pad by 2 bytes)" : ""));
+    return {};
+}
+
+Result<void> checkDeclaredSizes(const GpuMeshDesc& d, VkDeviceSize vertex_capacity, VkDeviceSize index_capacity) {
+    for (auto [declared, capacity, what] : {std::tuple{d.vertex_buffer_size, vertex_capacity, "vertex"},
+                                            std::tuple{d.index_buffer_size, index_capacity, "index"}})
+        if (capacity < declared)
+            return Error(ErrorCode::BufferTooSmall, std::string(what) + " buffer is declared as " + std::to_string(declared) +
+                                                        " bytes but holds at most " + std::to_string(capacity));
+    return {};
+}
+
+Result<void> checkEngineAddresses(const passes::GpuMesh& m, const GpuMeshDesc& d) {
+    if (m.vertices == d.vertex_offset || m.indices == d.index_offset)
+        return invalid("a buffer has no device address (create it with SHADER_DEVICE_ADDRESS usage)");
+    return {};
+}
+
+Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
+    if (s.axes != 1 && s.axes != 3) return invalid("axes must be 1 or 3, not " + std::to_string(s.axes));
+    const std::uint32_t n = s.resolution.value_or(0);
+    if (n < gpu::kMinResolution || n > gpu::kMaxResolution || (n & (n - 1)) != 0)
+        return invalid("resolution " + std::to_string(n) + " is not a power of two in [" + std::to_string(gpu::kMinResolution) + ", " +
+                       std::to_string(gpu::kMaxResolution) + "]");
+    if (!s.direction) return invalid("projection direction must be finite and non-zero");
+    const auto& d = *s.direction;
+    const float dl = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    if (!(dl > 0) || !std::isfinite(dl)) return invalid("projection direction must be finite and non-zero");
+    if (!finiteNonNegative(s.open_epsilon.value_or(0))) return invalid("open_epsilon must be finite and >= 0");
+    if (!finiteNonNegative(s.closed_epsilon)) return invalid("closed_epsilon must be finite and >= 0");
+    if (s.region) {
+        const auto& r = *s.region;
+        for (int a = 0; a < 3; ++a)
+            if (!std::isfinite(r[a]) || !std::isfinite(r[a + 3]) || !(r[a] <= r[a + 3]))
+                return invalid("sampling region must be finite with min <= max on every axis");
+    }
+    if (s.coverage == Coverage::Conservative && !device.conservative_rasterization)
+        return Error(ErrorCode::UnsupportedFeature, "conservative coverage needs VK_EXT_conservative_rasterization, which " +
+                                                        device.info.name + " lacks (or the adopted device did not enable): use dilation");
+    // Thin-triangle coverage is drawn by sample.vert (or a conservative pipeline): raster
+    // only. Auto falls back to raster; an explicit Compute is refused.
+    if (s.coverage != Coverage::Centre && s.backend == SamplingBackend::Compute)
+        return Error(ErrorCode::UnsupportedFeature, "thin-triangle coverage (dilate or conservative) needs the raster sampling backend");
+    return {};
+}
+
+Result<void> checkScene(std::span<const passes::GpuMesh> meshes) {
+    if (meshes.empty()) return invalid("the world has no objects to test");
+    std::uint64_t total = 0;
+    for (const passes::GpuMesh& m : meshes) total += m.triangle_count;
+    if (total >= gpu::kMaxTriangles) return invalid("scene has more than 2^30 triangles");
+    return {};
+}
+
+}  // namespace vkcollide::validation

@@ -1,0 +1,44 @@
+// The one validation gate: every rule the API's input must meet, checked here once, before
+// anything is uploaded or recorded. The layers below (src/passes/) assert these rules
+// instead of checking them again.
+//
+// Each check returns the broken rule as an Error whose message does not name the object;
+// the world prefixes "object <id> ('<name>'): " once (CollisionWorld::Impl::who).
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "passes/broad_phase_types.hpp"
+#include "vkcollide/world.hpp"
+
+namespace vkcollide::vk {
+struct Device;
+}
+
+namespace vkcollide::validation {
+
+// Every entry finite.
+Result<void> checkTransform(const Transform3x4& transform);
+// validateMesh's rules, and fewer than 2^30 triangles.
+Result<void> checkHostMesh(const HostMesh& mesh);
+// New positions of a host mesh: the same count, every one finite.
+Result<void> checkVertices(std::span<const Float3> positions, std::uint32_t vertex_count);
+Result<void> checkTypicalEdge(float typical_edge_length);
+
+// A GpuMeshDesc's layout: handles, counts, format, stride and offset alignment, index type,
+// 16-bit reach, and that the declared sizes cover what the counts need (16-bit indices are
+// read in whole 4-byte words: the buffer must cover the padding).
+Result<void> checkGpuMeshDesc(const GpuMeshDesc& desc);
+// The declared sizes against what the buffers can hold (passes::engineBufferCapacity).
+Result<void> checkDeclaredSizes(const GpuMeshDesc& desc, VkDeviceSize vertex_capacity, VkDeviceSize index_capacity);
+// Both buffers have device addresses (the description's addresses are more than the offsets).
+Result<void> checkEngineAddresses(const passes::GpuMesh& mesh, const GpuMeshDesc& desc);
+
+// Settings after automatic ones are filled in (resolveSettings): axes, resolution,
+// direction, epsilons, region, and coverage and backend against each other and the device.
+Result<void> checkSettings(const DetectSettings& resolved, const vk::Device& device);
+// The objects of one detection: at least one, fewer than 2^30 triangles in all.
+Result<void> checkScene(std::span<const passes::GpuMesh> meshes);
+
+}  // namespace vkcollide::validation

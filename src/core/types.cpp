@@ -1,0 +1,32 @@
+#include "vkcollide/types.hpp"
+
+namespace vkcollide {
+
+const char* toString(PackingMethod method) noexcept {
+    switch (method) {
+        case PackingMethod::Scan: return "scan";
+        case PackingMethod::Paper: return "paper";
+    }
+    return "?";
+}
+
+const char* toString(Coverage coverage) noexcept {
+    switch (coverage) {
+        case Coverage::Centre: return "centre";
+        case Coverage::Dilate: return "dilate";
+        case Coverage::Conservative: return "conservative";
+        case Coverage::Best: return "best";
+    }
+    return "?";
+}
+
+const char* toString(SamplingBackend backend) noexcept {
+    switch (backend) {
+        case SamplingBackend::Auto: return "auto";
+        case SamplingBackend::Raster: return "raster";
+        case SamplingBackend::Compute: return "compute";
+    }
+    return "?";
+}
+
+}  // namespace vkcollide

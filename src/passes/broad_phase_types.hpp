@@ -1,0 +1,103 @@
+// What goes into one broad-phase run and what comes out: the meshes as the GPU sees them,
+// the settings, the result, and the GPU input check's findings as data.
+//
+// The API (src/api/validation.cpp) checks every rule these carry before a run; the broad
+// phase asserts them (docs/rooms.md, "Validation").
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan_core.h>
+
+#include "broadphase.h"
+#include "graph/executor.hpp"
+#include "passes/sampling/sampling_types.hpp"
+#include "vkcollide/narrow.hpp"
+#include "vkcollide/types.hpp"
+
+namespace vkcollide::passes {
+
+using vkcollide::Coverage;
+using vkcollide::PackingMethod;
+using vkcollide::SamplingBackend;
+
+// A mesh as the GPU sees it. Addresses come from buffers created with
+// SHADER_DEVICE_ADDRESS usage; positions are three floats at `vertices + i * stride`.
+// 16-bit index data must be readable in whole 4-byte words (pad the buffer by 2 bytes).
+struct GpuMesh {
+    VkDeviceAddress vertices = 0;
+    std::uint32_t vertex_stride = 12;
+    std::uint32_t vertex_count = 0;
+    VkDeviceAddress indices = 0;
+    bool index16 = false;
+    std::uint32_t triangle_count = 0;
+    Transform3x4 transform = kIdentity3x4;  // row-major 3x4 object->world
+    bool open = false;
+    // Geometry only the GPU holds (an engine's buffers): each run checks its indices and
+    // positions there (host meshes are checked before upload).
+    bool check_on_gpu = false;
+};
+
+struct BroadPhaseSettings {
+    std::uint32_t resolution = 256;                 // power of two in [kMinResolution, kMaxResolution]
+    std::array<float, 3> direction{0, 0, 1};        // projection direction (any length > 0)
+    std::uint32_t layer_cap = 0;                    // 0: peel every layer
+    bool dual = false;                              // front and back peeling at once
+    PackingMethod packing = PackingMethod::Scan;
+    float open_epsilon = 0;                         // world units; open-surface depth proximity
+    float closed_epsilon = 0;                       // world units; closed surfaces this close touch
+    Coverage coverage = Coverage::Centre;           // never Best (the API resolves it)
+    float fit_margin = gpu::kFitMargin;             // relative margin of the automatic fit
+    bool keep_ray_image = false;                    // read back the collision-ray image
+    // Sample this world box instead of fitting the scene: min x,y,z then max x,y,z.
+    std::optional<std::array<float, 6>> region;
+    // Object sampling on the graphics pipeline or in compute (same rays and records);
+    // Auto picks per device and scene (chooseSamplingBackend in sampling/backend_choice.hpp).
+    SamplingBackend backend = SamplingBackend::Auto;
+    ComputeSamplingTuning compute;
+};
+
+// A problem the GPU input check found in one object (kObjectCheckOnGpu meshes), as data:
+// the API names the object and formats the message (describe()).
+struct ObjectFault {
+    enum class Kind : std::uint8_t {
+        IndexOutOfRange,    // an index >= the vertex count
+        NonFinitePosition,  // a vertex position that is NaN or infinite
+    };
+    std::uint32_t object = 0;              // index in the run's meshes
+    Kind kind = Kind::IndexOutOfRange;
+    std::uint32_t triangle = 0;            // one bad triangle of the object
+    std::uint32_t triangles_affected = 0;  // how many of the run's triangles have this problem
+    std::uint32_t vertex_count = 0;        // the object's vertex count
+};
+// "triangle 2 has an index >= the vertex count 50 (3 triangles affected)": the problem,
+// without naming the object.
+std::string describe(const ObjectFault& fault);
+
+struct BroadPhaseResult {
+    std::vector<CandidateTriangle> records;  // in global triangle order
+    std::vector<std::uint8_t> ray_image;     // N*N, row-major, 1 = collision ray (if kept)
+    std::uint32_t depth_complexity = 0;
+    std::uint32_t layers = 0;                // layers peeled: min(depth complexity, cap)
+    std::uint32_t peel_steps = 0;            // peeling passes recorded (half with dual)
+    std::uint32_t collision_rays = 0;
+    std::uint32_t triangles = 0;
+    // The sampling projection used (world -> [0,1]^2 image, depth): the caller's region, or
+    // the fit repeated on the host from the bounds the GPU measured (passes/projection.hpp).
+    gpu::Projection projection{};
+    std::vector<graph::PassTiming> passes;   // both submissions, in order
+    SamplingBackend backend = SamplingBackend::Raster;  // the one that ran (never Auto)
+    std::string backend_reason;              // one line: why
+    std::uint64_t fragments = 0;             // covered pixels summed over all triangles
+    std::uint32_t compute_small = 0, compute_big = 0, compute_items = 0;  // compute backend's triangle lists
+    bool compute_fragment_lists = false;     // compute backend peeled from per-ray fragment lists
+    // GPU time per stage (passes/stage.hpp; the front's clear, checks and fit count as
+    // sampling, as in the paper), and the host's reading of the results.
+    double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
+};
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,90 @@
+#include "passes/common_stages.hpp"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "shaders/all.hpp"
+
+namespace vkcollide::passes {
+
+using graph::PassContext;
+using graph::PassKind;
+using graph::Use;
+
+Result<std::unique_ptr<CommonStages>> CommonStages::create(vk::Device& device) {
+    std::unique_ptr<CommonStages> c(new CommonStages());
+    for (auto r : {makeCompute(device, c->validate_, shaders::validate_comp, "validate"),
+                   makeCompute(device, c->bounds_, shaders::bounds_comp, "bounds"),
+                   makeCompute(device, c->fit_, shaders::fit_comp, "fit")})
+        if (!r) return r.error();
+    return c;
+}
+
+void CommonStages::recordFront(graph::Graph& g, const RunView& run, const GraphBuffers& buffers, const CoreBuffers& core,
+                               const std::vector<std::pair<BufferId, VkDeviceSize>>& cleared) const {
+    const VkDeviceAddress frame = run.frame_address;
+    const graph::ResourceId header = buffers[core.header];
+    std::vector<std::pair<graph::ResourceId, VkDeviceSize>> zeroed;
+    auto clear = addPass(g, "clear", PassKind::Transfer, Stage::Prepare);
+    clear.use(header, Use::TransferDst);
+    for (const auto& [row, size] : cleared) {
+        clear.use(buffers[row], Use::TransferDst);
+        zeroed.push_back({buffers[row], size});
+    }
+    clear.record([header, zeroed](PassContext& pc) {
+        // Writes the engine submitted earlier (vertex buffers it skinned or simulated)
+        // become visible to everything this detection does.
+        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+        mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &mb;
+        pc.fns().vkCmdPipelineBarrier2(pc.cmd, &dep);
+        // Disjoint ranges: counters 0, bound minima +inf (ordered), maxima and checks 0.
+        constexpr VkDeviceSize mins = offsetof(gpu::Header, bounds), maxs = mins + 12;
+        const VkBuffer h = pc.buffer(header).handle();
+        pc.fns().vkCmdFillBuffer(pc.cmd, h, 0, mins, 0);
+        pc.fns().vkCmdFillBuffer(pc.cmd, h, mins, 12, 0xFFFFFFFFu);
+        pc.fns().vkCmdFillBuffer(pc.cmd, h, maxs, sizeof(gpu::Header) - maxs, 0);
+        for (const auto& [id, size] : zeroed) pc.fns().vkCmdFillBuffer(pc.cmd, pc.buffer(id).handle(), 0, size, 0);
+    });
+    if (run.any_gpu_check) {
+        addPass(g, "validate", PassKind::Compute, Stage::Prepare).readWrite(header).record([this, run](PassContext& pc) {
+            for (std::uint32_t i = 0; i < run.meshes.size(); ++i) {
+                if (!run.meshes[i].check_on_gpu) continue;
+                bindAndPush(pc, validate_, run.frame_address, i);
+                pc.fns().vkCmdDispatch(pc.cmd, groups(run.meshes[i].triangle_count), 1, 1);
+            }
+        });
+    }
+    if (!run.settings.region) {
+        addPass(g, "bounds", PassKind::Compute, Stage::Prepare).readWrite(header).record([this, run](PassContext& pc) {
+            for (std::uint32_t i = 0; i < run.meshes.size(); ++i) {
+                bindAndPush(pc, bounds_, run.frame_address, i);
+                pc.fns().vkCmdDispatch(pc.cmd, std::max(groups(run.meshes[i].vertex_count), 1u), 1, 1);
+            }
+        });
+        addPass(g, "fit", PassKind::Compute, Stage::Prepare)
+            .read(header)
+            .write(buffers[core.projection])
+            .record([this, frame](PassContext& pc) {
+                bindAndPush(pc, fit_, frame);
+                pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+            });
+    }
+}
+
+void CommonStages::recordReadback(graph::Graph& g, const GraphBuffers& buffers, const CoreBuffers& core) const {
+    const graph::ResourceId header = buffers[core.header], header_rb = buffers[core.header_readback];
+    addPass(g, "readback-header", PassKind::Transfer, Stage::Readback)
+        .use(header, Use::TransferSrc)
+        .use(header_rb, Use::TransferDst)
+        .record([header, header_rb](PassContext& pc) {
+            VkBufferCopy copy{0, 0, sizeof(gpu::Header)};
+            pc.fns().vkCmdCopyBuffer(pc.cmd, pc.buffer(header).handle(), pc.buffer(header_rb).handle(), 1, &copy);
+        });
+}
+
+}  // namespace vkcollide::passes

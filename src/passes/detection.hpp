@@ -1,0 +1,105 @@
+// One detection's GPU part, without the world: the broad phase along one or three
+// directions, started (measured, or from the depth the last detection measured) and
+// collected; engine meshes that fail the GPU input check are left out and the run repeated
+// (BadObjectPolicy::Exclude), or the detection fails (Fail). With three directions the
+// candidates are united in world space (axis_union.hpp).
+//
+// Objects are named by their index in the span given to start(); the caller (the API) maps
+// indices to its objects and words the errors (failure() holds the findings as data).
+//
+// Not thread-safe; one detection in flight per instance.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "passes/broad_phase.hpp"
+
+namespace vkcollide::passes {
+
+struct DetectionSettings {
+    BroadPhaseSettings broad;  // `direction` is the first direction
+    std::uint32_t axes = 1;    // 1, or 3: also the first direction's image axes u and v
+    BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
+    // The broad-phase method every direction runs (a change recreates the broad phases).
+    MethodFactory method = PeelingMethod::create;
+};
+
+struct DetectionResult {
+    std::vector<BroadPhaseResult> axes;           // one per direction, in order
+    std::array<std::array<float, 3>, 3> directions{};
+    // Broad-phase object index (CandidateTriangle::object) -> index in start()'s meshes.
+    std::vector<std::uint32_t> objects;
+    // Objects left out (ObjectFault::object: index in start()'s meshes), with what was wrong.
+    std::vector<ObjectFault> excluded;
+    std::vector<CandidateTriangle> united;        // with several directions
+    // What the narrow phase tests: the united records, or the one direction's.
+    std::span<const CandidateTriangle> candidates() const { return axes.size() > 1 ? std::span<const CandidateTriangle>(united) : axes[0].records; }
+};
+
+class Detection {
+public:
+    // Creates the first direction's broad phase (its pipelines) now.
+    static Result<std::unique_ptr<Detection>> create(vk::Device& device);
+    ~Detection();
+    Detection(const Detection&) = delete;
+    Detection& operator=(const Detection&) = delete;
+
+    // Starts a detection of `meshes` (copied). `measure`: each direction measures its depth
+    // complexity first (two submissions, waited for); otherwise it peels as many layers as
+    // its last measurement (one submission, left in flight), measuring only where none is
+    // known yet. Preconditions as BroadPhase's; settings.axes is 1 or 3.
+    [[nodiscard]] Result<void> start(std::span<const GpuMesh> meshes, const DetectionSettings& settings, bool measure);
+    // Waits for every direction, leaving out bad engine meshes and running again as needed.
+    [[nodiscard]] Result<DetectionResult> collect();
+    bool pending() const noexcept { return pending_; }
+    // The scene changed: the next detection measures instead of predicting its depth.
+    void forgetDepth() noexcept { depth_known_.fill(false); }
+    // Bytes of the broad phases' GPU buffers.
+    std::uint64_t memoryBytes() const noexcept;
+
+    // After start() or collect() failed with InvalidMesh: the GPU check's findings (objects
+    // as indices in start()'s meshes), and whether every object had been left out. Empty
+    // for other errors.
+    struct Failure {
+        std::vector<ObjectFault> faults;
+        bool none_left = false;
+    };
+    const Failure& failure() const noexcept { return failure_; }
+
+private:
+    explicit Detection(vk::Device& device) : device_(&device) {}
+    void selectRunObjects();
+    Result<void> startAxes(bool measure);
+    Result<std::vector<BroadPhaseResult>> gather();
+    bool excludable(const Error& e) const;
+    Result<void> excludeBad();
+    Result<std::vector<BroadPhaseResult>> runExcluding();
+    Error failed(Error e);
+
+    vk::Device* device_;
+    // One broad phase per direction (the second and third only for three axes).
+    std::array<std::unique_ptr<BroadPhase>, 3> broads_;
+    std::array<MethodFactory, 3> broad_methods_{};  // the method each was created with
+    std::array<std::uint32_t, 3> last_depth_{};
+    std::array<bool, 3> depth_known_{};
+    // The detection in flight.
+    bool pending_ = false;
+    DetectionSettings settings_;
+    std::uint32_t axes_ = 1;
+    std::array<std::array<float, 3>, 3> directions_{};
+    std::vector<GpuMesh> meshes_;              // as given
+    std::vector<std::uint32_t> run_objects_;   // broad-phase index -> index in meshes_
+    std::vector<GpuMesh> run_meshes_;          // meshes_ without the excluded ones
+    std::vector<ObjectFault> excluded_;
+    std::array<bool, 3> axis_pending_{};                              // submitted, to collect
+    std::array<std::optional<BroadPhaseResult>, 3> ready_;            // measured runs, complete
+    std::uint32_t failed_axis_ = 0;            // the axis whose error the last call returned
+    Failure failure_;
+};
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,58 @@
+// The seam between the broad phase and a method. Every run records
+//
+//     front (clear, GPU input checks, bounds, fit)      common_stages.hpp
+//     method: measuring passes                          BroadPhaseMethod::recordMeasure
+//     method: main passes                               BroadPhaseMethod::recordMain
+//     readback of the header                            common_stages.hpp
+//
+// run() submits the first two, waits, lets the method read the header (afterMeasure), then
+// submits the main passes; submit() records all of it in one submission after predict().
+// BroadPhase::record is the one recording path for both.
+//
+// PeelingMethod (the paper: sampling, merging, separation, packing) is the one method
+// today. To add one: a class implementing this interface in its own folder under
+// src/passes/ (with a sources.cmake there), its buffers added as rows of the BufferTable
+// in its factory, its own gpu::Frame extension behind gpu::Frame::method if its shaders
+// need one; BroadPhase::create(device, yourFactory) runs it (docs/rooms.md).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "passes/buffer_table.hpp"
+#include "passes/stage.hpp"
+
+namespace vkcollide::passes {
+
+// The rows every method shares, added by the broad phase before the method's own.
+struct CoreBuffers {
+    BufferId frame, objects, projection, header, header_readback;
+};
+
+class BroadPhaseMethod {
+public:
+    virtual ~BroadPhaseMethod() = default;
+    // Per run, after the table's buffers are reserved and before the frame is uploaded:
+    // per-run choices, the method's own resources, and its fields of `io_frame`.
+    [[nodiscard]] virtual Result<void> prepare(const BroadPhaseSettings& settings, const RunShape& shape, gpu::Frame& io_frame) = 0;
+    // Its own resources (outside the table) into a graph about to be recorded.
+    virtual void import(graph::Graph& g) = 0;
+    // Passes that measure the scene, after the front stage.
+    virtual void recordMeasure(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const = 0;
+    // run(), between the submissions: the header the measuring submission wrote.
+    [[nodiscard]] virtual Result<void> afterMeasure(const RunView& run, const gpu::Header& header) = 0;
+    // submit(), instead of afterMeasure: nothing is measured yet; `layers` is the caller's
+    // prediction of the depth (what the last run measured).
+    [[nodiscard]] virtual Result<void> predict(const RunView& run, std::uint32_t layers) = 0;
+    // The method's main passes.
+    virtual void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const = 0;
+    // After the last submission: the method's outputs and statistics into `io_result`.
+    [[nodiscard]] virtual Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) = 0;
+};
+
+// Creates a method on `device`, adding its rows to `io_table` (after the core rows).
+using MethodFactory = Result<std::unique_ptr<BroadPhaseMethod>> (*)(vk::Device& device, BufferTable& io_table,
+                                                                   const CoreBuffers& core);
+
+}  // namespace vkcollide::passes

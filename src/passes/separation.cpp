@@ -1,0 +1,27 @@
+#include "passes/separation.hpp"
+
+#include "shaders/all.hpp"
+
+namespace vkcollide::passes {
+
+Result<std::unique_ptr<Separation>> Separation::create(vk::Device& device) {
+    std::unique_ptr<Separation> s(new Separation());
+    if (auto r = makeCompute(device, s->separate_, shaders::separate_comp, "separate"); !r) return r.error();
+    return s;
+}
+
+void Separation::record(graph::Graph& g, const RunView& run, graph::ResourceId projection, graph::ResourceId bundles,
+                        graph::ResourceId sparse) const {
+    addPass(g, "separate", graph::PassKind::Compute, Stage::Separation)
+        .read(projection)
+        .read(bundles)
+        .write(sparse)
+        .record([this, run](graph::PassContext& pc) {
+            for (std::uint32_t i = 0; i < run.meshes.size(); ++i) {
+                bindAndPush(pc, separate_, run.frame_address, i);
+                pc.fns().vkCmdDispatch(pc.cmd, groups(run.meshes[i].triangle_count), 1, 1);
+            }
+        });
+}
+
+}  // namespace vkcollide::passes

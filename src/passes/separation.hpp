@@ -1,0 +1,23 @@
+// Paper pass 3, primitive separation: each triangle keeps the box of the collision-ray
+// bundles under its corners intersected with its own screen box (empty: not a candidate),
+// one invocation per triangle, written to the sparse per-triangle array. One pass ("separate").
+#pragma once
+
+#include <memory>
+
+#include "passes/stage.hpp"
+
+namespace vkcollide::passes {
+
+class Separation {
+public:
+    static Result<std::unique_ptr<Separation>> create(vk::Device& device);
+    void record(graph::Graph& g, const RunView& run, graph::ResourceId projection, graph::ResourceId bundles,
+                graph::ResourceId sparse) const;
+
+private:
+    Separation() = default;
+    vk::Pipeline separate_;
+};
+
+}  // namespace vkcollide::passes

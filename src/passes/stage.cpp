@@ -1,0 +1,53 @@
+#include "passes/stage.hpp"
+
+namespace vkcollide::passes {
+
+const char* toString(Stage stage) noexcept {
+    switch (stage) {
+        case Stage::None: return "none";
+        case Stage::Prepare: return "prepare";
+        case Stage::Sampling: return "sampling";
+        case Stage::Merging: return "merging";
+        case Stage::Separation: return "separation";
+        case Stage::Packing: return "packing";
+        case Stage::Readback: return "readback";
+    }
+    return "?";
+}
+
+void addStageTime(BroadPhaseResult& r, const graph::PassTiming& pass) {
+    switch (static_cast<Stage>(pass.stage)) {
+        case Stage::Prepare:
+        case Stage::Sampling: r.sampling_ms += pass.gpu_ms; break;
+        case Stage::Merging: r.merging_ms += pass.gpu_ms; break;
+        case Stage::Separation: r.separation_ms += pass.gpu_ms; break;
+        case Stage::Packing: r.packing_ms += pass.gpu_ms; break;
+        case Stage::None:
+        case Stage::Readback: break;
+    }
+}
+
+graph::PassBuilder addPass(graph::Graph& g, std::string name, graph::PassKind kind, Stage stage) {
+    return g.addPass(std::move(name), kind).stage(static_cast<graph::StageTag>(stage));
+}
+
+void bindAndPush(const graph::PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint32_t object,
+                 std::uint32_t step, std::uint32_t level, std::uint32_t coverage) {
+    gpu::Push push{frame, object, step, level, coverage};
+    pc.fns().vkCmdBindPipeline(pc.cmd, p.bindPoint(), p.handle());
+    const VkShaderStageFlags stages = p.bindPoint() == VK_PIPELINE_BIND_POINT_COMPUTE
+                                          ? VkShaderStageFlags(VK_SHADER_STAGE_COMPUTE_BIT)
+                                          : VkShaderStageFlags(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
+    pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), stages, 0, sizeof(push), &push);
+}
+
+std::uint32_t groups(std::uint64_t items, std::uint32_t size) { return static_cast<std::uint32_t>((items + size - 1) / size); }
+
+Result<void> makeCompute(vk::Device& device, vk::Pipeline& out, std::span<const std::uint32_t> spirv, const char* name) {
+    auto p = vk::Pipeline::createCompute(device, spirv, {}, sizeof(gpu::Push), name);
+    if (!p) return p.error();
+    out = std::move(*p);
+    return {};
+}
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,65 @@
+// What every broad-phase stage shares: the stage a pass belongs to (for its GPU time), the
+// run being recorded, the broad phase's buffers as graph resources, and the dispatch
+// helpers. A stage is a class that owns its pipelines and records its passes into a graph
+// (docs/rooms.md lists them).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "broadphase.h"
+#include "graph/executor.hpp"
+#include "passes/broad_phase_types.hpp"
+#include "vk/resources.hpp"
+
+namespace vkcollide::passes {
+
+// The stage a pass belongs to; its GPU time is summed into the matching BroadPhaseResult
+// field (addStageTime). A new stage adds a value here and a field there.
+enum class Stage : graph::StageTag {
+    None = 0,    // not timed into a stage (graph passes that declared nothing)
+    Prepare,     // clear, GPU input checks, bounds and fit (timed with sampling, as the paper does)
+    Sampling,    // depth complexity, peeling, classification (paper pass 1)
+    Merging,     // the ray-bundle mipmap (pass 2)
+    Separation,  // kept boxes per triangle (pass 3)
+    Packing,     // compaction into the readback buffer (pass 4)
+    Readback,    // copies the host reads
+};
+const char* toString(Stage stage) noexcept;
+// Adds one pass's GPU time to its stage's field of `io_result`.
+void addStageTime(BroadPhaseResult& io_result, const graph::PassTiming& pass);
+
+// Index of a buffer in the broad phase's BufferTable.
+using BufferId = std::uint32_t;
+
+// The run being recorded. Refers to the broad phase's own copy of the run's inputs, which
+// lives until the next prepare(), so record callbacks (run at submission, after the
+// recording functions returned) may capture it by value.
+struct RunView {
+    const BroadPhaseSettings& settings;
+    std::span<const GpuMesh> meshes;
+    const gpu::Frame& frame;  // as uploaded
+    VkDeviceAddress frame_address = 0;
+    bool any_gpu_check = false;  // some mesh has check_on_gpu
+};
+
+// The table's buffers as resources of one graph (BufferTable::import); invalid ids for
+// buffers this run does not use.
+struct GraphBuffers {
+    std::vector<graph::ResourceId> ids;
+    graph::ResourceId operator[](BufferId b) const { return ids.at(b); }
+};
+
+// Adds a pass that declares its stage.
+graph::PassBuilder addPass(graph::Graph& g, std::string name, graph::PassKind kind, Stage stage);
+// Binds `p` and pushes gpu::Push for one dispatch or draw.
+void bindAndPush(const graph::PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint32_t object = 0,
+                 std::uint32_t step = 0, std::uint32_t level = 0, std::uint32_t coverage = gpu::kCoverageCentre);
+// Workgroups for `items` invocations.
+std::uint32_t groups(std::uint64_t items, std::uint32_t size = gpu::kGroupSize);
+// A compute pipeline from embedded SPIR-V with the broad phase's push constants (gpu::Push).
+Result<void> makeCompute(vk::Device& device, vk::Pipeline& out, std::span<const std::uint32_t> spirv, const char* name);
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,153 @@
+// The one validation gate (src/api/validation.cpp): each rule refused at the API with an
+// error that names the object once and the rule, before anything is uploaded or recorded.
+#include <catch2/catch.hpp>
+
+#include <limits>
+#include <string>
+
+#include "api/validation.hpp"
+#include "passes/broad_phase_types.hpp"
+#include "support/gpu_fixture.hpp"
+#include "vkcollide/scene.hpp"
+#include "vkcollide/world.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+
+std::size_t count(const std::string& text, const std::string& what) {
+    std::size_t n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
+}  // namespace
+
+TEST_CASE("addMesh names the object once and checks the transform before uploading", "[api][gpu][validation]") {
+    ValidatedContext ctx;
+    auto world = CollisionWorld::create(ctx.context(), {.threads = 1});
+    REQUIRE(world);
+    auto sphere = uvSphere(1.0f, 12, 6);
+    REQUIRE(sphere);
+    sphere->name = "mesh-name";
+    HostMesh torn = *sphere;
+    torn.indices[4] = 100000;
+    auto r = (*world)->addMesh(torn, {.name = "torn"});
+    REQUIRE_FALSE(r);
+    CHECK(r.error().message().rfind("object 0 ('torn'): ", 0) == 0);
+    CHECK(count(r.error().message(), "object") == 1);
+    CHECK_FALSE(mentions(r.error(), "mesh-name"));  // the mesh's own name is not a second prefix
+    CHECK(mentions(r.error(), "index 100000 of triangle 1 is out of range"));
+
+    ObjectOptions inf;
+    inf.name = "far";
+    inf.transform[7] = std::numeric_limits<float>::infinity();
+    const std::uint64_t before = (*world)->objectCount();
+    r = (*world)->addMesh(*sphere, inf);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code() == ErrorCode::InvalidArgument);
+    CHECK(r.error().message() == "object 0 ('far'): transform is not finite");
+    CHECK((*world)->objectCount() == before);
+    // A refused object takes no id and leaves nothing behind.
+    auto ok = (*world)->addMesh(*sphere, {.name = "fine"});
+    REQUIRE(ok);
+    CHECK(*ok == 0);
+    auto bad_update = (*world)->setTransform(*ok, inf.transform);
+    REQUIRE_FALSE(bad_update);
+    CHECK(bad_update.error().message() == "object 0 ('fine'): transform is not finite");
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("detection settings are refused at the API, naming the rule", "[api][gpu][validation]") {
+    ValidatedContext ctx;
+    auto world = CollisionWorld::create(ctx.context(), {.threads = 1});
+    REQUIRE(world);
+    auto none = (*world)->detect();
+    REQUIRE_FALSE(none);
+    CHECK(mentions(none.error(), "no objects"));
+    CHECK_FALSE((*world)->resolveSettings());
+    auto sphere = uvSphere(1.0f, 12, 6);
+    REQUIRE(sphere);
+    REQUIRE((*world)->addMesh(*sphere));
+    struct Bad {
+        const char* what;
+        void (*spoil)(DetectSettings&);
+        ErrorCode code;
+        const char* says;
+    };
+    const Bad bad[] = {
+        {"resolution", [](DetectSettings& s) { s.resolution = 100; }, ErrorCode::InvalidArgument, "power of two in [4, 16384]"},
+        {"resolution too big", [](DetectSettings& s) { s.resolution = 32768; }, ErrorCode::InvalidArgument, "power of two"},
+        {"direction", [](DetectSettings& s) { s.direction = std::array<float, 3>{0, 0, 0}; }, ErrorCode::InvalidArgument, "direction"},
+        {"direction NaN", [](DetectSettings& s) { s.direction = std::array<float, 3>{std::nanf(""), 0, 1}; }, ErrorCode::InvalidArgument,
+         "direction"},
+        {"open epsilon", [](DetectSettings& s) { s.open_epsilon = -1.0f; }, ErrorCode::InvalidArgument, "open_epsilon"},
+        {"closed epsilon", [](DetectSettings& s) { s.closed_epsilon = std::numeric_limits<float>::infinity(); },
+         ErrorCode::InvalidArgument, "closed_epsilon"},
+        {"region", [](DetectSettings& s) { s.region = std::array<float, 6>{1, 0, 0, 0, 1, 1}; }, ErrorCode::InvalidArgument,
+         "min <= max"},
+        {"axes", [](DetectSettings& s) { s.axes = 2; }, ErrorCode::InvalidArgument, "axes must be 1 or 3"},
+        {"compute with dilation", [](DetectSettings& s) { s.coverage = Coverage::Dilate, s.backend = SamplingBackend::Compute; },
+         ErrorCode::UnsupportedFeature, "raster sampling backend"},
+    };
+    for (const Bad& b : bad) {
+        INFO(b.what);
+        DetectSettings s;
+        b.spoil(s);
+        auto r = (*world)->detect(s);
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code() == b.code);
+        CHECK(mentions(r.error(), b.says));
+        auto resolved = (*world)->resolveSettings(s);  // the same gate
+        REQUIRE_FALSE(resolved);
+        CHECK(resolved.error().message() == r.error().message());
+        CHECK_FALSE((*world)->submit(s));
+        CHECK_FALSE((*world)->pending());
+    }
+    CHECK((*world)->detect());  // still usable
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("engine mesh layouts are checked without a device", "[api][validation]") {
+    GpuMeshDesc d;
+    d.vertex_buffer = reinterpret_cast<VkBuffer>(std::uintptr_t{1});
+    d.index_buffer = reinterpret_cast<VkBuffer>(std::uintptr_t{2});
+    d.vertex_count = 4;
+    d.vertex_buffer_size = 48;
+    d.index_count = 6;
+    d.index_buffer_size = 24;
+    CHECK(validation::checkGpuMeshDesc(d));
+    GpuMeshDesc short16 = d;
+    short16.index_type = VK_INDEX_TYPE_UINT16;
+    short16.index_count = 3;
+    short16.index_buffer_size = 6;  // 3 x 2 bytes, but read in whole words: 8 needed
+    auto r = validation::checkGpuMeshDesc(short16);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code() == ErrorCode::BufferTooSmall);
+    CHECK(mentions(r.error(), "pad by 2 bytes"));
+    short16.index_buffer_size = 8;
+    CHECK(validation::checkGpuMeshDesc(short16));
+    CHECK_FALSE(validation::checkDeclaredSizes(d, 48, 16));
+    CHECK(validation::checkDeclaredSizes(d, 64, 24));
+    passes::GpuMesh no_address;
+    no_address.vertices = d.vertex_offset;
+    no_address.indices = 256;
+    CHECK_FALSE(validation::checkEngineAddresses(no_address, d));
+    CHECK(validation::checkTypicalEdge(0.0f));
+    CHECK_FALSE(validation::checkTypicalEdge(-1.0f));
+    const Float3 points[2] = {{0, 0, 0}, {1, std::numeric_limits<float>::quiet_NaN(), 0}};
+    CHECK_FALSE(validation::checkVertices(points, 3));
+    auto nan = validation::checkVertices(points, 2);
+    REQUIRE_FALSE(nan);
+    CHECK(nan.error().message() == "vertex 1 is NaN or infinite");
+}
+
+TEST_CASE("GPU check findings are worded from data", "[api][validation]") {
+    passes::ObjectFault index{3, passes::ObjectFault::Kind::IndexOutOfRange, 7, 2, 50};
+    CHECK(passes::describe(index) == "triangle 7 has an index >= the vertex count 50 (2 triangles affected)");
+    passes::ObjectFault nan{0, passes::ObjectFault::Kind::NonFinitePosition, 1, 9, 12};
+    CHECK(passes::describe(nan) == "triangle 1 has a NaN or infinite vertex position (9 triangles affected)");
+}

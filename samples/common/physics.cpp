@@ -45,6 +45,16 @@ void SoftBody::push(std::uint32_t vertex, const Vec3& direction, float distance)
 
 void SoftBody::setVelocity(const Vec3& v) { std::fill(velocities_.begin(), velocities_.end(), v); }
 
+Vec3 SoftBody::velocity() const {
+    Vec3 v = Vec3::Zero();
+    for (const Vec3& vi : velocities_) v += vi;
+    return v / static_cast<float>(velocities_.size());
+}
+
+void SoftBody::addVelocity(const Vec3& dv) {
+    for (Vec3& v : velocities_) v += dv;
+}
+
 Vec3 SoftBody::centre() const {
     Vec3 c = Vec3::Zero();
     for (const Float3& p : positions_) c += toVec(p);
@@ -89,18 +99,22 @@ void SoftBody::step(float dt, const Vec3& gravity, float floor_y) {
     const float det = a.determinant();
     a = det > 1e-6f ? Eigen::Matrix3f(a / std::cbrt(det)) : r;
     const Eigen::Matrix3f t = softness_ * a + (1 - softness_) * r;
+    float lowest = floor_y;
     for (std::size_t i = 0; i < n; ++i) {
         const Vec3 goal = t * rest_offsets_[i] + c;
-        Vec3 x = predicted[i] + stiffness_ * (goal - predicted[i]);
-        Vec3 v = (x - toVec(positions_[i])) / dt;
-        if (x.y() < floor_y) {
-            x.y() = floor_y;
-            v.y() = std::max(v.y(), 0.0f);
-            v.x() *= 0.8f;
-            v.z() *= 0.8f;
-        }
-        velocities_[i] = v * 0.998f;
+        const Vec3 x = predicted[i] + stiffness_ * (goal - predicted[i]);
+        velocities_[i] = (x - toVec(positions_[i])) / dt * 0.998f;
         positions_[i] = toFloat3(x);
+        lowest = std::min(lowest, x.y());
+    }
+    // The floor lifts the whole body (clamping single vertices would flatten its
+    // underside into overlapping triangles) and stops it sinking, with some friction.
+    if (lowest < floor_y) {
+        for (std::size_t i = 0; i < n; ++i) {
+            positions_[i].y += floor_y - lowest;
+            Vec3& v = velocities_[i];
+            v = Vec3(0.9f * v.x(), std::max(v.y(), 0.0f), 0.9f * v.z());
+        }
     }
 }
 

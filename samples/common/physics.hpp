@@ -40,9 +40,14 @@ public:
     // A push of `distance` along `direction` on one vertex (a collision response); pushes
     // on one vertex are averaged, and velocity into the push is removed.
     void push(std::uint32_t vertex, const Vec3& direction, float distance);
-    // Gravity, collision pushes, shape matching, a floor at y = floor_y.
+    // Gravity, collision pushes, shape matching, a floor at y = floor_y (which lifts the
+    // whole body).
     void step(float dt, const Vec3& gravity, float floor_y);
     void setVelocity(const Vec3& v);
+    // The mean velocity of the vertices, and a change of every vertex's velocity (a
+    // collision impulse on the whole body).
+    Vec3 velocity() const;
+    void addVelocity(const Vec3& dv);
 
     const std::vector<vkcollide::Float3>& positions() const { return positions_; }
     Vec3 centre() const;

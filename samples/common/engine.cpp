@@ -356,4 +356,28 @@ VkShaderModule Engine::createShaderModule(std::span<const std::uint32_t> spirv) 
     return m;
 }
 
+Engine::ComputePipeline Engine::createComputePipeline(std::span<const std::uint32_t> spirv, std::uint32_t push_size) {
+    ComputePipeline out;
+    VkPushConstantRange push{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_size};
+    VkPipelineLayoutCreateInfo lci{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    lci.pushConstantRangeCount = 1;
+    lci.pPushConstantRanges = &push;
+    check(vkCreatePipelineLayout(device_, &lci, nullptr, &out.layout), "vkCreatePipelineLayout");
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = createShaderModule(spirv);
+    ci.stage.pName = "main";
+    ci.layout = out.layout;
+    check(vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &ci, nullptr, &out.pipeline), "vkCreateComputePipelines");
+    vkDestroyShaderModule(device_, ci.stage.module, nullptr);
+    return out;
+}
+
+void Engine::destroy(ComputePipeline& p) {
+    if (p.pipeline) vkDestroyPipeline(device_, p.pipeline, nullptr);
+    if (p.layout) vkDestroyPipelineLayout(device_, p.layout, nullptr);
+    p = {};
+}
+
 }  // namespace samples

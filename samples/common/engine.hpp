@@ -85,6 +85,15 @@ public:
 
     VkShaderModule createShaderModule(std::span<const std::uint32_t> spirv);
 
+    // A compute pipeline whose only input is `push_size` bytes of push constants (the
+    // shaders reach their buffers through device addresses).
+    struct ComputePipeline {
+        VkPipeline pipeline = VK_NULL_HANDLE;
+        VkPipelineLayout layout = VK_NULL_HANDLE;
+    };
+    ComputePipeline createComputePipeline(std::span<const std::uint32_t> spirv, std::uint32_t push_size);
+    void destroy(ComputePipeline& pipeline);
+
 private:
     Engine() = default;
     VkInstance instance_ = VK_NULL_HANDLE;

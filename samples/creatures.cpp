@@ -15,6 +15,7 @@
 #include "common/vk.hpp"  // first: the samples call Vulkan themselves
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -191,7 +192,12 @@ int main(int argc, char** argv) {
 
     // Per tentacle: retracting after a hit, or growing back.
     std::vector<bool> retracting(std::size_t{creatures} * tentacles, false);
-    const DetectSettings settings = common.detectSettings();
+    // vkcollide measures host meshes itself but knows nothing of where GPU vertices are:
+    // the engine does, so it says which box to sample (creatures and the ships' paths).
+    // That box also sets the automatic resolution.
+    DetectSettings settings = common.detectSettings();
+    const float reach = kBodyRadius * 1.04f + kTentacleLength + kTentacleRadius + 0.3f;
+    settings.region = std::array<float, 6>{-field / 2 - 3.0f, -reach - 1.0f, -field / 2 - reach, field / 2 + 3.0f, reach + 1.0f, field / 2 + reach};
     FrameLog log(common.out + "/frames.csv", {"tentacle_pairs", "ship_pairs", "retracting", "new_retractions", "shortest_tentacle"},
                  common.frames, common.quiet);
     for (int frame = 0; frame < common.frames; ++frame) {

@@ -209,8 +209,7 @@ int main(int argc, char** argv) {
         float lowest = bodies[0].position.y();
         for (const RigidBody& b : bodies) lowest = std::min(lowest, b.position.y());
         for (const RigidBody& b : bodies)
-            in_box += std::abs(b.position.x()) < box_size / 2 && std::abs(b.position.z()) < box_size / 2 && b.position.y() > 0 &&
-                      b.position.y() < 1.6f;
+            in_box += std::abs(b.position.x()) < box_size / 2 && std::abs(b.position.z()) < box_size / 2 && b.position.y() > 0;
 
         const auto render_start = std::chrono::steady_clock::now();
         if (!common.no_png) {

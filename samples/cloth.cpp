@@ -195,7 +195,7 @@ int main(int argc, char** argv) {
         // Render what was tested, with the colliding triangles highlighted.
         const auto render_start = std::chrono::steady_clock::now();
         renderer.updateVertices(cloth_draw, now);
-        if (!common.no_png) {
+        if (writesFrame(common, frame)) {
             const auto& image = renderer.render(camera);
             if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
                 die("cannot write " + framePath(common.out, frame));

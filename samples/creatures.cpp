@@ -283,7 +283,7 @@ int main(int argc, char** argv) {
         sim_ms += msSince(response_start);
 
         const auto render_start = std::chrono::steady_clock::now();
-        if (!common.no_png) {
+        if (writesFrame(common, frame)) {
             const auto& image = renderer.render(camera);
             if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
                 die("cannot write " + framePath(common.out, frame));

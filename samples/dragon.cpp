@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
             renderer.highlight(dragon_draw, p.triangle_a);
             renderer.highlight(bunny_draw, p.triangle_b);
         }
-        if (!common.no_png) {
+        if (writesFrame(common, frame)) {
             const auto& image = renderer.render(camera);
             if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
                 die("cannot write " + framePath(common.out, frame));

@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
             in_box += std::abs(b.position.x()) < box_size / 2 && std::abs(b.position.z()) < box_size / 2 && b.position.y() > 0;
 
         const auto render_start = std::chrono::steady_clock::now();
-        if (!common.no_png) {
+        if (writesFrame(common, frame)) {
             const auto& image = renderer.render(camera);
             if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
                 die("cannot write " + framePath(common.out, frame));

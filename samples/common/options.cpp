@@ -104,6 +104,7 @@ void addCommonOptions(Args& args, CommonOptions& o) {
     args.option("width", o.width, "image width in pixels");
     args.option("height", o.height, "image height in pixels");
     args.flag("no-png", o.no_png, "write no images (statistics only)");
+    args.option("png-every", o.png_every, "write every n-th frame only");
     args.flag("quiet", o.quiet, "no line per frame, only the progress line and the summary");
     args.flag("validation", o.validation, "Vulkan validation layer on; any message fails the run (also VKCOLLIDE_TEST_VALIDATION=1)");
     args.option("device", o.device, "Vulkan device name substring (also VKCOLLIDE_DEVICE)");
@@ -138,11 +139,14 @@ void finishCommonOptions(CommonOptions& o, const char* sample_name) {
     if (const char* env = std::getenv("VKCOLLIDE_TEST_VALIDATION"); env && std::strcmp(env, "1") == 0) o.validation = true;
     if (o.frames < 1) die("--frames must be at least 1");
     if (o.width < 16 || o.height < 16 || o.width > 8192 || o.height > 8192) die("--width and --height must be in [16, 8192]");
+    if (o.png_every < 1) die("--png-every must be at least 1");
     if (o.out.empty()) o.out = sample_name;
     std::error_code ec;
     std::filesystem::create_directories(o.out, ec);
     if (ec) die("cannot create the output folder " + o.out + ": " + ec.message());
 }
+
+bool writesFrame(const CommonOptions& o, int frame) { return !o.no_png && frame % int(o.png_every) == 0; }
 
 std::string findDataMesh(const CommonOptions& o, const std::string& file) {
     namespace fs = std::filesystem;

@@ -42,6 +42,7 @@ struct CommonOptions {
     std::string out;                 // folder for frame_NNNN.png and frames.csv; default: the sample's name
     std::uint32_t width = 640, height = 400;
     bool no_png = false;             // statistics only
+    std::uint32_t png_every = 1;     // write every n-th frame only
     bool quiet = false;              // no line per frame (the progress line stays)
     bool validation = false;         // also on when VKCOLLIDE_TEST_VALIDATION=1 (the test suite)
     std::string device;              // device name substring
@@ -66,6 +67,9 @@ void addCommonOptions(Args& args, CommonOptions& options);
 // Turns validation on from VKCOLLIDE_TEST_VALIDATION, fills the default output folder and
 // creates it. Call after Args::parse.
 void finishCommonOptions(CommonOptions& options, const char* sample_name);
+
+// Whether this frame is written as a PNG (--no-png, --png-every).
+bool writesFrame(const CommonOptions& options, int frame);
 
 // Path of a CGAL mesh (tools/fetch_cgal_data.sh), or empty when it is not there.
 std::string findDataMesh(const CommonOptions& options, const std::string& file);

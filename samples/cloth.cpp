@@ -5,8 +5,8 @@
 // close in depth, not from inside/outside), self-collision, new vertices every frame
 // (updateVertices), and a response built from the pairs themselves. The response vectors
 // of DetectResult assume closed, outward-facing surfaces; a cloth has no outside, so the
-// cloth is pushed along the sphere triangle's normal, and away from the cloth triangle it
-// touches on the side it came from.
+// cloth is kept in front of the obstacle triangles it touches, and pushed back from a
+// cloth triangle it touches to the side it came from.
 //
 //   vkcollide_cloth [--frames 400] [--cells 32] [--drop 0.2] [--out cloth] (--help for all)
 #include "common/vk.hpp"  // first: the samples call Vulkan themselves
@@ -127,11 +127,11 @@ int main(int argc, char** argv) {
         auto hits = (*world)->detect(settings);
         if (!hits) return fail(hits.error());
 
-        // Response, per pair: contact planes that the next steps enforce. A corner of the
-        // cloth triangle must stay in front of the plane of the triangle it touches, on
-        // the side it belongs to (an obstacle's outside; for two cloth triangles, the side
-        // each came from), and an obstacle corner poking through the cloth triangle
-        // lifts all three of its corners.
+        // Response, per pair. Against an obstacle: contact planes that the next steps
+        // enforce (each corner of the cloth triangle stays in front of the obstacle
+        // triangle's plane, and an obstacle corner poking through the cloth triangle lifts
+        // it). Against itself: a one-off push of each triangle back to the side of the
+        // other's plane it came from.
         const auto response_start = std::chrono::steady_clock::now();
         const std::vector<Float3> now = cloth.positions();  // as detected (and rendered)
         std::vector<Cloth::Contact> contacts;
@@ -146,9 +146,8 @@ int main(int argc, char** argv) {
             if (p.object_a == p.object_b) {  // the cloth with itself
                 renderer.highlight(cloth_draw, p.triangle_a);
                 renderer.highlight(cloth_draw, p.triangle_b);
-                // Apart along the other's normal, each to the side it was on before this
-                // step, once (a contact plane kept inside the solver would fight the
-                // stretching of a fold and crumple the cloth).
+                // Once, not as a contact plane kept inside the solver: that would fight the
+                // stretching of a fold and crumple the cloth.
                 for (auto [t, other] : {std::pair{p.triangle_a, p.triangle_b}, std::pair{p.triangle_b, p.triangle_a}}) {
                     Vec3 n = triangleNormal(now, cloth_indices, other);
                     if (triangleNormal(before, cloth_indices, other)

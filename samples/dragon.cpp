@@ -53,7 +53,10 @@ int main(int argc, char** argv) {
     const std::size_t holes = closeHoles(dragon);
     std::string steps;
     dragon = subdivideTo(dragon, triangles, &steps);
-    std::printf("dragon: %zu holes closed, subdivided (%s) to %zu triangles\n", holes, steps.c_str(), dragon.triangleCount());
+    auto stats = computeMeshStats(dragon);
+    if (!stats) return fail(stats.error());
+    std::printf("dragon: %zu holes closed, subdivided (%s) to %zu triangles, %s\n", holes, steps.c_str(), dragon.triangleCount(),
+                stats->closed ? "closed" : "not closed");
     auto dragon_id = (*world)->addMesh(dragon, {.name = "dragon"});
     if (!dragon_id) return fail(dragon_id.error());
 

@@ -128,9 +128,10 @@ int main(int argc, char** argv) {
     const Camera camera{.eye = {0.9f * reach, 1.1f * reach + 1.5f, 1.4f * reach}, .target = {0, 0.6f, 0}};
 
     const DetectSettings settings = common.detectSettings();
-    FrameLog log(common.out + "/frames.csv", {"bunny_box_pairs", "bunny_bunny_pairs", "bunnies_in_box", "lowest_centre"}, common.frames, common.quiet);
+    FrameLog log(common.out + "/frames.csv", {"bunny_box_pairs", "bunny_bunny_pairs", "bunnies_in_box", "lowest_centre"},
+                 common.frames, common.quiet);
     const Vec3 gravity(0, -9.81f, 0);
-    // A triangle's world-space centroid (contact points).
+    // Corner k of triangle t in world space (the box's mesh is in world space already).
     auto corner = [&](const RigidBody* body, std::uint32_t t, int k) {
         const Vec3 c = toVec((body ? bunny : *box).positions[(body ? bunny : *box).indices[t * 3 + k]]);
         return body ? Vec3(body->orientation * c + body->position) : c;
@@ -138,7 +139,7 @@ int main(int argc, char** argv) {
     double edge_sum = 0;
     for (std::size_t t = 0; t < bunny.triangleCount(); ++t)
         edge_sum += (toVec(bunny.positions[bunny.indices[t * 3]]) - toVec(bunny.positions[bunny.indices[t * 3 + 1]])).norm();
-    const float edge = static_cast<float>(edge_sum / double(bunny.triangleCount()));
+    const float edge = static_cast<float>(edge_sum / double(bunny.triangleCount()));  // typical edge of the bunny
 
     for (int frame = 0; frame < common.frames; ++frame) {
         const auto sim_start = std::chrono::steady_clock::now();
@@ -153,7 +154,7 @@ int main(int argc, char** argv) {
         if (!hits) return fail(hits.error());
 
         // Contacts: one per touching pair of objects, at the mean of the colliding
-        // triangles' centroids, along the difference of the two sides' summed response
+        // triangles' corners, along the difference of the two sides' summed response
         // vectors (each points out of the partner, the way to push its triangle).
         const auto response_start = std::chrono::steady_clock::now();
         struct Touch {

@@ -49,12 +49,22 @@ Csv readCsv(const fs::path& path) {
     return csv;
 }
 
-// Runs a sample into a fresh folder; returns the folder. The sample must exit with 0
-// (3 would mean validation messages) and write one CSV row and one PNG per frame.
-fs::path runSample(const char* program, const std::string& name, const std::string& args, int frames) {
-    const fs::path out = fs::temp_directory_path() / ("vkcollide-sample-" + name + "-" + std::to_string(::getpid()));
+// A sample's output folder and log, removed when the test is done with them.
+struct Scratch {
+    fs::path dir, log;
+    ~Scratch() {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+        fs::remove(log, ec);
+    }
+};
+
+// Runs a sample into a fresh folder. The sample must exit with 0 (3 would mean validation
+// messages) and write one PNG per frame.
+void runSample(const Scratch& scratch, const char* program, const std::string& args, int frames) {
+    const fs::path& out = scratch.dir;
+    const fs::path& log = scratch.log;
     fs::remove_all(out);
-    const fs::path log = out.string() + ".log";
     const std::string cmd = std::string(program) + " --out " + out.string() + " --frames " + std::to_string(frames) +
                             " --width 96 --height 64 --quiet --stand-ins " + args + " > " + log.string() + " 2>&1";
     INFO(cmd);
@@ -72,7 +82,11 @@ fs::path runSample(const char* program, const std::string& name, const std::stri
         image.read(signature, 8);
         REQUIRE(std::string(signature + 1, 3) == "PNG");
     }
-    return out;
+}
+
+Scratch scratchFor(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("vkcollide-sample-" + name + "-" + std::to_string(::getpid()));
+    return {dir, dir.string() + ".log"};
 }
 
 double max(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
@@ -82,8 +96,9 @@ double min(const std::vector<double>& v) { return *std::min_element(v.begin(), v
 
 TEST_CASE("cloth sample: the falling cloth touches the sphere and does not pass through it", "[samples][gpu]") {
     const int frames = 30;
-    const fs::path out = runSample(VKCOLLIDE_SAMPLE_CLOTH, "cloth", "--cells 12 --drop 0.05 --fold 0 --dt 0.01", frames);
-    const Csv csv = readCsv(out / "frames.csv");
+    const Scratch out = scratchFor("cloth");
+    runSample(out, VKCOLLIDE_SAMPLE_CLOTH, "--cells 12 --drop 0.05 --fold 0 --dt 0.01", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
     REQUIRE(csv.rows == frames);
     CHECK(csv["cloth_sphere_pairs"].front() == 0);  // it starts above the sphere
     CHECK(max(csv["cloth_sphere_pairs"]) > 0);
@@ -93,9 +108,9 @@ TEST_CASE("cloth sample: the falling cloth touches the sphere and does not pass 
 
 TEST_CASE("rigid bunnies sample: bunnies land in the box and on each other", "[samples][gpu]") {
     const int frames = 60;
-    const fs::path out =
-        runSample(VKCOLLIDE_SAMPLE_RIGID_BUNNIES, "rigid", "--bunnies 3 --columns 1 --bunny-triangles 300 --drop 0.05", frames);
-    const Csv csv = readCsv(out / "frames.csv");
+    const Scratch out = scratchFor("rigid");
+    runSample(out, VKCOLLIDE_SAMPLE_RIGID_BUNNIES, "--bunnies 3 --columns 1 --bunny-triangles 300 --drop 0.05", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
     REQUIRE(csv.rows == frames);
     CHECK(max(csv["bunny_box_pairs"]) > 0);
     CHECK(max(csv["bunny_bunny_pairs"]) > 0);
@@ -105,8 +120,9 @@ TEST_CASE("rigid bunnies sample: bunnies land in the box and on each other", "[s
 
 TEST_CASE("dragon sample: the bunny passing through the dragon collides with it", "[samples][gpu]") {
     const int frames = 5;
-    const fs::path out = runSample(VKCOLLIDE_SAMPLE_DRAGON, "dragon", "--triangles 12000 --passer-triangles 600", frames);
-    const Csv csv = readCsv(out / "frames.csv");
+    const Scratch out = scratchFor("dragon");
+    runSample(out, VKCOLLIDE_SAMPLE_DRAGON, "--triangles 12000 --passer-triangles 600", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
     REQUIRE(csv.rows == frames);
     CHECK(csv["dragon_bunny_pairs"].front() == 0);  // it starts beside the dragon
     CHECK(max(csv["dragon_bunny_pairs"]) > 0);
@@ -115,9 +131,9 @@ TEST_CASE("dragon sample: the bunny passing through the dragon collides with it"
 
 TEST_CASE("creatures sample: a tentacle that touches another creature retracts", "[samples][gpu]") {
     const int frames = 12;
-    const fs::path out = runSample(VKCOLLIDE_SAMPLE_CREATURES, "creatures",
-                                   "--creatures 2 --tentacles 10 --segments 6 --sides 6 --ships 1 --spacing 1.6", frames);
-    const Csv csv = readCsv(out / "frames.csv");
+    const Scratch out = scratchFor("creatures");
+    runSample(out, VKCOLLIDE_SAMPLE_CREATURES, "--creatures 2 --tentacles 10 --segments 6 --sides 6 --ships 1 --spacing 1.6", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
     REQUIRE(csv.rows == frames);
     CHECK(max(csv["tentacle_pairs"]) > 0);
     CHECK(max(csv["new_retractions"]) > 0);
@@ -127,9 +143,9 @@ TEST_CASE("creatures sample: a tentacle that touches another creature retracts",
 
 TEST_CASE("deformable sample: two bodies collide and are pushed apart", "[samples][gpu]") {
     const int frames = 40;
-    const fs::path out = runSample(VKCOLLIDE_SAMPLE_DEFORMABLE, "deformable",
-                                   "--bodies bunnies --bunny-triangles 500 --distance 0.9 --speed 3", frames);
-    const Csv csv = readCsv(out / "frames.csv");
+    const Scratch out = scratchFor("deformable");
+    runSample(out, VKCOLLIDE_SAMPLE_DEFORMABLE, "--bodies bunnies --bunny-triangles 500 --distance 0.9 --speed 3", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
     REQUIRE(csv.rows == frames);
     const std::vector<double>& mutual = csv["mutual_pairs"];
     const std::vector<double>& distance = csv["centre_distance_01"];

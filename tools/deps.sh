@@ -2,7 +2,7 @@
 # Installs what vkcollide needs from Debian's archive, only if something is missing.
 set -euo pipefail
 packages=(cmake ninja-build g++ clang libclang-rt-14-dev libvulkan-dev glslang-tools spirv-tools libeigen3-dev
-          catch2 mesa-vulkan-drivers vulkan-validationlayers vulkan-tools)
+          catch2 mesa-vulkan-drivers vulkan-validationlayers vulkan-tools libpng-dev libmeshoptimizer-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,59 @@
+// What the samples write: PNG frames, one CSV line per frame with the paper's Table 1
+// columns and the stage times, a line per frame on stdout, a progress line on stderr and
+// a summary in the layout of the paper's Table 1.
+#pragma once
+
+#include "common/vk.hpp"  // before any vkcollide header (see vk.hpp)
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vkcollide/world.hpp"
+
+namespace samples {
+
+// Writes RGBA8 pixels (rows top to bottom) as an RGB PNG with libpng. False on failure.
+bool writePng(const std::string& path, std::uint32_t width, std::uint32_t height, const std::vector<std::uint8_t>& rgba);
+
+// "<folder>/frame_0007.png"
+std::string framePath(const std::string& folder, int frame);
+
+class FrameLog {
+public:
+    // scene_columns: the sample's own per-frame values (contacts, events), appended to
+    // each CSV line and printed after the statistics.
+    FrameLog(const std::string& csv_path, std::vector<std::string> scene_columns, int frames, bool quiet);
+    ~FrameLog();
+    FrameLog(const FrameLog&) = delete;
+    FrameLog& operator=(const FrameLog&) = delete;
+
+    // One detected frame. sim_ms / render_ms: the sample's own simulation and rendering.
+    void record(int frame, const vkcollide::DetectResult& result, std::span<const double> scene_values, double sim_ms,
+                double render_ms);
+    // Prints the summary: means over the frames after the first (which also builds the
+    // pipelines and buffers) and the maxima, in the columns of the paper's Table 1.
+    void finish(const std::string& scene_name);
+
+private:
+    void progress(int frame);
+
+    std::FILE* csv_ = nullptr;
+    std::vector<std::string> scene_columns_;
+    int frames_;
+    bool quiet_, tty_;
+    std::chrono::steady_clock::time_point start_;
+    struct Row {
+        double values[11];
+    };
+    std::vector<Row> rows_;
+    int last_percent_ = -1;
+};
+
+// Milliseconds since `start`.
+double msSince(std::chrono::steady_clock::time_point start);
+
+}  // namespace samples

@@ -1,0 +1,157 @@
+// The samples as programs: a reduced scene of each, a few frames on the device found, the
+// validation layer on (ctest sets VKCOLLIDE_TEST_VALIDATION=1, which the samples obey and
+// exit with status 3 on any message). Each test reads the frames.csv the sample wrote and
+// checks the contacts its scene must produce, and that the frames were rendered.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The columns of a sample's frames.csv, numeric ones as numbers (others read as 0).
+struct Csv {
+    std::map<std::string, std::vector<double>> columns;
+    std::size_t rows = 0;
+    const std::vector<double>& operator[](const std::string& name) const {
+        auto it = columns.find(name);
+        if (it == columns.end()) FAIL("frames.csv has no column " << name);
+        return it->second;
+    }
+};
+
+Csv readCsv(const fs::path& path) {
+    std::ifstream in(path);
+    REQUIRE(in.good());
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::string> names;
+    std::stringstream header(line);
+    for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+    Csv csv;
+    while (std::getline(in, line)) {
+        std::stringstream row(line);
+        std::size_t i = 0;
+        for (std::string cell; std::getline(row, cell, ',') && i < names.size(); ++i)
+            csv.columns[names[i]].push_back(std::strtod(cell.c_str(), nullptr));
+        ++csv.rows;
+    }
+    return csv;
+}
+
+// A sample's output folder and log, removed when the test is done with them.
+struct Scratch {
+    fs::path dir, log;
+    ~Scratch() {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+        fs::remove(log, ec);
+    }
+};
+
+// Runs a sample into a fresh folder. The sample must exit with 0 (3 would mean validation
+// messages) and write one PNG per frame.
+void runSample(const Scratch& scratch, const char* program, const std::string& args, int frames) {
+    const fs::path& out = scratch.dir;
+    const fs::path& log = scratch.log;
+    fs::remove_all(out);
+    const std::string cmd = std::string(program) + " --out " + out.string() + " --frames " + std::to_string(frames) +
+                            " --width 96 --height 64 --quiet --stand-ins " + args + " > " + log.string() + " 2>&1";
+    INFO(cmd);
+    const int rc = std::system(cmd.c_str());
+    std::ifstream text(log);
+    std::stringstream output;
+    output << text.rdbuf();
+    INFO(output.str());
+    REQUIRE(rc == 0);
+    for (int f = 0; f < frames; ++f) {
+        char png[32];
+        std::snprintf(png, sizeof png, "frame_%04d.png", f);
+        std::ifstream image(out / png, std::ios::binary);
+        char signature[8] = {};
+        image.read(signature, 8);
+        REQUIRE(std::string(signature + 1, 3) == "PNG");
+    }
+}
+
+Scratch scratchFor(const std::string& name) {
+    const fs::path dir = fs::temp_directory_path() / ("vkcollide-sample-" + name + "-" + std::to_string(::getpid()));
+    return {dir, dir.string() + ".log"};
+}
+
+double max(const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); }
+double min(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
+
+}  // namespace
+
+TEST_CASE("cloth sample: the falling cloth touches the sphere and does not pass through it", "[samples][gpu]") {
+    const int frames = 30;
+    const Scratch out = scratchFor("cloth");
+    runSample(out, VKCOLLIDE_SAMPLE_CLOTH, "--cells 12 --drop 0.05 --fold 0 --dt 0.01", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
+    REQUIRE(csv.rows == frames);
+    CHECK(csv["cloth_sphere_pairs"].front() == 0);  // it starts above the sphere
+    CHECK(max(csv["cloth_sphere_pairs"]) > 0);
+    CHECK(max(csv["max_penetration"]) < 0.1);  // sphere radius 0.35: pushed back out, not through
+    CHECK(min(csv["triangles"]) == max(csv["triangles"]));
+}
+
+TEST_CASE("rigid bunnies sample: bunnies land in the box and on each other", "[samples][gpu]") {
+    const int frames = 60;
+    const Scratch out = scratchFor("rigid");
+    runSample(out, VKCOLLIDE_SAMPLE_RIGID_BUNNIES, "--bunnies 3 --columns 1 --bunny-triangles 300 --drop 0.05", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
+    REQUIRE(csv.rows == frames);
+    CHECK(max(csv["bunny_box_pairs"]) > 0);
+    CHECK(max(csv["bunny_bunny_pairs"]) > 0);
+    CHECK(min(csv["lowest_centre"]) > 0);  // nobody fell through the floor (its top is y = 0)
+    CHECK(csv["bunnies_in_box"].back() == 3);
+}
+
+TEST_CASE("dragon sample: the bunny passing through the dragon collides with it", "[samples][gpu]") {
+    const int frames = 5;
+    const Scratch out = scratchFor("dragon");
+    runSample(out, VKCOLLIDE_SAMPLE_DRAGON, "--triangles 12000 --passer-triangles 600", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
+    REQUIRE(csv.rows == frames);
+    CHECK(csv["dragon_bunny_pairs"].front() == 0);  // it starts beside the dragon
+    CHECK(max(csv["dragon_bunny_pairs"]) > 0);
+    CHECK(csv["triangles"].front() > 12000);
+}
+
+TEST_CASE("creatures sample: a tentacle that touches another creature retracts", "[samples][gpu]") {
+    const int frames = 12;
+    const Scratch out = scratchFor("creatures");
+    runSample(out, VKCOLLIDE_SAMPLE_CREATURES, "--creatures 2 --tentacles 10 --segments 6 --sides 6 --ships 1 --spacing 1.6", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
+    REQUIRE(csv.rows == frames);
+    CHECK(max(csv["tentacle_pairs"]) > 0);
+    CHECK(max(csv["new_retractions"]) > 0);
+    CHECK(max(csv["retracting"]) > 0);
+    CHECK(min(csv["shortest_tentacle"]) < 0.9);  // and it did get shorter
+}
+
+TEST_CASE("deformable sample: two bodies collide and are pushed apart", "[samples][gpu]") {
+    const int frames = 40;
+    const Scratch out = scratchFor("deformable");
+    runSample(out, VKCOLLIDE_SAMPLE_DEFORMABLE, "--bodies bunnies --bunny-triangles 500 --distance 0.9 --speed 3", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
+    REQUIRE(csv.rows == frames);
+    const std::vector<double>& mutual = csv["mutual_pairs"];
+    const std::vector<double>& distance = csv["centre_distance_01"];
+    const auto first_contact = std::find_if(mutual.begin(), mutual.end(), [](double v) { return v > 0; }) - mutual.begin();
+    REQUIRE(first_contact < frames);
+    // After they touch, the centres move apart again.
+    const double at_contact = distance[first_contact];
+    CHECK(*std::max_element(distance.begin() + first_contact, distance.end()) > at_contact + 0.05);
+}

@@ -67,39 +67,6 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onValidation(VkDebugUtilsMessageSeverityFlagBitsE
     return VK_FALSE;
 }
 
-// vkcollide's requirements (include/vkcollide/context.hpp), plus hostQueryReset and
-// maintenance4, which the library also uses.
-struct Features {
-    VkPhysicalDeviceFeatures2 core{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceVulkan13Features v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    Features() {
-        core.pNext = &v12;
-        v12.pNext = &v13;
-    }
-    Features(const Features&) = delete;
-    Features& operator=(const Features&) = delete;
-    bool complete() const {
-        return core.features.shaderInt64 && core.features.fragmentStoresAndAtomics && v12.bufferDeviceAddress &&
-               v12.scalarBlockLayout && v12.shaderBufferInt64Atomics && v12.hostQueryReset && v13.dynamicRendering &&
-               v13.synchronization2 && v13.maintenance4;
-    }
-    void requireAll() {
-        core.features = {};
-        core.features.shaderInt64 = VK_TRUE;
-        core.features.fragmentStoresAndAtomics = VK_TRUE;
-        v12 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &v13};
-        v12.bufferDeviceAddress = VK_TRUE;
-        v12.scalarBlockLayout = VK_TRUE;
-        v12.shaderBufferInt64Atomics = VK_TRUE;
-        v12.hostQueryReset = VK_TRUE;
-        v13 = {VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-        v13.dynamicRendering = VK_TRUE;
-        v13.synchronization2 = VK_TRUE;
-        v13.maintenance4 = VK_TRUE;
-    }
-};
-
 bool hasExtension(VkPhysicalDevice physical, const char* name) {
     std::uint32_t count = 0;
     vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr);
@@ -113,10 +80,15 @@ std::optional<std::uint32_t> suitableFamily(VkPhysicalDevice physical) {
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(physical, &props);
     if (VK_API_VERSION_MAJOR(props.apiVersion) == 1 && VK_API_VERSION_MINOR(props.apiVersion) < 3) return std::nullopt;
-    if (!hasExtension(physical, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) return std::nullopt;
-    Features features;
-    vkGetPhysicalDeviceFeatures2(physical, &features.core);
-    if (!features.complete()) return std::nullopt;
+    // Every feature vkcollide requires (context.hpp) must be available.
+    VkPhysicalDeviceVulkan13Features v13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &v13};
+    VkPhysicalDeviceFeatures2 available{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &v12};
+    vkGetPhysicalDeviceFeatures2(physical, &available);
+    if (!(available.features.shaderInt64 && available.features.fragmentStoresAndAtomics && v12.bufferDeviceAddress &&
+          v12.scalarBlockLayout && v12.shaderBufferInt64Atomics && v12.hostQueryReset && v13.dynamicRendering &&
+          v13.synchronization2 && v13.maintenance4))
+        return std::nullopt;
     std::uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
@@ -200,18 +172,25 @@ std::unique_ptr<Engine> Engine::create(const EngineOptions& options) {
     qci.queueFamilyIndex = e->queue_family_;
     qci.queueCount = 1;
     qci.pQueuePriorities = &priority;
-    Features features;
-    features.requireAll();
-    std::vector<const char*> device_exts = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    // Exactly what vkcollide requires (context.hpp), set by the library's own helper, plus
+    // shaderFloat64 where the device has it (vkcollide's GPU filters use it then).
+    e->features_ = std::make_unique<EnabledFeatures>();
+    EnabledFeatures& f = *e->features_;
+    f.core.pNext = &f.v12;
+    f.v12.pNext = &f.v13;
+    vkcollide::enableRequiredFeatures(f.core, f.v12, f.v13);
+    VkPhysicalDeviceFeatures available{};
+    vkGetPhysicalDeviceFeatures(e->physical_, &available);
+    f.core.features.shaderFloat64 = available.shaderFloat64;
     // Optional: lets DetectSettings::coverage use the hardware (Coverage::Best).
-    e->conservative_rasterization_ = hasExtension(e->physical_, VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
-    if (e->conservative_rasterization_) device_exts.push_back(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
+    if (hasExtension(e->physical_, VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME))
+        e->extensions_.push_back(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    dci.pNext = &features.core;
+    dci.pNext = &f.core;
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &qci;
-    dci.enabledExtensionCount = static_cast<std::uint32_t>(device_exts.size());
-    dci.ppEnabledExtensionNames = device_exts.data();
+    dci.enabledExtensionCount = static_cast<std::uint32_t>(e->extensions_.size());
+    dci.ppEnabledExtensionNames = e->extensions_.data();
     check(vkCreateDevice(e->physical_, &dci, nullptr, &e->device_), "vkCreateDevice");
     vkGetDeviceQueue(e->device_, e->queue_family_, 0, &e->queue_);
     vkGetPhysicalDeviceMemoryProperties(e->physical_, &e->memory_);
@@ -254,7 +233,8 @@ vkcollide::AdoptedDevice Engine::adoptedDevice() const {
     d.queue_family = queue_family_;
     d.queue = queue_;
     d.api_version = VK_API_VERSION_1_3;
-    d.conservative_rasterization = conservative_rasterization_;
+    d.enabled_features = &features_->core;  // the chain the device was created with
+    d.enabled_extensions = extensions_;
     return d;
 }
 

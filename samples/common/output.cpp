@@ -76,7 +76,7 @@ void FrameLog::record(int frame, const vkcollide::DetectResult& r, std::span<con
                  frame, s.triangles, s.collision_rays, s.triangles_downloaded, s.potentially_colliding_triangles, s.triangle_tests,
                  s.positive_tests, r.pairs.size(), gpuMs(s), reduceMs(s), s.narrow_ms, s.total_ms, s.sampling_ms, s.merging_ms,
                  s.separation_ms, s.packing_ms, s.readback_ms, s.narrow_ms, s.resolution, s.depth_complexity, s.layers,
-                 s.peel_passes, s.layers_short ? 1 : 0, s.backend.c_str(), sim_ms, render_ms);
+                 s.peel_passes, s.layers_short ? 1 : 0, vkcollide::toString(s.backend), sim_ms, render_ms);
     for (double v : scene_values) std::fprintf(csv_, ",%g", v);
     std::fprintf(csv_, "\n");
     std::fflush(csv_);

@@ -1,25 +1,32 @@
 // Benchmark of the CPU narrow phase (runNarrowPhase) on generated scenes; host only, no GPU.
 //
 //   bench_narrow [--threads 1,2,16] [--sizes 10000,100000,1000000] [--scenes demo,spheres,torus-box]
-//                [--modes all,near,contact] [--repeat 7] [--margin 1.0] [--filter] [--fresh]
+//                [--modes all,near,contact] [--self on,off] [--repeat 7] [--margin 1.0] [--filter] [--fresh]
 //                [--candidates FILE]... [--resolution N] [--dump PREFIX] [--csv PATH]
 //
 // Candidates come from tests/support/exact_reference.hpp's allTrianglesAsCandidates: every
 // triangle with its world AABB mapped to [0,1] as box and depth (an orthographic camera
 // looking down -z). Modes choose which triangles the "broad phase" keeps:
-//   all      every triangle (self-collision on: mostly neighbour pairs),
+//   all      every triangle (with self-collision on: mostly neighbour pairs),
 //   near     triangles whose AABB overlaps another object's AABB,
 //   contact  triangles whose AABB, grown by `margin` median triangle extents, shares a
 //            voxel of that size with a triangle of another object (close to what the GPU
-//            keeps: the triangles along the intersection curves).
+//            keeps in a light contact: the triangles along the intersection curves).
 // Scenes: `demo` is samples/vkcollide_demo.cpp's five objects (31,520 triangles, sizes do
 // not apply); `spheres` (two overlapping UV spheres) and `torus-box` (a torus threaded on a
-// subdivided box) are generated with about `size` triangles in all. --candidates reads a
-// raw array of CandidateTriangle (80 bytes each, e.g. the records of a GPU broad phase).
+// subdivided box) are generated with about `size` triangles in all; `deep` is issue 13's
+// deep overlap (two spheres of size/2 triangles overlapping by 85 % of their size: with
+// `near`, about 1M candidates for size 1,200,000) and `pile` its 60-mesh pile (60 spheres
+// of 9,940 triangles, fixed size). Meshes are in object space with a transform per object;
+// world positions are computed as the exact reference does. --candidates reads a raw array
+// of CandidateTriangle (80 bytes each, e.g. the records of a GPU broad phase).
 //
-// `gpu-demo` takes the demo's candidates from the real GPU broad phase instead (the
-// Vulkan device vkcollide finds, lavapipe without a GPU; resolution 512 unless
-// --resolution; the only scene that needs Vulkan, so it is not in the default list).
+// `gpu-<scene>` (gpu-demo, gpu-deep, gpu-pile, ...) takes the scene's candidates from the
+// real GPU broad phase instead (the Vulkan device vkcollide finds, lavapipe without a GPU;
+// resolution 512 unless --resolution; not in the default list because it needs Vulkan).
+//
+// --self sets every object's self-collision (a row each; vkcollide's default for objects
+// is off, the peers' benchmarks run with it on).
 //
 // --dump writes each workload's candidates to PREFIX<scene>-<size>-<mode>.bin (the format
 // --candidates reads), e.g. to profile the GPU's candidates without the GPU.
@@ -61,6 +68,7 @@ struct Options {
     std::vector<std::size_t> sizes = {10000, 100000, 1000000};
     std::vector<std::string> scenes = {"demo", "spheres", "torus-box"};
     std::vector<std::string> modes = {"all", "near", "contact"};
+    std::vector<bool> self = {true};  // self-collision of every object, one row each
     std::vector<std::string> files;
     unsigned repeat = 7;
     std::uint32_t resolution = 512;
@@ -115,6 +123,12 @@ Options parseArgs(int argc, char** argv) {
             for (const std::string& t : splitList(value())) o.sizes.push_back(std::stoul(t));
         } else if (a == "--scenes") {
             o.scenes = splitList(value());
+        } else if (a == "--self") {
+            o.self.clear();
+            for (const std::string& t : splitList(value())) {
+                if (t != "on" && t != "off") die("--self takes on, off or both (on,off)");
+                o.self.push_back(t == "on");
+            }
         } else if (a == "--modes") {
             o.modes = splitList(value());
         } else if (a == "--candidates") {
@@ -135,47 +149,97 @@ Options parseArgs(int argc, char** argv) {
             o.csv = value();
         } else {
             die("unknown argument " + a +
-                " (use --threads, --sizes, --scenes, --modes, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --dump, --csv)");
+                " (use --threads, --sizes, --scenes, --modes, --self, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --dump, --csv)");
         }
     }
     if (o.threads.empty()) die("--threads needs at least one count");
+    if (o.self.empty()) die("--self needs on, off or both");
     return o;
 }
 
+// One object of a generated scene: an object-space mesh and its object -> world transform
+// (row-major 3x4). World positions are M * p in double, rounded once to float, as
+// tests/support/exact_reference.hpp's worldPositions computes them.
+struct SceneObject {
+    HostMesh mesh;
+    Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+};
+
+HostMesh generated(Result<HostMesh> mesh) { return take(std::move(mesh), "generator"); }
+
+// Rotation by `angle` about the unit axis (x, y, z), then a translation.
+Transform3x4 rotationTranslation(double x, double y, double z, double angle, Float3 t) {
+    const double n = std::sqrt(x * x + y * y + z * z);
+    x /= n, y /= n, z /= n;
+    const double c = std::cos(angle), s = std::sin(angle), k = 1 - c;
+    const auto f = [](double v) { return static_cast<float>(v); };
+    return {f(c + x * x * k),     f(x * y * k - z * s), f(x * z * k + y * s), t.x,
+            f(y * x * k + z * s), f(c + y * y * k),     f(y * z * k - x * s), t.y,
+            f(z * x * k - y * s), f(z * y * k + x * s), f(c + z * z * k),     t.z};
+}
+
 // Rotation about y, then a translation: the demo's placement of its parts.
-HostMesh moved(Result<HostMesh> mesh, float angle, Float3 t) {
-    HostMesh m = take(std::move(mesh), "generator");
-    const float c = std::cos(angle), s = std::sin(angle);
-    const Transform3x4 tr = {c, 0, s, t.x, 0, 1, 0, t.y, -s, 0, c, t.z};
-    if (auto ok = transformMesh(m, tr); !ok) die(ok.error().message());
-    return m;
+SceneObject placed(Result<HostMesh> mesh, float angle, Float3 t) {
+    return {generated(std::move(mesh)), rotationTranslation(0, 1, 0, angle, t)};
 }
 
 std::uint32_t atLeast(double x, std::uint32_t lo) { return std::max(lo, static_cast<std::uint32_t>(std::lround(x))); }
 
-std::vector<HostMesh> buildScene(const std::string& scene, std::size_t size) {
-    std::vector<HostMesh> meshes;
+// A deterministic pseudo-random number in [0, 1) from an integer.
+double hash01(std::uint32_t i) {
+    std::uint32_t h = i * 2654435761u;
+    h ^= h >> 16;
+    h *= 2246822519u;
+    h ^= h >> 13;
+    return static_cast<double>(h) / 4294967296.0;
+}
+
+// Scenes that ignore --sizes.
+bool fixedSize(const std::string& scene) { return scene == "demo" || scene == "pile"; }
+
+std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) {
+    constexpr double kPi = 3.14159265358979323846;
+    std::vector<SceneObject> objects;
     if (scene == "demo") {
-        meshes.push_back(moved(uvSphere(1.0f, 96, 48), 0.3f, {-0.6f, 0.05f, 0.0f}));
-        meshes.push_back(moved(uvSphere(0.9f, 96, 48), 0.7f, {0.55f, -0.1f, 0.2f}));
-        meshes.push_back(moved(torus(0.9f, 0.25f, 128, 32), 0.2f, {0.1f, 1.6f, 0.0f}));
-        meshes.push_back(moved(box({0.3f, 0.3f, 1.4f}, 16), 0.1f, {0.1f + 0.9f, 1.6f, 0.0f}));
-        meshes.push_back(moved(uvSphere(0.5f, 48, 24), 0.0f, {-2.2f, -1.5f, 0.0f}));
+        objects.push_back(placed(uvSphere(1.0f, 96, 48), 0.3f, {-0.6f, 0.05f, 0.0f}));
+        objects.push_back(placed(uvSphere(0.9f, 96, 48), 0.7f, {0.55f, -0.1f, 0.2f}));
+        objects.push_back(placed(torus(0.9f, 0.25f, 128, 32), 0.2f, {0.1f, 1.6f, 0.0f}));
+        objects.push_back(placed(box({0.3f, 0.3f, 1.4f}, 16), 0.1f, {0.1f + 0.9f, 1.6f, 0.0f}));
+        objects.push_back(placed(uvSphere(0.5f, 48, 24), 0.0f, {-2.2f, -1.5f, 0.0f}));
     } else if (scene == "spheres") {
         // Two spheres of 2 s (s/2 - 1) ~ s^2 triangles each.
         const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
-        meshes.push_back(moved(uvSphere(1.0f, s, s / 2), 0.3f, {-0.5f, 0.0f, 0.0f}));
-        meshes.push_back(moved(uvSphere(0.9f, s, s / 2), 0.7f, {0.5f, 0.1f, 0.05f}));
+        objects.push_back(placed(uvSphere(1.0f, s, s / 2), 0.3f, {-0.5f, 0.0f, 0.0f}));
+        objects.push_back(placed(uvSphere(0.9f, s, s / 2), 0.7f, {0.5f, 0.1f, 0.05f}));
     } else if (scene == "torus-box") {
         // Half the triangles in the torus (2 a (a/4) = a^2 / 2), half in the box (12 k^2).
         const std::uint32_t a = atLeast(std::sqrt(double(size)), 12);
         const std::uint32_t k = atLeast(std::sqrt(double(size) / 24.0), 1);
-        meshes.push_back(moved(torus(0.9f, 0.25f, a, std::max(3u, a / 4)), 0.2f, {0.0f, 0.0f, 0.0f}));
-        meshes.push_back(moved(box({0.3f, 0.3f, 1.4f}, k), 0.1f, {0.9f, 0.0f, 0.0f}));
+        objects.push_back(placed(torus(0.9f, 0.25f, a, std::max(3u, a / 4)), 0.2f, {0.0f, 0.0f, 0.0f}));
+        objects.push_back(placed(box({0.3f, 0.3f, 1.4f}, k), 0.1f, {0.9f, 0.0f, 0.0f}));
+    } else if (scene == "deep") {
+        // Issue 13's deep overlap: two meshes of size/2 triangles each overlapping by 85 %
+        // of their size (unit spheres 0.3 apart, mostly across the view): seen along z, the
+        // rays through both discs meet the surfaces interleaved, so the GPU keeps most
+        // triangles of both (mode `near` keeps those whose box meets the other's box).
+        const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
+        objects.push_back({generated(uvSphere(1.0f, s, s / 2)), rotationTranslation(1, 0.2, 0.1, 0.4, {-0.14f, -0.05f, 0.0f})});
+        objects.push_back({generated(uvSphere(1.0f, s, s / 2)), rotationTranslation(0.1, 1, 0.3, 1.1, {0.14f, 0.05f, 0.06f})});
+    } else if (scene == "pile") {
+        // Issue 13's pile: 60 unit spheres of 9,940 triangles (596,400 in all) on a grid
+        // 1.8 apart, each turned its own way (tools/bench/bench_scenes.cpp's sphereGrid,
+        // the `spheres-60x10K` scene).
+        const HostMesh base = generated(uvSphere(1.0f, 70, 72));
+        constexpr std::uint32_t kCount = 60, kSide = 4;  // ceil(cbrt(60))
+        for (std::uint32_t i = 0; i < kCount; ++i) {
+            const Float3 t{1.8f * float(i % kSide), 1.8f * float((i / kSide) % kSide), 1.8f * float(i / (kSide * kSide))};
+            objects.push_back({base, rotationTranslation(hash01(3 * i) - 0.5, hash01(3 * i + 1) - 0.5, hash01(3 * i + 2) + 0.1,
+                                                         2 * kPi * hash01(7 * i + 5), t)});
+        }
     } else {
-        die("unknown scene " + scene + " (use demo, spheres, torus-box)");
+        die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, pile, gpu-demo, gpu-deep, gpu-pile)");
     }
-    return meshes;
+    return objects;
 }
 
 struct Aabb {
@@ -263,14 +327,14 @@ std::vector<CandidateTriangle> selectCandidates(std::vector<CandidateTriangle> a
 }
 
 Workload makeWorkload(const std::string& scene, std::size_t size, const std::string& mode, float margin) {
-    const std::vector<HostMesh> meshes = buildScene(scene, size);
+    const std::vector<SceneObject> scene_objects = buildScene(scene, size);
     std::vector<test::ReferenceObject> objects;
     Workload w;
     w.scene = scene;
     w.mode = mode;
-    for (const HostMesh& m : meshes) {
-        objects.push_back({&m});
-        w.triangles += m.triangleCount();
+    for (const SceneObject& o : scene_objects) {
+        objects.push_back({&o.mesh, test::transformFrom3x4(o.transform)});
+        w.triangles += o.mesh.triangleCount();
     }
     w.candidates = selectCandidates(take(test::allTrianglesAsCandidates(objects), "candidates"), mode, margin);
     return w;
@@ -278,11 +342,17 @@ Workload makeWorkload(const std::string& scene, std::size_t size, const std::str
 
 // The demo's candidates as the GPU broad phase keeps them (samples/vkcollide_demo.cpp's
 // settings): the workload the narrow phase sees in the demo.
-Workload gpuWorkload(std::uint32_t resolution) {
-    const std::vector<HostMesh> meshes = buildScene("demo", 0);
+Workload gpuWorkload(const std::string& scene, std::size_t size, std::uint32_t resolution) {
+    // The broad phase takes world-space meshes: transforms applied as the exact reference does.
+    std::vector<HostMesh> meshes;
+    for (const SceneObject& o : buildScene(scene, size)) {
+        HostMesh m = o.mesh;
+        m.positions = test::worldPositions(o.mesh, test::transformFrom3x4(o.transform));
+        meshes.push_back(std::move(m));
+    }
     std::vector<const HostMesh*> mesh_ptrs;
     Workload w;
-    w.scene = "gpu-demo-" + std::to_string(resolution);
+    w.scene = "gpu-" + scene + "-" + std::to_string(resolution);
     w.mode = "gpu";
     for (const HostMesh& m : meshes) {
         mesh_ptrs.push_back(&m);
@@ -333,54 +403,57 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
                   static_cast<std::streamsize>(w.candidates.size() * sizeof(CandidateTriangle)));
         if (!out) die("cannot write " + path);
     }
-    NarrowOptions options;
-    if (o.filter) options.may_collide = [](std::uint32_t, std::uint32_t) { return true; };
-    std::vector<TrianglePair> reference_pairs;
-    bool first = true;
-    for (unsigned threads : o.threads) {
-        ThreadPool pool(threads);
-        NarrowWorkspace workspace;
-        std::vector<NarrowTimings> times;
-        std::vector<double> cpu;
-        NarrowStats stats;
-        for (unsigned r = 0; r <= o.repeat; ++r) {
-            const double cpu_start = processCpuMs();
-            Result<NarrowResult> result =
-                o.fresh ? runNarrowPhase(w.candidates, options, pool) : runNarrowPhase(w.candidates, options, pool, workspace);
-            const double cpu_ms = processCpuMs() - cpu_start;
-            if (!result) die(w.scene + ": " + result.error().message());
-            if (r == 0) {  // warm-up run: check it, do not time it
-                if (first) reference_pairs = result->pairs;
-                if (result->pairs != reference_pairs) die(w.scene + ": different pairs with " + std::to_string(threads) + " threads");
-                stats = result->stats;
-                continue;
+    for (const bool self : o.self) {
+        NarrowOptions options;
+        options.default_self_collision = self;
+        if (o.filter) options.may_collide = [](std::uint32_t, std::uint32_t) { return true; };
+        std::vector<TrianglePair> reference_pairs;
+        bool first = true;
+        for (unsigned threads : o.threads) {
+            ThreadPool pool(threads);
+            NarrowWorkspace workspace;
+            std::vector<NarrowTimings> times;
+            std::vector<double> cpu;
+            NarrowStats stats;
+            for (unsigned r = 0; r <= o.repeat; ++r) {
+                const double cpu_start = processCpuMs();
+                Result<NarrowResult> result = o.fresh ? runNarrowPhase(w.candidates, options, pool)
+                                                      : runNarrowPhase(w.candidates, options, pool, workspace);
+                const double cpu_ms = processCpuMs() - cpu_start;
+                if (!result) die(w.scene + ": " + result.error().message());
+                if (r == 0) {  // warm-up run: check it, do not time it
+                    if (first) reference_pairs = result->pairs;
+                    if (result->pairs != reference_pairs) die(w.scene + ": different pairs with " + std::to_string(threads) + " threads");
+                    stats = result->stats;
+                    continue;
+                }
+                times.push_back(result->timings);
+                cpu.push_back(cpu_ms);
             }
-            times.push_back(result->timings);
-            cpu.push_back(cpu_ms);
-        }
-        first = false;
-        const auto med = [&](double NarrowTimings::*field) {
-            std::vector<double> v;
-            for (const NarrowTimings& t : times) v.push_back(t.*field);
-            return median(v);
-        };
-        Row row{med(&NarrowTimings::validate_ms), med(&NarrowTimings::sweep_ms), med(&NarrowTimings::filter_ms),
-                med(&NarrowTimings::test_ms),     med(&NarrowTimings::sort_ms),  med(&NarrowTimings::response_ms),
-                med(&NarrowTimings::total_ms),    0, median(cpu)};
-        row.total_min = times.front().total_ms;
-        for (const NarrowTimings& t : times) row.total_min = std::min(row.total_min, t.total_ms);
-        std::printf("%-12s %-8s %9zu %9zu %4u %10zu %9zu %7zu | %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f | %9.3f %9.3f %8.3f\n",
-                    w.scene.c_str(), w.mode.c_str(), w.triangles, w.candidates.size(), pool.threadCount(), stats.sap_pairs,
-                    stats.triangle_tests, stats.positive_tests, row.validate, row.sweep, row.filter, row.test, row.sort,
-                    row.response, row.total, row.total_min, row.cpu);
-        std::fflush(stdout);
-        if (csv) {
-            std::fprintf(csv, "%s,%s,%zu,%zu,%u,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
-                         w.scene.c_str(), w.mode.c_str(), w.triangles, w.candidates.size(), pool.threadCount(),
-                         stats.sap_pairs, stats.filtered_pairs, stats.neighbour_pairs, stats.triangle_tests,
-                         stats.positive_tests, row.validate, row.sweep, row.filter, row.test, row.sort, row.response,
-                         row.total, row.total_min, row.cpu);
-            std::fflush(csv);
+            first = false;
+            const auto med = [&](double NarrowTimings::*field) {
+                std::vector<double> v;
+                for (const NarrowTimings& t : times) v.push_back(t.*field);
+                return median(v);
+            };
+            Row row{med(&NarrowTimings::validate_ms), med(&NarrowTimings::sweep_ms), med(&NarrowTimings::filter_ms),
+                    med(&NarrowTimings::test_ms),     med(&NarrowTimings::sort_ms),  med(&NarrowTimings::response_ms),
+                    med(&NarrowTimings::total_ms),    0, median(cpu)};
+            row.total_min = times.front().total_ms;
+            for (const NarrowTimings& t : times) row.total_min = std::min(row.total_min, t.total_ms);
+            std::printf("%-12s %-8s %-4s %9zu %9zu %4u %10zu %9zu %7zu | %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f | %9.3f %9.3f %8.3f\n",
+                        w.scene.c_str(), w.mode.c_str(), self ? "on" : "off", w.triangles, w.candidates.size(),
+                        pool.threadCount(), stats.sap_pairs, stats.triangle_tests, stats.positive_tests, row.validate, row.sweep,
+                        row.filter, row.test, row.sort, row.response, row.total, row.total_min, row.cpu);
+            std::fflush(stdout);
+            if (csv) {
+                std::fprintf(csv, "%s,%s,%s,%zu,%zu,%u,%zu,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
+                             w.scene.c_str(), w.mode.c_str(), self ? "on" : "off", w.triangles, w.candidates.size(),
+                             pool.threadCount(), stats.potentially_colliding_triangles, stats.sap_pairs, stats.filtered_pairs,
+                             stats.neighbour_pairs, stats.triangle_tests, stats.positive_tests, row.validate, row.sweep, row.filter,
+                             row.test, row.sort, row.response, row.total, row.total_min, row.cpu);
+                std::fflush(csv);
+            }
         }
     }
 }
@@ -393,21 +466,23 @@ int main(int argc, char** argv) {
     if (!o.csv.empty()) {
         csv = std::fopen(o.csv.c_str(), "w");
         if (!csv) die("cannot write " + o.csv);
-        std::fprintf(csv, "scene,mode,triangles,candidates,threads,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
+        std::fprintf(csv, "scene,mode,self,triangles,candidates,threads,potentially_colliding,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
                           "positive_tests,validate_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
     }
     std::printf("median of %u runs (ms)%s%s\n", o.repeat, o.filter ? ", with may_collide" : "",
                 o.fresh ? ", no workspace" : ", one workspace per row");
-    std::printf("%-12s %-8s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode", "tris",
+    std::printf("%-12s %-8s %-4s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode", "self", "tris",
                 "cands", "thr", "sap pairs", "tests", "pairs", "validate", "sweep", "filter", "test", "sort", "response",
                 "total", "total min", "cpu");
     for (const std::string& path : o.files) runWorkload(loadWorkload(path), o, csv);
     for (const std::string& scene : o.scenes) {
-        if (scene == "gpu-demo") {
-            runWorkload(gpuWorkload(o.resolution), o, csv);
+        if (scene.rfind("gpu-", 0) == 0) {
+            const std::string base = scene.substr(4);
+            const std::vector<std::size_t> sizes = fixedSize(base) ? std::vector<std::size_t>{0} : o.sizes;
+            for (std::size_t size : sizes) runWorkload(gpuWorkload(base, size, o.resolution), o, csv);
             continue;
         }
-        const std::vector<std::size_t> sizes = scene == "demo" ? std::vector<std::size_t>{0} : o.sizes;
+        const std::vector<std::size_t> sizes = fixedSize(scene) ? std::vector<std::size_t>{0} : o.sizes;
         for (std::size_t size : sizes) {
             for (const std::string& mode : o.modes) runWorkload(makeWorkload(scene, size, mode, o.margin), o, csv);
         }

@@ -188,11 +188,11 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     Buffer<std::uint64_t>& colliding = ws.colliding;
     colliding.resize(hit_count);
     {
-        std::size_t at = 0;
-        for (const auto& part : hits) {
-            std::copy(part.begin(), part.end(), colliding.begin() + at);
-            at += part.size();
-        }
+        std::vector<std::size_t> at(hits.size() + 1, 0);
+        for (std::size_t t = 0; t < hits.size(); ++t) at[t + 1] = at[t] + hits[t].size();
+        ex.parallelFor(hits.size(), 16, [&](std::size_t first, std::size_t last) {
+            for (std::size_t t = first; t < last; ++t) std::copy(hits[t].begin(), hits[t].end(), colliding.begin() + at[t]);
+        });
     }
     if (!tests_in_order) parallelRadixSort(ex, colliding, ws.colliding_scratch, 32 + bitsFor(slot_count));
     out.pairs.resize(hit_count);

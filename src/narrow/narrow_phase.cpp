@@ -160,7 +160,9 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const std::uint32_t* rec
     tasks.resize(narrow::taskCount(tiles, sweep_grain));
     Buffer<std::uint8_t>& in_pair = ws.in_pair;
     in_pair.resize(n);
-    std::fill(in_pair.begin(), in_pair.end(), std::uint8_t{0});
+    ex.parallelFor(n, 1u << 18, [&](std::size_t begin, std::size_t end) {
+        std::fill(in_pair.begin() + begin, in_pair.begin() + end, std::uint8_t{0});
+    });
     static_assert(std::atomic_ref<std::uint8_t>::required_alignment == 1);
     const bool filter_objects = static_cast<bool>(options.may_collide);
     ex.parallelFor(tiles, sweep_grain, [&](std::size_t begin, std::size_t end) {

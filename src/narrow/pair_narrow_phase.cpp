@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <limits>
 #include <optional>
@@ -11,14 +12,15 @@
 #include "vkcollide/thread_pool.hpp"
 
 // The pair path (docs/narrow_phase.md):
-//   1. every pair checked and made a key (lower id, higher id), the keys radix sorted and
-//      repeats dropped: the distinct pairs in canonical order, since global ids follow
-//      (object, triangle);
-//   2. slots: the distinct triangles, found by sorting the pairs' ends (id, end) and
-//      numbering the ids; each pair's two slots come from the same sort;
-//   3. each slot's indices and world vertices gathered from the TriangleSource;
-//   4. pairing up, in parallel over the pairs: self-collision switch, neighbour rule;
-//   5. the back half (exact_stage.hpp). Tests run in pair order, so the colliding pairs
+//   1. every pair checked;
+//   2. slots: the distinct triangles in id order, numbered through a marker per id (or,
+//      when the ids span far more than the input, by sorting the pairs' ends);
+//   3. each pair a key (lower slot, higher slot), the keys sorted and repeats dropped:
+//      the distinct pairs in canonical order, since slots follow the global ids and
+//      global ids follow (object, triangle);
+//   4. each slot's indices and world vertices gathered from the TriangleSource;
+//   5. pairing up, in parallel over the pairs: self-collision switch, neighbour rule;
+//   6. the back half (exact_stage.hpp). Tests run in pair order, so the colliding pairs
 //      come out sorted.
 // Every step is a function of the set of distinct pairs, so the result does not depend on
 // the input order, on repeats or on the thread count.
@@ -30,6 +32,10 @@ using narrow::Buffer;
 using narrow::keyOf;
 
 constexpr std::size_t kPairGrain = 16384;
+// Slots through one marker per id while ids span at most this many per input pair (plus
+// a constant); beyond, through sorting the pairs' ends.
+constexpr std::size_t kDenseIdsPerPair = 8;
+constexpr std::size_t kDenseIdsFree = std::size_t{1} << 16;
 constexpr std::size_t kPairUpGrain = 4096;
 // Ends are numbered in 32 bits.
 constexpr std::size_t kMaxPairs = (std::size_t{1} << 31) - 1;
@@ -60,7 +66,7 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
     const std::uint32_t total = source.totalTriangles();
     const int id_bits = bitsFor(total == 0 ? 0 : total - 1);
 
-    // Stage 1: check, key, sort, drop repeats.
+    // Stage 1: check.
     Buffer<std::uint64_t>& keys = ws.pair_keys;
     keys.resize(input);
     std::vector<std::size_t> first_bad(narrow::taskCount(input, kPairGrain), input);
@@ -71,7 +77,6 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
                 first_bad[begin / kPairGrain] = k;
                 return;
             }
-            keys[k] = (std::uint64_t{std::min(p.a, p.b)} << id_bits) | std::max(p.a, p.b);
         }
     });
     for (const std::size_t k : first_bad) {
@@ -86,7 +91,76 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
         return Error(ErrorCode::InvalidArgument, pairName(k, p) + ": triangle id " + std::to_string(std::max(p.a, p.b)) +
                                                      " is not below the source's " + std::to_string(total) + " triangles");
     }
-    narrow::parallelRadixSort(ex, keys, ws.pair_scratch, 2 * id_bits);
+    // Stage 2: slots, the distinct triangles in id order. When ids span a range not much
+    // larger than the input, a marker per id and a scan number them; otherwise sorting
+    // the ends (id, 2 k + side) does.
+    Buffer<std::uint32_t>& slot_of_end = ws.pair_slots;  // [2 k], [2 k + 1]: the slots of input pair k
+    slot_of_end.resize(2 * input);
+    std::size_t slot_count = 0;
+    if (std::size_t{total} <= kDenseIdsPerPair * input + kDenseIdsFree) {
+        Buffer<std::uint32_t>& slot_of = ws.responder_of;  // borrowed: free until the responses
+        slot_of.resize(total);
+        ex.parallelFor(total, kPairGrain, [&](std::size_t begin, std::size_t end) {
+            std::fill(slot_of.begin() + begin, slot_of.begin() + end, 0u);
+        });
+        static_assert(std::atomic_ref<std::uint32_t>::required_alignment <= alignof(std::uint32_t));
+        ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) {
+                std::atomic_ref<std::uint32_t>(slot_of[in_pairs[k].a]).store(1, std::memory_order_relaxed);
+                std::atomic_ref<std::uint32_t>(slot_of[in_pairs[k].b]).store(1, std::memory_order_relaxed);
+            }
+        });
+        ws.slot_ids.resize(total);
+        slot_count = narrow::compact(
+            ex, total, [&](std::size_t g) { return slot_of[g] != 0; },
+            [&](std::size_t out, std::size_t g) { ws.slot_ids[out] = static_cast<std::uint32_t>(g); });
+        ws.slot_ids.resize(slot_count);
+        narrow::exclusiveScan(ex, slot_of.data(), total);
+        ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) {
+                slot_of_end[2 * k] = slot_of[in_pairs[k].a];
+                slot_of_end[2 * k + 1] = slot_of[in_pairs[k].b];
+            }
+        });
+    } else {
+        const int end_bits = bitsFor(2 * std::uint64_t{input});
+        Buffer<std::uint64_t>& ends = ws.ends;
+        ends.resize(2 * input);
+        ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) {
+                ends[2 * k] = (std::uint64_t{in_pairs[k].a} << end_bits) | (2 * k);
+                ends[2 * k + 1] = (std::uint64_t{in_pairs[k].b} << end_bits) | (2 * k + 1);
+            }
+        });
+        narrow::parallelSortKeys(ex, ends, ws.ends_scratch, id_bits + end_bits);
+        Buffer<std::uint32_t>& slot_begin = ws.responder_begin;  // borrowed: free until the responses
+        slot_begin.resize(ends.size() + 1);
+        slot_count = narrow::compact(
+            ex, ends.size(), [&](std::size_t e) { return e == 0 || (ends[e] >> end_bits) != (ends[e - 1] >> end_bits); },
+            [&](std::size_t out, std::size_t e) { slot_begin[out] = static_cast<std::uint32_t>(e); });
+        slot_begin[slot_count] = static_cast<std::uint32_t>(ends.size());
+        ws.slot_ids.resize(slot_count);
+        const std::uint64_t end_mask = (std::uint64_t{1} << end_bits) - 1;
+        ex.parallelFor(slot_count, kPairGrain, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t s = begin; s < end; ++s) {
+                ws.slot_ids[s] = static_cast<std::uint32_t>(ends[slot_begin[s]] >> end_bits);
+                for (std::size_t e = slot_begin[s]; e < slot_begin[s + 1]; ++e) {
+                    slot_of_end[ends[e] & end_mask] = static_cast<std::uint32_t>(s);
+                }
+            }
+        });
+    }
+
+    // Stage 3: the pairs as (lower slot, higher slot) keys, sorted, repeats dropped: the
+    // distinct pairs in canonical order (slots follow the ids, ids follow (object, triangle)).
+    const int slot_bits = bitsFor(slot_count == 0 ? 0 : slot_count - 1);
+    ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const std::uint32_t sa = slot_of_end[2 * k], sb = slot_of_end[2 * k + 1];
+            keys[k] = (std::uint64_t{std::min(sa, sb)} << slot_bits) | std::max(sa, sb);
+        }
+    });
+    narrow::parallelSortKeys(ex, keys, ws.pair_scratch, 2 * slot_bits);
     Buffer<std::uint64_t>& distinct = ws.pair_scratch;
     distinct.resize(input);
     const std::size_t pairs = narrow::compact(
@@ -94,37 +168,8 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
         [&](std::size_t out, std::size_t k) { distinct[out] = keys[k]; });
     distinct.resize(pairs);
     keys.swap(distinct);  // keys: the distinct pairs, ascending
+    const std::uint64_t slot_mask = (std::uint64_t{1} << slot_bits) - 1;
 
-    // Stage 2: slots. Sort the ends (id, 2 q + side) and number the distinct ids.
-    const int end_bits = bitsFor(2 * std::uint64_t{pairs});
-    const std::uint64_t low_mask = (std::uint64_t{1} << id_bits) - 1;
-    Buffer<std::uint64_t>& ends = ws.ends;
-    ends.resize(2 * pairs);
-    ex.parallelFor(pairs, kPairGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t q = begin; q < end; ++q) {
-            ends[2 * q] = ((keys[q] >> id_bits) << end_bits) | (2 * q);
-            ends[2 * q + 1] = ((keys[q] & low_mask) << end_bits) | (2 * q + 1);
-        }
-    });
-    narrow::parallelRadixSort(ex, ends, ws.ends_scratch, id_bits + end_bits);
-    Buffer<std::uint32_t>& slot_begin = ws.responder_begin;  // borrowed: free until the responses
-    slot_begin.resize(ends.size() + 1);
-    const std::size_t slot_count = narrow::compact(
-        ex, ends.size(), [&](std::size_t e) { return e == 0 || (ends[e] >> end_bits) != (ends[e - 1] >> end_bits); },
-        [&](std::size_t out, std::size_t e) { slot_begin[out] = static_cast<std::uint32_t>(e); });
-    slot_begin[slot_count] = static_cast<std::uint32_t>(ends.size());
-    ws.slot_ids.resize(slot_count);
-    Buffer<std::uint32_t>& pair_slots = ws.pair_slots;  // [2 q], [2 q + 1]: the slots of distinct pair q
-    pair_slots.resize(2 * pairs);
-    const std::uint64_t end_mask = (std::uint64_t{1} << end_bits) - 1;
-    ex.parallelFor(slot_count, kPairGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t s = begin; s < end; ++s) {
-            ws.slot_ids[s] = static_cast<std::uint32_t>(ends[slot_begin[s]] >> end_bits);
-            for (std::size_t e = slot_begin[s]; e < slot_begin[s + 1]; ++e) {
-                pair_slots[ends[e] & end_mask] = static_cast<std::uint32_t>(s);
-            }
-        }
-    });
     NarrowResult result;
     result.stats.input_pairs = input;
     result.stats.candidates = slot_count;
@@ -132,7 +177,7 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
     result.stats.sap_pairs = pairs;
     clock.lap(result.timings.validate_ms);
 
-    // Stage 3: the slots' geometry.
+    // Stage 4: the slots' geometry.
     if (std::optional<Error> e =
             narrow::gatherSlots(source, ws.slot_ids, ex, ws.tags, ws.vertices, ws.table_keys, ws.table_scratch)) {
         return Error(e->code(), "runPairNarrowPhase: " + e->message());
@@ -140,7 +185,7 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
     const narrow::SlotData slots = narrow::slotView(ws.tags, ws.vertices);
     clock.lap(result.timings.gather_ms);
 
-    // Stage 4: pairing up.
+    // Stage 5: pairing up.
     std::vector<narrow::PairTask>& tasks = ws.pair_tasks;
     tasks.resize(narrow::taskCount(pairs, kPairUpGrain));
     const bool filter_objects = static_cast<bool>(options.may_collide);
@@ -151,7 +196,7 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
         std::size_t filtered = 0, neighbours = 0;
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
         for (std::size_t q = begin; q < end; ++q) {
-            const std::uint32_t i = pair_slots[2 * q], j = pair_slots[2 * q + 1];
+            const auto i = static_cast<std::uint32_t>(keys[q] >> slot_bits), j = static_cast<std::uint32_t>(keys[q] & slot_mask);
             const std::uint32_t object_i = slots.object[i], object_j = slots.object[j];
             if (object_i == object_j) {
                 if (!options.selfCollides(object_i)) {

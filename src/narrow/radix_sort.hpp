@@ -115,3 +115,13 @@ void parallelRadixSort(Executor& executor, Buffer<T>& data, Buffer<T>& scratch, 
 }
 
 }  // namespace vkcollide::narrow
+
+namespace vkcollide::narrow {
+
+// Sorts plain 64-bit keys that use the low `key_bits` bits, in parallel, for the pair
+// path's (slot, slot) keys: one pass by the top 11 bits into 2048 buckets (per-task
+// counts, stable), then every bucket on its own, in parallel, by LSD byte digits in
+// memory that stays in cache. Two passes over the whole array instead of one per byte.
+void parallelSortKeys(Executor& executor, Buffer<std::uint64_t>& io_keys, Buffer<std::uint64_t>& scratch, int key_bits);
+
+}  // namespace vkcollide::narrow

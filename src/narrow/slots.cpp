@@ -36,6 +36,7 @@ std::uint32_t objectOf(const TriangleSource& source, std::uint32_t id) {
 
 SlotData slotView(const Buffer<SlotTag>& tags, const Buffer<SlotVertices>& vertices) {
     SlotData d;
+    if (tags.empty() || vertices.empty()) return d;  // nothing to view (and no array to point into)
     const SlotTag* t = tags.data();
     d.object = {&t->object, sizeof(SlotTag)};
     d.triangle = {&t->triangle, sizeof(SlotTag)};

@@ -3,6 +3,7 @@
 list(APPEND VKCOLLIDE_HOST_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/exact_predicates.cpp
   ${CMAKE_CURRENT_LIST_DIR}/triangle_intersection.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/radix_sort.cpp
   ${CMAKE_CURRENT_LIST_DIR}/triangle_source.cpp
   ${CMAKE_CURRENT_LIST_DIR}/slots.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sweep_and_prune.cpp

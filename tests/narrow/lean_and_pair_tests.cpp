@@ -418,3 +418,50 @@ TEST_CASE("Bad ids and bad geometry are named errors", "[narrow][source][pairs][
         CHECK(s.totalTriangles() == 0);
     }
 }
+
+TEST_CASE("Pair path with ids spread over a huge source (slots by sorting the ends)", "[narrow][pairs]") {
+    // Object 0: a big GPU-only mesh of which the table holds a few triangles; object 1: a
+    // host floor. Two million ids and a few pairs: the path that sorts the pairs' ends.
+    // The record path on the same source gives the expected result.
+    HostMesh floor;
+    floor.positions = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}, {0, 0, 0.5f}, {2, 0, 0.5f}, {0, 2, 0.5f}};
+    floor.indices = {0, 1, 2, 3, 4, 5};
+    TriangleSource source;
+    REQUIRE(*source.addGpuMesh(2000000) == 0);
+    REQUIRE(*source.addHostMesh(floor.positions, floor.indices) == 1);
+    std::vector<GpuTriangle> table;
+    for (std::uint32_t t : {7u, 1234567u, 1999999u, 42u}) {
+        const float x = 0.1f * float(table.size());
+        GpuTriangle g{t, {3 * t, 3 * t + 1, 3 * t + 2}, {{x, 0.2f, -1}, {x, 0.2f, 1}, {x + 0.1f, 0.5f, 0.25f}}};
+        table.push_back(g);
+    }
+    source.setGpuTriangles(table);
+    const std::uint32_t floor0 = source.triangleBase(1), floor1 = floor0 + 1;
+    std::vector<CandidatePair> pairs = {{7, floor0}, {floor1, 1234567}, {1999999, floor0}, {42, floor1}, {floor0, 7}, {7, 42}};
+    std::vector<CandidateRecord> records;
+    for (std::uint32_t t : {7u, 1234567u, 1999999u, 42u}) records.push_back({0, t, {0, 0, 1, 1}, 0, 1});
+    records.push_back({1, 0, {0, 0, 1, 1}, 0, 1});
+    records.push_back({1, 1, {0, 0, 1, 1}, 0, 1});
+    NarrowOptions options;
+    options.default_self_collision = false;
+    ThreadPool pool(3);
+    const auto p = runPairNarrowPhase(pairs, source, options, pool);
+    const auto r = runNarrowPhase(records, source, options, pool);
+    REQUIRE((p && r));
+    REQUIRE(!r->pairs.empty());
+    // The records pair every GPU triangle with both floors; the pairs name a subset.
+    std::vector<TrianglePair> expected;
+    for (const TrianglePair& t : r->pairs) {
+        const std::uint32_t a = source.triangleBase(t.object_a) + t.triangle_a, b = source.triangleBase(t.object_b) + t.triangle_b;
+        if (std::any_of(pairs.begin(), pairs.end(), [&](const CandidatePair& c) {
+                return (c.a == a && c.b == b) || (c.a == b && c.b == a);
+            })) {
+            expected.push_back(t);
+        }
+    }
+    CHECK(p->pairs == expected);
+    CHECK(p->stats.input_pairs == 6);
+    CHECK(p->stats.sap_pairs == 5);
+    CHECK(p->stats.filtered_pairs == 1);  // (7, 42): one object, no self-collision
+    CHECK(p->stats.candidates == 6);
+}

@@ -16,7 +16,9 @@
 // not apply); `spheres` (two overlapping UV spheres) and `torus-box` (a torus threaded on a
 // subdivided box) are generated with about `size` triangles in all; `deep` is issue 13's
 // deep overlap (two spheres of size/2 triangles overlapping by 85 % of their size: with
-// `near`, about 1M candidates for size 1,200,000) and `pile` its 60-mesh pile (60 spheres
+// `near`, about 1M candidates for size 1,200,000), `twin` a sphere and a copy turned by 3
+// degrees (surfaces crossing all over: about as many tests as triangles, like the issue's
+// 1.09M records and 1.09M tests) and `pile` its 60-mesh pile (60 spheres
 // of 9,940 triangles, fixed size). Meshes are in object space with a transform per object;
 // world positions are computed as the exact reference does. --candidates reads a raw array
 // of CandidateTriangle (80 bytes each, e.g. the records of a GPU broad phase).
@@ -47,11 +49,14 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <random>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "passes/broad_phase.hpp"
+#include "narrow/neighbours.hpp"
+#include "narrow/sweep_and_prune.hpp"
 #include "passes/mesh_upload.hpp"
 #include "support/exact_reference.hpp"
 #include "vkcollide/context.hpp"
@@ -69,6 +74,8 @@ struct Options {
     std::vector<std::string> scenes = {"demo", "spheres", "torus-box"};
     std::vector<std::string> modes = {"all", "near", "contact"};
     std::vector<bool> self = {true};  // self-collision of every object, one row each
+    std::vector<std::string> paths = {"records"};
+    double pair_repeats = 0.1;  // pair path: this fraction of the pairs is sent twice (reversed)
     std::vector<std::string> files;
     unsigned repeat = 7;
     std::uint32_t resolution = 512;
@@ -79,10 +86,19 @@ struct Options {
     std::string dump;  // prefix for raw candidate files, empty: none
 };
 
+// One object of a generated scene: an object-space mesh and its object -> world transform
+// (row-major 3x4). World positions are M * p in double, rounded once to float, as
+// tests/support/exact_reference.hpp's worldPositions computes them.
+struct SceneObject {
+    HostMesh mesh;
+    Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+};
+
 struct Workload {
     std::string scene, mode;
     std::size_t triangles = 0;
     std::vector<CandidateTriangle> candidates;
+    std::vector<SceneObject> objects;  // object-space meshes and transforms; empty for --candidates files
 };
 
 [[noreturn]] void die(const std::string& what) {
@@ -129,6 +145,13 @@ Options parseArgs(int argc, char** argv) {
                 if (t != "on" && t != "off") die("--self takes on, off or both (on,off)");
                 o.self.push_back(t == "on");
             }
+        } else if (a == "--paths") {
+            o.paths = splitList(value());
+            for (const std::string& t : o.paths) {
+                if (t != "records" && t != "lean" && t != "pairs") die("--paths takes records, lean, pairs");
+            }
+        } else if (a == "--pair-repeats") {
+            o.pair_repeats = std::stod(value());
         } else if (a == "--modes") {
             o.modes = splitList(value());
         } else if (a == "--candidates") {
@@ -149,21 +172,13 @@ Options parseArgs(int argc, char** argv) {
             o.csv = value();
         } else {
             die("unknown argument " + a +
-                " (use --threads, --sizes, --scenes, --modes, --self, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --dump, --csv)");
+                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --dump, --csv)");
         }
     }
     if (o.threads.empty()) die("--threads needs at least one count");
     if (o.self.empty()) die("--self needs on, off or both");
     return o;
 }
-
-// One object of a generated scene: an object-space mesh and its object -> world transform
-// (row-major 3x4). World positions are M * p in double, rounded once to float, as
-// tests/support/exact_reference.hpp's worldPositions computes them.
-struct SceneObject {
-    HostMesh mesh;
-    Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-};
 
 HostMesh generated(Result<HostMesh> mesh) { return take(std::move(mesh), "generator"); }
 
@@ -225,6 +240,14 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
         const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
         objects.push_back({generated(uvSphere(1.0f, s, s / 2)), rotationTranslation(1, 0.2, 0.1, 0.4, {-0.14f, -0.05f, 0.0f})});
         objects.push_back({generated(uvSphere(1.0f, s, s / 2)), rotationTranslation(0.1, 1, 0.3, 1.1, {0.14f, 0.05f, 0.06f})});
+    } else if (scene == "twin") {
+        // A sphere of size/2 triangles and a copy turned by 3 degrees about a tilted axis
+        // through its centre (tools/bench/bench_scenes.cpp's meshTwin): the two surfaces
+        // cross each other all over, about one test per triangle between the objects.
+        const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
+        const HostMesh sphere = generated(uvSphere(1.0f, s, s / 2));
+        objects.push_back({sphere, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}});
+        objects.push_back({sphere, rotationTranslation(0.3, 1, 0.2, 3 * kPi / 180, {0, 0, 0})});
     } else if (scene == "pile") {
         // Issue 13's pile: 60 unit spheres of 9,940 triangles (596,400 in all) on a grid
         // 1.8 apart, each turned its own way (tools/bench/bench_scenes.cpp's sphereGrid,
@@ -237,7 +260,7 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
                                                          2 * kPi * hash01(7 * i + 5), t)});
         }
     } else {
-        die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, pile, gpu-demo, gpu-deep, gpu-pile)");
+        die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, twin, pile, gpu-demo, gpu-deep, gpu-pile)");
     }
     return objects;
 }
@@ -337,6 +360,7 @@ Workload makeWorkload(const std::string& scene, std::size_t size, const std::str
         w.triangles += o.mesh.triangleCount();
     }
     w.candidates = selectCandidates(take(test::allTrianglesAsCandidates(objects), "candidates"), mode, margin);
+    w.objects = scene_objects;
     return w;
 }
 
@@ -345,7 +369,8 @@ Workload makeWorkload(const std::string& scene, std::size_t size, const std::str
 Workload gpuWorkload(const std::string& scene, std::size_t size, std::uint32_t resolution) {
     // The broad phase takes world-space meshes: transforms applied as the exact reference does.
     std::vector<HostMesh> meshes;
-    for (const SceneObject& o : buildScene(scene, size)) {
+    const std::vector<SceneObject> scene_objects = buildScene(scene, size);
+    for (const SceneObject& o : scene_objects) {
         HostMesh m = o.mesh;
         m.positions = test::worldPositions(o.mesh, test::transformFrom3x4(o.transform));
         meshes.push_back(std::move(m));
@@ -366,6 +391,7 @@ Workload gpuWorkload(const std::string& scene, std::size_t size, std::uint32_t r
     settings.resolution = resolution;
     settings.direction = {0.15f, -0.2f, 1.0f};
     w.candidates = take(broad_phase->run(uploaded.meshes, settings), "broad phase").records;
+    w.objects = scene_objects;
     return w;
 }
 
@@ -388,12 +414,42 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-struct Row {
-    double validate, sweep, filter, test, sort, response, total, total_min, cpu;
-};
-
 // CPU time of the whole process (all threads), in ms.
 double processCpuMs() { return 1000.0 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// The inputs of the lean and pair paths for one workload and self-collision setting.
+struct LeanInputs {
+    TriangleSource source;
+    std::vector<CandidateRecord> records;
+    std::vector<CandidatePair> pairs;
+};
+
+// The source holds the scene's object-space meshes and transforms; records are the
+// candidates without vertices; pairs are what a GPU pair stage without its triangle
+// filter would send: every pair of boxes overlapping in x, y and z that the
+// self-collision switch allows and that shares no vertex index, as global ids, a
+// fraction sent twice (reversed), shuffled.
+LeanInputs leanInputs(const Workload& w, bool self, double repeats, bool with_pairs) {
+    LeanInputs in;
+    for (const SceneObject& o : w.objects) take(in.source.addHostMesh(o.mesh.positions, o.mesh.indices, o.transform), "source");
+    in.records.reserve(w.candidates.size());
+    for (const CandidateTriangle& c : w.candidates) {
+        in.records.push_back({c.object, c.triangle, {c.box[0], c.box[1], c.box[2], c.box[3]}, c.zmin, c.zmax});
+    }
+    if (!with_pairs) return in;
+    ThreadPool pool(0);
+    for (const narrow::IndexPair& p : narrow::sweepAndPrunePairs(w.candidates, &pool)) {
+        const CandidateTriangle &a = w.candidates[p.i], &b = w.candidates[p.j];
+        if (a.object == b.object && (!self || narrow::shareIndex(a.vertex_index, b.vertex_index))) continue;
+        in.pairs.push_back({in.source.triangleBase(a.object) + a.triangle, in.source.triangleBase(b.object) + b.triangle});
+    }
+    const std::size_t distinct = in.pairs.size();
+    const std::size_t every = repeats > 0 ? std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(1.0 / repeats))) : 0;
+    for (std::size_t k = 0; every && k < distinct; k += every) in.pairs.push_back({in.pairs[k].b, in.pairs[k].a});
+    std::mt19937 rng(2006);
+    std::shuffle(in.pairs.begin(), in.pairs.end(), rng);
+    return in;
+}
 
 void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
     if (!o.dump.empty() && w.mode != "file") {
@@ -403,56 +459,79 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
                   static_cast<std::streamsize>(w.candidates.size() * sizeof(CandidateTriangle)));
         if (!out) die("cannot write " + path);
     }
+    const bool lean_paths = std::any_of(o.paths.begin(), o.paths.end(), [](const std::string& p) { return p != "records"; });
+    const bool pair_path = std::find(o.paths.begin(), o.paths.end(), "pairs") != o.paths.end();
     for (const bool self : o.self) {
         NarrowOptions options;
         options.default_self_collision = self;
         if (o.filter) options.may_collide = [](std::uint32_t, std::uint32_t) { return true; };
+        LeanInputs lean;
+        if (lean_paths && !w.objects.empty()) lean = leanInputs(w, self, o.pair_repeats, pair_path);
         std::vector<TrianglePair> reference_pairs;
         bool first = true;
-        for (unsigned threads : o.threads) {
-            ThreadPool pool(threads);
-            NarrowWorkspace workspace;
-            std::vector<NarrowTimings> times;
-            std::vector<double> cpu;
-            NarrowStats stats;
-            for (unsigned r = 0; r <= o.repeat; ++r) {
-                const double cpu_start = processCpuMs();
-                Result<NarrowResult> result = o.fresh ? runNarrowPhase(w.candidates, options, pool)
-                                                      : runNarrowPhase(w.candidates, options, pool, workspace);
-                const double cpu_ms = processCpuMs() - cpu_start;
-                if (!result) die(w.scene + ": " + result.error().message());
-                if (r == 0) {  // warm-up run: check it, do not time it
-                    if (first) reference_pairs = result->pairs;
-                    if (result->pairs != reference_pairs) die(w.scene + ": different pairs with " + std::to_string(threads) + " threads");
-                    stats = result->stats;
-                    continue;
+        for (const std::string& path : o.paths) {
+            if (path != "records" && w.objects.empty()) continue;  // a candidate file has no meshes
+            const std::size_t inputs = path == "pairs" ? lean.pairs.size() : w.candidates.size();
+            for (unsigned threads : o.threads) {
+                ThreadPool pool(threads);
+                NarrowWorkspace workspace;
+                std::vector<NarrowTimings> times;
+                std::vector<double> cpu;
+                NarrowStats stats;
+                for (unsigned r = 0; r <= o.repeat; ++r) {
+                    const double cpu_start = processCpuMs();
+                    Result<NarrowResult> result = Error(ErrorCode::InvalidArgument, "no path");
+                    if (path == "records") {
+                        result = o.fresh ? runNarrowPhase(w.candidates, options, pool)
+                                         : runNarrowPhase(w.candidates, options, pool, workspace);
+                    } else if (path == "lean") {
+                        result = o.fresh ? runNarrowPhase(lean.records, lean.source, options, pool)
+                                         : runNarrowPhase(lean.records, lean.source, options, pool, workspace);
+                    } else {
+                        result = o.fresh ? runPairNarrowPhase(lean.pairs, lean.source, options, pool)
+                                         : runPairNarrowPhase(lean.pairs, lean.source, options, pool, workspace);
+                    }
+                    const double cpu_ms = processCpuMs() - cpu_start;
+                    if (!result) die(w.scene + " (" + path + "): " + result.error().message());
+                    if (r == 0) {  // warm-up run: check it, do not time it
+                        if (first) reference_pairs = result->pairs;
+                        first = false;
+                        if (result->pairs != reference_pairs) {
+                            die(w.scene + ": " + path + " with " + std::to_string(threads) + " threads gives other pairs");
+                        }
+                        stats = result->stats;
+                        continue;
+                    }
+                    times.push_back(result->timings);
+                    cpu.push_back(cpu_ms);
                 }
-                times.push_back(result->timings);
-                cpu.push_back(cpu_ms);
-            }
-            first = false;
-            const auto med = [&](double NarrowTimings::*field) {
-                std::vector<double> v;
-                for (const NarrowTimings& t : times) v.push_back(t.*field);
-                return median(v);
-            };
-            Row row{med(&NarrowTimings::validate_ms), med(&NarrowTimings::sweep_ms), med(&NarrowTimings::filter_ms),
-                    med(&NarrowTimings::test_ms),     med(&NarrowTimings::sort_ms),  med(&NarrowTimings::response_ms),
-                    med(&NarrowTimings::total_ms),    0, median(cpu)};
-            row.total_min = times.front().total_ms;
-            for (const NarrowTimings& t : times) row.total_min = std::min(row.total_min, t.total_ms);
-            std::printf("%-12s %-8s %-4s %9zu %9zu %4u %10zu %9zu %7zu | %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f | %9.3f %9.3f %8.3f\n",
-                        w.scene.c_str(), w.mode.c_str(), self ? "on" : "off", w.triangles, w.candidates.size(),
-                        pool.threadCount(), stats.sap_pairs, stats.triangle_tests, stats.positive_tests, row.validate, row.sweep,
-                        row.filter, row.test, row.sort, row.response, row.total, row.total_min, row.cpu);
-            std::fflush(stdout);
-            if (csv) {
-                std::fprintf(csv, "%s,%s,%s,%zu,%zu,%u,%zu,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
-                             w.scene.c_str(), w.mode.c_str(), self ? "on" : "off", w.triangles, w.candidates.size(),
-                             pool.threadCount(), stats.potentially_colliding_triangles, stats.sap_pairs, stats.filtered_pairs,
-                             stats.neighbour_pairs, stats.triangle_tests, stats.positive_tests, row.validate, row.sweep, row.filter,
-                             row.test, row.sort, row.response, row.total, row.total_min, row.cpu);
-                std::fflush(csv);
+                const auto med = [&](double NarrowTimings::*field) {
+                    std::vector<double> v;
+                    for (const NarrowTimings& t : times) v.push_back(t.*field);
+                    return median(v);
+                };
+                const double validate = med(&NarrowTimings::validate_ms), gather = med(&NarrowTimings::gather_ms),
+                             sweep = med(&NarrowTimings::sweep_ms), filter = med(&NarrowTimings::filter_ms),
+                             test = med(&NarrowTimings::test_ms), sort = med(&NarrowTimings::sort_ms),
+                             response = med(&NarrowTimings::response_ms), total = med(&NarrowTimings::total_ms);
+                double total_min = times.front().total_ms;
+                for (const NarrowTimings& t : times) total_min = std::min(total_min, t.total_ms);
+                const double cpu_ms = median(cpu);
+                std::printf("%-12s %-8s %-4s %-7s %9zu %9zu %4u %10zu %9zu %7zu | %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f | %9.3f %9.3f %8.3f\n",
+                            w.scene.c_str(), w.mode.c_str(), self ? "on" : "off", path.c_str(), w.triangles, inputs,
+                            pool.threadCount(), stats.sap_pairs, stats.triangle_tests, stats.positive_tests, validate, gather,
+                            sweep, filter, test, sort, response, total, total_min, cpu_ms);
+                std::fflush(stdout);
+                if (csv) {
+                    std::fprintf(csv,
+                                 "%s,%s,%s,%s,%zu,%zu,%u,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%."
+                                 "4f,%.4f\n",
+                                 w.scene.c_str(), w.mode.c_str(), self ? "on" : "off", path.c_str(), w.triangles, inputs,
+                                 pool.threadCount(), stats.candidates, stats.potentially_colliding_triangles, stats.sap_pairs,
+                                 stats.filtered_pairs, stats.neighbour_pairs, stats.triangle_tests, stats.positive_tests,
+                                 stats.input_pairs, validate, gather, sweep, filter, test, sort, response, total, total_min, cpu_ms);
+                    std::fflush(csv);
+                }
             }
         }
     }
@@ -466,14 +545,14 @@ int main(int argc, char** argv) {
     if (!o.csv.empty()) {
         csv = std::fopen(o.csv.c_str(), "w");
         if (!csv) die("cannot write " + o.csv);
-        std::fprintf(csv, "scene,mode,self,triangles,candidates,threads,potentially_colliding,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
-                          "positive_tests,validate_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
+        std::fprintf(csv, "scene,mode,self,path,triangles,inputs,threads,candidates,potentially_colliding,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
+                          "positive_tests,input_pairs,validate_ms,gather_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
     }
     std::printf("median of %u runs (ms)%s%s\n", o.repeat, o.filter ? ", with may_collide" : "",
                 o.fresh ? ", no workspace" : ", one workspace per row");
-    std::printf("%-12s %-8s %-4s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode", "self", "tris",
-                "cands", "thr", "sap pairs", "tests", "pairs", "validate", "sweep", "filter", "test", "sort", "response",
-                "total", "total min", "cpu");
+    std::printf("%-12s %-8s %-4s %-7s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode",
+                "self", "path", "tris", "inputs", "thr", "cand pairs", "tests", "pairs", "validate", "gather", "sweep", "filter",
+                "test", "sort", "response", "total", "total min", "cpu");
     for (const std::string& path : o.files) runWorkload(loadWorkload(path), o, csv);
     for (const std::string& scene : o.scenes) {
         if (scene.rfind("gpu-", 0) == 0) {

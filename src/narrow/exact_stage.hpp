@@ -66,6 +66,7 @@ struct vkcollide::NarrowWorkspace::Impl {
     narrow::Buffer<narrow::SlotTag> tags;
     narrow::Buffer<narrow::SlotVertices> vertices;
     narrow::Buffer<std::uint64_t> table_keys, table_scratch;
+    narrow::Buffer<Float3> world;  // whole meshes in world space
     // Pair path.
     narrow::Buffer<std::uint64_t> pair_keys, pair_scratch, ends, ends_scratch;
     narrow::Buffer<std::uint32_t> pair_slots;  // 2 per distinct pair

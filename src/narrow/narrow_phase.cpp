@@ -321,7 +321,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records,
         }
     });
     if (std::optional<Error> e = narrow::gatherSlots(source, ws.slot_ids, executor, ws.tags, ws.vertices, ws.table_keys,
-                                                     ws.table_scratch)) {
+                                                     ws.table_scratch, ws.world)) {
         return Error(e->code(), "runNarrowPhase: " + e->message());
     }
     clock.lap(result.timings.gather_ms);

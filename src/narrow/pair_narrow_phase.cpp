@@ -179,7 +179,7 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
 
     // Stage 4: the slots' geometry.
     if (std::optional<Error> e =
-            narrow::gatherSlots(source, ws.slot_ids, ex, ws.tags, ws.vertices, ws.table_keys, ws.table_scratch)) {
+            narrow::gatherSlots(source, ws.slot_ids, ex, ws.tags, ws.vertices, ws.table_keys, ws.table_scratch, ws.world)) {
         return Error(e->code(), "runPairNarrowPhase: " + e->message());
     }
     const narrow::SlotData slots = narrow::slotView(ws.tags, ws.vertices);

@@ -13,6 +13,8 @@ namespace {
 // Slots per gather task: a task walks the objects and the sorted GPU table from its first
 // slot on, so it starts with two binary searches.
 constexpr std::size_t kGatherGrain = 4096;
+// world_begin of an object transformed per slot.
+constexpr std::size_t kNotWhole = std::numeric_limits<std::size_t>::max();
 
 std::string triangleName(std::uint32_t object, std::uint32_t triangle) {
     return "object " + std::to_string(object) + " triangle " + std::to_string(triangle);
@@ -47,7 +49,7 @@ SlotData slotView(const Buffer<SlotTag>& tags, const Buffer<SlotVertices>& verti
 
 std::optional<Error> gatherSlots(const TriangleSource& source, const Buffer<std::uint32_t>& ids, Executor& executor,
                                  Buffer<SlotTag>& out_tags, Buffer<SlotVertices>& out_vertices,
-                                 Buffer<std::uint64_t>& table_keys, Buffer<std::uint64_t>& scratch) {
+                                 Buffer<std::uint64_t>& table_keys, Buffer<std::uint64_t>& scratch, Buffer<Float3>& world) {
     const std::size_t n = ids.size();
     out_tags.resize(n);
     out_vertices.resize(n);
@@ -71,6 +73,31 @@ std::optional<Error> gatherSlots(const TriangleSource& source, const Buffer<std:
                 return Error(ErrorCode::InvalidArgument,
                              "GPU triangle table: id " + std::to_string(table_keys[k] >> 32) + " appears more than once");
             }
+        }
+    }
+
+    // Objects transformed whole: world[world_begin[o] + v] is vertex v of object o.
+    const std::size_t objects_count = objects.size();
+    std::vector<std::size_t> world_begin(objects_count, kNotWhole);
+    {
+        std::size_t total = 0;
+        for (std::uint32_t o = 0; o < objects_count; ++o) {
+            const TriangleSource::Object& ob = objects[o];
+            if (ob.gpu || ob.identity || ob.positions.empty()) continue;
+            const auto first = std::lower_bound(ids.begin(), ids.end(), source.triangleBase(o));
+            const auto last = std::lower_bound(first, ids.end(), source.triangleBase(o + 1));
+            if (3 * static_cast<std::size_t>(last - first) < ob.positions.size()) continue;
+            world_begin[o] = total;
+            total += ob.positions.size();
+        }
+        world.resize(total);
+        for (std::uint32_t o = 0; o < objects_count; ++o) {
+            if (world_begin[o] == kNotWhole) continue;
+            const TriangleSource::Object& ob = objects[o];
+            Float3* const out = world.data() + world_begin[o];
+            executor.parallelFor(ob.positions.size(), 1u << 14, [&](std::size_t begin, std::size_t end) {
+                for (std::size_t v = begin; v < end; ++v) out[v] = toWorld(ob.transform, ob.positions[v]);
+            });
         }
     }
 
@@ -104,7 +131,9 @@ std::optional<Error> gatherSlots(const TriangleSource& source, const Buffer<std:
                                                                          std::to_string(vertex_count) + " vertices)"));
                     }
                     tag.vertex_index[k] = index;
-                    verts.v[k] = o.identity ? o.positions[index] : toWorld(o.transform, o.positions[index]);
+                    verts.v[k] = o.identity                          ? o.positions[index]
+                                 : world_begin[object] != kNotWhole ? world[world_begin[object] + index]
+                                                                     : toWorld(o.transform, o.positions[index]);
                 }
             } else {
                 if (!cursor_set) {

@@ -73,8 +73,10 @@ std::uint32_t objectOf(const TriangleSource& source, std::uint32_t id);
 // table's (id, position) keys. Errors: the one of the lowest slot (an index out of range,
 // a non-finite world vertex, a GPU-only triangle missing from the table) or a table id
 // that repeats.
+// `world` is scratch for whole meshes transformed at once: an object whose slots outnumber
+// a third of its vertices gets every vertex transformed once instead of three per slot.
 std::optional<Error> gatherSlots(const TriangleSource& source, const Buffer<std::uint32_t>& ids, Executor& executor,
                                  Buffer<SlotTag>& out_tags, Buffer<SlotVertices>& out_vertices,
-                                 Buffer<std::uint64_t>& table_keys, Buffer<std::uint64_t>& scratch);
+                                 Buffer<std::uint64_t>& table_keys, Buffer<std::uint64_t>& scratch, Buffer<Float3>& world);
 
 }  // namespace vkcollide::narrow

@@ -37,9 +37,10 @@ using narrow::Strided;
 
 // Records per validation task.
 constexpr std::size_t kValidateGrain = 16384;
-// Sweep tiles per task: about kTasksPerThread tasks per thread, at most this many.
+// Sweep tiles per task: about kTasksPerThread tasks per thread (active tiles cluster where
+// objects meet, so many small tasks balance better), at most this many.
 constexpr std::size_t kMaxSweepGrain = 256;
-constexpr std::size_t kTasksPerThread = 8;
+constexpr std::size_t kTasksPerThread = 32;
 
 // Either kind of record, seen through strided views.
 struct RecordView {
@@ -75,28 +76,49 @@ std::string boxProblem(const BoxZ& b) {
     return finite ? " has an empty box (needs x0 <= x1, y0 <= y1, zmin <= zmax)" : " has a non-finite box or depth";
 }
 
+// The boxes' extent per axis, found while validating (the sweep needs it).
+struct BoxRange {
+    float lo[3], hi[3];
+};
+
 // Stage 1. check(i) returns an error message for a bad record i (its first broken rule)
 // or nothing. Fills ws.record_of when the keys are not ascending; returns whether they are.
 template <typename Check>
-Result<bool> validateAndRank(const RecordView& rv, Check&& check, Executor& ex, NarrowWorkspace::Impl& ws) {
+Result<bool> validateAndRank(const RecordView& rv, Check&& check, Executor& ex, NarrowWorkspace::Impl& ws,
+                             BoxRange& out_range) {
     const std::size_t n = rv.n;
     const auto keyAt = [&](std::size_t i) { return keyOf(rv.object[i], rv.triangle[i]); };
     const std::size_t tasks = narrow::taskCount(n, kValidateGrain);
     std::vector<std::size_t> first_bad(tasks, n);
     std::vector<char> ascending(tasks, 1);
+    std::vector<BoxRange> task_range(tasks);
     ex.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
         std::size_t bad = n;
         bool task_ascending = true;
         std::uint64_t previous = keyAt(begin);
+        const BoxZ first = rv.box[begin];
+        BoxRange r{{first.x0, first.y0, first.z0}, {first.x1, first.y1, first.z1}};
         for (std::size_t i = begin; i < end; ++i) {
-            if (bad == n && (!validBox(rv.box[i]) || check(i))) bad = i;
+            const BoxZ b = rv.box[i];
+            if (bad == n && (!validBox(b) || check(i))) bad = i;
+            // Comparisons with NaN are false: a bad box does not spoil the range (and fails anyway).
+            r.lo[0] = b.x0 < r.lo[0] ? b.x0 : r.lo[0], r.hi[0] = b.x1 > r.hi[0] ? b.x1 : r.hi[0];
+            r.lo[1] = b.y0 < r.lo[1] ? b.y0 : r.lo[1], r.hi[1] = b.y1 > r.hi[1] ? b.y1 : r.hi[1];
+            r.lo[2] = b.z0 < r.lo[2] ? b.z0 : r.lo[2], r.hi[2] = b.z1 > r.hi[2] ? b.z1 : r.hi[2];
             const std::uint64_t key = keyAt(i);
             task_ascending = task_ascending && (i == begin || previous < key);
             previous = key;
         }
         first_bad[begin / kValidateGrain] = bad;
         ascending[begin / kValidateGrain] = task_ascending ? 1 : 0;
+        task_range[begin / kValidateGrain] = r;
     });
+    if (tasks > 0) {
+        out_range = task_range[0];
+        for (const BoxRange& r : task_range) {
+            for (int a = 0; a < 3; ++a) out_range.lo[a] = std::min(out_range.lo[a], r.lo[a]), out_range.hi[a] = std::max(out_range.hi[a], r.hi[a]);
+        }
+    }
     const auto bad = std::min_element(first_bad.begin(), first_bad.end());
     if (bad != first_bad.end() && *bad < n) {
         const std::size_t i = *bad;
@@ -141,9 +163,9 @@ Result<bool> validateAndRank(const RecordView& rv, Check&& check, Executor& ex, 
 }
 
 // Stages 3 and on, once the slots are known.
-Result<NarrowResult> sweepAndTest(const RecordView& rv, const std::uint32_t* record_of, const narrow::SlotData& slots,
-                                  const NarrowOptions& options, Executor& ex, NarrowWorkspace::Impl& ws,
-                                  NarrowResult&& result, narrow::StageClock& clock) {
+Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, const std::uint32_t* record_of,
+                                  const narrow::SlotData& slots, const NarrowOptions& options, Executor& ex,
+                                  NarrowWorkspace::Impl& ws, NarrowResult&& result, narrow::StageClock& clock) {
     const std::size_t n = rv.n;
     NarrowStats& stats = result.stats;
     narrow::SweepInput input;
@@ -152,6 +174,9 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const std::uint32_t* rec
     input.record_of = record_of;
     input.object = slots.object;
     input.options = &options;
+    input.has_range = true;
+    std::copy(std::begin(range.lo), std::end(range.lo), input.range_lo);
+    std::copy(std::begin(range.hi), std::end(range.hi), input.range_hi);
     narrow::CellSweep& sweep = ws.sweep;
     sweep.build(input, &ex);
     const std::size_t tiles = sweep.tileCount();
@@ -250,7 +275,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         if (!narrow::isFinite(c.v[0]) || !narrow::isFinite(c.v[1]) || !narrow::isFinite(c.v[2])) return " has a non-finite vertex";
         return std::nullopt;
     };
-    Result<bool> ascending = validateAndRank(rv, check, executor, ws);
+    BoxRange range{};
+    Result<bool> ascending = validateAndRank(rv, check, executor, ws, range);
     if (!ascending) return ascending.error();
     NarrowResult result;
     result.stats.candidates = n;
@@ -279,7 +305,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         slots = narrow::slotView(ws.tags, ws.vertices);
     }
     clock.lap(result.timings.gather_ms);
-    return sweepAndTest(rv, *ascending ? nullptr : ws.record_of.data(), slots, options, executor, ws, std::move(result), clock);
+    return sweepAndTest(rv, range, *ascending ? nullptr : ws.record_of.data(), slots, options, executor, ws, std::move(result),
+                        clock);
 }
 
 Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
@@ -305,7 +332,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records,
         }
         return std::nullopt;
     };
-    Result<bool> ascending = validateAndRank(rv, check, executor, ws);
+    BoxRange range{};
+    Result<bool> ascending = validateAndRank(rv, check, executor, ws, range);
     if (!ascending) return ascending.error();
     NarrowResult result;
     result.stats.candidates = n;
@@ -325,7 +353,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records,
         return Error(e->code(), "runNarrowPhase: " + e->message());
     }
     clock.lap(result.timings.gather_ms);
-    return sweepAndTest(rv, record_of, narrow::slotView(ws.tags, ws.vertices), options, executor, ws, std::move(result), clock);
+    return sweepAndTest(rv, range, record_of, narrow::slotView(ws.tags, ws.vertices), options, executor, ws, std::move(result),
+                        clock);
 }
 
 }  // namespace vkcollide

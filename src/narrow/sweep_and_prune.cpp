@@ -111,22 +111,25 @@ void CellSweep::build(const SweepInput& in, Executor* executor) {
     CallbackExecutor serial(1, {});
     Executor& ex = executor ? *executor : serial;
 
-    // The ranges (per task, then combined).
-    const std::size_t grain = grainFor(n, ex.threadCount(), 4, 4096, 1u << 20);
-    std::vector<Range> task_range(taskCount(n, grain));
-    ex.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
-        const BoxZ first = boxOf(in, begin);
-        Range r{{first.x0, first.y0, first.z0}, {first.x1, first.y1, first.z1}};
-        for (std::size_t i = begin; i < end; ++i) {
-            const BoxZ b = boxOf(in, i);
-            const float lo[3] = {b.x0, b.y0, b.z0}, hi[3] = {b.x1, b.y1, b.z1};
-            for (int a = 0; a < 3; ++a) r.lo[a] = std::min(r.lo[a], lo[a]), r.hi[a] = std::max(r.hi[a], hi[a]);
+    // The ranges (per task, then combined), unless the caller has them.
+    Range range{{in.range_lo[0], in.range_lo[1], in.range_lo[2]}, {in.range_hi[0], in.range_hi[1], in.range_hi[2]}};
+    if (!in.has_range) {
+        const std::size_t grain = grainFor(n, ex.threadCount(), 4, 4096, 1u << 20);
+        std::vector<Range> task_range(taskCount(n, grain));
+        ex.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+            const BoxZ first = boxOf(in, begin);
+            Range r{{first.x0, first.y0, first.z0}, {first.x1, first.y1, first.z1}};
+            for (std::size_t i = begin; i < end; ++i) {
+                const BoxZ b = boxOf(in, i);
+                const float lo[3] = {b.x0, b.y0, b.z0}, hi[3] = {b.x1, b.y1, b.z1};
+                for (int a = 0; a < 3; ++a) r.lo[a] = std::min(r.lo[a], lo[a]), r.hi[a] = std::max(r.hi[a], hi[a]);
+            }
+            task_range[begin / grain] = r;
+        });
+        range = task_range[0];
+        for (const Range& r : task_range) {
+            for (int a = 0; a < 3; ++a) range.lo[a] = std::min(range.lo[a], r.lo[a]), range.hi[a] = std::max(range.hi[a], r.hi[a]);
         }
-        task_range[begin / grain] = r;
-    });
-    Range range = task_range[0];
-    for (const Range& r : task_range) {
-        for (int a = 0; a < 3; ++a) range.lo[a] = std::min(range.lo[a], r.lo[a]), range.hi[a] = std::max(range.hi[a], r.hi[a]);
     }
 
     // Slabs per axis: cells of kCellExtent(X) median boxes, at most one cell per box

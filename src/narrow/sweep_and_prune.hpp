@@ -55,6 +55,10 @@ struct SweepInput {
     const std::uint32_t* record_of = nullptr;   // slot -> record; null: slot == record
     Strided<std::uint32_t> object;              // by slot
     const NarrowOptions* options = nullptr;     // self-collision switch; null: every object on
+    // The boxes' lowest low and highest high end per axis (x, y, z), when the caller has
+    // them (the validation pass reads every box anyway); else the build computes them.
+    bool has_range = false;
+    float range_lo[3] = {0, 0, 0}, range_hi[3] = {0, 0, 0};
 };
 
 // At most this many slots (an entry keeps a slot in 28 bits).

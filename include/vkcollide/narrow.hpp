@@ -264,7 +264,7 @@ private:
 // Preconditions (checked; a broken one returns ErrorCode::InvalidArgument naming the
 // candidate's object and triangle): every vertex, box coordinate and depth is finite;
 // box[0] <= box[2], box[1] <= box[3], zmin <= zmax; no (object, triangle) appears twice;
-// at most 2^30 candidates. Boxes and depths are only compared with each other, so any
+// at most 2^28 - 1 candidates. Boxes and depths are only compared with each other, so any
 // consistent screen space works; intervals are closed (touching boxes overlap). Vertices
 // are in world units.
 //

@@ -61,7 +61,7 @@ struct ThreadPool::Shared {
 
     alignas(64) std::atomic<std::uint32_t> epoch{0};  // bumped once per loop (and to stop)
     std::atomic<bool> open{false};                     // the loop takes new threads
-    bool stopping = false;                             // written before the last epoch bump
+    std::atomic<bool> stopping{false};                 // set before the last epoch bump
     alignas(64) std::atomic<std::size_t> next{0};      // first item not handed out yet
     alignas(64) std::atomic<std::size_t> done{0};      // chunks finished
     alignas(64) std::atomic<int> active{0};            // workers inside the open loop
@@ -101,7 +101,7 @@ struct ThreadPool::Shared {
                 sleepers.fetch_sub(1);
             }
             seen = epoch.load(std::memory_order_acquire);
-            if (stopping) return;
+            if (stopping.load(std::memory_order_acquire)) return;
             active.fetch_add(1);
             // A loop closed in the meantime: its caller may be returning. (A loop opened
             // since is complete in memory when `open` reads true, so joining it is fine.)
@@ -129,7 +129,7 @@ ThreadPool::ThreadPool(unsigned thread_count) : shared_(std::make_unique<Shared>
 }
 
 ThreadPool::~ThreadPool() {
-    shared_->stopping = true;
+    shared_->stopping.store(true, std::memory_order_release);
     shared_->epoch.fetch_add(1);
     shared_->epoch.notify_all();
     for (std::thread& worker : workers_) worker.join();

@@ -1,4 +1,5 @@
 #include "narrow/exact_stage.hpp"
+#include "narrow/workspace.hpp"
 
 #include <algorithm>
 #include <bit>

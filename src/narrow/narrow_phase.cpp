@@ -5,6 +5,7 @@
 #include <string>
 
 #include "narrow/exact_stage.hpp"
+#include "narrow/workspace.hpp"
 #include "narrow/neighbours.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/thread_pool.hpp"

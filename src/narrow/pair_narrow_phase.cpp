@@ -6,6 +6,7 @@
 #include <string>
 
 #include "narrow/exact_stage.hpp"
+#include "narrow/workspace.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/slots.hpp"
 #include "vkcollide/narrow.hpp"

@@ -1,64 +1,100 @@
-// vkcollide: a small fixed-size pool of worker threads for data-parallel loops (the narrow phase).
+// vkcollide: how the narrow phase runs data-parallel loops.
+//
+// Everything parallel in vkcollide's host code goes through an Executor: one call,
+// parallelFor, that runs a loop's chunks on some threads and returns when they are done.
+// Two implementations:
+//   ThreadPool        vkcollide's own worker threads (the default of CollisionWorld);
+//   CallbackExecutor  an engine's job system behind one callback (issue 16), in the spirit
+//                     of PhysX's CpuDispatcher or Jolt's JobSystem: the engine runs task
+//                     indices [0, n) on its workers and returns when all have run.
+// An engine may also derive from Executor directly.
 #pragma once
 
-#include <atomic>
-#include <condition_variable>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
 
 namespace vkcollide {
 
-// Owned by the caller; there is no global pool. The thread that calls parallelFor works on
-// the loop too, so a pool of N threads starts N - 1 workers. Workers spin for a few
-// microseconds after a loop (the narrow phase runs several in a row), then sleep.
+class Executor {
+public:
+    virtual ~Executor() = default;
+
+    // How many threads may run chunks at the same time (>= 1). Only used to size chunks
+    // (a few per thread); results never depend on it.
+    virtual unsigned threadCount() const noexcept = 0;
+
+    // Calls body(begin, end) for the consecutive chunks [begin, end) of at most `grain`
+    // items (grain 0 counts as 1) that cover [0, count), possibly concurrently and in any
+    // order, and returns when all chunks are done; everything a chunk wrote is then
+    // visible to the caller. body must only write state owned by its chunk, must not
+    // throw and must not call parallelFor on the same executor.
+    virtual void parallelFor(std::size_t count, std::size_t grain,
+                             const std::function<void(std::size_t, std::size_t)>& body) = 0;
+};
+
+// An engine's parallel-for: run run_task(k) once for every k in [0, task_count), on any
+// threads, in any order, and return when every call has returned. task_count >= 2.
+// vkcollide calls it from the thread that runs the narrow phase, one loop at a time, about
+// ten loops per narrow-phase call; each task is a few microseconds to a millisecond.
+using ParallelForCallback =
+    std::function<void(std::size_t task_count, const std::function<void(std::size_t task)>& run_task)>;
+
+// An Executor that hands every loop to an engine's job system. Loops of one chunk run on
+// the calling thread without calling back.
+// Thread safety: as thread safe as the callback; vkcollide never calls it concurrently
+// from one narrow-phase call.
+class CallbackExecutor final : public Executor {
+public:
+    // `thread_count`: how many of the engine's threads may run tasks at once (0 counts as
+    // 1). `parallel_for` must not be empty (an empty one runs every task on the caller).
+    CallbackExecutor(unsigned thread_count, ParallelForCallback parallel_for);
+
+    unsigned threadCount() const noexcept override { return thread_count_; }
+    void parallelFor(std::size_t count, std::size_t grain,
+                     const std::function<void(std::size_t, std::size_t)>& body) override;
+
+private:
+    unsigned thread_count_;
+    ParallelForCallback parallel_for_;
+};
+
+// A fixed-size pool of worker threads, owned by the caller (there is no global pool). The
+// thread that calls parallelFor works on the loop too, so a pool of N threads starts
+// N - 1 workers. Chunks are handed out with one atomic increment each. After a loop,
+// workers poll for about 100 microseconds (the narrow phase runs about ten loops back to
+// back), then sleep until the next loop.
 //
 // Thread safety: parallelFor may be called from any thread; calls are serialised (one
 // loop runs at a time). The destructor must not run concurrently with parallelFor.
-class ThreadPool {
+class ThreadPool final : public Executor {
 public:
     // Runs loops on `thread_count` threads, the calling one included; 0 means
     // std::thread::hardware_concurrency() (at least 1). 1 starts no worker. If the system
     // refuses to start threads, the pool keeps the ones it got (down to the calling
     // thread alone); threadCount() tells how many.
     explicit ThreadPool(unsigned thread_count = 0);
-    ~ThreadPool();
+    ~ThreadPool() override;
 
     ThreadPool(const ThreadPool&) = delete;
     ThreadPool& operator=(const ThreadPool&) = delete;
 
     // Number of threads that run a loop's chunks: the workers plus the calling thread (>= 1).
-    unsigned threadCount() const noexcept { return static_cast<unsigned>(workers_.size()) + 1; }
+    unsigned threadCount() const noexcept override { return static_cast<unsigned>(workers_.size()) + 1; }
 
-    // Calls body(begin, end) for consecutive chunks [begin, end) of at most `grain` items
-    // (grain 0 counts as 1) covering [0, count), spread over the workers and the calling
-    // thread, and returns when all chunks are done. Chunks run concurrently and in no
-    // particular order, so body must only write to state owned by its chunk. body must
-    // not throw and must not call parallelFor on the same pool. A loop of one chunk runs
-    // on the calling thread alone.
-    void parallelFor(std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body);
+    // As Executor::parallelFor. A loop of one chunk runs on the calling thread alone.
+    void parallelFor(std::size_t count, std::size_t grain,
+                     const std::function<void(std::size_t, std::size_t)>& body) override;
+
+    struct Shared;  // the state workers and the caller share (src/narrow/thread_pool.cpp)
 
 private:
-    void workerLoop();
-    // Runs chunks of the current loop until none is left; called with `lock` held.
-    void runChunks(std::unique_lock<std::mutex>& lock);
-
+    std::unique_ptr<Shared> shared_;
     std::vector<std::thread> workers_;
     std::mutex submit_mutex_;  // serialises parallelFor calls
-
-    std::mutex mutex_;  // guards everything below but generation_'s reads while spinning
-    std::condition_variable work_ready_;
-    std::condition_variable work_done_;
-    const std::function<void(std::size_t, std::size_t)>* body_ = nullptr;
-    std::size_t count_ = 0;
-    std::size_t grain_ = 1;
-    std::size_t next_ = 0;               // first item not yet handed out
-    std::size_t chunks_left_ = 0;        // chunks of the current loop not yet finished
-    std::atomic<std::size_t> generation_{0};  // bumped once per loop (under mutex_) so workers notice it
-    unsigned sleeping_ = 0;              // workers waiting on work_ready_
-    bool stopping_ = false;
 };
 
 }  // namespace vkcollide

@@ -1,22 +1,32 @@
 // Sweep-and-prune over screen-space boxes (Cohen et al. 1995), as in section 7 of the
-// paper: boxes are swept along x, and pairs that overlap in x are kept when they overlap
-// in y and in the depth extent z too. Intervals are closed. The paper computes a box's
-// depth extent only for pairs that overlap in x and y; here the extents arrive with the
-// boxes, so the y and z tests are simply combined.
+// paper: pairs of boxes that overlap in x, y and the depth extent z. Intervals are closed.
+// The paper computes a box's depth extent only for pairs that overlap in x and y; here
+// the extents arrive with the boxes, so the three tests are simply combined.
 //
-// One sweep along x over all boxes visits, for every box, all boxes that overlap it in x
-// alone; the GPU's candidates lie along intersection curves and in several depth layers,
-// so that is a large multiple of the pairs that overlap in all three axes (45 times for
-// the demo scene, growing with the candidate count). The sweep therefore runs per cell
-// of a grid over y and z: cells about twice as large as a typical box, each box listed in
-// every cell it touches, each cell swept on its own. A pair is reported only in the cell
-// of (max(y0a, y0b), max(z0a, z0b)), where both boxes are listed, so exactly once. Cells
-// are built, sorted and swept in parallel.
+// One sweep along x over all boxes would visit, for every box, all boxes that overlap it
+// in x alone: the GPU's candidates lie along intersection curves and in several depth
+// layers, so that is a large multiple of the pairs that overlap in all three axes (45
+// times for the demo scene, growing with the candidate count). So the boxes go into the
+// cells of a grid over x, y and z, each box listed in every cell it touches, and a pair is
+// looked at only in the cell of (max(x0a, x0b), max(y0a, y0b), max(z0a, z0b)), where both
+// boxes are listed: exactly once. Cells are about three typical (median) boxes high and
+// deep and eight wide; a cell is swept along x after sorting by x0, or, when it holds few
+// boxes, checked pair by pair.
+//
+// Cells that hold boxes of a single object that does not self-collide cannot produce a
+// pair and are skipped without sorting: objects do not self-collide by default, and then
+// only the cells where objects meet cost anything.
+//
+// Parallel work: the cells are grouped into tiles (blocks of cells in x and y, all of z).
+// Building lists each box in the tiles it touches (a counting sort, in parallel over the
+// boxes); sweeping processes whole tiles, in parallel: a tile's boxes go into its cells
+// (a counting sort in the task's own memory), then its active cells are swept.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
+#include <cstring>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -25,157 +35,240 @@
 #include <emmintrin.h>
 #endif
 
+#include "narrow/parallel.hpp"
+#include "narrow/slots.hpp"
 #include "vkcollide/narrow.hpp"
 
 namespace vkcollide::narrow {
 
-// Indices (i < j) into the candidate span.
+// Slots (i < j) of a pair.
 struct IndexPair {
     std::uint32_t i = 0, j = 0;
     friend bool operator==(const IndexPair&, const IndexPair&) = default;
     friend auto operator<=>(const IndexPair&, const IndexPair&) = default;
 };
 
-// What a visitor usually needs to judge a pair, carried in the sweep's own entries: most
-// pairs are decided from these (neighbours through a shared vertex index, pairs of
-// different objects) without reading the 80-byte candidates in random order.
-struct CandidateTag {
-    std::uint32_t object;
-    std::uint32_t vertex_index[3];
+// The boxes to sweep, one per slot (slots 0..count-1).
+struct SweepInput {
+    std::size_t count = 0;
+    Strided<BoxZ> box;                          // by record
+    const std::uint32_t* record_of = nullptr;   // slot -> record; null: slot == record
+    Strided<std::uint32_t> object;              // by slot
+    const NarrowOptions* options = nullptr;     // self-collision switch; null: every object on
+    // The boxes' lowest low and highest high end per axis (x, y, z), when the caller has
+    // them (the validation pass reads every box anyway); else the build computes them.
+    bool has_range = false;
+    float range_lo[3] = {0, 0, 0}, range_hi[3] = {0, 0, 0};
 };
 
-// The boxes of a candidate span arranged in cells, ready to sweep. Entry positions
-// [0, entryCount()) are the unit of parallel work: sweepRange(begin, end, visit) visits
-// every overlapping pair whose first box (in sweep order) sits at a position in [begin,
-// end), so ranges that tile [0, entryCount()) visit every pair exactly once.
+// At most this many slots (an entry keeps a slot in 28 bits).
+inline constexpr std::size_t kMaxSweepSlots = (std::size_t{1} << 28) - 1;
+
 class CellSweep {
 public:
-    // Preconditions: no NaN in box/zmin/zmax; box[0] <= box[2], box[1] <= box[3]; at most
-    // 2^32 - 1 candidates. `pool` may be null (runs on the calling thread). The layout
-    // (cell count, order of visits) may depend on the input order and thread count; the
-    // set of pairs does not. Building again reuses the memory of the previous build.
-    void build(std::span<const CandidateTriangle> in_candidates, ThreadPool* pool);
-
-    std::size_t entryCount() const noexcept { return entry_count_; }
-    std::size_t cellCount() const noexcept { return cell_begin_.empty() ? 0 : cell_begin_.size() - 1; }
-
-    // Calls visit(i, j), i < j, for every pair of candidates whose boxes overlap in x, y
-    // and z and whose first box sits at a position in [begin, end); visit(i, j, tag_i,
-    // tag_j) if it takes the candidates' tags too. Thread safe (const).
-    template <typename Visit>
-    void sweepRange(std::size_t begin, std::size_t end, Visit&& visit) const;
-
-private:
-    // A box as listed in one cell (48 bytes), so the sweep reads contiguous memory.
+    // A box as listed in a tile or a cell (32 bytes).
     struct Entry {
         float x0, x1, y0, y1, z0, z1;
-        std::uint32_t id;      // candidate index
-        std::uint32_t starts;  // bit 0: y0 is in this cell's strip; bit 1: z0 is in its slab
-        CandidateTag tag;
+        // slot << 4 | self << 3 | starts: bits 0, 1, 2: x0, y0, z0 lie in this cell's slab
+        // of x, y, z (cell entries only); bit 3: the object self-collides.
+        std::uint32_t slot_flags;
+        std::uint32_t object;
     };
-    // Whether boxes overlap box `a` in y and z: 1 or 0, without branches (compilers turn
-    // even `&` of float comparisons into jumps, so on x86-64 this uses SSE2 masks).
-    struct OverlapYZ {
-        explicit OverlapYZ(const Entry& a) noexcept;
-        std::uint32_t operator()(const Entry& b) const noexcept;
-#if defined(__SSE2__)
-        __m128 a_high, a_low;
-#else
-        float y0, y1, z0, z1;
-#endif
+    static_assert(sizeof(Entry) == 32);
+    // Slabs of an entry on the three axes: lo[a] .. hi[a].
+    struct CellRange {
+        std::uint32_t lo[3], hi[3];
     };
 
-    std::unique_ptr<Entry[]> entries_;      // cell by cell, each sorted by (x0, id)
-    std::size_t entry_count_ = 0, entry_capacity_ = 0;
-    // Build scratch, kept so that a CellSweep built again reuses its memory.
-    std::unique_ptr<Entry[]> unsorted_;          // entries in candidate order within each cell
-    std::unique_ptr<std::uint64_t[]> sort_keys_;  // (x0 bits, position in cell) per entry
-    std::vector<std::size_t> slots_;             // per task and cell: count, then next slot
-    std::vector<std::size_t> cell_begin_;   // entries of cell c: [cell_begin_[c], cell_begin_[c + 1])
+    // A tile's active cells: entries cell after cell, cell k in [begin[k], begin[k + 1]).
+    struct TileCells {
+        std::vector<Entry> entries;
+        std::vector<std::uint32_t> begin;
+        // Scratch of fillTile and of the sweep.
+        std::vector<std::uint32_t> count, first_object;
+        std::vector<std::uint8_t> state;
+        std::vector<CellRange> ranges;
+        std::vector<std::uint64_t> keys;
+        std::vector<Entry> sorted;
+        std::vector<std::uint32_t> run;
+    };
+
+    // Preconditions: no NaN in the boxes; x0 <= x1, y0 <= y1, z0 <= z1; at most
+    // kMaxSweepSlots slots. `executor` may be null (runs on the calling thread). The layout
+    // depends only on the boxes, not on the thread count. Building again reuses the memory
+    // of the previous build.
+    void build(const SweepInput& in, Executor* executor);
+    // All boxes of a candidate span, every object self-colliding (for tests).
+    void build(std::span<const CandidateTriangle> in_candidates, Executor* executor);
+
+    std::size_t tileCount() const noexcept { return tile_count_; }
+    std::size_t cellCount() const noexcept;
+    std::size_t entryCount() const noexcept { return entry_count_; }  // listings in tiles
+
+    // Calls visit(i, j), i < j, for every pair of slots whose boxes overlap in x, y and z,
+    // that the self-collision switch allows and that belongs to a tile in [begin, end);
+    // visit(i, j, object_i, object_j) if it takes the objects too. Tiles are disjoint in
+    // pairs, so ranges that cover [0, tileCount()) visit every pair exactly once. Thread
+    // safe (const); `scratch` is the caller's, one per thread.
+    template <typename Visit>
+    void sweepTiles(std::size_t begin, std::size_t end, TileCells& scratch, Visit&& visit) const;
+
+    // The active cells of one tile (cells where a pair may be reported).
+    void fillTile(std::size_t tile, TileCells& out) const;
+
+private:
+    // Cuts one axis into slabs of equal size. Monotone (a rounded subtraction, a
+    // multiplication by a positive constant and a truncation are each monotone), so
+    // [lo, hi] touches exactly the slabs slab(lo)..slab(hi), and slab(max(loa, lob)) =
+    // max(slab(loa), slab(lob)). In float; cellsOf's SSE2 form computes the same values.
+    struct Axis {
+        float origin = 0, scale = 0, last_slab = 0;
+        std::uint32_t last = 0;  // slab count - 1
+        std::uint32_t count() const { return last + 1; }
+        std::uint32_t operator()(float v) const {
+            const float t = (v - origin) * scale;  // >= 0: origin is the lowest low end
+            return static_cast<std::uint32_t>(std::min(t, last_slab));
+        }
+    };
+    CellRange cellsOf(const Entry& e) const noexcept;
+    CellRange cellsOf(const BoxZ& b) const noexcept;
+    bool listInTiles(const SweepInput& in, Executor& executor, std::size_t max_cell_listings);
+
+    Axis axis_[3];
+    std::uint32_t tile_shift_[3] = {0, 0, 0};  // cells per tile along each axis: 1 << shift
+    std::uint32_t tiles_[3] = {1, 1, 1};      // tiles along each axis
+    std::size_t tile_count_ = 0, entry_count_ = 0;
+    Buffer<Entry> entries_;              // tile by tile, slot order within a tile
+    Buffer<std::uint32_t> tile_begin_;   // entries of tile t: [tile_begin_[t], tile_begin_[t + 1])
+    Buffer<std::uint32_t> counts_;       // build scratch: per task and tile, then next position
 };
 
+namespace sweep_detail {
+
+// Pairs of a cell checked one by one up to this many boxes; above, sorted by x0 and swept.
+inline constexpr std::size_t kAllPairsMax = 16;
+
+// Whether b overlaps a in x, y and z: 1 or 0, without branches (compilers turn even `&`
+// of float comparisons into jumps, so on x86-64 this uses SSE2 masks).
+struct Overlap {
+    using Entry = CellSweep::Entry;
 #if defined(__SSE2__)
-// Lanes (y0, y1, z0, z1): b's lows against a's highs, b's highs against a's lows.
-inline CellSweep::OverlapYZ::OverlapYZ(const Entry& a) noexcept
-    : a_high(_mm_setr_ps(a.y1, 0, a.z1, 0)), a_low(_mm_setr_ps(0, a.y0, 0, a.z0)) {}
-
-inline std::uint32_t CellSweep::OverlapYZ::operator()(const Entry& b) const noexcept {
-    const __m128 b_yz = _mm_loadu_ps(&b.y0);
-    const int low_ok = _mm_movemask_ps(_mm_cmple_ps(b_yz, a_high));  // bits 0, 2: b.y0 <= a.y1, b.z0 <= a.z1
-    const int high_ok = _mm_movemask_ps(_mm_cmpge_ps(b_yz, a_low));  // bits 1, 3: b.y1 >= a.y0, b.z1 >= a.z0
-    const auto all = static_cast<std::uint32_t>((low_ok & 0x5) | (high_ok & 0xa));
-    return (all + 1) >> 4;  // 1 exactly when all four bits are set
-}
+    explicit Overlap(const Entry& a) noexcept
+        : high_xy(_mm_setr_ps(a.x1, 0, a.y1, 0)), low_xy(_mm_setr_ps(0, a.x0, 0, a.y0)),
+          high_z(_mm_setr_ps(a.z1, 0, 0, 0)), low_z(_mm_setr_ps(0, a.z0, 0, 0)) {}
+    std::uint32_t operator()(const Entry& b) const noexcept {
+        // Lanes (lo, hi, lo, hi): b's lows against a's highs, b's highs against a's lows.
+        const __m128 b_xy = _mm_loadu_ps(&b.x0);
+        const __m128 b_z = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&b.z0)));
+        const int xy = (_mm_movemask_ps(_mm_cmple_ps(b_xy, high_xy)) & 0x5) | (_mm_movemask_ps(_mm_cmpge_ps(b_xy, low_xy)) & 0xa);
+        const int z = (_mm_movemask_ps(_mm_cmple_ps(b_z, high_z)) & 0x1) | (_mm_movemask_ps(_mm_cmpge_ps(b_z, low_z)) & 0x2);
+        return static_cast<std::uint32_t>((xy | (z << 4)) + 1) >> 6;  // 1 exactly when all six bits are set
+    }
+    __m128 high_xy, low_xy, high_z, low_z;
 #else
-inline CellSweep::OverlapYZ::OverlapYZ(const Entry& a) noexcept : y0(a.y0), y1(a.y1), z0(a.z0), z1(a.z1) {}
-
-inline std::uint32_t CellSweep::OverlapYZ::operator()(const Entry& b) const noexcept {
-    return static_cast<std::uint32_t>((b.y0 <= y1) & (y0 <= b.y1) & (b.z0 <= z1) & (z0 <= b.z1));
-}
+    explicit Overlap(const Entry& a) noexcept : a_(a) {}
+    std::uint32_t operator()(const Entry& b) const noexcept {
+        return static_cast<std::uint32_t>((b.x0 <= a_.x1) & (a_.x0 <= b.x1) & (b.y0 <= a_.y1) & (a_.y0 <= b.y1) &
+                                          (b.z0 <= a_.z1) & (a_.z0 <= b.z1));
+    }
+    Entry a_;
 #endif
+};
+
+// 1 when the pair may be reported here: this is the cell of the largest starts (on each
+// axis one of the two starts here) and not two boxes of an object that does not
+// self-collide.
+inline std::uint32_t reportable(const CellSweep::Entry& a, const CellSweep::Entry& b) noexcept {
+    const std::uint32_t starts = (((a.slot_flags | b.slot_flags) & 7) + 1) >> 3;
+    const std::uint32_t other = static_cast<std::uint32_t>(a.object != b.object) | ((a.slot_flags >> 3) & 1);
+    return starts & other;
+}
+
+std::uint32_t orderedBits(float x) noexcept;
+
+}  // namespace sweep_detail
 
 template <typename Visit>
-void CellSweep::sweepRange(std::size_t begin, std::size_t end, Visit&& visit) const {
-    if (begin >= end) return;
-    // The cell holding `begin`: the last cell that starts at or before it.
-    std::size_t cell = 0;
-    {
-        std::size_t lo = 0, hi = cellCount();
-        while (hi - lo > 1) {
-            const std::size_t mid = (lo + hi) / 2;
-            if (cell_begin_[mid] <= begin) lo = mid; else hi = mid;
-        }
-        cell = lo;
-    }
-    const Entry* const entries = entries_.get();
-    // Positions of reported partners of the current box, visited in batches: filling
-    // the batch is branch-free, which matters because the tests below pass for a mixed,
-    // unpredictable fraction of the pairs (about half in y, a quarter of those in z on
-    // the demo's candidates).
-    constexpr std::uint32_t kBatch = 64;
+void CellSweep::sweepTiles(std::size_t begin, std::size_t end, TileCells& cells, Visit&& visit) const {
+    using namespace sweep_detail;
+    // Reported partners of the current box, visited in batches: filling the batch is
+    // branch-free, which matters because the tests pass for an unpredictable fraction.
+    constexpr std::uint32_t kBatch = 32;
     std::uint32_t batch[kBatch];
-    for (std::size_t s = begin; s < end; ++s) {
-        while (cell_begin_[cell + 1] <= s) ++cell;
-        const std::size_t cell_end = cell_begin_[cell + 1];
-        const Entry a = entries[s];
-        const auto flush = [&](std::uint32_t count) {
-            for (std::uint32_t k = 0; k < count; ++k) {
-                const Entry& b = entries[batch[k]];
-                const bool a_first = a.id < b.id;
-                const Entry& first = a_first ? a : b;
-                const Entry& second = a_first ? b : a;
-                if constexpr (std::is_invocable_v<Visit&, std::uint32_t, std::uint32_t, const CandidateTag&,
-                                                  const CandidateTag&>) {
-                    visit(first.id, second.id, first.tag, second.tag);
-                } else {
-                    visit(first.id, second.id);
-                }
-            }
-        };
-        const OverlapYZ overlaps(a);
-        const float a_x1 = a.x1;
-        const std::uint32_t a_starts = a.starts;
-        std::uint32_t count = 0;
-        // Sorted by x0: the boxes of this cell that overlap a in x are the ones up to the
-        // first that starts after a ends.
-        for (std::size_t t = s + 1; t < cell_end && entries[t].x0 <= a_x1; ++t) {
-            const Entry& b = entries[t];
-            // y and depth overlap, and this is the cell that reports the pair: the strip
-            // of max(y0a, y0b), where one of the boxes starts in y, and the slab of
-            // max(z0a, z0b), where one starts in z ((a | b) == 3 exactly when the sum
-            // below is 4).
-            batch[count] = static_cast<std::uint32_t>(t);  // kept only if count grows
-            count += overlaps(b) & (((a_starts | b.starts) + 1) >> 2);
-            if (count == kBatch) {
-                flush(count);
-                count = 0;
+    const auto flush = [&](const Entry* list, const Entry& a, std::uint32_t count) {
+        const std::uint32_t a_slot = a.slot_flags >> 4;
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const Entry& b = list[batch[k]];
+            const std::uint32_t b_slot = b.slot_flags >> 4;
+            const bool a_first = a_slot < b_slot;
+            const std::uint32_t first = a_first ? a_slot : b_slot, second = a_first ? b_slot : a_slot;
+            if constexpr (std::is_invocable_v<Visit&, std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t>) {
+                visit(first, second, a_first ? a.object : b.object, a_first ? b.object : a.object);
+            } else {
+                visit(first, second);
             }
         }
-        flush(count);
+    };
+    std::vector<Entry>& sorted = cells.sorted;
+    for (std::size_t tile = begin; tile < end; ++tile) {
+        fillTile(tile, cells);
+        for (std::size_t c = 0; c + 1 < cells.begin.size(); ++c) {
+            const Entry* list = cells.entries.data() + cells.begin[c];
+            const std::size_t k = cells.begin[c + 1] - cells.begin[c];
+            if (k <= kAllPairsMax) {
+                for (std::size_t i = 0; i + 1 < k; ++i) {
+                    const Entry& a = list[i];
+                    const Overlap overlaps(a);
+                    std::uint32_t count = 0;
+                    for (std::size_t j = i + 1; j < k; ++j) {
+                        batch[count] = static_cast<std::uint32_t>(j);  // kept only if count grows
+                        count += overlaps(list[j]) & reportable(a, list[j]);
+                    }
+                    flush(list, a, count);  // count <= 15 < kBatch
+                }
+                continue;
+            }
+            // Sort by (x0, slot): the boxes that overlap a in x are then the ones after it
+            // up to the first that starts after a ends.
+            std::vector<std::uint64_t>& keys = cells.keys;
+            keys.resize(k);
+            for (std::size_t i = 0; i < k; ++i) keys[i] = (std::uint64_t{orderedBits(list[i].x0)} << 32) | i;
+            std::sort(keys.begin(), keys.end());  // ties: position, which follows the slot
+            sorted.resize(k);
+            for (std::size_t i = 0; i < k; ++i) sorted[i] = list[keys[i] & 0xffffffffu];
+            // Runs of one object in x order: an object that does not self-collide skips
+            // the rest of its run in one step (boxes of one object lie side by side).
+            std::vector<std::uint32_t>& run = cells.run;
+            run.resize(k);
+            run[k - 1] = 1;
+            for (std::size_t i = k - 1; i-- > 0;) run[i] = sorted[i + 1].object == sorted[i].object ? run[i + 1] + 1 : 1;
+            for (std::size_t i = 0; i + 1 < k; ++i) {
+                const Entry& a = sorted[i];
+                const Overlap overlaps(a);
+                const bool a_other_only = (a.slot_flags & 8) == 0;
+                std::uint32_t count = 0;
+                for (std::size_t j = i + 1; j < k && sorted[j].x0 <= a.x1;) {
+                    const Entry& b = sorted[j];
+                    if (a_other_only && b.object == a.object) {
+                        j += run[j];
+                        continue;
+                    }
+                    batch[count] = static_cast<std::uint32_t>(j);
+                    count += overlaps(b) & ((((a.slot_flags | b.slot_flags) & 7) + 1) >> 3);
+                    ++j;
+                    if (count == kBatch) {
+                        flush(sorted.data(), a, count);
+                        count = 0;
+                    }
+                }
+                flush(sorted.data(), a, count);
+            }
+        }
     }
 }
 
-// The pairs whose boxes overlap in x, y and z, sorted ascending (a convenience for tests).
-std::vector<IndexPair> sweepAndPrunePairs(std::span<const CandidateTriangle> in_candidates, ThreadPool* pool = nullptr);
+// The pairs whose boxes overlap in x, y and z, sorted ascending (a convenience for tests;
+// every object self-colliding).
+std::vector<IndexPair> sweepAndPrunePairs(std::span<const CandidateTriangle> in_candidates, Executor* executor = nullptr);
 
 }  // namespace vkcollide::narrow

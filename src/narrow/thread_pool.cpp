@@ -1,27 +1,127 @@
 #include "vkcollide/thread_pool.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <system_error>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+// How a loop runs (docs/narrow_phase.md has the measurements):
+//  - The caller publishes the loop (body, count, grain) and bumps `epoch`; workers that
+//    poll see the new epoch, sleeping ones are woken through the futex behind
+//    std::atomic::wait. Then everyone, the caller included, takes chunks with one
+//    fetch_add on `next` each: no lock, so 16 threads handing out thousands of chunks do
+//    not queue on a mutex (the old pool took one per chunk).
+//  - Finished chunks are counted in `done`, once per thread and loop; the caller waits
+//    for done == chunks.
+//  - A worker announces itself in `active` before it touches the loop and checks that
+//    the loop is still open; the caller closes the loop and waits for active == 0 before
+//    it returns, so no worker reads a loop's fields after parallelFor returned, and none
+//    can take a chunk of the next loop with the old body.
+// The counters the threads write sit on separate cache lines.
 
 namespace vkcollide {
 namespace {
 
-// How long an idle worker polls for the next loop before it sleeps. The narrow phase runs
-// about six loops back to back; waking a sleeping thread costs tens of microseconds each
-// time, polling this long costs at most this much CPU per loop.
-constexpr auto kSpin = std::chrono::microseconds(100);
+// How long an idle worker polls for the next loop before it sleeps. Waking a sleeping
+// thread costs tens of microseconds; polling this long costs at most this much CPU per loop.
+constexpr auto kPoll = std::chrono::microseconds(100);
+
+void relax() {
+#if defined(__SSE2__)
+    _mm_pause();
+#else
+    std::this_thread::yield();
+#endif
+}
+
+// Waits until pred() holds: a short busy wait, then yields (the threads we wait for may
+// need this core).
+template <typename Pred>
+void spinUntil(Pred pred) {
+    for (unsigned spins = 0; !pred(); ++spins) {
+        if (spins < 256) {
+            relax();
+        } else {
+            std::this_thread::yield();
+        }
+    }
+}
 
 }  // namespace
 
-ThreadPool::ThreadPool(unsigned thread_count) {
+struct ThreadPool::Shared {
+    // Written by the caller before a loop opens, read by the threads in it.
+    const std::function<void(std::size_t, std::size_t)>* body = nullptr;
+    std::size_t count = 0, grain = 1, chunks = 0;
+
+    alignas(64) std::atomic<std::uint32_t> epoch{0};  // bumped once per loop (and to stop)
+    std::atomic<bool> open{false};                     // the loop takes new threads
+    std::atomic<bool> stopping{false};                 // set before the last epoch bump
+    alignas(64) std::atomic<std::size_t> next{0};      // first item not handed out yet
+    alignas(64) std::atomic<std::size_t> done{0};      // chunks finished
+    alignas(64) std::atomic<int> active{0};            // workers inside the open loop
+    alignas(64) std::atomic<int> sleepers{0};          // workers blocked in epoch.wait
+
+    // Runs chunks until none is left; returns how many it ran.
+    std::size_t runChunks() {
+        std::size_t ran = 0;
+        for (;;) {
+            const std::size_t begin = next.fetch_add(grain, std::memory_order_relaxed);
+            if (begin >= count) break;
+            (*body)(begin, std::min(count, begin + grain));
+            ++ran;
+        }
+        return ran;
+    }
+
+    void workerLoop() {
+        std::uint32_t seen = 0;
+        for (;;) {
+            // Poll, then sleep until the epoch moves.
+            const auto poll_until = std::chrono::steady_clock::now() + kPoll;
+            for (unsigned spins = 0; epoch.load(std::memory_order_acquire) == seen; ++spins) {
+                if ((spins & 63) != 63) {
+                    relax();
+                    continue;
+                }
+                if (std::chrono::steady_clock::now() < poll_until) {
+                    std::this_thread::yield();
+                    continue;
+                }
+                // The caller bumps the epoch before it reads `sleepers` and we count
+                // ourselves before wait() reads the epoch (both sequentially consistent),
+                // so either it sees us and notifies, or wait() sees the new epoch.
+                sleepers.fetch_add(1);
+                epoch.wait(seen);
+                sleepers.fetch_sub(1);
+            }
+            seen = epoch.load(std::memory_order_acquire);
+            if (stopping.load(std::memory_order_acquire)) return;
+            active.fetch_add(1);
+            // A loop closed in the meantime: its caller may be returning. (A loop opened
+            // since is complete in memory when `open` reads true, so joining it is fine.)
+            if (open.load()) {
+                const std::size_t ran = runChunks();
+                if (ran) done.fetch_add(ran, std::memory_order_release);
+            }
+            active.fetch_sub(1, std::memory_order_release);
+        }
+    }
+};
+
+ThreadPool::ThreadPool(unsigned thread_count) : shared_(std::make_unique<Shared>()) {
     if (thread_count == 0) thread_count = std::max(1u, std::thread::hardware_concurrency());
     workers_.reserve(thread_count - 1);
     for (unsigned i = 1; i < thread_count; ++i) {
         // std::thread reports resource exhaustion by throwing; the API does not throw, so
         // keep the workers that did start (parallelFor copes with any number, even zero).
         try {
-            workers_.emplace_back([this] { workerLoop(); });
+            workers_.emplace_back([shared = shared_.get()] { shared->workerLoop(); });
         } catch (const std::system_error&) {
             break;
         }
@@ -29,12 +129,9 @@ ThreadPool::ThreadPool(unsigned thread_count) {
 }
 
 ThreadPool::~ThreadPool() {
-    {
-        std::lock_guard lock(mutex_);
-        stopping_ = true;
-        generation_.fetch_add(1, std::memory_order_release);  // ends the workers' polling
-    }
-    work_ready_.notify_all();
+    shared_->stopping.store(true, std::memory_order_release);
+    shared_->epoch.fetch_add(1);
+    shared_->epoch.notify_all();
     for (std::thread& worker : workers_) worker.join();
 }
 
@@ -42,66 +139,48 @@ void ThreadPool::parallelFor(std::size_t count, std::size_t grain,
                              const std::function<void(std::size_t, std::size_t)>& body) {
     if (count == 0) return;
     grain = std::max<std::size_t>(grain, 1);
-    std::lock_guard submit_lock(submit_mutex_);
     const std::size_t chunks = (count - 1) / grain + 1;
+    std::lock_guard submit_lock(submit_mutex_);
     if (workers_.empty() || chunks == 1) {
         for (std::size_t begin = 0; begin < count; begin += grain) body(begin, std::min(count, begin + grain));
         return;
     }
-    std::unique_lock lock(mutex_);
-    body_ = &body;
-    count_ = count;
-    grain_ = grain;
-    next_ = 0;
-    chunks_left_ = chunks;
-    generation_.fetch_add(1, std::memory_order_release);
-    // Wake only as many sleepers as there are chunks for (the caller takes one); polling
-    // workers see the new generation by themselves.
-    const std::size_t wanted = std::min<std::size_t>(chunks - 1, sleeping_);
-    if (wanted == sleeping_) {
-        work_ready_.notify_all();
-    } else {
-        for (std::size_t i = 0; i < wanted; ++i) work_ready_.notify_one();
-    }
-    runChunks(lock);
-    // A worker touches body_ only for a chunk it took, and every chunk taken is waited
-    // for here, so body_ is never used after return even by workers that wake late.
-    work_done_.wait(lock, [this] { return chunks_left_ == 0; });
-    body_ = nullptr;
+    Shared& s = *shared_;
+    // No worker is inside a loop here (the previous call waited for active == 0).
+    s.body = &body;
+    s.count = count;
+    s.grain = grain;
+    s.chunks = chunks;
+    s.next.store(0, std::memory_order_relaxed);
+    s.done.store(0, std::memory_order_relaxed);
+    s.open.store(true);
+    s.epoch.fetch_add(1);
+    if (s.sleepers.load() > 0) s.epoch.notify_all();
+
+    const std::size_t ran = s.runChunks();
+    if (ran) s.done.fetch_add(ran, std::memory_order_relaxed);
+    spinUntil([&] { return s.done.load(std::memory_order_acquire) == chunks; });
+    s.open.store(false);
+    spinUntil([&] { return s.active.load() == 0; });
 }
 
-void ThreadPool::runChunks(std::unique_lock<std::mutex>& lock) {
-    // Hand out chunks under the lock (chunks are coarse, so contention is small) and run
-    // them without it.
-    while (next_ < count_) {
-        const std::size_t begin = next_;
-        const std::size_t end = std::min(count_, begin + grain_);
-        next_ = end;
-        const auto* body = body_;
-        lock.unlock();
-        (*body)(begin, end);
-        lock.lock();
-        if (--chunks_left_ == 0) work_done_.notify_one();
-    }
-}
+CallbackExecutor::CallbackExecutor(unsigned thread_count, ParallelForCallback parallel_for)
+    : thread_count_(std::max(1u, thread_count)), parallel_for_(std::move(parallel_for)) {}
 
-void ThreadPool::workerLoop() {
-    std::size_t seen_generation = 0;
-    for (;;) {
-        // Poll briefly: the next loop usually follows within microseconds.
-        const auto poll_until = std::chrono::steady_clock::now() + kSpin;
-        while (generation_.load(std::memory_order_acquire) == seen_generation &&
-               std::chrono::steady_clock::now() < poll_until) {
-            std::this_thread::yield();
-        }
-        std::unique_lock lock(mutex_);
-        ++sleeping_;
-        work_ready_.wait(lock, [&] { return stopping_ || generation_.load(std::memory_order_relaxed) != seen_generation; });
-        --sleeping_;
-        if (stopping_) return;
-        seen_generation = generation_.load(std::memory_order_relaxed);
-        runChunks(lock);
+void CallbackExecutor::parallelFor(std::size_t count, std::size_t grain,
+                                   const std::function<void(std::size_t, std::size_t)>& body) {
+    if (count == 0) return;
+    grain = std::max<std::size_t>(grain, 1);
+    const std::size_t chunks = (count - 1) / grain + 1;
+    const auto run_task = [&](std::size_t task) {
+        const std::size_t begin = task * grain;
+        body(begin, std::min(count, begin + grain));
+    };
+    if (chunks == 1 || !parallel_for_) {
+        for (std::size_t task = 0; task < chunks; ++task) run_task(task);
+        return;
     }
+    parallel_for_(chunks, run_task);
 }
 
 }  // namespace vkcollide

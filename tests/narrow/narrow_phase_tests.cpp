@@ -210,7 +210,13 @@ TEST_CASE("NarrowOptions filter object pairs and self-collision", "[narrow][phas
         const auto r = runNarrowPhase(c, options, pool);
         REQUIRE(r);
         CHECK(r->pairs == std::vector<TrianglePair>{{0, 0, 1, 0}, {0, 0, 2, 0}});
-        CHECK(r->stats.filtered_pairs == 1);
+        // Pairs within an object that does not self-collide are never formed, so they are
+        // neither candidate pairs nor filtered ones.
+        const auto all = runNarrowPhase(c, {}, pool);
+        REQUIRE(all);
+        CHECK(r->stats.filtered_pairs == 0);
+        CHECK(r->stats.sap_pairs + 1 == all->stats.sap_pairs);
+        CHECK(r->stats.sap_pairs == r->stats.filtered_pairs + r->stats.neighbour_pairs + r->stats.triangle_tests);
     }
     SECTION("self-collision off by default, on for object 0") {
         NarrowOptions options;

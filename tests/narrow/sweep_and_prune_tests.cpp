@@ -115,25 +115,62 @@ TEST_CASE("Sweep and prune in cells: tall, deep, wide, flat and touching boxes, 
     CHECK(narrow::sweepAndPrunePairs(c, &pool3) == allPairs(c));
 }
 
-TEST_CASE("Sweep and prune ranges tile the pairs exactly once", "[narrow][sap]") {
+TEST_CASE("Sweep and prune tiles give the pairs exactly once", "[narrow][sap]") {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f), size(0.0f, 0.05f);
     std::vector<CandidateTriangle> c;
-    for (std::uint32_t i = 0; i < 2000; ++i) {
+    for (std::uint32_t i = 0; i < 4000; ++i) {
         const float x = unit(rng), y = unit(rng), z = unit(rng);
         c.push_back(boxCandidate(i, x, y, x + size(rng), y + size(rng), z, z + size(rng)));
     }
     narrow::CellSweep sweep;
     sweep.build(c, nullptr);
+    REQUIRE(sweep.tileCount() > 1);
     std::vector<IndexPair> pairs;
-    for (std::size_t begin = 0; begin < sweep.entryCount(); begin += 37) {
-        sweep.sweepRange(begin, std::min(sweep.entryCount(), begin + 37), [&](std::uint32_t i, std::uint32_t j) {
+    narrow::CellSweep::TileCells cells;
+    for (std::size_t begin = 0; begin < sweep.tileCount(); begin += 3) {
+        sweep.sweepTiles(begin, std::min(sweep.tileCount(), begin + 3), cells, [&](std::uint32_t i, std::uint32_t j) {
             CHECK(i < j);
             pairs.push_back({i, j});
         });
     }
     std::sort(pairs.begin(), pairs.end());
     CHECK(pairs == allPairs(c));
+}
+
+TEST_CASE("Sweep and prune skips pairs of objects that do not self-collide", "[narrow][sap]") {
+    // Three objects of random boxes; object 1 does not self-collide. Cells holding only
+    // object 1 are skipped; the pairs must still be exactly the allowed overlaps.
+    std::mt19937 rng(23);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), size(0.0f, 0.04f);
+    std::vector<CandidateTriangle> c;
+    for (std::uint32_t i = 0; i < 3000; ++i) {
+        const float x = unit(rng), y = unit(rng), z = unit(rng);
+        CandidateTriangle t = boxCandidate(i, x, y, x + size(rng), y + size(rng), z, z + size(rng));
+        t.object = i < 2000 ? 1 : (i % 2 ? 0 : 2);  // object 1 covers most cells alone
+        c.push_back(t);
+    }
+    NarrowOptions options;
+    options.self_collision = {true, false, true};
+    narrow::SweepInput in;
+    in.count = c.size();
+    in.box = {reinterpret_cast<const narrow::BoxZ*>(&c[0].box[0]), sizeof(CandidateTriangle)};
+    in.object = {&c[0].object, sizeof(CandidateTriangle)};
+    in.options = &options;
+    for (unsigned threads : {1u, 4u}) {
+        ThreadPool pool(threads);
+        narrow::CellSweep sweep;
+        sweep.build(in, &pool);
+        std::vector<IndexPair> pairs;
+        narrow::CellSweep::TileCells cells;
+        sweep.sweepTiles(0, sweep.tileCount(), cells, [&](std::uint32_t i, std::uint32_t j) { pairs.push_back({i, j}); });
+        std::sort(pairs.begin(), pairs.end());
+        std::vector<IndexPair> expected;
+        for (const IndexPair& p : allPairs(c)) {
+            if (!(c[p.i].object == 1 && c[p.j].object == 1)) expected.push_back(p);
+        }
+        CHECK(pairs == expected);
+    }
 }
 
 TEST_CASE("Radix sort orders 64-bit keys stably", "[narrow][sort]") {

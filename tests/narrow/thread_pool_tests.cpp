@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
+#include <functional>
 #include <thread>
 #include <vector>
 
@@ -83,4 +85,36 @@ TEST_CASE("ThreadPool runs many short loops back to back", "[narrow][threads]") 
     long expected = 0;
     for (int loop = 0; loop < 2000; ++loop) expected += loop % 9;
     CHECK(total.load() == expected);
+}
+
+TEST_CASE("CallbackExecutor hands loops to an engine's parallel-for", "[narrow][threads]") {
+    // A stand-in for an engine's job system: each task index on a thread of its own.
+    std::atomic<int> calls{0};
+    std::atomic<std::size_t> tasks_run{0};
+    vkcollide::CallbackExecutor executor(4, [&](std::size_t task_count, const std::function<void(std::size_t)>& run) {
+        calls.fetch_add(1);
+        std::vector<std::thread> threads;
+        for (std::size_t t = 0; t < task_count; ++t) threads.emplace_back([&, t] {
+            run(t);
+            tasks_run.fetch_add(1);
+        });
+        for (std::thread& thread : threads) thread.join();
+    });
+    CHECK(executor.threadCount() == 4);
+    for (std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(7), std::size_t(1000)}) {
+        for (std::size_t grain : {std::size_t(0), std::size_t(3), std::size_t(64)}) {
+            calls = 0;
+            tasks_run = 0;
+            std::vector<std::atomic<int>> seen(count);
+            executor.parallelFor(count, grain, [&](std::size_t begin, std::size_t end) {
+                for (std::size_t i = begin; i < end; ++i) seen[i].fetch_add(1);
+            });
+            for (std::size_t i = 0; i < count; ++i) REQUIRE(seen[i].load() == 1);
+            const std::size_t chunks = count == 0 ? 0 : (count - 1) / std::max<std::size_t>(grain, 1) + 1;
+            // One callback per loop of two chunks or more; one-chunk loops stay on the caller.
+            CHECK(calls.load() == (chunks >= 2 ? 1 : 0));
+            CHECK(tasks_run.load() == (chunks >= 2 ? chunks : 0));
+        }
+    }
+    CHECK(vkcollide::CallbackExecutor(0, {}).threadCount() == 1);
 }

@@ -1,35 +1,54 @@
-// Benchmark of the CPU narrow phase (runNarrowPhase) on generated scenes; host only, no GPU.
+// Benchmark of the CPU narrow phase on generated scenes; host only unless a gpu-* scene.
 //
 //   bench_narrow [--threads 1,2,16] [--sizes 10000,100000,1000000] [--scenes demo,spheres,torus-box]
-//                [--modes all,near,contact] [--repeat 7] [--margin 1.0] [--filter] [--fresh]
-//                [--candidates FILE]... [--resolution N] [--dump PREFIX] [--csv PATH]
+//                [--modes all,near,contact] [--self on,off] [--paths records,lean,pairs] [--pair-repeats 0.1]
+//                [--repeat 7] [--margin 1.0] [--filter] [--fresh] [--candidates FILE]... [--resolution N]
+//                [--dump PREFIX] [--csv PATH]
 //
 // Candidates come from tests/support/exact_reference.hpp's allTrianglesAsCandidates: every
 // triangle with its world AABB mapped to [0,1] as box and depth (an orthographic camera
 // looking down -z). Modes choose which triangles the "broad phase" keeps:
-//   all      every triangle (self-collision on: mostly neighbour pairs),
+//   all      every triangle (with self-collision on: mostly neighbour pairs),
 //   near     triangles whose AABB overlaps another object's AABB,
 //   contact  triangles whose AABB, grown by `margin` median triangle extents, shares a
 //            voxel of that size with a triangle of another object (close to what the GPU
-//            keeps: the triangles along the intersection curves).
+//            keeps in a light contact: the triangles along the intersection curves).
 // Scenes: `demo` is samples/vkcollide_demo.cpp's five objects (31,520 triangles, sizes do
 // not apply); `spheres` (two overlapping UV spheres) and `torus-box` (a torus threaded on a
-// subdivided box) are generated with about `size` triangles in all. --candidates reads a
-// raw array of CandidateTriangle (80 bytes each, e.g. the records of a GPU broad phase).
+// subdivided box) are generated with about `size` triangles in all; `deep` is issue 13's
+// deep overlap (two spheres of size/2 triangles overlapping by 85 % of their size: with
+// `near`, about 1M candidates for size 1,200,000), `twin` a sphere and a copy turned by 3
+// degrees (surfaces crossing all over: several tests per triangle) and `pile` its 60-mesh
+// pile (60 spheres of 9,940 triangles, fixed size). Meshes are in object space with a
+// transform per object; world positions are computed as the exact reference does.
+// --candidates reads a raw array of CandidateTriangle (80 bytes each, e.g. the records of a
+// GPU broad phase; only the records path).
 //
-// `gpu-demo` takes the demo's candidates from the real GPU broad phase instead (the
-// Vulkan device vkcollide finds, lavapipe without a GPU; resolution 512 unless
-// --resolution; the only scene that needs Vulkan, so it is not in the default list).
+// `gpu-<scene>` (gpu-demo, gpu-deep, gpu-pile, ...) takes the scene's candidates from the
+// real GPU broad phase instead (the Vulkan device vkcollide finds, lavapipe without a GPU;
+// resolution 512 unless --resolution; not in the default list because it needs Vulkan).
+//
+// Paths (--paths, a row each): `records` runs runNarrowPhase on the 80-byte records,
+// `lean` on 32-byte CandidateRecords with a TriangleSource holding the scene's object-space
+// meshes and transforms, `pairs` runs runPairNarrowPhase on what a GPU pair stage without
+// its triangle filter would send: every pair of boxes overlapping in x, y and z that the
+// self-collision switch allows and that shares no vertex index, as global ids, a fraction
+// (--pair-repeats) sent twice reversed, shuffled. Every path and thread count must give
+// the same pairs (a gpu-* workload only warns between paths: the GPU computes its records'
+// vertices itself).
+//
+// --self sets every object's self-collision (a row each; vkcollide's default for objects
+// is off, the peers' benchmarks run with it on).
 //
 // --dump writes each workload's candidates to PREFIX<scene>-<size>-<mode>.bin (the format
 // --candidates reads), e.g. to profile the GPU's candidates without the GPU.
 //
 // Each configuration runs once to warm up, then `repeat` times; the table shows the median
-// of each stage (ms), the fastest total, the median process CPU time (all threads,
-// polling workers included) and checks that every thread count gives the same pairs.
-// --filter sets NarrowOptions::may_collide (allowing everything) to time the object-pair
-// filter. Calls reuse one NarrowWorkspace per configuration, as an engine would from frame
-// to frame; --fresh uses the overload without one (every call allocates its arrays).
+// of each stage (ms), the fastest total and the median process CPU time (all threads,
+// polling workers included). --filter sets NarrowOptions::may_collide (allowing
+// everything) to time the object-pair filter. Calls reuse one NarrowWorkspace per
+// configuration, as an engine would from frame to frame; --fresh uses the overloads
+// without one (every call allocates its arrays).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -40,11 +59,14 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <random>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 #include "passes/broad_phase.hpp"
+#include "narrow/neighbours.hpp"
+#include "narrow/sweep_and_prune.hpp"
 #include "passes/mesh_upload.hpp"
 #include "support/exact_reference.hpp"
 #include "vkcollide/context.hpp"
@@ -61,6 +83,9 @@ struct Options {
     std::vector<std::size_t> sizes = {10000, 100000, 1000000};
     std::vector<std::string> scenes = {"demo", "spheres", "torus-box"};
     std::vector<std::string> modes = {"all", "near", "contact"};
+    std::vector<bool> self = {true};  // self-collision of every object, one row each
+    std::vector<std::string> paths = {"records"};
+    double pair_repeats = 0.1;  // pair path: this fraction of the pairs is sent twice (reversed)
     std::vector<std::string> files;
     unsigned repeat = 7;
     std::uint32_t resolution = 512;
@@ -71,10 +96,19 @@ struct Options {
     std::string dump;  // prefix for raw candidate files, empty: none
 };
 
+// One object of a generated scene: an object-space mesh and its object -> world transform
+// (row-major 3x4). World positions are M * p in double, rounded once to float, as
+// tests/support/exact_reference.hpp's worldPositions computes them.
+struct SceneObject {
+    HostMesh mesh;
+    Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+};
+
 struct Workload {
     std::string scene, mode;
     std::size_t triangles = 0;
     std::vector<CandidateTriangle> candidates;
+    std::vector<SceneObject> objects;  // object-space meshes and transforms; empty for --candidates files
 };
 
 [[noreturn]] void die(const std::string& what) {
@@ -115,6 +149,19 @@ Options parseArgs(int argc, char** argv) {
             for (const std::string& t : splitList(value())) o.sizes.push_back(std::stoul(t));
         } else if (a == "--scenes") {
             o.scenes = splitList(value());
+        } else if (a == "--self") {
+            o.self.clear();
+            for (const std::string& t : splitList(value())) {
+                if (t != "on" && t != "off") die("--self takes on, off or both (on,off)");
+                o.self.push_back(t == "on");
+            }
+        } else if (a == "--paths") {
+            o.paths = splitList(value());
+            for (const std::string& t : o.paths) {
+                if (t != "records" && t != "lean" && t != "pairs") die("--paths takes records, lean, pairs");
+            }
+        } else if (a == "--pair-repeats") {
+            o.pair_repeats = std::stod(value());
         } else if (a == "--modes") {
             o.modes = splitList(value());
         } else if (a == "--candidates") {
@@ -135,47 +182,97 @@ Options parseArgs(int argc, char** argv) {
             o.csv = value();
         } else {
             die("unknown argument " + a +
-                " (use --threads, --sizes, --scenes, --modes, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --dump, --csv)");
+                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --dump, --csv)");
         }
     }
     if (o.threads.empty()) die("--threads needs at least one count");
+    if (o.self.empty()) die("--self needs on, off or both");
     return o;
 }
 
+HostMesh generated(Result<HostMesh> mesh) { return take(std::move(mesh), "generator"); }
+
+// Rotation by `angle` about the unit axis (x, y, z), then a translation.
+Transform3x4 rotationTranslation(double x, double y, double z, double angle, Float3 t) {
+    const double n = std::sqrt(x * x + y * y + z * z);
+    x /= n, y /= n, z /= n;
+    const double c = std::cos(angle), s = std::sin(angle), k = 1 - c;
+    const auto f = [](double v) { return static_cast<float>(v); };
+    return {f(c + x * x * k),     f(x * y * k - z * s), f(x * z * k + y * s), t.x,
+            f(y * x * k + z * s), f(c + y * y * k),     f(y * z * k - x * s), t.y,
+            f(z * x * k - y * s), f(z * y * k + x * s), f(c + z * z * k),     t.z};
+}
+
 // Rotation about y, then a translation: the demo's placement of its parts.
-HostMesh moved(Result<HostMesh> mesh, float angle, Float3 t) {
-    HostMesh m = take(std::move(mesh), "generator");
-    const float c = std::cos(angle), s = std::sin(angle);
-    const Transform3x4 tr = {c, 0, s, t.x, 0, 1, 0, t.y, -s, 0, c, t.z};
-    if (auto ok = transformMesh(m, tr); !ok) die(ok.error().message());
-    return m;
+SceneObject placed(Result<HostMesh> mesh, float angle, Float3 t) {
+    return {generated(std::move(mesh)), rotationTranslation(0, 1, 0, angle, t)};
 }
 
 std::uint32_t atLeast(double x, std::uint32_t lo) { return std::max(lo, static_cast<std::uint32_t>(std::lround(x))); }
 
-std::vector<HostMesh> buildScene(const std::string& scene, std::size_t size) {
-    std::vector<HostMesh> meshes;
+// A deterministic pseudo-random number in [0, 1) from an integer.
+double hash01(std::uint32_t i) {
+    std::uint32_t h = i * 2654435761u;
+    h ^= h >> 16;
+    h *= 2246822519u;
+    h ^= h >> 13;
+    return static_cast<double>(h) / 4294967296.0;
+}
+
+// Scenes that ignore --sizes.
+bool fixedSize(const std::string& scene) { return scene == "demo" || scene == "pile"; }
+
+std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) {
+    constexpr double kPi = 3.14159265358979323846;
+    std::vector<SceneObject> objects;
     if (scene == "demo") {
-        meshes.push_back(moved(uvSphere(1.0f, 96, 48), 0.3f, {-0.6f, 0.05f, 0.0f}));
-        meshes.push_back(moved(uvSphere(0.9f, 96, 48), 0.7f, {0.55f, -0.1f, 0.2f}));
-        meshes.push_back(moved(torus(0.9f, 0.25f, 128, 32), 0.2f, {0.1f, 1.6f, 0.0f}));
-        meshes.push_back(moved(box({0.3f, 0.3f, 1.4f}, 16), 0.1f, {0.1f + 0.9f, 1.6f, 0.0f}));
-        meshes.push_back(moved(uvSphere(0.5f, 48, 24), 0.0f, {-2.2f, -1.5f, 0.0f}));
+        objects.push_back(placed(uvSphere(1.0f, 96, 48), 0.3f, {-0.6f, 0.05f, 0.0f}));
+        objects.push_back(placed(uvSphere(0.9f, 96, 48), 0.7f, {0.55f, -0.1f, 0.2f}));
+        objects.push_back(placed(torus(0.9f, 0.25f, 128, 32), 0.2f, {0.1f, 1.6f, 0.0f}));
+        objects.push_back(placed(box({0.3f, 0.3f, 1.4f}, 16), 0.1f, {0.1f + 0.9f, 1.6f, 0.0f}));
+        objects.push_back(placed(uvSphere(0.5f, 48, 24), 0.0f, {-2.2f, -1.5f, 0.0f}));
     } else if (scene == "spheres") {
         // Two spheres of 2 s (s/2 - 1) ~ s^2 triangles each.
         const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
-        meshes.push_back(moved(uvSphere(1.0f, s, s / 2), 0.3f, {-0.5f, 0.0f, 0.0f}));
-        meshes.push_back(moved(uvSphere(0.9f, s, s / 2), 0.7f, {0.5f, 0.1f, 0.05f}));
+        objects.push_back(placed(uvSphere(1.0f, s, s / 2), 0.3f, {-0.5f, 0.0f, 0.0f}));
+        objects.push_back(placed(uvSphere(0.9f, s, s / 2), 0.7f, {0.5f, 0.1f, 0.05f}));
     } else if (scene == "torus-box") {
         // Half the triangles in the torus (2 a (a/4) = a^2 / 2), half in the box (12 k^2).
         const std::uint32_t a = atLeast(std::sqrt(double(size)), 12);
         const std::uint32_t k = atLeast(std::sqrt(double(size) / 24.0), 1);
-        meshes.push_back(moved(torus(0.9f, 0.25f, a, std::max(3u, a / 4)), 0.2f, {0.0f, 0.0f, 0.0f}));
-        meshes.push_back(moved(box({0.3f, 0.3f, 1.4f}, k), 0.1f, {0.9f, 0.0f, 0.0f}));
+        objects.push_back(placed(torus(0.9f, 0.25f, a, std::max(3u, a / 4)), 0.2f, {0.0f, 0.0f, 0.0f}));
+        objects.push_back(placed(box({0.3f, 0.3f, 1.4f}, k), 0.1f, {0.9f, 0.0f, 0.0f}));
+    } else if (scene == "deep") {
+        // Issue 13's deep overlap: two meshes of size/2 triangles each overlapping by 85 %
+        // of their size (unit spheres 0.3 apart, mostly across the view): seen along z, the
+        // rays through both discs meet the surfaces interleaved, so the GPU keeps most
+        // triangles of both (mode `near` keeps those whose box meets the other's box).
+        const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
+        objects.push_back({generated(uvSphere(1.0f, s, s / 2)), rotationTranslation(1, 0.2, 0.1, 0.4, {-0.14f, -0.05f, 0.0f})});
+        objects.push_back({generated(uvSphere(1.0f, s, s / 2)), rotationTranslation(0.1, 1, 0.3, 1.1, {0.14f, 0.05f, 0.06f})});
+    } else if (scene == "twin") {
+        // A sphere of size/2 triangles and a copy turned by 3 degrees about a tilted axis
+        // through its centre (tools/bench/bench_scenes.cpp's meshTwin): the two surfaces
+        // cross each other all over, about one test per triangle between the objects.
+        const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
+        const HostMesh sphere = generated(uvSphere(1.0f, s, s / 2));
+        objects.push_back({sphere, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}});
+        objects.push_back({sphere, rotationTranslation(0.3, 1, 0.2, 3 * kPi / 180, {0, 0, 0})});
+    } else if (scene == "pile") {
+        // Issue 13's pile: 60 unit spheres of 9,940 triangles (596,400 in all) on a grid
+        // 1.8 apart, each turned its own way (tools/bench/bench_scenes.cpp's sphereGrid,
+        // the `spheres-60x10K` scene).
+        const HostMesh base = generated(uvSphere(1.0f, 70, 72));
+        constexpr std::uint32_t kCount = 60, kSide = 4;  // ceil(cbrt(60))
+        for (std::uint32_t i = 0; i < kCount; ++i) {
+            const Float3 t{1.8f * float(i % kSide), 1.8f * float((i / kSide) % kSide), 1.8f * float(i / (kSide * kSide))};
+            objects.push_back({base, rotationTranslation(hash01(3 * i) - 0.5, hash01(3 * i + 1) - 0.5, hash01(3 * i + 2) + 0.1,
+                                                         2 * kPi * hash01(7 * i + 5), t)});
+        }
     } else {
-        die("unknown scene " + scene + " (use demo, spheres, torus-box)");
+        die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, twin, pile, gpu-demo, gpu-deep, gpu-pile)");
     }
-    return meshes;
+    return objects;
 }
 
 struct Aabb {
@@ -263,26 +360,34 @@ std::vector<CandidateTriangle> selectCandidates(std::vector<CandidateTriangle> a
 }
 
 Workload makeWorkload(const std::string& scene, std::size_t size, const std::string& mode, float margin) {
-    const std::vector<HostMesh> meshes = buildScene(scene, size);
+    const std::vector<SceneObject> scene_objects = buildScene(scene, size);
     std::vector<test::ReferenceObject> objects;
     Workload w;
     w.scene = scene;
     w.mode = mode;
-    for (const HostMesh& m : meshes) {
-        objects.push_back({&m});
-        w.triangles += m.triangleCount();
+    for (const SceneObject& o : scene_objects) {
+        objects.push_back({&o.mesh, test::transformFrom3x4(o.transform)});
+        w.triangles += o.mesh.triangleCount();
     }
     w.candidates = selectCandidates(take(test::allTrianglesAsCandidates(objects), "candidates"), mode, margin);
+    w.objects = scene_objects;
     return w;
 }
 
 // The demo's candidates as the GPU broad phase keeps them (samples/vkcollide_demo.cpp's
 // settings): the workload the narrow phase sees in the demo.
-Workload gpuWorkload(std::uint32_t resolution) {
-    const std::vector<HostMesh> meshes = buildScene("demo", 0);
+Workload gpuWorkload(const std::string& scene, std::size_t size, std::uint32_t resolution) {
+    // The broad phase takes world-space meshes: transforms applied as the exact reference does.
+    std::vector<HostMesh> meshes;
+    const std::vector<SceneObject> scene_objects = buildScene(scene, size);
+    for (const SceneObject& o : scene_objects) {
+        HostMesh m = o.mesh;
+        m.positions = test::worldPositions(o.mesh, test::transformFrom3x4(o.transform));
+        meshes.push_back(std::move(m));
+    }
     std::vector<const HostMesh*> mesh_ptrs;
     Workload w;
-    w.scene = "gpu-demo-" + std::to_string(resolution);
+    w.scene = "gpu-" + scene + "-" + std::to_string(resolution);
     w.mode = "gpu";
     for (const HostMesh& m : meshes) {
         mesh_ptrs.push_back(&m);
@@ -296,6 +401,7 @@ Workload gpuWorkload(std::uint32_t resolution) {
     settings.resolution = resolution;
     settings.direction = {0.15f, -0.2f, 1.0f};
     w.candidates = take(broad_phase->run(uploaded.meshes, settings), "broad phase").records;
+    w.objects = scene_objects;
     return w;
 }
 
@@ -318,12 +424,42 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-struct Row {
-    double validate, sweep, filter, test, sort, response, total, total_min, cpu;
-};
-
 // CPU time of the whole process (all threads), in ms.
 double processCpuMs() { return 1000.0 * static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+// The inputs of the lean and pair paths for one workload and self-collision setting.
+struct LeanInputs {
+    TriangleSource source;
+    std::vector<CandidateRecord> records;
+    std::vector<CandidatePair> pairs;
+};
+
+// The source holds the scene's object-space meshes and transforms; records are the
+// candidates without vertices; pairs are what a GPU pair stage without its triangle
+// filter would send: every pair of boxes overlapping in x, y and z that the
+// self-collision switch allows and that shares no vertex index, as global ids, a
+// fraction sent twice (reversed), shuffled.
+LeanInputs leanInputs(const Workload& w, bool self, double repeats, bool with_pairs) {
+    LeanInputs in;
+    for (const SceneObject& o : w.objects) take(in.source.addHostMesh(o.mesh.positions, o.mesh.indices, o.transform), "source");
+    in.records.reserve(w.candidates.size());
+    for (const CandidateTriangle& c : w.candidates) {
+        in.records.push_back({c.object, c.triangle, {c.box[0], c.box[1], c.box[2], c.box[3]}, c.zmin, c.zmax});
+    }
+    if (!with_pairs) return in;
+    ThreadPool pool(0);
+    for (const narrow::IndexPair& p : narrow::sweepAndPrunePairs(w.candidates, &pool)) {
+        const CandidateTriangle &a = w.candidates[p.i], &b = w.candidates[p.j];
+        if (a.object == b.object && (!self || narrow::shareIndex(a.vertex_index, b.vertex_index))) continue;
+        in.pairs.push_back({in.source.triangleBase(a.object) + a.triangle, in.source.triangleBase(b.object) + b.triangle});
+    }
+    const std::size_t distinct = in.pairs.size();
+    const std::size_t every = repeats > 0 ? std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(1.0 / repeats))) : 0;
+    for (std::size_t k = 0; every && k < distinct; k += every) in.pairs.push_back({in.pairs[k].b, in.pairs[k].a});
+    std::mt19937 rng(2006);
+    std::shuffle(in.pairs.begin(), in.pairs.end(), rng);
+    return in;
+}
 
 void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
     if (!o.dump.empty() && w.mode != "file") {
@@ -333,54 +469,92 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
                   static_cast<std::streamsize>(w.candidates.size() * sizeof(CandidateTriangle)));
         if (!out) die("cannot write " + path);
     }
-    NarrowOptions options;
-    if (o.filter) options.may_collide = [](std::uint32_t, std::uint32_t) { return true; };
-    std::vector<TrianglePair> reference_pairs;
-    bool first = true;
-    for (unsigned threads : o.threads) {
-        ThreadPool pool(threads);
-        NarrowWorkspace workspace;
-        std::vector<NarrowTimings> times;
-        std::vector<double> cpu;
-        NarrowStats stats;
-        for (unsigned r = 0; r <= o.repeat; ++r) {
-            const double cpu_start = processCpuMs();
-            Result<NarrowResult> result =
-                o.fresh ? runNarrowPhase(w.candidates, options, pool) : runNarrowPhase(w.candidates, options, pool, workspace);
-            const double cpu_ms = processCpuMs() - cpu_start;
-            if (!result) die(w.scene + ": " + result.error().message());
-            if (r == 0) {  // warm-up run: check it, do not time it
-                if (first) reference_pairs = result->pairs;
-                if (result->pairs != reference_pairs) die(w.scene + ": different pairs with " + std::to_string(threads) + " threads");
-                stats = result->stats;
-                continue;
+    const bool lean_paths = std::any_of(o.paths.begin(), o.paths.end(), [](const std::string& p) { return p != "records"; });
+    const bool pair_path = std::find(o.paths.begin(), o.paths.end(), "pairs") != o.paths.end();
+    for (const bool self : o.self) {
+        NarrowOptions options;
+        options.default_self_collision = self;
+        if (o.filter) options.may_collide = [](std::uint32_t, std::uint32_t) { return true; };
+        LeanInputs lean;
+        if (lean_paths && !w.objects.empty()) lean = leanInputs(w, self, o.pair_repeats, pair_path);
+        std::vector<TrianglePair> reference_pairs;
+        bool first = true, warned = false;
+        for (const std::string& path : o.paths) {
+            if (path != "records" && w.objects.empty()) continue;  // a candidate file has no meshes
+            std::vector<TrianglePair> path_pairs;
+            bool path_first = true;
+            const std::size_t inputs = path == "pairs" ? lean.pairs.size() : w.candidates.size();
+            for (unsigned threads : o.threads) {
+                ThreadPool pool(threads);
+                NarrowWorkspace workspace;
+                std::vector<NarrowTimings> times;
+                std::vector<double> cpu;
+                NarrowStats stats;
+                for (unsigned r = 0; r <= o.repeat; ++r) {
+                    const double cpu_start = processCpuMs();
+                    Result<NarrowResult> result = Error(ErrorCode::InvalidArgument, "no path");
+                    if (path == "records") {
+                        result = o.fresh ? runNarrowPhase(w.candidates, options, pool)
+                                         : runNarrowPhase(w.candidates, options, pool, workspace);
+                    } else if (path == "lean") {
+                        result = o.fresh ? runNarrowPhase(lean.records, lean.source, options, pool)
+                                         : runNarrowPhase(lean.records, lean.source, options, pool, workspace);
+                    } else {
+                        result = o.fresh ? runPairNarrowPhase(lean.pairs, lean.source, options, pool)
+                                         : runPairNarrowPhase(lean.pairs, lean.source, options, pool, workspace);
+                    }
+                    const double cpu_ms = processCpuMs() - cpu_start;
+                    if (!result) die(w.scene + " (" + path + "): " + result.error().message());
+                    if (r == 0) {  // warm-up run: check it, do not time it
+                        if (first) reference_pairs = result->pairs;
+                        if (path_first) path_pairs = result->pairs;
+                        first = path_first = false;
+                        if (result->pairs != path_pairs) {
+                            die(w.scene + ": " + path + " with " + std::to_string(threads) + " threads gives other pairs");
+                        }
+                        if (result->pairs != reference_pairs && !warned) {
+                            // The GPU computes its records' world vertices itself (in float;
+                            // -0 can become +0), the other paths take the source's.
+                            const std::string what = w.scene + ": " + path + " finds " + std::to_string(result->pairs.size()) +
+                                                     " pairs, " + o.paths.front() + " " + std::to_string(reference_pairs.size());
+                            if (w.mode != "gpu") die(what);
+                            std::printf("warning: %s (GPU records' vertices differ from the source's)\n", what.c_str());
+                            warned = true;
+                        }
+                        stats = result->stats;
+                        continue;
+                    }
+                    times.push_back(result->timings);
+                    cpu.push_back(cpu_ms);
+                }
+                const auto med = [&](double NarrowTimings::*field) {
+                    std::vector<double> v;
+                    for (const NarrowTimings& t : times) v.push_back(t.*field);
+                    return median(v);
+                };
+                const double validate = med(&NarrowTimings::validate_ms), gather = med(&NarrowTimings::gather_ms),
+                             sweep = med(&NarrowTimings::sweep_ms), filter = med(&NarrowTimings::filter_ms),
+                             test = med(&NarrowTimings::test_ms), sort = med(&NarrowTimings::sort_ms),
+                             response = med(&NarrowTimings::response_ms), total = med(&NarrowTimings::total_ms);
+                double total_min = times.front().total_ms;
+                for (const NarrowTimings& t : times) total_min = std::min(total_min, t.total_ms);
+                const double cpu_ms = median(cpu);
+                std::printf("%-12s %-8s %-4s %-7s %9zu %9zu %4u %10zu %9zu %7zu | %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f | %9.3f %9.3f %8.3f\n",
+                            w.scene.c_str(), w.mode.c_str(), self ? "on" : "off", path.c_str(), w.triangles, inputs,
+                            pool.threadCount(), stats.sap_pairs, stats.triangle_tests, stats.positive_tests, validate, gather,
+                            sweep, filter, test, sort, response, total, total_min, cpu_ms);
+                std::fflush(stdout);
+                if (csv) {
+                    std::fprintf(csv,
+                                 "%s,%s,%s,%s,%zu,%zu,%u,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%."
+                                 "4f,%.4f\n",
+                                 w.scene.c_str(), w.mode.c_str(), self ? "on" : "off", path.c_str(), w.triangles, inputs,
+                                 pool.threadCount(), stats.candidates, stats.potentially_colliding_triangles, stats.sap_pairs,
+                                 stats.filtered_pairs, stats.neighbour_pairs, stats.triangle_tests, stats.positive_tests,
+                                 stats.input_pairs, validate, gather, sweep, filter, test, sort, response, total, total_min, cpu_ms);
+                    std::fflush(csv);
+                }
             }
-            times.push_back(result->timings);
-            cpu.push_back(cpu_ms);
-        }
-        first = false;
-        const auto med = [&](double NarrowTimings::*field) {
-            std::vector<double> v;
-            for (const NarrowTimings& t : times) v.push_back(t.*field);
-            return median(v);
-        };
-        Row row{med(&NarrowTimings::validate_ms), med(&NarrowTimings::sweep_ms), med(&NarrowTimings::filter_ms),
-                med(&NarrowTimings::test_ms),     med(&NarrowTimings::sort_ms),  med(&NarrowTimings::response_ms),
-                med(&NarrowTimings::total_ms),    0, median(cpu)};
-        row.total_min = times.front().total_ms;
-        for (const NarrowTimings& t : times) row.total_min = std::min(row.total_min, t.total_ms);
-        std::printf("%-12s %-8s %9zu %9zu %4u %10zu %9zu %7zu | %8.3f %8.3f %8.3f %8.3f %8.3f %8.3f | %9.3f %9.3f %8.3f\n",
-                    w.scene.c_str(), w.mode.c_str(), w.triangles, w.candidates.size(), pool.threadCount(), stats.sap_pairs,
-                    stats.triangle_tests, stats.positive_tests, row.validate, row.sweep, row.filter, row.test, row.sort,
-                    row.response, row.total, row.total_min, row.cpu);
-        std::fflush(stdout);
-        if (csv) {
-            std::fprintf(csv, "%s,%s,%zu,%zu,%u,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n",
-                         w.scene.c_str(), w.mode.c_str(), w.triangles, w.candidates.size(), pool.threadCount(),
-                         stats.sap_pairs, stats.filtered_pairs, stats.neighbour_pairs, stats.triangle_tests,
-                         stats.positive_tests, row.validate, row.sweep, row.filter, row.test, row.sort, row.response,
-                         row.total, row.total_min, row.cpu);
-            std::fflush(csv);
         }
     }
 }
@@ -393,21 +567,23 @@ int main(int argc, char** argv) {
     if (!o.csv.empty()) {
         csv = std::fopen(o.csv.c_str(), "w");
         if (!csv) die("cannot write " + o.csv);
-        std::fprintf(csv, "scene,mode,triangles,candidates,threads,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
-                          "positive_tests,validate_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
+        std::fprintf(csv, "scene,mode,self,path,triangles,inputs,threads,candidates,potentially_colliding,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
+                          "positive_tests,input_pairs,validate_ms,gather_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
     }
     std::printf("median of %u runs (ms)%s%s\n", o.repeat, o.filter ? ", with may_collide" : "",
                 o.fresh ? ", no workspace" : ", one workspace per row");
-    std::printf("%-12s %-8s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode", "tris",
-                "cands", "thr", "sap pairs", "tests", "pairs", "validate", "sweep", "filter", "test", "sort", "response",
-                "total", "total min", "cpu");
+    std::printf("%-12s %-8s %-4s %-7s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode",
+                "self", "path", "tris", "inputs", "thr", "cand pairs", "tests", "pairs", "validate", "gather", "sweep", "filter",
+                "test", "sort", "response", "total", "total min", "cpu");
     for (const std::string& path : o.files) runWorkload(loadWorkload(path), o, csv);
     for (const std::string& scene : o.scenes) {
-        if (scene == "gpu-demo") {
-            runWorkload(gpuWorkload(o.resolution), o, csv);
+        if (scene.rfind("gpu-", 0) == 0) {
+            const std::string base = scene.substr(4);
+            const std::vector<std::size_t> sizes = fixedSize(base) ? std::vector<std::size_t>{0} : o.sizes;
+            for (std::size_t size : sizes) runWorkload(gpuWorkload(base, size, o.resolution), o, csv);
             continue;
         }
-        const std::vector<std::size_t> sizes = scene == "demo" ? std::vector<std::size_t>{0} : o.sizes;
+        const std::vector<std::size_t> sizes = fixedSize(scene) ? std::vector<std::size_t>{0} : o.sizes;
         for (std::size_t size : sizes) {
             for (const std::string& mode : o.modes) runWorkload(makeWorkload(scene, size, mode, o.margin), o, csv);
         }

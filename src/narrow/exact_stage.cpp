@@ -1,0 +1,216 @@
+#include "narrow/exact_stage.hpp"
+#include "narrow/workspace.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "narrow/triangle_intersection.hpp"
+
+namespace vkcollide {
+
+NarrowWorkspace::NarrowWorkspace() : impl_(std::make_unique<Impl>()) {}
+NarrowWorkspace::~NarrowWorkspace() = default;
+NarrowWorkspace::NarrowWorkspace(NarrowWorkspace&&) noexcept = default;
+NarrowWorkspace& NarrowWorkspace::operator=(NarrowWorkspace&&) noexcept = default;
+
+NarrowWorkspace::Impl& NarrowWorkspace::impl() {
+    if (!impl_) impl_ = std::make_unique<Impl>();
+    return *impl_;
+}
+
+namespace narrow {
+namespace {
+
+// Exact tests per task: large enough to amortise the hand-out, small enough to balance
+// (a test costs 0.05 to 1 microseconds, more when the exact fallback runs).
+constexpr std::size_t kTestGrain = 512;
+// Items per task of the linear loops that build the result.
+constexpr std::size_t kResultGrain = 16384;
+
+struct Vec3d {
+    double x = 0, y = 0, z = 0;
+};
+
+Vec3d unitNormal(const Vertex3& v) {
+    const double ux = double(v[1].x) - v[0].x, uy = double(v[1].y) - v[0].y, uz = double(v[1].z) - v[0].z;
+    const double vx = double(v[2].x) - v[0].x, vy = double(v[2].y) - v[0].y, vz = double(v[2].z) - v[0].z;
+    const Vec3d n{uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
+    const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    if (!(length > 0) || !std::isfinite(length)) return {};  // zero-area (or overflowing) triangle: no normal
+    return {n.x / length, n.y / length, n.z / length};
+}
+
+int bitsFor(std::size_t count) { return std::max(1, static_cast<int>(std::bit_width(count))); }
+
+// Responses (see TriangleResponse): for each responder (a slot in a colliding pair, in
+// slot order), the terms n_partner - n_self summed in the order of the sorted pairs. The
+// (slot, pair index) keys of both ends of every pair, sorted, list each responder's
+// pairs in that order, so responders are summed in parallel with the serial result.
+void respond(const Buffer<std::uint64_t>& colliding, const SlotData& slots, std::size_t slot_count, Executor& ex,
+             NarrowWorkspace::Impl& ws, NarrowResult& out) {
+    const std::size_t pairs = colliding.size();
+    Buffer<std::uint64_t>& ends = ws.contributions;
+    ends.resize(2 * pairs);
+    ex.parallelFor(pairs, kResultGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            ends[2 * k] = keyOf(static_cast<std::uint32_t>(colliding[k] >> 32), static_cast<std::uint32_t>(k));
+            ends[2 * k + 1] = keyOf(static_cast<std::uint32_t>(colliding[k]), static_cast<std::uint32_t>(k));
+        }
+    });
+    parallelRadixSort(ex, ends, ws.contribution_scratch, 32 + bitsFor(slot_count));
+    // Responders: where the slot changes in the sorted keys.
+    Buffer<std::uint32_t>& begin_of = ws.responder_begin;
+    begin_of.resize(ends.size() + 1);
+    const std::size_t responders = compact(
+        ex, ends.size(), [&](std::size_t i) { return i == 0 || (ends[i] >> 32) != (ends[i - 1] >> 32); },
+        [&](std::size_t out_position, std::size_t i) { begin_of[out_position] = static_cast<std::uint32_t>(i); });
+    begin_of[responders] = static_cast<std::uint32_t>(ends.size());
+    Buffer<std::uint32_t>& responder_of = ws.responder_of;  // slot -> responder; read only where written this call
+    responder_of.resize(slot_count);
+    std::vector<Vec3d> normal(responders);
+    ex.parallelFor(responders, kResultGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) {
+            const auto slot = static_cast<std::uint32_t>(ends[begin_of[r]] >> 32);
+            responder_of[slot] = static_cast<std::uint32_t>(r);
+            normal[r] = unitNormal(slots.v[slot]);
+        }
+    });
+    out.responses.resize(responders);
+    ex.parallelFor(responders, kResultGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) {
+            const auto self = static_cast<std::uint32_t>(ends[begin_of[r]] >> 32);
+            const Vec3d& n = normal[r];
+            Vec3d sum;
+            for (std::size_t e = begin_of[r]; e < begin_of[r + 1]; ++e) {
+                const std::uint64_t pair = colliding[ends[e] & 0xffffffffu];
+                const auto a = static_cast<std::uint32_t>(pair >> 32), b = static_cast<std::uint32_t>(pair);
+                const Vec3d& m = normal[responder_of[a == self ? b : a]];
+                sum.x += m.x - n.x;
+                sum.y += m.y - n.y;
+                sum.z += m.z - n.z;
+            }
+            TriangleResponse& response = out.responses[r];
+            response = {};
+            response.object = slots.object[self];
+            response.triangle = slots.triangle[self];
+            response.partner_count = begin_of[r + 1] - begin_of[r];
+            const double length = std::sqrt(sum.x * sum.x + sum.y * sum.y + sum.z * sum.z);
+            if (length > 0) {
+                response.direction = {static_cast<float>(sum.x / length), static_cast<float>(sum.y / length),
+                                      static_cast<float>(sum.z / length)};
+            }
+        }
+    });
+}
+
+}  // namespace
+
+void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::size_t slot_count, bool tests_in_order,
+                    const NarrowOptions& options, Executor& ex, NarrowWorkspace::Impl& ws, NarrowResult& out,
+                    StageClock& clock) {
+    NarrowStats& stats = out.stats;
+    NarrowTimings& timings = out.timings;
+    std::vector<std::size_t>& test_begin = ws.test_begin;  // tests of task t: [test_begin[t], test_begin[t+1])
+    test_begin.assign(tasks.size() + 1, 0);
+    for (std::size_t t = 0; t < tasks.size(); ++t) test_begin[t + 1] = test_begin[t] + tasks[t].tests.size();
+
+    // Stage 3: the object-pair filter, once per distinct pair of objects with candidate
+    // pairs, in ascending order, on this thread.
+    const bool filter_objects = static_cast<bool>(options.may_collide);
+    std::vector<std::uint64_t> object_pairs;
+    std::vector<char> object_pair_allowed;
+    if (filter_objects) {
+        for (const PairTask& task : tasks) object_pairs.insert(object_pairs.end(), task.object_pairs.begin(), task.object_pairs.end());
+        std::sort(object_pairs.begin(), object_pairs.end());
+        object_pairs.erase(std::unique(object_pairs.begin(), object_pairs.end()), object_pairs.end());
+        object_pair_allowed.resize(object_pairs.size());
+        for (std::size_t k = 0; k < object_pairs.size(); ++k) {
+            const auto a = static_cast<std::uint32_t>(object_pairs[k] >> 32), b = static_cast<std::uint32_t>(object_pairs[k]);
+            object_pair_allowed[k] = options.may_collide(a, b) ? 1 : 0;
+        }
+    }
+    clock.lap(timings.filter_ms);
+
+    // Stage 4: exact tests over all tasks' pairs, as one index range.
+    const std::size_t total_tests = test_begin.back();
+    const std::size_t test_tasks = taskCount(total_tests, kTestGrain);
+    std::vector<std::vector<std::uint64_t>>& hits = ws.hits;  // (lower slot, higher slot) per hit
+    hits.resize(test_tasks);
+    std::vector<std::size_t>& object_filtered = ws.object_filtered;
+    object_filtered.assign(test_tasks, 0);
+    ex.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
+        const std::size_t task_index = begin / kTestGrain;
+        // Built in a local (keeping the capacity of the last call) and moved back at the
+        // end: tasks sit next to each other in memory, and growing vectors in place would
+        // share cache lines between threads.
+        std::vector<std::uint64_t> found = std::move(hits[task_index]);
+        found.clear();
+        std::size_t filtered = 0;
+        std::size_t source = static_cast<std::size_t>(std::upper_bound(test_begin.begin(), test_begin.end(), begin) -
+                                                      test_begin.begin()) - 1;
+        std::uint64_t cached_pair = std::numeric_limits<std::uint64_t>::max();
+        bool cached_allowed = true;
+        for (std::size_t k = begin; k < end; ++k) {
+            while (test_begin[source + 1] <= k) ++source;
+            const IndexPair p = tasks[source].tests[k - test_begin[source]];
+            if (filter_objects) {
+                const std::uint32_t a = slots.object[p.i], b = slots.object[p.j];
+                if (a != b) {
+                    const std::uint64_t object_pair = keyOf(std::min(a, b), std::max(a, b));
+                    if (object_pair != cached_pair) {
+                        cached_pair = object_pair;
+                        const auto it = std::lower_bound(object_pairs.begin(), object_pairs.end(), object_pair);
+                        cached_allowed = object_pair_allowed[static_cast<std::size_t>(it - object_pairs.begin())] != 0;
+                    }
+                    if (!cached_allowed) {
+                        ++filtered;
+                        continue;
+                    }
+                }
+            }
+            if (trianglesIntersect(slots.v[p.i], slots.v[p.j])) found.push_back(keyOf(p.i, p.j));
+        }
+        hits[task_index] = std::move(found);
+        object_filtered[task_index] = filtered;
+    });
+    std::size_t filtered_late = 0, hit_count = 0;
+    for (std::size_t t = 0; t < test_tasks; ++t) {
+        filtered_late += object_filtered[t];
+        hit_count += hits[t].size();
+    }
+    stats.filtered_pairs += filtered_late;
+    stats.triangle_tests = total_tests - filtered_late;
+    clock.lap(timings.test_ms);
+
+    // Stage 5: canonical order. Slots follow (object, triangle), so sorting the
+    // (lower slot, higher slot) keys sorts the pairs.
+    Buffer<std::uint64_t>& colliding = ws.colliding;
+    colliding.resize(hit_count);
+    {
+        std::vector<std::size_t> at(hits.size() + 1, 0);
+        for (std::size_t t = 0; t < hits.size(); ++t) at[t + 1] = at[t] + hits[t].size();
+        ex.parallelFor(hits.size(), 16, [&](std::size_t first, std::size_t last) {
+            for (std::size_t t = first; t < last; ++t) std::copy(hits[t].begin(), hits[t].end(), colliding.begin() + at[t]);
+        });
+    }
+    if (!tests_in_order) parallelRadixSort(ex, colliding, ws.colliding_scratch, 32 + bitsFor(slot_count));
+    out.pairs.resize(hit_count);
+    ex.parallelFor(hit_count, kResultGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const auto i = static_cast<std::uint32_t>(colliding[k] >> 32), j = static_cast<std::uint32_t>(colliding[k]);
+            out.pairs[k] = {slots.object[i], slots.triangle[i], slots.object[j], slots.triangle[j]};
+        }
+    });
+    stats.positive_tests = hit_count;
+    clock.lap(timings.sort_ms);
+
+    // Stage 6: responses.
+    respond(colliding, slots, slot_count, ex, ws, out);
+    clock.lap(timings.response_ms);
+    timings.total_ms = clock.totalMs();
+}
+
+}  // namespace narrow
+}  // namespace vkcollide

@@ -1,0 +1,137 @@
+// Small building blocks for the narrow phase's parallel loops: task sizes, uninitialised
+// scratch buffers, an exclusive scan and a stream compaction over an Executor.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <type_traits>
+#include <vector>
+
+#include "vkcollide/thread_pool.hpp"
+
+namespace vkcollide::narrow {
+
+inline std::size_t taskCount(std::size_t count, std::size_t grain) { return count == 0 ? 0 : (count - 1) / grain + 1; }
+
+// Items per task: about `tasks_per_thread` tasks per thread, within [min_grain, max_grain].
+// More tasks than threads balance uneven work; fewer, larger ones cost fewer hand-outs.
+inline std::size_t grainFor(std::size_t count, unsigned threads, std::size_t tasks_per_thread, std::size_t min_grain,
+                            std::size_t max_grain) {
+    return std::clamp<std::size_t>(count / (std::size_t{std::max(1u, threads)} * tasks_per_thread), min_grain, max_grain);
+}
+
+// Runs body over [0, count) in chunks, on the executor when there is one.
+inline void forChunks(Executor* executor, std::size_t count, std::size_t grain,
+                      const std::function<void(std::size_t, std::size_t)>& body) {
+    if (executor) {
+        executor->parallelFor(count, grain, body);
+    } else {
+        for (std::size_t begin = 0; begin < count; begin += grain) body(begin, std::min(count, begin + grain));
+    }
+}
+
+// A growable array of a trivially copyable type that is never zeroed: resize() keeps the
+// capacity of earlier calls and leaves new elements indeterminate (every element is
+// written before it is read). Large arrays reused from call to call cost no page faults.
+template <typename T>
+class Buffer {
+    static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+
+public:
+    // Size n; contents are lost when the capacity grows.
+    void resize(std::size_t n) {
+        if (n > capacity_) {
+            data_.reset();
+            const std::size_t capacity = std::max(n, capacity_ + capacity_ / 2);
+            data_.reset(new T[capacity]);
+            capacity_ = capacity;
+        }
+        size_ = n;
+    }
+    std::size_t size() const noexcept { return size_; }
+    bool empty() const noexcept { return size_ == 0; }
+    T* data() noexcept { return data_.get(); }
+    const T* data() const noexcept { return data_.get(); }
+    T& operator[](std::size_t i) noexcept { return data_[i]; }
+    const T& operator[](std::size_t i) const noexcept { return data_[i]; }
+    T* begin() noexcept { return data_.get(); }
+    T* end() noexcept { return data_.get() + size_; }
+    const T* begin() const noexcept { return data_.get(); }
+    const T* end() const noexcept { return data_.get() + size_; }
+    void swap(Buffer& other) noexcept {
+        std::swap(data_, other.data_);
+        std::swap(size_, other.size_);
+        std::swap(capacity_, other.capacity_);
+    }
+
+private:
+    std::unique_ptr<T[]> data_;
+    std::size_t size_ = 0, capacity_ = 0;
+};
+
+// Below this many items the scan and the compaction run on the calling thread.
+inline constexpr std::size_t kSerialBelow = 1u << 15;
+
+// Replaces data[i] by the sum of data[0..i) and returns the total.
+template <typename T>
+T exclusiveScan(Executor& executor, T* data, std::size_t n) {
+    const auto serial = [](T* first, T* last, T offset) {
+        for (T* p = first; p != last; ++p) {
+            const T here = *p;
+            *p = offset;
+            offset += here;
+        }
+        return offset;
+    };
+    if (n < kSerialBelow || executor.threadCount() == 1) return serial(data, data + n, T{0});
+    const std::size_t grain = grainFor(n, executor.threadCount(), 2, 4096, std::size_t(1) << 30);
+    std::vector<T> sums(taskCount(n, grain) + 1, T{0});
+    executor.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+        T s{0};
+        for (std::size_t i = begin; i < end; ++i) s += data[i];
+        sums[begin / grain] = s;
+    });
+    const T total = serial(sums.data(), sums.data() + sums.size() - 1, T{0});
+    executor.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+        serial(data + begin, data + end, sums[begin / grain]);
+    });
+    return total;
+}
+
+// Writes the items of [0, n) that keep(i) accepts, in order, through emit(out_position,
+// i), and returns how many there are. keep must be a pure function of i.
+template <typename Keep, typename Emit>
+std::size_t compact(Executor& executor, std::size_t n, Keep&& keep, Emit&& emit) {
+    if (n < kSerialBelow || executor.threadCount() == 1) {
+        std::size_t out = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            if (keep(i)) emit(out++, i);
+        }
+        return out;
+    }
+    const std::size_t grain = grainFor(n, executor.threadCount(), 2, 4096, std::size_t(1) << 30);
+    std::vector<std::size_t> counts(taskCount(n, grain) + 1, 0);
+    executor.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+        std::size_t c = 0;
+        for (std::size_t i = begin; i < end; ++i) c += keep(i) ? 1 : 0;
+        counts[begin / grain] = c;
+    });
+    std::size_t total = 0;
+    for (std::size_t& c : counts) {
+        const std::size_t here = c;
+        c = total;
+        total += here;
+    }
+    executor.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+        std::size_t out = counts[begin / grain];
+        for (std::size_t i = begin; i < end; ++i) {
+            if (keep(i)) emit(out++, i);
+        }
+    });
+    return total;
+}
+
+}  // namespace vkcollide::narrow

@@ -31,6 +31,9 @@ VKC_CONST kCellsChunkCells = 4096;
 // that each scan the whole cell.
 VKC_CONST kCellsSmallCell = 64;
 VKC_CONST kCellsDeepShared = 1024;
+// The pair pass's canonical-cell check scans at most this many earlier cells of a pair;
+// a pair whose scan runs out is kept (a duplicate the host removes), never dropped.
+VKC_CONST kCellsDedupeBudget = 512;
 // Cells per workgroup of the scan (4 per invocation).
 VKC_CONST kCellsScanBlock = 1024;
 // A deep item whose chunk is this value sorts the whole cell in shared memory.

@@ -287,6 +287,7 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
     for (std::uint32_t i = 0; i < h.survivors; ++i) keys[i] = (std::uint64_t(raw[2 * i]) << 32) | raw[2 * i + 1];
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    s.host_duplicates = h.survivors - keys.size();
     out.pairs.resize(keys.size());
     for (std::size_t i = 0; i < keys.size(); ++i)
         out.pairs[i] = {static_cast<std::uint32_t>(keys[i] >> 32), static_cast<std::uint32_t>(keys[i] & 0xFFFFFFFFu)};

@@ -81,6 +81,7 @@ struct CellPairsStats {
     std::uint64_t duplicates = 0;     // dropped: not the pair's canonical cell
     std::uint64_t filtered = 0;       // dropped: proved disjoint by the filter
     std::uint64_t survivors = 0;
+    std::uint64_t host_duplicates = 0;  // survivors kept twice (canonical scan out of budget), removed
     std::uint32_t runs = 0;           // submissions this call took (1 without overflow)
     bool filter_ran = false;
 };

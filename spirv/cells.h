@@ -26,10 +26,11 @@ VKC_CONST kCellsMaxResolution = 16384;
 VKC_CONST kCellsSmallBox = 64;
 VKC_CONST kCellsChunkCells = 4096;
 // Cells with at most kCellsSmallCell entries are swept by one invocation per entry,
-// unsorted; deeper cells by a workgroup that sorts them by zlo in shared memory (up to
-// kCellsDeepShared entries), or, deeper still, by workgroups of kCellsGroupSize entries
-// that each scan the whole cell.
-VKC_CONST kCellsSmallCell = 64;
+// unsorted (no barriers, every lane busy: cheaper than sorting up to about this depth);
+// deeper cells by a workgroup that sorts them in shared memory (up to kCellsDeepShared
+// entries), or, deeper still, by workgroups of kCellsGroupSize entries that each scan the
+// whole cell.
+VKC_CONST kCellsSmallCell = 256;
 VKC_CONST kCellsDeepShared = 1024;
 // The pair pass's canonical-cell check scans at most this many earlier cells of a pair;
 // a pair whose scan runs out is kept (a duplicate the host removes), never dropped.
@@ -124,7 +125,7 @@ struct CellsHeader {
     uint deep_cells;        // cells swept by the deep path
     uint deep_items;
     uint max_cell;          // most entries in one cell
-    uint neighbours;        // candidates dropped: same object, shared vertex index
+    uint neighbours;        // overlapping pairs the sweep left out: one object, a shared vertex index
     uint duplicates;        // candidates dropped: not their canonical cell
     uint filtered;          // candidates the filter proved disjoint
     uint pad0, pad1, pad2;

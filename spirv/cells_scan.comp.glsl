@@ -74,6 +74,6 @@ void main() {
         uint parts = n <= kCellsDeepShared ? 1u : (n + kCellsGroupSize - 1u) / kCellsGroupSize;
         for (uint c = 0u; c < parts; ++c, ++slot)
             if (slot < P.deep_capacity) deep_items.v[slot] = uvec2(first + k, parts == 1u ? kCellsSorted : c);
-            else atomicOr(cellsHeader(P).h.flags, kCellsInconsistent);  // deep_capacity >= entries / kCellsSmallCell
+            else atomicOr(cellsHeader(P).h.flags, kCellsInconsistent);  // deep_capacity >= 2 entries / kCellsSmallCell
     }
 }

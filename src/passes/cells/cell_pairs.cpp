@@ -152,7 +152,10 @@ Result<void> CellPairs::ensureBuffers() {
     const VkDeviceSize cells = VkDeviceSize(resolution_) * resolution_;
     const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
     const VkDeviceSize objects = objects_.size();
-    const VkDeviceSize deep = VkDeviceSize(capacity_.entries) / gpu::kCellsSmallCell + 1;
+    // Deep items: one per cell deeper than kCellsSmallCell, or ceil(k / kCellsGroupSize) for
+    // cells of k > kCellsDeepShared entries; either way at most 2 k / kCellsSmallCell.
+    static_assert(gpu::kCellsDeepShared >= 4 * gpu::kCellsGroupSize && gpu::kCellsSmallCell >= gpu::kCellsGroupSize);
+    const VkDeviceSize deep = 2 * VkDeviceSize(capacity_.entries) / gpu::kCellsSmallCell + 1;
     struct Plan {
         vk::Buffer* buffer;
         VkDeviceSize size;

@@ -77,7 +77,7 @@ struct CellPairsStats {
     std::uint64_t deep_cells = 0;     // cells with more than kCellsSmallCell entries
     std::uint64_t max_cell = 0;       // most entries in one cell
     std::uint64_t candidates = 0;     // pairs the sweep found (with duplicates across cells)
-    std::uint64_t neighbours = 0;     // dropped: one object, shared vertex index
+    std::uint64_t neighbours = 0;     // left out by the sweep (not candidates): one object, shared vertex index
     std::uint64_t duplicates = 0;     // dropped: not the pair's canonical cell
     std::uint64_t filtered = 0;       // dropped: proved disjoint by the filter
     std::uint64_t survivors = 0;

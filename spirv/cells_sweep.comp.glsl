@@ -19,6 +19,11 @@ void main() {
     uvec3 mine = uvec3(~0u);
     if (e < total) {
         cell = UintsRef(P.entry_cells).v[e];
+        // Never with matching count and fill passes; a guard, so a bug cannot read out of bounds.
+        if (cell >= P.cell_count) {
+            atomicOr(cellsHeader(P).h.flags, kCellsInconsistent);
+            cell = 0u;
+        }
         begin = UintsRef(P.offsets).v[cell];
         end = UintsRef(P.offsets).v[cell + 1u];
         if (end - begin > kCellsSmallCell) end = begin;

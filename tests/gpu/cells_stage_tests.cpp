@@ -92,6 +92,28 @@ TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
+TEST_CASE("cells: dispatches split into rows of workgroups give the same pairs", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(6);
+    CellScene scene = mixedScene();
+    scene.meshes.push_back(soup(rng, 2000, -0.5f, 0.5f, 0.02f, "soup"));
+    scene.self.push_back(1);
+    CellRunOptions opt;
+    opt.resolution = 300;  // 90K cells: 88 scan blocks
+    const CellRun whole = runCells(ctx, **stage, scene, opt);
+    requireAllFound(whole, referencePairs(scene));
+    for (std::uint32_t x : {1u, 3u, 7u}) {
+        INFO("rows of " << x << " workgroups");
+        opt.settings.max_workgroups_x = x;
+        const CellRun split = runCells(ctx, **stage, scene, opt);
+        CHECK(split.pairs == whole.pairs);
+        CHECK(split.result.stats.entries == whole.result.stats.entries);
+        CHECK(split.result.stats.candidates == whole.result.stats.candidates);
+    }
+}
+
 TEST_CASE("cells: identical results run to run", "[cells][gpu]") {
     ValidatedContext ctx;
     auto stage = passes::CellPairs::create(ctx.device());

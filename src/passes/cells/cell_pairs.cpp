@@ -107,6 +107,8 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
     has_pair_mask_ = static_cast<bool>(in.may_collide);
     runs_ = 0;
+    const std::uint32_t device_limit = device_->properties.limits.maxComputeWorkGroupCount[0];
+    max_groups_x_ = settings.max_workgroups_x ? std::min(settings.max_workgroups_x, device_limit) : device_limit;
 
     // Capacities: the caller's, else what earlier runs needed, else an estimate.
     const std::uint64_t tris = std::max<std::uint64_t>(triangles_, 1);
@@ -228,7 +230,7 @@ void CellPairs::writeParams() {
     p.candidate_capacity = capacity_.candidates;
     p.survivor_capacity = capacity_.survivors;
     p.block_count = (p.cell_count + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
-    p.max_groups_x = device_->properties.limits.maxComputeWorkGroupCount[0];
+    p.max_groups_x = max_groups_x_;
     p.use_filter = use_filter_ ? 1u : 0u;
     std::memcpy(buf_.params.mapped(), &p, sizeof p);
     buf_.params.flush();

@@ -68,6 +68,9 @@ struct CellPairsSettings {
     CellPairsCapacity initial;
     // Runs allowed per call (the first plus reruns after overflows).
     std::uint32_t max_runs = 8;
+    // Dispatches are split into rows of at most this many workgroups (0: the device's
+    // maxComputeWorkGroupCount[0]); tests set it small to exercise the split.
+    std::uint32_t max_workgroups_x = 0;
 };
 
 struct CellPairsStats {
@@ -148,6 +151,7 @@ private:
     std::uint32_t triangles_ = 0, resolution_ = 0;
     VkDeviceAddress projection_address_ = 0;
     bool use_filter_ = false, has_pair_mask_ = false, has_self_ = false;
+    std::uint32_t max_groups_x_ = 0;
     CellPairsCapacity capacity_;
     std::uint32_t runs_ = 0;
 };

@@ -20,11 +20,10 @@ void bind(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress params, 
     pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 }
 
-// `groups` workgroups in rows of at most maxComputeWorkGroupCount[0] (the shaders
+// `groups` workgroups in rows of at most `max_x` (maxComputeWorkGroupCount[0]; the shaders
 // linearise gl_WorkGroupID).
-void dispatch(const PassContext& pc, std::uint64_t groups) {
+void dispatch(const PassContext& pc, std::uint64_t groups, std::uint64_t max_x) {
     if (groups == 0) return;
-    const std::uint64_t max_x = pc.device->properties.limits.maxComputeWorkGroupCount[0];
     const std::uint64_t x = std::min(groups, max_x);
     pc.fns().vkCmdDispatch(pc.cmd, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>((groups + x - 1) / x), 1);
 }
@@ -56,6 +55,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
     const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
     const VkBuffer counts_buffer = buf_.counts.handle();
     const auto& P = pipes_;
+    const std::uint64_t max_x = max_groups_x_;
     const vk::Pipeline* pairs = use_filter_ ? &filter_pipeline_ : &P.pairs;
 
     g.addPass("cells-clear", PassKind::Transfer).use(header, Use::TransferDst).use(counts, Use::TransferDst).record(
@@ -80,9 +80,9 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
     auto setup = g.addPass("cells-setup", PassKind::Compute);
     setup.readWrite(header).write(tris).write(geometry).readWrite(counts).write(big).write(args);
     if (projection.valid()) setup.read(projection);
-    setup.record([&P, params, tri_groups](PassContext& pc) {
+    setup.record([&P, params, tri_groups, max_x](PassContext& pc) {
         bind(pc, P.setup, params);
-        dispatch(pc, tri_groups);
+        dispatch(pc, tri_groups, max_x);
         pc.shaderBarrier();
         bind(pc, P.args, params, 0);
         pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
@@ -106,15 +106,15 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         .readWrite(header)
         .write(deep)
         .write(args)
-        .record([&P, params, blocks](PassContext& pc) {
+        .record([&P, params, blocks, max_x](PassContext& pc) {
             bind(pc, P.scan, params, 0);
-            dispatch(pc, blocks);
+            dispatch(pc, blocks, max_x);
             pc.shaderBarrier();
             bind(pc, P.scan, params, 1);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
             pc.shaderBarrier();
             bind(pc, P.scan, params, 2);
-            dispatch(pc, blocks);
+            dispatch(pc, blocks, max_x);
             pc.shaderBarrier();
             bind(pc, P.args, params, 1);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
@@ -129,9 +129,9 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         .readWrite(counts)
         .write(entries)
         .write(entry_cells)
-        .record([&P, params, tri_groups, args_buffer](PassContext& pc) {
+        .record([&P, params, tri_groups, args_buffer, max_x](PassContext& pc) {
             bind(pc, P.fill, params);
-            dispatch(pc, tri_groups);
+            dispatch(pc, tri_groups, max_x);
             bind(pc, P.big, params, 1);  // other cells than the small triangles': no barrier needed
             pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsBig * 12);
         });

@@ -1,0 +1,183 @@
+// Data shared by the cell pair stage's shaders (GLSL) and its host side (C++,
+// src/passes/cells/): buffer layouts, limits and flags. docs/reliable.md explains the
+// method and why it cannot miss an intersecting pair.
+//
+// A grid of N x N cells covers the sampling image; cell (i, j) is the closed square
+// [i, i+1] x [j, j+1] in cell units (sampling x, y times N), and the outermost cells
+// reach to infinity, so every point of the plane lies in at least one cell. Each
+// triangle is listed in every cell its padded projection may touch, with a depth
+// interval that contains the depth of every point of it over that cell.
+#ifndef VKCOLLIDE_CELLS_H
+#define VKCOLLIDE_CELLS_H
+
+#include "broadphase.h"  // VKC_ADDRESS, VKC_CONST, ObjectGpu, Projection
+
+#ifdef __cplusplus
+namespace vkcollide::gpu {
+#endif
+
+// Workgroup size of every cell-stage shader.
+VKC_CONST kCellsGroupSize = 256;
+// Cells per side: 1 .. kCellsMaxResolution (cell coordinates are packed in 16 bits).
+VKC_CONST kCellsMaxResolution = 16384;
+// A triangle whose clamped footprint box has at most this many cells is handled by one
+// invocation; bigger ones are cut into work items of kCellsChunkCells box cells, one
+// workgroup each (so a triangle spanning the grid does not serialise on one invocation).
+VKC_CONST kCellsSmallBox = 64;
+VKC_CONST kCellsChunkCells = 4096;
+// Cells with at most kCellsSmallCell entries are swept by one invocation per entry,
+// unsorted (no barriers, every lane busy: cheaper than sorting up to about this depth);
+// deeper cells by a workgroup that sorts them in shared memory (up to kCellsDeepShared
+// entries), or, deeper still, by workgroups of kCellsGroupSize entries that each scan the
+// whole cell.
+VKC_CONST kCellsSmallCell = 256;
+VKC_CONST kCellsDeepShared = 1024;
+// The pair pass's canonical-cell check scans at most this many earlier cells of a pair;
+// a pair whose scan runs out is kept (a duplicate the host removes), never dropped.
+VKC_CONST kCellsDedupeBudget = 512;
+// Cells per workgroup of the scan (4 per invocation).
+VKC_CONST kCellsScanBlock = 1024;
+// A deep item whose chunk is this value sorts the whole cell in shared memory.
+VKC_CONST kCellsSorted = 0xFFFFFFFFu;
+
+// CellsEntry.key and CellsTriangle.key: object index in the low 31 bits, and whether the
+// object tests its own triangles against each other.
+VKC_CONST kCellsKeySelf = 0x80000000u;
+VKC_CONST kCellsKeyObject = 0x7FFFFFFFu;
+// CellsParams.object_flags
+VKC_CONST kCellsObjectSelf = 1u;
+
+// CellsTriangle.mode
+VKC_CONST kCellsEdges = 1u;  // coordinates are moderate: the per-cell edge tests apply
+VKC_CONST kCellsPlane = 2u;  // the projection is not degenerate: per-cell depth from the plane
+
+// CellsHeader.flags: what went wrong. The overflow flags ask the host to grow a buffer to
+// the size the header reports and run again; the others are errors.
+VKC_CONST kCellsOverflowEntries = 1u;
+VKC_CONST kCellsOverflowItems = 2u;
+VKC_CONST kCellsOverflowCandidates = 4u;
+VKC_CONST kCellsOverflowSurvivors = 8u;
+VKC_CONST kCellsBadIndex = 16u;        // an index >= the object's vertex count
+VKC_CONST kCellsBadPosition = 32u;     // a position or transform entry not finite or >= 2^62
+VKC_CONST kCellsBadProjection = 64u;   // a projection entry not finite or >= 2^62
+VKC_CONST kCellsBadWorld = 128u;       // a world coordinate >= 2^62
+VKC_CONST kCellsInconsistent = 256u;   // the fill found more footprints than the count (a bug)
+VKC_CONST kCellsOverflowMask = 15u;
+
+// Inputs are refused at or above this magnitude (2^62): with them every intermediate of
+// the setup stays finite in float (docs/reliable.md, "Assumptions").
+VKC_CONST kCellsMaxExponentBits = 189u;  // biased exponent of 2^62
+
+// Slots of CellsParams.args (VkDispatchIndirectCommand each).
+VKC_CONST kCellsArgsBig = 0u;    // big-triangle work items (count and fill)
+VKC_CONST kCellsArgsSweep = 1u;  // one invocation per entry
+VKC_CONST kCellsArgsDeep = 2u;   // deep-cell work items
+VKC_CONST kCellsArgsPairs = 3u;  // one invocation per candidate
+VKC_CONST kCellsArgsCount = 4u;
+
+// One triangle after setup (80 bytes + 4), written once, read by the count, fill and pair
+// passes, so all of them see the same footprint and depth bounds bit for bit.
+struct CellsTriangle {
+    float x[3];       // vertices in cell units (sampling x times N)
+    float y[3];
+    float z[3];       // sampling depth
+    float pad;        // footprint padding in cell units: covers the GPU's rounding of world
+                      // and sampling coordinates against the CPU's world positions
+    float zmin, zmax; // depth range of the triangle, padded outward by ez
+    float ez;         // depth padding (the same error bound along z)
+    float gx, gy;     // depth plane: dz per cell along x and y (mode kCellsPlane)
+    float egx, egy;   // bounds on the error of gx and gy
+    uint cells_lo;    // first cell of the clamped footprint box: i | j << 16
+    uint cells_hi;    // last cell (inclusive)
+    uint key;         // object | kCellsKeySelf
+    uint mode;        // kCellsEdges | kCellsPlane
+};
+
+// What the pair pass needs of a triangle: world vertices as the GPU computed them, the
+// bound on their difference from the CPU's (per coordinate) and the vertex indices.
+struct CellsGeometry {
+    float v[9];
+    float eps;
+    uint index[3];
+};
+
+// One footprint: a triangle in a cell with its depth interval there.
+struct CellsEntry {
+    uint triangle;  // global triangle id
+    uint key;       // object | kCellsKeySelf
+    float zlo, zhi;
+};
+
+// A pair of triangles whose intervals overlap in `cell` (a < b, global ids).
+struct CellsCandidate {
+    uint a, b, cell;
+};
+
+// Small results; the host reads them after each run.
+struct CellsHeader {
+    uint flags;             // kCells* above
+    uint bad_triangle;      // smallest global triangle id with bad input (~0u: none)
+    uint entries;           // footprints (needed entry capacity)
+    uint items;             // big-triangle work items (needed item capacity)
+    uint candidates;        // candidate pairs the sweep found (needed capacity)
+    uint survivors;         // pairs that passed (needed capacity)
+    uint big_triangles;     // triangles handled in work items
+    uint deep_cells;        // cells swept by the deep path
+    uint deep_items;
+    uint max_cell;          // most entries in one cell
+    uint neighbours;        // overlapping pairs the sweep left out: one object, a shared vertex index
+    uint duplicates;        // candidates dropped: not their canonical cell
+    uint filtered;          // candidates the filter proved disjoint
+    uint pad0, pad1, pad2;
+};
+
+// Everything the shaders need, uploaded once per run (Push.frame points here).
+struct CellsParams {
+    VKC_ADDRESS(uint64_t) objects;       // ObjectGpu[object_count], sorted by triangle_base
+    VKC_ADDRESS(uint64_t) object_flags;  // uint[object_count] (kCellsObjectSelf), or 0: none
+    VKC_ADDRESS(uint64_t) pair_mask;     // bits [a * object_count + b], a < b: may collide; 0: all
+    VKC_ADDRESS(uint64_t) projection;    // Projection
+    VKC_ADDRESS(uint64_t) header;        // CellsHeader
+    VKC_ADDRESS(uint64_t) triangles;     // CellsTriangle[triangle_count]
+    VKC_ADDRESS(uint64_t) geometry;      // CellsGeometry[triangle_count]
+    VKC_ADDRESS(uint64_t) counts;        // uint[cell_count]: footprints, then the fill cursor
+    VKC_ADDRESS(uint64_t) offsets;       // uint[cell_count + 1]: first entry of each cell
+    VKC_ADDRESS(uint64_t) block_sums;    // uint[block_count]
+    VKC_ADDRESS(uint64_t) entries;       // CellsEntry[entry_capacity]
+    VKC_ADDRESS(uint64_t) entry_cells;   // uint[entry_capacity]: the cell of each entry
+    VKC_ADDRESS(uint64_t) big_items;     // uvec2[item_capacity]: (triangle, chunk)
+    VKC_ADDRESS(uint64_t) deep_items;    // uvec2[deep_capacity]: (cell, chunk or kCellsSorted)
+    VKC_ADDRESS(uint64_t) candidates;    // CellsCandidate[candidate_capacity]
+    VKC_ADDRESS(uint64_t) survivors;     // uvec2[survivor_capacity]: (a, b), a < b
+    VKC_ADDRESS(uint64_t) args;          // uint[3 * kCellsArgsCount]
+    uint resolution;                     // N
+    uint cell_count;                     // N * N
+    uint object_count;
+    uint triangle_count;
+    uint entry_capacity;
+    uint item_capacity;
+    uint deep_capacity;
+    uint candidate_capacity;
+    uint survivor_capacity;
+    uint block_count;                    // ceil(cell_count / kCellsScanBlock)
+    uint max_groups_x;                   // maxComputeWorkGroupCount[0]
+    uint use_filter;                     // 1: the double-precision filter runs
+};
+
+// Unit test of the filter alone (cells_filter_test.comp): one pair per invocation.
+struct CellsFilterCase {
+    float a[9];
+    float b[9];
+    float eps_a, eps_b;
+};
+struct CellsFilterParams {
+    VKC_ADDRESS(uint64_t) cases;    // CellsFilterCase[count]
+    VKC_ADDRESS(uint64_t) verdict;  // uint[count]: 1 rejected (proved disjoint), 0 kept
+    uint count;
+    uint pad;
+};
+
+#ifdef __cplusplus
+}  // namespace vkcollide::gpu
+#endif
+#endif

@@ -1,0 +1,164 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Cell pair stage, sweep of the deep cells (one workgroup per work item). A cell of at most
+// kCellsDeepShared entries (chunk kCellsSorted) is loaded into shared memory and sorted by
+// (object, zlo, index) with a bitonic network, which cuts it into one run per object. Each
+// entry then visits the runs of the objects it may collide with (its own only when that
+// object tests itself, skipping neighbours that share a vertex index), finds by binary search the first entry after it in (zlo, index)
+// order and pairs with the following ones until one starts beyond its zhi. So a cell
+// where one object piles up (silhouettes, fans of slivers around a vertex) costs no more
+// than its pairs and a binary search per run, not its entries squared. Deeper cells come
+// in chunks of kCellsGroupSize entries, each entry scanning the whole cell as the shallow
+// sweep does.
+#include "cells_common.glsl.inc"
+#include "workgroup.glsl.inc"
+layout(local_size_x = kCellsGroupSize) in;
+
+shared float s_zlo[kCellsDeepShared];
+shared float s_zhi[kCellsDeepShared];
+shared uint s_key[kCellsDeepShared];
+shared uint s_tri[kCellsDeepShared];
+shared uint s_order[kCellsDeepShared];
+shared uint s_runs[kCellsDeepShared + 1];  // first sorted position of each object's run, then k
+
+const float kFloatMax = 3.4028234663852886e38;
+
+uint objectOf(uint a) { return s_key[a] & kCellsKeyObject; }
+// (zlo, index) order, the sweep's.
+bool sweepBefore(uint a, uint b) { return s_zlo[a] < s_zlo[b] || (s_zlo[a] == s_zlo[b] && a < b); }
+// (object, zlo, index) order, the sort's.
+bool orderedBefore(uint a, uint b) { return objectOf(a) < objectOf(b) || (objectOf(a) == objectOf(b) && sweepBefore(a, b)); }
+
+void emit(CellsParams P, inout uint slot, uint ta, uint tb, uint cell) {
+    if (slot < P.candidate_capacity) {
+        CellsCandidate c;
+        c.a = min(ta, tb);
+        c.b = max(ta, tb);
+        c.cell = cell;
+        CellsCandidatesRef(P.candidates).c[slot] = c;
+    } else {
+        atomicOr(cellsHeader(P).h.flags, kCellsOverflowCandidates);
+    }
+    ++slot;
+}
+
+void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
+    const uint tid = gl_LocalInvocationIndex;
+    uint size = 1u;
+    while (size < k) size <<= 1;
+    for (uint x = tid; x < size; x += kCellsGroupSize) {
+        if (x < k) {
+            CellsEntry en = CellsEntriesRef(P.entries).e[begin + x];
+            s_zlo[x] = en.zlo;
+            s_zhi[x] = en.zhi;
+            s_key[x] = en.key;
+            s_tri[x] = en.triangle;
+        } else {
+            s_zlo[x] = kFloatMax;  // padding sorts last: the largest object, then index >= k
+            s_key[x] = kCellsKeyObject;
+        }
+        s_order[x] = x;
+    }
+    barrier();
+    for (uint span = 2u; span <= size; span <<= 1) {
+        for (uint stride = span >> 1; stride > 0u; stride >>= 1) {
+            for (uint x = tid; x < size / 2u; x += kCellsGroupSize) {
+                uint lo = 2u * stride * (x / stride) + (x % stride), hi = lo + stride;
+                bool ascending = (lo & span) == 0u;
+                uint a = s_order[lo], b = s_order[hi];
+                if (orderedBefore(b, a) == ascending) {
+                    s_order[lo] = b;
+                    s_order[hi] = a;
+                }
+            }
+            barrier();
+        }
+    }
+    // Runs: positions where the object changes, compacted in order by a workgroup scan.
+    const uint per = kCellsDeepShared / kCellsGroupSize;
+    uint starts = 0u;
+    for (uint c = 0u; c < per; ++c) {
+        uint p = tid * per + c;
+        if (p < k && (p == 0u || objectOf(s_order[p]) != objectOf(s_order[p - 1u]))) ++starts;
+    }
+    uint slot = groupInclusiveScan(starts) - starts;
+    uint runs = groupReduceAdd(starts);
+    for (uint c = 0u; c < per; ++c) {
+        uint p = tid * per + c;
+        if (p < k && (p == 0u || objectOf(s_order[p]) != objectOf(s_order[p - 1u]))) s_runs[slot++] = p;
+    }
+    if (tid == 0u) s_runs[runs] = k;
+    barrier();
+
+    uint n = 0u, neighbours = 0u;
+    for (uint pass = 0u; pass < 2u; ++pass) {
+        uint out_slot = 0u;
+        if (pass == 1u) {
+            subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
+            out_slot = subgroupAppend(headerField(P, kHeaderCandidates), n);
+            if (n == 0u) return;
+        }
+        for (uint p = tid; p < k; p += kCellsGroupSize) {
+            uint a = s_order[p];
+            uvec3 mine = (s_key[a] & kCellsKeySelf) != 0u ? triangleIndices(P, s_tri[a]) : uvec3(~0u);
+            for (uint r = 0u; r < runs; ++r) {
+                uint first = s_runs[r], end = s_runs[r + 1u];
+                if (!mayCollide(P, s_key[a], s_key[s_order[first]])) continue;
+                // First position of the run after `a` in (zlo, index) order.
+                uint lo = first, hi = end;
+                while (lo < hi) {
+                    uint mid = (lo + hi) / 2u;
+                    if (sweepBefore(a, s_order[mid]) || a == s_order[mid]) hi = mid; else lo = mid + 1u;
+                }
+                if (lo < end && s_order[lo] == a) ++lo;
+                for (uint q = lo; q < end; ++q) {
+                    uint b = s_order[q];
+                    if (s_zlo[b] > s_zhi[a]) break;
+                    uint dropped = 0u;
+                    if (!sweepPair(P, s_key[a], mine, s_key[b], s_tri[b], dropped)) {
+                        if (pass == 0u) neighbours += dropped;
+                        continue;
+                    }
+                    if (pass == 0u) ++n;
+                    else emit(P, out_slot, s_tri[a], s_tri[b], cell);
+                }
+            }
+        }
+    }
+}
+
+void chunkOfCell(CellsParams P, uint cell, uint begin, uint end, uint chunk) {
+    CellsEntriesRef entries = CellsEntriesRef(P.entries);
+    uint e = begin + chunk * kCellsGroupSize + gl_LocalInvocationIndex;
+    uint stop = e < end ? end : begin;
+    CellsEntry me;
+    uvec3 mine = uvec3(~0u);
+    if (e < end) {
+        me = entries.e[e];
+        if ((me.key & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
+    }
+    uint n = 0u, neighbours = 0u;
+    for (uint j = begin; j < stop; ++j) {
+        CellsEntry o = entries.e[j];
+        bool after = o.zlo > me.zlo || (o.zlo == me.zlo && j > e);
+        if (after && o.zlo <= me.zhi && sweepPair(P, me.key, mine, o.key, o.triangle, neighbours)) ++n;
+    }
+    subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
+    uint slot = subgroupAppend(headerField(P, kHeaderCandidates), n);
+    if (n == 0u) return;
+    for (uint j = begin; j < stop; ++j) {
+        CellsEntry o = entries.e[j];
+        bool after = o.zlo > me.zlo || (o.zlo == me.zlo && j > e);
+        if (after && o.zlo <= me.zhi && sweepPair(P, me.key, mine, o.key, o.triangle, neighbours)) emit(P, slot, me.triangle, o.triangle, cell);
+    }
+}
+
+void main() {
+    CellsParams P = params();
+    uint item = groupIndex();
+    if (item >= min(cellsHeader(P).h.deep_items, P.deep_capacity)) return;  // whole workgroup
+    uvec2 work = Uvec2sRef(P.deep_items).v[item];
+    uint begin = UintsRef(P.offsets).v[work.x], end = UintsRef(P.offsets).v[work.x + 1u];
+    if (work.y == kCellsSorted) sortedCell(P, work.x, begin, end - begin);
+    else chunkOfCell(P, work.x, begin, end, work.y);
+}

@@ -1,0 +1,178 @@
+// CellPairs::record: the stage's passes on the render graph. Every shader reaches its
+// buffers through device addresses, so each pass declares the buffers it touches and the
+// graph derives the barriers between passes; inside a pass, dependent dispatches are
+// separated by shader barriers. Indirect arguments are always written one pass before
+// the pass that dispatches from them (indirect reads need the graph's barrier).
+#include <algorithm>
+
+#include "passes/cells/cell_pairs.hpp"
+
+namespace vkcollide::passes {
+namespace {
+
+using graph::PassContext;
+using graph::PassKind;
+using graph::Use;
+
+void bind(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress params, std::uint32_t step = 0) {
+    gpu::Push push{params, 0, step, 0, 0};
+    pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+    pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+}
+
+// `groups` workgroups in rows of at most `max_x` (maxComputeWorkGroupCount[0]; the shaders
+// linearise gl_WorkGroupID).
+void dispatch(const PassContext& pc, std::uint64_t groups, std::uint64_t max_x) {
+    if (groups == 0) return;
+    const std::uint64_t x = std::min(groups, max_x);
+    pc.fns().vkCmdDispatch(pc.cmd, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>((groups + x - 1) / x), 1);
+}
+
+std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize; }
+
+}  // namespace
+
+void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
+    const VkDeviceAddress params = buf_.params.address();
+    const std::uint64_t cells = std::uint64_t(resolution_) * resolution_;
+    const std::uint64_t blocks = (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
+    const std::uint64_t tri_groups = groupsFor(triangles_);
+    const auto header = g.importBuffer("cells-header", buf_.header);
+    const auto header_rb = g.importBuffer("cells-header-readback", buf_.header_rb, true);
+    const auto tris = g.importBuffer("cells-triangles", buf_.triangles);
+    const auto geometry = g.importBuffer("cells-geometry", buf_.geometry);
+    const auto counts = g.importBuffer("cells-counts", buf_.counts);
+    const auto offsets = g.importBuffer("cells-offsets", buf_.offsets);
+    const auto sums = g.importBuffer("cells-block-sums", buf_.block_sums);
+    const auto entries = g.importBuffer("cells-entries", buf_.entries);
+    const auto entry_cells = g.importBuffer("cells-entry-cells", buf_.entry_cells);
+    const auto big = g.importBuffer("cells-big-items", buf_.big_items);
+    const auto deep = g.importBuffer("cells-deep-items", buf_.deep_items);
+    const auto candidates = g.importBuffer("cells-candidates", buf_.candidates);
+    const auto survivors = g.importBuffer("cells-survivors", buf_.survivors, true);
+    const auto args = g.importBuffer("cells-args", buf_.args);
+    const VkBuffer args_buffer = buf_.args.handle();
+    const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
+    const VkBuffer counts_buffer = buf_.counts.handle();
+    const auto& P = pipes_;
+    const std::uint64_t max_x = max_groups_x_;
+    const vk::Pipeline* pairs = use_filter_ ? &filter_pipeline_ : &P.pairs;
+
+    g.addPass("cells-clear", PassKind::Transfer).use(header, Use::TransferDst).use(counts, Use::TransferDst).record(
+        [header_buffer, counts_buffer, cells](PassContext& pc) {
+            // Writes the engine submitted earlier (vertex buffers it skinned or simulated)
+            // become visible to everything this run does.
+            VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+            mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+            mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+            mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.memoryBarrierCount = 1;
+            dep.pMemoryBarriers = &mb;
+            pc.fns().vkCmdPipelineBarrier2(pc.cmd, &dep);
+            // Header: flags 0, bad_triangle ~0, counters 0.
+            pc.fns().vkCmdFillBuffer(pc.cmd, header_buffer, 0, 4, 0);
+            pc.fns().vkCmdFillBuffer(pc.cmd, header_buffer, 4, 4, 0xFFFFFFFFu);
+            pc.fns().vkCmdFillBuffer(pc.cmd, header_buffer, 8, sizeof(gpu::CellsHeader) - 8, 0);
+            pc.fns().vkCmdFillBuffer(pc.cmd, counts_buffer, 0, cells * 4, 0);
+        });
+
+    auto setup = g.addPass("cells-setup", PassKind::Compute);
+    setup.readWrite(header).write(tris).write(geometry).readWrite(counts).write(big).write(args);
+    if (projection.valid()) setup.read(projection);
+    setup.record([&P, params, tri_groups, max_x](PassContext& pc) {
+        bind(pc, P.setup, params);
+        dispatch(pc, tri_groups, max_x);
+        pc.shaderBarrier();
+        bind(pc, P.args, params, 0);
+        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+    });
+
+    g.addPass("cells-count-big", PassKind::Compute)
+        .indirect(args)
+        .read(tris)
+        .read(big)
+        .read(header)
+        .readWrite(counts)
+        .record([&P, params, args_buffer](PassContext& pc) {
+            bind(pc, P.big, params, 0);
+            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsBig * 12);
+        });
+
+    g.addPass("cells-scan", PassKind::Compute)
+        .readWrite(counts)
+        .readWrite(offsets)
+        .readWrite(sums)
+        .readWrite(header)
+        .write(deep)
+        .write(args)
+        .record([&P, params, blocks, max_x](PassContext& pc) {
+            bind(pc, P.scan, params, 0);
+            dispatch(pc, blocks, max_x);
+            pc.shaderBarrier();
+            bind(pc, P.scan, params, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+            pc.shaderBarrier();
+            bind(pc, P.scan, params, 2);
+            dispatch(pc, blocks, max_x);
+            pc.shaderBarrier();
+            bind(pc, P.args, params, 1);
+            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        });
+
+    g.addPass("cells-fill", PassKind::Compute)
+        .indirect(args)
+        .read(tris)
+        .read(big)
+        .read(offsets)
+        .read(header)
+        .readWrite(counts)
+        .write(entries)
+        .write(entry_cells)
+        .record([&P, params, tri_groups, args_buffer, max_x](PassContext& pc) {
+            bind(pc, P.fill, params);
+            dispatch(pc, tri_groups, max_x);
+            bind(pc, P.big, params, 1);  // other cells than the small triangles': no barrier needed
+            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsBig * 12);
+        });
+
+    g.addPass("cells-sweep", PassKind::Compute)
+        .indirect(args)
+        .read(entries)
+        .read(entry_cells)
+        .read(offsets)
+        .read(deep)
+        .readWrite(header)
+        .write(candidates)
+        .record([&P, params, args_buffer](PassContext& pc) {
+            bind(pc, P.sweep, params);
+            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsSweep * 12);
+            bind(pc, P.deep, params);
+            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsDeep * 12);
+        });
+    g.addPass("cells-pair-args", PassKind::Compute).read(header).write(args).record([&P, params](PassContext& pc) {
+        bind(pc, P.args, params, 2);
+        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+    });
+    g.addPass("cells-pairs", PassKind::Compute)
+        .indirect(args)
+        .read(candidates)
+        .read(tris)
+        .read(geometry)
+        .readWrite(header)
+        .write(survivors)
+        .record([pairs, params, args_buffer](PassContext& pc) {
+            bind(pc, *pairs, params);
+            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsPairs * 12);
+        });
+
+    g.addPass("cells-readback", PassKind::Transfer)
+        .use(header, Use::TransferSrc)
+        .use(header_rb, Use::TransferDst)
+        .record([header_buffer, header_rb_buffer](PassContext& pc) {
+            VkBufferCopy copy{0, 0, sizeof(gpu::CellsHeader)};
+            pc.fns().vkCmdCopyBuffer(pc.cmd, header_buffer, header_rb_buffer, 1, &copy);
+        });
+}
+
+}  // namespace vkcollide::passes

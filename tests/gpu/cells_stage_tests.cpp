@@ -1,0 +1,333 @@
+// The cell pair stage's machinery: overflow and rerun, identical results run to run, the
+// big-triangle and deep-cell paths, the projection written by an earlier pass, the filter
+// switched off, and bad input (errors naming object and triangle, or a conservative
+// result for denormal coordinates).
+#include <catch2/catch.hpp>
+
+#include <limits>
+#include <random>
+
+#include "gpu/cells_test_support.hpp"
+#include "vkcollide/scene.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+HostMesh generated(Result<HostMesh> made, const char* name) {
+    REQUIRE(made);
+    made->name = name;
+    return std::move(*made);
+}
+
+HostMesh soup(std::mt19937& rng, std::uint32_t count, float lo, float hi, float size, const char* name) {
+    std::uniform_real_distribution<float> where(lo, hi), offset(-size, size);
+    HostMesh m;
+    m.name = name;
+    for (std::uint32_t t = 0; t < count; ++t) {
+        const Float3 c{where(rng), where(rng), where(rng)};
+        for (int k = 0; k < 3; ++k) {
+            m.indices.push_back(static_cast<std::uint32_t>(m.positions.size()));
+            m.positions.push_back({c.x + offset(rng), c.y + offset(rng), c.z + offset(rng)});
+        }
+    }
+    return m;
+}
+
+CellScene mixedScene() {
+    CellScene s;
+    s.meshes.push_back(generated(uvSphere(1.0f, 32, 16), "sphere"));
+    s.meshes.push_back(generated(torus(0.9f, 0.3f, 40, 12), "torus"));
+    s.meshes.push_back(generated(box({0.6f, 0.6f, 0.6f}, 1), "box"));  // 12 big triangles
+    s.transforms = {kIdentityTransform, translation(0.3f, 0.2f, 0.1f), translation(-0.4f, 0.1f, 0.3f)};
+    s.self = {0, 1, 0};
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    const CellScene scene = mixedScene();
+    CellRunOptions opt;
+    opt.resolution = 256;
+    const CellRun normal = runCells(ctx, **stage, scene, opt);
+    requireAllFound(normal, referencePairs(scene));
+    CHECK(normal.result.stats.big_triangles > 0);
+
+    auto fresh = passes::CellPairs::create(ctx.device());
+    REQUIRE(fresh);
+    opt.settings.initial = {1, 1, 1, 1};
+    const CellRun grown = runCells(ctx, **fresh, scene, opt);
+    CHECK(grown.result.stats.runs >= 3);  // items, then entries, then candidates, then survivors
+    CHECK(grown.pairs == normal.pairs);
+    CHECK(grown.result.stats.entries == normal.result.stats.entries);
+    CHECK(grown.result.stats.candidates == normal.result.stats.candidates);
+    CHECK((*fresh)->capacity().entries >= normal.result.stats.entries);
+    CHECK((*fresh)->capacity().survivors >= normal.result.stats.survivors);
+
+    // The grown buffers stay: the next run needs one submission.
+    opt.settings.initial = {};
+    const CellRun again = runCells(ctx, **fresh, scene, opt);
+    CHECK(again.result.stats.runs == 1);
+    CHECK(again.pairs == normal.pairs);
+
+    // A run limit that overflow cannot meet is an error, not a partial result.
+    auto limited = passes::CellPairs::create(ctx.device());
+    REQUIRE(limited);
+    UploadedScene up = uploadScene(ctx.device(), scene);
+    passes::CellPairsInput in;
+    in.objects = up.objects;
+    in.projection = fitProjection(scene, {0, 0, 1});
+    in.resolution = 256;
+    passes::CellPairsSettings s;
+    s.initial = {1, 1, 1, 1};
+    s.max_runs = 1;
+    auto r = (*limited)->run(in, s);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code() == ErrorCode::OutOfMemory);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("cells: dispatches split into rows of workgroups give the same pairs", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(6);
+    CellScene scene = mixedScene();
+    scene.meshes.push_back(soup(rng, 2000, -0.5f, 0.5f, 0.02f, "soup"));
+    scene.self.push_back(1);
+    CellRunOptions opt;
+    opt.resolution = 300;  // 90K cells: 88 scan blocks
+    const CellRun whole = runCells(ctx, **stage, scene, opt);
+    requireAllFound(whole, referencePairs(scene));
+    for (std::uint32_t x : {1u, 3u, 7u}) {
+        INFO("rows of " << x << " workgroups");
+        opt.settings.max_workgroups_x = x;
+        const CellRun split = runCells(ctx, **stage, scene, opt);
+        CHECK(split.pairs == whole.pairs);
+        CHECK(split.result.stats.entries == whole.result.stats.entries);
+        CHECK(split.result.stats.candidates == whole.result.stats.candidates);
+    }
+}
+
+TEST_CASE("cells: identical results run to run", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(5);
+    CellScene scene = mixedScene();
+    scene.meshes.push_back(soup(rng, 3000, -0.5f, 0.5f, 0.02f, "soup"));
+    scene.self.push_back(1);
+    CellRunOptions opt;
+    opt.resolution = 128;
+    const CellRun first = runCells(ctx, **stage, scene, opt);
+    REQUIRE(first.pairs.size() > 100);
+    for (int k = 0; k < 3; ++k) {
+        const CellRun next = runCells(ctx, **stage, scene, opt);
+        CHECK(next.pairs == first.pairs);
+        CHECK(next.result.stats.entries == first.result.stats.entries);
+        CHECK(next.result.stats.candidates == first.result.stats.candidates);
+        CHECK(next.result.stats.duplicates == first.result.stats.duplicates);
+        CHECK(next.result.stats.filtered == first.result.stats.filtered);
+        CHECK(next.result.stats.survivors == first.result.stats.survivors);
+    }
+}
+
+TEST_CASE("cells: deep cells (sorted in shared memory and in chunks) and big triangles", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(8);
+    CellScene scene;
+    scene.meshes.push_back(soup(rng, 2500, 0.0f, 1.0f, 0.03f, "a"));
+    scene.meshes.push_back(soup(rng, 2500, 0.0f, 1.0f, 0.03f, "b"));
+    scene.meshes.push_back(generated(box({0.3f, 0.3f, 0.3f}, 1), "box"));
+    scene.transforms = {kIdentityTransform, kIdentityTransform, translation(0.5f, 0.5f, 0.5f)};
+    scene.self = {1, 0, 0};
+    const auto reference = referencePairs(scene);
+    REQUIRE(reference.size() > 200);
+    for (std::uint32_t n : {1u, 3u, 8u, 512u}) {
+        INFO("resolution " << n);
+        CellRunOptions opt;
+        opt.resolution = n;
+        const CellRun run = runCells(ctx, **stage, scene, opt);
+        requireAllFound(run, reference);
+        if (n <= 3) CHECK(run.result.stats.deep_cells > 0);
+        if (n == 1) CHECK(run.result.stats.max_cell > gpu::kCellsDeepShared);
+        if (n == 512) CHECK(run.result.stats.big_triangles > 0);
+    }
+}
+
+TEST_CASE("cells: projection written by an earlier pass of the same graph", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    const CellScene scene = mixedScene();
+    CellRunOptions opt;
+    opt.resolution = 64;
+    const CellRun expected = runCells(ctx, **stage, scene, opt);
+
+    UploadedScene up = uploadScene(ctx.device(), scene);
+    const gpu::Projection pr = fitProjection(scene, opt.direction);
+    auto staging = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::Upload, "projection-staging");
+    auto device_projection = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::DeviceLocal, "projection");
+    REQUIRE(staging);
+    REQUIRE(device_projection);
+    std::memcpy(staging->mapped(), &pr, sizeof pr);
+    staging->flush();
+    passes::CellPairsInput in;
+    in.objects = up.objects;
+    in.projection_address = device_projection->address();
+    in.resolution = 64;
+    in.self_collision = scene.self;
+    auto other = passes::CellPairs::create(ctx.device());
+    REQUIRE(other);
+    REQUIRE((*other)->prepare(in));
+    graph::Executor executor(ctx.device());
+    passes::CellPairsResult out;
+    for (int attempt = 0;; ++attempt) {
+        REQUIRE(attempt < 8);
+        graph::Graph g;
+        const auto src = g.importBuffer("projection-staging", *staging);
+        const auto dst = g.importBuffer("projection", *device_projection);
+        const VkBuffer from = staging->handle(), to = device_projection->handle();
+        g.addPass("write-projection", graph::PassKind::Transfer)
+            .use(src, graph::Use::TransferSrc)
+            .use(dst, graph::Use::TransferDst)
+            .record([from, to](graph::PassContext& pc) {
+                VkBufferCopy copy{0, 0, sizeof(gpu::Projection)};
+                pc.fns().vkCmdCopyBuffer(pc.cmd, from, to, 1, &copy);
+            });
+        (*other)->record(g, dst);
+        REQUIRE(executor.run(g));
+        auto outcome = (*other)->finish(out);
+        REQUIRE(outcome);
+        if (*outcome == passes::CellPairs::Outcome::Complete) break;
+    }
+    REQUIRE(expected.pairs.size() > 50);
+    CHECK(toObjectPairs(up.objects, out.pairs) == expected.pairs);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("cells: without the filter every pair the filter keeps survives", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(9);
+    CellScene scene = mixedScene();
+    scene.meshes.push_back(soup(rng, 2000, -0.6f, 0.6f, 0.03f, "soup"));
+    scene.self.push_back(1);
+    CellRunOptions opt;
+    opt.resolution = 96;
+    const CellRun with = runCells(ctx, **stage, scene, opt);
+    opt.settings.filter = false;
+    const CellRun without = runCells(ctx, **stage, scene, opt);
+    CHECK_FALSE(without.result.stats.filter_ran);
+    CHECK(without.result.stats.filtered == 0);
+    const auto reference = referencePairs(scene);
+    requireAllFound(with, reference);
+    requireAllFound(without, reference);
+    CHECK(comparePairs(without.pairs, with.pairs).false_negatives == 0);  // with ⊆ without
+    if (ctx.device().shader_float64) {
+        CHECK(with.result.stats.filtered > 0);
+        CHECK(without.pairs.size() > with.pairs.size());
+    }
+}
+
+TEST_CASE("cells: bad input is refused, naming the object and triangle", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    CellScene scene;
+    scene.meshes.push_back(generated(uvSphere(1.0f, 8, 4), "a"));
+    scene.meshes.push_back(generated(uvSphere(1.0f, 8, 4), "b"));
+    auto attempt = [&](const CellScene& s, auto&& edit) {
+        UploadedScene up = uploadScene(ctx.device(), s);
+        passes::CellPairsInput in;
+        in.objects = up.objects;
+        in.projection = fitProjection(scene, {0, 0, 1});
+        in.resolution = 32;
+        edit(in, up);
+        auto r = (*stage)->run(in);
+        REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+        return r;
+    };
+    SECTION("non-finite and huge positions, found on the GPU") {
+        for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 1e38f, 5e18f}) {
+            CellScene s = scene;
+            s.meshes[1].positions[s.meshes[1].indices[3 * 5 + 1]].y = bad;
+            auto r = attempt(s, [](passes::CellPairsInput&, UploadedScene&) {});
+            INFO("value " << bad);
+            REQUIRE_FALSE(r);
+            CHECK(r.error().code() == ErrorCode::InvalidMesh);
+            CHECK_THAT(r.error().message(), Catch::Contains("object 1, triangle"));
+        }
+    }
+    SECTION("an index beyond the vertices") {
+        CellScene s = scene;
+        s.meshes[0].indices[3 * 7 + 2] = 100000;
+        auto r = attempt(s, [](passes::CellPairsInput&, UploadedScene&) {});
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code() == ErrorCode::InvalidMesh);
+        CHECK_THAT(r.error().message(), Catch::Contains("object 0, triangle 7") && Catch::Contains("index"));
+    }
+    SECTION("a world coordinate of 2^62 or more") {
+        auto r = attempt(scene, [](passes::CellPairsInput&, UploadedScene& up) {
+            // Entries below 2^62, but the sum reaches 8e18 > 2^62 at the sphere's +x pole.
+            up.objects[1].model[0] = {4e18f, 0, 0, 4e18f};
+        });
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code() == ErrorCode::InvalidMesh);
+        CHECK_THAT(r.error().message(), Catch::Contains("object 1") && Catch::Contains("world"));
+    }
+    SECTION("host-side checks") {
+        auto huge = attempt(scene, [](passes::CellPairsInput& in, UploadedScene& up) {
+            up.objects[0].model[2].w = 1e30f;
+            in.objects = up.objects;
+        });
+        REQUIRE_FALSE(huge);
+        CHECK(huge.error().code() == ErrorCode::InvalidArgument);
+        auto projection = attempt(scene, [](passes::CellPairsInput& in, UploadedScene&) {
+            in.projection->row[1].y = std::numeric_limits<float>::quiet_NaN();
+        });
+        REQUIRE_FALSE(projection);
+        CHECK(projection.error().code() == ErrorCode::InvalidArgument);
+        auto resolution = attempt(scene, [](passes::CellPairsInput& in, UploadedScene&) { in.resolution = 0; });
+        REQUIRE_FALSE(resolution);
+        CHECK(resolution.error().code() == ErrorCode::InvalidArgument);
+        auto base = attempt(scene, [](passes::CellPairsInput& in, UploadedScene& up) {
+            up.objects[1].triangle_base += 1;
+            in.objects = up.objects;
+        });
+        REQUIRE_FALSE(base);
+        CHECK_THAT(base.error().message(), Catch::Contains("triangle_base"));
+    }
+    SECTION("the stage works again after an error") {
+        CellRunOptions opt;
+        opt.resolution = 16;
+        requireAllFound(runCells(ctx, **stage, scene, opt), referencePairs(scene));
+    }
+}
+
+TEST_CASE("cells: denormal coordinates are handled conservatively", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(10);
+    CellScene scene;
+    // Two soups a few times 1e-39 across (denormal floats, which a GPU may flush to zero),
+    // and an ordinary object that sets the projection's scale.
+    scene.meshes.push_back(soup(rng, 300, -3e-39f, 3e-39f, 2e-39f, "tiny-a"));
+    scene.meshes.push_back(soup(rng, 300, -3e-39f, 3e-39f, 2e-39f, "tiny-b"));
+    scene.meshes.push_back(generated(uvSphere(1.0f, 8, 4), "ordinary"));
+    scene.transforms = {kIdentityTransform, kIdentityTransform, translation(3, 0, 0)};
+    const auto reference = referencePairs(scene);
+    REQUIRE(reference.size() > 50);
+    CellRunOptions opt;
+    opt.resolution = 64;
+    requireAllFound(runCells(ctx, **stage, scene, opt), reference);
+}

@@ -1,0 +1,175 @@
+// Shared by the cell pair stage's tests: a scene of host meshes with transforms uploaded
+// as gpu::ObjectGpu, a projection fitted to it along a direction, one run of the stage,
+// and its survivors as (object, triangle) pairs for comparison with the exact reference.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "passes/cells/cell_pairs.hpp"
+#include "support/exact_reference.hpp"
+#include "support/gpu_fixture.hpp"
+
+namespace vkcollide::test {
+
+struct CellScene {
+    std::vector<HostMesh> meshes;
+    std::vector<Transform> transforms;  // one per mesh; missing: identity
+    std::vector<std::uint8_t> self;     // one per mesh; missing: off
+    Transform transformOf(std::size_t i) const { return i < transforms.size() ? transforms[i] : kIdentityTransform; }
+    bool selfOf(std::size_t i) const { return i < self.size() && self[i] != 0; }
+};
+
+// The scene's positions and indices in host-visible GPU buffers.
+struct UploadedScene {
+    std::vector<vk::Buffer> buffers;
+    std::vector<gpu::ObjectGpu> objects;
+};
+
+inline UploadedScene uploadScene(vk::Device& device, const CellScene& scene, bool index16 = false) {
+    UploadedScene up;
+    std::uint32_t base = 0;
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const HostMesh& m = scene.meshes[i];
+        auto vb = vk::Buffer::create(device, std::max<std::size_t>(m.positions.size() * 12, 16), 0, vk::MemoryKind::Upload, "test-vertices");
+        REQUIRE(vb);
+        std::memcpy(vb->mapped(), m.positions.data(), m.positions.size() * 12);
+        vb->flush();
+        const std::size_t index_bytes = index16 ? (m.indices.size() * 2 + 3) / 4 * 4 : m.indices.size() * 4;
+        auto ib = vk::Buffer::create(device, std::max<std::size_t>(index_bytes, 16), 0, vk::MemoryKind::Upload, "test-indices");
+        REQUIRE(ib);
+        if (index16) {
+            auto* idx = static_cast<std::uint16_t*>(ib->mapped());
+            for (std::size_t k = 0; k < m.indices.size(); ++k) idx[k] = static_cast<std::uint16_t>(m.indices[k]);
+        } else {
+            std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
+        }
+        ib->flush();
+        gpu::ObjectGpu o{};
+        o.vertices = vb->address();
+        o.indices = ib->address();
+        o.vertex_stride = 12;
+        o.vertex_count = static_cast<std::uint32_t>(m.positions.size());
+        o.triangle_count = static_cast<std::uint32_t>(m.triangleCount());
+        o.triangle_base = base;
+        o.flags = index16 ? gpu::kObjectIndex16 : 0u;
+        const Transform t = scene.transformOf(i);
+        for (int r = 0; r < 3; ++r) o.model[r] = {t[4 * r], t[4 * r + 1], t[4 * r + 2], t[4 * r + 3]};
+        base += o.triangle_count;
+        up.objects.push_back(o);
+        up.buffers.push_back(std::move(*vb));
+        up.buffers.push_back(std::move(*ib));
+    }
+    return up;
+}
+
+// Maps the scene's world box seen along `direction` onto [0, 1]^2 (square cells) and the
+// depth onto [0, 1]. Any affine map would do for correctness; this one makes cells useful.
+inline gpu::Projection fitProjection(const CellScene& scene, std::array<double, 3> direction) {
+    double len = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] + direction[2] * direction[2]);
+    std::array<double, 3> d = {direction[0] / len, direction[1] / len, direction[2] / len};
+    std::array<double, 3> a = std::fabs(d[0]) > 0.9 ? std::array<double, 3>{0, 1, 0} : std::array<double, 3>{1, 0, 0};
+    double dot = a[0] * d[0] + a[1] * d[1] + a[2] * d[2];
+    std::array<double, 3> u = {a[0] - d[0] * dot, a[1] - d[1] * dot, a[2] - d[2] * dot};
+    double ul = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    for (double& x : u) x /= ul;
+    std::array<double, 3> v = {d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2], d[0] * u[1] - d[1] * u[0]};
+    const std::array<std::array<double, 3>, 3> basis = {u, v, d};
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+        for (const Float3& p : worldPositions(scene.meshes[i], scene.transformOf(i)))
+            for (int k = 0; k < 3; ++k) {
+                const double s = basis[k][0] * p.x + basis[k][1] * p.y + basis[k][2] * p.z;
+                lo[k] = std::min(lo[k], s);
+                hi[k] = std::max(hi[k], s);
+            }
+    double size = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+    if (!(size > 0)) size = 1;
+    double depth = hi[2] - lo[2];
+    if (!(depth > 0)) depth = 1;
+    gpu::Projection p{};
+    const double scale[3] = {size, size, depth};
+    for (int k = 0; k < 3; ++k)
+        p.row[k] = {float(basis[k][0] / scale[k]), float(basis[k][1] / scale[k]), float(basis[k][2] / scale[k]),
+                    float(-lo[k] / scale[k])};
+    return p;
+}
+
+struct CellRun {
+    passes::CellPairsResult result;
+    std::vector<TrianglePair> pairs;  // (object, triangle) pairs
+};
+
+inline std::vector<TrianglePair> toObjectPairs(const std::vector<gpu::ObjectGpu>& objects,
+                                               const std::vector<std::array<std::uint32_t, 2>>& global) {
+    auto locate = [&](std::uint32_t t) {
+        std::size_t o = objects.size() - 1;
+        while (objects[o].triangle_base > t || objects[o].triangle_count == 0) --o;
+        return std::pair<std::uint32_t, std::uint32_t>(static_cast<std::uint32_t>(o), t - objects[o].triangle_base);
+    };
+    std::vector<TrianglePair> out;
+    for (const auto& g : global) {
+        auto [oa, ta] = locate(g[0]);
+        auto [ob, tb] = locate(g[1]);
+        out.push_back({oa, ta, ob, tb});
+    }
+    return out;
+}
+
+struct CellRunOptions {
+    std::uint32_t resolution = 64;
+    std::array<double, 3> direction{0, 0, 1};
+    passes::CellPairsSettings settings;
+    std::function<bool(std::uint32_t, std::uint32_t)> may_collide;
+    bool index16 = false;
+    std::optional<gpu::Projection> projection;  // instead of fitting one along `direction`
+};
+
+inline CellRun runCells(ValidatedContext& ctx, passes::CellPairs& stage, const CellScene& scene, const CellRunOptions& opt) {
+    UploadedScene up = uploadScene(ctx.device(), scene, opt.index16);
+    passes::CellPairsInput in;
+    in.objects = up.objects;
+    in.projection = opt.projection ? *opt.projection : fitProjection(scene, opt.direction);
+    in.resolution = opt.resolution;
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) in.self_collision.push_back(scene.selfOf(i) ? 1 : 0);
+    in.may_collide = opt.may_collide;
+    auto r = stage.run(in, opt.settings);
+    INFO((r ? std::string() : r.error().message()));
+    REQUIRE(r);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+    CellRun run;
+    run.pairs = toObjectPairs(up.objects, r->pairs);
+    run.result = std::move(*r);
+    return run;
+}
+
+inline std::vector<TrianglePair> referencePairs(const CellScene& scene,
+                                                std::function<bool(std::uint32_t, std::uint32_t)> may_collide = {}) {
+    std::vector<ReferenceObject> objs;
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) objs.push_back({&scene.meshes[i], scene.transformOf(i), scene.selfOf(i)});
+    ReferenceOptions options;
+    options.may_collide = std::move(may_collide);
+    auto r = computeReferencePairs(objs, options);
+    REQUIRE(r);
+    return *r;
+}
+
+// Every reference pair must be a survivor (recall 100 %, touching included).
+inline void requireAllFound(const CellRun& run, const std::vector<TrianglePair>& reference) {
+    const PairComparison c = comparePairs(run.pairs, reference);
+    INFO("reference " << reference.size() << ", survivors " << run.pairs.size() << ", missed " << c.false_negatives
+                      << ", candidates " << run.result.stats.candidates << ", entries " << run.result.stats.entries);
+    for (std::size_t i = 0; i < std::min<std::size_t>(c.missed.size(), 5); ++i)
+        UNSCOPED_INFO("missed (" << c.missed[i].object_a << ", " << c.missed[i].triangle_a << ") x (" << c.missed[i].object_b
+                                 << ", " << c.missed[i].triangle_b << ")");
+    REQUIRE(c.false_negatives == 0);
+}
+
+}  // namespace vkcollide::test

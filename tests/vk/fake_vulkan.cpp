@@ -124,7 +124,9 @@ void progress() {
 // An unbounded wait on work the test has not released: the real GPU would finish it some
 // time; the fake finishes everything now (so reset() paths can be observed, not hang).
 void finishForUnboundedWait(std::uint64_t timeout) {
-    if (timeout == UINT64_MAX) fake().finishPending();
+    if (timeout != UINT64_MAX) return;
+    ++fake().unbounded_waits;
+    fake().finishPending();
 }
 
 [[noreturn]] VKAPI_ATTR void VKAPI_CALL trap() {

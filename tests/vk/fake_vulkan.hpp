@@ -81,6 +81,7 @@ struct FakeVulkan {
     std::vector<VkPipelineCache> pipelines_cache_used;  // the cache each vkCreate*Pipelines got
     std::vector<VkDeviceSize> bind_offsets;             // memoryOffset of every vkBind*Memory
     std::vector<std::string> allocator_mismatches;      // "vkDestroyBuffer: ..." per mismatch
+    int unbounded_waits = 0;                            // fence/semaphore waits with timeout UINT64_MAX
     struct Submit {
         std::vector<VkSemaphoreSubmitInfo> waits, signals;
         VkFence fence = VK_NULL_HANDLE;

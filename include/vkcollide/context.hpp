@@ -94,11 +94,13 @@
 //
 // ---- Lifetime -------------------------------------------------------------------------
 //
-// A Context may be destroyed before the worlds and resources made from it: each of them
-// keeps the device alive, and the device (with the instance, for Context::create) is
-// destroyed with the last of them. Everything the engine lends (adopt()'s handles, the
-// hooks, allocation callbacks, pipeline cache and on_message) must stay valid until then,
-// not only until ~Context. Destroying the last of them waits for vkcollide's GPU work.
+// A Context may be destroyed before the resources made from it: each of them keeps the
+// device alive, and the device (with the instance, for Context::create) is destroyed with
+// the last of them. Everything the engine lends (adopt()'s handles, the hooks, allocation
+// callbacks, pipeline cache and on_message) must stay valid until then, not only until
+// ~Context. Destroying the last of them waits for vkcollide's GPU work. (world.hpp still
+// asks for the Context to outlive a world; a world destroyed, or a pending detection
+// collected, after its Context is nonetheless safe now.)
 //
 // Thread safety: a Context itself is not changed after creation; the objects made from it
 // (worlds) may be used from different threads, each object from one thread at a time.
@@ -328,11 +330,14 @@ public:
     // Errors: LoaderUnavailable (no libvulkan.so.1 or a required entry point),
     // NoSuitableDevice (no device meets the requirements, or none matches the name; the
     // message lists every device and what it lacks), UnsupportedFeature (validation asked
-    // for but not installed), VulkanError / OutOfMemory / DeviceLost (a Vulkan call failed;
-    // Error::vkResult() holds its VkResult).
+    // for but not installed), InvalidArgument (allocate without free or the reverse,
+    // allocation callbacks without pfnAllocation, pfnReallocation and pfnFree),
+    // VulkanError / OutOfMemory / DeviceLost (a Vulkan call failed; Error::vkResult()
+    // holds its VkResult).
     [[nodiscard]] static Result<std::unique_ptr<Context>> create(const ContextCreateInfo& info = {});
     // Errors: InvalidArgument (a null handle or enabled_features, a queue family that does
-    // not exist, only one of a lock/unlock or allocate/free pair), UnsupportedFeature (each
+    // not exist, only one of a lock/unlock or allocate/free pair, incomplete allocation
+    // callbacks), UnsupportedFeature (each
     // missing requirement named: version, feature, queue capability), LoaderUnavailable
     // (an entry point the engine's loader lacks), VulkanError / OutOfMemory (creating the
     // pipeline cache).

@@ -259,7 +259,31 @@ TEST_CASE("memory hooks: a failed or broken allocation is refused by name, and a
     half.get_instance_proc_addr = test::FakeVulkan::getInstanceProcAddr();
     auto refused = Context::create(half);
     REQUIRE_FALSE(refused);
-    CHECK(mentions(refused.error(), "allocate and free come as a pair"));
+    CHECK(refused.error().code() == ErrorCode::InvalidArgument);
+    CHECK(mentions(refused.error(), "ContextCreateInfo::memory_hooks: allocate and free come as a pair"));
+    CHECK(scope.fake().instances_alive == 1);  // only the first Context's
+}
+
+TEST_CASE("allocation callbacks without all three functions are refused by name", "[contract][hooks][error]") {
+    FakeVulkanScope scope;
+    CountingCallbacks counting;
+    VkAllocationCallbacks broken = counting.callbacks;
+    broken.pfnReallocation = nullptr;
+    ContextCreateInfo info;
+    info.get_instance_proc_addr = test::FakeVulkan::getInstanceProcAddr();
+    info.allocation_callbacks = &broken;
+    auto created = Context::create(info);
+    REQUIRE_FALSE(created);
+    CHECK(created.error().code() == ErrorCode::InvalidArgument);
+    CHECK(mentions(created.error(), "ContextCreateInfo::allocation_callbacks"));
+    test::FakeEngineDevice engine;
+    AdoptedDevice lent = engine.lend(scope.fake());
+    lent.allocation_callbacks = &broken;
+    auto adopted = Context::adopt(lent);
+    REQUIRE_FALSE(adopted);
+    CHECK(mentions(adopted.error(), "AdoptedDevice::allocation_callbacks"));
+    CHECK(counting.allocations == 0);
+    CHECK(scope.fake().instances_alive == 0);
 }
 
 TEST_CASE("allocation callbacks reach every object vkcollide creates, and every destruction", "[contract][hooks]") {

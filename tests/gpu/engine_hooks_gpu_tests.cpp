@@ -193,6 +193,23 @@ struct CacheSpy {
     }
 };
 
+// Records the allocation callbacks the render graph's timestamp query pools are created
+// with (the one object created outside src/vk).
+struct QueryPoolSpy {
+    static inline PFN_vkCreateQueryPool create = nullptr;
+    static inline std::vector<const VkAllocationCallbacks*> callbacks;
+    static VKAPI_ATTR VkResult VKAPI_CALL spy(VkDevice d, const VkQueryPoolCreateInfo* ci, const VkAllocationCallbacks* a,
+                                              VkQueryPool* out) {
+        callbacks.push_back(a);
+        return create(d, ci, a, out);
+    }
+    static void install(vk::Device& d) {
+        create = d.fns.vkCreateQueryPool;
+        callbacks.clear();
+        d.fns.vkCreateQueryPool = spy;
+    }
+};
+
 std::size_t cacheBytes(const vk::Device& dev, VkPipelineCache cache) {
     std::size_t size = 0;
     REQUIRE(dev.fns.vkGetPipelineCacheData(dev.device, cache, &size, nullptr) == VK_SUCCESS);
@@ -254,6 +271,7 @@ TEST_CASE("an engine's queue hooks, memory allocator, allocation callbacks and p
         ctx.device().fns.vkQueueSubmit2 = bypassedSubmit;  // anything not through the hook fails
         g_bypassed_submits = 0;
         CacheSpy::install(ctx.device());
+        QueryPoolSpy::install(ctx.device());
         {
             auto world = CollisionWorld::create(ctx, {.threads = 2});
             REQUIRE(world);
@@ -279,6 +297,8 @@ TEST_CASE("an engine's queue hooks, memory allocator, allocation callbacks and p
         CHECK(g_bypassed_submits.load() == 0);
         REQUIRE(CacheSpy::used.size() >= 10);  // the world's pipelines (24 at the time of writing)
         for (VkPipelineCache used : CacheSpy::used) CHECK(used == engine_cache);
+        REQUIRE_FALSE(QueryPoolSpy::callbacks.empty());
+        for (const VkAllocationCallbacks* a : QueryPoolSpy::callbacks) CHECK(a == ctx.device().allocator());
         CHECK(hooked_submits.load() >= 2);
         CHECK(locks.load() == hooked_submits.load());
         CHECK(unlocks.load() == locks.load());

@@ -132,23 +132,38 @@ Result<void> Submission::submit(const SubmitSync& sync) {
     if (std::string p = syncProblem(sync.wait, "wait"); !p.empty()) return Error(ErrorCode::InvalidArgument, p);
     if (std::string p = syncProblem(sync.signal, "signal"); !p.empty()) return Error(ErrorCode::InvalidArgument, p);
 
-    const auto& f = device_->fns;
     // From here on a failure leaves nothing submitted: Idle, or Lost.
     state_ = State::Idle;
-    VkResult r = f.vkEndCommandBuffer(cmd_);
+    VkResult r = device_->fns.vkEndCommandBuffer(cmd_);
     if (r != VK_SUCCESS) return lose(r, "vkEndCommandBuffer");
-    r = f.vkResetFences(device_->device, 1, &fence_);
+    return queue(cmd_, sync);
+}
+
+Result<void> Submission::submitSyncOnly(const SubmitSync& sync) {
+    if (state_ == State::Recording)
+        return Error(ErrorCode::InvalidArgument, "submitSyncOnly while recording: submit the recording (or begin again) first");
+    if (std::string p = syncProblem(sync.wait, "wait"); !p.empty()) return Error(ErrorCode::InvalidArgument, p);
+    if (std::string p = syncProblem(sync.signal, "signal"); !p.empty()) return Error(ErrorCode::InvalidArgument, p);
+    if (auto ok = waitBeforeRecording(); !ok) return ok.error();
+    engine_ = EngineCommandBuffer{};
+    state_ = State::Idle;
+    return queue(VK_NULL_HANDLE, sync);
+}
+
+// One batch: `cmd` (none when null) between sync's waits and signals, with the fence.
+Result<void> Submission::queue(VkCommandBuffer cmd, const SubmitSync& sync) {
+    VkResult r = device_->fns.vkResetFences(device_->device, 1, &fence_);
     if (r != VK_SUCCESS) return lose(r, "vkResetFences");
     std::vector<VkSemaphoreSubmitInfo> waits, signals;
     appendInfos(sync.wait, waits);
     appendInfos(sync.signal, signals);
     VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-    cbi.commandBuffer = cmd_;
+    cbi.commandBuffer = cmd;
     VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
     si.waitSemaphoreInfoCount = static_cast<std::uint32_t>(waits.size());
     si.pWaitSemaphoreInfos = waits.data();
-    si.commandBufferInfoCount = 1;
-    si.pCommandBufferInfos = &cbi;
+    si.commandBufferInfoCount = cmd ? 1 : 0;
+    si.pCommandBufferInfos = cmd ? &cbi : nullptr;
     si.signalSemaphoreInfoCount = static_cast<std::uint32_t>(signals.size());
     si.pSignalSemaphoreInfos = signals.data();
     r = device_->queueSubmit(std::span(&si, 1), fence_);

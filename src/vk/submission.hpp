@@ -9,6 +9,7 @@
 //                                   |  ^                  |
 //                                   |  '--submit() refused (bad SubmitSync): still Recording
 //                                   '--submit() failed: Idle (nothing was submitted)
+//   Idle --submitSyncOnly()--> Pending (a batch of waits and signals only)
 //   Pending --waitFor() NotYet / wait() timeout--> Pending (wait again, or give the device up)
 //   any --VK_ERROR_DEVICE_LOST--> Lost (every later call fails with DeviceLost)
 //
@@ -62,6 +63,12 @@ public:
     // submitting: state Idle, nothing was submitted (Vulkan leaves semaphores untouched on
     // a failed vkQueueSubmit2). DeviceLost: state Lost.
     Result<void> submit(const SubmitSync& sync = {});
+    // Submits a batch without commands that only waits and signals: what a caller uses when
+    // its work failed after (or before) it promised the engine a signal, so that neither the
+    // engine's GPU nor a binary wait is left hanging. Idle, or Pending (waited for first, as
+    // begin()); Recording is refused (submit or abandon the recording first). Errors: as
+    // submit(); on success the state is Pending.
+    Result<void> submitSyncOnly(const SubmitSync& sync);
 
     // Non-blocking: Done once the submitted work has finished (state Idle), NotYet while it
     // runs. Idle or Recording: Done. Errors: DeviceLost (state Lost); VulkanError /
@@ -83,6 +90,7 @@ public:
 
 private:
     Result<void> waitBeforeRecording();
+    Result<void> queue(VkCommandBuffer cmd, const SubmitSync& sync);
     Error lose(VkResult result, const char* what);
 
     DeviceRef device_;

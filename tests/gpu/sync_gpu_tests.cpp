@@ -138,6 +138,13 @@ TEST_CASE("the host waits on the GPU's timeline signal without a fence wait", "[
         CHECK(*p == vk::Completion::Done);
         CHECK(wordAt(*out, 0) == frame);
     }
+    // A frame whose work failed still signals what it promised: a batch of only that.
+    const SemaphoreSubmit signal[] = {{timeline->handle(), 20}};
+    REQUIRE(s->submitSyncOnly({.signal = signal}));
+    auto reached = timeline->wait(20, UINT64_MAX);
+    REQUIRE(reached);
+    CHECK(*reached);
+    REQUIRE(s->wait());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

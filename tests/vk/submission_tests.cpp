@@ -334,3 +334,35 @@ TEST_CASE("timelineSemaphore is optional: enabled on vkcollide's own device wher
     REQUIRE(adopted);
     CHECK((*adopted)->device().timeline_semaphore);
 }
+
+TEST_CASE("submitSyncOnly: a batch of only waits and signals, so a failed detection never leaves the engine waiting",
+          "[contract][submission]") {
+    FakeVulkanScope scope;
+    scope.fake().gpu_finishes_at_once = false;
+    auto ctx = test::createFakeContext();
+    vk::Semaphore t = timeline(*ctx);
+    vk::Submission s = makeSubmission(*ctx);
+    REQUIRE(s.begin());
+    const SemaphoreSubmit signal[] = {{t.handle(), 6}};
+    auto recording = s.submitSyncOnly({.signal = signal});
+    REQUIRE_FALSE(recording);  // a recording in progress must be submitted or abandoned first
+    CHECK(mentions(recording.error(), "while recording"));
+    REQUIRE(s.submit());
+    // The earlier work finishes; submitSyncOnly then starts from Idle.
+    scope.fake().finishPending();
+    const SemaphoreSubmit wait[] = {{t.handle(), 0}};
+    REQUIRE(s.submitSyncOnly({.wait = wait, .signal = signal}));
+    CHECK(s.pending());
+    REQUIRE(scope.fake().submits.size() == 2);
+    CHECK(scope.fake().submits[1].waits.size() == 1);
+    CHECK(scope.fake().submits[1].signals.size() == 1);
+    CHECK(scope.fake().submits[1].fence != VK_NULL_HANDLE);
+    scope.fake().finishPending();
+    REQUIRE(s.wait());
+    CHECK(scope.fake().timelineValue(t.handle()) == 6);
+    const SemaphoreSubmit bad[] = {{VK_NULL_HANDLE}};
+    auto refused = s.submitSyncOnly({.signal = bad});
+    REQUIRE_FALSE(refused);
+    CHECK(mentions(refused.error(), "SubmitSync::signal[0]"));
+}
+

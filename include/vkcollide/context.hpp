@@ -169,7 +169,9 @@ struct SubmitSync {
 // (needs the timelineSemaphore feature, which every timeline semaphore implies).
 // The command buffer: primary, in the recording state, outside a render pass; vkcollide
 // binds its own pipelines and push constants there, so the engine re-binds its state
-// afterwards. It must be submitted before anyone waits for the result (collect()).
+// afterwards. It must be submitted before anyone waits for the result (collect(), the
+// world's destruction): those waits have no time limit, since freeing what the command
+// buffer uses before it ran would be worse.
 struct EngineCommandBuffer {
     VkCommandBuffer command_buffer = VK_NULL_HANDLE;
     VkSemaphore timeline = VK_NULL_HANDLE;

@@ -74,7 +74,13 @@ Result<MemoryBlock> allocateMemory(Device& device, const MemoryNeed& need, const
             }
             if (r == VK_SUCCESS) {
                 problem = blockProblem(request, out);
-                if (!problem.empty()) device.memory_hooks.free(out);  // given back before refusing it
+                if (!problem.empty()) {
+                    try {
+                        device.memory_hooks.free(out);  // given back before refusing it
+                    } catch (...) {
+                        device.message(MessageSeverity::Error, "DeviceMemoryHooks::free threw; the block is the engine's to reclaim");
+                    }
+                }
             }
         }
         if (r != VK_SUCCESS) return vulkanError(r, "DeviceMemoryHooks::allocate of " + std::to_string(req.size) + " bytes for '" + name + "'");

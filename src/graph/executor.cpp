@@ -23,7 +23,7 @@ void PassContext::shaderBarrier() const {
 
 Executor::~Executor() {
     submission_.reset();
-    if (queries_) device_->fns.vkDestroyQueryPool(device_->device, queries_, nullptr);
+    if (queries_) device_->fns.vkDestroyQueryPool(device_->device, queries_, device_->allocator());
 }
 
 Result<void> Executor::prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx) {
@@ -129,12 +129,12 @@ Result<void> Executor::submit(const Graph& graph) {
     const auto pass_count = static_cast<std::uint32_t>(plan->order.size());
     const std::uint32_t needed = 2 * pass_count + 2;
     if (needed > query_capacity_) {
-        if (queries_) f.vkDestroyQueryPool(device_->device, queries_, nullptr);
+        if (queries_) f.vkDestroyQueryPool(device_->device, queries_, device_->allocator());
         queries_ = VK_NULL_HANDLE;
         VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
         qi.queryCount = needed;
-        VkResult r = f.vkCreateQueryPool(device_->device, &qi, nullptr, &queries_);
+        VkResult r = f.vkCreateQueryPool(device_->device, &qi, device_->allocator(), &queries_);
         if (r != VK_SUCCESS) return vk::vulkanError(r, "vkCreateQueryPool");
         query_capacity_ = needed;
     }

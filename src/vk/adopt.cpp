@@ -49,8 +49,12 @@ Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& in, Message
                          " (enable them in the VkPhysicalDeviceFeatures2 chain of VkDeviceCreateInfo; "
                          "vkcollide::enableRequiredFeatures() sets them)");
 
-    auto d = std::make_unique<Device>();
+    auto d = std::make_shared<Device>();
     d->on_message = std::move(on_message);
+    if (static_cast<bool>(in.queue_hooks.lock) != static_cast<bool>(in.queue_hooks.unlock))
+        return Error(ErrorCode::InvalidArgument, "AdoptedDevice::queue_hooks: lock and unlock come as a pair (one of them is empty)");
+    d->queue_hooks = in.queue_hooks;
+    if (auto ok = takeHostHooks(*d, in.allocation_callbacks, in.memory_hooks, "AdoptedDevice"); !ok) return ok.error();
     auto global = loadGlobalFunctions(in.get_instance_proc_addr);
     if (!global) return global.error();
     d->global = *global;
@@ -75,6 +79,7 @@ Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& in, Message
     d->shader_float64 = enabled->has(Feature::ShaderFloat64);
     d->robust_buffer_access = enabled->has(Feature::RobustBufferAccess);
     d->robust_buffer_access2 = listed(VK_EXT_ROBUSTNESS_2_EXTENSION_NAME) && enabled->has(Feature::RobustBufferAccess2);
+    d->timeline_semaphore = enabled->has(Feature::TimelineSemaphore);
 
     if (auto ok = finishDevice(*d); !ok) return ok.error();
     std::vector<std::string> queue_lacks;
@@ -87,6 +92,7 @@ Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& in, Message
     auto dev = loadDeviceFunctions(d->instance_fns, d->device, d->push_descriptor);
     if (!dev) return dev.error();
     d->fns = *dev;
+    if (auto ok = setUpPipelineCache(*d, in.pipeline_cache, in.pipeline_cache_data); !ok) return ok.error();
     return std::unique_ptr<Context>(new Context(std::move(d)));
 }
 

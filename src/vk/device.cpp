@@ -48,12 +48,15 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onDebugMessage(VkDebugUtilsMessageSeverityFlagBit
 }  // namespace
 
 Device::~Device() {
+    // Runs when the Context and the last resource made on it are gone (see device.hpp):
+    // nothing of vkcollide's is left on the device, and every Submission has waited.
+    if (pipeline_cache && owns_pipeline_cache) fns.vkDestroyPipelineCache(device, pipeline_cache, allocator());
     if (device && owns_device) {
-        fns.vkDeviceWaitIdle(device);
-        fns.vkDestroyDevice(device, nullptr);
+        waitIdle();
+        fns.vkDestroyDevice(device, allocator());
     }
-    if (messenger) instance_fns.vkDestroyDebugUtilsMessengerEXT(instance, messenger, nullptr);
-    if (instance && owns_instance) instance_fns.vkDestroyInstance(instance, nullptr);
+    if (messenger) instance_fns.vkDestroyDebugUtilsMessengerEXT(instance, messenger, allocator());
+    if (instance && owns_instance) instance_fns.vkDestroyInstance(instance, allocator());
 }
 
 std::optional<std::uint32_t> Device::findMemoryType(std::uint32_t type_bits, VkMemoryPropertyFlags required,
@@ -117,6 +120,7 @@ PhysicalDeviceReport describePhysicalDevice(const InstanceFunctions& fns, VkPhys
     report.supported = querySupported(fns, physical, robustness2_extension);
     for (auto& m : report.supported.missingRequired()) info.missing.push_back(m);
     info.shader_float64 = report.supported.has(Feature::ShaderFloat64);
+    info.timeline_semaphore = report.supported.has(Feature::TimelineSemaphore);
     info.robustness2 = robustness2_extension && report.supported.has(Feature::RobustBufferAccess2);
 
     std::uint32_t family_count = 0;
@@ -172,7 +176,7 @@ const char* toString(VkPhysicalDeviceType type) noexcept {
     }
 }
 
-Context::Context(std::unique_ptr<vk::Device> device) : device_(std::move(device)) {}
+Context::Context(std::shared_ptr<vk::Device> device) : device_(std::move(device)) {}
 Context::~Context() = default;
 const DeviceInfo& Context::deviceInfo() const noexcept { return device_->info; }
 bool Context::ownsDevice() const noexcept { return device_->owns_device; }
@@ -216,8 +220,9 @@ Result<std::vector<DeviceInfo>> Context::listDevices(PFN_vkGetInstanceProcAddr g
 }
 
 Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) {
-    auto d = std::make_unique<Device>();
+    auto d = std::make_shared<Device>();
     d->on_message = info.on_message;
+    if (auto ok = takeHostHooks(*d, info.allocation_callbacks, info.memory_hooks, "ContextCreateInfo"); !ok) return ok.error();
     PFN_vkGetInstanceProcAddr gipa = info.get_instance_proc_addr;
     if (!gipa) {
         auto lib = LoaderLibrary::open();
@@ -276,7 +281,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     ci.ppEnabledLayerNames = layers.data();
     ci.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
     ci.ppEnabledExtensionNames = extensions.data();
-    VkResult r = d->global.vkCreateInstance(&ci, nullptr, &d->instance);
+    VkResult r = d->global.vkCreateInstance(&ci, d->allocator(), &d->instance);
     if (r != VK_SUCCESS) {
         d->instance = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateInstance");
@@ -285,14 +290,14 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     if (!inst) {
         // ~Device cannot destroy an instance without its table: do it here.
         if (auto destroy = reinterpret_cast<PFN_vkDestroyInstance>(gipa(d->instance, "vkDestroyInstance")))
-            destroy(d->instance, nullptr);
+            destroy(d->instance, d->allocator());
         d->instance = VK_NULL_HANDLE;
         return inst.error();
     }
     d->instance_fns = *inst;
     d->owns_instance = true;
     if (info.validation) {
-        r = d->instance_fns.vkCreateDebugUtilsMessengerEXT(d->instance, &messenger_info, nullptr, &d->messenger);
+        r = d->instance_fns.vkCreateDebugUtilsMessengerEXT(d->instance, &messenger_info, d->allocator(), &d->messenger);
         if (r != VK_SUCCESS) return vulkanError(r, "vkCreateDebugUtilsMessengerEXT");
     }
 
@@ -353,6 +358,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     enable.set(Feature::ShaderFloat64, d->shader_float64);
     enable.set(Feature::RobustBufferAccess, d->robust_buffer_access);
     enable.set(Feature::RobustBufferAccess2, d->robust_buffer_access2);
+    d->timeline_semaphore = supported.has(Feature::TimelineSemaphore);
+    enable.set(Feature::TimelineSemaphore, d->timeline_semaphore);
     const DeviceCreateChain features(enable, d->robust_buffer_access2);
     std::vector<const char*> device_exts;
     d->conservative_rasterization = d->info.conservative_rasterization;
@@ -366,7 +373,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     dci.pQueueCreateInfos = &queue_info;
     dci.enabledExtensionCount = static_cast<std::uint32_t>(device_exts.size());
     dci.ppEnabledExtensionNames = device_exts.data();
-    r = d->instance_fns.vkCreateDevice(d->physical, &dci, nullptr, &d->device);
+    r = d->instance_fns.vkCreateDevice(d->physical, &dci, d->allocator(), &d->device);
     if (r != VK_SUCCESS) {
         d->device = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateDevice on " + d->info.name);
@@ -374,7 +381,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     auto dev = loadDeviceFunctions(d->instance_fns, d->device, d->push_descriptor);
     if (!dev) {
         if (auto destroy = reinterpret_cast<PFN_vkDestroyDevice>(d->instance_fns.vkGetDeviceProcAddr(d->device, "vkDestroyDevice")))
-            destroy(d->device, nullptr);
+            destroy(d->device, d->allocator());
         d->device = VK_NULL_HANDLE;
         return dev.error();
     }
@@ -382,6 +389,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     d->owns_device = true;
     d->fns.vkGetDeviceQueue(d->device, d->queue_family, 0, &d->queue);
     if (auto ok = finishDevice(*d); !ok) return ok.error();
+    if (auto ok = setUpPipelineCache(*d, VK_NULL_HANDLE, info.pipeline_cache_data); !ok) return ok.error();
     return std::unique_ptr<Context>(new Context(std::move(d)));
 }
 

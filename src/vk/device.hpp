@@ -1,9 +1,17 @@
 // The device every subsystem works on: handles, dispatch tables, properties and the
-// ownership flag that says whether vkcollide created them or borrows them.
+// ownership flag that says whether vkcollide created them or borrows them; what the engine
+// lends besides (queue hooks, memory hooks, allocation callbacks, pipeline cache) and the
+// locks that make sharing one device between worlds on several threads safe.
+//
+// Lifetime: a Device is always owned by shared_ptr (Context::create/adopt make it so).
+// Every resource made on it (Buffer, Image, Pipeline, Submission, Semaphore) holds a
+// DeviceRef, so the Device and its VkDevice live until the Context and the last resource
+// are gone, whichever order they go in (context.hpp, Lifetime).
 #pragma once
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <span>
 
@@ -14,7 +22,10 @@
 
 namespace vkcollide::vk {
 
-struct Device {
+struct Device;
+using DeviceRef = std::shared_ptr<Device>;
+
+struct Device : std::enable_shared_from_this<Device> {
     std::shared_ptr<LoaderLibrary> library;  // null when adopted
     GlobalFunctions global{};
     InstanceFunctions instance_fns{};
@@ -31,9 +42,25 @@ struct Device {
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     MessageCallback on_message;
     std::atomic<std::uint64_t> validation_messages{0};
-    // Bytes of VkDeviceMemory that vk::Buffer and vk::Image hold on this device right now
-    // (every world of the Context): all of vkcollide's device memory goes through them.
+    // Bytes of device memory that vk::Buffer and vk::Image hold on this device right now
+    // (every world of the Context): all of vkcollide's device memory goes through them
+    // (src/vk/memory.cpp), from vkAllocateMemory or from the engine's DeviceMemoryHooks.
     std::atomic<std::uint64_t> memory_in_use{0};
+
+    // What the engine lent (context.hpp). The callbacks are a copy (has_allocator says
+    // whether there are any): allocator() is what every create/destroy call passes.
+    VkAllocationCallbacks allocation_callbacks{};
+    bool has_allocator = false;
+    QueueHooks queue_hooks;        // adopted devices only
+    DeviceMemoryHooks memory_hooks;
+    // The pipeline cache every Pipeline is created through: the engine's (borrowed) or
+    // vkcollide's own (owns_pipeline_cache), created by setUpPipelineCache().
+    VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
+    bool owns_pipeline_cache = false;
+    // Serialise what several worlds on several threads share: the queue (every submission
+    // goes through queueSubmit) and the engine's memory hooks.
+    std::mutex queue_mutex;
+    std::mutex memory_hook_mutex;
 
     DeviceInfo info;
     VkPhysicalDeviceProperties properties{};
@@ -50,6 +77,7 @@ struct Device {
     bool shader_float64 = false;              // shaderFloat64
     bool robust_buffer_access = false;        // robustBufferAccess (descriptor accesses only)
     bool robust_buffer_access2 = false;       // VK_EXT_robustness2's robustBufferAccess2
+    bool timeline_semaphore = false;          // timelineSemaphore (engine timelines only)
 
     Device() = default;
     ~Device();
@@ -62,6 +90,18 @@ struct Device {
                                                 VkMemoryPropertyFlags preferred = 0) const;
 
     void message(MessageSeverity severity, std::string_view text) const;
+
+    const VkAllocationCallbacks* allocator() const noexcept { return has_allocator ? &allocation_callbacks : nullptr; }
+    // A DeviceRef to this device (every Device is owned by shared_ptr).
+    DeviceRef ref() { return shared_from_this(); }
+
+    // The one way vkcollide submits to the queue: under queue_mutex, inside the engine's
+    // QueueHooks lock, through its submit hook when it has one. A hook that throws gives
+    // VK_ERROR_UNKNOWN (and a message).
+    VkResult queueSubmit(std::span<const VkSubmitInfo2> submits, VkFence fence);
+    // vkDeviceWaitIdle under queue_mutex (it touches every queue of the device); only for a
+    // device vkcollide owns.
+    VkResult waitIdle();
 };
 
 // A physical device's properties, what it supports and what it lacks (see context.hpp).
@@ -74,6 +114,17 @@ PhysicalDeviceReport describePhysicalDevice(const InstanceFunctions& fns, VkPhys
 
 // Reads the limits and memory properties every subsystem uses; checks the queue family.
 Result<void> finishDevice(Device& device);
+
+// Copies what the engine lends (allocation callbacks, memory hooks); refuses half a pair.
+// `what` names the struct in errors ("ContextCreateInfo").
+Result<void> takeHostHooks(Device& device, const VkAllocationCallbacks* callbacks, const DeviceMemoryHooks& memory,
+                           const char* what);
+
+// Sets device.pipeline_cache: `borrowed` when given, else a new cache from `initial_data`
+// (ignored, with an Info message, when its header names another device or driver).
+Result<void> setUpPipelineCache(Device& device, VkPipelineCache borrowed, std::span<const std::byte> initial_data);
+// Whether `data` starts with a VkPipelineCacheHeaderVersionOne matching this device.
+bool pipelineCacheDataMatches(const Device& device, std::span<const std::byte> data) noexcept;
 
 // True when `name` is in the list of extension names.
 bool listsExtension(std::span<const char* const> names, const char* name) noexcept;

@@ -75,6 +75,14 @@ namespace vkcollide::vk {
     X(vkWaitForFences)                      \
     X(vkResetFences)                        \
     X(vkGetFenceStatus)                     \
+    X(vkCreateSemaphore)                    \
+    X(vkDestroySemaphore)                   \
+    X(vkGetSemaphoreCounterValue)           \
+    X(vkWaitSemaphores)                     \
+    X(vkSignalSemaphore)                    \
+    X(vkCreatePipelineCache)                \
+    X(vkDestroyPipelineCache)               \
+    X(vkGetPipelineCacheData)               \
     X(vkCreateQueryPool)                    \
     X(vkDestroyQueryPool)                   \
     X(vkResetQueryPool)                     \

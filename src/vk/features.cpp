@@ -24,6 +24,12 @@ constexpr std::array<FeatureRow, kFeatureCount> kFeatureTable = {{
     {"shaderFloat64", false},
     {"robustBufferAccess", false},
     {"robustBufferAccess2", false},
+    // Optional, not required: vkcollide's own work synchronises with fences; timeline
+    // semaphores only appear when an engine passes its own, and an engine can create one
+    // only on a device where it enabled the feature. Vulkan 1.2+ devices all support it,
+    // so vkcollide's own device always turns it on (tests and engines reading
+    // Device::timeline_semaphore see it).
+    {"timelineSemaphore", false},
 }};
 
 constexpr std::size_t kMaxChainLinks = 256;
@@ -45,6 +51,7 @@ void readV12(const VkPhysicalDeviceVulkan12Features& f, FeatureSet& io) {
     if (f.scalarBlockLayout) io.set(Feature::ScalarBlockLayout);
     if (f.shaderBufferInt64Atomics) io.set(Feature::ShaderBufferInt64Atomics);
     if (f.hostQueryReset) io.set(Feature::HostQueryReset);
+    if (f.timelineSemaphore) io.set(Feature::TimelineSemaphore);
 }
 
 void readV13(const VkPhysicalDeviceVulkan13Features& f, FeatureSet& io) {
@@ -83,6 +90,9 @@ void readLink(const VkBaseInStructure* link, FeatureSet& io) {
             break;
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_4_FEATURES:
             if (as<VkPhysicalDeviceMaintenance4Features>(link).maintenance4) io.set(Feature::Maintenance4);
+            break;
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_TIMELINE_SEMAPHORE_FEATURES:
+            if (as<VkPhysicalDeviceTimelineSemaphoreFeatures>(link).timelineSemaphore) io.set(Feature::TimelineSemaphore);
             break;
         case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ROBUSTNESS_2_FEATURES_EXT:
             if (as<VkPhysicalDeviceRobustness2FeaturesEXT>(link).robustBufferAccess2) io.set(Feature::RobustBufferAccess2);
@@ -159,6 +169,7 @@ DeviceCreateChain::DeviceCreateChain(const FeatureSet& f, bool with_robustness2)
     v12_.scalarBlockLayout = on(Feature::ScalarBlockLayout);
     v12_.shaderBufferInt64Atomics = on(Feature::ShaderBufferInt64Atomics);
     v12_.hostQueryReset = on(Feature::HostQueryReset);
+    v12_.timelineSemaphore = on(Feature::TimelineSemaphore);
     v13_.dynamicRendering = on(Feature::DynamicRendering);
     v13_.synchronization2 = on(Feature::Synchronization2);
     v13_.maintenance4 = on(Feature::Maintenance4);

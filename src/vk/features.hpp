@@ -31,6 +31,8 @@ enum class Feature : std::uint8_t {
     ShaderFloat64,        // VkPhysicalDeviceFeatures: double-precision GPU filters
     RobustBufferAccess,   // VkPhysicalDeviceFeatures: bounds-checked descriptor accesses
     RobustBufferAccess2,  // VK_EXT_robustness2 (needs RobustBufferAccess)
+    TimelineSemaphore,    // Vulkan 1.2: engine timelines in submit() waits/signals and in
+                          // recording into an engine command buffer (see context.hpp)
     Count
 };
 

@@ -7,7 +7,7 @@ namespace vkcollide::vk {
 
 Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bindings, std::uint32_t push_bytes,
                                     VkShaderStageFlags stages, const std::string& name) {
-    device_ = &device;
+    device_ = device.ref();
     // Detection reaches its buffers through device addresses and push constants: its
     // pipelines have no descriptor set at all. Only pipelines with bindings (test shaders)
     // need pushed descriptors, hence VK_KHR_push_descriptor.
@@ -21,8 +21,11 @@ Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bin
         sl.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
         sl.bindingCount = static_cast<std::uint32_t>(b.size());
         sl.pBindings = b.data();
-        VkResult r = device.fns.vkCreateDescriptorSetLayout(device.device, &sl, nullptr, &set_layout_);
-        if (r != VK_SUCCESS) return vulkanError(r, "vkCreateDescriptorSetLayout for '" + name + "'");
+        VkResult r = device.fns.vkCreateDescriptorSetLayout(device.device, &sl, device.allocator(), &set_layout_);
+        if (r != VK_SUCCESS) {
+            set_layout_ = VK_NULL_HANDLE;
+            return vulkanError(r, "vkCreateDescriptorSetLayout for '" + name + "'");
+        }
     }
     VkPushConstantRange range{stages, 0, push_bytes};
     VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -30,8 +33,11 @@ Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bin
     li.pSetLayouts = set_layout_ ? &set_layout_ : nullptr;
     li.pushConstantRangeCount = push_bytes ? 1 : 0;
     li.pPushConstantRanges = &range;
-    VkResult r = device.fns.vkCreatePipelineLayout(device.device, &li, nullptr, &layout_);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreatePipelineLayout for '" + name + "'");
+    VkResult r = device.fns.vkCreatePipelineLayout(device.device, &li, device.allocator(), &layout_);
+    if (r != VK_SUCCESS) {
+        layout_ = VK_NULL_HANDLE;
+        return vulkanError(r, "vkCreatePipelineLayout for '" + name + "'");
+    }
     return {};
 }
 
@@ -40,7 +46,7 @@ struct ShaderModule {
     Device* device = nullptr;
     VkShaderModule module = VK_NULL_HANDLE;
     ~ShaderModule() {
-        if (module) device->fns.vkDestroyShaderModule(device->device, module, nullptr);
+        if (module) device->fns.vkDestroyShaderModule(device->device, module, device->allocator());
     }
 };
 
@@ -49,8 +55,11 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
     VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     ci.codeSize = spirv.size_bytes();
     ci.pCode = spirv.data();
-    VkResult r = device.fns.vkCreateShaderModule(device.device, &ci, nullptr, &out.module);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateShaderModule for '" + name + "'");
+    VkResult r = device.fns.vkCreateShaderModule(device.device, &ci, device.allocator(), &out.module);
+    if (r != VK_SUCCESS) {
+        out.module = VK_NULL_HANDLE;
+        return vulkanError(r, "vkCreateShaderModule for '" + name + "'");
+    }
     return {};
 }
 }  // namespace
@@ -69,8 +78,11 @@ Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::ui
     ci.stage.module = module.module;
     ci.stage.pName = "main";
     ci.layout = p.layout_;
-    VkResult r = device.fns.vkCreateComputePipelines(device.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
+    VkResult r = device.fns.vkCreateComputePipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &p.pipeline_);
+    if (r != VK_SUCCESS) {
+        p.pipeline_ = VK_NULL_HANDLE;
+        return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
+    }
     p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
     return p;
 }
@@ -147,8 +159,11 @@ Result<Pipeline> Pipeline::createRaster(Device& device, const RasterDesc& desc, 
     ci.pColorBlendState = &cb;
     ci.pDynamicState = &dyn;
     ci.layout = p.layout_;
-    VkResult r = device.fns.vkCreateGraphicsPipelines(device.device, VK_NULL_HANDLE, 1, &ci, nullptr, &p.pipeline_);
-    if (r != VK_SUCCESS) return vulkanError(r, "vkCreateGraphicsPipelines for '" + name + "'");
+    VkResult r = device.fns.vkCreateGraphicsPipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &p.pipeline_);
+    if (r != VK_SUCCESS) {
+        p.pipeline_ = VK_NULL_HANDLE;
+        return vulkanError(r, "vkCreateGraphicsPipelines for '" + name + "'");
+    }
     p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
     return p;
 }
@@ -156,7 +171,8 @@ Result<Pipeline> Pipeline::createRaster(Device& device, const RasterDesc& desc, 
 Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
     if (this != &o) {
         reset();
-        device_ = std::exchange(o.device_, nullptr);
+        device_ = std::move(o.device_);
+        o.device_.reset();
         set_layout_ = std::exchange(o.set_layout_, VK_NULL_HANDLE);
         layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
         pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
@@ -168,13 +184,13 @@ Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
 void Pipeline::reset() {
     if (!device_) return;
     const auto& f = device_->fns;
-    if (pipeline_) f.vkDestroyPipeline(device_->device, pipeline_, nullptr);
-    if (layout_) f.vkDestroyPipelineLayout(device_->device, layout_, nullptr);
-    if (set_layout_) f.vkDestroyDescriptorSetLayout(device_->device, set_layout_, nullptr);
+    const VkAllocationCallbacks* a = device_->allocator();
+    if (pipeline_) f.vkDestroyPipeline(device_->device, pipeline_, a);
+    if (layout_) f.vkDestroyPipelineLayout(device_->device, layout_, a);
+    if (set_layout_) f.vkDestroyDescriptorSetLayout(device_->device, set_layout_, a);
     pipeline_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;
-    device_ = nullptr;
 }
 
 }  // namespace vkcollide::vk

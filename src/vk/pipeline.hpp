@@ -1,4 +1,6 @@
-// Compute and graphics pipelines, move-only, with their layouts.
+// Compute and graphics pipelines, move-only, with their layouts. Every pipeline is created
+// through Device::pipeline_cache (the engine's or the Context's own) and with the
+// engine's allocation callbacks; each holds a DeviceRef (see resources.hpp).
 #pragma once
 
 #include <cstdint>
@@ -52,7 +54,7 @@ public:
 private:
     Result<void> createLayout(Device& device, std::span<const Binding> bindings, std::uint32_t push_bytes,
                               VkShaderStageFlags stages, const std::string& name);
-    Device* device_ = nullptr;
+    DeviceRef device_;
     VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     VkPipeline pipeline_ = VK_NULL_HANDLE;

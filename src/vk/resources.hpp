@@ -1,6 +1,10 @@
-// Move-only owners of buffers, images, pipelines and command submission state.
-// One VkDeviceMemory per resource: simple and enough for the few large buffers the
-// pipeline uses; each owner frees exactly what it created.
+// Move-only owners of buffers and images (Submission, the command and fence state, is in
+// vk/submission.hpp, included here for the code that expects it with them).
+// Memory comes from vk/memory.hpp: one VkDeviceMemory per resource by default, or a range
+// of the engine's memory through its DeviceMemoryHooks; each owner frees exactly what it
+// created. Each owner holds a DeviceRef from creation to its destructor (reset() frees
+// the Vulkan objects but keeps the reference, so code that still holds a raw Device* next
+// to a reset owner stays valid until the owner itself goes).
 #pragma once
 
 #include <cstdint>
@@ -10,7 +14,9 @@
 #include <vector>
 
 #include "vk/device.hpp"
+#include "vk/memory.hpp"
 #include "vk/pipeline.hpp"
+#include "vk/submission.hpp"
 
 namespace vkcollide::vk {
 
@@ -33,7 +39,7 @@ public:
     VkBuffer handle() const noexcept { return buffer_; }
     VkDeviceSize size() const noexcept { return size_; }
     VkDeviceAddress address() const noexcept { return address_; }
-    void* mapped() const noexcept { return mapped_; }
+    void* mapped() const noexcept { return memory_.mapped; }
     bool valid() const noexcept { return buffer_ != VK_NULL_HANDLE; }
 
     // Makes GPU writes to bytes [offset, offset + size) visible to the host; flush() makes
@@ -42,19 +48,20 @@ public:
     // size = VK_WHOLE_SIZE: to the end of the buffer.
     void invalidate(VkDeviceSize offset = 0, VkDeviceSize size = VK_WHOLE_SIZE) const;
     void flush(VkDeviceSize offset = 0, VkDeviceSize size = VK_WHOLE_SIZE) const;
-    // The VkMappedMemoryRange invalidate() and flush() pass (public for the tests).
+    // The VkMappedMemoryRange invalidate() and flush() pass (public for the tests): in the
+    // VkDeviceMemory's offsets, inside this buffer's block.
     VkMappedMemoryRange atomRange(VkDeviceSize offset, VkDeviceSize size) const;
+    // Where the buffer is bound: its own VkDeviceMemory, or a range of the engine's.
+    VkDeviceMemory memory() const noexcept { return memory_.memory; }
+    VkDeviceSize memoryOffset() const noexcept { return memory_.offset; }
     void reset();
 
 private:
-    Device* device_ = nullptr;
+    DeviceRef device_;
     VkBuffer buffer_ = VK_NULL_HANDLE;
-    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    MemoryBlock memory_;  // memory_.size: VkMemoryRequirements::size, rounded (>= size_)
     VkDeviceSize size_ = 0;
-    VkDeviceSize allocation_size_ = 0;  // VkMemoryRequirements::size (>= size_)
     VkDeviceAddress address_ = 0;
-    void* mapped_ = nullptr;
-    bool coherent_ = true;
 };
 
 // The aspect that views and barriers of an image of this format use.
@@ -84,39 +91,12 @@ public:
     void reset();
 
 private:
-    Device* device_ = nullptr;
+    DeviceRef device_;
     VkImage image_ = VK_NULL_HANDLE;
-    VkDeviceMemory memory_ = VK_NULL_HANDLE;
-    VkDeviceSize allocation_size_ = 0;
+    MemoryBlock memory_;
     VkImageView view_ = VK_NULL_HANDLE;
     std::vector<VkImageView> level_views_;
     ImageDesc desc_;
-};
-
-// Command pool + one primary command buffer + fence: one submission in flight.
-class Submission {
-public:
-    Submission() = default;
-    static Result<Submission> create(Device& device);
-    ~Submission() { reset(); }
-    Submission(Submission&& o) noexcept { *this = std::move(o); }
-    Submission& operator=(Submission&& o) noexcept;
-
-    // Waits for the previous use, resets the pool and begins recording.
-    Result<VkCommandBuffer> begin();
-    Result<void> submit();
-    // Waits up to timeout_ns; VK_TIMEOUT is reported as DeviceLost-free Error(VulkanError).
-    Result<void> wait(std::uint64_t timeout_ns = 60ull * 1000 * 1000 * 1000);
-    bool pending() const noexcept { return pending_; }
-    bool valid() const noexcept { return pool_ != VK_NULL_HANDLE; }
-    void reset();
-
-private:
-    Device* device_ = nullptr;
-    VkCommandPool pool_ = VK_NULL_HANDLE;
-    VkCommandBuffer cmd_ = VK_NULL_HANDLE;
-    VkFence fence_ = VK_NULL_HANDLE;
-    bool pending_ = false;
 };
 
 }  // namespace vkcollide::vk

@@ -22,10 +22,27 @@ char g_queue_object;
 struct FakeBuffer {
     VkDeviceSize size = 0;
 };
+struct FakeSemaphore {
+    bool timeline = false;
+    std::uint64_t value = 0;  // timeline counter; binary: 1 when signalled
+};
+struct PendingSubmit {
+    FakeVulkan::Submit submit;
+    bool released = false;  // finishPending() let it finish (or the GPU finishes at once)
+};
+struct HostAllocation {
+    VkAllocationCallbacks callbacks;
+    void* memory;
+};
 struct FakeState {
     std::uint64_t next_handle = 1;
     std::map<std::uint64_t, FakeBuffer> buffers;
+    std::map<std::uint64_t, VkDeviceSize> images;  // bytes
     std::map<std::uint64_t, std::unique_ptr<std::byte[]>> memory;
+    std::map<std::uint64_t, bool> fences;  // signalled?
+    std::map<std::uint64_t, FakeSemaphore> semaphores;
+    std::vector<PendingSubmit> pending;
+    std::map<const void*, HostAllocation> host_allocations;  // objects created with callbacks
     std::size_t device_physical = 0;
 };
 FakeState* g_state = nullptr;
@@ -52,6 +69,66 @@ std::uint64_t id(Handle h) {
     return static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(h));
 }
 
+// ---- allocation callbacks: one host allocation per object created with them ----------
+
+const void* key(std::uint64_t handle) { return reinterpret_cast<const void*>(static_cast<std::uintptr_t>(handle)); }
+
+void created(const void* object, const VkAllocationCallbacks* callbacks) {
+    if (!callbacks) return;
+    void* memory = callbacks->pfnAllocation(callbacks->pUserData, 64, 8, VK_SYSTEM_ALLOCATION_SCOPE_OBJECT);
+    g_state->host_allocations[object] = {*callbacks, memory};
+}
+
+void destroyed(const char* what, const void* object, const VkAllocationCallbacks* callbacks) {
+    auto it = g_state->host_allocations.find(object);
+    const bool with = it != g_state->host_allocations.end();
+    if (with != (callbacks != nullptr))
+        fake().allocator_mismatches.push_back(std::string(what) + (with ? ": created with allocation callbacks, destroyed without"
+                                                                         : ": created without allocation callbacks, destroyed with"));
+    else if (with && (callbacks->pfnFree != it->second.callbacks.pfnFree || callbacks->pUserData != it->second.callbacks.pUserData))
+        fake().allocator_mismatches.push_back(std::string(what) + ": destroyed with other allocation callbacks");
+    if (with) {
+        it->second.callbacks.pfnFree(it->second.callbacks.pUserData, it->second.memory);
+        g_state->host_allocations.erase(it);
+    }
+}
+
+// ---- the "GPU": batches finish in submission order once released and their waits hold ---
+
+bool waitsHold(const FakeVulkan::Submit& s) {
+    for (const VkSemaphoreSubmitInfo& w : s.waits) {
+        const FakeSemaphore& sem = g_state->semaphores.at(id(w.semaphore));
+        if (sem.timeline ? sem.value < w.value : sem.value == 0) return false;
+    }
+    return true;
+}
+
+void progress() {
+    auto& pending = g_state->pending;
+    while (!pending.empty()) {
+        PendingSubmit& p = pending.front();
+        if (!(p.released || fake().gpu_finishes_at_once) || !waitsHold(p.submit)) return;
+        for (const VkSemaphoreSubmitInfo& w : p.submit.waits) {
+            FakeSemaphore& sem = g_state->semaphores.at(id(w.semaphore));
+            if (!sem.timeline) sem.value = 0;  // a binary wait unsignals
+        }
+        for (const VkSemaphoreSubmitInfo& sig : p.submit.signals) {
+            FakeSemaphore& sem = g_state->semaphores.at(id(sig.semaphore));
+            sem.value = sem.timeline ? std::max(sem.value, sig.value) : 1;
+        }
+        if (p.submit.fence) g_state->fences[id(p.submit.fence)] = true;
+        pending.erase(pending.begin());
+    }
+}
+
+// An unbounded wait on work the test has not released: the real GPU would finish it some
+// time; the fake finishes everything now (so reset() paths can be observed, not hang).
+void finishForUnboundedWait(std::uint64_t timeout) {
+    if (timeout != UINT64_MAX) return;
+    ++fake().unbounded_waits;
+    fake().finishPending();
+}
+
 [[noreturn]] VKAPI_ATTR void VKAPI_CALL trap() {
     std::fprintf(stderr, "fake Vulkan: an entry point the fake does not implement was called\n");
     std::abort();
@@ -59,10 +136,11 @@ std::uint64_t id(Handle h) {
 
 // ---- global -----------------------------------------------------------------
 
-VKAPI_ATTR VkResult VKAPI_CALL createInstance(const VkInstanceCreateInfo*, const VkAllocationCallbacks*, VkInstance* out) {
+VKAPI_ATTR VkResult VKAPI_CALL createInstance(const VkInstanceCreateInfo*, const VkAllocationCallbacks* callbacks, VkInstance* out) {
     if (fake().create_instance_result != VK_SUCCESS) return fake().create_instance_result;
     ++fake().instances_alive;
     *out = reinterpret_cast<VkInstance>(&g_instance_object);
+    created(&g_instance_object, callbacks);
     return VK_SUCCESS;
 }
 
@@ -92,7 +170,10 @@ VKAPI_ATTR VkResult VKAPI_CALL enumerateInstanceVersion(std::uint32_t* out) {
 
 // ---- instance -------------------------------------------------------------------
 
-VKAPI_ATTR void VKAPI_CALL destroyInstance(VkInstance, const VkAllocationCallbacks*) { --fake().instances_alive; }
+VKAPI_ATTR void VKAPI_CALL destroyInstance(VkInstance, const VkAllocationCallbacks* callbacks) {
+    --fake().instances_alive;
+    destroyed("vkDestroyInstance", &g_instance_object, callbacks);
+}
 
 VKAPI_ATTR VkResult VKAPI_CALL enumeratePhysicalDevices(VkInstance, std::uint32_t* count, VkPhysicalDevice* out) {
     const auto n = static_cast<std::uint32_t>(fake().physical_devices.size());
@@ -115,6 +196,11 @@ void fillProperties(VkPhysicalDevice p, VkPhysicalDeviceProperties& out) {
     out.limits.timestampPeriod = 1.0f;
     out.limits.nonCoherentAtomSize = d.non_coherent_atom_size;
     out.limits.maxComputeWorkGroupCount[0] = out.limits.maxComputeWorkGroupCount[1] = out.limits.maxComputeWorkGroupCount[2] = 65535;
+    // The pipeline cache header (FakeVulkan::cacheHeader) repeats these.
+    out.vendorID = 0x1234;
+    out.deviceID = static_cast<std::uint32_t>(physicalIndex(p) + 1);
+    std::memset(out.pipelineCacheUUID, 0x42, VK_UUID_SIZE);
+    out.pipelineCacheUUID[0] = static_cast<std::uint8_t>(d.name.size());
 }
 
 VKAPI_ATTR void VKAPI_CALL getPhysicalDeviceProperties(VkPhysicalDevice p, VkPhysicalDeviceProperties* out) { fillProperties(p, *out); }
@@ -159,6 +245,7 @@ VKAPI_ATTR void VKAPI_CALL getPhysicalDeviceFeatures2(VkPhysicalDevice p, VkPhys
             v12.scalarBlockLayout = on(Feature::ScalarBlockLayout);
             v12.shaderBufferInt64Atomics = on(Feature::ShaderBufferInt64Atomics);
             v12.hostQueryReset = on(Feature::HostQueryReset);
+            v12.timelineSemaphore = on(Feature::TimelineSemaphore);
         } else if (link->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES) {
             auto& v13 = *reinterpret_cast<VkPhysicalDeviceVulkan13Features*>(link);
             v13.dynamicRendering = on(Feature::DynamicRendering);
@@ -211,7 +298,7 @@ VKAPI_ATTR VkResult VKAPI_CALL enumerateDeviceExtensionProperties(VkPhysicalDevi
     return written < exts.size() ? VK_INCOMPLETE : VK_SUCCESS;
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL createDevice(VkPhysicalDevice p, const VkDeviceCreateInfo* info, const VkAllocationCallbacks*,
+VKAPI_ATTR VkResult VKAPI_CALL createDevice(VkPhysicalDevice p, const VkDeviceCreateInfo* info, const VkAllocationCallbacks* callbacks,
                                             VkDevice* out) {
     if (fake().create_device_result != VK_SUCCESS) return fake().create_device_result;
     auto features = vk::readEnabledChain(static_cast<const VkPhysicalDeviceFeatures2*>(info->pNext));
@@ -220,48 +307,66 @@ VKAPI_ATTR VkResult VKAPI_CALL createDevice(VkPhysicalDevice p, const VkDeviceCr
     g_state->device_physical = physicalIndex(p);
     ++fake().devices_alive;
     *out = reinterpret_cast<VkDevice>(&g_device_object);
+    created(&g_device_object, callbacks);
     return VK_SUCCESS;
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL createDebugUtilsMessenger(VkInstance, const VkDebugUtilsMessengerCreateInfoEXT*,
-                                                         const VkAllocationCallbacks*, VkDebugUtilsMessengerEXT* out) {
+                                                         const VkAllocationCallbacks* callbacks, VkDebugUtilsMessengerEXT* out) {
     *out = newHandle<VkDebugUtilsMessengerEXT>();
+    created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
-VKAPI_ATTR void VKAPI_CALL destroyDebugUtilsMessenger(VkInstance, VkDebugUtilsMessengerEXT, const VkAllocationCallbacks*) {}
+VKAPI_ATTR void VKAPI_CALL destroyDebugUtilsMessenger(VkInstance, VkDebugUtilsMessengerEXT m, const VkAllocationCallbacks* callbacks) {
+    destroyed("vkDestroyDebugUtilsMessengerEXT", key(id(m)), callbacks);
+}
 
 // ---- device -----------------------------------------------------------------------
 
-VKAPI_ATTR void VKAPI_CALL destroyDevice(VkDevice, const VkAllocationCallbacks*) { --fake().devices_alive; }
+VKAPI_ATTR void VKAPI_CALL destroyDevice(VkDevice, const VkAllocationCallbacks* callbacks) {
+    --fake().devices_alive;
+    destroyed("vkDestroyDevice", &g_device_object, callbacks);
+}
 VKAPI_ATTR void VKAPI_CALL getDeviceQueue(VkDevice, std::uint32_t, std::uint32_t, VkQueue* out) {
     *out = reinterpret_cast<VkQueue>(&g_queue_object);
 }
 VKAPI_ATTR VkResult VKAPI_CALL deviceWaitIdle(VkDevice) { return VK_SUCCESS; }
 
-VKAPI_ATTR VkResult VKAPI_CALL createBuffer(VkDevice, const VkBufferCreateInfo* info, const VkAllocationCallbacks*, VkBuffer* out) {
+VKAPI_ATTR VkResult VKAPI_CALL createBuffer(VkDevice, const VkBufferCreateInfo* info, const VkAllocationCallbacks* callbacks, VkBuffer* out) {
     *out = newHandle<VkBuffer>();
     g_state->buffers[id(*out)] = FakeBuffer{info->size};
     ++fake().buffers_alive;
+    created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
-VKAPI_ATTR void VKAPI_CALL destroyBuffer(VkDevice, VkBuffer buffer, const VkAllocationCallbacks*) {
-    if (buffer && g_state->buffers.erase(id(buffer))) --fake().buffers_alive;
+VKAPI_ATTR void VKAPI_CALL destroyBuffer(VkDevice, VkBuffer buffer, const VkAllocationCallbacks* callbacks) {
+    if (buffer && g_state->buffers.erase(id(buffer))) {
+        --fake().buffers_alive;
+        destroyed("vkDestroyBuffer", key(id(buffer)), callbacks);
+    }
 }
 VKAPI_ATTR void VKAPI_CALL getBufferMemoryRequirements(VkDevice, VkBuffer buffer, VkMemoryRequirements* out) {
     const VkDeviceSize size = g_state->buffers.at(id(buffer)).size;
     *out = VkMemoryRequirements{(size + 255) / 256 * 256, 256, 1u};
 }
-VKAPI_ATTR VkResult VKAPI_CALL allocateMemory(VkDevice, const VkMemoryAllocateInfo* info, const VkAllocationCallbacks*,
+VKAPI_ATTR VkResult VKAPI_CALL allocateMemory(VkDevice, const VkMemoryAllocateInfo* info, const VkAllocationCallbacks* callbacks,
                                               VkDeviceMemory* out) {
     *out = newHandle<VkDeviceMemory>();
     g_state->memory[id(*out)] = std::make_unique<std::byte[]>(info->allocationSize);
     ++fake().allocations_alive;
+    created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
-VKAPI_ATTR void VKAPI_CALL freeMemory(VkDevice, VkDeviceMemory memory, const VkAllocationCallbacks*) {
-    if (memory && g_state->memory.erase(id(memory))) --fake().allocations_alive;
+VKAPI_ATTR void VKAPI_CALL freeMemory(VkDevice, VkDeviceMemory memory, const VkAllocationCallbacks* callbacks) {
+    if (memory && g_state->memory.erase(id(memory))) {
+        --fake().allocations_alive;
+        destroyed("vkFreeMemory", key(id(memory)), callbacks);
+    }
 }
-VKAPI_ATTR VkResult VKAPI_CALL bindBufferMemory(VkDevice, VkBuffer, VkDeviceMemory, VkDeviceSize) { return VK_SUCCESS; }
+VKAPI_ATTR VkResult VKAPI_CALL bindBufferMemory(VkDevice, VkBuffer, VkDeviceMemory, VkDeviceSize offset) {
+    fake().bind_offsets.push_back(offset);
+    return VK_SUCCESS;
+}
 VKAPI_ATTR VkResult VKAPI_CALL mapMemory(VkDevice, VkDeviceMemory memory, VkDeviceSize offset, VkDeviceSize, VkMemoryMapFlags,
                                          void** out) {
     *out = g_state->memory.at(id(memory)).get() + offset;
@@ -277,6 +382,216 @@ VKAPI_ATTR VkResult VKAPI_CALL flushMappedMemoryRanges(VkDevice, std::uint32_t c
 }
 VKAPI_ATTR VkResult VKAPI_CALL invalidateMappedMemoryRanges(VkDevice, std::uint32_t count, const VkMappedMemoryRange* ranges) {
     fake().invalidated.insert(fake().invalidated.end(), ranges, ranges + count);
+    return VK_SUCCESS;
+}
+
+// ---- images -------------------------------------------------------------------------
+
+VKAPI_ATTR VkResult VKAPI_CALL createImage(VkDevice, const VkImageCreateInfo* info, const VkAllocationCallbacks* callbacks, VkImage* out) {
+    *out = newHandle<VkImage>();
+    g_state->images[id(*out)] = VkDeviceSize(info->extent.width) * info->extent.height * 4 * 2;
+    ++fake().images_alive;
+    created(key(id(*out)), callbacks);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroyImage(VkDevice, VkImage image, const VkAllocationCallbacks* callbacks) {
+    if (image && g_state->images.erase(id(image))) {
+        --fake().images_alive;
+        destroyed("vkDestroyImage", key(id(image)), callbacks);
+    }
+}
+VKAPI_ATTR void VKAPI_CALL getImageMemoryRequirements(VkDevice, VkImage image, VkMemoryRequirements* out) {
+    *out = VkMemoryRequirements{(g_state->images.at(id(image)) + 1023) / 1024 * 1024, 1024, 1u};
+}
+VKAPI_ATTR VkResult VKAPI_CALL bindImageMemory(VkDevice, VkImage, VkDeviceMemory, VkDeviceSize offset) {
+    fake().bind_offsets.push_back(offset);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR VkResult VKAPI_CALL createImageView(VkDevice, const VkImageViewCreateInfo*, const VkAllocationCallbacks* callbacks,
+                                               VkImageView* out) {
+    *out = newHandle<VkImageView>();
+    ++fake().image_views_alive;
+    created(key(id(*out)), callbacks);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroyImageView(VkDevice, VkImageView view, const VkAllocationCallbacks* callbacks) {
+    if (!view) return;
+    --fake().image_views_alive;
+    destroyed("vkDestroyImageView", key(id(view)), callbacks);
+}
+
+// ---- pipelines and their cache -------------------------------------------------------
+
+VKAPI_ATTR VkResult VKAPI_CALL createPipelineCache(VkDevice, const VkPipelineCacheCreateInfo* info, const VkAllocationCallbacks* callbacks,
+                                                   VkPipelineCache* out) {
+    *out = newHandle<VkPipelineCache>();
+    fake().last_pipeline_cache_initial_size = info->initialDataSize;
+    ++fake().pipeline_caches_alive;
+    created(key(id(*out)), callbacks);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroyPipelineCache(VkDevice, VkPipelineCache cache, const VkAllocationCallbacks* callbacks) {
+    if (!cache) return;
+    --fake().pipeline_caches_alive;
+    destroyed("vkDestroyPipelineCache", key(id(cache)), callbacks);
+}
+VKAPI_ATTR VkResult VKAPI_CALL getPipelineCacheData(VkDevice, VkPipelineCache, std::size_t* size, void* data) {
+    // The header, then one byte per pipeline created so far (a cache that fills up).
+    std::vector<std::byte> all = FakeVulkan::cacheHeader(fake().physical_devices.at(g_state->device_physical));
+    all.resize(all.size() + fake().pipelines_cache_used.size(), std::byte{7});
+    if (!data) {
+        *size = all.size();
+        return VK_SUCCESS;
+    }
+    const std::size_t n = std::min(*size, all.size());
+    std::memcpy(data, all.data(), n);
+    *size = n;
+    return n < all.size() ? VK_INCOMPLETE : VK_SUCCESS;
+}
+VKAPI_ATTR VkResult VKAPI_CALL createShaderModule(VkDevice, const VkShaderModuleCreateInfo*, const VkAllocationCallbacks* callbacks,
+                                                  VkShaderModule* out) {
+    *out = newHandle<VkShaderModule>();
+    ++fake().shader_modules_alive;
+    created(key(id(*out)), callbacks);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroyShaderModule(VkDevice, VkShaderModule module, const VkAllocationCallbacks* callbacks) {
+    if (!module) return;
+    --fake().shader_modules_alive;
+    destroyed("vkDestroyShaderModule", key(id(module)), callbacks);
+}
+VKAPI_ATTR VkResult VKAPI_CALL createPipelineLayout(VkDevice, const VkPipelineLayoutCreateInfo*, const VkAllocationCallbacks* callbacks,
+                                                    VkPipelineLayout* out) {
+    *out = newHandle<VkPipelineLayout>();
+    ++fake().pipeline_layouts_alive;
+    created(key(id(*out)), callbacks);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroyPipelineLayout(VkDevice, VkPipelineLayout layout, const VkAllocationCallbacks* callbacks) {
+    if (!layout) return;
+    --fake().pipeline_layouts_alive;
+    destroyed("vkDestroyPipelineLayout", key(id(layout)), callbacks);
+}
+VKAPI_ATTR VkResult VKAPI_CALL createComputePipelines(VkDevice, VkPipelineCache cache, std::uint32_t count,
+                                                      const VkComputePipelineCreateInfo*, const VkAllocationCallbacks* callbacks,
+                                                      VkPipeline* out) {
+    for (std::uint32_t i = 0; i < count; ++i) {
+        out[i] = newHandle<VkPipeline>();
+        fake().pipelines_cache_used.push_back(cache);
+        ++fake().pipelines_alive;
+        created(key(id(out[i])), callbacks);
+    }
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroyPipeline(VkDevice, VkPipeline pipeline, const VkAllocationCallbacks* callbacks) {
+    if (!pipeline) return;
+    --fake().pipelines_alive;
+    destroyed("vkDestroyPipeline", key(id(pipeline)), callbacks);
+}
+
+// ---- commands, fences, semaphores, the queue -------------------------------------------
+
+VKAPI_ATTR VkResult VKAPI_CALL createCommandPool(VkDevice, const VkCommandPoolCreateInfo*, const VkAllocationCallbacks* callbacks,
+                                                 VkCommandPool* out) {
+    *out = newHandle<VkCommandPool>();
+    ++fake().command_pools_alive;
+    created(key(id(*out)), callbacks);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroyCommandPool(VkDevice, VkCommandPool pool, const VkAllocationCallbacks* callbacks) {
+    if (!pool) return;
+    --fake().command_pools_alive;
+    destroyed("vkDestroyCommandPool", key(id(pool)), callbacks);
+}
+VKAPI_ATTR VkResult VKAPI_CALL resetCommandPool(VkDevice, VkCommandPool, VkCommandPoolResetFlags) { return VK_SUCCESS; }
+VKAPI_ATTR VkResult VKAPI_CALL allocateCommandBuffers(VkDevice, const VkCommandBufferAllocateInfo* info, VkCommandBuffer* out) {
+    for (std::uint32_t i = 0; i < info->commandBufferCount; ++i) out[i] = newHandle<VkCommandBuffer>();
+    return VK_SUCCESS;
+}
+VKAPI_ATTR VkResult VKAPI_CALL beginCommandBuffer(VkCommandBuffer, const VkCommandBufferBeginInfo*) { return VK_SUCCESS; }
+VKAPI_ATTR VkResult VKAPI_CALL endCommandBuffer(VkCommandBuffer) { return VK_SUCCESS; }
+VKAPI_ATTR void VKAPI_CALL cmdFillBuffer(VkCommandBuffer, VkBuffer, VkDeviceSize, VkDeviceSize, std::uint32_t) {}
+
+VKAPI_ATTR VkResult VKAPI_CALL createFence(VkDevice, const VkFenceCreateInfo* info, const VkAllocationCallbacks* callbacks, VkFence* out) {
+    *out = newHandle<VkFence>();
+    g_state->fences[id(*out)] = (info->flags & VK_FENCE_CREATE_SIGNALED_BIT) != 0;
+    ++fake().fences_alive;
+    created(key(id(*out)), callbacks);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroyFence(VkDevice, VkFence fence, const VkAllocationCallbacks* callbacks) {
+    if (fence && g_state->fences.erase(id(fence))) {
+        --fake().fences_alive;
+        destroyed("vkDestroyFence", key(id(fence)), callbacks);
+    }
+}
+VKAPI_ATTR VkResult VKAPI_CALL resetFences(VkDevice, std::uint32_t count, const VkFence* fences) {
+    for (std::uint32_t i = 0; i < count; ++i) g_state->fences.at(id(fences[i])) = false;
+    return VK_SUCCESS;
+}
+VKAPI_ATTR VkResult VKAPI_CALL getFenceStatus(VkDevice, VkFence fence) {
+    if (fake().device_status != VK_SUCCESS) return fake().device_status;
+    return g_state->fences.at(id(fence)) ? VK_SUCCESS : VK_NOT_READY;
+}
+VKAPI_ATTR VkResult VKAPI_CALL waitForFences(VkDevice, std::uint32_t count, const VkFence* fences, VkBool32, std::uint64_t timeout) {
+    if (fake().device_status != VK_SUCCESS) return fake().device_status;
+    finishForUnboundedWait(timeout);
+    for (std::uint32_t i = 0; i < count; ++i)
+        if (!g_state->fences.at(id(fences[i]))) return VK_TIMEOUT;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL createSemaphore(VkDevice, const VkSemaphoreCreateInfo* info, const VkAllocationCallbacks* callbacks,
+                                               VkSemaphore* out) {
+    FakeSemaphore sem;
+    for (auto* link = static_cast<const VkBaseInStructure*>(info->pNext); link; link = link->pNext)
+        if (link->sType == VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO) {
+            const auto& type = *reinterpret_cast<const VkSemaphoreTypeCreateInfo*>(link);
+            sem.timeline = type.semaphoreType == VK_SEMAPHORE_TYPE_TIMELINE;
+            sem.value = sem.timeline ? type.initialValue : 0;
+        }
+    *out = newHandle<VkSemaphore>();
+    g_state->semaphores[id(*out)] = sem;
+    ++fake().semaphores_alive;
+    created(key(id(*out)), callbacks);
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL destroySemaphore(VkDevice, VkSemaphore semaphore, const VkAllocationCallbacks* callbacks) {
+    if (semaphore && g_state->semaphores.erase(id(semaphore))) {
+        --fake().semaphores_alive;
+        destroyed("vkDestroySemaphore", key(id(semaphore)), callbacks);
+    }
+}
+VKAPI_ATTR VkResult VKAPI_CALL getSemaphoreCounterValue(VkDevice, VkSemaphore semaphore, std::uint64_t* out) {
+    if (fake().device_status != VK_SUCCESS) return fake().device_status;
+    *out = g_state->semaphores.at(id(semaphore)).value;
+    return VK_SUCCESS;
+}
+VKAPI_ATTR VkResult VKAPI_CALL signalSemaphore(VkDevice, const VkSemaphoreSignalInfo* info) {
+    FakeSemaphore& sem = g_state->semaphores.at(id(info->semaphore));
+    sem.value = std::max(sem.value, info->value);
+    progress();
+    return VK_SUCCESS;
+}
+VKAPI_ATTR VkResult VKAPI_CALL waitSemaphores(VkDevice, const VkSemaphoreWaitInfo* info, std::uint64_t timeout) {
+    if (fake().device_status != VK_SUCCESS) return fake().device_status;
+    finishForUnboundedWait(timeout);
+    for (std::uint32_t i = 0; i < info->semaphoreCount; ++i)
+        if (g_state->semaphores.at(id(info->pSemaphores[i])).value < info->pValues[i]) return VK_TIMEOUT;
+    return VK_SUCCESS;
+}
+
+VKAPI_ATTR VkResult VKAPI_CALL queueSubmit2(VkQueue, std::uint32_t count, const VkSubmitInfo2* submits, VkFence fence) {
+    if (fake().submit_result != VK_SUCCESS) return fake().submit_result;
+    for (std::uint32_t i = 0; i < count; ++i) {
+        FakeVulkan::Submit s;
+        s.waits.assign(submits[i].pWaitSemaphoreInfos, submits[i].pWaitSemaphoreInfos + submits[i].waitSemaphoreInfoCount);
+        s.signals.assign(submits[i].pSignalSemaphoreInfos, submits[i].pSignalSemaphoreInfos + submits[i].signalSemaphoreInfoCount);
+        s.fence = i + 1 == count ? fence : VK_NULL_HANDLE;
+        fake().submits.push_back(s);
+        g_state->pending.push_back({s, false});
+    }
+    progress();
     return VK_SUCCESS;
 }
 
@@ -298,6 +613,39 @@ const std::map<std::string_view, PFN_vkVoidFunction>& deviceEntries() {
         FAKE_ENTRY("vkGetBufferDeviceAddress", getBufferDeviceAddress),
         FAKE_ENTRY("vkFlushMappedMemoryRanges", flushMappedMemoryRanges),
         FAKE_ENTRY("vkInvalidateMappedMemoryRanges", invalidateMappedMemoryRanges),
+        FAKE_ENTRY("vkCreateImage", createImage),
+        FAKE_ENTRY("vkDestroyImage", destroyImage),
+        FAKE_ENTRY("vkGetImageMemoryRequirements", getImageMemoryRequirements),
+        FAKE_ENTRY("vkBindImageMemory", bindImageMemory),
+        FAKE_ENTRY("vkCreateImageView", createImageView),
+        FAKE_ENTRY("vkDestroyImageView", destroyImageView),
+        FAKE_ENTRY("vkCreatePipelineCache", createPipelineCache),
+        FAKE_ENTRY("vkDestroyPipelineCache", destroyPipelineCache),
+        FAKE_ENTRY("vkGetPipelineCacheData", getPipelineCacheData),
+        FAKE_ENTRY("vkCreateShaderModule", createShaderModule),
+        FAKE_ENTRY("vkDestroyShaderModule", destroyShaderModule),
+        FAKE_ENTRY("vkCreatePipelineLayout", createPipelineLayout),
+        FAKE_ENTRY("vkDestroyPipelineLayout", destroyPipelineLayout),
+        FAKE_ENTRY("vkCreateComputePipelines", createComputePipelines),
+        FAKE_ENTRY("vkDestroyPipeline", destroyPipeline),
+        FAKE_ENTRY("vkCreateCommandPool", createCommandPool),
+        FAKE_ENTRY("vkDestroyCommandPool", destroyCommandPool),
+        FAKE_ENTRY("vkResetCommandPool", resetCommandPool),
+        FAKE_ENTRY("vkAllocateCommandBuffers", allocateCommandBuffers),
+        FAKE_ENTRY("vkBeginCommandBuffer", beginCommandBuffer),
+        FAKE_ENTRY("vkEndCommandBuffer", endCommandBuffer),
+        FAKE_ENTRY("vkCmdFillBuffer", cmdFillBuffer),
+        FAKE_ENTRY("vkCreateFence", createFence),
+        FAKE_ENTRY("vkDestroyFence", destroyFence),
+        FAKE_ENTRY("vkResetFences", resetFences),
+        FAKE_ENTRY("vkGetFenceStatus", getFenceStatus),
+        FAKE_ENTRY("vkWaitForFences", waitForFences),
+        FAKE_ENTRY("vkCreateSemaphore", createSemaphore),
+        FAKE_ENTRY("vkDestroySemaphore", destroySemaphore),
+        FAKE_ENTRY("vkGetSemaphoreCounterValue", getSemaphoreCounterValue),
+        FAKE_ENTRY("vkSignalSemaphore", signalSemaphore),
+        FAKE_ENTRY("vkWaitSemaphores", waitSemaphores),
+        FAKE_ENTRY("vkQueueSubmit2", queueSubmit2),
     };
     return entries;
 }
@@ -361,6 +709,32 @@ VkPhysicalDevice FakeVulkan::physicalHandle(std::size_t index) const {
 VkDevice FakeVulkan::deviceHandle() const { return reinterpret_cast<VkDevice>(&g_device_object); }
 VkQueue FakeVulkan::queueHandle() const { return reinterpret_cast<VkQueue>(&g_queue_object); }
 PFN_vkGetInstanceProcAddr FakeVulkan::getInstanceProcAddr() { return &fakeGetInstanceProcAddr; }
+
+void FakeVulkan::finishPending() {
+    for (PendingSubmit& p : g_state->pending) p.released = true;
+    progress();
+}
+
+std::uint64_t FakeVulkan::timelineValue(VkSemaphore semaphore) const {
+    auto it = g_state->semaphores.find(id(semaphore));
+    return it == g_state->semaphores.end() ? 0 : it->second.value;
+}
+
+std::vector<std::byte> FakeVulkan::cacheHeader(const FakePhysicalDevice& device) {
+    // The same values fillProperties reports for that device.
+    std::size_t index = 0;
+    while (index < g_fake->physical_devices.size() && &g_fake->physical_devices[index] != &device) ++index;
+    VkPipelineCacheHeaderVersionOne header{};
+    header.headerSize = sizeof(header);
+    header.headerVersion = VK_PIPELINE_CACHE_HEADER_VERSION_ONE;
+    header.vendorID = 0x1234;
+    header.deviceID = static_cast<std::uint32_t>(index + 1);
+    std::memset(header.pipelineCacheUUID, 0x42, VK_UUID_SIZE);
+    header.pipelineCacheUUID[0] = static_cast<std::uint8_t>(device.name.size());
+    std::vector<std::byte> out(sizeof(header));
+    std::memcpy(out.data(), &header, sizeof(header));
+    return out;
+}
 
 FakeVulkanScope::FakeVulkanScope() {
     g_fake = new FakeVulkan();

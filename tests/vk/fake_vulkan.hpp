@@ -3,9 +3,14 @@
 // loader and physical devices it wants, injects getInstanceProcAddr() through
 // ContextCreateInfo / AdoptedDevice, and reads back what vkcollide asked for.
 //
-// It implements the instance queries, device creation and the buffer/memory calls
-// vk::Buffer makes; any other entry point is a trap that aborts the test when called, so
-// a contract test cannot silently reach code it does not describe.
+// It implements the instance queries, device creation, the buffer/image/memory calls of
+// vk::Buffer and vk::Image, pipeline caches, shader modules, compute pipelines, command
+// pools, fences, semaphores (binary and timeline) and vkQueueSubmit2 (recorded; the "GPU"
+// finishes submitted work at once, or when the test says); any other entry point is a trap
+// that aborts the test when called, so a contract test cannot silently reach code it does
+// not describe. Objects created with VkAllocationCallbacks get one host allocation from
+// them, freed at destruction; a destruction without the callbacks the object was created
+// with (or with different ones) is recorded in allocator_mismatches.
 //
 // vkGetInstanceProcAddr carries no user pointer, so the fake is one process-wide object:
 // FakeVulkanScope installs a fresh one per test (tests using it must not run in parallel
@@ -13,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -45,6 +51,13 @@ struct FakeVulkan {
     VkResult create_device_result = VK_SUCCESS;
     std::set<std::string> missing_entry_points;  // vkGet*ProcAddr returns null for these
     std::vector<FakePhysicalDevice> physical_devices = {FakePhysicalDevice{}};
+    // false: submitted work stays pending (fences unsignalled, semaphore signals not
+    // applied, timeline waits time out) until finishPending().
+    bool gpu_finishes_at_once = true;
+    // Not VK_SUCCESS (VK_ERROR_DEVICE_LOST): every fence/semaphore status and wait returns it.
+    VkResult device_status = VK_SUCCESS;
+    // What vkQueueSubmit2 returns (the submission is recorded only on VK_SUCCESS).
+    VkResult submit_result = VK_SUCCESS;
 
     // ---- observations (read by the test) ----
     int instances_alive = 0;
@@ -55,6 +68,32 @@ struct FakeVulkan {
     std::vector<std::string> device_extensions;    // ... and which extensions
     std::vector<VkMappedMemoryRange> flushed;      // every range vkFlushMappedMemoryRanges got
     std::vector<VkMappedMemoryRange> invalidated;  // ... and vkInvalidateMappedMemoryRanges
+    int images_alive = 0;
+    int image_views_alive = 0;
+    int pipelines_alive = 0;
+    int pipeline_layouts_alive = 0;
+    int shader_modules_alive = 0;
+    int pipeline_caches_alive = 0;
+    int command_pools_alive = 0;
+    int fences_alive = 0;
+    int semaphores_alive = 0;
+    std::size_t last_pipeline_cache_initial_size = 0;   // pInitialDataSize of the last vkCreatePipelineCache
+    std::vector<VkPipelineCache> pipelines_cache_used;  // the cache each vkCreate*Pipelines got
+    std::vector<VkDeviceSize> bind_offsets;             // memoryOffset of every vkBind*Memory
+    std::vector<std::string> allocator_mismatches;      // "vkDestroyBuffer: ..." per mismatch
+    int unbounded_waits = 0;                            // fence/semaphore waits with timeout UINT64_MAX
+    struct Submit {
+        std::vector<VkSemaphoreSubmitInfo> waits, signals;
+        VkFence fence = VK_NULL_HANDLE;
+    };
+    std::vector<Submit> submits;  // every successful vkQueueSubmit2 batch, in order
+
+    // Completes every submitted batch: signals its fence and applies its semaphore signals.
+    void finishPending();
+    // A timeline semaphore's counter (0 for unknown handles).
+    std::uint64_t timelineValue(VkSemaphore semaphore) const;
+    // The header Context::pipelineCacheData() gets back: matches physical device `index`.
+    static std::vector<std::byte> cacheHeader(const FakePhysicalDevice& device);
 
     // Handles of the fake objects, for AdoptedDevice.
     VkInstance instanceHandle() const;

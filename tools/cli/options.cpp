@@ -203,7 +203,7 @@ const std::vector<Option>& options() {
              c.view = *d;
              return {};
          }},
-        flag("--rays", Section::Output, "--png: draw the collision rays of the first sampling direction as thin yellow sticks",
+        flag("--rays", Section::Output, "--png: draw the collision rays (of every sampling direction) as thin yellow sticks",
              "one more broad-phase run per frame, reading back N^2 flags", [](CommandLine& c, std::string_view) -> Result<void> {
                  c.rays = true;
                  return {};

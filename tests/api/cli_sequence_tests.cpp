@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <sstream>
 
 #include "api/cli_support.hpp"
@@ -106,6 +107,22 @@ TEST_CASE("vkcollide detect --sequence: a progress line, --quiet and one picture
         CHECK(image.width == 64);
         CHECK(image.height == 48);
     }
+}
+
+TEST_CASE("vkcollide detect --sequence: on a terminal the progress line is a bar rewritten in place", "[cli][gpu]") {
+    Approach a(3);
+    // script(1) (util-linux, in every Debian) gives the tool a terminal and copies what it
+    // writes there to stdout.
+    const std::string inner = std::string(VKCOLLIDE_CLI_PATH) + " detect --sequence --frame-files 2 " + a.files + "--resolution 32 --validation";
+    const std::string log = a.scratch.path("tty.txt");
+    const std::string cmd = "script -qec '" + inner + "' /dev/null > " + log + " 2>&1";
+    UNSCOPED_INFO(cmd);
+    REQUIRE(std::system(cmd.c_str()) == 0);
+    const std::string text = readText(log);
+    INFO(text);
+    CHECK(text.find("\r\033[K[##########") != std::string::npos);  // a third of the bar after frame 0
+    CHECK(text.find("3/3 frames") != std::string::npos);
+    CHECK(text.find("progress:") == std::string::npos);  // the line for logs is not used
 }
 
 TEST_CASE("vkcollide detect --sequence: a frame with other topology is a named error", "[cli][gpu]") {

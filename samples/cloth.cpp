@@ -9,18 +9,16 @@
 // cloth triangle it touches to the side it came from.
 //
 //   vkcollide_cloth [--frames 400] [--cells 32] [--drop 0.2] [--out cloth] (--help for all)
-#include "common/vk.hpp"  // first: the samples call Vulkan themselves
+#include "render/vk.hpp"  // first: the samples call Vulkan themselves
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
-#include "common/engine.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
-#include "common/output.hpp"
 #include "common/physics.hpp"
-#include "common/renderer.hpp"
+#include "common/render.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
 

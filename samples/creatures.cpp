@@ -12,7 +12,7 @@
 // response vectors.
 //
 //   vkcollide_creatures [--frames 240] [--creatures 16] [--tentacles 16] [--out creatures] (--help)
-#include "common/vk.hpp"  // first: the samples call Vulkan themselves
+#include "render/vk.hpp"  // first: the samples call Vulkan themselves
 
 #include <algorithm>
 #include <array>
@@ -21,11 +21,9 @@
 #include <cstring>
 #include <vector>
 
-#include "common/engine.hpp"
 #include "common/options.hpp"
-#include "common/output.hpp"
 #include "common/physics.hpp"
-#include "common/renderer.hpp"
+#include "common/render.hpp"
 #include "creatures.h"
 #include "creatures_comp.h"
 #include "vkcollide/scene.hpp"

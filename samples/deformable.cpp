@@ -8,19 +8,17 @@
 // out of the partner it touches (narrow.hpp). Shape matching then restores the shape.
 //
 //   vkcollide_deformable [--frames 240] [--bodies all|bunnies|horses] [--out deformable] (--help)
-#include "common/vk.hpp"  // first: the samples call Vulkan themselves
+#include "render/vk.hpp"  // first: the samples call Vulkan themselves
 
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include "common/engine.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
-#include "common/output.hpp"
 #include "common/physics.hpp"
-#include "common/renderer.hpp"
+#include "common/render.hpp"
 #include "vkcollide/world.hpp"
 
 using namespace vkcollide;

@@ -9,18 +9,16 @@
 // through it, and what the detection costs at this size (the Table 1 columns).
 //
 //   vkcollide_dragon [--frames 120] [--triangles 800000] [--passer-triangles 80000] [--out dragon] (--help)
-#include "common/vk.hpp"  // first: the samples call Vulkan themselves
+#include "render/vk.hpp"  // first: the samples call Vulkan themselves
 
 #include <cmath>
 #include <cstdio>
 #include <string>
 
-#include "common/engine.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
-#include "common/output.hpp"
 #include "common/physics.hpp"
-#include "common/renderer.hpp"
+#include "common/render.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
 

@@ -7,7 +7,7 @@
 // push them apart. The box is one static object made of five slabs.
 //
 //   vkcollide_rigid_bunnies [--frames 240] [--bunnies 60] [--bunny-triangles 8300] [--out rigid_bunnies] (--help)
-#include "common/vk.hpp"  // first: the samples call Vulkan themselves
+#include "render/vk.hpp"  // first: the samples call Vulkan themselves
 
 #include <algorithm>
 #include <cmath>
@@ -16,12 +16,10 @@
 #include <random>
 #include <vector>
 
-#include "common/engine.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
-#include "common/output.hpp"
 #include "common/physics.hpp"
-#include "common/renderer.hpp"
+#include "common/render.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
 

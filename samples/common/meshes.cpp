@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "common/engine.hpp"
+#include "common/render.hpp"
 #include "vkcollide/io.hpp"
 #include "vkcollide/scene.hpp"
 

@@ -3,7 +3,7 @@
 // small holes, normalise, merge).
 #pragma once
 
-#include "common/vk.hpp"  // before any vkcollide header (see vk.hpp)
+#include "render/vk.hpp"  // before any vkcollide header (see vk.hpp)
 
 #include <cstddef>
 #include <string>

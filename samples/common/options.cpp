@@ -5,7 +5,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "common/engine.hpp"
+#include "common/render.hpp"
 
 namespace samples {
 namespace {

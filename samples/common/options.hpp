@@ -2,7 +2,7 @@
 // shares (frames, output folder, image size, device, mesh data, detection settings).
 #pragma once
 
-#include "common/vk.hpp"  // before any vkcollide header (see vk.hpp)
+#include "render/vk.hpp"  // before any vkcollide header (see vk.hpp)
 
 #include <cstdint>
 #include <functional>

@@ -3,7 +3,7 @@
 // contacts (pairs and response vectors); these helpers only turn them into motion.
 #pragma once
 
-#include "common/vk.hpp"  // before any vkcollide header (see vk.hpp)
+#include "render/vk.hpp"  // before any vkcollide header (see vk.hpp)
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -1,10 +1,18 @@
 // vkcollide_peer_bench: times the libraries users pick instead of vkcollide (FCL, Embree,
-// CGAL; tools/bench/peers) on a list of scenes for K frames, and measures their pairs
-// against the exact reference (tests/support/exact_reference). Not a test: a program.
+// CGAL; tools/bench/peers), and vkcollide itself where the library was built, on a list of
+// scenes for K frames, and measures their pairs against the exact reference
+// (tests/support/exact_reference). Not a test: a program.
 //
 //   vkcollide_peer_bench [--scenes a,b,...] [--peers a,b,...] [--modes self,between]
 //                        [--frames K] [--threads N] [--budget-s S] [--data DIR]
 //                        [--csv FILE] [--list]
+//                        [--scene a.obj,b.off ... [--sequence [--frame-files K]]] [--resolution N]
+//
+// --scene: the user's own scene from mesh files (world space; each OBJ group or OFF/PLY
+// file an object), repeatable; --sequence makes each --scene's files the frames of one
+// deforming scene (K files per frame), checked to keep frame 0's topology. With --scene
+// only those scenes run (unless --scenes names built-in ones too) and the peers default
+// to every peer, vkcollide included.
 //
 // Writes one CSV row per (scene, peer, mode, frame) and prints a summary table; a
 // progress line goes to stderr. Modes: "self" = pairs within objects too (FCL cannot:
@@ -25,6 +33,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <unistd.h>
 #include <vector>
 
 #include "bench_scenes.hpp"
@@ -32,13 +41,80 @@
 #include "support/exact_reference.hpp"
 #include "vkcollide/io.hpp"
 #include "vkcollide/scene.hpp"
+#ifdef VKCOLLIDE_PEER_BENCH_GPU
+#include <chrono>
+
+#include "vkcollide/context.hpp"
+#include "vkcollide/world.hpp"
+#endif
 
 using namespace vkcollide;
 using namespace vkcollide::bench;
 
 namespace {
 
+// ---------------------------------------------------------------------------------------
+// vkcollide as a peer: the same world-space meshes, a CollisionWorld on the device found
+// (lavapipe without a GPU). Frame 0 builds (world, pipelines, uploads); every later frame
+// uploads the frame's vertices (build_ms: what a changed scene costs it) and detects
+// (query_ms: broad phase on the GPU, readback, exact narrow phase). Settings automatic,
+// but for --resolution. The device is made once, outside the timings.
 
+#ifdef VKCOLLIDE_PEER_BENCH_GPU
+class VkcollidePeer final : public Peer {
+public:
+    VkcollidePeer(std::unique_ptr<Context> context, const PeerMode& mode, unsigned threads, std::uint32_t resolution)
+        : context_(std::move(context)), mode_(mode), threads_(threads) {
+        if (resolution) settings_.resolution = resolution;
+    }
+    std::string_view name() const noexcept override { return "vkcollide"; }
+
+    Result<PeerFrame> frame(std::span<const HostMesh> meshes) override {
+        using Clock = std::chrono::steady_clock;
+        const auto ms = [](Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); };
+        PeerFrame out;
+        const auto build = Clock::now();
+        if (!world_) {
+            auto w = CollisionWorld::create(*context_, {.threads = threads_});
+            if (!w) return w.error();
+            world_ = std::move(*w);
+            for (const HostMesh& m : meshes) {
+                auto id = world_->addMesh(m, {.name = m.name, .self_collision = mode_.self_collision});
+                if (!id) return id.error();
+                ids_.push_back(*id);
+            }
+        } else {
+            if (meshes.size() != ids_.size()) return Error(ErrorCode::InvalidArgument, "vkcollide peer: the frame has another object count");
+            for (std::size_t i = 0; i < meshes.size(); ++i)
+                if (auto ok = world_->updateVertices(ids_[i], meshes[i].positions); !ok) return ok.error();
+        }
+        out.timings.build_ms = ms(build);
+        const auto query = Clock::now();
+        auto r = world_->detect(settings_);
+        if (!r) return r.error();
+        out.timings.query_ms = ms(query);
+        out.timings.total_ms = out.timings.build_ms + out.timings.query_ms;
+        out.timings.candidates = r->stats.narrow.sap_pairs;
+        out.timings.memory_bytes = r->stats.gpu_memory_bytes;
+        out.pairs = std::move(r->pairs);  // object ids are 0, 1, ... in the order added
+        return out;
+    }
+
+private:
+    std::unique_ptr<Context> context_;
+    PeerMode mode_;
+    unsigned threads_;
+    DetectSettings settings_;
+    std::unique_ptr<CollisionWorld> world_;
+    std::vector<ObjectId> ids_;
+};
+
+Result<std::unique_ptr<Peer>> createVkcollidePeer(const PeerMode& mode, unsigned threads, std::uint32_t resolution) {
+    auto context = Context::create();
+    if (!context) return context.error();
+    return std::unique_ptr<Peer>(new VkcollidePeer(std::move(*context), mode, threads, resolution));
+}
+#endif
 
 // ---------------------------------------------------------------------------------------
 // Peers
@@ -50,8 +126,8 @@ struct PeerSpec {
     std::function<Result<std::unique_ptr<Peer>>(const PeerMode&, unsigned threads)> create;
 };
 
-std::vector<PeerSpec> allPeers() {
-    return {
+std::vector<PeerSpec> allPeers(std::uint32_t vkcollide_resolution) {
+    std::vector<PeerSpec> peers = {
         {"fcl-aabb", false, false, [](const PeerMode& m, unsigned t) { return createFclPeer(FclVolume::Aabb, m, t); }},
         {"fcl-obbrss", false, false,
          [](const PeerMode& m, unsigned t) { return createFclPeer(FclVolume::Obbrss, m, t); }},
@@ -72,6 +148,14 @@ std::vector<PeerSpec> allPeers() {
              return createCgalPeer({CgalTest::Epick, true}, m, t);
          }},
     };
+#ifdef VKCOLLIDE_PEER_BENCH_GPU
+    peers.push_back({"vkcollide", true, false, [vkcollide_resolution](const PeerMode& m, unsigned t) {
+                         return createVkcollidePeer(m, t, vkcollide_resolution);
+                     }});
+#else
+    (void)vkcollide_resolution;
+#endif
+    return peers;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -87,6 +171,13 @@ struct Options {
     std::string data = "data/cgal";
     std::string csv = "peer_bench.csv";
     bool list = false;
+    // The user's own scenes (--scene), each a list of files; with --sequence each list is
+    // the frames of one scene, frame_files files per frame.
+    std::vector<std::vector<std::string>> user_scenes;
+    bool sequence = false;
+    std::uint32_t frame_files = 1;
+    std::uint32_t resolution = 0;  // the vkcollide peer's; 0: automatic
+    bool scenes_given = false, peers_given = false, frames_given = false;
 };
 
 std::vector<std::string> splitList(const std::string& s) {
@@ -102,9 +193,11 @@ std::optional<Options> parseOptions(int argc, char** argv) {
     Options o;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        std::optional<std::string> taken;  // the value read, for the error message
         const auto value = [&]() -> std::optional<std::string> {
             if (i + 1 >= argc) return std::nullopt;
-            return std::string(argv[++i]);
+            taken = argv[++i];
+            return taken;
         };
         const auto number = [&](auto& out) {
             const std::optional<std::string> v = value();
@@ -112,21 +205,32 @@ std::optional<Options> parseOptions(int argc, char** argv) {
             const auto [end, ec] = std::from_chars(v->data(), v->data() + v->size(), out);
             return ec == std::errc() && end == v->data() + v->size();
         };
-        bool ok = true;
+        bool ok = true, known = true;
         if (arg == "--scenes") {
             const auto v = value();
             ok = v.has_value();
-            if (ok) o.scenes = splitList(*v);
+            if (ok) o.scenes = splitList(*v), o.scenes_given = true;
         } else if (arg == "--peers") {
             const auto v = value();
             ok = v.has_value();
-            if (ok) o.peers = splitList(*v);
+            if (ok) o.peers = splitList(*v), o.peers_given = true;
+        } else if (arg == "--scene") {
+            const auto v = value();
+            ok = v.has_value() && !splitList(*v).empty();
+            if (ok) o.user_scenes.push_back(splitList(*v));
+        } else if (arg == "--sequence") {
+            o.sequence = true;
+        } else if (arg == "--frame-files") {
+            ok = number(o.frame_files) && o.frame_files >= 1;
+        } else if (arg == "--resolution") {
+            ok = number(o.resolution);
         } else if (arg == "--modes") {
             const auto v = value();
             ok = v.has_value();
             if (ok) o.modes = splitList(*v);
         } else if (arg == "--frames") {
             ok = number(o.frames) && o.frames >= 1;
+            o.frames_given = true;
         } else if (arg == "--threads") {
             ok = number(o.threads);
         } else if (arg == "--budget-s") {
@@ -142,15 +246,33 @@ std::optional<Options> parseOptions(int argc, char** argv) {
         } else if (arg == "--list") {
             o.list = true;
         } else {
-            ok = false;
+            ok = known = false;
         }
         if (!ok) {
-            std::cerr
-                << "vkcollide_peer_bench: bad argument '" << arg << "'\n"
-                << "usage: vkcollide_peer_bench [--scenes a,b] [--peers a,b] [--modes self,between] [--frames K]\n"
-                << "                            [--threads N] [--budget-s S] [--data DIR] [--csv FILE] [--list]\n";
+            // Flags cannot fail: a known option failed on its value, or has none.
+            if (!known) std::cerr << "vkcollide_peer_bench: unknown option " << arg << '\n';
+            else if (taken) std::cerr << "vkcollide_peer_bench: " << arg << ": bad value '" << *taken << "'\n";
+            else std::cerr << "vkcollide_peer_bench: " << arg << " needs a value\n";
+            std::cerr << "usage: vkcollide_peer_bench [--scenes a,b] [--peers a,b] [--modes self,between] [--frames K]\n"
+                << "                            [--threads N] [--budget-s S] [--data DIR] [--csv FILE] [--list]\n"
+                << "                            [--scene a.obj,b.off ... [--sequence [--frame-files K]]] [--resolution N]\n";
             return std::nullopt;
         }
+    }
+    if (o.sequence && o.user_scenes.empty()) {
+        std::cerr << "vkcollide_peer_bench: --sequence makes the files of each --scene frames: give --scene too\n";
+        return std::nullopt;
+    }
+    for (const auto& files : o.user_scenes) {
+        if (o.sequence && (files.size() % o.frame_files != 0 || files.size() / o.frame_files < 2)) {
+            std::cerr << "vkcollide_peer_bench: --sequence: " << files.size() << " files do not make two or more whole frames of "
+                      << o.frame_files << " (--frame-files)\n";
+            return std::nullopt;
+        }
+    }
+    if (!o.user_scenes.empty()) {
+        if (!o.scenes_given) o.scenes.clear();
+        if (!o.peers_given) o.peers.push_back("vkcollide");
     }
     for (const std::string& m : o.modes) {
         if (m != "self" && m != "between") {
@@ -199,9 +321,12 @@ std::string fixed(double v, int digits) {
     return buf;
 }
 
+// One line on stderr, rewritten in place; only on a terminal (a log would get one long
+// line of carriage returns).
 class Progress {
 public:
     void show(const std::string& line) {
+        if (!tty_) return;
         std::string padded = line;
         if (padded.size() < width_) padded.append(width_ - padded.size(), ' ');
         width_ = line.size();
@@ -213,6 +338,7 @@ public:
     }
 
 private:
+    bool tty_ = ::isatty(2) != 0;
     std::size_t width_ = 0;
 };
 
@@ -224,6 +350,68 @@ Result<std::vector<TrianglePair>> referencePairs(const std::vector<HostMesh>& me
     return test::computeReferencePairs(objects, options);
 }
 
+std::string stem(const std::string& path) {
+    const std::size_t slash = path.find_last_of('/');
+    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+    const std::size_t dot = name.find_last_of('.');
+    return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
+}
+
+// The meshes of some files, in order (each OBJ group or OFF/PLY file one object).
+Result<std::vector<HostMesh>> readFiles(std::span<const std::string> files) {
+    std::vector<HostMesh> out;
+    for (const std::string& f : files) {
+        auto meshes = readMeshFile(f);
+        if (!meshes) return meshes.error();
+        for (HostMesh& m : *meshes) out.push_back(std::move(m));
+    }
+    return out;
+}
+
+// Frame f's meshes have frame 0's topology, or an error naming the files and what differs.
+Result<void> sameTopology(const std::vector<HostMesh>& first, const std::vector<HostMesh>& frame, int f, const std::string& files) {
+    const auto differs = [&](const std::string& what) {
+        return Error(ErrorCode::InvalidArgument, "--sequence: frame " + std::to_string(f) + " (" + files + ") does not have frame 0's topology: " + what);
+    };
+    if (frame.size() != first.size())
+        return differs(std::to_string(frame.size()) + " objects instead of " + std::to_string(first.size()));
+    for (std::size_t i = 0; i < frame.size(); ++i) {
+        const std::string who = "object " + std::to_string(i) + " ('" + first[i].name + "')";
+        if (frame[i].positions.size() != first[i].positions.size())
+            return differs(who + " has " + std::to_string(frame[i].positions.size()) + " vertices instead of " + std::to_string(first[i].positions.size()));
+        if (frame[i].indices != first[i].indices) return differs(who + " has other triangles");
+    }
+    return {};
+}
+
+// A --scene as a SceneSpec: files read when a frame is built (world space, identity
+// transforms); with --sequence, frame f is files [f * K, (f + 1) * K).
+SceneSpec userScene(const std::vector<std::string>& files, const Options& opt) {
+    SceneSpec s;
+    const std::size_t per_frame = opt.sequence ? opt.frame_files : files.size();
+    for (std::size_t i = 0; i < per_frame; ++i) s.name += (i ? "+" : "") + stem(files[i]);
+    if (opt.sequence) s.name += "-sequence";
+    s.motion = opt.sequence ? Motion::Deforming : Motion::Rigid;
+    s.frames = static_cast<int>(files.size() / per_frame);
+    s.what = std::string("user scene: ") + (opt.sequence ? std::to_string(s.frames) + " frames of " : "");
+    for (std::size_t i = 0; i < per_frame; ++i) s.what += (i ? ", " : "") + files[i];
+    s.build = [files, per_frame](int frame) -> Result<std::vector<BenchObject>> {
+        auto meshes = readFiles(std::span<const std::string>(files).subspan(std::size_t(frame) * per_frame, per_frame));
+        if (!meshes) return meshes.error();
+        if (frame > 0) {
+            auto first = readFiles(std::span<const std::string>(files).subspan(0, per_frame));
+            if (!first) return first.error();
+            std::string names;
+            for (std::size_t i = 0; i < per_frame; ++i) names += (i ? ", " : "") + files[std::size_t(frame) * per_frame + i];
+            if (auto ok = sameTopology(*first, *meshes, frame, names); !ok) return ok.error();
+        }
+        std::vector<BenchObject> objects;
+        for (HostMesh& m : *meshes) objects.push_back(BenchObject{std::move(m)});
+        return objects;
+    };
+    return s;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -231,7 +419,9 @@ int main(int argc, char** argv) {
     if (!parsed) return 2;
     const Options& opt = *parsed;
     const std::vector<SceneSpec> scenes = allScenes(opt.data);
-    const std::vector<PeerSpec> peers = allPeers();
+    const std::vector<PeerSpec> peers = allPeers(opt.resolution);
+    std::vector<SceneSpec> user_scenes;
+    for (const auto& files : opt.user_scenes) user_scenes.push_back(userScene(files, opt));
     if (opt.list) {
         for (const SceneSpec& s : scenes) {
             std::cout << s.name << "  " << setName(s.set) << "  " << motionName(s.motion) << "  " << s.what << '\n';
@@ -248,6 +438,7 @@ int main(int argc, char** argv) {
         }
         chosen_scenes.push_back(&*it);
     }
+    for (const SceneSpec& s : user_scenes) chosen_scenes.push_back(&s);
     std::vector<const PeerSpec*> chosen_peers;
     for (const std::string& name : opt.peers) {
         const auto it = std::find_if(peers.begin(), peers.end(), [&](const PeerSpec& p) { return p.name == name; });
@@ -276,7 +467,10 @@ int main(int argc, char** argv) {
     for (const SceneSpec* scene : chosen_scenes) {
         // Moving scenes too: the peers get world-space meshes, rebuilt every frame.
         const bool deforming = scene->motion != Motion::Rigid;
-        const int frame_count = opt.frames;
+        // A --sequence runs its frames once each, unless --frames asks for fewer.
+        const bool user_sequence =
+            opt.sequence && std::any_of(user_scenes.begin(), user_scenes.end(), [&](const SceneSpec& u) { return &u == scene; });
+        const int frame_count = user_sequence ? (opt.frames_given ? std::min(opt.frames, scene->frames) : scene->frames) : opt.frames;
         // Meshes and exact references per frame (rigid scenes: one frame, reused).
         std::vector<std::vector<HostMesh>> frames;
         std::map<std::pair<int, bool>, std::vector<TrianglePair>> references;

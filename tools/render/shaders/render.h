@@ -1,16 +1,16 @@
-// Layouts shared by the samples' renderer (C++) and its shaders (GLSL, scalar layout).
-#ifndef SAMPLES_RENDER_H
-#define SAMPLES_RENDER_H
+// Layouts shared by the renderer (C++) and its shaders (GLSL, scalar layout).
+#ifndef VKCOLLIDE_TOOLS_RENDER_H
+#define VKCOLLIDE_TOOLS_RENDER_H
 
 #ifdef __cplusplus
 #include <cstdint>
-namespace samples::gpu {
+namespace render::gpu {
 using uint = std::uint32_t;
 struct vec4 { float x, y, z, w; };
 struct mat4 { float m[16]; };  // column-major, as GLSL reads it
-#define SAMPLES_REF(type) std::uint64_t
+#define RENDER_REF(type) std::uint64_t
 #else
-#define SAMPLES_REF(type) type
+#define RENDER_REF(type) type
 #endif
 
 #ifndef __cplusplus
@@ -25,9 +25,9 @@ struct DrawParams {
 #else
 layout(buffer_reference, scalar) readonly buffer DrawParams {
 #endif
-    SAMPLES_REF(Floats) vertices;    // vertex i's x, y, z at floats first_float + i * stride_floats
-    SAMPLES_REF(Uints) indices;      // 3 per triangle
-    SAMPLES_REF(Uints) highlights;   // bit t of word t / 32: triangle t collides
+    RENDER_REF(Floats) vertices;    // vertex i's x, y, z at floats first_float + i * stride_floats
+    RENDER_REF(Uints) indices;      // 3 per triangle
+    RENDER_REF(Uints) highlights;   // bit t of word t / 32: triangle t collides
     uint first_float;
     uint stride_floats;
     vec4 colour;
@@ -49,7 +49,7 @@ struct RenderPush {
     std::uint64_t frame;
     std::uint64_t draw;
 };
-}  // namespace samples::gpu
+}  // namespace render::gpu
 #endif
 
 #endif

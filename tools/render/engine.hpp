@@ -1,13 +1,14 @@
-// The samples' stand-in for a game engine: it creates its own Vulkan instance, device and
-// queue, allocates buffers, records and submits work, and lends the device to vkcollide
-// with Context::adopt (see adoptedDevice()). This is the integration an engine does.
+// A stand-in for a game engine, shared by the samples and the command-line tool (its
+// --png and --gpu-mesh): it creates its own Vulkan instance, device and queue, allocates
+// buffers, records and submits work, and lends the device to vkcollide with
+// Context::adopt (see adoptedDevice()). This is the integration an engine does.
 //
-// Vulkan failures inside these helpers are fatal (message and exit): the samples are
+// Vulkan failures inside these helpers are fatal (message and exit): the users are
 // programs, and their own Vulkan plumbing is not what they are meant to show. vkcollide's
-// calls are checked in each sample with their Result.
+// calls are checked by each program with their Result.
 #pragma once
 
-#include "common/vk.hpp"
+#include "render/vk.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -19,9 +20,9 @@
 #include "vkcollide/context.hpp"
 #include "vkcollide/result.hpp"
 
-namespace samples {
+namespace render {
 
-// The name die() and the messages print (the sample's name).
+// The name die() and the messages print (the program's name).
 void setProgramName(const char* name);
 // Prints "<program>: <what>" to stderr and exits with status 1.
 [[noreturn]] void die(const std::string& what);
@@ -122,4 +123,4 @@ private:
 // warning or an error during the run (the smoke tests fail on it).
 int exitStatus(const Engine& engine);
 
-}  // namespace samples
+}  // namespace render

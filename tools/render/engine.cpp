@@ -1,4 +1,4 @@
-#include "common/engine.hpp"
+#include "render/engine.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <optional>
 
-namespace samples {
+namespace render {
 
 namespace {
 const char* g_program = "sample";
@@ -129,7 +129,7 @@ std::unique_ptr<Engine> Engine::create(const EngineOptions& options) {
     }
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = g_program;
-    app.pEngineName = "vkcollide samples";
+    app.pEngineName = "vkcollide tools";
     app.apiVersion = VK_API_VERSION_1_3;
     VkInstanceCreateInfo ici{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
     ici.pNext = options.validation ? &validation_features : nullptr;
@@ -290,6 +290,7 @@ void Engine::destroy(Buffer& b) {
 }
 
 void Engine::upload(const Buffer& destination, const void* data, VkDeviceSize size) {
+    if (size == 0) return;  // an empty mesh: a zero-sized copy is invalid
     Buffer staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Memory::Host);
     std::memcpy(staging.mapped, data, size);
     submit([&](VkCommandBuffer cmd) {
@@ -360,4 +361,4 @@ void Engine::destroy(ComputePipeline& p) {
     p = {};
 }
 
-}  // namespace samples
+}  // namespace render

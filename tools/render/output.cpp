@@ -1,12 +1,12 @@
-#include "common/output.hpp"
+#include "render/output.hpp"
 
 #include <algorithm>
 #include <png.h>
 #include <unistd.h>
 
-#include "common/engine.hpp"
+#include "render/engine.hpp"
 
-namespace samples {
+namespace render {
 namespace {
 
 // "12K", "0.4K", "950": the paper's Table 1 style.
@@ -51,15 +51,18 @@ double msSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-FrameLog::FrameLog(const std::string& csv_path, std::vector<std::string> scene_columns, int frames, bool quiet)
+FrameLog::FrameLog(const std::string& csv_path, std::vector<std::string> scene_columns, int frames, bool quiet,
+                   const HostTimeColumns& host_columns)
     : scene_columns_(std::move(scene_columns)), frames_(frames), quiet_(quiet), tty_(::isatty(2) != 0),
       start_(std::chrono::steady_clock::now()) {
+    if (csv_path.empty()) return;  // the lines and the summary only
     csv_ = std::fopen(csv_path.c_str(), "w");
     if (!csv_) die("cannot write " + csv_path);
     std::fprintf(csv_,
                  "frame,triangles,collision_rays,triangles_downloaded,potentially_colliding_triangles,triangle_tests,"
                  "positive_tests,pairs,gpu_ms,reduce_ms,cpu_ms,total_ms,sampling_ms,merging_ms,separation_ms,packing_ms,"
-                 "readback_ms,narrow_ms,resolution,depth_complexity,layers,peel_passes,layers_short,backend,sim_ms,render_ms");
+                 "readback_ms,narrow_ms,resolution,depth_complexity,layers,peel_passes,layers_short,backend,%s,%s",
+                 host_columns.first.c_str(), host_columns.second.c_str());
     for (const std::string& c : scene_columns_) std::fprintf(csv_, ",%s", c.c_str());
     std::fprintf(csv_, "\n");
 }
@@ -68,18 +71,20 @@ FrameLog::~FrameLog() {
     if (csv_) std::fclose(csv_);
 }
 
-void FrameLog::record(int frame, const vkcollide::DetectResult& r, std::span<const double> scene_values, double sim_ms,
-                      double render_ms) {
+void FrameLog::record(int frame, const vkcollide::DetectResult& r, std::span<const double> scene_values, double first_ms,
+                      double second_ms) {
     const vkcollide::DetectStats& s = r.stats;
     if (frame == 0) std::printf("settings: %s\n", s.settings_note.c_str());
-    std::fprintf(csv_, "%d,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%d,%s,%.3f,%.3f",
-                 frame, s.triangles, s.collision_rays, s.triangles_downloaded, s.potentially_colliding_triangles, s.triangle_tests,
-                 s.positive_tests, r.pairs.size(), gpuMs(s), reduceMs(s), s.narrow_ms, s.total_ms, s.sampling_ms, s.merging_ms,
-                 s.separation_ms, s.packing_ms, s.readback_ms, s.narrow_ms, s.resolution, s.depth_complexity, s.layers,
-                 s.peel_passes, s.layers_short ? 1 : 0, vkcollide::toString(s.backend), sim_ms, render_ms);
-    for (double v : scene_values) std::fprintf(csv_, ",%g", v);
-    std::fprintf(csv_, "\n");
-    std::fflush(csv_);
+    if (csv_) {
+        std::fprintf(csv_, "%d,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%d,%s,%.3f,%.3f",
+                     frame, s.triangles, s.collision_rays, s.triangles_downloaded, s.potentially_colliding_triangles, s.triangle_tests,
+                     s.positive_tests, r.pairs.size(), gpuMs(s), reduceMs(s), s.narrow_ms, s.total_ms, s.sampling_ms, s.merging_ms,
+                     s.separation_ms, s.packing_ms, s.readback_ms, s.narrow_ms, s.resolution, s.depth_complexity, s.layers,
+                     s.peel_passes, s.layers_short ? 1 : 0, vkcollide::toString(s.backend), first_ms, second_ms);
+        for (double v : scene_values) std::fprintf(csv_, ",%g", v);
+        std::fprintf(csv_, "\n");
+        std::fflush(csv_);
+    }
     rows_.push_back({{double(s.triangles), double(s.collision_rays), double(s.triangles_downloaded),
                       double(s.potentially_colliding_triangles), double(s.triangle_tests), double(s.positive_tests), gpuMs(s),
                       reduceMs(s), s.narrow_ms, s.total_ms, double(r.pairs.size())}});
@@ -143,4 +148,4 @@ void FrameLog::finish(const std::string& scene_name) {
     line("max", peak);
 }
 
-}  // namespace samples
+}  // namespace render

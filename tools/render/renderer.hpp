@@ -6,7 +6,7 @@
 // the picture shows exactly the geometry that was tested.
 #pragma once
 
-#include "common/engine.hpp"
+#include "render/engine.hpp"
 
 #include <array>
 #include <cstdint>
@@ -17,7 +17,7 @@
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/scene.hpp"
 
-namespace samples {
+namespace render {
 
 using Rgb = std::array<float, 3>;
 
@@ -51,6 +51,8 @@ public:
     DrawId addGpuMesh(const Buffer& vertices, VkDeviceSize offset, std::uint32_t stride, const Buffer& indices,
                       VkDeviceSize index_offset, std::uint32_t triangle_count, Rgb colour);
     void updateVertices(DrawId id, std::span<const vkcollide::Float3> positions);
+    // New geometry for a mesh added with addMesh (any size; its highlights are cleared).
+    void replaceMesh(DrawId id, const vkcollide::HostMesh& mesh);
     void setTransform(DrawId id, const vkcollide::Transform3x4& object_to_world);
 
     // Colliding triangles of the next frame.
@@ -71,6 +73,7 @@ private:
         vkcollide::Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
     };
     DrawId addDraw(Draw draw);
+    void uploadMesh(Draw& draw, const vkcollide::HostMesh& mesh, bool dynamic);
 
     Engine& engine_;
     std::uint32_t width_, height_;
@@ -84,4 +87,4 @@ private:
     std::vector<std::uint8_t> pixels_;
 };
 
-}  // namespace samples
+}  // namespace render

@@ -1,4 +1,4 @@
-#include "common/renderer.hpp"
+#include "render/renderer.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -7,7 +7,7 @@
 #include "render_frag.h"
 #include "render_vert.h"
 
-namespace samples {
+namespace render {
 namespace {
 
 constexpr VkFormat kColourFormat = VK_FORMAT_R8G8B8A8_UNORM;
@@ -175,6 +175,12 @@ DrawId Renderer::addDraw(Draw draw) {
 
 DrawId Renderer::addMesh(const vkcollide::HostMesh& mesh, Rgb colour, bool dynamic) {
     Draw d;
+    uploadMesh(d, mesh, dynamic);
+    d.colour = colour;
+    return addDraw(d);
+}
+
+void Renderer::uploadMesh(Draw& d, const vkcollide::HostMesh& mesh, bool dynamic) {
     const VkDeviceSize vbytes = mesh.positions.size() * sizeof(Float3), ibytes = mesh.indices.size() * 4;
     d.own_vertices = engine_.createBuffer(vbytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, dynamic ? Memory::Host : Memory::Device);
     if (dynamic) std::memcpy(d.own_vertices.mapped, mesh.positions.data(), vbytes);
@@ -184,8 +190,19 @@ DrawId Renderer::addMesh(const vkcollide::HostMesh& mesh, Rgb colour, bool dynam
     d.vertices = d.own_vertices.address;
     d.indices = d.own_indices.address;
     d.triangles = static_cast<std::uint32_t>(mesh.triangleCount());
-    d.colour = colour;
-    return addDraw(d);
+}
+
+void Renderer::replaceMesh(DrawId id, const vkcollide::HostMesh& mesh) {
+    Draw& d = draws_.at(id);
+    if (!d.own_indices.buffer) die("Renderer::replaceMesh: draw " + std::to_string(id) + " was not added with addMesh");
+    // No frame still reads them: render() waits for its submission (Engine::submit).
+    engine_.destroy(d.own_vertices);
+    engine_.destroy(d.own_indices);
+    engine_.destroy(d.highlights);
+    uploadMesh(d, mesh, false);
+    const VkDeviceSize words = (d.triangles + 31) / 32;
+    d.highlights = engine_.createBuffer(words * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::Host);
+    std::memset(d.highlights.mapped, 0, words * 4);
 }
 
 DrawId Renderer::addInstance(DrawId of, Rgb colour) {
@@ -304,6 +321,7 @@ const std::vector<std::uint8_t>& Renderer::render(const Camera& camera) {
         vkCmdSetScissor(cmd, 0, 1, &scissor);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
         for (std::size_t i = 0; i < draws_.size(); ++i) {
+            if (draws_[i].triangles == 0) continue;
             gpu::RenderPush push{params_.address, params_.address + sizeof(gpu::FrameParams) + i * sizeof(gpu::DrawParams)};
             vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
             vkCmdDraw(cmd, draws_[i].triangles * 3, 1, 0, 0);
@@ -344,4 +362,4 @@ const std::vector<std::uint8_t>& Renderer::render(const Camera& camera) {
     return pixels_;
 }
 
-}  // namespace samples
+}  // namespace render

@@ -1,0 +1,201 @@
+// `vkcollide detect`: every DetectSettings option reaches the detection. Each test reads
+// the --json the tool wrote: the setting as asked and as used, and an effect the setting
+// must have on what ran (layers, passes, backend, rays, pairs), against a run without it.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <set>
+
+#include "api/cli_support.hpp"
+
+using namespace clitest;
+
+namespace {
+
+// Two overlapping spheres (a at the origin, b moved along x), one OFF file each.
+struct TwoSpheres {
+    Scratch scratch{"settings"};
+    std::string files;
+    std::vector<vkcollide::HostMesh> world;
+    explicit TwoSpheres(float gap_x = 1.2f) {
+        world = {sphere("a", {0, 0, 0}), sphere("b", {gap_x, 0.1f, 0.05f})};
+        files = writeMesh(scratch, "a.off", world[0]) + " " + writeMesh(scratch, "b.off", world[1]);
+    }
+};
+
+const Json& stats(const Json& j) { return j["frames"][0]["stats"]; }
+
+std::vector<std::string> passNames(const Json& j) {
+    std::vector<std::string> out;
+    for (const Json& p : stats(j)["gpu_passes"].array()) out.push_back(p["name"].string());
+    return out;
+}
+
+bool hasPass(const Json& j, const std::string& name) {
+    const auto names = passNames(j);
+    return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+}  // namespace
+
+TEST_CASE("vkcollide detect: --resolution and --direction set what runs", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json j = detectJson(s.scratch, s.files + " --resolution 128 --direction 1,0,0");
+    CHECK(j["settings"]["asked"]["resolution"].number() == 128);
+    CHECK(j["settings"]["used"]["resolution"].number() == 128);
+    CHECK(stats(j)["resolution"].number() == 128);
+    CHECK(stats(j)["direction"][0].number() == 1);
+    CHECK(stats(j)["direction"][1].number() == 0);
+    CHECK(stats(j)["direction"][2].number() == 0);
+    // Left out: chosen from the scene, and the JSON says so.
+    const Json automatic = detectJson(s.scratch, s.files);
+    CHECK(automatic["settings"]["asked"]["resolution"].isNull());
+    CHECK(automatic["settings"]["asked"]["direction"].isNull());
+    CHECK(automatic["settings"]["used"]["resolution"].number() == stats(automatic)["resolution"].number());
+    CHECK(stats(automatic)["settings_note"].string().find("resolution") != std::string::npos);
+}
+
+TEST_CASE("vkcollide detect: --cap and --dual change the peeling", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json plain = detectJson(s.scratch, s.files + " --resolution 64 --direction 1,0,0");
+    REQUIRE(stats(plain)["depth_complexity"].number() >= 4);  // along x: a, then b, entered and left
+    const Json capped = detectJson(s.scratch, s.files + " --resolution 64 --direction 1,0,0 --cap 1");
+    CHECK(capped["settings"]["asked"]["layer_cap"].number() == 1);
+    CHECK(stats(capped)["layers"].number() == 1);
+    CHECK_FALSE(stats(capped)["layers_short"].boolean());  // a cap asked for is not "short"
+    // Every ray deeper than one layer is a collision ray now.
+    CHECK(stats(capped)["collision_rays"].number() > stats(plain)["collision_rays"].number());
+
+    const Json dual = detectJson(s.scratch, s.files + " --resolution 64 --direction 1,0,0 --dual");
+    CHECK(dual["settings"]["asked"]["dual"].boolean());
+    CHECK(stats(dual)["dual"].boolean());
+    CHECK(stats(dual)["peel_passes"].number() < stats(plain)["peel_passes"].number());
+    CHECK(jsonPairs(dual["frames"][0]) == jsonPairs(plain["frames"][0]));
+}
+
+TEST_CASE("vkcollide detect: --packing, --paper-packing and --backend choose the passes", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json scan = detectJson(s.scratch, s.files + " --resolution 64");
+    CHECK(hasPass(scan, "pack-scan"));
+    CHECK_FALSE(hasPass(scan, "pack-move"));
+    for (const char* option : {" --packing paper", " --paper-packing"}) {
+        INFO(option);
+        const Json paper = detectJson(s.scratch, s.files + " --resolution 64" + option);
+        CHECK(paper["settings"]["asked"]["packing"].string() == "paper");
+        CHECK(hasPass(paper, "pack-move"));
+        CHECK_FALSE(hasPass(paper, "pack-scan"));
+        CHECK(jsonPairs(paper["frames"][0]) == jsonPairs(scan["frames"][0]));
+    }
+    for (const char* backend : {"raster", "compute"}) {
+        INFO(backend);
+        const Json j = detectJson(s.scratch, s.files + " --resolution 64 --backend " + backend);
+        CHECK(j["settings"]["asked"]["backend"].string() == backend);
+        CHECK(stats(j)["backend"].string() == backend);
+        CHECK(jsonPairs(j["frames"][0]) == jsonPairs(scan["frames"][0]));
+    }
+}
+
+TEST_CASE("vkcollide detect: --open-epsilon is used for open objects", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json automatic = detectJson(s.scratch, s.files + " --open 2");
+    CHECK(automatic["settings"]["asked"]["open_epsilon"].isNull());
+    CHECK(automatic["settings"]["used"]["open_epsilon"].number() > 0);  // half the open object's typical edge
+    const Json j = detectJson(s.scratch, s.files + " --open 2 --open-epsilon 0.0625");
+    CHECK(j["settings"]["asked"]["open_epsilon"].number() == 0.0625);
+    CHECK(j["settings"]["used"]["open_epsilon"].number() == 0.0625);
+}
+
+TEST_CASE("vkcollide detect: --region samples only its box", "[cli][gpu]") {
+    TwoSpheres s;
+    // The spheres overlap for x in [0.2, 1]: a box around a's far side sees none of it (a
+    // square one: the image is square, over the box's wider side).
+    const Json left = detectJson(s.scratch, s.files + " --resolution 64 --direction 0,0,1 --region -1.2,-0.5,-1.2,-0.2,0.5,1.2");
+    CHECK(left["settings"]["used"]["region"][0].number() == Approx(-1.2));
+    CHECK(left["settings"]["used"]["region"][3].number() == Approx(-0.2));
+    CHECK(stats(left)["collision_rays"].number() == 0);
+    CHECK(left["frames"][0]["pairs"].size() == 0);
+    const Json all = detectJson(s.scratch, s.files + " --resolution 64 --direction 0,0,1 --region -1.2,-1.8,-1.2,2.4,1.8,1.2");
+    CHECK(all["frames"][0]["pairs"].size() > 0);
+}
+
+TEST_CASE("vkcollide detect: --no-measure-layers predicts from the last detection", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json measured = detectJson(s.scratch, s.files + " --resolution 64 --frames 2");
+    CHECK(measured["settings"]["asked"]["measure_layers"].boolean());
+    const Json predicted = detectJson(s.scratch, s.files + " --resolution 64 --frames 2 --no-measure-layers");
+    CHECK_FALSE(predicted["settings"]["asked"]["measure_layers"].boolean());
+    // Measuring adds a readback between two submissions; predicting records one.
+    const auto count = [](const std::vector<std::string>& names, const std::string& n) { return std::count(names.begin(), names.end(), n); };
+    CHECK(count(passNames(measured), "readback-header") == 2);
+    CHECK(count(passNames(predicted), "readback-header") == 1);
+    CHECK(jsonPairs(predicted["frames"][0]) == jsonPairs(measured["frames"][0]));
+}
+
+TEST_CASE("vkcollide detect: --axes 3 samples three directions", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json one = detectJson(s.scratch, s.files + " --resolution 64");
+    const Json three = detectJson(s.scratch, s.files + " --resolution 64 --axes 3");
+    CHECK(three["settings"]["asked"]["axes"].number() == 3);
+    CHECK(stats(three)["axes"].number() == 3);
+    CHECK(hasPass(three, "axis 2: merge"));
+    CHECK_FALSE(hasPass(one, "axis 2: merge"));
+    // The union tests at least what one direction tests, with the same exact test.
+    const auto p1 = jsonPairs(one["frames"][0]), p3 = jsonPairs(three["frames"][0]);
+    CHECK(std::includes(p3.begin(), p3.end(), p1.begin(), p1.end()));
+}
+
+TEST_CASE("vkcollide detect: --coverage reaches the sampling", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json centre = detectJson(s.scratch, s.files + " --resolution 64 --backend raster");
+    CHECK(stats(centre)["coverage"].string() == "centre");
+    const Json dilate = detectJson(s.scratch, s.files + " --resolution 64 --backend raster --coverage dilate");
+    CHECK(dilate["settings"]["asked"]["coverage"].string() == "dilate");
+    CHECK(stats(dilate)["coverage"].string() == "dilate");
+    // Thin triangles mark every ray they touch: never fewer collision rays.
+    CHECK(stats(dilate)["collision_rays"].number() >= stats(centre)["collision_rays"].number());
+    const Json best = detectJson(s.scratch, s.files + " --resolution 64 --backend raster --coverage best");
+    const std::string used = best["settings"]["used"]["coverage"].string();
+    CHECK((used == "dilate" || used == "conservative"));
+    CHECK(stats(best)["coverage"].string() == used);
+}
+
+TEST_CASE("vkcollide detect: --closed-epsilon makes near surfaces touch", "[cli][gpu]") {
+    TwoSpheres s(2.04f);  // b's surface 0.04 from a's along x, no contact
+    const Json exact = detectJson(s.scratch, s.files + " --resolution 64 --direction 1,0,0");
+    CHECK(stats(exact)["collision_rays"].number() == 0);
+    const Json near = detectJson(s.scratch, s.files + " --resolution 64 --direction 1,0,0 --closed-epsilon 0.25");
+    CHECK(near["settings"]["asked"]["closed_epsilon"].number() == 0.25);
+    CHECK(stats(near)["collision_rays"].number() > 0);
+    CHECK(near["frames"][0]["pairs"].size() == 0);  // the exact test still finds no contact
+}
+
+TEST_CASE("vkcollide detect: --bad-objects is handed to the detection", "[cli][gpu]") {
+    TwoSpheres s;
+    // Files pass the strict readers, so no engine mesh fails the GPU check here: the policy
+    // is shown as asked and the detection runs under it.
+    for (const char* policy : {"exclude", "fail"}) {
+        INFO(policy);
+        const Json j = detectJson(s.scratch, s.files + " --gpu-mesh all --bad-objects " + policy);
+        CHECK(j["settings"]["asked"]["bad_objects"].string() == policy);
+        CHECK(j["frames"][0]["excluded"].size() == 0);
+        CHECK(j["frames"][0]["pairs"].size() > 0);
+    }
+}
+
+TEST_CASE("vkcollide detect: the JSON's settings name every DetectSettings option of --help", "[cli]") {
+    TwoSpheres s;
+    const Json j = detectJson(s.scratch, s.files + " --resolution 64");
+    // The settings section of --help lists one option per field (and --paper-packing).
+    const Run help = runCli("detect --help");
+    REQUIRE(help.status == 0);
+    const std::size_t begin = help.out.find("Detection settings"), end = help.out.find("\nObjects");
+    REQUIRE(begin != std::string::npos);
+    REQUIRE(end != std::string::npos);
+    std::set<std::string> options;
+    std::istringstream lines(help.out.substr(begin, end - begin));
+    for (std::string line; std::getline(lines, line);)
+        if (line.rfind("  --", 0) == 0) options.insert(line.substr(2, line.find(' ', 2) - 2));
+    options.erase("--paper-packing");
+    CHECK(j["settings"]["asked"].object().size() == options.size());
+    CHECK(j["settings"]["used"].object().size() == options.size());
+}

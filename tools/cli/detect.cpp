@@ -1,0 +1,162 @@
+#include "cli/detect.hpp"
+
+#include "render/vk.hpp"  // before any vkcollide header (see vk.hpp)
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "cli/devices.hpp"
+#include "cli/picture.hpp"
+#include "cli/rays.hpp"
+#include "cli/report.hpp"
+#include "cli/scene.hpp"
+#include "render/output.hpp"
+#include "vkcollide/world.hpp"
+
+namespace cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int fail(const std::string& what) {
+    std::fprintf(stderr, "vkcollide: %s\n", what.c_str());
+    return 1;
+}
+
+void printSummary(const std::string& device, const Scene& scene, const vkcollide::DetectResult& r) {
+    const vkcollide::DetectStats& st = r.stats;
+    std::printf("device: %s\n", device.c_str());
+    std::printf("scene: %zu objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u passes%s%s\n",
+                scene.objects.size(), st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes,
+                st.dual ? " (dual)" : "", st.axes > 1 ? ", 3 directions" : "");
+    if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
+    std::printf("sampling backend: %s (%s), coverage %s\n", vkcollide::toString(st.backend), st.backend_reason.c_str(),
+                vkcollide::toString(st.coverage));
+    std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
+                st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
+                st.positive_tests);
+    std::printf("colliding triangle pairs: %zu\n", r.pairs.size());
+    for (const vkcollide::ExcludedObject& e : r.excluded) std::printf("excluded: %s\n", e.error.message().c_str());
+    std::printf("times (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
+                st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
+                st.total_ms);
+    std::printf("GPU memory: %.1f MiB\n", static_cast<double>(st.gpu_memory_bytes) / (1024.0 * 1024.0));
+}
+
+}  // namespace
+
+int runDetect(const CommandLine& line) {
+    render::setProgramName("vkcollide");
+    auto scene = readScene(line);
+    if (!scene) return fail(scene.error().message());
+    bool gpu_meshes = false;
+    for (const SceneObject& o : scene->objects) gpu_meshes = gpu_meshes || o.gpu_mesh;
+
+    auto devices = openDevices(line, gpu_meshes, !line.png_path.empty());
+    if (!devices) return fail(devices.error().message());
+    vkcollide::Context& context = *devices->context;
+    const std::string device = context.deviceInfo().name;
+    std::unique_ptr<EngineMeshes> engine_meshes;
+    if (gpu_meshes) engine_meshes = std::make_unique<EngineMeshes>(*devices->engine);
+
+    auto world = vkcollide::CollisionWorld::create(context, {.threads = line.threads});
+    if (!world) return fail(world.error().message());
+    std::vector<vkcollide::ObjectId> ids;
+    std::vector<std::size_t> engine_index(scene->objects.size(), 0);  // per --gpu-mesh object: its EngineMeshes index
+    std::size_t engine_count = 0;
+    for (std::size_t i = 0; i < scene->objects.size(); ++i) {
+        const SceneObject& o = scene->objects[i];
+        vkcollide::Result<vkcollide::ObjectId> id = vkcollide::ObjectId{0};
+        if (o.gpu_mesh) {
+            engine_index[i] = engine_count++;
+            id = (*world)->addGpuMesh(engine_meshes->add(o.mesh), o.options);
+        } else {
+            id = (*world)->addMesh(o.mesh, o.options);
+        }
+        if (!id) return fail(id.error().message());
+        ids.push_back(*id);
+    }
+    auto used = (*world)->resolveSettings(line.settings);
+    if (!used) return fail(nameSettingOptions(line, used.error().message()));
+
+    auto report = Report::open(line, *scene, device, *used);
+    if (!report) return fail(report.error().message());
+    std::optional<Picture> picture;
+    if (!line.png_path.empty()) picture.emplace(*devices->engine, line, *scene, engine_meshes.get());
+    // The per-frame lines, progress line and CSV (as the samples write them). FrameLog ends
+    // the program on a file it cannot write; the tool names its option first.
+    if (!line.csv_path.empty()) {
+        std::FILE* probe = std::fopen(line.csv_path.c_str(), "w");
+        if (!probe) return fail("--csv: cannot write " + line.csv_path);
+        std::fclose(probe);
+    }
+    std::optional<render::FrameLog> log;
+    const std::size_t frames = line.frameCount();
+    if (line.sequence || !line.csv_path.empty())
+        log.emplace(line.csv_path, std::vector<std::string>{}, static_cast<int>(frames), line.quiet,
+                    render::HostTimeColumns{"read_ms", "png_ms"});
+    if (line.sequence) std::printf("device: %s\nsequence: %zu frames of %zu objects, %llu triangles\n", device.c_str(), frames,
+                                   scene->objects.size(), static_cast<unsigned long long>(scene->triangles));
+
+    vkcollide::Result<vkcollide::DetectResult> result = vkcollide::Error(vkcollide::ErrorCode::InvalidArgument, "no frames");
+    std::size_t total_pairs = 0;
+    for (std::size_t f = 0; f < frames; ++f) {
+        const auto read_start = Clock::now();
+        if (line.sequence && f > 0) {
+            if (auto ok = readFrame(line, f, *scene); !ok) return fail(ok.error().message());
+            for (std::size_t i = 0; i < scene->objects.size(); ++i) {
+                const SceneObject& o = scene->objects[i];
+                if (o.gpu_mesh) engine_meshes->update(engine_index[i], o.mesh.positions);
+                else if (auto ok = (*world)->updateVertices(ids[i], o.mesh.positions); !ok) return fail(ok.error().message());
+            }
+        }
+        const double read_ms = render::msSince(read_start);
+        result = (*world)->detect(line.settings);
+        if (!result) return fail(nameSettingOptions(line, result.error().message()));
+        total_pairs += result->pairs.size();
+        const bool last = f + 1 == frames;
+        double png_ms = 0;
+        if (picture && (line.sequence || last)) {
+            const auto png_start = Clock::now();
+            std::optional<CollisionRays> rays;
+            if (line.rays) {
+                auto frame_settings = (*world)->resolveSettings(line.settings);
+                if (!frame_settings) return fail(frame_settings.error().message());
+                auto r = collisionRays(context, *scene, *frame_settings);
+                if (!r) return fail("--rays: " + r.error().message());
+                rays = std::move(*r);
+            }
+            const std::string path = line.sequence ? Picture::framePath(line.png_path, f) : line.png_path;
+            if (auto ok = picture->write(path, *scene, *result, rays ? &*rays : nullptr); !ok) return fail(ok.error().message());
+            png_ms = render::msSince(png_start);
+            if (!line.sequence)
+                std::printf("png: %s%s\n", path.c_str(),
+                            rays ? (" (" + std::to_string(rays->segments.size()) + " collision rays drawn)").c_str() : "");
+        }
+        if (log) log->record(static_cast<int>(f), *result, {}, read_ms, png_ms);
+        if (line.sequence || last) (*report)->frame(f, *scene, *result);
+    }
+    if (auto ok = (*report)->close(); !ok) return fail(ok.error().message());
+    if (!line.stats_path.empty())
+        if (auto ok = writeStatsFile(line.stats_path, *scene, *result); !ok) return fail(ok.error().message());
+
+    if (line.sequence) {
+        log->finish("sequence");
+        std::printf("colliding triangle pairs: %zu over %zu frames, %zu in the last\n", total_pairs, frames, result->pairs.size());
+        if (picture)
+            std::printf("png: %s ... %s\n", Picture::framePath(line.png_path, 0).c_str(), Picture::framePath(line.png_path, frames - 1).c_str());
+    } else {
+        if (log) log->finish("scene");
+        printSummary(device, *scene, *result);
+    }
+    if (line.validation && devices->messages() > 0) {
+        std::fprintf(stderr, "vkcollide: %llu validation or library messages (see above)\n",
+                     static_cast<unsigned long long>(devices->messages()));
+        return 3;
+    }
+    return 0;
+}
+
+}  // namespace cli

@@ -1,0 +1,174 @@
+#include "cli/json.hpp"
+
+#include <cmath>
+
+namespace cli {
+
+std::string jsonEscape(std::string_view text) {
+    std::string o;
+    o.reserve(text.size());
+    for (char c : text) {
+        if (c == '"' || c == '\\') {
+            o += '\\';
+            o += c;
+        } else if (static_cast<unsigned char>(c) < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+            o += buf;
+        } else {
+            o += c;
+        }
+    }
+    return o;
+}
+
+void JsonWriter::newline() {
+    std::fputc('\n', out_);
+    for (std::size_t i = 0; i < levels_.size(); ++i) std::fputs("  ", out_);
+}
+
+void JsonWriter::beforeValue() {
+    if (after_key_) {
+        after_key_ = false;
+        return;
+    }
+    if (levels_.empty()) return;
+    Level& l = levels_.back();
+    if (!l.first) std::fputc(',', out_);
+    if (l.layout == Layout::Lines) newline();
+    else if (!l.first) std::fputc(' ', out_);
+    l.first = false;
+}
+
+void JsonWriter::beginObject(Layout layout) {
+    beforeValue();
+    std::fputc('{', out_);
+    levels_.push_back({layout});
+}
+
+void JsonWriter::beginArray(Layout layout) {
+    beforeValue();
+    std::fputc('[', out_);
+    levels_.push_back({layout});
+}
+
+void JsonWriter::endObject() {
+    const Level l = levels_.back();
+    levels_.pop_back();
+    if (l.layout == Layout::Lines && !l.first) newline();
+    std::fputc('}', out_);
+}
+
+void JsonWriter::endArray() {
+    const Level l = levels_.back();
+    levels_.pop_back();
+    if (l.layout == Layout::Lines && !l.first) newline();
+    std::fputc(']', out_);
+}
+
+void JsonWriter::key(std::string_view name) {
+    beforeValue();
+    std::fprintf(out_, "\"%s\": ", jsonEscape(name).c_str());
+    after_key_ = true;
+}
+
+void JsonWriter::string(std::string_view text) {
+    beforeValue();
+    std::fprintf(out_, "\"%s\"", jsonEscape(text).c_str());
+}
+
+void JsonWriter::number(double v) {
+    beforeValue();
+    if (!std::isfinite(v)) std::fputs("null", out_);
+    else if (v == std::floor(v) && std::fabs(v) < 9e15) std::fprintf(out_, "%.0f", v);
+    else std::fprintf(out_, "%.9g", v);
+}
+
+void JsonWriter::integer(std::uint64_t v) {
+    beforeValue();
+    std::fprintf(out_, "%llu", static_cast<unsigned long long>(v));
+}
+
+void JsonWriter::boolean(bool v) {
+    beforeValue();
+    std::fputs(v ? "true" : "false", out_);
+}
+
+void JsonWriter::null() {
+    beforeValue();
+    std::fputs("null", out_);
+}
+
+void JsonWriter::raw(std::string_view json) {
+    beforeValue();
+    std::fwrite(json.data(), 1, json.size(), out_);
+}
+
+void JsonWriter::finish() { std::fputc('\n', out_); }
+
+void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pair_count, const std::vector<std::string>& names) {
+    auto count = [&](const char* k, std::size_t v) { j.member(k, [&] { j.integer(v); }); };
+    auto ms = [&](const char* k, double v) { j.member(k, [&] { j.number(v); }); };
+    j.beginObject();
+    j.key("objects");
+    j.beginArray(JsonWriter::Layout::Inline);
+    for (const std::string& n : names) j.string(n);
+    j.endArray();
+    // The paper's Table 1.
+    count("triangles", st.triangles);
+    count("collision_rays", st.collision_rays);
+    count("triangles_downloaded", st.triangles_downloaded);
+    count("potentially_colliding_triangles", st.potentially_colliding_triangles);
+    count("triangle_tests", st.triangle_tests);
+    count("positive_tests", st.positive_tests);
+    count("pairs", pair_count);
+    j.key("narrow");
+    j.beginObject(JsonWriter::Layout::Inline);
+    count("candidates", st.narrow.candidates);
+    count("potentially_colliding_triangles", st.narrow.potentially_colliding_triangles);
+    count("sap_pairs", st.narrow.sap_pairs);
+    count("filtered_pairs", st.narrow.filtered_pairs);
+    count("neighbour_pairs", st.narrow.neighbour_pairs);
+    count("triangle_tests", st.narrow.triangle_tests);
+    count("positive_tests", st.narrow.positive_tests);
+    count("input_pairs", st.narrow.input_pairs);
+    j.endObject();
+    // What ran.
+    count("resolution", st.resolution);
+    j.key("direction");
+    j.beginArray(JsonWriter::Layout::Inline);
+    for (float d : st.direction) j.number(d);
+    j.endArray();
+    count("axes", st.axes);
+    count("depth_complexity", st.depth_complexity);
+    count("layers", st.layers);
+    count("peel_passes", st.peel_passes);
+    j.member("dual", [&] { j.boolean(st.dual); });
+    j.member("layers_short", [&] { j.boolean(st.layers_short); });
+    j.member("coverage", [&] { j.string(vkcollide::toString(st.coverage)); });
+    j.member("backend", [&] { j.string(vkcollide::toString(st.backend)); });
+    j.member("backend_reason", [&] { j.string(st.backend_reason); });
+    j.member("settings_note", [&] { j.string(st.settings_note); });
+    // Times (GPU stages from timestamps; the rest host wall time).
+    ms("sampling_ms", st.sampling_ms);
+    ms("merging_ms", st.merging_ms);
+    ms("separation_ms", st.separation_ms);
+    ms("packing_ms", st.packing_ms);
+    ms("readback_ms", st.readback_ms);
+    ms("narrow_ms", st.narrow_ms);
+    count("narrow_threads", st.narrow_threads);
+    ms("total_ms", st.total_ms);
+    count("gpu_memory_bytes", st.gpu_memory_bytes);
+    j.key("gpu_passes");
+    j.beginArray();
+    for (const vkcollide::PassTime& p : st.gpu_passes) {
+        j.beginObject(JsonWriter::Layout::Inline);
+        j.member("name", [&] { j.string(p.name); });
+        ms("gpu_ms", p.gpu_ms);
+        j.endObject();
+    }
+    j.endArray();
+    j.endObject();
+}
+
+}  // namespace cli

@@ -1,0 +1,182 @@
+#include "cli/report.hpp"
+
+namespace cli {
+namespace {
+
+using vkcollide::Error;
+using vkcollide::ErrorCode;
+using Layout = JsonWriter::Layout;
+
+vkcollide::Result<std::FILE*> create(const char* option, const std::string& path) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) return Error(ErrorCode::IoError, std::string(option) + ": cannot write " + path);
+    return f;
+}
+
+vkcollide::Result<void> closeFile(std::FILE*& f, const char* option, const std::string& path) {
+    if (!f) return {};
+    const bool ok = !std::ferror(f) && std::fclose(f) == 0;
+    f = nullptr;
+    if (!ok) return Error(ErrorCode::IoError, std::string(option) + ": writing " + path + " failed");
+    return {};
+}
+
+void transformJson(JsonWriter& j, const vkcollide::Transform3x4& t) {
+    j.beginArray(Layout::Inline);
+    for (float v : t) j.number(v);
+    j.endArray();
+}
+
+}  // namespace
+
+vkcollide::Result<std::unique_ptr<Report>> Report::open(const CommandLine& line, const Scene& scene, const std::string& device,
+                                                         const vkcollide::DetectSettings& used) {
+    std::unique_ptr<Report> r(new Report(line));
+    if (!line.pairs_path.empty()) {
+        auto f = create("--pairs", line.pairs_path);
+        if (!f) return f.error();
+        r->pairs_ = *f;
+    }
+    if (line.json_path.empty()) return r;
+    auto f = create("--json", line.json_path);
+    if (!f) return f.error();
+    r->json_file_ = *f;
+    r->json_ = std::make_unique<JsonWriter>(r->json_file_);
+    JsonWriter& j = *r->json_;
+    j.beginObject();
+    j.member("tool", [&] { j.string("vkcollide detect"); });
+    j.member("format", [&] { j.integer(1); });
+    j.member("device", [&] { j.string(device); });
+    j.member("sequence", [&] { j.boolean(line.sequence); });
+    j.key("files");
+    j.beginArray();
+    for (const std::string& file : line.files) j.string(file);
+    j.endArray();
+    j.key("options");
+    j.beginArray();
+    for (const auto& [name, value] : line.given) {
+        j.beginArray(Layout::Inline);
+        j.string(name);
+        if (!value.empty()) j.string(value);
+        j.endArray();
+    }
+    j.endArray();
+    j.key("objects");
+    j.beginArray();
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+        const SceneObject& o = scene.objects[i];
+        j.beginObject(Layout::Inline);
+        j.member("id", [&] { j.integer(i); });
+        j.member("name", [&] { j.string(o.options.name); });
+        j.member("file", [&] { j.integer(o.slot + 1); });
+        j.member("triangles", [&] { j.integer(o.mesh.triangleCount()); });
+        j.member("vertices", [&] { j.integer(o.mesh.positions.size()); });
+        j.member("first_triangle", [&] { j.integer(o.first_triangle); });
+        j.member("open", [&] { j.boolean(o.options.open); });
+        j.member("self_collision", [&] { j.boolean(o.options.self_collision); });
+        j.member("gpu_mesh", [&] { j.boolean(o.gpu_mesh); });
+        j.member("typical_edge_length", [&] { j.number(o.options.typical_edge_length); });
+        j.key("transform");
+        transformJson(j, o.options.transform);
+        j.endObject();
+    }
+    j.endArray();
+    // Asked on the command line (null: automatic), and what frame 0 resolved them to.
+    j.key("settings");
+    j.beginObject();
+    for (const auto& [label, settings] : {std::pair<const char*, const vkcollide::DetectSettings*>{"asked", &line.settings}, {"used", &used}}) {
+        j.key(label);
+        j.beginObject(Layout::Inline);
+        for (const auto& [field, value] : settingsJson(*settings)) j.member(field, [&] { j.raw(value); });
+        j.endObject();
+    }
+    j.endObject();
+    j.key("frames");
+    j.beginArray();
+    return r;
+}
+
+Report::~Report() {
+    if (pairs_) std::fclose(pairs_);
+    if (json_file_) std::fclose(json_file_);
+}
+
+void Report::frame(std::size_t frame, const Scene& scene, const vkcollide::DetectResult& result) {
+    if (pairs_) {
+        // (object, triangle) order is global order: the lower number comes first.
+        for (const vkcollide::TrianglePair& p : result.pairs) {
+            const unsigned long long a = scene.objects[p.object_a].first_triangle + p.triangle_a;
+            const unsigned long long b = scene.objects[p.object_b].first_triangle + p.triangle_b;
+            if (line_.sequence) std::fprintf(pairs_, "%zu,%llu,%llu\n", frame, a, b);
+            else std::fprintf(pairs_, "%llu,%llu\n", a, b);
+        }
+    }
+    if (!json_) return;
+    JsonWriter& j = *json_;
+    j.beginObject();
+    j.member("frame", [&] { j.integer(frame); });
+    j.key("files");
+    j.beginArray(Layout::Inline);
+    for (const std::string& file : line_.frameFiles(frame)) j.string(file);
+    j.endArray();
+    // [object_a, triangle_a, object_b, triangle_b], sorted.
+    j.key("pairs");
+    j.beginArray();
+    for (const vkcollide::TrianglePair& p : result.pairs) {
+        j.beginArray(Layout::Inline);
+        for (std::uint32_t v : {p.object_a, p.triangle_a, p.object_b, p.triangle_b}) j.integer(v);
+        j.endArray();
+    }
+    j.endArray();
+    j.key("responses");
+    j.beginArray();
+    for (const vkcollide::TriangleResponse& r : result.responses) {
+        j.beginObject(Layout::Inline);
+        j.member("object", [&] { j.integer(r.object); });
+        j.member("triangle", [&] { j.integer(r.triangle); });
+        j.key("direction");
+        j.beginArray(Layout::Inline);
+        for (float v : {r.direction.x, r.direction.y, r.direction.z}) j.number(v);
+        j.endArray();
+        j.member("partners", [&] { j.integer(r.partner_count); });
+        j.endObject();
+    }
+    j.endArray();
+    // Object-pair contacts (issue 15 part 1) go here, as "contacts", once the library reports them.
+    j.key("excluded");
+    j.beginArray();
+    for (const vkcollide::ExcludedObject& e : result.excluded) {
+        j.beginObject(Layout::Inline);
+        j.member("object", [&] { j.integer(e.object); });
+        j.member("name", [&] { j.string(scene.objects.at(e.object).options.name); });
+        j.member("error", [&] { j.string(e.error.message()); });
+        j.endObject();
+    }
+    j.endArray();
+    j.key("stats");
+    writeStats(j, result.stats, result.pairs.size(), scene.names());
+    j.endObject();
+}
+
+vkcollide::Result<void> Report::close() {
+    if (json_) {
+        json_->endArray();
+        json_->endObject();
+        json_->finish();
+    }
+    auto pairs = closeFile(pairs_, "--pairs", line_.pairs_path);
+    auto json = closeFile(json_file_, "--json", line_.json_path);
+    if (!pairs) return pairs;
+    return json;
+}
+
+vkcollide::Result<void> writeStatsFile(const std::string& path, const Scene& scene, const vkcollide::DetectResult& result) {
+    auto f = create("--stats", path);
+    if (!f) return f.error();
+    JsonWriter j(*f);
+    writeStats(j, result.stats, result.pairs.size(), scene.names());
+    j.finish();
+    return closeFile(*f, "--stats", path);
+}
+
+}  // namespace cli

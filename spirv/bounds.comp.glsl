@@ -3,11 +3,12 @@
 // Auto fit, step 1: extent of one object's vertices along the projection basis.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
     ObjectGpu o = ObjectsRef(f.objects).o[pc.object];
-    uint i = gl_GlobalInvocationID.x;
+    uint i = globalIndex();
     if (i >= o.vertex_count) return;
     vec3 w = toWorld(o, fetchPosition(o, i));
     HeaderRef h = HeaderRef(f.header);

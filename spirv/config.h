@@ -33,6 +33,13 @@ VKC_CONST_FLOAT kThinInradiusPx = 0.70710678f;
 // kDepthSpan]: a margin from 0 and 1, which the rasterizer clips.
 VKC_CONST_FLOAT kDepthNear = 0.05f;
 VKC_CONST_FLOAT kDepthSpan = 0.9f;
+// Deepest ray that is peeled: a ray with more fragments (surfaces along it) is a collision
+// ray at once, as if a layer cap had stopped it, and no run records more peeling steps
+// than this. Peeling costs one pass over every triangle per layer, so this bounds the
+// sampling time of pathological scenes (thousands of stacked surfaces, one triangle
+// repeated: docs/stability.md); the rays it marks only add candidates for the exact
+// narrow phase. At most 0x7FFF (the peeling passes' 15-bit closed count; broadphase.h).
+VKC_CONST kMaxRayFragments = 1024;
 
 // ---- Compute sampling backend ----------------------------------------------------------
 // Big triangles are drawn in kCsTile x kCsTile pixel tiles, one workgroup of kCsGroupSize

@@ -5,11 +5,12 @@
 // triangles that fail and keeps one of each kind so the host can name it.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
     ObjectGpu o = ObjectsRef(f.objects).o[pc.object];
-    uint t = gl_GlobalInvocationID.x;
+    uint t = globalIndex();
     if (t >= o.triangle_count) return;
     HeaderRef h = HeaderRef(f.header);
     bool bad_index = false, bad_vertex = false;

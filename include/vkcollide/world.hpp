@@ -116,11 +116,15 @@ struct DetectStats {
     std::uint32_t objects = 0;
     std::uint32_t resolution = 0;
     std::array<float, 3> direction{};
-    std::uint32_t depth_complexity = 0;  // measured by this detection
+    std::uint32_t depth_complexity = 0;  // measured by this detection, over the rays that are peeled
     std::uint32_t layers = 0;            // layers peeled
     std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
+    // Rays with more than 1,024 surfaces along them (gpu::kMaxRayFragments): collision rays
+    // at once, without peeling (their triangles go to the exact narrow phase), and left out
+    // of depth_complexity. Bounds the peeling passes of pathological scenes.
+    std::uint32_t deep_rays = 0;
     bool dual = false;
-    bool layers_short = false;           // depth complexity exceeded the layers peeled (no cap asked)
+    bool layers_short = false;           // some rays had more layers than were peeled (no cap asked), or deep rays
     std::uint32_t axes = 1;              // sampling directions run (counts above are summed over them,
                                          // depth complexity and layers are their maximum)
     Coverage coverage = Coverage::Centre;  // that ran: Centre, Dilate or Conservative (never Best)

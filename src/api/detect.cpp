@@ -89,7 +89,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
         st.depth_complexity = std::max(st.depth_complexity, b.depth_complexity);
         st.layers = std::max(st.layers, b.layers);
         st.peel_passes += b.peel_steps;
-        st.layers_short = st.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap));
+        st.deep_rays += b.deep_rays;
+        st.layers_short = st.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap)) || b.deep_rays > 0;
         const std::string prefix = broad.size() > 1 ? "axis " + std::to_string(k) + ": " : "";
         for (const auto& p : b.passes) st.gpu_passes.push_back({prefix + p.name, p.gpu_ms});
         st.sampling_ms += b.sampling_ms;

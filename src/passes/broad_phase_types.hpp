@@ -85,6 +85,8 @@ struct BroadPhaseResult {
     std::uint32_t layers = 0;                // layers peeled: min(depth complexity, cap)
     std::uint32_t peel_steps = 0;            // peeling passes recorded (half with dual)
     std::uint32_t collision_rays = 0;
+    // Rays with more than gpu::kMaxRayFragments fragments: collision rays without peeling.
+    std::uint32_t deep_rays = 0;
     std::uint32_t triangles = 0;
     // The sampling projection used (world -> [0,1]^2 image, depth): the caller's region, or
     // the fit repeated on the host from the bounds the GPU measured (passes/projection.hpp).

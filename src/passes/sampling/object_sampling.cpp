@@ -54,11 +54,12 @@ void ObjectSampling::recordMeasure(graph::Graph& g, const RunView& run, const Sa
     active_->recordDepthComplexity(g, run, b);
     const std::uint32_t pixels = run.frame.resolution * run.frame.resolution;
     addPass(g, "reduce-max", PassKind::Compute, Stage::Sampling)
-        .read(b.counts)
+        .read(b.fragments)
+        .write(b.counts)
         .readWrite(b.header)
         .record([this, frame = run.frame_address, pixels](PassContext& pc) {
             bindAndPush(pc, reduce_max_, frame);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
+            dispatchItems(pc, pixels);
         });
 }
 
@@ -77,7 +78,7 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
         .write(b.back)
         .record([this, frame, pixels, done](PassContext& pc) {
             bindAndPush(pc, peel_init_, frame, 0, done);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
+            dispatchItems(pc, pixels);
         });
     for (std::uint32_t step = 0; step < steps; ++step) {
         active_->recordPeelStep(g, run, b, step);
@@ -86,7 +87,7 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
         if (dual) classify.readWrite(b.back);
         classify.record([this, frame, pixels, step](PassContext& pc) {
             bindAndPush(pc, classify_, frame, 0, step);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
+            dispatchItems(pc, pixels);
         });
     }
     auto finalize = addPass(g, "finalize", PassKind::Compute, Stage::Sampling);
@@ -94,7 +95,7 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
     if (rays.valid()) finalize.write(rays);
     finalize.record([this, frame, pixels](PassContext& pc) {
         bindAndPush(pc, finalize_, frame);
-        pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
+        dispatchItems(pc, pixels);
     });
 }
 

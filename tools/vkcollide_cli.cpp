@@ -26,7 +26,7 @@ constexpr const char* kUsage =
     "       vkcollide detect SCENE... [--resolution N] [--pairs out.csv] [--stats out.json]\n"
     "                        [--direction x,y,z] [--cap L] [--dual] [--paper-packing] [--backend raster|compute|auto]\n"
     "                        [--no-self-collision] [--open] [--frames K] [--threads T] [--device NAME]\n"
-    "                        [--no-robust-access]\n"
+    "                        [--no-robust-access] [--timeout MS] [--max-pairs N]\n"
     "  SCENE: .obj (each o/g group is an object), .off or .ply (each file is an object)\n"
     "  --resolution N      rays per image side (power of two); default: chosen from the scene\n"
     "  --pairs FILE        write the colliding pairs as CSV lines a,b (global triangle indices, a<b)\n"
@@ -42,6 +42,8 @@ constexpr const char* kUsage =
     "  --threads T         narrow-phase threads, 1 to 1024 (default: all hardware threads)\n"
     "  --device NAME       use the Vulkan device whose name contains NAME\n"
     "  --no-robust-access  create the device without robustBufferAccess(2), to measure its cost\n"
+    "  --timeout MS        longest wait for one GPU submission (default 60000)\n"
+    "  --max-pairs N       most pairs to keep; more are counted and reported (default 16777216)\n"
     "  -h, --help          print this help\n";
 
 // More narrow-phase threads than any machine has cores for only costs memory and start-up
@@ -201,6 +203,15 @@ int detect(int argc, char** argv) {
             const char* v = value();
             if (!v || !parseUint(v, u)) return fail("--cap needs a number");
             settings.layer_cap = u;
+        } else if (a == "--timeout") {
+            const char* v = value();
+            if (!v || !parseUint(v, u)) return fail("--timeout needs a number of milliseconds");
+            settings.timeout_ms = u;
+        } else if (a == "--max-pairs") {
+            const char* v = value();
+            std::uint32_t n = 0;
+            if (!v || !parseUint(v, n)) return fail("--max-pairs needs a number");
+            settings.max_pairs = n;
         } else if (a == "--frames") {
             const char* v = value();
             if (!v || !parseUint(v, frames) || frames == 0) return fail("--frames needs a positive number");
@@ -286,6 +297,8 @@ int detect(int argc, char** argv) {
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);
     std::printf("colliding triangle pairs: %zu\n", result->pairs.size());
+    if (st.deep_rays) std::printf("deep rays (more than 1024 surfaces, collision rays without peeling): %u\n", st.deep_rays);
+    if (result->incomplete) std::printf("incomplete: %s\n", result->incomplete->message().c_str());
     std::printf("times (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
                 st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
                 st.total_ms);

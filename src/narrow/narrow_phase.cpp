@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <new>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "narrow/neighbours.hpp"
@@ -112,6 +114,8 @@ struct NarrowWorkspace::Impl {
     std::vector<std::uint32_t> slot;
     std::vector<narrow::KeyIndex> keys;
     std::vector<std::uint32_t> rank_of;
+    std::vector<std::size_t> found;  // per test task: hits found (max_pairs)
+    std::vector<std::uint8_t> kept;  // per test task: its hits are stored
 };
 
 NarrowWorkspace::NarrowWorkspace() : impl_(std::make_unique<Impl>()) {}
@@ -130,9 +134,15 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     return runNarrowPhase(in_candidates, options, pool, workspace);
 }
 
-Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
-                                    ThreadPool& pool, NarrowWorkspace& io_workspace) {
+namespace {
+
+Result<NarrowResult> narrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
+                                 ThreadPool& pool, NarrowWorkspace& io_workspace) {
     NarrowWorkspace::Impl& ws = io_workspace.impl();
+    // Parallel bodies must not throw (ThreadPool): one that runs out of memory sets this
+    // and stops; the call then returns OutOfMemory.
+    std::atomic<bool> out_of_memory{false};
+    const Error oom(ErrorCode::OutOfMemory, "runNarrowPhase: host memory ran out");
     const Clock::time_point t_start = Clock::now();
     const std::size_t n = in_candidates.size();
     if (n > std::numeric_limits<std::uint32_t>::max()) {
@@ -220,6 +230,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     const bool uniform_self = options.self_collision.empty();
     const bool self_default = options.default_self_collision;
     pool.parallelFor(entries, sweep_grain, [&](std::size_t begin, std::size_t end) {
+      try {
         // Moved into a local (keeping the capacity of the last call) and back at the end:
         // tasks sit next to each other in memory, and growing vectors in place would share
         // cache lines between threads.
@@ -262,7 +273,11 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         std::sort(task.object_pairs.begin(), task.object_pairs.end());
         task.object_pairs.erase(std::unique(task.object_pairs.begin(), task.object_pairs.end()), task.object_pairs.end());
         sweep_tasks[begin / sweep_grain] = std::move(task);
+      } catch (const std::bad_alloc&) {
+        out_of_memory.store(true, std::memory_order_relaxed);
+      }
     });
+    if (out_of_memory.load()) return oom;
     std::vector<std::size_t>& test_begin = ws.test_begin;  // tests of task t: [test_begin[t], test_begin[t+1])
     test_begin.assign(sweep_tasks.size() + 1, 0);
     for (std::size_t t = 0; t < sweep_tasks.size(); ++t) {
@@ -292,18 +307,27 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     }
     lap(timings.filter_ms);
 
-    // Stage 4: exact tests over all tasks' pairs, as one index range.
+    // Stage 4: exact tests over all tasks' pairs, as one index range. Hits are kept while
+    // fewer than max_pairs are stored (each task decides when it starts, so at most a
+    // task's tests more per thread) and always counted; past the budget the first
+    // max_pairs hits in test order are kept (below), whatever the scheduling was.
     const std::size_t total_tests = test_begin.back();
     const std::size_t test_tasks = total_tests == 0 ? 0 : (total_tests - 1) / kTestGrain + 1;
     std::vector<std::vector<std::uint64_t>>& hits = ws.hits;  // (lower rank, higher rank) per hit
     hits.resize(test_tasks);
     std::vector<std::size_t>& object_filtered = ws.object_filtered;
     object_filtered.assign(test_tasks, 0);
-    pool.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::size_t>& found = ws.found;  // hits per task, kept or not
+    found.assign(test_tasks, 0);
+    std::vector<std::uint8_t>& kept = ws.kept;  // 1: the task's hits are all in hits[task]
+    kept.assign(test_tasks, 0);
+    std::atomic<std::size_t> stored{0};
+    const std::size_t budget = options.max_pairs;
+    const auto testTask = [&](std::size_t begin, std::size_t end, bool keep) {
         const std::size_t task_index = begin / kTestGrain;
         std::vector<std::uint64_t> out = std::move(hits[task_index]);  // and back at the end (see the sweep)
         out.clear();
-        std::size_t filtered = 0;
+        std::size_t filtered = 0, hit_total = 0;
         std::size_t source = static_cast<std::size_t>(std::upper_bound(test_begin.begin(), test_begin.end(), begin) -
                                                       test_begin.begin()) - 1;
         std::uint64_t cached_pair = std::numeric_limits<std::uint64_t>::max();
@@ -326,18 +350,48 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
                 }
             }
             if (narrow::trianglesIntersect(a.v, b.v)) {
+                ++hit_total;
+                if (!keep) continue;
                 const std::uint32_t ri = rankOf(p.i), rj = rankOf(p.j);
                 out.push_back(ri < rj ? keyOf(ri, rj) : keyOf(rj, ri));
             }
         }
         hits[task_index] = std::move(out);
         object_filtered[task_index] = filtered;
+        found[task_index] = hit_total;
+        kept[task_index] = keep ? 1 : 0;
+    };
+    pool.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
+        try {
+            const bool keep = stored.load(std::memory_order_relaxed) < budget;
+            testTask(begin, end, keep);
+            if (keep) stored.fetch_add(hits[begin / kTestGrain].size(), std::memory_order_relaxed);
+        } catch (const std::bad_alloc&) {
+            out_of_memory.store(true, std::memory_order_relaxed);
+        }
     });
-    std::size_t filtered_late = 0, hit_count = 0;
+    if (out_of_memory.load()) return oom;
+    std::size_t filtered_late = 0, hit_count = 0, found_count = 0;
     for (std::size_t t = 0; t < test_tasks; ++t) {
         filtered_late += object_filtered[t];
-        hit_count += hits[t].size();
+        found_count += found[t];
     }
+    if (found_count > budget) {
+        // The first `budget` hits in test order: whole tasks, then part of the last one.
+        // A task inside that prefix whose hits were not kept is tested again.
+        std::size_t room = budget;
+        for (std::size_t t = 0; t < test_tasks; ++t) {
+            if (room == 0) {
+                hits[t].clear();
+                continue;
+            }
+            if (!kept[t] && found[t] > 0) testTask(t * kTestGrain, std::min(total_tests, (t + 1) * kTestGrain), true);
+            if (hits[t].size() > room) hits[t].resize(room);
+            room -= hits[t].size();
+        }
+        result.pairs_left_out = found_count - budget;
+    }
+    for (std::size_t t = 0; t < test_tasks; ++t) hit_count += hits[t].size();
     stats.filtered_pairs += filtered_late;
     stats.triangle_tests = total_tests - filtered_late;
     lap(timings.test_ms);
@@ -355,7 +409,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
         const CandidateTriangle& b = candidateOfRank(key & 0xffffffffu);
         result.pairs.push_back({a.object, a.triangle, b.object, b.triangle});
     }
-    stats.positive_tests = result.pairs.size();
+    stats.positive_tests = result.pairs.size() + result.pairs_left_out;
     lap(timings.sort_ms);
 
     // Stage 6: responses, summed in the order of the sorted pairs. Responders are the
@@ -403,6 +457,21 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     lap(timings.response_ms);
     timings.total_ms = msBetween(t_start, t_mark);
     return result;
+}
+
+}  // namespace
+
+Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
+                                    ThreadPool& pool, NarrowWorkspace& io_workspace) {
+    // The API throws nothing: host memory running out on this thread (the parallel bodies
+    // catch their own) becomes OutOfMemory.
+    try {
+        return narrowPhase(in_candidates, options, pool, io_workspace);
+    } catch (const std::bad_alloc&) {
+        return Error(ErrorCode::OutOfMemory, "runNarrowPhase: host memory ran out");
+    } catch (const std::length_error&) {
+        return Error(ErrorCode::OutOfMemory, "runNarrowPhase: an array would exceed its largest size");
+    }
 }
 
 }  // namespace vkcollide

@@ -82,8 +82,19 @@ Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device, Metho
     return bp;
 }
 
+BroadPhase::~BroadPhase() {
+    // The executor is destroyed after the buffers (declared first): wait here.
+    (void)executor_.settle(~std::uint64_t(0));
+}
+
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     assert(meetsPreconditions(meshes, s, device_->conservative_rasterization));
+    // Work an earlier run gave up on (Timeout) may still read these buffers.
+    if (auto ok = executor_.settle(s.timeout_ns); !ok) {
+        if (ok.error().code() != ErrorCode::Timeout) return ok.error();
+        return Error(ErrorCode::Timeout, "the GPU work of an earlier detection that timed out is still running (" +
+                                             ok.error().message() + " more)", ok.error().vkResult());
+    }
     std::uint64_t total = 0;
     for (const GpuMesh& m : meshes) total += m.triangle_count;
     const RunShape shape{s.resolution, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(meshes.size()), s.keep_ray_image};
@@ -196,7 +207,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     // Submission 1: front and measurement; the method reads the header.
     graph::Graph g1;
     record(g1, true, false);
-    auto report1 = executor_.run(g1);
+    auto report1 = executor_.run(g1, s.timeout_ns);
     if (!report1) return report1.error();
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
@@ -207,7 +218,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     // Submission 2: the method's main passes.
     graph::Graph g2;
     record(g2, false, true);
-    if (auto ok = executor_.submit(g2); !ok) return ok.error();
+    if (auto ok = executor_.submit(g2, s.timeout_ns); !ok) return ok.error();
     pending_ = true;
     return collect();
 }
@@ -219,7 +230,7 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     run_.first = BroadPhaseResult{};
     graph::Graph g;
     record(g, true, true);
-    if (auto ok = executor_.submit(g); !ok) return ok.error();
+    if (auto ok = executor_.submit(g, s.timeout_ns); !ok) return ok.error();
     pending_ = true;
     return {};
 }
@@ -227,7 +238,7 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
 Result<BroadPhaseResult> BroadPhase::collect() {
     if (!pending_) return Error(ErrorCode::InvalidArgument, "no broad phase in flight: submit() first");
     pending_ = false;
-    auto report = executor_.collect();
+    auto report = executor_.collect(run_.settings.timeout_ns);
     if (!report) return report.error();
 
     const auto t0 = std::chrono::steady_clock::now();

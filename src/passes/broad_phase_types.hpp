@@ -59,6 +59,9 @@ struct BroadPhaseSettings {
     // Auto picks per device and scene (chooseSamplingBackend in sampling/backend_choice.hpp).
     SamplingBackend backend = SamplingBackend::Auto;
     ComputeSamplingTuning compute;
+    // Longest wait for one submission (ns); beyond it the run fails with ErrorCode::Timeout
+    // and its GPU work is left to finish on its own (BroadPhase::busy()).
+    std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;
 };
 
 // A problem the GPU input check found in one object (kObjectCheckOnGpu meshes), as data:

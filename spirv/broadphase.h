@@ -100,7 +100,7 @@ struct Header {
     uint pad0;
     uint64_t fragments;     // sum over rays of their fragment counts (reduce-max)
     uint deep_rays;         // rays with more than kMaxRayFragments fragments (collision rays, not peeled)
-    uint pad1;
+    uint subnormal_vertices;  // vertices with a subnormal coordinate (bounds pass): GPUs flush them to zero
 };
 
 // Everything a broad-phase shader needs, uploaded once per detection.

@@ -122,6 +122,11 @@ struct NarrowOptions {
     // order the tests run (the same for every thread count and run), sorted, with their
     // responses. Bounds the memory of the hits and the result.
     std::size_t max_pairs = std::numeric_limits<std::size_t>::max();
+    // Most pairs of candidates whose boxes overlap (NarrowStats::sap_pairs): past it the call
+    // stops and returns ErrorCode::LimitExceeded. Bounds the time of inputs whose boxes pile
+    // up in one place (k copies of one triangle make k^2/2 pairs to sweep, mostly
+    // neighbours): the sweep costs a few nanoseconds per pair.
+    std::size_t max_box_pairs = std::numeric_limits<std::size_t>::max();
 
     bool selfCollides(std::uint32_t object) const {
         return object < self_collision.size() ? static_cast<bool>(self_collision[object]) : default_self_collision;

@@ -109,6 +109,13 @@ struct DetectSettings {
     // responses, the narrow phase's hits); found pairs beyond the budget are counted, not
     // kept.
     std::uint64_t max_pairs = std::uint64_t{1} << 24;
+    // Most pairs of candidate triangles whose boxes overlap, which the narrow phase sweeps
+    // (DetectStats::narrow.sap_pairs): past it the detection stops and fails with
+    // LimitExceeded. Bounds its time and memory (up to 8 bytes each) where candidates pile
+    // up in one place: k copies of one triangle give k^2/2 such pairs. Real scenes make
+    // about 9 per candidate (8.7M for 1M candidates, docs/narrow_phase.md), 2^27 = 134M
+    // takes about a second to sweep on two cores.
+    std::uint64_t max_candidate_pairs = std::uint64_t{1} << 27;
 };
 
 struct PassTime {

@@ -109,6 +109,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     NarrowOptions options;
     for (ObjectId id : ids) options.self_collision.push_back(objects[id].options.self_collision);
     options.max_pairs = run_settings.max_pairs;
+    options.max_box_pairs = run_settings.max_candidate_pairs;
     // The filter must not throw (world.hpp); if it does, the exception stops here, the
     // narrow phase sees "may not collide" from then on, and the detection fails naming it.
     std::optional<Error> filter_threw;

@@ -103,6 +103,8 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     // Every rule before anything is uploaded.
     for (auto ok : {validation::checkTransform(options.transform), validation::checkHostMesh(mesh)})
         if (!ok) return Impl::named(id, o.name, ok.error());
+    if (auto ok = validation::checkWorldRange(validation::boxOf(mesh.positions), options.transform); !ok)
+        return Impl::named(id, o.name, ok.error());
     auto uploaded = passes::uploadMeshes(w.device(), {&mesh}, {.open = {options.open}});
     if (!uploaded) return Impl::named(id, o.name, uploaded.error());
     o.host = true;
@@ -153,6 +155,9 @@ Result<void> CollisionWorld::setTransform(ObjectId id, const Transform3x4& t) {
     auto o = w.find(id, "setTransform");
     if (!o) return o.error();
     if (auto ok = validation::checkTransform(t); !ok) return w.named(id, ok.error());
+    // Host meshes: the sampling range now (engine meshes: by the GPU check of each run).
+    if ((*o)->host)
+        if (auto ok = validation::checkWorldRange((*o)->box, t); !ok) return w.named(id, ok.error());
     (*o)->options.transform = t;
     return {};
 }
@@ -173,6 +178,7 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     Impl::Object& o = **found;
     if (!o.host) return w.named(id, Error(ErrorCode::InvalidArgument, "is a GPU mesh: write its vertex buffer instead"));
     if (auto ok = validation::checkVertices(positions, o.gpu.vertex_count); !ok) return w.named(id, ok.error());
+    if (auto ok = validation::checkWorldRange(validation::boxOf(positions), o.options.transform); !ok) return w.named(id, ok.error());
     std::memcpy(o.vertices.mapped(), positions.data(), positions.size_bytes());
     o.vertices.flush();
     Impl::measureHost(o, positions, o.host_indices);

@@ -47,6 +47,11 @@ constexpr std::size_t kTasksPerThread = 8;
 // Exact tests per task: large enough to amortise the hand-out, small enough to balance
 // (a test costs 0.1 to 1 microseconds, more when the exact fallback runs).
 constexpr std::size_t kTestGrain = 256;
+// Box pairs a sweep task counts between looks at NarrowOptions::max_box_pairs (one atomic
+// add per stride: nothing next to the sweep's nanoseconds per pair).
+constexpr std::size_t kBoxBudgetStride = std::size_t{1} << 16;
+// Thrown by a sweep visitor past the box-pair budget, caught by its task: unwinds the sweep.
+struct BoxBudgetExceeded {};
 
 using Clock = std::chrono::steady_clock;
 
@@ -143,6 +148,8 @@ Result<NarrowResult> narrowPhase(std::span<const CandidateTriangle> in_candidate
     // and stops; the call then returns OutOfMemory.
     std::atomic<bool> out_of_memory{false};
     const Error oom(ErrorCode::OutOfMemory, "runNarrowPhase: host memory ran out");
+    std::atomic<bool> over_budget{false};
+    std::atomic<std::size_t> box_pairs_seen{0};  // in whole strides, by the sweep tasks
     const Clock::time_point t_start = Clock::now();
     const std::size_t n = in_candidates.size();
     if (n > std::numeric_limits<std::uint32_t>::max()) {
@@ -238,11 +245,19 @@ Result<NarrowResult> narrowPhase(std::span<const CandidateTriangle> in_candidate
         task.tests.clear();
         task.object_pairs.clear();
         std::size_t sap_pairs = 0, filtered_pairs = 0, neighbour_pairs = 0;  // in registers, not in `task`
+        std::size_t budget_mark = kBoxBudgetStride;  // sap_pairs at the next look at the budget
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
         // Runs for every reported pair, most of them neighbours: inlined into the sweep.
         sweep.sweepRange(begin, end, [&](std::uint32_t i, std::uint32_t j, const narrow::CandidateTag& a,
                                          const narrow::CandidateTag& b) VKCOLLIDE_ALWAYS_INLINE {
             ++sap_pairs;
+            // The box-pair budget, every kBoxBudgetStride pairs: past it, stop this task
+            // (BoxBudgetExceeded unwinds the sweep) and, at its next look, every other one.
+            if (sap_pairs == budget_mark) {
+                budget_mark += kBoxBudgetStride;
+                if (box_pairs_seen.fetch_add(kBoxBudgetStride, std::memory_order_relaxed) + kBoxBudgetStride > options.max_box_pairs)
+                    throw BoxBudgetExceeded{};
+            }
             // Store only when not set yet: most pairs find both flags set, and reading keeps
             // the cache line shared instead of bouncing it between threads.
             for (const std::uint32_t k : {i, j}) {
@@ -275,6 +290,8 @@ Result<NarrowResult> narrowPhase(std::span<const CandidateTriangle> in_candidate
         sweep_tasks[begin / sweep_grain] = std::move(task);
       } catch (const std::bad_alloc&) {
         out_of_memory.store(true, std::memory_order_relaxed);
+      } catch (const BoxBudgetExceeded&) {
+        over_budget.store(true, std::memory_order_relaxed);
       }
     });
     if (out_of_memory.load()) return oom;
@@ -287,6 +304,12 @@ Result<NarrowResult> narrowPhase(std::span<const CandidateTriangle> in_candidate
         stats.neighbour_pairs += task.neighbour_pairs;
         test_begin[t + 1] = test_begin[t] + task.tests.size();
     }
+    // Exceeded exactly when the pairs all tasks counted are more than the budget (a task
+    // stops early only once the strides counted so far are).
+    if (over_budget.load() || stats.sap_pairs > options.max_box_pairs)
+        return Error(ErrorCode::LimitExceeded, "runNarrowPhase: more than " + std::to_string(options.max_box_pairs) +
+                                                   " pairs of candidates with overlapping boxes (NarrowOptions::max_box_pairs): "
+                                                   "stacked or repeated triangles?");
     // The loop's end ordered every flag store before this (plain) read.
     for (std::size_t i = 0; i < n; ++i) stats.potentially_colliding_triangles += in_pair[i];
     lap(timings.sweep_ms);

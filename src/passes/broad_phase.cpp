@@ -4,6 +4,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -58,7 +59,9 @@ std::string describe(const ObjectFault& f) {
         case ObjectFault::Kind::IndexOutOfRange:
             return "triangle " + std::to_string(f.triangle) + " has an index >= the vertex count " + std::to_string(f.vertex_count) + affected;
         case ObjectFault::Kind::NonFinitePosition:
-            return "triangle " + std::to_string(f.triangle) + " has a NaN or infinite vertex position" + affected;
+            return "triangle " + std::to_string(f.triangle) +
+                   " has a vertex position that is NaN or infinite, or beyond +-1e30 after the object's transform (the sampling range)" +
+                   affected;
     }
     return "triangle " + std::to_string(f.triangle) + ": unknown problem";
 }
@@ -193,6 +196,27 @@ Result<void> BroadPhase::checkInputs(const gpu::Header& h) {
     return Error(ErrorCode::InvalidMesh, "object " + std::to_string(faults_.front().object) + ": " + describe(faults_.front()));
 }
 
+// The fitted image must be at least kMinSamplingExtent wide (config.h): narrower, and the
+// projection and pixels would need subnormal floats, which GPUs flush to zero. A scene of
+// subnormal coordinates is flushed to a point before it is measured: the bounds pass
+// counts those vertices. (A scene that is a point in float for other reasons, e.g. tiny
+// features far from the origin, keeps the fit's extent of 1: dilation still marks its
+// rays, docs/stability.md case 9.) A caller's region is checked by the API instead.
+Result<void> BroadPhase::checkExtent(const gpu::Header& h) const {
+    if (run_.settings.region) return {};
+    const BasisBounds b = boundsFromHeader(h);
+    const float size = std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
+    if (size >= gpu::kMinSamplingExtent || (size == 0 && h.subnormal_vertices == 0)) return {};
+    char text[160];
+    if (size == 0)
+        std::snprintf(text, sizeof text, "the scene's coordinates are subnormal floats (%u vertices), which the GPU flushes to zero",
+                      h.subnormal_vertices);
+    else
+        std::snprintf(text, sizeof text, "the scene is %g world units wide across the projection direction", double(size));
+    return Error(ErrorCode::LimitExceeded, std::string(text) + ", narrower than the smallest extent vkcollide can sample "
+                                                               "(1e-30 world units): scale the scene up");
+}
+
 void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report) {
     for (const auto& p : report.passes) {
         addStageTime(result, p);
@@ -211,6 +235,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     if (!report1) return report1.error();
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
+    if (auto ok = checkExtent(h1); !ok) return ok.error();
     if (auto ok = method_->afterMeasure(view(), h1); !ok) return ok.error();
     run_.first = BroadPhaseResult{};
     addTimings(run_.first, *report1);
@@ -244,6 +269,7 @@ Result<BroadPhaseResult> BroadPhase::collect() {
     const auto t0 = std::chrono::steady_clock::now();
     const gpu::Header h = readHeader();
     if (auto ok = checkInputs(h); !ok) return ok.error();
+    if (auto ok = checkExtent(h); !ok) return ok.error();
     BroadPhaseResult result = std::move(run_.first);
     addTimings(result, *report);
     // A single submission measures the depth complexity in the same run; with a

@@ -79,6 +79,7 @@ private:
     void record(graph::Graph& g, bool measure, bool main);
     gpu::Header readHeader() const;
     Result<void> checkInputs(const gpu::Header& header);
+    Result<void> checkExtent(const gpu::Header& header) const;
     static void addTimings(BroadPhaseResult& io_result, const graph::ExecutionReport& report);
 
     vk::Device* device_;

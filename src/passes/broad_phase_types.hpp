@@ -69,7 +69,7 @@ struct BroadPhaseSettings {
 struct ObjectFault {
     enum class Kind : std::uint8_t {
         IndexOutOfRange,    // an index >= the vertex count
-        NonFinitePosition,  // a vertex position that is NaN or infinite
+        NonFinitePosition,  // a vertex position that is NaN or infinite, or beyond +-kMaxWorldCoordinate in world space
     };
     std::uint32_t object = 0;              // index in the run's meshes
     Kind kind = Kind::IndexOutOfRange;

@@ -89,7 +89,7 @@ private:
 
 }  // namespace
 
-TEST_CASE("a detection that runs out of time fails with Timeout; the world is Busy, then works again", "[stability][gpu][failures]") {
+TEST_CASE("a detection that runs out of time fails with Timeout, the world is Busy, then works again", "[stability][gpu][failures]") {
     ValidatedContext ctx;
     // 150 slabs: 304 layers peeled, long enough on any device that a 0 ms wait runs out.
     auto c = slabsOverContact(150);
@@ -111,7 +111,7 @@ TEST_CASE("a detection that runs out of time fails with Timeout; the world is Bu
     // (about a second on lavapipe), so the world is still Busy when the wait gives up.
     REQUIRE(world->detect(c->settings));
     impatient.measure_layers = false;
-    SECTION("detect(): Busy refuses what the running work reads; settled, the pairs are right") {
+    SECTION("detect(): Busy refuses what the running work reads, settled the pairs are right") {
         auto r = world->detect(impatient);
         REQUIRE_FALSE(r);
         CHECK(r.error().code() == ErrorCode::Timeout);
@@ -193,7 +193,7 @@ TEST_CASE("a lost device fails the detection with DeviceLost and every later one
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("device memory running out mid-detection is OutOfMemory; the world detects again", "[stability][gpu][failures]") {
+TEST_CASE("device memory running out mid-detection is OutOfMemory, and the world detects again", "[stability][gpu][failures]") {
     ValidatedContext ctx;
     auto c = slabsOverContact(2);
     REQUIRE(c);
@@ -227,7 +227,7 @@ TEST_CASE("device memory running out mid-detection is OutOfMemory; the world det
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("a pair filter that throws fails its detection by name; the world stays Ready", "[stability][gpu][failures]") {
+TEST_CASE("a pair filter that throws fails its detection by name, and the world stays Ready", "[stability][gpu][failures]") {
     ValidatedContext ctx;
     auto c = repeatedTriangle(3);  // objects 0 (three copies) and 1 (crossing them)
     REQUIRE(c);

@@ -49,7 +49,7 @@ void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
 
-TEST_CASE("host memory running out in a detection is OutOfMemory; the world detects again", "[stability][gpu][failures]") {
+TEST_CASE("host memory running out in a detection is OutOfMemory, and the world detects again", "[stability][gpu][failures]") {
     auto ctx = Context::create();
     REQUIRE(ctx);
     // 2,000 slabs: 24,000 candidates, so the records read back take 1.9 MB on this thread.

@@ -278,7 +278,7 @@ TEST_CASE("mutually crossing triangles: the pair budget keeps max_pairs, counts 
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("coordinates inside the sampling range give the pair on both backends; beyond it a named error",
+TEST_CASE("coordinates inside the sampling range give the pair on both backends, beyond it a named error",
           "[stability][gpu][limits]") {
     ValidatedContext ctx;
     for (float scale : {1e-29f, 1.0f, 1e29f}) {

@@ -100,3 +100,33 @@ TEST_CASE("the largest resolution this device holds runs with the validation lay
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+TEST_CASE("a resolution past the framebuffer limit samples in compute or is refused by name", "[gpu][dispatch]") {
+    ValidatedContext ctx;
+    auto c = scaledCrossing(1.0f);
+    REQUIRE(c);
+    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
+    REQUIRE(world);
+    for (const SceneObject& o : c->scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
+    VkPhysicalDeviceLimits& limits = ctx.device().properties.limits;
+    const VkPhysicalDeviceLimits real = limits;
+    limits.maxFramebufferWidth = 32;  // as if the device rendered at most 32 x 32
+    DetectSettings s = c->settings;   // resolution 64
+    s.backend = SamplingBackend::Raster;
+    auto raster = (*world)->detect(s);
+    s.backend = SamplingBackend::Auto;
+    auto automatic = (*world)->detect(s);
+    s.coverage = Coverage::Dilate;
+    auto dilated = (*world)->detect(s);
+    limits = real;
+    REQUIRE_FALSE(raster);
+    CHECK(raster.error().code() == ErrorCode::UnsupportedFeature);
+    CHECK(raster.error().message().find("largest framebuffer") != std::string::npos);
+    REQUIRE(automatic);
+    CHECK(automatic->stats.backend == SamplingBackend::Compute);
+    CHECK(automatic->stats.backend_reason.find("framebuffer") != std::string::npos);
+    CHECK((automatic->pairs == *c->reference));
+    REQUIRE_FALSE(dilated);
+    CHECK(dilated.error().code() == ErrorCode::UnsupportedFeature);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <string>
 
 #include "passes/sampling/backend_choice.hpp"
 #include "passes/sampling/compute_sampler.hpp"
@@ -34,6 +35,22 @@ Result<VkDeviceAddress> ObjectSampling::prepare(const BroadPhaseSettings& s, con
         // only. An explicit Compute with it is refused by the API (validation.cpp).
         assert(s.backend != SamplingBackend::Compute);
         choice_ = {SamplingBackend::Raster, "thin-triangle coverage needs raster (Auto would take compute: " + choice_.reason + ")"};
+    }
+    // The raster backend renders an N x N area: the device's framebuffer and viewport
+    // limits bound N (Vulkan guarantees only 4096). Auto samples larger images in compute.
+    const VkPhysicalDeviceLimits& limits = device_->properties.limits;
+    const std::uint32_t raster_max = std::min({limits.maxFramebufferWidth, limits.maxFramebufferHeight,
+                                               limits.maxViewportDimensions[0], limits.maxViewportDimensions[1]});
+    if (choice_.backend == SamplingBackend::Raster && shape.resolution > raster_max) {
+        if (s.backend == SamplingBackend::Auto && s.coverage == Coverage::Centre && computeSamplingSupported(*device_))
+            choice_ = {SamplingBackend::Compute, "resolution " + std::to_string(shape.resolution) +
+                                                     " exceeds this device's largest framebuffer (" + std::to_string(raster_max) + ")"};
+        else
+            return Error(ErrorCode::UnsupportedFeature, "resolution " + std::to_string(shape.resolution) +
+                                                            " exceeds this device's largest framebuffer and viewport (" +
+                                                            std::to_string(raster_max) + ") for raster sampling" +
+                                                            (s.coverage != Coverage::Centre ? " (thin-triangle coverage needs raster)" : "") +
+                                                            ": lower the resolution or sample in compute");
     }
     if (choice_.backend == SamplingBackend::Compute) {
         if (!compute_) {

@@ -20,12 +20,22 @@ VKC_CONST kKeyBackFacing = 0x80000000u;
 VKC_CONST kKeyOpen = 0x40000000u;
 VKC_CONST kKeyTriangleMask = 0x3FFFFFFFu;
 VKC_CONST kMaxTriangles = 0x40000000u;
-// Per-pixel fragment counts: closed surfaces in the low 15 bits, open ones in the high half;
-// bit 15 flags a ray that a thin triangle touches (coverage on): it is a collision ray, done
-// at once, and left out of the depth complexity.
-VKC_CONST kOpenCountUnit = 0x10000u;
+// Per-ray fragment counts as the sampling passes count them (Frame::ray_fragments, one
+// uint64 per ray): closed surfaces in bits 0..30, bit 31 set when a thin triangle touches
+// the ray (coverage on), open surfaces in bits 32..63. No field can overflow: a ray gets at
+// most one fragment per triangle, and there are fewer than kMaxTriangles (2^30).
+VKC_CONST kFragmentsThin = 0x80000000u;      // in the low word
+VKC_CONST kFragmentsClosedMask = 0x7FFFFFFFu;  // the low word's count
+// Per-ray counts the peeling passes read (Frame::counts, one uint per ray, written by
+// reduce_max from ray_fragments): closed surfaces in the low 15 bits, open ones in the high
+// half. Bit 15 (kCountThin) marks a collision ray that needs no peeling: a thin triangle
+// touches it, or it has more than kMaxRayFragments (config.h) fragments: too deep to peel.
+// Such rays are left out of the peeled depth (conservative: they only add candidates).
 VKC_CONST kCountClosedMask = 0x7FFFu;
 VKC_CONST kCountThin = 0x8000u;
+#ifdef __cplusplus
+static_assert(kMaxRayFragments <= kCountClosedMask, "a peeled ray's closed count must fit its 15-bit field");
+#endif
 // PixelState.flags
 VKC_CONST kRayDone = 1u;
 VKC_CONST kRayCollision = 2u;
@@ -76,7 +86,7 @@ struct PixelState {
 
 // Small results the host reads after each submission.
 struct Header {
-    uint depth_complexity;  // max fragments on one ray
+    uint depth_complexity;  // max fragments on one ray that is peeled (not thin, not deep)
     uint record_count;      // packed records written
     uint collision_rays;
     uint max_row_count;     // paper packing: most records in one row
@@ -89,6 +99,8 @@ struct Header {
     uint cs_items;          // ... tile work items (workgroups) for the big ones
     uint pad0;
     uint64_t fragments;     // sum over rays of their fragment counts (reduce-max)
+    uint deep_rays;         // rays with more than kMaxRayFragments fragments (collision rays, not peeled)
+    uint subnormal_vertices;  // vertices with a subnormal coordinate (bounds pass): GPUs flush them to zero
 };
 
 // Everything a broad-phase shader needs, uploaded once per detection.
@@ -119,6 +131,7 @@ struct Frame {
     uint level_offset[kMaxLevels];      // first texel of each mip level in `bundles`
     VKC_ADDRESS(uint64_t) compute_sampling;  // CsFrame (compute sampling backend), or 0
     VKC_ADDRESS(uint64_t) method;            // a broad-phase method's own frame (its layout), or 0
+    VKC_ADDRESS(uint64_t) ray_fragments;     // uint64[N*N]: fragments per ray (kFragments*), counted by sampling
 };
 
 // Pushed per dispatch or draw.
@@ -138,7 +151,10 @@ struct Push {
 // either draws the triangles again per step, or (fragment lists) the count pass stores
 // every ray's keys (a gather pass redraws when a ray had more than list_layers) and each
 // step picks the next keys per pixel from them.
-VKC_CONST kCsMaxGroupsX = 65535;     // indirect dispatch width (the guaranteed minimum limit)
+VKC_CONST kCsMaxGroupsX = 65535;     // indirect dispatch width (the guaranteed minimum of
+                                     // maxComputeWorkGroupCount[0] and [1])
+VKC_CONST kCsMaxTriangleTiles = 0x400000u;  // (16384 / kCsTile)^2: the tiles of a triangle
+                                            // that covers the largest image
 VKC_CONST kCsSmallExtent = 16384;    // one-invocation triangles span at most this many
                                      // sub-pixel units per axis (edge functions fit 32 bits)
 VKC_CONST kCsTieTopLeft = 0u;        // sample on an edge: covered by left and top edges
@@ -183,7 +199,7 @@ struct CsFrame {
     uint fuse_first_step;             // 1: the count pass also does peeling step 0
     uint depth_snapped;               // 1: depth plane through the snapped vertices
     uint list_layers;                 // keys the count pass stores per ray (0: none)
-    uint pad0;
+    uint list_capacity;               // layers `fragments` holds: no pass writes or reads past it
 };
 
 #ifdef __cplusplus

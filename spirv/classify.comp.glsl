@@ -11,6 +11,7 @@
 // A ray is done when every fragment counted by the depth-complexity pass was peeled.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 float keyDepth(uint64_t k) { return uintBitsToFloat(uint(k >> 32)); }
 bool keyOpen(uint64_t k) { return (uint(k) & kKeyOpen) != 0u; }
@@ -27,7 +28,7 @@ bool touching(uint64_t earlier, uint64_t later, float eps) {
 
 void main() {
     Frame f = frame();
-    uint p = gl_GlobalInvocationID.x;
+    uint p = globalIndex();
     if (p >= f.resolution * f.resolution) return;
     StatesRef states = StatesRef(f.state);
     PixelState st = states.s[p];

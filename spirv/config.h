@@ -33,6 +33,23 @@ VKC_CONST_FLOAT kThinInradiusPx = 0.70710678f;
 // kDepthSpan]: a margin from 0 and 1, which the rasterizer clips.
 VKC_CONST_FLOAT kDepthNear = 0.05f;
 VKC_CONST_FLOAT kDepthSpan = 0.9f;
+// Deepest ray that is peeled: a ray with more fragments (surfaces along it) is a collision
+// ray at once, as if a layer cap had stopped it, and no run records more peeling steps
+// than this. Peeling costs one pass over every triangle per layer, so this bounds the
+// sampling time of pathological scenes (thousands of stacked surfaces, one triangle
+// repeated: docs/stability.md); the rays it marks only add candidates for the exact
+// narrow phase. At most 0x7FFF (the peeling passes' 15-bit closed count; broadphase.h).
+VKC_CONST kMaxRayFragments = 1024;
+// The sampling range (docs/stability.md, "Limits"). Every world-space coordinate must lie
+// within +-kMaxWorldCoordinate and the sampled image must be at least kMinSamplingExtent
+// wide (world units): then the projection's rows (1 / extent), every product of a row and
+// a coordinate and every pixel are normal floats, which GPUs do not flush to zero (at
+// 1e38 the rows are subnormal and flushed: every vertex fell on one pixel, 0 pairs). A
+// host mesh beyond the range is refused, an engine mesh fails the GPU check (left out),
+// a scene narrower than the minimum fails with LimitExceeded. Not a tunable: wider
+// bounds reach subnormals.
+VKC_CONST_FLOAT kMaxWorldCoordinate = 1e30f;
+VKC_CONST_FLOAT kMinSamplingExtent = 1e-30f;
 
 // ---- Compute sampling backend ----------------------------------------------------------
 // Big triangles are drawn in kCsTile x kCsTile pixel tiles, one workgroup of kCsGroupSize

@@ -7,12 +7,13 @@
 // passes (x at most kCsMaxGroupsX, rows in y) and copies the list sizes to the header.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
     CsFrame cs = csFrame(f);
     CsCountersRef counters = CsCountersRef(cs.counters);
-    uint p = gl_GlobalInvocationID.x;
+    uint p = globalIndex();
     if (pc.step == 2u) {  // before a gather pass: its fill counts
         if (p < f.resolution * f.resolution) UintsRef(cs.fill).v[p] = 0u;
         return;

@@ -5,17 +5,20 @@
 // capacity: sum(ceil(T_i / g)) <= sum(T_i) / g + big_count <= item_capacity.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
     CsFrame cs = csFrame(f);
     CsCountersRef counters = CsCountersRef(cs.counters);
-    uint i = gl_GlobalInvocationID.x;
+    uint i = globalIndex();
     uint big = counters.c.big_count;
-    if (gl_WorkGroupID.x * gl_WorkGroupSize.x >= big) return;  // whole workgroups only
+    if (groupIndex() * gl_WorkGroupSize.x >= big) return;  // whole workgroups only
     uint64_t budget = uint64_t(cs.item_capacity - big);
     uint64_t total = counters.c.tiles;
-    uint per = uint(max((total + budget - 1ul) / budget, 1ul));
+    // At most the tiles of the biggest possible triangle (kCsMaxTriangleTiles): then every
+    // triangle takes one item, big_count <= item_capacity, and `per` fits 32 bits.
+    uint per = uint(clamp((total + budget - 1ul) / budget, 1ul, uint64_t(kCsMaxTriangleTiles)));
     if (i == 0u) counters.c.tiles_per_item = per;
     uint items = 0u, id = 0u;
     if (i < big) {

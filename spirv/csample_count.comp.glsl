@@ -8,9 +8,10 @@
 #include "csample.glsl.inc"
 
 void visit(Frame f, uint p, uint64_t key) {
-    uint before = atomicAdd(UintsRef(f.counts).v[p], (uint(key) & kKeyOpen) != 0u ? kOpenCountUnit : 1u);
+    uint64_t before = atomicAdd(Uint64sRef(f.ray_fragments).v[p], (uint(key) & kKeyOpen) != 0u ? (1ul << 32) : 1ul);
     CsFrame cs = CsFrameRef(f.compute_sampling).c;
-    uint slot = (before & 0xFFFFu) + (before >> 16);
+    // Both counts are below 2^30 (one fragment per triangle), so the sum fits.
+    uint slot = (uint(before) & kFragmentsClosedMask) + uint(before >> 32);
     if (slot < cs.list_layers) {
         uint64_t pixels = uint64_t(f.resolution) * uint64_t(f.resolution);
         Uint64sRef(cs.fragments + 8ul * (uint64_t(slot) * pixels + uint64_t(p))).v[0] = key;

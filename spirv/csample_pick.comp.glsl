@@ -3,12 +3,15 @@
 // Compute sampling with fragment lists, one peeling step per pixel: over the ray's stored
 // keys, the test of peel.frag (skip done rays and keys already peeled from either end),
 // then the smallest key (and with dual peeling the largest), as its atomics would leave.
+// A ray still to peel has at most depth-complexity keys, all stored (the list holds that
+// many layers); the bound on list_capacity only keeps a broken invariant inside the buffer.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
-    uint p = gl_GlobalInvocationID.x;
+    uint p = globalIndex();
     uint pixels = f.resolution * f.resolution;
     if (p >= pixels) return;
     StatesRef states = StatesRef(f.state);
@@ -16,7 +19,7 @@ void main() {
     uint64_t last_front = states.s[p].last_front, last_back = states.s[p].last_back;
     CsFrame cs = csFrame(f);
     uint c = UintsRef(f.counts).v[p];
-    uint total = (c & 0xFFFFu) + (c >> 16);
+    uint total = min((c & kCountClosedMask) + (c >> 16), cs.list_capacity);
     uint64_t nearest = ~0ul, farthest = 0ul;
     for (uint k = 0u; k < total; ++k) {
         uint64_t key = Uint64sRef(cs.fragments + 8ul * (uint64_t(k) * uint64_t(pixels) + uint64_t(p))).v[0];

@@ -6,6 +6,7 @@
 // one-invocation list, big ones to the tiled list.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 // List sizes of this workgroup, then its first entries in the global lists.
 shared uint s_small, s_big, s_tiles;
@@ -98,7 +99,7 @@ CsTriangle setupTriangle(Frame f, CsFrame cs, uint id, out uint tiles, out bool 
 void main() {
     Frame f = frame();
     CsFrame cs = csFrame(f);
-    uint id = gl_GlobalInvocationID.x;
+    uint id = globalIndex();
     if (gl_LocalInvocationIndex == 0u) {
         s_small = 0u;
         s_big = 0u;

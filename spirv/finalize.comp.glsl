@@ -5,10 +5,11 @@
 // cap allows: it is marked colliding (conservative).
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
-    uint p = gl_GlobalInvocationID.x;
+    uint p = globalIndex();
     uint n = f.resolution;
     if (p >= n * n) return;
     PixelState st = StatesRef(f.state).s[p];

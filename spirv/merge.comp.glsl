@@ -3,11 +3,12 @@
 // Ray merging: texel (x, y) of level l is the union of its four children at level l-1.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
     uint size = f.resolution >> pc.level;
-    uint i = gl_GlobalInvocationID.x;
+    uint i = globalIndex();
     if (i >= size * size) return;
     uint x = i % size, y = i / size, child = size * 2u;
     Vec4sRef b = Vec4sRef(f.bundles);

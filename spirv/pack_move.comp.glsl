@@ -4,13 +4,15 @@
 #include "common.glsl.inc"
 #include "record.glsl.inc"
 layout(local_size_x = kPackRowWidth) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
-    uint row = gl_WorkGroupID.x;
+    uint row = groupIndex();
     uint k = gl_LocalInvocationIndex;
     UintsRef scratch = UintsRef(f.scratch);
     uint rows = f.pack_rows;
+    if (row >= rows) return;  // past the last row
     uint count = scratch.v[row];
     if (k >= count) return;
     uint shifted = 2u * rows + rows * kPackRowWidth + row * kPackRowWidth;

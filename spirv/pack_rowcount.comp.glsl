@@ -6,10 +6,12 @@
 #include "common.glsl.inc"
 #include "workgroup.glsl.inc"
 layout(local_size_x = kPackRowWidth) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
-    uint row = gl_WorkGroupID.x;
+    uint row = groupIndex();
+    if (row >= f.pack_rows) return;  // past the last row (whole workgroups)
     uint t = row * kPackRowWidth + gl_LocalInvocationIndex;
     uint sum = groupReduceAdd((t < f.triangle_count && !boxEmpty(Vec4sRef(f.sparse).v[t])) ? 1u : 0u);
     if (gl_LocalInvocationIndex == 0u) UintsRef(f.scratch).v[row] = sum;

@@ -6,12 +6,13 @@
 // texels end up packed against its right end, in order.
 #include "common.glsl.inc"
 layout(local_size_x = 64) in;
+#include "dispatch.glsl.inc"
 
 const uint kNone = 0xFFFFFFFFu;
 
 void main() {
     Frame f = frame();
-    uint row = gl_GlobalInvocationID.x;
+    uint row = globalIndex();
     if (row >= f.pack_rows) return;
     UintsRef scratch = UintsRef(f.scratch);
     uint rows = f.pack_rows;

@@ -1,14 +1,16 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Resets the per-ray peeling state; rays with no fragment are done at once, and so are
-// rays a thin triangle touches (coverage on): those collide. Step 1: the keys were written
-// by a count pass that did peeling step 0; leave them.
+// rays marked kCountThin by reduce_max (a thin triangle touches them, or they are deeper
+// than kMaxRayFragments): those collide. Step 1: the keys were written by a count pass that
+// did peeling step 0; leave them.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
-    uint p = gl_GlobalInvocationID.x;
+    uint p = globalIndex();
     if (p >= f.resolution * f.resolution) return;
     PixelState st;
     st.last_front = 0ul;

@@ -4,10 +4,13 @@
 #include "common.glsl.inc"
 #include "workgroup.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
-    uint t = gl_GlobalInvocationID.x;
+    uint block = groupIndex();
+    if (block >= f.pack_blocks) return;  // past the last block (whole workgroups)
+    uint t = globalIndex();
     uint sum = groupReduceAdd((t < f.triangle_count && !boxEmpty(Vec4sRef(f.sparse).v[t])) ? 1u : 0u);
-    if (gl_LocalInvocationIndex == 0u) UintsRef(f.scratch).v[gl_WorkGroupID.x] = sum;
+    if (gl_LocalInvocationIndex == 0u) UintsRef(f.scratch).v[block] = sum;
 }

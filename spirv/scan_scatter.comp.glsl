@@ -6,13 +6,14 @@
 #include "record.glsl.inc"
 #include "workgroup.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
-    uint t = gl_GlobalInvocationID.x;
+    uint t = globalIndex();
     bool keep = t < f.triangle_count && !boxEmpty(Vec4sRef(f.sparse).v[t]);
     uint inclusive = groupInclusiveScan(keep ? 1u : 0u);
     if (!keep) return;
-    uint offset = UintsRef(f.scratch).v[f.pack_blocks + gl_WorkGroupID.x];
+    uint offset = UintsRef(f.scratch).v[f.pack_blocks + groupIndex()];
     writeRecord(f, offset + inclusive - 1u, t);
 }

@@ -6,11 +6,12 @@
 // intersected with its own box. No bundle: the empty box.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
     ObjectGpu o = ObjectsRef(f.objects).o[pc.object];
-    uint t = gl_GlobalInvocationID.x;
+    uint t = globalIndex();
     if (t >= o.triangle_count) return;
     Projection pr = ProjectionRef(f.projection).p;
     vec2 lo = vec2(3.4e38), hi = vec2(-3.4e38);

@@ -1,15 +1,18 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Input check for geometry that lives only on the GPU (the host checks its own meshes):
-// every index below the vertex count, every position of a triangle finite. Counts the
-// triangles that fail and keeps one of each kind so the host can name it.
+// every index below the vertex count, every position of a triangle finite and, after the
+// object's transform, within the sampling range (+-kMaxWorldCoordinate: beyond it the
+// projection needs subnormal floats, and a product may overflow). Counts the triangles
+// that fail and keeps one of each kind so the host can name it.
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
+#include "dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();
     ObjectGpu o = ObjectsRef(f.objects).o[pc.object];
-    uint t = gl_GlobalInvocationID.x;
+    uint t = globalIndex();
     if (t >= o.triangle_count) return;
     HeaderRef h = HeaderRef(f.header);
     bool bad_index = false, bad_vertex = false;
@@ -19,7 +22,9 @@ void main() {
             bad_index = true;
         } else {
             vec3 p = fetchPosition(o, i);
-            if (any(isnan(p)) || any(isinf(p))) bad_vertex = true;
+            vec3 w = toWorld(o, p);
+            // NaN fails the last test too; the first two say why in the shader.
+            if (any(isnan(p)) || any(isinf(p)) || !all(lessThanEqual(abs(w), vec3(kMaxWorldCoordinate)))) bad_vertex = true;
         }
     }
     if (bad_index && atomicAdd(h.h.bad_index_count, 1u) == 0u) {

@@ -31,6 +31,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 #include <type_traits>
@@ -199,7 +200,7 @@ struct NarrowStats {
     std::size_t filtered_pairs = 0;                   // of those, dropped by NarrowOptions (may_collide; pair path: self-collision off too)
     std::size_t neighbour_pairs = 0;                  // of those, dropped as neighbours (same object, shared vertex)
     std::size_t triangle_tests = 0;                   // "# tri-tri tests": exact tests run (= sap - filtered - neighbour)
-    std::size_t positive_tests = 0;                   // "# pos. tests": tests that found an intersection (= pairs.size())
+    std::size_t positive_tests = 0;                   // "# pos. tests": tests that found an intersection (= pairs.size() + pairs_left_out)
     std::size_t input_pairs = 0;                      // pair path: pairs received, repeats included (else 0)
 };
 
@@ -226,6 +227,16 @@ struct NarrowOptions {
     // default_self_collision. Triangles of one object are only tested when it is on.
     std::vector<bool> self_collision;
     bool default_self_collision = true;
+    // Most pairs the result holds. Beyond it the pairs found are counted
+    // (NarrowResult::pairs_left_out), not kept: the result holds the first max_pairs in the
+    // order the tests run (the same for every thread count and run), sorted, with their
+    // responses. Bounds the memory of the hits and the result.
+    std::size_t max_pairs = std::numeric_limits<std::size_t>::max();
+    // Most pairs of candidates whose boxes overlap (NarrowStats::sap_pairs): past it the call
+    // stops and returns ErrorCode::LimitExceeded. Bounds the time of inputs whose boxes pile
+    // up in one place (k copies of one triangle make k^2/2 pairs to sweep, mostly
+    // neighbours): the sweep costs a few nanoseconds per pair.
+    std::size_t max_box_pairs = std::numeric_limits<std::size_t>::max();
 
     bool selfCollides(std::uint32_t object) const {
         return object < self_collision.size() ? static_cast<bool>(self_collision[object]) : default_self_collision;
@@ -235,6 +246,7 @@ struct NarrowOptions {
 struct NarrowResult {
     std::vector<TrianglePair> pairs;           // sorted ascending, no duplicates
     std::vector<TriangleResponse> responses;   // one per triangle in pairs, sorted by (object, triangle)
+    std::size_t pairs_left_out = 0;            // intersecting pairs found beyond NarrowOptions::max_pairs
     NarrowStats stats;
     NarrowTimings timings;  // not part of the result proper: differs from run to run
 };
@@ -271,6 +283,8 @@ private:
 // Two candidates of the same object are neighbours, never a collision, when they share
 // a vertex index or a bit-identical vertex position. The result is bit-identical for
 // every executor, thread count and order of `in_candidates`.
+//
+// Host memory running out returns ErrorCode::OutOfMemory (no exception escapes).
 //
 // Thread safety: reentrant; `in_candidates` must not change during the call. The forms
 // without a workspace use one of their own (same results).

@@ -22,6 +22,8 @@ enum class ErrorCode : std::uint32_t {
     DeviceLost,          // the device was lost; create a new Context
     OutOfMemory,         // host or device memory ran out
     GraphError,          // a render graph is malformed (cycle, undeclared resource, ...)
+    Timeout,             // GPU work did not finish within the wait allowed (DetectSettings::timeout_ms)
+    LimitExceeded,       // a documented limit was reached (DetectSettings::max_pairs, the sampling range)
 };
 
 const char* toString(ErrorCode code) noexcept;
@@ -32,7 +34,7 @@ public:
         : code_(code), vk_result_(vk_result), message_(std::move(message)) {}
 
     ErrorCode code() const noexcept { return code_; }
-    // The raw VkResult when code() == VulkanError/DeviceLost/OutOfMemory, else 0.
+    // The raw VkResult when code() == VulkanError/DeviceLost/OutOfMemory/Timeout, else 0.
     std::int32_t vkResult() const noexcept { return vk_result_; }
     const std::string& message() const noexcept { return message_; }
 

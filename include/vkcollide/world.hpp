@@ -96,6 +96,26 @@ struct DetectSettings {
     // (a collision ray). 0: only exact depth ties, ordered front before back, do.
     float closed_epsilon = 0;
     BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
+
+    // Limits (docs/stability.md, "Limits"):
+    // Longest wait for the GPU work of one submission, in milliseconds. Beyond it the
+    // detection fails with ErrorCode::Timeout; its GPU work goes on and the world is
+    // WorldState::Busy until it ends (CollisionWorld::state()).
+    std::uint32_t timeout_ms = 60000;
+    // Most colliding pairs a detection returns. When the exact phase finds more, the
+    // result holds max_pairs of them (the same ones for the same input, not necessarily
+    // the smallest) with their responses, and DetectResult::pairs_left_out and
+    // ::incomplete say so. The result costs about 40 bytes per pair kept (pairs,
+    // responses, the narrow phase's hits); found pairs beyond the budget are counted, not
+    // kept.
+    std::uint64_t max_pairs = std::uint64_t{1} << 24;
+    // Most pairs of candidate triangles whose boxes overlap, which the narrow phase sweeps
+    // (DetectStats::narrow.sap_pairs): past it the detection stops and fails with
+    // LimitExceeded. Bounds its time and memory (up to 8 bytes each) where candidates pile
+    // up in one place: k copies of one triangle give k^2/2 such pairs. Real scenes make
+    // about 9 per candidate (8.7M for 1M candidates, docs/narrow_phase.md), 2^27 = 134M
+    // takes about a second to sweep on two cores.
+    std::uint64_t max_candidate_pairs = std::uint64_t{1} << 27;
 };
 
 struct PassTime {
@@ -116,11 +136,15 @@ struct DetectStats {
     std::uint32_t objects = 0;
     std::uint32_t resolution = 0;
     std::array<float, 3> direction{};
-    std::uint32_t depth_complexity = 0;  // measured by this detection
+    std::uint32_t depth_complexity = 0;  // measured by this detection, over the rays that are peeled
     std::uint32_t layers = 0;            // layers peeled
     std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
+    // Rays with more than 1,024 surfaces along them (gpu::kMaxRayFragments): collision rays
+    // at once, without peeling (their triangles go to the exact narrow phase), and left out
+    // of depth_complexity. Bounds the peeling passes of pathological scenes.
+    std::uint32_t deep_rays = 0;
     bool dual = false;
-    bool layers_short = false;           // depth complexity exceeded the layers peeled (no cap asked)
+    bool layers_short = false;           // some rays had more layers than were peeled (no cap asked), or deep rays
     std::uint32_t axes = 1;              // sampling directions run (counts above are summed over them,
                                          // depth complexity and layers are their maximum)
     Coverage coverage = Coverage::Centre;  // that ran: Centre, Dilate or Conservative (never Best)
@@ -152,6 +176,23 @@ struct DetectResult {
     std::vector<TriangleResponse> responses;  // one per colliding triangle, world space
     std::vector<ExcludedObject> excluded;     // engine meshes that failed the GPU check this time
     DetectStats stats;
+    // DetectSettings::max_pairs was reached: the intersecting pairs found beyond it (not in
+    // `pairs`, not in `responses`), and an error (LimitExceeded) that says so. Empty and 0
+    // when the result is complete.
+    std::uint64_t pairs_left_out = 0;
+    std::optional<Error> incomplete;
+};
+
+// What a world can do, in particular after a failed detection (docs/stability.md,
+// "After a failure"). Every state can be destroyed.
+enum class WorldState : std::uint8_t {
+    Ready,       // detections run
+    Busy,        // a detection failed with Timeout and its GPU work is still running: calls
+                 // that would change what that work reads (updateVertices, removeObject)
+                 // fail with Timeout, and the next detection first waits for it (within its
+                 // own timeout_ms). Engine buffers given to addGpuMesh stay in use until then.
+    DeviceLost,  // a detection met a lost device: every later detection fails with
+                 // DeviceLost; destroy the world and create a new Context
 };
 
 struct WorldOptions {
@@ -179,7 +220,11 @@ public:
     [[nodiscard]] Result<void> setSelfCollision(ObjectId id, bool on);
     // New positions of a host mesh (same count, every one finite).
     [[nodiscard]] Result<void> updateVertices(ObjectId id, std::span<const Float3> positions);
-    // Which object pairs may collide (called with a < b); empty: every pair may.
+    // Which object pairs may collide (called with a < b); empty: every pair may. Called on
+    // the thread that calls detect() or collect(), once per distinct object pair with
+    // candidates. It must not throw: if it does, the world catches the exception, stops
+    // calling the filter for that detection and fails it with InvalidArgument naming the
+    // pair and the exception's message (the world stays Ready).
     void setPairFilter(std::function<bool(ObjectId a, ObjectId b)> may_collide);
 
     std::size_t objectCount() const noexcept;
@@ -199,6 +244,8 @@ public:
     [[nodiscard]] Result<void> submit(const DetectSettings& settings = {});
     [[nodiscard]] Result<DetectResult> collect();
     bool pending() const noexcept;
+    // Ready, Busy or DeviceLost (polls the GPU's progress; never waits).
+    WorldState state() const;
 
 private:
     struct Impl;

@@ -1,6 +1,9 @@
 // One detection through the API: settings resolved and checked, the GPU part run by
 // passes::Detection, its findings named, the narrow phase on its candidates, the statistics.
 #include <algorithm>
+#include <exception>
+#include <optional>
+#include <string>
 
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
@@ -27,6 +30,8 @@ Error CollisionWorld::Impl::describeFailure(const Error& e) const {
 
 Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool measure) {
     if (pending()) return Error(ErrorCode::InvalidArgument, "submit while a detection is in flight: collect() it first");
+    if (device_lost)
+        return Error(ErrorCode::DeviceLost, "the device was lost in an earlier detection: destroy the world and create a new Context");
     run_start = Clock::now();
     std::vector<passes::GpuMesh> meshes;
     liveMeshes(meshes, run_ids);
@@ -45,15 +50,16 @@ Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool me
     d.broad.closed_epsilon = s.closed_epsilon;
     d.broad.coverage = s.coverage;  // resolve() turned Best into Conservative or Dilate
     d.broad.region = s.region;
+    d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
     d.axes = s.axes;
     d.bad_objects = s.bad_objects;
-    if (auto ok = detection->start(meshes, d, measure); !ok) return describeFailure(ok.error());
+    if (auto ok = detection->start(meshes, d, measure); !ok) return noted(describeFailure(ok.error()));
     return {};
 }
 
 Result<DetectResult> CollisionWorld::Impl::collect() {
     auto r = detection->collect();
-    if (!r) return describeFailure(r.error());
+    if (!r) return noted(describeFailure(r.error()));
     return finish(std::move(*r));
 }
 
@@ -89,7 +95,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
         st.depth_complexity = std::max(st.depth_complexity, b.depth_complexity);
         st.layers = std::max(st.layers, b.layers);
         st.peel_passes += b.peel_steps;
-        st.layers_short = st.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap));
+        st.deep_rays += b.deep_rays;
+        st.layers_short = st.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap)) || b.deep_rays > 0;
         const std::string prefix = broad.size() > 1 ? "axis " + std::to_string(k) + ": " : "";
         for (const auto& p : b.passes) st.gpu_passes.push_back({prefix + p.name, p.gpu_ms});
         st.sampling_ms += b.sampling_ms;
@@ -101,11 +108,37 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
 
     NarrowOptions options;
     for (ObjectId id : ids) options.self_collision.push_back(objects[id].options.self_collision);
-    if (pair_filter) options.may_collide = [this, &ids](std::uint32_t a, std::uint32_t b) { return pair_filter(ids[a], ids[b]); };
+    options.max_pairs = run_settings.max_pairs;
+    options.max_box_pairs = run_settings.max_candidate_pairs;
+    // The filter must not throw (world.hpp); if it does, the exception stops here, the
+    // narrow phase sees "may not collide" from then on, and the detection fails naming it.
+    std::optional<Error> filter_threw;
+    if (pair_filter)
+        options.may_collide = [this, &ids, &filter_threw](std::uint32_t a, std::uint32_t b) {
+            if (filter_threw) return false;
+            std::string what;
+            try {
+                return pair_filter(ids[a], ids[b]);
+            } catch (const std::exception& e) {
+                what = std::string(": ") + e.what();
+            } catch (...) {
+            }
+            filter_threw = Error(ErrorCode::InvalidArgument, "the pair filter threw for objects " + std::to_string(ids[a]) + " and " +
+                                                                 std::to_string(ids[b]) + what + " (it must not throw)");
+            return false;
+        };
     const auto t0 = Clock::now();
     auto narrow = runNarrowPhase(detected.candidates(), options, *pool, narrow_workspace);
     st.narrow_ms = msSince(t0);
+    if (filter_threw) return *filter_threw;
     if (!narrow) return narrow.error();
+    if (narrow->pairs_left_out > 0) {
+        out.pairs_left_out = narrow->pairs_left_out;
+        out.incomplete = Error(ErrorCode::LimitExceeded,
+                               "found " + std::to_string(narrow->pairs.size() + narrow->pairs_left_out) +
+                                   " intersecting pairs, more than DetectSettings::max_pairs (" + std::to_string(run_settings.max_pairs) +
+                                   "): kept " + std::to_string(narrow->pairs.size()) + ", left out " + std::to_string(narrow->pairs_left_out));
+    }
     st.narrow_threads = pool->threadCount();
     st.narrow = narrow->stats;
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;

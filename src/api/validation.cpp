@@ -1,6 +1,8 @@
 #include "api/validation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <tuple>
 
@@ -35,6 +37,32 @@ Result<void> checkVertices(std::span<const Float3> positions, std::uint32_t vert
         if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
             return Error(ErrorCode::InvalidMesh, "vertex " + std::to_string(i) + " is NaN or infinite");
     return {};
+}
+
+std::array<float, 6> boxOf(std::span<const Float3> positions) {
+    std::array<float, 6> b{positions[0].x, positions[0].y, positions[0].z, positions[0].x, positions[0].y, positions[0].z};
+    for (const Float3& p : positions) {
+        const float c[3] = {p.x, p.y, p.z};
+        for (int a = 0; a < 3; ++a) b[a] = std::min(b[a], c[a]), b[a + 3] = std::max(b[a + 3], c[a]);
+    }
+    return b;
+}
+
+Result<void> checkWorldRange(const std::array<float, 6>& box, const Transform3x4& t) {
+    // Per world axis, the sum of the terms' magnitudes bounds the coordinate and every
+    // partial sum of toWorld's dot product (common.glsl.inc), in double (exact enough).
+    double reach = 0;
+    for (int r = 0; r < 3; ++r) {
+        double bound = std::fabs(double(t[r * 4 + 3]));
+        for (int a = 0; a < 3; ++a) bound += std::fabs(double(t[r * 4 + a])) * std::max(std::fabs(double(box[a])), std::fabs(double(box[a + 3])));
+        reach = std::max(reach, bound);
+    }
+    if (reach <= double(gpu::kMaxWorldCoordinate)) return {};
+    char text[64];
+    std::snprintf(text, sizeof text, "%.3g", reach);
+    return Error(ErrorCode::LimitExceeded, std::string("vertex coordinates under the transform reach ") + text +
+                                               " world units, beyond the sampling range of +-1e30 (the projection would need "
+                                               "subnormal or infinite floats): scale or move the object");
 }
 
 Result<void> checkTypicalEdge(float typical_edge_length) {
@@ -105,9 +133,16 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     if (!finiteNonNegative(s.closed_epsilon)) return invalid("closed_epsilon must be finite and >= 0");
     if (s.region) {
         const auto& r = *s.region;
-        for (int a = 0; a < 3; ++a)
+        float widest = 0;
+        for (int a = 0; a < 3; ++a) {
             if (!std::isfinite(r[a]) || !std::isfinite(r[a + 3]) || !(r[a] <= r[a + 3]))
                 return invalid("sampling region must be finite with min <= max on every axis");
+            if (std::fabs(r[a]) > gpu::kMaxWorldCoordinate || std::fabs(r[a + 3]) > gpu::kMaxWorldCoordinate)
+                return Error(ErrorCode::LimitExceeded, "sampling region reaches beyond the sampling range of +-1e30 world units");
+            widest = std::max(widest, r[a + 3] - r[a]);
+        }
+        if (!(widest >= gpu::kMinSamplingExtent))
+            return Error(ErrorCode::LimitExceeded, "sampling region is narrower than the smallest extent vkcollide can sample (1e-30 world units)");
     }
     if (s.coverage == Coverage::Conservative && !device.conservative_rasterization)
         return Error(ErrorCode::UnsupportedFeature, "conservative coverage needs VK_EXT_conservative_rasterization, which " +

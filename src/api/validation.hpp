@@ -6,6 +6,7 @@
 // the world prefixes "object <id> ('<name>'): " once (CollisionWorld::Impl::who).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 
@@ -25,6 +26,12 @@ Result<void> checkHostMesh(const HostMesh& mesh);
 // New positions of a host mesh: the same count, every one finite.
 Result<void> checkVertices(std::span<const Float3> positions, std::uint32_t vertex_count);
 Result<void> checkTypicalEdge(float typical_edge_length);
+// A host mesh's object-space box (min x, y, z, max x, y, z) under `transform` within the
+// sampling range: every world coordinate, and every product and sum the GPU forms on the
+// way (in float), within +-gpu::kMaxWorldCoordinate (LimitExceeded otherwise).
+Result<void> checkWorldRange(const std::array<float, 6>& box, const Transform3x4& transform);
+// The box of `positions` (at least one).
+std::array<float, 6> boxOf(std::span<const Float3> positions);
 
 // A GpuMeshDesc's layout: handles, counts, format, stride and offset alignment, index type,
 // 16-bit reach, and that the declared sizes cover what the counts need (16-bit indices are

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <new>
+#include <stdexcept>
 
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
@@ -12,6 +14,26 @@
 #include "vk/device.hpp"
 
 namespace vkcollide {
+namespace {
+
+// No exception crosses the API: host memory running out anywhere in a detection (the
+// records read back, the union of three axes, the narrow phase's arrays, the result)
+// becomes OutOfMemory, and the detection in flight is forgotten (its GPU work is waited
+// for like a timed-out one's).
+template <typename F>
+auto hostGuarded(passes::Detection& detection, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const std::bad_alloc&) {
+        detection.abandon();
+        return Error(ErrorCode::OutOfMemory, "host memory ran out during the detection");
+    } catch (const std::length_error&) {
+        detection.abandon();
+        return Error(ErrorCode::OutOfMemory, "an array of the detection would exceed its largest size");
+    }
+}
+
+}  // namespace
 
 std::string CollisionWorld::Impl::who(ObjectId id, const std::string& name) {
     return "object " + std::to_string(id) + " ('" + name + "')";
@@ -26,6 +48,18 @@ Result<CollisionWorld::Impl::Object*> CollisionWorld::Impl::find(ObjectId id, co
 Result<void> CollisionWorld::Impl::notPending(const char* what) const {
     if (pending()) return Error(ErrorCode::InvalidArgument, std::string(what) + " while a detection is in flight: collect() it first");
     return {};
+}
+
+Result<void> CollisionWorld::Impl::notBusy(const char* what) const {
+    if (detection->busy())
+        return Error(ErrorCode::Timeout, std::string(what) + " while the GPU work of a detection that timed out still runs " +
+                                             "(state() is Busy until it ends): try again later");
+    return {};
+}
+
+Error CollisionWorld::Impl::noted(Error e) {
+    if (e.code() == ErrorCode::DeviceLost) device_lost = true;
+    return e;
 }
 
 ObjectId CollisionWorld::Impl::newId(const ObjectOptions& options, Object& out) const {
@@ -69,6 +103,8 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     // Every rule before anything is uploaded.
     for (auto ok : {validation::checkTransform(options.transform), validation::checkHostMesh(mesh)})
         if (!ok) return Impl::named(id, o.name, ok.error());
+    if (auto ok = validation::checkWorldRange(validation::boxOf(mesh.positions), options.transform); !ok)
+        return Impl::named(id, o.name, ok.error());
     auto uploaded = passes::uploadMeshes(w.device(), {&mesh}, {.open = {options.open}});
     if (!uploaded) return Impl::named(id, o.name, uploaded.error());
     o.host = true;
@@ -104,7 +140,8 @@ Result<ObjectId> CollisionWorld::addGpuMesh(const GpuMeshDesc& d, const ObjectOp
 
 Result<void> CollisionWorld::removeObject(ObjectId id) {
     Impl& w = *impl_;
-    if (auto ok = w.notPending("removeObject"); !ok) return ok.error();
+    for (auto ok : {w.notPending("removeObject"), w.notBusy("removeObject")})
+        if (!ok) return ok.error();
     auto o = w.find(id, "removeObject");
     if (!o) return o.error();
     **o = Impl::Object{};
@@ -118,6 +155,9 @@ Result<void> CollisionWorld::setTransform(ObjectId id, const Transform3x4& t) {
     auto o = w.find(id, "setTransform");
     if (!o) return o.error();
     if (auto ok = validation::checkTransform(t); !ok) return w.named(id, ok.error());
+    // Host meshes: the sampling range now (engine meshes: by the GPU check of each run).
+    if ((*o)->host)
+        if (auto ok = validation::checkWorldRange((*o)->box, t); !ok) return w.named(id, ok.error());
     (*o)->options.transform = t;
     return {};
 }
@@ -131,12 +171,14 @@ Result<void> CollisionWorld::setSelfCollision(ObjectId id, bool on) {
 
 Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3> positions) {
     Impl& w = *impl_;
-    if (auto ok = w.notPending("updateVertices"); !ok) return ok.error();
+    for (auto ok : {w.notPending("updateVertices"), w.notBusy("updateVertices")})
+        if (!ok) return ok.error();
     auto found = w.find(id, "updateVertices");
     if (!found) return found.error();
     Impl::Object& o = **found;
     if (!o.host) return w.named(id, Error(ErrorCode::InvalidArgument, "is a GPU mesh: write its vertex buffer instead"));
     if (auto ok = validation::checkVertices(positions, o.gpu.vertex_count); !ok) return w.named(id, ok.error());
+    if (auto ok = validation::checkWorldRange(validation::boxOf(positions), o.options.transform); !ok) return w.named(id, ok.error());
     std::memcpy(o.vertices.mapped(), positions.data(), positions.size_bytes());
     o.vertices.flush();
     Impl::measureHost(o, positions, o.host_indices);
@@ -157,6 +199,11 @@ std::size_t CollisionWorld::triangleCount() const noexcept {
 
 bool CollisionWorld::pending() const noexcept { return impl_->pending(); }
 
+WorldState CollisionWorld::state() const {
+    if (impl_->device_lost) return WorldState::DeviceLost;
+    return impl_->detection->busy() ? WorldState::Busy : WorldState::Ready;
+}
+
 Result<DetectSettings> CollisionWorld::resolveSettings(const DetectSettings& settings) const {
     std::vector<passes::GpuMesh> meshes;
     std::vector<ObjectId> ids;
@@ -169,12 +216,18 @@ Result<DetectSettings> CollisionWorld::resolveSettings(const DetectSettings& set
 }
 
 Result<DetectResult> CollisionWorld::detect(const DetectSettings& settings) {
-    if (auto ok = impl_->start(settings, settings.measure_layers); !ok) return ok.error();
-    return impl_->collect();
+    return hostGuarded(*impl_->detection, [&]() -> Result<DetectResult> {
+        if (auto ok = impl_->start(settings, settings.measure_layers); !ok) return ok.error();
+        return impl_->collect();
+    });
 }
 
-Result<void> CollisionWorld::submit(const DetectSettings& settings) { return impl_->start(settings, false); }
+Result<void> CollisionWorld::submit(const DetectSettings& settings) {
+    return hostGuarded(*impl_->detection, [&] { return impl_->start(settings, false); });
+}
 
-Result<DetectResult> CollisionWorld::collect() { return impl_->collect(); }
+Result<DetectResult> CollisionWorld::collect() {
+    return hostGuarded(*impl_->detection, [&] { return impl_->collect(); });
+}
 
 }  // namespace vkcollide

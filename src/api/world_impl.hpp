@@ -43,6 +43,9 @@ struct CollisionWorld::Impl {
     // before their buffers are freed.
     std::unique_ptr<passes::Detection> detection;
 
+    // A detection met a lost device (WorldState::DeviceLost): every later one fails at once.
+    bool device_lost = false;
+
     // The detection in flight.
     std::vector<ObjectId> run_ids;  // index in the detection's meshes -> ObjectId
     DetectSettings run_settings;
@@ -60,6 +63,11 @@ struct CollisionWorld::Impl {
     Error named(ObjectId id, const Error& e) const { return named(id, objects.at(id).name, e); }
     Result<Object*> find(ObjectId id, const char* what);
     Result<void> notPending(const char* what) const;
+    // Fails with Timeout while the GPU work of a timed-out detection runs (WorldState::Busy):
+    // for calls that change or free what that work reads.
+    Result<void> notBusy(const char* what) const;
+    // Notes a lost device in `e` (WorldState::DeviceLost) and returns it.
+    Error noted(Error e);
     ObjectId newId(const ObjectOptions& options, Object& out) const;
     void objectsChanged() { detection->forgetDepth(); }
 

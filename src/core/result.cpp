@@ -16,6 +16,8 @@ const char* toString(ErrorCode code) noexcept {
         case ErrorCode::DeviceLost: return "device lost";
         case ErrorCode::OutOfMemory: return "out of memory";
         case ErrorCode::GraphError: return "render graph error";
+        case ErrorCode::Timeout: return "timeout";
+        case ErrorCode::LimitExceeded: return "limit exceeded";
     }
     return "unknown error";
 }

@@ -21,8 +21,20 @@ void PassContext::shaderBarrier() const {
     device->fns.vkCmdPipelineBarrier2(cmd, &di);
 }
 
+namespace {
+
+// The submission's wait, with a timeout reported as ErrorCode::Timeout.
+Result<void> waitFor(vk::Submission& s, std::uint64_t timeout_ns) {
+    auto ok = s.wait(timeout_ns);
+    if (!ok && ok.error().vkResult() == VK_TIMEOUT)
+        return Error(ErrorCode::Timeout, "GPU work did not finish within " + std::to_string(timeout_ns / 1000000) + " ms", VK_TIMEOUT);
+    return ok;
+}
+
+}  // namespace
+
 Executor::~Executor() {
-    submission_.reset();
+    submission_.reset();  // waits for work in flight before anything is freed
     if (queries_) device_->fns.vkDestroyQueryPool(device_->device, queries_, device_->allocator());
 }
 
@@ -114,7 +126,18 @@ void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& b
     device_->fns.vkCmdPipelineBarrier2(cmd, &di);
 }
 
-Result<void> Executor::submit(const Graph& graph) {
+Result<void> Executor::settle(std::uint64_t timeout_ns) {
+    if (!submission_.valid()) return {};
+    return waitFor(submission_, timeout_ns);
+}
+
+bool Executor::busy() const {
+    if (!submission_.valid() || !submission_.pending()) return false;
+    auto ok = submission_.wait(0);
+    return !ok && ok.error().vkResult() == VK_TIMEOUT;
+}
+
+Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns) {
     auto plan = graph.compile();
     if (!plan) return plan.error();
     const auto& f = device_->fns;
@@ -124,7 +147,7 @@ Result<void> Executor::submit(const Graph& graph) {
         submission_ = std::move(*s);
     }
     // Wait for the previous use before touching its resources or queries.
-    if (auto ok = submission_.wait(); !ok) return ok.error();
+    if (auto ok = waitFor(submission_, timeout_ns); !ok) return ok.error();
 
     const auto pass_count = static_cast<std::uint32_t>(plan->order.size());
     const std::uint32_t needed = 2 * pass_count + 2;
@@ -208,8 +231,8 @@ Result<void> Executor::submit(const Graph& graph) {
     return submission_.submit();
 }
 
-Result<ExecutionReport> Executor::collect() {
-    if (auto ok = submission_.wait(); !ok) return ok.error();
+Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
+    if (auto ok = waitFor(submission_, timeout_ns); !ok) return ok.error();
     ExecutionReport report;
     report.culled = pending_culled_;
     const auto count = static_cast<std::uint32_t>(2 * pending_names_.size());
@@ -230,9 +253,9 @@ Result<ExecutionReport> Executor::collect() {
     return report;
 }
 
-Result<ExecutionReport> Executor::run(const Graph& graph) {
-    if (auto ok = submit(graph); !ok) return ok.error();
-    return collect();
+Result<ExecutionReport> Executor::run(const Graph& graph, std::uint64_t timeout_ns) {
+    if (auto ok = submit(graph, timeout_ns); !ok) return ok.error();
+    return collect(timeout_ns);
 }
 
 }  // namespace vkcollide::graph

@@ -45,26 +45,39 @@ struct ExecutionReport {
     double total_gpu_ms = 0;         // first pass start to last pass end
 };
 
+// How long the executor waits for the GPU unless told otherwise.
+inline constexpr std::uint64_t kDefaultTimeoutNs = 60ull * 1000 * 1000 * 1000;
+
+// Every wait takes a timeout (ns). A wait that runs out returns ErrorCode::Timeout and
+// leaves the work in flight: nothing of it is reused until a later wait (settle(), the
+// next submit(), the destructor) has seen it finish.
 class Executor {
 public:
     explicit Executor(vk::Device& device) : device_(&device) {}
+    // Waits for work in flight (however long: its resources may not be freed before).
     ~Executor();
     Executor(const Executor&) = delete;
     Executor& operator=(const Executor&) = delete;
 
-    // Compiles, records and submits the graph; returns without waiting.
-    [[nodiscard]] Result<void> submit(const Graph& graph);
+    // Compiles, records and submits the graph; returns without waiting for it (but waits
+    // up to timeout_ns for the previous submission first).
+    [[nodiscard]] Result<void> submit(const Graph& graph, std::uint64_t timeout_ns = kDefaultTimeoutNs);
     // Waits for the last submission and reads its timestamps.
-    [[nodiscard]] Result<ExecutionReport> collect();
+    [[nodiscard]] Result<ExecutionReport> collect(std::uint64_t timeout_ns = kDefaultTimeoutNs);
     // submit() then collect().
-    [[nodiscard]] Result<ExecutionReport> run(const Graph& graph);
+    [[nodiscard]] Result<ExecutionReport> run(const Graph& graph, std::uint64_t timeout_ns = kDefaultTimeoutNs);
+    // Waits up to timeout_ns for any work in flight, also work a collect() gave up on.
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns);
+    // Whether submitted work is still running (polls; never waits).
+    bool busy() const;
 
 private:
     Result<void> prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx);
     void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx) const;
 
     vk::Device* device_;
-    vk::Submission submission_;
+    // Mutable for busy(): polling the fence changes nothing the executor promises.
+    mutable vk::Submission submission_;
     VkQueryPool queries_ = VK_NULL_HANDLE;
     std::uint32_t query_capacity_ = 0;
     // Transients cached by name; recreated when the description changes.

@@ -2,6 +2,7 @@
 #include "narrow/workspace.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -133,21 +134,30 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     }
     clock.lap(timings.filter_ms);
 
-    // Stage 4: exact tests over all tasks' pairs, as one index range.
+    // Stage 4: exact tests over all tasks' pairs, as one index range. Hits are stored while
+    // fewer than max_pairs are (each task decides when it starts, so at most a task's
+    // tests more per thread) and always counted; past the budget the first max_pairs hits
+    // in test order are kept (below), whatever the scheduling was.
     const std::size_t total_tests = test_begin.back();
     const std::size_t test_tasks = taskCount(total_tests, kTestGrain);
     std::vector<std::vector<std::uint64_t>>& hits = ws.hits;  // (lower slot, higher slot) per hit
     hits.resize(test_tasks);
     std::vector<std::size_t>& object_filtered = ws.object_filtered;
     object_filtered.assign(test_tasks, 0);
-    ex.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::size_t>& found_per_task = ws.found;  // hits per task, stored or not
+    found_per_task.assign(test_tasks, 0);
+    std::vector<std::uint8_t>& kept = ws.kept;  // 1: the task's hits are all in hits[task]
+    kept.assign(test_tasks, 0);
+    std::atomic<std::size_t> stored{0};
+    const std::size_t budget = options.max_pairs;
+    const auto testTask = [&](std::size_t begin, std::size_t end, bool keep) {
         const std::size_t task_index = begin / kTestGrain;
         // Built in a local (keeping the capacity of the last call) and moved back at the
         // end: tasks sit next to each other in memory, and growing vectors in place would
         // share cache lines between threads.
         std::vector<std::uint64_t> found = std::move(hits[task_index]);
         found.clear();
-        std::size_t filtered = 0;
+        std::size_t filtered = 0, hit_total = 0;
         std::size_t source = static_cast<std::size_t>(std::upper_bound(test_begin.begin(), test_begin.end(), begin) -
                                                       test_begin.begin()) - 1;
         std::uint64_t cached_pair = std::numeric_limits<std::uint64_t>::max();
@@ -170,16 +180,42 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
                     }
                 }
             }
-            if (trianglesIntersect(slots.v[p.i], slots.v[p.j])) found.push_back(keyOf(p.i, p.j));
+            if (trianglesIntersect(slots.v[p.i], slots.v[p.j])) {
+                ++hit_total;
+                if (keep) found.push_back(keyOf(p.i, p.j));
+            }
         }
         hits[task_index] = std::move(found);
         object_filtered[task_index] = filtered;
+        found_per_task[task_index] = hit_total;
+        kept[task_index] = keep ? 1 : 0;
+    };
+    ex.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
+        const bool keep = stored.load(std::memory_order_relaxed) < budget;
+        testTask(begin, end, keep);
+        if (keep) stored.fetch_add(hits[begin / kTestGrain].size(), std::memory_order_relaxed);
     });
-    std::size_t filtered_late = 0, hit_count = 0;
+    std::size_t filtered_late = 0, hit_count = 0, found_count = 0;
     for (std::size_t t = 0; t < test_tasks; ++t) {
         filtered_late += object_filtered[t];
-        hit_count += hits[t].size();
+        found_count += found_per_task[t];
     }
+    if (found_count > budget) {
+        // The first `budget` hits in test order: whole tasks, then part of the last one. A
+        // task inside that prefix whose hits were not stored is tested again.
+        std::size_t room = budget;
+        for (std::size_t t = 0; t < test_tasks; ++t) {
+            if (room == 0) {
+                hits[t].clear();
+                continue;
+            }
+            if (!kept[t] && found_per_task[t] > 0) testTask(t * kTestGrain, std::min(total_tests, (t + 1) * kTestGrain), true);
+            if (hits[t].size() > room) hits[t].resize(room);
+            room -= hits[t].size();
+        }
+        out.pairs_left_out = found_count - budget;
+    }
+    for (std::size_t t = 0; t < test_tasks; ++t) hit_count += hits[t].size();
     stats.filtered_pairs += filtered_late;
     stats.triangle_tests = total_tests - filtered_late;
     clock.lap(timings.test_ms);
@@ -203,7 +239,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
             out.pairs[k] = {slots.object[i], slots.triangle[i], slots.object[j], slots.triangle[j]};
         }
     });
-    stats.positive_tests = hit_count;
+    stats.positive_tests = hit_count + out.pairs_left_out;
     clock.lap(timings.sort_ms);
 
     // Stage 6: responses.

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "narrow/exact_stage.hpp"
+#include "narrow/guarded_executor.hpp"
 #include "narrow/workspace.hpp"
 #include "narrow/neighbours.hpp"
 #include "vkcollide/narrow.hpp"
@@ -42,6 +43,9 @@ constexpr std::size_t kValidateGrain = 16384;
 // objects meet, so many small tasks balance better), at most this many.
 constexpr std::size_t kMaxSweepGrain = 256;
 constexpr std::size_t kTasksPerThread = 32;
+// Box pairs a sweep task counts between looks at NarrowOptions::max_box_pairs (one atomic
+// add per stride: nothing next to the sweep's nanoseconds per pair).
+constexpr std::size_t kBoxBudgetStride = std::size_t{1} << 16;
 
 // Either kind of record, seen through strided views.
 struct RecordView {
@@ -191,6 +195,7 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, c
     });
     static_assert(std::atomic_ref<std::uint8_t>::required_alignment == 1);
     const bool filter_objects = static_cast<bool>(options.may_collide);
+    std::atomic<std::size_t> box_pairs_seen{0};  // in whole strides, by the sweep tasks
     ex.parallelFor(tiles, sweep_grain, [&](std::size_t begin, std::size_t end) {
         // Moved into a local (keeping the capacity of the last call) and back at the end:
         // tasks sit next to each other in memory, and growing vectors in place would share
@@ -199,12 +204,20 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, c
         task.tests.clear();
         task.object_pairs.clear();
         std::size_t sap_pairs = 0, neighbour_pairs = 0;  // in registers, not in `task`
+        std::size_t budget_mark = kBoxBudgetStride;      // sap_pairs at the next look at the budget
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
         // Runs for every reported pair: inlined into the sweep.
         narrow::CellSweep::TileCells cells;
         sweep.sweepTiles(begin, end, cells, [&](std::uint32_t i, std::uint32_t j, std::uint32_t object_i,
                                                 std::uint32_t object_j) VKCOLLIDE_ALWAYS_INLINE {
             ++sap_pairs;
+            // The box-pair budget, every kBoxBudgetStride pairs: past it, this task throws
+            // (GuardedExecutor ends the loop) and the call returns LimitExceeded.
+            if (sap_pairs == budget_mark) {
+                budget_mark += kBoxBudgetStride;
+                if (box_pairs_seen.fetch_add(kBoxBudgetStride, std::memory_order_relaxed) + kBoxBudgetStride > options.max_box_pairs)
+                    throw narrow::BoxBudgetExceeded{};
+            }
             // Store only when not set yet: most pairs find both flags set, and reading keeps
             // the cache line shared instead of bouncing it between threads.
             for (const std::uint32_t k : {i, j}) {
@@ -237,6 +250,9 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, c
         stats.sap_pairs += task.sap_pairs;
         stats.neighbour_pairs += task.neighbour_pairs;
     }
+    // Exceeded exactly when all tasks' pairs are more than the budget (a task throws only
+    // once the strides counted so far are).
+    if (stats.sap_pairs > options.max_box_pairs) throw narrow::BoxBudgetExceeded{};
     // The loop's end ordered every flag store before these (plain) reads.
     std::vector<std::size_t> flagged(narrow::taskCount(n, kValidateGrain), 0);
     ex.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
@@ -264,8 +280,10 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
     return runNarrowPhase(in_candidates, options, executor, workspace);
 }
 
-Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
-                                    Executor& executor, NarrowWorkspace& io_workspace) {
+namespace {
+
+Result<NarrowResult> triangleRecordPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
+                                         Executor& executor, NarrowWorkspace& io_workspace) {
     narrow::StageClock clock;
     NarrowWorkspace::Impl& ws = io_workspace.impl();
     const std::size_t n = in_candidates.size();
@@ -310,14 +328,8 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
                         clock);
 }
 
-Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
-                                    const NarrowOptions& options, Executor& executor) {
-    NarrowWorkspace workspace;
-    return runNarrowPhase(in_records, source, options, executor, workspace);
-}
-
-Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
-                                    const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace) {
+Result<NarrowResult> leanRecordPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
+                                     const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace) {
     narrow::StageClock clock;
     NarrowWorkspace::Impl& ws = io_workspace.impl();
     const std::size_t n = in_records.size();
@@ -356,6 +368,28 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records,
     clock.lap(result.timings.gather_ms);
     return sweepAndTest(rv, range, record_of, narrow::slotView(ws.tags, ws.vertices), options, executor, ws, std::move(result),
                         clock);
+}
+
+}  // namespace
+
+Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
+                                    const NarrowOptions& options, Executor& executor) {
+    NarrowWorkspace workspace;
+    return runNarrowPhase(in_records, source, options, executor, workspace);
+}
+
+Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
+                                    Executor& executor, NarrowWorkspace& io_workspace) {
+    return narrow::guardedCall("runNarrowPhase", executor, options.max_box_pairs, [&](Executor& guarded) {
+        return triangleRecordPhase(in_candidates, options, guarded, io_workspace);
+    });
+}
+
+Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
+                                    const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace) {
+    return narrow::guardedCall("runNarrowPhase", executor, options.max_box_pairs, [&](Executor& guarded) {
+        return leanRecordPhase(in_records, source, options, guarded, io_workspace);
+    });
 }
 
 }  // namespace vkcollide

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "narrow/exact_stage.hpp"
+#include "narrow/guarded_executor.hpp"
 #include "narrow/workspace.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/slots.hpp"
@@ -55,8 +56,10 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
     return runPairNarrowPhase(in_pairs, source, options, executor, workspace);
 }
 
-Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
-                                        const NarrowOptions& options, Executor& ex, NarrowWorkspace& io_workspace) {
+namespace {
+
+Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source, const NarrowOptions& options,
+                               Executor& ex, NarrowWorkspace& io_workspace) {
     narrow::StageClock clock;
     NarrowWorkspace::Impl& ws = io_workspace.impl();
     const std::size_t input = in_pairs.size();
@@ -176,6 +179,7 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
     result.stats.candidates = slot_count;
     result.stats.potentially_colliding_triangles = slot_count;  // every one is in a pair
     result.stats.sap_pairs = pairs;
+    if (pairs > options.max_box_pairs) throw narrow::BoxBudgetExceeded{};
     clock.lap(result.timings.validate_ms);
 
     // Stage 4: the slots' geometry.
@@ -232,6 +236,15 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
 
     narrow::testAndRespond(tasks, slots, slot_count, true, options, ex, ws, result, clock);
     return result;
+}
+
+}  // namespace
+
+Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
+                                        const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace) {
+    return narrow::guardedCall("runPairNarrowPhase", executor, options.max_box_pairs, [&](Executor& guarded) {
+        return pairPhase(in_pairs, source, options, guarded, io_workspace);
+    });
 }
 
 }  // namespace vkcollide

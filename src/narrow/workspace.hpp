@@ -34,6 +34,8 @@ struct vkcollide::NarrowWorkspace::Impl {
     std::vector<narrow::PairTask> pair_tasks;
     std::vector<std::size_t> test_begin, object_filtered;
     std::vector<std::vector<std::uint64_t>> hits;
+    std::vector<std::size_t> found;   // per test task: hits found, stored or not (max_pairs)
+    std::vector<std::uint8_t> kept;  // per test task: its hits are stored
     narrow::Buffer<std::uint64_t> colliding, colliding_scratch;
     narrow::Buffer<std::uint64_t> contributions, contribution_scratch;
     narrow::Buffer<std::uint32_t> responders, responder_begin, responder_of;

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -58,7 +59,9 @@ std::string describe(const ObjectFault& f) {
         case ObjectFault::Kind::IndexOutOfRange:
             return "triangle " + std::to_string(f.triangle) + " has an index >= the vertex count " + std::to_string(f.vertex_count) + affected;
         case ObjectFault::Kind::NonFinitePosition:
-            return "triangle " + std::to_string(f.triangle) + " has a NaN or infinite vertex position" + affected;
+            return "triangle " + std::to_string(f.triangle) +
+                   " has a vertex position that is NaN or infinite, or beyond +-1e30 after the object's transform (the sampling range)" +
+                   affected;
     }
     return "triangle " + std::to_string(f.triangle) + ": unknown problem";
 }
@@ -82,8 +85,19 @@ Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device, Metho
     return bp;
 }
 
+BroadPhase::~BroadPhase() {
+    // The executor is destroyed after the buffers (declared first): wait here.
+    (void)executor_.settle(~std::uint64_t(0));
+}
+
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     assert(meetsPreconditions(meshes, s, device_->conservative_rasterization));
+    // Work an earlier run gave up on (Timeout) may still read these buffers.
+    if (auto ok = executor_.settle(s.timeout_ns); !ok) {
+        if (ok.error().code() != ErrorCode::Timeout) return ok.error();
+        return Error(ErrorCode::Timeout, "the GPU work of an earlier detection that timed out is still running (" +
+                                             ok.error().message() + " more)", ok.error().vkResult());
+    }
     std::uint64_t total = 0;
     for (const GpuMesh& m : meshes) total += m.triangle_count;
     const RunShape shape{s.resolution, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(meshes.size()), s.keep_ray_image};
@@ -182,6 +196,27 @@ Result<void> BroadPhase::checkInputs(const gpu::Header& h) {
     return Error(ErrorCode::InvalidMesh, "object " + std::to_string(faults_.front().object) + ": " + describe(faults_.front()));
 }
 
+// The fitted image must be at least kMinSamplingExtent wide (config.h): narrower, and the
+// projection and pixels would need subnormal floats, which GPUs flush to zero. A scene of
+// subnormal coordinates is flushed to a point before it is measured: the bounds pass
+// counts those vertices. (A scene that is a point in float for other reasons, e.g. tiny
+// features far from the origin, keeps the fit's extent of 1: dilation still marks its
+// rays, docs/stability.md case 9.) A caller's region is checked by the API instead.
+Result<void> BroadPhase::checkExtent(const gpu::Header& h) const {
+    if (run_.settings.region) return {};
+    const BasisBounds b = boundsFromHeader(h);
+    const float size = std::max(b.hi[0] - b.lo[0], b.hi[1] - b.lo[1]);
+    if (size >= gpu::kMinSamplingExtent || (size == 0 && h.subnormal_vertices == 0)) return {};
+    char text[160];
+    if (size == 0)
+        std::snprintf(text, sizeof text, "the scene's coordinates are subnormal floats (%u vertices), which the GPU flushes to zero",
+                      h.subnormal_vertices);
+    else
+        std::snprintf(text, sizeof text, "the scene is %g world units wide across the projection direction", double(size));
+    return Error(ErrorCode::LimitExceeded, std::string(text) + ", narrower than the smallest extent vkcollide can sample "
+                                                               "(1e-30 world units): scale the scene up");
+}
+
 void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionReport& report) {
     for (const auto& p : report.passes) {
         addStageTime(result, p);
@@ -196,10 +231,11 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     // Submission 1: front and measurement; the method reads the header.
     graph::Graph g1;
     record(g1, true, false);
-    auto report1 = executor_.run(g1);
+    auto report1 = executor_.run(g1, s.timeout_ns);
     if (!report1) return report1.error();
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
+    if (auto ok = checkExtent(h1); !ok) return ok.error();
     if (auto ok = method_->afterMeasure(view(), h1); !ok) return ok.error();
     run_.first = BroadPhaseResult{};
     addTimings(run_.first, *report1);
@@ -207,7 +243,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     // Submission 2: the method's main passes.
     graph::Graph g2;
     record(g2, false, true);
-    if (auto ok = executor_.submit(g2); !ok) return ok.error();
+    if (auto ok = executor_.submit(g2, s.timeout_ns); !ok) return ok.error();
     pending_ = true;
     return collect();
 }
@@ -219,7 +255,7 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     run_.first = BroadPhaseResult{};
     graph::Graph g;
     record(g, true, true);
-    if (auto ok = executor_.submit(g); !ok) return ok.error();
+    if (auto ok = executor_.submit(g, s.timeout_ns); !ok) return ok.error();
     pending_ = true;
     return {};
 }
@@ -227,12 +263,13 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
 Result<BroadPhaseResult> BroadPhase::collect() {
     if (!pending_) return Error(ErrorCode::InvalidArgument, "no broad phase in flight: submit() first");
     pending_ = false;
-    auto report = executor_.collect();
+    auto report = executor_.collect(run_.settings.timeout_ns);
     if (!report) return report.error();
 
     const auto t0 = std::chrono::steady_clock::now();
     const gpu::Header h = readHeader();
     if (auto ok = checkInputs(h); !ok) return ok.error();
+    if (auto ok = checkExtent(h); !ok) return ok.error();
     BroadPhaseResult result = std::move(run_.first);
     addTimings(result, *report);
     // A single submission measures the depth complexity in the same run; with a

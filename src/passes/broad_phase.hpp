@@ -37,6 +37,11 @@ VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles,
 class BroadPhase {
 public:
     static Result<std::unique_ptr<BroadPhase>> create(vk::Device& device, MethodFactory method = PeelingMethod::create);
+    // Waits for GPU work still in flight (also work a timed-out run left behind) before
+    // any buffer is freed.
+    ~BroadPhase();
+    BroadPhase(const BroadPhase&) = delete;
+    BroadPhase& operator=(const BroadPhase&) = delete;
     // Two submissions with a host wait between them: the first measures the depth
     // complexity, the second peels exactly that many layers (or the cap).
     [[nodiscard]] Result<BroadPhaseResult> run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
@@ -47,6 +52,14 @@ public:
     [[nodiscard]] Result<void> submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings, std::uint32_t layers);
     [[nodiscard]] Result<BroadPhaseResult> collect();
     bool pending() const noexcept { return pending_; }
+    // After a run or collect() failed with ErrorCode::Timeout its GPU work goes on: busy()
+    // polls it, settle() waits for it. The next run() or submit() settles first (with its
+    // own timeout) and fails with Timeout while that work still runs.
+    bool busy() const { return executor_.busy(); }
+    // Forgets the run in flight without waiting for it (after host memory ran out while
+    // collecting it): its GPU work is settled like a timed-out one.
+    void abandon() noexcept { pending_ = false; }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
     // After an InvalidMesh error from the GPU input check: what it found, per object (run
     // indices); at most one per kind of problem, so other objects may be bad too.
     const std::vector<ObjectFault>& faults() const noexcept { return faults_; }
@@ -66,6 +79,7 @@ private:
     void record(graph::Graph& g, bool measure, bool main);
     gpu::Header readHeader() const;
     Result<void> checkInputs(const gpu::Header& header);
+    Result<void> checkExtent(const gpu::Header& header) const;
     static void addTimings(BroadPhaseResult& io_result, const graph::ExecutionReport& report);
 
     vk::Device* device_;

@@ -59,6 +59,9 @@ struct BroadPhaseSettings {
     // Auto picks per device and scene (chooseSamplingBackend in sampling/backend_choice.hpp).
     SamplingBackend backend = SamplingBackend::Auto;
     ComputeSamplingTuning compute;
+    // Longest wait for one submission (ns); beyond it the run fails with ErrorCode::Timeout
+    // and its GPU work is left to finish on its own (BroadPhase::busy()).
+    std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;
 };
 
 // A problem the GPU input check found in one object (kObjectCheckOnGpu meshes), as data:
@@ -66,7 +69,7 @@ struct BroadPhaseSettings {
 struct ObjectFault {
     enum class Kind : std::uint8_t {
         IndexOutOfRange,    // an index >= the vertex count
-        NonFinitePosition,  // a vertex position that is NaN or infinite
+        NonFinitePosition,  // a vertex position that is NaN or infinite, or beyond +-kMaxWorldCoordinate in world space
     };
     std::uint32_t object = 0;              // index in the run's meshes
     Kind kind = Kind::IndexOutOfRange;
@@ -85,6 +88,8 @@ struct BroadPhaseResult {
     std::uint32_t layers = 0;                // layers peeled: min(depth complexity, cap)
     std::uint32_t peel_steps = 0;            // peeling passes recorded (half with dual)
     std::uint32_t collision_rays = 0;
+    // Rays with more than gpu::kMaxRayFragments fragments: collision rays without peeling.
+    std::uint32_t deep_rays = 0;
     std::uint32_t triangles = 0;
     // The sampling projection used (world -> [0,1]^2 image, depth): the caller's region, or
     // the fit repeated on the host from the bounds the GPU measured (passes/projection.hpp).

@@ -55,7 +55,7 @@ void CommonStages::recordFront(graph::Graph& g, const RunView& run, const GraphB
             for (std::uint32_t i = 0; i < run.meshes.size(); ++i) {
                 if (!run.meshes[i].check_on_gpu) continue;
                 bindAndPush(pc, validate_, run.frame_address, i);
-                pc.fns().vkCmdDispatch(pc.cmd, groups(run.meshes[i].triangle_count), 1, 1);
+                dispatchItems(pc, run.meshes[i].triangle_count);
             }
         });
     }
@@ -63,7 +63,7 @@ void CommonStages::recordFront(graph::Graph& g, const RunView& run, const GraphB
         addPass(g, "bounds", PassKind::Compute, Stage::Prepare).readWrite(header).record([this, run](PassContext& pc) {
             for (std::uint32_t i = 0; i < run.meshes.size(); ++i) {
                 bindAndPush(pc, bounds_, run.frame_address, i);
-                pc.fns().vkCmdDispatch(pc.cmd, std::max(groups(run.meshes[i].vertex_count), 1u), 1, 1);
+                dispatchItems(pc, run.meshes[i].vertex_count);
             }
         });
         addPass(g, "fit", PassKind::Compute, Stage::Prepare)

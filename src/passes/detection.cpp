@@ -21,6 +21,19 @@ Detection::~Detection() {
     if (pending_) (void)gather();
 }
 
+bool Detection::busy() const {
+    return std::any_of(broads_.begin(), broads_.end(), [](const auto& bp) { return bp && bp->busy(); });
+}
+
+void Detection::abandon() noexcept {
+    for (std::uint32_t k = 0; k < broads_.size(); ++k) {
+        if (axis_pending_[k] && broads_[k]) broads_[k]->abandon();
+        axis_pending_[k] = false;
+        ready_[k].reset();
+    }
+    pending_ = false;
+}
+
 std::uint64_t Detection::memoryBytes() const noexcept {
     std::uint64_t n = 0;
     for (const auto& bp : broads_)

@@ -57,6 +57,13 @@ public:
     // Waits for every direction, leaving out bad engine meshes and running again as needed.
     [[nodiscard]] Result<DetectionResult> collect();
     bool pending() const noexcept { return pending_; }
+    // GPU work of a detection that failed with Timeout is still running (polls; never
+    // waits). Buffers it reads must not change or be freed until it ends; the next start()
+    // waits for it (with its own timeout) and fails with Timeout while it runs.
+    bool busy() const;
+    // Forgets the detection in flight without reading it (after host memory ran out): the
+    // broad phases' GPU work is settled like a timed-out one (busy()). Allocates nothing.
+    void abandon() noexcept;
     // The scene changed: the next detection measures instead of predicting its depth.
     void forgetDepth() noexcept { depth_known_.fill(false); }
     // Bytes of the broad phases' GPU buffers.

@@ -17,7 +17,7 @@ void Merging::record(graph::Graph& g, const RunView& run, graph::ResourceId bund
         .record([this, frame = run.frame_address, n, levels](graph::PassContext& pc) {
             for (std::uint32_t l = 1; l < levels; ++l) {
                 bindAndPush(pc, merge_, frame, 0, 0, l);
-                pc.fns().vkCmdDispatch(pc.cmd, groups(VkDeviceSize(n >> l) * (n >> l)), 1, 1);
+                dispatchItems(pc, VkDeviceSize(n >> l) * (n >> l));
                 if (l + 1 < levels) pc.shaderBarrier();  // level l+1 reads level l
             }
         });

@@ -40,7 +40,7 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
             .write(b.scratch)
             .record([this, frame, rows](PassContext& pc) {
                 bindAndPush(pc, pack_rowcount_, frame);
-                pc.fns().vkCmdDispatch(pc.cmd, rows, 1, 1);
+                dispatchGroups(pc, rows);
                 pc.shaderBarrier();
                 bindAndPush(pc, scan_counts_, frame, 0, rows);
                 pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
@@ -51,7 +51,7 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
             .readWrite(b.header)
             .record([this, frame, rows](PassContext& pc) {
                 bindAndPush(pc, pack_shift_, frame);
-                pc.fns().vkCmdDispatch(pc.cmd, groups(rows, 64), 1, 1);
+                dispatchItems(pc, rows, 64);
             });
         addPass(g, "pack-move", PassKind::Compute, Stage::Packing)
             .read(b.sparse)
@@ -60,7 +60,7 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
             .write(b.records)
             .record([this, frame, rows](PassContext& pc) {
                 bindAndPush(pc, pack_move_, frame);
-                pc.fns().vkCmdDispatch(pc.cmd, rows, 1, 1);
+                dispatchGroups(pc, rows);
             });
         return;
     }
@@ -70,7 +70,7 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
         .readWrite(b.header)
         .record([this, frame, blocks](PassContext& pc) {
             bindAndPush(pc, scan_blocksum_, frame);
-            pc.fns().vkCmdDispatch(pc.cmd, blocks, 1, 1);
+            dispatchGroups(pc, blocks);
             pc.shaderBarrier();
             bindAndPush(pc, scan_counts_, frame, 0, blocks);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
@@ -82,7 +82,7 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
         .write(b.records)
         .record([this, frame, blocks](PassContext& pc) {
             bindAndPush(pc, scan_scatter_, frame);
-            pc.fns().vkCmdDispatch(pc.cmd, blocks, 1, 1);
+            dispatchGroups(pc, blocks);
         });
 }
 

@@ -21,7 +21,11 @@ PeelingMethod::Buffers PeelingMethod::addRows(BufferTable& t) {
     using vk::MemoryKind;
     using F = gpu::Frame;
     Buffers b;
-    b.counts = t.add({"counts", MemoryKind::DeviceLocal, [](const RunShape& s) { return pixels(s) * 4; }, &F::counts, false, true});
+    // Sampling counts each ray's fragments in 64 bits (cleared every run); reduce-max packs
+    // them into `counts` for the peeling passes (every ray written, so never cleared).
+    b.fragments = t.add({"ray-fragments", MemoryKind::DeviceLocal, [](const RunShape& s) { return pixels(s) * 8; },
+                         &F::ray_fragments, false, true});
+    b.counts = t.add({"counts", MemoryKind::DeviceLocal, [](const RunShape& s) { return pixels(s) * 4; }, &F::counts});
     b.front = t.add({"front-keys", MemoryKind::DeviceLocal, [](const RunShape& s) { return pixels(s) * 8; }, &F::front_keys});
     b.back = t.add({"back-keys", MemoryKind::DeviceLocal, [](const RunShape& s) { return pixels(s) * 8; }, &F::back_keys});
     b.state = t.add({"ray-state", MemoryKind::DeviceLocal, [](const RunShape& s) { return pixels(s) * sizeof(gpu::PixelState); }, &F::state});
@@ -73,7 +77,7 @@ Result<void> PeelingMethod::prepare(const BroadPhaseSettings& s, const RunShape&
 }
 
 SamplingBuffers PeelingMethod::samplingBuffers(const GraphBuffers& b) const {
-    return {b[core_.projection], b[core_.header], b[buf_.counts], b[buf_.state], b[buf_.front], b[buf_.back]};
+    return {b[core_.projection], b[core_.header], b[buf_.counts], b[buf_.state], b[buf_.front], b[buf_.back], b[buf_.fragments]};
 }
 
 void PeelingMethod::recordMeasure(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const {
@@ -81,6 +85,9 @@ void PeelingMethod::recordMeasure(graph::Graph& g, const RunView& run, const Gra
 }
 
 void PeelingMethod::setLayers(const RunView& run, std::uint32_t layers) {
+    // Rays deeper than kMaxRayFragments are collision rays without peeling (reduce-max), so
+    // no ray needs more steps than that, whatever the depth complexity.
+    layers = std::min(layers, gpu::kMaxRayFragments);
     layers_ = run.settings.layer_cap ? std::min(layers, run.settings.layer_cap) : layers;
     steps_ = run.settings.dual ? (layers_ + 1) / 2 : layers_;
 }
@@ -113,6 +120,7 @@ Result<void> PeelingMethod::collect(const RunView& run, const gpu::Header& h, Br
     result.layers = layers_;
     result.peel_steps = steps_;
     result.collision_rays = h.collision_rays;
+    result.deep_rays = h.deep_rays;
     if (h.record_count > triangles)
         return Error(ErrorCode::VulkanError, "packing reported " + std::to_string(h.record_count) + " records for " +
                                                  std::to_string(triangles) + " triangles");

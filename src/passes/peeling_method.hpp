@@ -25,7 +25,7 @@ public:
 
     // The method's rows of the table (also for broadPhaseMemory's plan without a device).
     struct Buffers {
-        BufferId counts, front, back, state, bundles, sparse, records, scratch, ray_image;
+        BufferId fragments, counts, front, back, state, bundles, sparse, records, scratch, ray_image;
     };
     static Buffers addRows(BufferTable& io_table);
 

@@ -19,7 +19,7 @@ void Separation::record(graph::Graph& g, const RunView& run, graph::ResourceId p
         .record([this, run](graph::PassContext& pc) {
             for (std::uint32_t i = 0; i < run.meshes.size(); ++i) {
                 bindAndPush(pc, separate_, run.frame_address, i);
-                pc.fns().vkCmdDispatch(pc.cmd, groups(run.meshes[i].triangle_count), 1, 1);
+                dispatchItems(pc, run.meshes[i].triangle_count);
             }
         });
 }

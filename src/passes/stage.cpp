@@ -1,5 +1,8 @@
 #include "passes/stage.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+
 namespace vkcollide::passes {
 
 const char* toString(Stage stage) noexcept {
@@ -42,6 +45,28 @@ void bindAndPush(const graph::PassContext& pc, const vk::Pipeline& p, VkDeviceAd
 }
 
 std::uint32_t groups(std::uint64_t items, std::uint32_t size) { return static_cast<std::uint32_t>((items + size - 1) / size); }
+
+DispatchShape dispatchShape(std::uint64_t groups, std::uint32_t max_x, std::uint32_t max_y) {
+    if (groups == 0) return {0, 1};
+    const std::uint64_t x = std::min<std::uint64_t>(groups, std::max(max_x, 1u));
+    const std::uint64_t y = (groups + x - 1) / x;
+    if (y > max_y) return {};
+    return {static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)};
+}
+
+void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups) {
+    const std::uint32_t* limit = pc.device->properties.limits.maxComputeWorkGroupCount;
+    const DispatchShape shape = dispatchShape(groups, limit[0], limit[1]);
+    // Never for vkcollide's counts (see the header); recording nothing would be silent, so
+    // stop here in every build.
+    if (shape.x == 0 && groups != 0) std::abort();
+    if (shape.x == 0) return;
+    pc.fns().vkCmdDispatch(pc.cmd, shape.x, shape.y, 1);
+}
+
+void dispatchItems(const graph::PassContext& pc, std::uint64_t items, std::uint32_t size) {
+    dispatchGroups(pc, (items + size - 1) / size);
+}
 
 Result<void> makeCompute(vk::Device& device, vk::Pipeline& out, std::span<const std::uint32_t> spirv, const char* name) {
     auto p = vk::Pipeline::createCompute(device, spirv, {}, sizeof(gpu::Push), name);

@@ -28,7 +28,7 @@ const std::map<std::pair<std::string, std::uint32_t>, double> kRecallFloor = {
 
 }  // namespace
 
-TEST_CASE("recall against the exact reference stays at its measured floor; precision is 100 %", "[api][gpu][recall]") {
+TEST_CASE("recall against the exact reference stays at its measured floor, precision at 100 %", "[api][gpu][recall]") {
     ValidatedContext ctx;
     auto scenes = allTestScenes();
     REQUIRE(scenes);

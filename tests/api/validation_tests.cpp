@@ -149,5 +149,6 @@ TEST_CASE("GPU check findings are worded from data", "[api][validation]") {
     passes::ObjectFault index{3, passes::ObjectFault::Kind::IndexOutOfRange, 7, 2, 50};
     CHECK(passes::describe(index) == "triangle 7 has an index >= the vertex count 50 (2 triangles affected)");
     passes::ObjectFault nan{0, passes::ObjectFault::Kind::NonFinitePosition, 1, 9, 12};
-    CHECK(passes::describe(nan) == "triangle 1 has a NaN or infinite vertex position (9 triangles affected)");
+    CHECK(passes::describe(nan) == "triangle 1 has a vertex position that is NaN or infinite, or beyond +-1e30 after the object's "
+                                   "transform (the sampling range) (9 triangles affected)");
 }

@@ -285,7 +285,7 @@ TEST_CASE("malformed graphs are rejected with a plain message", "[graph]") {
     }
 }
 
-TEST_CASE("a pass keeps the stage tag it declares; untagged passes have 0", "[graph]") {
+TEST_CASE("a pass keeps the stage tag it declares, untagged passes have 0", "[graph]") {
     Graph g;
     const ResourceId buf = g.importBuffer("buf", 64);
     g.addPass("tagged", PassKind::Compute).stage(3).write(buf).record(kNoop);

@@ -34,7 +34,7 @@ StabilityCase make(Result<StabilityCase> c) {
 
 }  // namespace
 
-TEST_CASE("triangles smaller than a pixel are missed; dilation finds them", "[stability][gpu]") {
+TEST_CASE("triangles smaller than a pixel are missed, dilation finds them", "[stability][gpu]") {
     ValidatedContext ctx;
     const StabilityCase c = make(subPixelTriangles());
     REQUIRE(c.reference.size() == 64);
@@ -46,7 +46,7 @@ TEST_CASE("triangles smaller than a pixel are missed; dilation finds them", "[st
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("an intersection seen edge-on is missed; a second axis or dilation finds it", "[stability][gpu]") {
+TEST_CASE("an intersection seen edge-on is missed, a second axis or dilation finds it", "[stability][gpu]") {
     ValidatedContext ctx;
     const StabilityCase c = make(edgeOnOverlap());
     REQUIRE(c.reference.size() == 28);
@@ -87,7 +87,7 @@ TEST_CASE("coplanar overlapping triangles and touching ones", "[stability][gpu]"
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("slivers and zero-area triangles cover no pixel centre; dilation finds them", "[stability][gpu]") {
+TEST_CASE("slivers and zero-area triangles cover no pixel centre, dilation finds them", "[stability][gpu]") {
     ValidatedContext ctx;
     const StabilityCase needle = make(needleSliver()), segment = make(zeroAreaTriangle());
     REQUIRE(needle.reference.size() == 20);

@@ -77,7 +77,7 @@ std::vector<TrianglePair> pairsWithout(ValidatedContext& ctx, const TestScene& s
 
 }  // namespace
 
-TEST_CASE("a bad engine mesh is left out and named; the other objects keep their pairs", "[stability][gpu][faults]") {
+TEST_CASE("a bad engine mesh is left out and named, the other objects keep their pairs", "[stability][gpu][faults]") {
     ValidatedContext ctx;
     auto scene = overlappingSpheres();
     REQUIRE(scene);
@@ -231,7 +231,7 @@ TEST_CASE("refused input names the object and the problem and leaves the other o
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("a scene too large for the device is OutOfMemory; the world and a new Context still work", "[stability][gpu][faults]") {
+TEST_CASE("a scene too large for the device is OutOfMemory, the world and a new Context still work", "[stability][gpu][faults]") {
     ValidatedContext ctx;
     auto scene = torusThroughBox();
     REQUIRE(scene);

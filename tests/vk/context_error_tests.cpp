@@ -176,7 +176,7 @@ TEST_CASE("error UnsupportedFeature: validation requested but the layer is not i
     CHECK(createOnFake(info));
 }
 
-TEST_CASE("error VulkanError: vkCreateInstance fails; the VkResult is kept", "[contract][context][error]") {
+TEST_CASE("error VulkanError: vkCreateInstance fails, the VkResult is kept", "[contract][context][error]") {
     FakeVulkanScope scope;
     scope.fake().create_instance_result = VK_ERROR_INCOMPATIBLE_DRIVER;
     auto ctx = createOnFake();
@@ -203,7 +203,7 @@ TEST_CASE("error OutOfMemory: host memory at instance creation, device memory at
     CHECK(scope.fake().instances_alive == 0);
 }
 
-TEST_CASE("error DeviceLost: vkCreateDevice reports a lost device; the instance is destroyed", "[contract][context][error]") {
+TEST_CASE("error DeviceLost: vkCreateDevice reports a lost device, the instance is destroyed", "[contract][context][error]") {
     FakeVulkanScope scope;
     scope.fake().create_device_result = VK_ERROR_DEVICE_LOST;
     auto ctx = createOnFake();
@@ -214,7 +214,7 @@ TEST_CASE("error DeviceLost: vkCreateDevice reports a lost device; the instance 
     CHECK(scope.fake().devices_alive == 0);
 }
 
-TEST_CASE("error UnsupportedFeature: a device entry point is missing; the device is destroyed", "[contract][context][error]") {
+TEST_CASE("error UnsupportedFeature: a device entry point is missing, the device is destroyed", "[contract][context][error]") {
     FakeVulkanScope scope;
     scope.fake().missing_entry_points = {"vkCmdWriteTimestamp2"};
     auto ctx = createOnFake();

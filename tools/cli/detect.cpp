@@ -38,6 +38,8 @@ void printSummary(const std::string& device, const Scene& scene, const vkcollide
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);
     std::printf("colliding triangle pairs: %zu\n", r.pairs.size());
+    if (st.deep_rays) std::printf("deep rays (more surfaces than the peeling range, collision rays without peeling): %u\n", st.deep_rays);
+    if (r.incomplete) std::printf("incomplete: %s\n", r.incomplete->message().c_str());
     for (const vkcollide::ExcludedObject& e : r.excluded) std::printf("excluded: %s\n", e.error.message().c_str());
     std::printf("times (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
                 st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,

@@ -1,5 +1,5 @@
 // How a DetectSettings field is read from its option's text and written into the JSON:
-// by its type (uint32, float, std::array<float, N>, std::optional of those, an enum with
+// by its type (uint32, uint64, float, std::array<float, N>, std::optional of those, an enum with
 // a name per value in values.hpp), so a new field needs no code of its own here.
 #pragma once
 
@@ -33,6 +33,8 @@ Result<T> parseAs(std::string_view text) {
         return T(*v);
     } else if constexpr (std::is_same_v<T, std::uint32_t>) {
         return parseUint(text);
+    } else if constexpr (std::is_same_v<T, std::uint64_t>) {
+        return parseUint64(text);
     } else if constexpr (std::is_same_v<T, float>) {
         return parseFloat(text);
     } else if constexpr (IsFloatArray<T>::value) {

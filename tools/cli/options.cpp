@@ -102,6 +102,15 @@ const std::vector<Option>& options() {
         {"--bad-objects", "P", Section::Settings, "a --gpu-mesh that fails the GPU check: exclude (detect the rest, name it) or fail",
          "exclude: one more GPU run per bad object that frame", setting<&DetectSettings::bad_objects>, "bad_objects",
          show<&DetectSettings::bad_objects>},
+        {"--timeout", "MS", Section::Settings, "longest wait for one GPU submission, milliseconds (default 60000); beyond it the detection fails",
+         "free; a detection past it fails with Timeout and its GPU work goes on", setting<&DetectSettings::timeout_ms>, "timeout_ms",
+         show<&DetectSettings::timeout_ms>},
+        {"--max-pairs", "N", Section::Settings, "most colliding pairs to keep (default 16777216); more are counted and reported",
+         "about 40 bytes per pair kept", setting<&DetectSettings::max_pairs>, "max_pairs", show<&DetectSettings::max_pairs>},
+        {"--max-candidate-pairs", "N", Section::Settings,
+         "most candidate pairs with overlapping boxes the narrow phase sweeps (default 134217728); past it the detection fails",
+         "bounds the narrow phase's time and memory (up to 8 bytes per pair)", setting<&DetectSettings::max_candidate_pairs>,
+         "max_candidate_pairs", show<&DetectSettings::max_candidate_pairs>},
         flag("--paper-packing", Section::Settings, "the same as --packing paper", "as --packing paper",
              [](CommandLine& c, std::string_view) -> Result<void> {
                  c.settings.packing = vkcollide::PackingMethod::Paper;

@@ -17,6 +17,14 @@ Result<std::uint32_t> parseUint(std::string_view text, std::uint32_t lo, std::ui
     return static_cast<std::uint32_t>(v);
 }
 
+Result<std::uint64_t> parseUint64(std::string_view text) {
+    std::uint64_t v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (text.empty() || ec != std::errc() || end != text.data() + text.size())
+        return badValue("needs a whole number from 0 to 18446744073709551615, got '" + std::string(text) + "'");
+    return v;
+}
+
 Result<float> parseFloat(std::string_view text) {
     float v = 0;
     // from_chars takes no leading '+'; accept it as people write it.

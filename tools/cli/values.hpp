@@ -24,6 +24,7 @@ Error badValue(std::string what);  // ErrorCode::InvalidArgument
 // A whole decimal number (no sign, no spaces, no trailing text) in [lo, hi].
 Result<std::uint32_t> parseUint(std::string_view text, std::uint32_t lo = 0, std::uint32_t hi = 0xFFFFFFFFu);
 // A finite float (decimal or exponent form, no trailing text).
+Result<std::uint64_t> parseUint64(std::string_view text);
 Result<float> parseFloat(std::string_view text);
 // Comma-separated finite floats, as many as there are.
 Result<std::vector<float>> parseFloatList(std::string_view text);

@@ -86,14 +86,19 @@ Result<VkDeviceAddress> ComputeSampler::prepare(const BroadPhaseSettings& settin
     cf.fuse_first_step = fuse_ ? 1u : 0u;
     cf.depth_snapped = snapped ? 1u : 0u;
     cf.list_layers = list_layers_;
+    cf.list_capacity = list_layers_ > 0 ? static_cast<std::uint32_t>(fragments_.size() / layer_bytes) : 0;
     cf.fragments = list_layers_ > 0 ? fragments_.address() : 0;
     std::memcpy(frame_.mapped(), &cf, sizeof(cf));
     frame_.flush();
     return frame_.address();
 }
 
-Result<void> ComputeSampler::preparePeeling(std::uint32_t depth_complexity) {
-    const std::uint64_t bytes = std::uint64_t(resolution_) * resolution_ * depth_complexity * 8;
+Result<void> ComputeSampler::preparePeeling(std::uint32_t measured_depth) {
+    // Rays deeper than kMaxRayFragments are not peeled (reduce-max marks them colliding), so
+    // the lists need at most that many layers; gather stores no more than the list holds.
+    const std::uint32_t depth_complexity = std::min(measured_depth, gpu::kMaxRayFragments);
+    const std::uint64_t layer_bytes = std::uint64_t(resolution_) * resolution_ * 8;
+    const std::uint64_t bytes = layer_bytes * depth_complexity;
     fragment_lists_ = list_budget_ > 0 && depth_complexity > 0 && bytes <= list_budget_;
     gather_ = fragment_lists_ && depth_complexity > list_layers_;
     if (fragment_lists_) next_list_layers_ = std::max(next_list_layers_, depth_complexity);
@@ -114,6 +119,7 @@ Result<void> ComputeSampler::preparePeeling(std::uint32_t depth_complexity) {
     }
     auto* cf = static_cast<gpu::CsFrame*>(frame_.mapped());
     cf->fragments = fragments_.address();
+    cf->list_capacity = static_cast<std::uint32_t>(std::min<std::uint64_t>(fragments_.size() / layer_bytes, gpu::kMaxRayFragments));
     cf->fill = fill_.address();
     frame_.flush();
     return {};
@@ -140,19 +146,19 @@ void ComputeSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, 
     const std::uint32_t reset_groups = fuse_ ? groups(std::uint64_t(resolution_) * resolution_) : 1u;
     setup.record([this, frame, total, reset_groups](PassContext& pc) {
             bindAndPush(pc, args_, frame, 0, 0);
-            pc.fns().vkCmdDispatch(pc.cmd, reset_groups, 1, 1);
+            dispatchGroups(pc, reset_groups);
             pc.shaderBarrier();
             bindAndPush(pc, setup_, frame);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(total), 1, 1);
+            dispatchItems(pc, total);
             pc.shaderBarrier();
             bindAndPush(pc, bin_, frame);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(total), 1, 1);
+            dispatchItems(pc, total);
             pc.shaderBarrier();
             bindAndPush(pc, args_, frame, 0, 1);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
         });
     auto count = addPass(g, "depth-complexity", PassKind::Compute, Stage::Sampling);
-    count.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters).readWrite(shared.counts);
+    count.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters).readWrite(shared.fragments);
     if (fuse_) count.readWrite(shared.front).readWrite(shared.back);
     if (list_layers_ > 0) count.write(ids.fragments);
     count.record([this, frame](PassContext& pc) {
@@ -178,7 +184,7 @@ void ComputeSampler::recordPeelStep(graph::Graph& g, const RunView& run, const S
                 .write(ids.fragments)
                 .record([this, frame, pixel_groups](PassContext& pc) {
                     bindAndPush(pc, args_, frame, 0, 2);  // fill counts to 0
-                    pc.fns().vkCmdDispatch(pc.cmd, pixel_groups, 1, 1);
+                    dispatchGroups(pc, pixel_groups);
                     pc.shaderBarrier();
                     bindAndPush(pc, gather_pipe_, frame);
                     pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
@@ -189,7 +195,7 @@ void ComputeSampler::recordPeelStep(graph::Graph& g, const RunView& run, const S
         if (dual) pick.readWrite(shared.back);
         pick.record([this, frame, step, pixel_groups](PassContext& pc) {
             bindAndPush(pc, pick_, frame, 0, step);
-            pc.fns().vkCmdDispatch(pc.cmd, pixel_groups, 1, 1);
+            dispatchGroups(pc, pixel_groups);
         });
         return;
     }

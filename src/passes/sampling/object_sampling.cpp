@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <string>
 
 #include "passes/sampling/backend_choice.hpp"
 #include "passes/sampling/compute_sampler.hpp"
@@ -35,6 +36,22 @@ Result<VkDeviceAddress> ObjectSampling::prepare(const BroadPhaseSettings& s, con
         assert(s.backend != SamplingBackend::Compute);
         choice_ = {SamplingBackend::Raster, "thin-triangle coverage needs raster (Auto would take compute: " + choice_.reason + ")"};
     }
+    // The raster backend renders an N x N area: the device's framebuffer and viewport
+    // limits bound N (Vulkan guarantees only 4096). Auto samples larger images in compute.
+    const VkPhysicalDeviceLimits& limits = device_->properties.limits;
+    const std::uint32_t raster_max = std::min({limits.maxFramebufferWidth, limits.maxFramebufferHeight,
+                                               limits.maxViewportDimensions[0], limits.maxViewportDimensions[1]});
+    if (choice_.backend == SamplingBackend::Raster && shape.resolution > raster_max) {
+        if (s.backend == SamplingBackend::Auto && s.coverage == Coverage::Centre && computeSamplingSupported(*device_))
+            choice_ = {SamplingBackend::Compute, "resolution " + std::to_string(shape.resolution) +
+                                                     " exceeds this device's largest framebuffer (" + std::to_string(raster_max) + ")"};
+        else
+            return Error(ErrorCode::UnsupportedFeature, "resolution " + std::to_string(shape.resolution) +
+                                                            " exceeds this device's largest framebuffer and viewport (" +
+                                                            std::to_string(raster_max) + ") for raster sampling" +
+                                                            (s.coverage != Coverage::Centre ? " (thin-triangle coverage needs raster)" : "") +
+                                                            ": lower the resolution or sample in compute");
+    }
     if (choice_.backend == SamplingBackend::Compute) {
         if (!compute_) {
             auto created = ComputeSampler::create(*device_);
@@ -54,11 +71,12 @@ void ObjectSampling::recordMeasure(graph::Graph& g, const RunView& run, const Sa
     active_->recordDepthComplexity(g, run, b);
     const std::uint32_t pixels = run.frame.resolution * run.frame.resolution;
     addPass(g, "reduce-max", PassKind::Compute, Stage::Sampling)
-        .read(b.counts)
+        .read(b.fragments)
+        .write(b.counts)
         .readWrite(b.header)
         .record([this, frame = run.frame_address, pixels](PassContext& pc) {
             bindAndPush(pc, reduce_max_, frame);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
+            dispatchItems(pc, pixels);
         });
 }
 
@@ -77,7 +95,7 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
         .write(b.back)
         .record([this, frame, pixels, done](PassContext& pc) {
             bindAndPush(pc, peel_init_, frame, 0, done);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
+            dispatchItems(pc, pixels);
         });
     for (std::uint32_t step = 0; step < steps; ++step) {
         active_->recordPeelStep(g, run, b, step);
@@ -86,7 +104,7 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
         if (dual) classify.readWrite(b.back);
         classify.record([this, frame, pixels, step](PassContext& pc) {
             bindAndPush(pc, classify_, frame, 0, step);
-            pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
+            dispatchItems(pc, pixels);
         });
     }
     auto finalize = addPass(g, "finalize", PassKind::Compute, Stage::Sampling);
@@ -94,7 +112,7 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
     if (rays.valid()) finalize.write(rays);
     finalize.record([this, frame, pixels](PassContext& pc) {
         bindAndPush(pc, finalize_, frame);
-        pc.fns().vkCmdDispatch(pc.cmd, groups(pixels), 1, 1);
+        dispatchItems(pc, pixels);
     });
 }
 

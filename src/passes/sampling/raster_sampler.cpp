@@ -64,7 +64,7 @@ void RasterSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, c
     addPass(g, "depth-complexity", PassKind::Raster, Stage::Sampling)
         .renderArea(n, n)
         .read(b.projection)
-        .readWrite(b.counts)
+        .readWrite(b.fragments)
         .record([this, run](PassContext& pc) {
             for (std::uint32_t i = 0; i < run.meshes.size(); ++i) drawObject(pc, run, count_, count_conservative_, i, 0, true);
         });

@@ -19,6 +19,7 @@ namespace vkcollide::passes {
 // The broad phase's buffers that sampling reads and writes, in the graph being recorded.
 struct SamplingBuffers {
     graph::ResourceId projection, header, counts, state, front, back;
+    graph::ResourceId fragments;  // the 64-bit fragment counts per ray, which the depth-complexity pass writes
 };
 
 class Sampler {

@@ -31,10 +31,12 @@ VKC_CONST kRayDone = 1u;
 VKC_CONST kRayCollision = 2u;
 VKC_CONST kParityFront = 4u;
 VKC_CONST kParityBack = 8u;
+VKC_CONST kRayNear = 16u;  // depth-aware: the ray met a near pair; its interval is in bundle_depth level 0
 // ObjectGpu.flags
 VKC_CONST kObjectOpen = 1u;
 VKC_CONST kObjectIndex16 = 2u;
 VKC_CONST kObjectCheckOnGpu = 4u;  // geometry only on the GPU: check indices and positions there
+VKC_CONST kObjectSelfCollide = 8u; // its own triangles may collide (depth-aware near pairs)
 VKC_CONST kMaxLevels = 16u;
 // Push.coverage: how the sampling passes treat thin triangles (kThinInradiusPx in
 // config.h; docs/stability.md). With coverage on, every ray a thin triangle touches
@@ -64,6 +66,16 @@ struct Projection {
     float world_to_depth;
     float closed_epsilon;  // closed surfaces: a gap this small (normalised depth) between leaving one and entering the next touches
     uint pad1;
+};
+
+// Depth-aware separation: one triangle's sampling-space box (x0, y0, x1, y1, as the
+// sparse boxes) and depth range, padded by a bound on its rounding error (kDepthRoundingPad),
+// and the depth its plane gains over kNearReachPx pixels, from the triangle-bounds pass.
+struct TriangleBounds {
+    vec4 box;
+    float zmin, zmax;
+    float slope;  // depth per pixel of its plane (|d/dx| + |d/dy|); 3.4e38: degenerate projection
+    uint pad0;
 };
 
 // Per-ray state of the peeling.
@@ -119,6 +131,13 @@ struct Frame {
     uint level_offset[kMaxLevels];      // first texel of each mip level in `bundles`
     VKC_ADDRESS(uint64_t) compute_sampling;  // CsFrame (compute sampling backend), or 0
     VKC_ADDRESS(uint64_t) method;            // a broad-phase method's own frame (its layout), or 0
+    // Depth-aware separation (docs/broadphase.md); addresses 0 and depth_aware 0 when off.
+    // Depth intervals are vec2 (lo, hi) in normalised depth; lo > hi is empty.
+    VKC_ADDRESS(uint64_t) tri_bounds;        // TriangleBounds[triangle_count]
+    VKC_ADDRESS(uint64_t) bundle_depth;      // vec2 per texel of `bundles`: the bundle's depth interval
+    VKC_ADDRESS(uint64_t) sparse_depth;      // vec2[triangle_count]: kept depth range, beside `sparse`
+    VKC_ADDRESS(uint64_t) ray_depth_image;   // vec2[N*N] each ray's interval for inspection, or 0
+    uint depth_aware;                        // 1: depth-aware separation
 };
 
 // Pushed per dispatch or draw.

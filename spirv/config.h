@@ -34,6 +34,35 @@ VKC_CONST_FLOAT kThinInradiusPx = 0.70710678f;
 VKC_CONST_FLOAT kDepthNear = 0.05f;
 VKC_CONST_FLOAT kDepthSpan = 0.9f;
 
+// ---- Depth-aware separation (docs/broadphase.md) ---------------------------------------
+// Each triangle's depth range is padded by this fraction of the sum of the magnitudes of
+// the terms of its depth (a dot product of four terms): a bound on the float rounding of
+// the computed vertex depths (about 4 units in the last place; 16 are taken), so two
+// triangles that share a point always get overlapping ranges. Fragment depths (the
+// rasterizer's interpolation) get this much more, absolute.
+VKC_CONST_FLOAT kDepthRoundingPad = 1.0f / 1048576.0f;
+VKC_CONST_FLOAT kFragmentDepthPad = 1.0f / 1048576.0f;
+// A fragment's window: the depths its triangle's plane takes within kNearReachPx pixels
+// of the ray (in x and in y), and its depth range within kNearRangePx pixels. Two
+// consecutive fragments whose windows overlap are a near pair. First order, a ray lies
+// within half a pixel of any point, so two surfaces that cross between rays still have
+// overlapping windows on the rays around the crossing; one pixel leaves room for the
+// surfaces' curvature, and the range (the vertices, where the neighbouring triangles
+// start) for sharper bends. Larger: more triangles kept; smaller: pairs lost between rays.
+VKC_CONST_FLOAT kNearReachPx = 1.0f;
+VKC_CONST_FLOAT kNearRangePx = 4.0f;
+// Two triangles of one object whose normals are within 30 degrees (cos above this) look
+// like the two sides of a silhouette on a grazing ray (steep, adjacent in depth); their
+// slopes count as at most kSelfSlopeCap times a 45-degree surface's, or every silhouette
+// of a self-colliding object would be a near pair. Crossings at steeper angles keep their
+// slopes. Measured on the bench set (docs/broadphase.md).
+VKC_CONST_FLOAT kSilhouetteCos = 0.8660254f;
+VKC_CONST_FLOAT kSelfSlopeCap = 4.0f;
+// Separation tests each bundle under a triangle's box this many mip levels finer than the
+// paper's (which reads the four corner bundles of the coarsest level whose texels are as
+// large as the box): up to (2^k + 1)^2 texels, each a (x, y, depth) box of its own.
+VKC_CONST kSeparationRefine = 1;
+
 // ---- Compute sampling backend ----------------------------------------------------------
 // Big triangles are drawn in kCsTile x kCsTile pixel tiles, one workgroup of kCsGroupSize
 // (= kCsTile^2) invocations, one per pixel.

@@ -96,6 +96,13 @@ struct DetectSettings {
     // (a collision ray). 0: only exact depth ties, ordered front before back, do.
     float closed_epsilon = 0;
     BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
+    // Depth-aware separation (docs/broadphase.md): collision rays also keep the depth
+    // interval where two consecutive hits may collide (triangles of different objects, or
+    // of one self-colliding object and not neighbours, whose depth ranges overlap), and a
+    // triangle is downloaded only where its own (x, y, depth) box meets those of the
+    // collision rays around it. Off: the paper's separation, which keeps every triangle
+    // under a collision ray whatever its depth. The collision rays are the same either way.
+    bool depth_aware = false;
 };
 
 struct PassTime {

@@ -45,6 +45,7 @@ Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool me
     d.broad.closed_epsilon = s.closed_epsilon;
     d.broad.coverage = s.coverage;  // resolve() turned Best into Conservative or Dilate
     d.broad.region = s.region;
+    d.broad.depth_aware = s.depth_aware;
     d.axes = s.axes;
     d.bad_objects = s.bad_objects;
     if (auto ok = detection->start(meshes, d, measure); !ok) return describeFailure(ok.error());

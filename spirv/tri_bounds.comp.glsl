@@ -1,0 +1,44 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Depth-aware separation, before the peeling: each triangle's sampling-space box (x, y:
+// as separation computes it) and depth range, the depth range padded by a bound on the
+// rounding of its vertex depths (kDepthRoundingPad), so that two triangles with a common
+// point get overlapping ranges whatever the order of the arithmetic, and its reach: the
+// depth its plane gains over kNearReachPx pixels in x and y. classify reads the depth
+// ranges and reaches of the fragments it compares; separate reads box and range.
+#include "common.glsl.inc"
+#include "depth.glsl.inc"
+layout(local_size_x = kGroupSize) in;
+
+void main() {
+    Frame f = frame();
+    ObjectGpu o = ObjectsRef(f.objects).o[pc.object];
+    uint t = gl_GlobalInvocationID.x;
+    if (t >= o.triangle_count) return;
+    Projection pr = ProjectionRef(f.projection).p;
+    vec3 lo = vec3(3.4e38), hi = vec3(-3.4e38);
+    float magnitude = 0.0;
+    vec3 s[3];
+    for (uint c = 0u; c < 3u; ++c) {
+        vec3 w = toWorld(o, fetchPosition(o, fetchIndex(o, t * 3u + c)));
+        s[c] = toSampling(pr, w);
+        lo = min(lo, s[c]);
+        hi = max(hi, s[c]);
+        magnitude = max(magnitude, dot(abs(pr.row[2].xyz), abs(w)) + abs(pr.row[2].w));
+    }
+    float pad = magnitude * kDepthRoundingPad;
+    // The plane's depth gradient per pixel (a degenerate projection: no bound).
+    float n = float(f.resolution);
+    vec2 e1 = (s[1].xy - s[0].xy) * n, e2 = (s[2].xy - s[0].xy) * n;
+    float dz1 = s[1].z - s[0].z, dz2 = s[2].z - s[0].z;
+    float det = e1.x * e2.y - e2.x * e1.y;
+    float slope = 3.4e38;
+    if (det != 0.0) slope = min(slope, (abs(dz1 * e2.y - dz2 * e1.y) + abs(e1.x * dz2 - e2.x * dz1)) / abs(det));
+    TriangleBounds b;
+    b.box = vec4(lo.xy, hi.xy);
+    b.zmin = lo.z - pad;
+    b.zmax = hi.z + pad;
+    b.slope = slope;
+    b.pad0 = 0u;
+    TriBoundsRef(f.tri_bounds).b[o.triangle_base + t] = b;
+}

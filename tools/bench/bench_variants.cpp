@@ -21,7 +21,7 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"paper-packing", "paper", [](S& s) { s.packing = PackingMethod::Paper; }},
         {"open", "paper", [](S&) {}, true},
         {"async", "paper", [](S&) {}, false, true},
-        {"depth-sep", "modes", [](S& s) { s.depth_aware = true; }},   // depth-aware separation on
+        {"depth-sep", "modes", [](S& s) { s.depth_aware = true; }},  // depth-aware separation on
         {"paper-sep", "modes", [](S& s) { s.depth_aware = false; }},  // the paper's separation
         // Issue 12's new settings join here when their DetectSettings fields land, e.g.
         // {"reliable", "modes", [](S& s) { s.broad_phase = BroadPhase::Reliable; }},

@@ -69,13 +69,16 @@ struct Projection {
 };
 
 // Depth-aware separation: one triangle's sampling-space box (x0, y0, x1, y1, as the
-// sparse boxes) and depth range, padded by a bound on its rounding error (kDepthRoundingPad),
-// and the depth its plane gains over kNearReachPx pixels, from the triangle-bounds pass.
+// sparse boxes), depth range padded by a bound on its rounding error (kDepthRoundingPad),
+// and its plane in pixel units, from the triangle-bounds pass. The plane gives a ray's
+// depth on the triangle the same way whichever backend sampled it (fragment depths
+// differ in the last bits between rasterizers).
 struct TriangleBounds {
     vec4 box;
     float zmin, zmax;
-    float slope;  // depth per pixel of its plane (|d/dx| + |d/dy|); 3.4e38: degenerate projection
-    uint pad0;
+    float slope;   // |dz/dx| + |dz/dy| per pixel; 3.4e38 where the projection is degenerate
+    float plane;   // depth at pixel coordinates (0, 0): z = plane + dzdx * x + dzdy * y
+    float dzdx, dzdy;
 };
 
 // Per-ray state of the peeling.

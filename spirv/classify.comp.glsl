@@ -55,14 +55,16 @@ vec3 normalOf(ObjectGpu o, uint t) {
     return l > 0.0 ? n / l : vec3(0.0);
 }
 
-// The depths a triangle's surface can take near the ray: its plane within kNearReachPx of
-// the ray (the fragment's depth plus or minus its slope over that distance), and its own
-// depth range within kNearRangePx of the ray (its vertices, where the neighbours that
-// share them start: curvature beyond the plane). `slope` may be capped. Padded against
-// the rasterizer's rounding.
-vec2 nearWindow(Frame f, uint64_t key, float slope) {
-    TriangleBounds t = TriBoundsRef(f.tri_bounds).b[uint(key) & kKeyTriangleMask];
-    float z = keyDepth(key), plane = slope * kNearReachPx + kFragmentDepthPad, range = slope * kNearRangePx;
+// The depths a triangle's surface can take near ray p: its plane within kNearReachPx of
+// the ray (its depth at the ray's sample plus or minus `slope` over that distance), and
+// its own depth range within kNearRangePx of the ray (its vertices, where the neighbours
+// that share them start: curvature beyond the plane). `slope` may be capped. The depth
+// comes from the plane, not the fragment, so both sampling backends give the same bits.
+vec2 nearWindow(Frame f, uint p, uint tri, float slope) {
+    TriangleBounds t = TriBoundsRef(f.tri_bounds).b[tri];
+    vec2 sample_px = vec2(float(p % f.resolution), float(p / f.resolution)) + 0.5;
+    float z = t.plane + t.dzdx * sample_px.x + t.dzdy * sample_px.y;
+    float plane = slope * kNearReachPx + kFragmentDepthPad, range = slope * kNearRangePx;
     return vec2(min(z - plane, max(t.zmin, z - range)), max(z + plane, min(t.zmax, z + range)));
 }
 
@@ -73,11 +75,11 @@ vec2 nearWindow(Frame f, uint64_t key, float slope) {
 // each other have their slopes capped (kSelfSlopeCap): the object's own silhouettes put
 // a front and a back triangle next to each other on grazing rays, so steep that their
 // windows would always overlap. Empty when not a near pair.
-vec2 nearHull(Frame f, uint64_t a, uint64_t b) {
+vec2 nearHull(Frame f, uint p, uint64_t a, uint64_t b) {
     uint ta = uint(a) & kKeyTriangleMask, tb = uint(b) & kKeyTriangleMask;
     TriBoundsRef bounds = TriBoundsRef(f.tri_bounds);
     float sa = bounds.b[ta].slope, sb = bounds.b[tb].slope;
-    vec2 wa = nearWindow(f, a, sa), wb = nearWindow(f, b, sb);
+    vec2 wa = nearWindow(f, p, ta, sa), wb = nearWindow(f, p, tb, sb);
     if (depthEmpty(depthIntersect(wa, wb))) return kEmptyDepth;  // capping only narrows them
     uint oa = objectOfTriangle(f, ta), ob = objectOfTriangle(f, tb);
     if (oa == ob) {
@@ -86,8 +88,8 @@ vec2 nearHull(Frame f, uint64_t a, uint64_t b) {
         if ((o.flags & kObjectSelfCollide) == 0u || neighbours(o, la, lb)) return kEmptyDepth;
         if (dot(normalOf(o, la), normalOf(o, lb)) > kSilhouetteCos) {
             float cap = kSelfSlopeCap * levelSlope(f);
-            wa = nearWindow(f, a, min(sa, cap));
-            wb = nearWindow(f, b, min(sb, cap));
+            wa = nearWindow(f, p, ta, min(sa, cap));
+            wb = nearWindow(f, p, tb, min(sb, cap));
             if (depthEmpty(depthIntersect(wa, wb))) return kEmptyDepth;
         }
     }
@@ -95,7 +97,7 @@ vec2 nearHull(Frame f, uint64_t a, uint64_t b) {
 }
 
 void addNear(Frame f, uint p, inout uint flags, uint64_t a, uint64_t b) {
-    vec2 hull = nearHull(f, a, b);
+    vec2 hull = nearHull(f, p, a, b);
     if (depthEmpty(hull)) return;
     Vec2sRef acc = Vec2sRef(f.bundle_depth);
     acc.v[p] = (flags & kRayNear) != 0u ? depthUnion(acc.v[p], hull) : hull;

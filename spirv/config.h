@@ -50,7 +50,7 @@ VKC_CONST_FLOAT kFragmentDepthPad = 1.0f / 1048576.0f;
 // surfaces' curvature, and the range (the vertices, where the neighbouring triangles
 // start) for sharper bends. Larger: more triangles kept; smaller: pairs lost between rays.
 VKC_CONST_FLOAT kNearReachPx = 1.0f;
-VKC_CONST_FLOAT kNearRangePx = 4.0f;
+VKC_CONST_FLOAT kNearRangePx = 2.0f;
 // Two triangles of one object whose normals are within 30 degrees (cos above this) look
 // like the two sides of a silhouette on a grazing ray (steep, adjacent in depth); their
 // slopes count as at most kSelfSlopeCap times a 45-degree surface's, or every silhouette

@@ -3,9 +3,9 @@
 // Depth-aware separation, before the peeling: each triangle's sampling-space box (x, y:
 // as separation computes it) and depth range, the depth range padded by a bound on the
 // rounding of its vertex depths (kDepthRoundingPad), so that two triangles with a common
-// point get overlapping ranges whatever the order of the arithmetic, and its reach: the
-// depth its plane gains over kNearReachPx pixels in x and y. classify reads the depth
-// ranges and reaches of the fragments it compares; separate reads box and range.
+// point get overlapping ranges whatever the order of the arithmetic, and its plane in
+// pixel units (gradient and slope). classify reads the planes and ranges of the
+// fragments it compares; separate reads box and range.
 #include "common.glsl.inc"
 #include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
@@ -29,16 +29,18 @@ void main() {
     float pad = magnitude * kDepthRoundingPad;
     // The plane's depth gradient per pixel (a degenerate projection: no bound).
     float n = float(f.resolution);
-    vec2 e1 = (s[1].xy - s[0].xy) * n, e2 = (s[2].xy - s[0].xy) * n;
+    vec2 p0 = s[0].xy * n, e1 = s[1].xy * n - p0, e2 = s[2].xy * n - p0;
     float dz1 = s[1].z - s[0].z, dz2 = s[2].z - s[0].z;
     float det = e1.x * e2.y - e2.x * e1.y;
-    float slope = 3.4e38;
-    if (det != 0.0) slope = min(slope, (abs(dz1 * e2.y - dz2 * e1.y) + abs(e1.x * dz2 - e2.x * dz1)) / abs(det));
+    vec2 grad = vec2(dz1 * e2.y - dz2 * e1.y, e1.x * dz2 - e2.x * dz1) / det;
+    bool planar = det != 0.0 && abs(grad.x) + abs(grad.y) < 3.4e38;  // false for inf and NaN
     TriangleBounds b;
     b.box = vec4(lo.xy, hi.xy);
     b.zmin = lo.z - pad;
     b.zmax = hi.z + pad;
-    b.slope = slope;
-    b.pad0 = 0u;
+    b.slope = planar ? abs(grad.x) + abs(grad.y) : 3.4e38;
+    b.dzdx = planar ? grad.x : 0.0;
+    b.dzdy = planar ? grad.y : 0.0;
+    b.plane = s[0].z - b.dzdx * p0.x - b.dzdy * p0.y;
     TriBoundsRef(f.tri_bounds).b[o.triangle_base + t] = b;
 }

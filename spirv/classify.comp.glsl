@@ -58,14 +58,17 @@ vec3 normalOf(ObjectGpu o, uint t) {
 // The depths a triangle's surface can take near ray p: its plane within kNearReachPx of
 // the ray (its depth at the ray's sample plus or minus `slope` over that distance), and
 // its own depth range within kNearRangePx of the ray (its vertices, where the neighbours
-// that share them start: curvature beyond the plane). `slope` may be capped. The depth
-// comes from the plane, not the fragment, so both sampling backends give the same bits.
+// that share them start: curvature beyond the plane), and the range of its edge-on
+// neighbours (surfaces seen edge-on, which no ray samples). `slope` may be capped. The
+// depth comes from the plane, not the fragment, so both sampling backends give the same
+// bits.
 vec2 nearWindow(Frame f, uint p, uint tri, float slope) {
     TriangleBounds t = TriBoundsRef(f.tri_bounds).b[tri];
     vec2 sample_px = vec2(float(p % f.resolution), float(p / f.resolution)) + 0.5;
     float z = t.plane + t.dzdx * sample_px.x + t.dzdy * sample_px.y;
     float plane = slope * kNearReachPx + kFragmentDepthPad, range = slope * kNearRangePx;
-    return vec2(min(z - plane, max(t.zmin, z - range)), max(z + plane, min(t.zmax, z + range)));
+    vec2 w = vec2(min(z - plane, max(t.zmin, z - range)), max(z + plane, min(t.zmax, z + range)));
+    return depthUnion(w, vec2(t.edge_lo, t.edge_hi));
 }
 
 // Consecutive fragments a and b of one ray are a near pair when their triangles may

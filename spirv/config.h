@@ -58,6 +58,10 @@ VKC_CONST_FLOAT kNearRangePx = 2.0f;
 // slopes. Measured on the bench set (docs/broadphase.md).
 VKC_CONST_FLOAT kSilhouetteCos = 0.8660254f;
 VKC_CONST_FLOAT kSelfSlopeCap = 4.0f;
+// A thin triangle (kThinInradiusPx) steeper than this many times a 45-degree surface is
+// edge-on: its surface may be invisible to every ray (a box's side seen along it), so its
+// depth range joins the windows of the triangles sharing its vertices.
+VKC_CONST_FLOAT kEdgeOnSlope = 1024.0f;
 // Separation tests each bundle under a triangle's box this many mip levels finer than the
 // paper's (which reads the four corner bundles of the coarsest level whose texels are as
 // large as the box): up to (2^k + 1)^2 texels, each a (x, y, depth) box of its own.

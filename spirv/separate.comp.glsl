@@ -60,9 +60,12 @@ void main() {
             // meets the triangle's box in all three axes; the kept box is then, as in the
             // paper, the union of the bundles under it (those meeting its box in x and y)
             // intersected with its own box, in all three axes.
+            // The texels whose cells meet the box grown by the bundles' growth (finalize: a
+            // near ray's box reaches kNearReachPx - 0.5 beyond its pixel, into the next cell).
             uint fine = uint(max(int(level) - int(kSeparationRefine), 0));
             int size = int(f.resolution >> fine);
-            ivec4 tx = clamp(ivec4(floor(tri_box * n / float(1u << fine))), ivec4(0), ivec4(size - 1));
+            vec4 reach_box = tri_box + vec4(-1.0, -1.0, 1.0, 1.0) * ((kNearReachPx - 0.5) / n);
+            ivec4 tx = clamp(ivec4(floor(reach_box * n / float(1u << fine))), ivec4(0), ivec4(size - 1));
             uint base = f.level_offset[fine];
             Vec4sRef b = Vec4sRef(f.bundles);
             Vec2sRef d = Vec2sRef(f.bundle_depth);

@@ -16,7 +16,7 @@ constexpr std::uint32_t kBack = 0x80000000u, kOpen = 0x40000000u;
 
 constexpr float kHuge = 3.4e38f;
 // Near tests and silhouette tests this close to their thresholds may round either way.
-constexpr float kNearAmbiguity = 1e-5f;  // relative to the windows' widths (plus this, absolute)
+constexpr float kNearAmbiguity = 1e-5f;  // relative to the windows' slopes
 constexpr float kCosAmbiguity = 1e-4f;
 
 // A bundle: screen box and (depth-aware) depth interval; lo > hi is empty.
@@ -42,6 +42,8 @@ struct TriangleInfo {
     float zmin, zmax;    // padded depth range
     float slope;         // depth per pixel of its plane (3.4e38: degenerate)
     float plane, dzdx, dzdy;  // z = plane + dzdx * x + dzdy * y, pixel units
+    bool thin = false;        // projected inradius below kThinInradiusPx
+    float edge_lo = kHuge, edge_hi = -kHuge;  // the range of its edge-on neighbours
     Float3 normal;       // unit normal (world = object space here)
 };
 
@@ -71,6 +73,9 @@ TriangleInfo triangleInfo(const HostMesh& m, std::uint32_t t, const float* rows,
     ti.slope = planar ? std::fabs(gx) + std::fabs(gy) : kHuge;
     ti.dzdx = planar ? gx : 0, ti.dzdy = planar ? gy : 0;
     ti.plane = s[0][2] - ti.dzdx * p0x - ti.dzdy * p0y;
+    const float perimeter = std::sqrt(e1x * e1x + e1y * e1y) + std::sqrt(e2x * e2x + e2y * e2y) +
+                            std::sqrt((e2x - e1x) * (e2x - e1x) + (e2y - e1y) * (e2y - e1y));
+    ti.thin = std::fabs(det) < gpu::kThinInradiusPx * perimeter;
     const Float3 a = m.positions[m.indices[t * 3]], b = m.positions[m.indices[t * 3 + 1]], c = m.positions[m.indices[t * 3 + 2]];
     const float ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
     const float nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx, l = std::sqrt(nx * nx + ny * ny + nz * nz);
@@ -82,7 +87,8 @@ TriangleInfo triangleInfo(const HostMesh& m, std::uint32_t t, const float* rows,
 Interval window(std::uint32_t x, std::uint32_t y, const TriangleInfo& t, float slope) {
     const float z = t.plane + t.dzdx * (float(x) + 0.5f) + t.dzdy * (float(y) + 0.5f);
     const float plane = slope * gpu::kNearReachPx + gpu::kFragmentDepthPad, range = slope * gpu::kNearRangePx;
-    return {std::min(z - plane, std::max(t.zmin, z - range)), std::max(z + plane, std::min(t.zmax, z + range))};
+    const Interval w{std::min(z - plane, std::max(t.zmin, z - range)), std::max(z + plane, std::min(t.zmax, z + range))};
+    return unite(w, Interval{t.edge_lo, t.edge_hi});
 }
 
 bool neighbours(const HostMesh& m, std::uint32_t ta, std::uint32_t tb) {
@@ -117,13 +123,29 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
     out.ambiguous.assign(std::size_t(n) * n, 0);
     out.ray_depth.assign(depth_aware ? std::size_t(n) * n : 0, kNone);
 
-    // Every triangle's bounds, in global order (the triangle-bounds pass).
+    // Every triangle's bounds, in global order (the triangle-bounds pass), then the depth
+    // range of its edge-on neighbours (thin and steep triangles sharing a vertex).
+    const float level_slope = std::sqrt(rows[8] * rows[8] + rows[9] * rows[9] + rows[10] * rows[10]) /
+                              (float(n) * std::min(std::sqrt(rows[0] * rows[0] + rows[1] * rows[1] + rows[2] * rows[2]),
+                                                   std::sqrt(rows[4] * rows[4] + rows[5] * rows[5] + rows[6] * rows[6])));
     std::vector<TriangleInfo> tris;
-    for (std::uint32_t o = 0; o < objects.size(); ++o)
-        for (std::uint32_t t = 0; t < objects[o].mesh->triangleCount(); ++t) {
-            tris.push_back(triangleInfo(*objects[o].mesh, t, rows, n));
-            tris.back().object = o, tris.back().local = t;
+    for (std::uint32_t o = 0; o < objects.size(); ++o) {
+        const HostMesh& m = *objects[o].mesh;
+        const std::size_t first = tris.size();
+        std::vector<Interval> at_vertex(m.positions.size(), kNone);
+        for (std::uint32_t t = 0; t < m.triangleCount(); ++t) {
+            tris.push_back(triangleInfo(m, t, rows, n));
+            TriangleInfo& ti = tris.back();
+            ti.object = o, ti.local = t;
+            if (ti.thin && ti.slope > gpu::kEdgeOnSlope * level_slope)
+                for (int c = 0; c < 3; ++c) at_vertex[m.indices[t * 3 + c]] = unite(at_vertex[m.indices[t * 3 + c]], Interval{ti.zmin, ti.zmax});
         }
+        for (std::uint32_t t = 0; t < m.triangleCount(); ++t) {
+            Interval e = kNone;
+            for (int c = 0; c < 3; ++c) e = unite(e, at_vertex[m.indices[t * 3 + c]]);
+            tris[first + t].edge_lo = e[0], tris[first + t].edge_hi = e[1];
+        }
+    }
 
     // Pass 1: rasterise every triangle (pixel centres, 8-bit sub-pixel snapping, top-left
     // rule), give each fragment the GPU's 64-bit key, sort each ray, apply the rules.
@@ -177,15 +199,14 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
     }
     auto depth = [](std::uint64_t k) { return std::bit_cast<float>(std::uint32_t(k >> 32)); };
     // Depth-aware: whether consecutive fragments a, b are a near pair, and their windows.
-    const float level_slope = std::sqrt(rows[8] * rows[8] + rows[9] * rows[9] + rows[10] * rows[10]) /
-                              (float(n) * std::min(std::sqrt(rows[0] * rows[0] + rows[1] * rows[1] + rows[2] * rows[2]),
-                                                   std::sqrt(rows[4] * rows[4] + rows[5] * rows[5] + rows[6] * rows[6])));
     auto nearHull = [&](std::size_t pix, std::uint64_t a, std::uint64_t b, std::uint8_t& io_ambiguous) -> Interval {
         const std::uint32_t px = std::uint32_t(pix % n), py = std::uint32_t(pix / n);
         const TriangleInfo &ta = tris[std::uint32_t(a) & 0x3FFFFFFFu], &tb = tris[std::uint32_t(b) & 0x3FFFFFFFu];
         auto overlap = [](Interval x, Interval y) { return std::min(x[1], y[1]) - std::max(x[0], y[0]); };
         Interval wa = window(px, py, ta, ta.slope), wb = window(px, py, tb, tb.slope);
-        const float rounding = kNearAmbiguity * (1.0f + (wa[1] - wa[0]) + (wb[1] - wb[0]));
+        // GPU and CPU windows differ by rounding: of the depths (absolute) and of the planes
+        // in pixel units (relative to the slopes).
+        const float rounding = kNearAmbiguity * (std::min(ta.slope, 1.0f) + std::min(tb.slope, 1.0f)) * (gpu::kNearRangePx + 1.0f) + 5e-7f;
         float o = overlap(wa, wb);
         if (std::fabs(o) < rounding) io_ambiguous = 1;
         if (o < 0) return kNone;
@@ -319,7 +340,11 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
                 // Each texel one level finer on its own; kept if one meets the triangle's box
                 // in all three axes, as the union of those under its box (separate.comp.glsl).
                 const std::uint32_t fine = level > gpu::kSeparationRefine ? level - gpu::kSeparationRefine : 0;
-                const std::array<int, 4> ft = texels(fine);
+                const float grow = (gpu::kNearReachPx - 0.5f) / float(n);
+                const int fsize = int(n >> fine);
+                const float fscale = float(n) / float(1u << fine);
+                auto fcl = [&](float v) { return std::clamp(int(std::floor(v * fscale)), 0, fsize - 1); };
+                const std::array<int, 4> ft{fcl(lo[0] - grow), fcl(lo[1] - grow), fcl(hi[0] + grow), fcl(hi[1] + grow)};
                 const std::size_t size = n >> fine;
                 Box u;
                 bool meets = false;

@@ -13,8 +13,9 @@
 // Depth-aware separation (f.depth_aware): a collision ray is not done at its first
 // collision but peeled to its end, and every pair of consecutive fragments of every ray
 // is tested: a near pair (nearHull) grows the ray's interval in bundle_depth level 0
-// (kRayNear says it holds one). finalize keeps the intervals of collision rays and of
-// the rays next to them.
+// (kRayNear says it holds one), and so does every fragment whose triangle borders an
+// edge-on surface (its range). finalize keeps the intervals of collision rays and of the
+// rays next to them.
 #include "common.glsl.inc"
 #include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
@@ -99,12 +100,20 @@ vec2 nearHull(Frame f, uint p, uint64_t a, uint64_t b) {
     return depthUnion(wa, wb);
 }
 
-void addNear(Frame f, uint p, inout uint flags, uint64_t a, uint64_t b) {
-    vec2 hull = nearHull(f, p, a, b);
-    if (depthEmpty(hull)) return;
+void addInterval(Frame f, uint p, inout uint flags, vec2 d) {
+    if (depthEmpty(d)) return;
     Vec2sRef acc = Vec2sRef(f.bundle_depth);
-    acc.v[p] = (flags & kRayNear) != 0u ? depthUnion(acc.v[p], hull) : hull;
+    acc.v[p] = (flags & kRayNear) != 0u ? depthUnion(acc.v[p], d) : d;
     flags |= kRayNear;
+}
+
+void addNear(Frame f, uint p, inout uint flags, uint64_t a, uint64_t b) { addInterval(f, p, flags, nearHull(f, p, a, b)); }
+
+// A fragment whose triangle borders an edge-on surface: the ray is as close as sampling
+// gets to that surface, which may be what touches or crosses something here.
+void addEdgeOn(Frame f, uint p, inout uint flags, uint64_t k) {
+    TriangleBounds t = TriBoundsRef(f.tri_bounds).b[uint(k) & kKeyTriangleMask];
+    addInterval(f, p, flags, vec2(t.edge_lo, t.edge_hi));
 }
 
 void main() {
@@ -135,6 +144,7 @@ void main() {
         }
         if (n_front > 0u && (tooClose(st.last_front, kf, eps) || touching(st.last_front, kf, closed_eps))) collide = true;
         if (depth_aware && n_front > 0u) addNear(f, p, st.flags, st.last_front, kf);
+        if (depth_aware) addEdgeOn(f, p, st.flags, kf);
         st.last_front = kf;
         ++n_front;
     }
@@ -152,6 +162,7 @@ void main() {
             }
             if (n_back > 0u && (tooClose(kb, st.last_back, eps) || touching(kb, st.last_back, closed_eps))) collide = true;
             if (depth_aware && n_back > 0u) addNear(f, p, st.flags, kb, st.last_back);
+            if (depth_aware && kb != kf) addEdgeOn(f, p, st.flags, kb);
             if (kb == kf) {
                 met_in_middle = true;  // the same fragment, counted once (by the front)
             } else {

@@ -253,8 +253,14 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
         if (peeled < f.size()) collide = true, unknown[pix] = 1;  // beyond the layer cap: conservative
         out.rays[pix] = collide ? 1 : 0;
         // Depth-aware: every consecutive pair of a fully peeled ray.
-        if (depth_aware && peeled == f.size())
+        if (depth_aware && peeled == f.size()) {
             for (std::size_t i = 1; i < f.size(); ++i) near[pix] = unite(near[pix], nearHull(pix, f[i - 1], f[i], out.ambiguous[pix]));
+            // Fragments of triangles that border an edge-on surface bring its range.
+            for (std::uint64_t k : f) {
+                const TriangleInfo& t = tris[std::uint32_t(k) & 0x3FFFFFFFu];
+                near[pix] = unite(near[pix], Interval{t.edge_lo, t.edge_hi});
+            }
+        }
     }
     for (auto r : out.rays) out.collision_rays += r;
 

@@ -79,9 +79,6 @@ struct TriangleBounds {
     float slope;   // |dz/dx| + |dz/dy| per pixel; 3.4e38 where the projection is degenerate
     float plane;   // depth at pixel coordinates (0, 0): z = plane + dzdx * x + dzdy * y
     float dzdx, dzdy;
-    // The depth range of the edge-on triangles (thin and steep: no ray may see them) that
-    // share a vertex with it; lo > hi: none.
-    float edge_lo, edge_hi;
 };
 
 // Per-ray state of the peeling.
@@ -143,7 +140,7 @@ struct Frame {
     VKC_ADDRESS(uint64_t) bundle_depth;      // vec2 per texel of `bundles`: the bundle's depth interval
     VKC_ADDRESS(uint64_t) sparse_depth;      // vec2[triangle_count]: kept depth range, beside `sparse`
     VKC_ADDRESS(uint64_t) ray_depth_image;   // vec2[N*N] each ray's interval for inspection, or 0
-    VKC_ADDRESS(uint64_t) vertex_depth;      // uvec2 per vertex (objects in order): edge-on triangles' depths
+    VKC_ADDRESS(uint64_t) edge_depth;        // uvec2[N*N]: depths of edge-on triangles near each ray
     uint depth_aware;                        // 1: depth-aware separation
 };
 

@@ -13,8 +13,7 @@
 // Depth-aware separation (f.depth_aware): a collision ray is not done at its first
 // collision but peeled to its end, and every pair of consecutive fragments of every ray
 // is tested: a near pair (nearHull) grows the ray's interval in bundle_depth level 0
-// (kRayNear says it holds one), and so does every fragment whose triangle borders an
-// edge-on surface (its range). finalize keeps the intervals of collision rays and of the
+// (kRayNear says it holds one). finalize keeps the intervals of collision rays and of the
 // rays next to them.
 #include "common.glsl.inc"
 #include "depth.glsl.inc"
@@ -59,17 +58,14 @@ vec3 normalOf(ObjectGpu o, uint t) {
 // The depths a triangle's surface can take near ray p: its plane within kNearReachPx of
 // the ray (its depth at the ray's sample plus or minus `slope` over that distance), and
 // its own depth range within kNearRangePx of the ray (its vertices, where the neighbours
-// that share them start: curvature beyond the plane), and the range of its edge-on
-// neighbours (surfaces seen edge-on, which no ray samples). `slope` may be capped. The
-// depth comes from the plane, not the fragment, so both sampling backends give the same
-// bits.
+// that share them start: curvature beyond the plane). `slope` may be capped. The depth
+// comes from the plane, not the fragment, so both sampling backends give the same bits.
 vec2 nearWindow(Frame f, uint p, uint tri, float slope) {
     TriangleBounds t = TriBoundsRef(f.tri_bounds).b[tri];
     vec2 sample_px = vec2(float(p % f.resolution), float(p / f.resolution)) + 0.5;
     float z = t.plane + t.dzdx * sample_px.x + t.dzdy * sample_px.y;
     float plane = slope * kNearReachPx + kFragmentDepthPad, range = slope * kNearRangePx;
-    vec2 w = vec2(min(z - plane, max(t.zmin, z - range)), max(z + plane, min(t.zmax, z + range)));
-    return depthUnion(w, vec2(t.edge_lo, t.edge_hi));
+    return vec2(min(z - plane, max(t.zmin, z - range)), max(z + plane, min(t.zmax, z + range)));
 }
 
 // Consecutive fragments a and b of one ray are a near pair when their triangles may
@@ -100,20 +96,12 @@ vec2 nearHull(Frame f, uint p, uint64_t a, uint64_t b) {
     return depthUnion(wa, wb);
 }
 
-void addInterval(Frame f, uint p, inout uint flags, vec2 d) {
-    if (depthEmpty(d)) return;
+void addNear(Frame f, uint p, inout uint flags, uint64_t a, uint64_t b) {
+    vec2 hull = nearHull(f, p, a, b);
+    if (depthEmpty(hull)) return;
     Vec2sRef acc = Vec2sRef(f.bundle_depth);
-    acc.v[p] = (flags & kRayNear) != 0u ? depthUnion(acc.v[p], d) : d;
+    acc.v[p] = (flags & kRayNear) != 0u ? depthUnion(acc.v[p], hull) : hull;
     flags |= kRayNear;
-}
-
-void addNear(Frame f, uint p, inout uint flags, uint64_t a, uint64_t b) { addInterval(f, p, flags, nearHull(f, p, a, b)); }
-
-// A fragment whose triangle borders an edge-on surface: the ray is as close as sampling
-// gets to that surface, which may be what touches or crosses something here.
-void addEdgeOn(Frame f, uint p, inout uint flags, uint64_t k) {
-    TriangleBounds t = TriBoundsRef(f.tri_bounds).b[uint(k) & kKeyTriangleMask];
-    addInterval(f, p, flags, vec2(t.edge_lo, t.edge_hi));
 }
 
 void main() {
@@ -144,7 +132,6 @@ void main() {
         }
         if (n_front > 0u && (tooClose(st.last_front, kf, eps) || touching(st.last_front, kf, closed_eps))) collide = true;
         if (depth_aware && n_front > 0u) addNear(f, p, st.flags, st.last_front, kf);
-        if (depth_aware) addEdgeOn(f, p, st.flags, kf);
         st.last_front = kf;
         ++n_front;
     }
@@ -162,7 +149,6 @@ void main() {
             }
             if (n_back > 0u && (tooClose(kb, st.last_back, eps) || touching(kb, st.last_back, closed_eps))) collide = true;
             if (depth_aware && n_back > 0u) addNear(f, p, st.flags, kb, st.last_back);
-            if (depth_aware && kb != kf) addEdgeOn(f, p, st.flags, kb);
             if (kb == kf) {
                 met_in_middle = true;  // the same fragment, counted once (by the front)
             } else {

@@ -64,9 +64,9 @@ VKC_CONST_FLOAT kSilhouetteCos = 0.8660254f;
 VKC_CONST_FLOAT kSelfSlopeCap = 4.0f;
 // A thin triangle (kThinInradiusPx) steeper than this many times a 45-degree surface (or
 // degenerate in the image) is edge-on: its surface may be invisible to every ray (a box's
-// side seen along it), so its depth range joins the windows of the triangles sharing its
-// vertices. Lower values also take the thin steep triangles of smooth silhouettes (4:
-// 1.6x the downloads of two deep-overlapping blobs) without finding more pairs.
+// side seen along it), so its depth range is left at every ray within kNearReachPx of it.
+// Lower values also take the thin steep triangles of smooth silhouettes without finding
+// more pairs (4: 1.6x the downloads of two deep-overlapping blobs, in an earlier form).
 VKC_CONST_FLOAT kEdgeOnSlope = 1024.0f;
 // Separation tests each bundle under a triangle's box this many mip levels finer than the
 // paper's (which reads the four corner bundles of the coarsest level whose texels are as

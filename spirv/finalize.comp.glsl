@@ -6,11 +6,13 @@
 //
 // Depth-aware separation (f.depth_aware): bundles are (x, y, depth) boxes. A collision ray
 // without fragment information (layer cap exceeded, a thin triangle under coverage) gets
-// every depth. Otherwise a ray's box holds the hull of its near pairs (classify left it in
-// bundle_depth level 0) if it is a collision ray or next to one: where two surfaces cross
-// between two rows of rays, the rays on one side collide while the crossing triangles may
-// be sampled only on the other. A ray without a near pair gets the empty box: it holds no
-// pair for separation to find (collision rays are counted all the same, as the paper does).
+// every depth. Otherwise a ray's box holds its near pairs' windows (classify left them in
+// bundle_depth level 0) and the depth ranges of the edge-on triangles near it (no ray
+// samples those: triangle-bounds left them in edge_depth) if it is a collision ray or next
+// to one: where two surfaces cross between two rows of rays, the rays on one side collide
+// while the crossing triangles may be sampled only on the other. A ray with neither gets
+// the empty box: it holds no pair for separation to find (collision rays are counted all
+// the same, as the paper does). The grown box is the window's reach.
 #include "common.glsl.inc"
 #include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
@@ -38,10 +40,13 @@ void main() {
     bool bundled = collision;
     vec2 depth = kEmptyDepth;
     if (f.depth_aware != 0u) {
+        uvec2 edge = uvec2(UintsRef(f.edge_depth).v[2u * p], UintsRef(f.edge_depth).v[2u * p + 1u]);
+        vec2 found = (st.flags & kRayNear) != 0u ? Vec2sRef(f.bundle_depth).v[p] : kEmptyDepth;
+        if (edge.y != 0u) found = depthUnion(found, vec2(floatFromOrdered(~edge.x), floatFromOrdered(edge.y)));
         if (collision && ((st.flags & kRayDone) == 0u || (UintsRef(f.counts).v[p] & kCountThin) != 0u)) {
             depth = kAllDepth;
-        } else if ((st.flags & kRayNear) != 0u && (collision || besideCollision(f, p % n, p / n))) {
-            depth = Vec2sRef(f.bundle_depth).v[p];
+        } else if (!depthEmpty(found) && (collision || besideCollision(f, p % n, p / n))) {
+            depth = found;
         }
         bundled = !depthEmpty(depth);
     }

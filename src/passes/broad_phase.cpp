@@ -67,7 +67,7 @@ VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles,
     BufferTable table;
     addCoreRows(table);
     PeelingMethod::addRows(table);
-    return table.planBytes({resolution, triangles, objects, false, depth_aware, triangles});
+    return table.planBytes({resolution, triangles, objects, false, depth_aware});
 }
 
 Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device, MethodFactory method) {
@@ -84,10 +84,10 @@ Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device, Metho
 
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     assert(meetsPreconditions(meshes, s, device_->conservative_rasterization));
-    std::uint64_t total = 0, vertices = 0;
-    for (const GpuMesh& m : meshes) total += m.triangle_count, vertices += m.vertex_count;
+    std::uint64_t total = 0;
+    for (const GpuMesh& m : meshes) total += m.triangle_count;
     const RunShape shape{s.resolution, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(meshes.size()), s.keep_ray_image,
-                         s.depth_aware, vertices};
+                         s.depth_aware};
     if (auto ok = table_.reserve(*device_, shape); !ok) return ok.error();
     gpu::Frame fr{};
     if (auto ok = method_->prepare(s, shape, fr); !ok) return ok.error();

@@ -25,7 +25,6 @@ struct RunShape {
     std::uint32_t objects = 0;
     bool ray_image = false;  // BroadPhaseSettings::keep_ray_image
     bool depth_aware = false;  // BroadPhaseSettings::depth_aware
-    std::uint64_t vertices = 0;  // sum of the meshes' vertex counts
 };
 
 struct BufferRow {

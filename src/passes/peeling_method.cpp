@@ -37,10 +37,9 @@ PeelingMethod::Buffers PeelingMethod::addRows(BufferTable& t) {
                [](const RunShape& s) { return s.depth_aware ? triangles(s) * sizeof(gpu::TriangleBounds) : 0; }, &F::tri_bounds});
     b.bundle_depth = t.add({"bundle-depth", MemoryKind::DeviceLocal, [](const RunShape& s) { return s.depth_aware ? mipTexels(s) * 8 : 0; },
                             &F::bundle_depth});
-    // Ordered-float (inverted minimum, maximum) per vertex, zero = empty: cleared every run.
-    b.vertex_depth = t.add({"vertex-depth", MemoryKind::DeviceLocal,
-                            [](const RunShape& s) { return s.depth_aware ? std::max<VkDeviceSize>(s.vertices, 1) * 8 : 0; },
-                            &F::vertex_depth, false, true});
+    // Ordered-float (inverted minimum, maximum) per ray, zero = none: cleared every run.
+    b.edge_depth = t.add({"edge-depth", MemoryKind::DeviceLocal, [](const RunShape& s) { return s.depth_aware ? pixels(s) * 8 : 0; },
+                          &F::edge_depth, false, true});
     b.sparse_depth = t.add({"sparse-depth", MemoryKind::DeviceLocal, [](const RunShape& s) { return s.depth_aware ? triangles(s) * 8 : 0; },
                             &F::sparse_depth});
     b.ray_depth_image =
@@ -120,8 +119,8 @@ Result<void> PeelingMethod::predict(const RunView& run, std::uint32_t layers) {
 
 void PeelingMethod::recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& b) const {
     // Invalid ids (rows of size 0) when depth-aware separation is off.
-    const DepthAwareIds depth{b[buf_.tri_bounds], b[buf_.bundle_depth], b[buf_.ray_depth_image]};
-    if (depth.bounds.valid()) bounds_->record(g, run, b[core_.projection], depth.bounds, b[buf_.vertex_depth]);
+    const DepthAwareIds depth{b[buf_.tri_bounds], b[buf_.bundle_depth], b[buf_.ray_depth_image], b[buf_.edge_depth]};
+    if (depth.bounds.valid()) bounds_->record(g, run, b[core_.projection], depth.bounds, depth.edge_depth);
     sampling_->recordPeeling(g, run, samplingBuffers(b), steps_, b[buf_.bundles], b[buf_.ray_image], depth);
     merging_->record(g, run, b[buf_.bundles], depth.bundle_depth);
     separation_->record(g, run, b[core_.projection], b[buf_.bundles], b[buf_.sparse],

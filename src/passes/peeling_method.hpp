@@ -29,7 +29,7 @@ public:
     struct Buffers {
         BufferId counts, front, back, state, bundles, sparse, records, scratch, ray_image;
         // Depth-aware separation only (size 0 otherwise).
-        BufferId tri_bounds, vertex_depth, bundle_depth, sparse_depth, ray_depth_image;
+        BufferId tri_bounds, edge_depth, bundle_depth, sparse_depth, ray_depth_image;
     };
     static Buffers addRows(BufferTable& io_table);
 

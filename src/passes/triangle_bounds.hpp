@@ -3,10 +3,9 @@
 // so that classification (windows of the fragments it compares) and separation (the
 // triangle's (x, y, depth) box) read them instead of transforming vertices again. Edge-on
 // triangles (thin and steep: rays may never see them) also leave their depth range at
-// their vertices (`vertex_depth`, cleared by the front stage), and a second dispatch per
-// object gives every triangle the range of its edge-on neighbours. One pass
-// ("triangle-bounds"). The buffer stays valid after the run: a later GPU stage can read the
-// kept triangles' boxes beside `sparse` / `sparse_depth`.
+// every ray within kNearReachPx of them (`edge_depth`, cleared by the front stage). One
+// pass ("triangle-bounds"), one dispatch per object. The buffer stays valid after the run:
+// a later GPU stage can read the kept triangles' boxes beside `sparse` / `sparse_depth`.
 #pragma once
 
 #include <memory>
@@ -19,11 +18,11 @@ class TriangleBounds {
 public:
     static Result<std::unique_ptr<TriangleBounds>> create(vk::Device& device);
     void record(graph::Graph& g, const RunView& run, graph::ResourceId projection, graph::ResourceId bounds,
-                graph::ResourceId vertex_depth) const;
+                graph::ResourceId edge_depth) const;
 
 private:
     TriangleBounds() = default;
-    vk::Pipeline tri_bounds_, tri_edges_;
+    vk::Pipeline tri_bounds_;
 };
 
 }  // namespace vkcollide::passes

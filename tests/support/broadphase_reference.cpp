@@ -43,7 +43,8 @@ struct TriangleInfo {
     float slope;         // depth per pixel of its plane (3.4e38: degenerate)
     float plane, dzdx, dzdy;  // z = plane + dzdx * x + dzdy * y, pixel units
     bool thin = false;        // projected inradius below kThinInradiusPx
-    float edge_lo = kHuge, edge_hi = -kHuge;  // the range of its edge-on neighbours
+    float px[3][2];           // corners in pixel coordinates
+    float det = 0;            // twice the projected area, pixel units
     Float3 normal;       // unit normal (world = object space here)
 };
 
@@ -76,6 +77,8 @@ TriangleInfo triangleInfo(const HostMesh& m, std::uint32_t t, const float* rows,
     const float perimeter = std::sqrt(e1x * e1x + e1y * e1y) + std::sqrt(e2x * e2x + e2y * e2y) +
                             std::sqrt((e2x - e1x) * (e2x - e1x) + (e2y - e1y) * (e2y - e1y));
     ti.thin = std::fabs(det) < gpu::kThinInradiusPx * perimeter;
+    ti.det = det;
+    ti.px[0][0] = p0x, ti.px[0][1] = p0y, ti.px[1][0] = p0x + e1x, ti.px[1][1] = p0y + e1y, ti.px[2][0] = p0x + e2x, ti.px[2][1] = p0y + e2y;
     const Float3 a = m.positions[m.indices[t * 3]], b = m.positions[m.indices[t * 3 + 1]], c = m.positions[m.indices[t * 3 + 2]];
     const float ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
     const float nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx, l = std::sqrt(nx * nx + ny * ny + nz * nz);
@@ -87,8 +90,45 @@ TriangleInfo triangleInfo(const HostMesh& m, std::uint32_t t, const float* rows,
 Interval window(std::uint32_t x, std::uint32_t y, const TriangleInfo& t, float slope) {
     const float z = t.plane + t.dzdx * (float(x) + 0.5f) + t.dzdy * (float(y) + 0.5f);
     const float plane = slope * gpu::kNearReachPx + gpu::kFragmentDepthPad, range = slope * gpu::kNearRangePx;
-    const Interval w{std::min(z - plane, std::max(t.zmin, z - range)), std::max(z + plane, std::min(t.zmax, z + range))};
-    return unite(w, Interval{t.edge_lo, t.edge_hi});
+    return {std::min(z - plane, std::max(t.zmin, z - range)), std::max(z + plane, std::min(t.zmax, z + range))};
+}
+
+// tri_bounds.comp.glsl, splat: the rays near an edge-on triangle's longest edge get its
+// range; rays within kSplatAmbiguity px of the marked ranges' ends are ambiguous.
+constexpr float kSplatAmbiguity = 1e-3f;
+void splat(const TriangleInfo& t, std::uint32_t n, std::vector<Interval>& io_edge, std::vector<std::uint8_t>& io_ambiguous) {
+    const float e1[2] = {t.px[1][0] - t.px[0][0], t.px[1][1] - t.px[0][1]}, e2[2] = {t.px[2][0] - t.px[0][0], t.px[2][1] - t.px[0][1]};
+    auto len = [](float x, float y) { return std::sqrt(x * x + y * y); };
+    const float* a = t.px[0];
+    const float* c = t.px[1];
+    float longest = len(e1[0], e1[1]);
+    if (len(e2[0], e2[1]) > longest) c = t.px[2], longest = len(e2[0], e2[1]);
+    if (len(e2[0] - e1[0], e2[1] - e1[1]) > longest) a = t.px[1], c = t.px[2], longest = len(e2[0] - e1[0], e2[1] - e1[1]);
+    const float d = (longest > 0 ? std::fabs(t.det) / longest : 0.0f) + gpu::kNearReachPx;
+    const int row0 = std::max(int(std::ceil(std::min(a[1], c[1]) - d - 0.5f)), 0);
+    const int row1 = std::min(int(std::floor(std::max(a[1], c[1]) + d - 0.5f)), int(n) - 1);
+    for (int j = row0; j <= row1; ++j) {
+        const float yc = float(j) + 0.5f, dy = c[1] - a[1];
+        float t0 = 0, t1 = 1;
+        if (std::fabs(dy) > 1e-6f) {
+            const float ta = (yc - d - a[1]) / dy, tb = (yc + d - a[1]) / dy;
+            t0 = std::clamp(std::min(ta, tb), 0.0f, 1.0f), t1 = std::clamp(std::max(ta, tb), 0.0f, 1.0f);
+        }
+        const float x0 = a[0] + (c[0] - a[0]) * t0, x1 = a[0] + (c[0] - a[0]) * t1;
+        const float xl = std::min(x0, x1) - d - 0.5f, xh = std::max(x0, x1) + d - 0.5f;
+        const int col0 = std::max(int(std::ceil(xl)), 0), col1 = std::min(int(std::floor(xh)), int(n) - 1);
+        for (int i = std::max(col0 - 1, 0); i <= std::min(col1 + 1, int(n) - 1); ++i) {
+            const std::size_t pix = std::size_t(j) * n + i;
+            if (std::fabs(float(i) - xl) < kSplatAmbiguity || std::fabs(float(i) - xh) < kSplatAmbiguity) io_ambiguous[pix] = 1;
+            if (i >= col0 && i <= col1) io_edge[pix] = unite(io_edge[pix], Interval{t.zmin, t.zmax});
+        }
+        // The first and last rows may round either way: their neighbours are ambiguous too.
+        const float top = std::min(a[1], c[1]) - d - 0.5f, bottom = std::max(a[1], c[1]) + d - 0.5f;
+        const bool edge_row = std::fabs(top - std::round(top)) < kSplatAmbiguity || std::fabs(bottom - std::round(bottom)) < kSplatAmbiguity;
+        for (int row = j - 1; edge_row && row <= j + 1; ++row)
+            if (row >= 0 && row < int(n))
+                for (int i = std::max(col0 - 1, 0); i <= std::min(col1 + 1, int(n) - 1); ++i) io_ambiguous[std::size_t(row) * n + i] = 1;
+    }
 }
 
 bool neighbours(const HostMesh& m, std::uint32_t ta, std::uint32_t tb) {
@@ -123,27 +163,20 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
     out.ambiguous.assign(std::size_t(n) * n, 0);
     out.ray_depth.assign(depth_aware ? std::size_t(n) * n : 0, kNone);
 
-    // Every triangle's bounds, in global order (the triangle-bounds pass), then the depth
-    // range of its edge-on neighbours (thin and steep triangles sharing a vertex).
+    // Every triangle's bounds, in global order (the triangle-bounds pass); edge-on triangles
+    // (thin and steep) leave their range at the rays near them.
     const float level_slope = std::sqrt(rows[8] * rows[8] + rows[9] * rows[9] + rows[10] * rows[10]) /
                               (float(n) * std::min(std::sqrt(rows[0] * rows[0] + rows[1] * rows[1] + rows[2] * rows[2]),
                                                    std::sqrt(rows[4] * rows[4] + rows[5] * rows[5] + rows[6] * rows[6])));
     std::vector<TriangleInfo> tris;
+    std::vector<Interval> edge(depth_aware ? std::size_t(n) * n : 0, kNone);
     for (std::uint32_t o = 0; o < objects.size(); ++o) {
         const HostMesh& m = *objects[o].mesh;
-        const std::size_t first = tris.size();
-        std::vector<Interval> at_vertex(m.positions.size(), kNone);
         for (std::uint32_t t = 0; t < m.triangleCount(); ++t) {
             tris.push_back(triangleInfo(m, t, rows, n));
             TriangleInfo& ti = tris.back();
             ti.object = o, ti.local = t;
-            if (ti.thin && ti.slope > gpu::kEdgeOnSlope * level_slope)
-                for (int c = 0; c < 3; ++c) at_vertex[m.indices[t * 3 + c]] = unite(at_vertex[m.indices[t * 3 + c]], Interval{ti.zmin, ti.zmax});
-        }
-        for (std::uint32_t t = 0; t < m.triangleCount(); ++t) {
-            Interval e = kNone;
-            for (int c = 0; c < 3; ++c) e = unite(e, at_vertex[m.indices[t * 3 + c]]);
-            tris[first + t].edge_lo = e[0], tris[first + t].edge_hi = e[1];
+            if (depth_aware && ti.thin && ti.slope > gpu::kEdgeOnSlope * level_slope) splat(ti, n, edge, out.ambiguous);
         }
     }
 
@@ -253,14 +286,8 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
         if (peeled < f.size()) collide = true, unknown[pix] = 1;  // beyond the layer cap: conservative
         out.rays[pix] = collide ? 1 : 0;
         // Depth-aware: every consecutive pair of a fully peeled ray.
-        if (depth_aware && peeled == f.size()) {
+        if (depth_aware && peeled == f.size())
             for (std::size_t i = 1; i < f.size(); ++i) near[pix] = unite(near[pix], nearHull(pix, f[i - 1], f[i], out.ambiguous[pix]));
-            // Fragments of triangles that border an edge-on surface bring its range.
-            for (std::uint64_t k : f) {
-                const TriangleInfo& t = tris[std::uint32_t(k) & 0x3FFFFFFFu];
-                near[pix] = unite(near[pix], Interval{t.edge_lo, t.edge_hi});
-            }
-        }
     }
     for (auto r : out.rays) out.collision_rays += r;
 
@@ -272,7 +299,7 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
         for (std::uint32_t j = std::max(y, 1u) - 1; j <= std::min(y + 1, n - 1); ++j)
             for (std::uint32_t i = std::max(x, 1u) - 1; i <= std::min(x + 1, n - 1); ++i) beside = beside || out.rays[std::size_t(j) * n + i];
         if (out.rays[pix] && unknown[pix]) out.ray_depth[pix] = {-kHuge, kHuge};
-        else if (beside) out.ray_depth[pix] = near[pix];
+        else if (beside) out.ray_depth[pix] = unite(near[pix], edge[pix]);
     }
 
     // Pass 2: the ray-bundle mipmap.

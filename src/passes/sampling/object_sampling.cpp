@@ -93,7 +93,7 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
     auto finalize = addPass(g, "finalize", PassKind::Compute, Stage::Sampling);
     finalize.read(b.state).use(bundles, Use::StorageWrite).readWrite(b.header);
     if (rays.valid()) finalize.write(rays);
-    if (depth.bounds.valid()) finalize.read(b.counts).readWrite(depth.bundle_depth);
+    if (depth.bounds.valid()) finalize.read(b.counts).readWrite(depth.bundle_depth).read(depth.edge_depth);
     if (depth.ray_depth.valid()) finalize.write(depth.ray_depth);
     finalize.record([this, frame, pixels](PassContext& pc) {
         bindAndPush(pc, finalize_, frame);

@@ -19,9 +19,10 @@ namespace vkcollide::passes {
 
 // Depth-aware separation's buffers that classify and finalize use (invalid ids when off):
 // the triangle bounds, the bundles' depth intervals (level 0 holds each ray's while it is
-// peeled) and the per-ray interval image (only with keep_ray_image).
+// peeled), the per-ray interval image (only with keep_ray_image) and the edge-on
+// triangles' depths per ray.
 struct DepthAwareIds {
-    graph::ResourceId bounds, bundle_depth, ray_depth;
+    graph::ResourceId bounds, bundle_depth, ray_depth, edge_depth;
 };
 
 class ObjectSampling {

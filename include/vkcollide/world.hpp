@@ -104,8 +104,8 @@ struct DetectSettings {
     // which keeps every triangle under a collision ray whatever its depth. The collision
     // rays are the same either way. On by default: on the bench set it never found fewer
     // pairs than the paper's separation and downloads 2-30x fewer triangles where meshes
-    // overlap deeply (about as many on coarse piles). Costs 48 bytes per triangle, 8 per
-    // vertex and 11 per ray of GPU memory, and a little GPU time per peeling step.
+    // overlap deeply (about as many on coarse piles). Costs 48 bytes per triangle and 19
+    // per ray of GPU memory, and a little GPU time per peeling step.
     bool depth_aware = true;
 };
 

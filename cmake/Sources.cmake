@@ -32,6 +32,7 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/passes/projection.cpp
   ${S}/passes/separation.cpp
   ${S}/passes/stage.cpp
+  ${S}/passes/triangle_bounds.cpp
   ${S}/api/detect.cpp
   ${S}/api/settings.cpp
   ${S}/api/validation.cpp

@@ -41,10 +41,12 @@ VKC_CONST kRayDone = 1u;
 VKC_CONST kRayCollision = 2u;
 VKC_CONST kParityFront = 4u;
 VKC_CONST kParityBack = 8u;
+VKC_CONST kRayNear = 16u;  // depth-aware: the ray met a near pair; its interval is in bundle_depth level 0
 // ObjectGpu.flags
 VKC_CONST kObjectOpen = 1u;
 VKC_CONST kObjectIndex16 = 2u;
 VKC_CONST kObjectCheckOnGpu = 4u;  // geometry only on the GPU: check indices and positions there
+VKC_CONST kObjectSelfCollide = 8u; // its own triangles may collide (depth-aware near pairs)
 VKC_CONST kMaxLevels = 16u;
 // Push.coverage: how the sampling passes treat thin triangles (kThinInradiusPx in
 // config.h; docs/stability.md). With coverage on, every ray a thin triangle touches
@@ -74,6 +76,19 @@ struct Projection {
     float world_to_depth;
     float closed_epsilon;  // closed surfaces: a gap this small (normalised depth) between leaving one and entering the next touches
     uint pad1;
+};
+
+// Depth-aware separation: one triangle's sampling-space box (x0, y0, x1, y1, as the
+// sparse boxes), depth range padded by a bound on its rounding error (kDepthRoundingPad),
+// and its plane in pixel units, from the triangle-bounds pass. The plane gives a ray's
+// depth on the triangle the same way whichever backend sampled it (fragment depths
+// differ in the last bits between rasterizers).
+struct TriangleBounds {
+    vec4 box;
+    float zmin, zmax;
+    float slope;   // |dz/dx| + |dz/dy| per pixel; 3.4e38 where the projection is degenerate
+    float plane;   // depth at pixel coordinates (0, 0): z = plane + dzdx * x + dzdy * y
+    float dzdx, dzdy;
 };
 
 // Per-ray state of the peeling.
@@ -132,6 +147,14 @@ struct Frame {
     VKC_ADDRESS(uint64_t) compute_sampling;  // CsFrame (compute sampling backend), or 0
     VKC_ADDRESS(uint64_t) method;            // a broad-phase method's own frame (its layout), or 0
     VKC_ADDRESS(uint64_t) ray_fragments;     // uint64[N*N]: fragments per ray (kFragments*), counted by sampling
+    // Depth-aware separation (docs/broadphase.md); addresses 0 and depth_aware 0 when off.
+    // Depth intervals are vec2 (lo, hi) in normalised depth; lo > hi is empty.
+    VKC_ADDRESS(uint64_t) tri_bounds;        // TriangleBounds[triangle_count]
+    VKC_ADDRESS(uint64_t) bundle_depth;      // vec2 per texel of `bundles`: the bundle's depth interval
+    VKC_ADDRESS(uint64_t) sparse_depth;      // vec2[triangle_count]: kept depth range, beside `sparse`
+    VKC_ADDRESS(uint64_t) ray_depth_image;   // vec2[N*N] each ray's interval for inspection, or 0
+    VKC_ADDRESS(uint64_t) edge_depth;        // uvec2[N*N]: depths of edge-on triangles near each ray
+    uint depth_aware;                        // 1: depth-aware separation
 };
 
 // Pushed per dispatch or draw.

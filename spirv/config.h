@@ -51,6 +51,47 @@ VKC_CONST kMaxRayFragments = 1024;
 VKC_CONST_FLOAT kMaxWorldCoordinate = 1e30f;
 VKC_CONST_FLOAT kMinSamplingExtent = 1e-30f;
 
+// ---- Depth-aware separation (docs/broadphase.md) ---------------------------------------
+// Each triangle's depth range is padded by this fraction of the sum of the magnitudes of
+// the terms of its depth (a dot product of four terms): a bound on the float rounding of
+// the computed vertex depths (about 4 units in the last place; 16 are taken), so two
+// triangles that share a point always get overlapping ranges. Windows (below) get this
+// much more, absolute, against the rounding of the planes evaluated at the rays.
+VKC_CONST_FLOAT kDepthRoundingPad = 1.0f / 1048576.0f;
+VKC_CONST_FLOAT kFragmentDepthPad = 1.0f / 1048576.0f;
+// A fragment's window: the depths its triangle's plane takes within kNearReachPx pixels
+// of the ray (in x and in y), and its depth range within kNearRangePx pixels. Two
+// consecutive fragments whose windows overlap are a near pair. First order, a ray lies
+// within half a pixel of any point, so two surfaces that cross between rays still have
+// overlapping windows on the rays around the crossing; one pixel leaves room for the
+// surfaces' curvature, and the range (the vertices, where the neighbouring triangles
+// start) for sharper bends. Larger: more triangles kept; smaller: pairs lost between rays
+// (measured at reduced scale, docs/broadphase.md: reach 0.5 lost pairs the paper finds in
+// an earlier form of the rule; range 4 instead of 2 kept up to 7 % more triangles and
+// found no more pairs).
+VKC_CONST_FLOAT kNearReachPx = 1.0f;
+VKC_CONST_FLOAT kNearRangePx = 2.0f;
+// Two triangles of one object whose normals are within 30 degrees (cos above this) look
+// like the two sides of a silhouette on a grazing ray (steep, adjacent in depth); their
+// slopes count as at most kSelfSlopeCap times a 45-degree surface's, or every silhouette
+// of a self-colliding object would be a near pair (uncapped, 2.4x the downloads of two
+// deep-overlapping blobs; capped for every pair of one object, a twisted bar lost 2 of 219
+// pairs). Crossings at steeper angles keep their slopes.
+VKC_CONST_FLOAT kSilhouetteCos = 0.8660254f;
+VKC_CONST_FLOAT kSelfSlopeCap = 4.0f;
+// A thin triangle (kThinInradiusPx) steeper than this many times a 45-degree surface (or
+// degenerate in the image) is edge-on: its surface may be invisible to every ray (a box's
+// side seen along it), so its depth range is left at every ray within kNearReachPx of it.
+// Lower values also take the thin steep triangles of smooth silhouettes without finding
+// more pairs (4: 1.6x the downloads of two deep-overlapping blobs, in an earlier form).
+VKC_CONST_FLOAT kEdgeOnSlope = 1024.0f;
+// Separation tests each bundle under a triangle's box this many mip levels finer than the
+// paper's (which reads the four corner bundles of the coarsest level whose texels are as
+// large as the box): up to (2^k + 1)^2 texels (a ring more for the near rays' grown
+// boxes), each a (x, y, depth) box of its own. 2 kept about 7 % fewer triangles and
+// found fewer pairs.
+VKC_CONST kSeparationRefine = 1;
+
 // ---- Compute sampling backend ----------------------------------------------------------
 // Big triangles are drawn in kCsTile x kCsTile pixel tiles, one workgroup of kCsGroupSize
 // (= kCsTile^2) invocations, one per pixel.

@@ -1,7 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Ray merging: texel (x, y) of level l is the union of its four children at level l-1.
+// Ray merging: texel (x, y) of level l is the union of its four children at level l-1
+// (with depth-aware separation also their depth intervals: (x, y, depth) boxes).
 #include "common.glsl.inc"
+#include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
 #include "dispatch.glsl.inc"
 
@@ -11,9 +13,12 @@ void main() {
     uint i = globalIndex();
     if (i >= size * size) return;
     uint x = i % size, y = i / size, child = size * 2u;
-    Vec4sRef b = Vec4sRef(f.bundles);
     uint src = f.level_offset[pc.level - 1u];
-    vec4 u = boxUnion(boxUnion(b.v[src + (2u * y) * child + 2u * x], b.v[src + (2u * y) * child + 2u * x + 1u]),
-                      boxUnion(b.v[src + (2u * y + 1u) * child + 2u * x], b.v[src + (2u * y + 1u) * child + 2u * x + 1u]));
-    b.v[f.level_offset[pc.level] + i] = u;
+    uint c00 = src + (2u * y) * child + 2u * x, c10 = c00 + 1u, c01 = c00 + child, c11 = c01 + 1u;
+    Vec4sRef b = Vec4sRef(f.bundles);
+    b.v[f.level_offset[pc.level] + i] = boxUnion(boxUnion(b.v[c00], b.v[c10]), boxUnion(b.v[c01], b.v[c11]));
+    if (f.depth_aware != 0u) {
+        Vec2sRef d = Vec2sRef(f.bundle_depth);
+        d.v[f.level_offset[pc.level] + i] = depthUnion(depthUnion(d.v[c00], d.v[c10]), depthUnion(d.v[c01], d.v[c11]));
+    }
 }

@@ -96,6 +96,17 @@ struct DetectSettings {
     // (a collision ray). 0: only exact depth ties, ordered front before back, do.
     float closed_epsilon = 0;
     BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
+    // Depth-aware separation (docs/broadphase.md): rays also record where two consecutive
+    // hits may collide (triangles of different objects, or of one self-colliding object and
+    // not neighbours, whose surfaces come within a pixel of each other in depth), and a
+    // triangle is downloaded only where its own (x, y, depth) box meets those of the rays
+    // around it; records then carry the kept depth range. Off: the paper's separation,
+    // which keeps every triangle under a collision ray whatever its depth. The collision
+    // rays are the same either way. On by default: on the bench set it never found fewer
+    // pairs than the paper's separation and downloads 2-30x fewer triangles where meshes
+    // overlap deeply (about as many on coarse piles). Costs 48 bytes per triangle and 19
+    // per ray of GPU memory, and a little GPU time per peeling step.
+    bool depth_aware = true;
 
     // Limits (docs/stability.md, "Limits"):
     // Longest wait for the GPU work of one submission, in milliseconds. Beyond it the

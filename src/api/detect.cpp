@@ -51,6 +51,7 @@ Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool me
     d.broad.coverage = s.coverage;  // resolve() turned Best into Conservative or Dilate
     d.broad.region = s.region;
     d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
+    d.broad.depth_aware = s.depth_aware;
     d.axes = s.axes;
     d.bad_objects = s.bad_objects;
     if (auto ok = detection->start(meshes, d, measure); !ok) return noted(describeFailure(ok.error()));

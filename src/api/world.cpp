@@ -77,6 +77,7 @@ void CollisionWorld::Impl::liveMeshes(std::vector<passes::GpuMesh>& meshes, std:
         if (!objects[i].alive) continue;
         passes::GpuMesh m = objects[i].gpu;
         m.transform = objects[i].options.transform;
+        m.self_collision = objects[i].options.self_collision;
         meshes.push_back(m);
         ids.push_back(static_cast<ObjectId>(i));
     }

@@ -66,11 +66,11 @@ std::string describe(const ObjectFault& f) {
     return "triangle " + std::to_string(f.triangle) + ": unknown problem";
 }
 
-VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects) {
+VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects, bool depth_aware) {
     BufferTable table;
     addCoreRows(table);
     PeelingMethod::addRows(table);
-    return table.planBytes({resolution, triangles, objects, false});
+    return table.planBytes({resolution, triangles, objects, false, depth_aware});
 }
 
 Result<std::unique_ptr<BroadPhase>> BroadPhase::create(vk::Device& device, MethodFactory method) {
@@ -100,7 +100,8 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     }
     std::uint64_t total = 0;
     for (const GpuMesh& m : meshes) total += m.triangle_count;
-    const RunShape shape{s.resolution, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(meshes.size()), s.keep_ray_image};
+    const RunShape shape{s.resolution, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(meshes.size()), s.keep_ray_image,
+                         s.depth_aware};
     if (auto ok = table_.reserve(*device_, shape); !ok) return ok.error();
     gpu::Frame fr{};
     if (auto ok = method_->prepare(s, shape, fr); !ok) return ok.error();
@@ -118,7 +119,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
         o.triangle_count = m.triangle_count;
         o.triangle_base = base;
         o.flags = (m.open ? gpu::kObjectOpen : 0u) | (m.index16 ? gpu::kObjectIndex16 : 0u) |
-                  (m.check_on_gpu ? gpu::kObjectCheckOnGpu : 0u);
+                  (m.check_on_gpu ? gpu::kObjectCheckOnGpu : 0u) | (m.self_collision ? gpu::kObjectSelfCollide : 0u);
         for (int r = 0; r < 3; ++r) o.model[r] = {m.transform[r * 4], m.transform[r * 4 + 1], m.transform[r * 4 + 2], m.transform[r * 4 + 3]};
         objs[i] = o;
         base += m.triangle_count;

@@ -31,8 +31,9 @@
 namespace vkcollide::passes {
 
 // Device memory the broad phase (core and PeelingMethod rows) needs for a resolution and
-// triangle count, without the collision-ray image (bytes, all buffers).
-VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects);
+// triangle count, without the collision-ray image (bytes, all buffers); with depth-aware
+// separation's buffers when `depth_aware`.
+VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles, std::uint32_t objects, bool depth_aware = true);
 
 class BroadPhase {
 public:

@@ -40,6 +40,9 @@ struct GpuMesh {
     // Geometry only the GPU holds (an engine's buffers): each run checks its indices and
     // positions there (host meshes are checked before upload).
     bool check_on_gpu = false;
+    // Its own triangles may collide with each other. Only depth-aware separation reads it
+    // (pairs of one object that may not collide are no near pairs); true is conservative.
+    bool self_collision = true;
 };
 
 struct BroadPhaseSettings {
@@ -62,6 +65,11 @@ struct BroadPhaseSettings {
     // Longest wait for one submission (ns); beyond it the run fails with ErrorCode::Timeout
     // and its GPU work is left to finish on its own (BroadPhase::busy()).
     std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;
+    // Depth-aware separation (docs/broadphase.md): collision rays carry the depth interval
+    // of their near pairs, bundles are (x, y, depth) boxes, a triangle is kept only where
+    // its own box meets them in all three, and records carry the kept depth range. Off:
+    // the paper's separation (screen boxes only).
+    bool depth_aware = false;
 };
 
 // A problem the GPU input check found in one object (kObjectCheckOnGpu meshes), as data:
@@ -84,6 +92,9 @@ std::string describe(const ObjectFault& fault);
 struct BroadPhaseResult {
     std::vector<CandidateTriangle> records;  // in global triangle order
     std::vector<std::uint8_t> ray_image;     // N*N, row-major, 1 = collision ray (if kept)
+    // With depth_aware and keep_ray_image: each ray's depth interval (lo, hi) as its bundle
+    // got it, row-major (lo > hi: none; +-3.4e38: every depth).
+    std::vector<std::array<float, 2>> ray_depth;
     std::uint32_t depth_complexity = 0;
     std::uint32_t layers = 0;                // layers peeled: min(depth complexity, cap)
     std::uint32_t peel_steps = 0;            // peeling passes recorded (half with dual)

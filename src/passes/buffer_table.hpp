@@ -24,6 +24,7 @@ struct RunShape {
     std::uint32_t triangles = 0;
     std::uint32_t objects = 0;
     bool ray_image = false;  // BroadPhaseSettings::keep_ray_image
+    bool depth_aware = false;  // BroadPhaseSettings::depth_aware
 };
 
 struct BufferRow {

@@ -10,17 +10,18 @@ Result<std::unique_ptr<Merging>> Merging::create(vk::Device& device) {
     return m;
 }
 
-void Merging::record(graph::Graph& g, const RunView& run, graph::ResourceId bundles) const {
+void Merging::record(graph::Graph& g, const RunView& run, graph::ResourceId bundles, graph::ResourceId bundle_depth) const {
     const std::uint32_t n = run.frame.resolution, levels = run.frame.levels;
-    addPass(g, "merge", graph::PassKind::Compute, Stage::Merging)
-        .readWrite(bundles)
-        .record([this, frame = run.frame_address, n, levels](graph::PassContext& pc) {
-            for (std::uint32_t l = 1; l < levels; ++l) {
-                bindAndPush(pc, merge_, frame, 0, 0, l);
-                dispatchItems(pc, VkDeviceSize(n >> l) * (n >> l));
-                if (l + 1 < levels) pc.shaderBarrier();  // level l+1 reads level l
-            }
-        });
+    auto pass = addPass(g, "merge", graph::PassKind::Compute, Stage::Merging);
+    pass.readWrite(bundles);
+    if (bundle_depth.valid()) pass.readWrite(bundle_depth);
+    pass.record([this, frame = run.frame_address, n, levels](graph::PassContext& pc) {
+        for (std::uint32_t l = 1; l < levels; ++l) {
+            bindAndPush(pc, merge_, frame, 0, 0, l);
+            dispatchItems(pc, VkDeviceSize(n >> l) * (n >> l));
+            if (l + 1 < levels) pc.shaderBarrier();  // level l+1 reads level l
+        }
+    });
 }
 
 }  // namespace vkcollide::passes

@@ -53,15 +53,13 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
                 bindAndPush(pc, pack_shift_, frame);
                 dispatchItems(pc, rows, 64);
             });
-        addPass(g, "pack-move", PassKind::Compute, Stage::Packing)
-            .read(b.sparse)
-            .read(b.scratch)
-            .read(b.projection)
-            .write(b.records)
-            .record([this, frame, rows](PassContext& pc) {
-                bindAndPush(pc, pack_move_, frame);
-                dispatchGroups(pc, rows);
-            });
+        auto move = addPass(g, "pack-move", PassKind::Compute, Stage::Packing);
+        move.read(b.sparse).read(b.scratch).read(b.projection).write(b.records);
+        if (b.sparse_depth.valid()) move.read(b.sparse_depth);
+        move.record([this, frame, rows](PassContext& pc) {
+            bindAndPush(pc, pack_move_, frame);
+            dispatchGroups(pc, rows);
+        });
         return;
     }
     addPass(g, "pack-scan", PassKind::Compute, Stage::Packing)
@@ -75,15 +73,13 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
             bindAndPush(pc, scan_counts_, frame, 0, blocks);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
         });
-    addPass(g, "pack-scatter", PassKind::Compute, Stage::Packing)
-        .read(b.sparse)
-        .read(b.scratch)
-        .read(b.projection)
-        .write(b.records)
-        .record([this, frame, blocks](PassContext& pc) {
-            bindAndPush(pc, scan_scatter_, frame);
-            dispatchGroups(pc, blocks);
-        });
+    auto scatter = addPass(g, "pack-scatter", PassKind::Compute, Stage::Packing);
+    scatter.read(b.sparse).read(b.scratch).read(b.projection).write(b.records);
+    if (b.sparse_depth.valid()) scatter.read(b.sparse_depth);
+    scatter.record([this, frame, blocks](PassContext& pc) {
+        bindAndPush(pc, scan_scatter_, frame);
+        dispatchGroups(pc, blocks);
+    });
 }
 
 }  // namespace vkcollide::passes

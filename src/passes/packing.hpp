@@ -20,6 +20,7 @@ public:
 
     struct Buffers {
         graph::ResourceId sparse, scratch, header, projection, records;
+        graph::ResourceId sparse_depth;  // kept depth ranges (depth-aware separation), else invalid
     };
     void record(graph::Graph& g, const RunView& run, const Buffers& b) const;
     // Scratch bytes for `triangles` (both methods).

@@ -36,12 +36,28 @@ PeelingMethod::Buffers PeelingMethod::addRows(BufferTable& t) {
     b.scratch = t.add({"pack-scratch", MemoryKind::DeviceLocal, [](const RunShape& s) { return Packing::scratchBytes(s.triangles); }, &F::scratch});
     b.ray_image = t.add({"ray-image", MemoryKind::Readback, [](const RunShape& s) { return s.ray_image ? pixels(s) * 4 : 0; },
                          &F::ray_image, true});
+    b.tri_bounds =
+        t.add({"triangle-bounds", MemoryKind::DeviceLocal,
+               [](const RunShape& s) { return s.depth_aware ? triangles(s) * sizeof(gpu::TriangleBounds) : 0; }, &F::tri_bounds});
+    b.bundle_depth = t.add({"bundle-depth", MemoryKind::DeviceLocal, [](const RunShape& s) { return s.depth_aware ? mipTexels(s) * 8 : 0; },
+                            &F::bundle_depth});
+    // Ordered-float (inverted minimum, maximum) per ray, zero = none: cleared every run.
+    b.edge_depth = t.add({"edge-depth", MemoryKind::DeviceLocal, [](const RunShape& s) { return s.depth_aware ? pixels(s) * 8 : 0; },
+                          &F::edge_depth, false, true});
+    b.sparse_depth = t.add({"sparse-depth", MemoryKind::DeviceLocal, [](const RunShape& s) { return s.depth_aware ? triangles(s) * 8 : 0; },
+                            &F::sparse_depth});
+    b.ray_depth_image =
+        t.add({"ray-depth-image", MemoryKind::Readback, [](const RunShape& s) { return s.depth_aware && s.ray_image ? pixels(s) * 8 : 0; },
+               &F::ray_depth_image, true});
     return b;
 }
 
 Result<std::unique_ptr<BroadPhaseMethod>> PeelingMethod::create(vk::Device& device, BufferTable& table, const CoreBuffers& core) {
     std::unique_ptr<PeelingMethod> m(new PeelingMethod(table, core));
     m->buf_ = addRows(table);
+    auto bounds = TriangleBounds::create(device);
+    if (!bounds) return bounds.error();
+    m->bounds_ = std::move(*bounds);
     auto sampling = ObjectSampling::create(device);
     if (!sampling) return sampling.error();
     m->sampling_ = std::move(*sampling);
@@ -63,6 +79,7 @@ Result<void> PeelingMethod::prepare(const BroadPhaseSettings& s, const RunShape&
     const std::uint32_t n = shape.resolution, tris = std::max(shape.triangles, 1u);
     fr.compute_sampling = *compute_frame;
     fr.dual = s.dual ? 1u : 0u;
+    fr.depth_aware = s.depth_aware ? 1u : 0u;
     fr.pack_rows = (tris + gpu::kPackRowWidth - 1) / gpu::kPackRowWidth;
     fr.pack_blocks = (tris + gpu::kGroupSize - 1) / gpu::kGroupSize;
     std::uint32_t levels = 0;
@@ -108,10 +125,15 @@ Result<void> PeelingMethod::predict(const RunView& run, std::uint32_t layers) {
 }
 
 void PeelingMethod::recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& b) const {
-    sampling_->recordPeeling(g, run, samplingBuffers(b), steps_, b[buf_.bundles], b[buf_.ray_image]);
-    merging_->record(g, run, b[buf_.bundles]);
-    separation_->record(g, run, b[core_.projection], b[buf_.bundles], b[buf_.sparse]);
-    packing_->record(g, run, {b[buf_.sparse], b[buf_.scratch], b[core_.header], b[core_.projection], b[buf_.records]});
+    // Invalid ids (rows of size 0) when depth-aware separation is off.
+    const DepthAwareIds depth{b[buf_.tri_bounds], b[buf_.bundle_depth], b[buf_.ray_depth_image], b[buf_.edge_depth]};
+    if (depth.bounds.valid()) bounds_->record(g, run, b[core_.projection], depth.bounds, depth.edge_depth);
+    sampling_->recordPeeling(g, run, samplingBuffers(b), steps_, b[buf_.bundles], b[buf_.ray_image], depth);
+    merging_->record(g, run, b[buf_.bundles], depth.bundle_depth);
+    separation_->record(g, run, b[core_.projection], b[buf_.bundles], b[buf_.sparse],
+                        {depth.bounds, depth.bundle_depth, b[buf_.sparse_depth]});
+    packing_->record(g, run,
+                     {b[buf_.sparse], b[buf_.scratch], b[core_.header], b[core_.projection], b[buf_.records], b[buf_.sparse_depth]});
 }
 
 Result<void> PeelingMethod::collect(const RunView& run, const gpu::Header& h, BroadPhaseResult& result) {
@@ -137,6 +159,12 @@ Result<void> PeelingMethod::collect(const RunView& run, const gpu::Header& h, Br
         result.ray_image.resize(pixels);
         const auto* src = static_cast<const std::uint32_t*>(rays.mapped());
         for (std::uint32_t i = 0; i < pixels; ++i) result.ray_image[i] = static_cast<std::uint8_t>(src[i]);
+        if (run.settings.depth_aware) {
+            const vk::Buffer& depths = table_->buffer(buf_.ray_depth_image);
+            depths.invalidate();
+            result.ray_depth.resize(pixels);
+            std::memcpy(result.ray_depth.data(), depths.mapped(), size_t(pixels) * sizeof(result.ray_depth[0]));
+        }
     }
     return {};
 }

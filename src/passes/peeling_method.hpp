@@ -1,6 +1,7 @@
 // The paper's method (Georgii, Krüger, Westermann 2006, passes 1-4) on the method seam:
 //   measure: object sampling's depth complexity       sampling/object_sampling.hpp
-//   main:    peeling steps + classification, finalize  sampling/object_sampling.hpp
+//   main:    (depth-aware: triangle bounds)            triangle_bounds.hpp
+//            peeling steps + classification, finalize  sampling/object_sampling.hpp
 //            ray merging                               merging.hpp
 //            primitive separation                      separation.hpp
 //            packing into the records buffer           packing.hpp
@@ -16,6 +17,7 @@
 #include "passes/packing.hpp"
 #include "passes/separation.hpp"
 #include "passes/sampling/object_sampling.hpp"
+#include "passes/triangle_bounds.hpp"
 
 namespace vkcollide::passes {
 
@@ -26,6 +28,8 @@ public:
     // The method's rows of the table (also for broadPhaseMemory's plan without a device).
     struct Buffers {
         BufferId fragments, counts, front, back, state, bundles, sparse, records, scratch, ray_image;
+        // Depth-aware separation only (size 0 otherwise).
+        BufferId tri_bounds, edge_depth, bundle_depth, sparse_depth, ray_depth_image;
     };
     static Buffers addRows(BufferTable& io_table);
 
@@ -45,6 +49,7 @@ private:
     BufferTable* table_;
     CoreBuffers core_;
     Buffers buf_{};
+    std::unique_ptr<TriangleBounds> bounds_;
     std::unique_ptr<ObjectSampling> sampling_;
     std::unique_ptr<Merging> merging_;
     std::unique_ptr<Separation> separation_;

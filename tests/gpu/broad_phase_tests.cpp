@@ -1,15 +1,18 @@
-// GPU broad phase (paper passes 1-4) on the device, validation on, against the CPU
-// reference of the same four passes in tests/support.
+// GPU broad phase (paper passes 1-4, and depth-aware separation) on the device, validation
+// on, against the CPU reference of the same four passes in tests/support.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <iterator>
+#include <sstream>
 
 #include "passes/broad_phase.hpp"
 #include "passes/mesh_upload.hpp"
 #include "support/broadphase_reference.hpp"
 #include "support/gpu_fixture.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
@@ -53,22 +56,24 @@ struct Run {
 };
 
 Run runBoth(test::ValidatedContext& ctx, BroadPhase& bp, const std::vector<const HostMesh*>& meshes,
-            BroadPhaseSettings settings, const std::vector<bool>& open = {}) {
+            BroadPhaseSettings settings, const std::vector<bool>& open = {}, const std::vector<bool>& self = {}) {
     settings.keep_ray_image = true;
     if (!settings.region) settings.region = std::array<float, 6>{-2.5f, -2.5f, -2.5f, 2.5f, 2.5f, 2.5f};
     auto scene = uploadMeshes(ctx.device(), meshes, {.open = open});
     REQUIRE(scene);
+    for (std::size_t i = 0; i < self.size(); ++i) scene->meshes[i].self_collision = self[i];
     auto gpu = bp.run(scene->meshes, settings);
     INFO((gpu ? std::string() : gpu.error().message()));
     REQUIRE(gpu);
     std::vector<test::ReferenceObject> objects;
-    for (std::size_t i = 0; i < meshes.size(); ++i) objects.push_back({meshes[i], i < open.size() && open[i]});
+    for (std::size_t i = 0; i < meshes.size(); ++i)
+        objects.push_back({meshes[i], i < open.size() && open[i], i >= self.size() || self[i]});
     Run run{std::move(*gpu), {}};
     run.ref = test::referenceBroadPhase(objects, settings, run.gpu.layers);
     if (run.ref.ambiguousCount() > 0) {
-        // Passes 2-4 are checked exactly from the GPU's rays; pass 1 is checked on every
-        // unambiguous ray by requireSameRays.
-        auto ref2 = test::referenceBroadPhase(objects, settings, run.gpu.layers, &run.gpu.ray_image);
+        // Passes 2-4 are checked exactly from the GPU's rays (and depth intervals); pass 1 is
+        // checked on every unambiguous ray by requireSameRays.
+        auto ref2 = test::referenceBroadPhase(objects, settings, run.gpu.layers, {&run.gpu.ray_image, &run.gpu.ray_depth});
         run.ref.records = std::move(ref2.records);
     }
     return run;
@@ -86,9 +91,35 @@ void requireSameRays(const Run& r) {
     INFO("ambiguous rays: " << r.ref.ambiguousCount());
     CHECK(r.ref.ambiguousCount() * 100 <= r.ref.rays.size());
     CHECK(r.gpu.depth_complexity == r.ref.depth_complexity);
+    // Depth-aware: the same intervals on rays whose 3x3 neighbourhood is unambiguous (a
+    // neighbour's collision decides whether a ray's near pairs count), up to float
+    // rounding (relative to the interval: planes of steep triangles in pixel units).
+    REQUIRE(r.gpu.ray_depth.size() == r.ref.ray_depth.size());
+    const std::size_t n = static_cast<std::size_t>(std::sqrt(double(r.ref.rays.size())));
+    std::size_t depth_differ = 0, compared = 0;
+    std::ostringstream where;
+    for (std::size_t i = 0; i < r.ref.ray_depth.size(); ++i) {
+        const std::size_t x = i % n, y = i / n;
+        bool clear = true;
+        for (std::size_t j = y > 0 ? y - 1 : 0; j <= std::min(y + 1, n - 1); ++j)
+            for (std::size_t k = x > 0 ? x - 1 : 0; k <= std::min(x + 1, n - 1); ++k) clear = clear && !r.ref.ambiguous[j * n + k];
+        if (!clear) continue;
+        const auto a = r.gpu.ray_depth[i], b = r.ref.ray_depth[i];
+        const bool a_none = a[0] > a[1], b_none = b[0] > b[1];
+        compared += !b_none;
+        const float tolerance = 1e-5f * (1.0f + (b[1] - b[0]));
+        if (a_none != b_none || (!a_none && (std::fabs(a[0] - b[0]) > tolerance || std::fabs(a[1] - b[1]) > tolerance))) {
+            if (depth_differ < 5) where << " (" << x << "," << y << "): " << a[0] << ".." << a[1] << " vs " << b[0] << ".." << b[1];
+            ++depth_differ;
+        }
+    }
+    INFO("rays with a depth interval compared: " << compared << "; differing (GPU vs reference):" << where.str());
+    CHECK(depth_differ == 0);
 }
 
-void requireSameRecords(const std::vector<CandidateTriangle>& a, const std::vector<CandidateTriangle>& b) {
+// Depth tolerance: 1e-6 for triangle ranges; depth-aware kept ranges may end at a window
+// (slope times a pixel count), where the GPU's and the CPU's slopes differ in the last bits.
+void requireSameRecords(const std::vector<CandidateTriangle>& a, const std::vector<CandidateTriangle>& b, float depth_tolerance = 1e-6f) {
     REQUIRE(a.size() == b.size());
     for (std::size_t i = 0; i < a.size(); ++i) {
         INFO("record " << i);
@@ -97,7 +128,8 @@ void requireSameRecords(const std::vector<CandidateTriangle>& a, const std::vect
         for (int c = 0; c < 3; ++c) CHECK(a[i].vertex_index[c] == b[i].vertex_index[c]);
         // Boxes and depths agree up to float rounding of the projection (FMA on the GPU).
         for (int c = 0; c < 4; ++c) CHECK(std::fabs(a[i].box[c] - b[i].box[c]) <= 1e-6f);
-        CHECK(std::fabs(a[i].zmin - b[i].zmin) <= 1e-6f);
+        CHECK(std::fabs(a[i].zmin - b[i].zmin) <= depth_tolerance);
+        CHECK(std::fabs(a[i].zmax - b[i].zmax) <= depth_tolerance);
         CHECK(std::fabs(a[i].v[1].y - b[i].v[1].y) <= 1e-6f);
     }
 }
@@ -360,5 +392,190 @@ TEST_CASE_METHOD(BroadPhaseFixture, "per-object transforms are applied on the GP
     CHECK(r1->collision_rays > 0);
     CHECK(r1->collision_rays == r2->collision_rays);
     requireSameRecords(r1->records, r2->records);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// ---- Depth-aware separation --------------------------------------------------------------
+
+namespace {
+
+// Pairs the narrow phase finds among `records` (every object self-colliding).
+std::vector<TrianglePair> pairsOf(const std::vector<CandidateTriangle>& records) {
+    ThreadPool pool(2);
+    auto r = runNarrowPhase(records, {}, pool);
+    REQUIRE(r);
+    return r->pairs;
+}
+
+// Every pair of the scene: all triangles as candidates with their world boxes (the
+// narrow phase only compares boxes with each other, so any common space works).
+std::vector<TrianglePair> exactPairs(const std::vector<const HostMesh*>& meshes) {
+    std::vector<CandidateTriangle> all;
+    for (std::uint32_t o = 0; o < meshes.size(); ++o)
+        for (std::uint32_t t = 0; t < meshes[o]->triangleCount(); ++t) {
+            CandidateTriangle c{};
+            c.object = o;
+            c.triangle = t;
+            c.box[0] = c.box[1] = c.zmin = 3e38f;
+            c.box[2] = c.box[3] = c.zmax = -3e38f;
+            for (int k = 0; k < 3; ++k) {
+                c.vertex_index[k] = meshes[o]->indices[t * 3 + k];
+                const Float3 p = meshes[o]->positions[c.vertex_index[k]];
+                c.v[k] = p;
+                c.box[0] = std::min(c.box[0], p.x), c.box[1] = std::min(c.box[1], p.y), c.zmin = std::min(c.zmin, p.z);
+                c.box[2] = std::max(c.box[2], p.x), c.box[3] = std::max(c.box[3], p.y), c.zmax = std::max(c.zmax, p.z);
+            }
+            all.push_back(c);
+        }
+    return pairsOf(all);
+}
+
+// How many of `expected` are not in `found` (both sorted).
+std::size_t missing(const std::vector<TrianglePair>& found, const std::vector<TrianglePair>& expected) {
+    std::vector<TrianglePair> missed;
+    std::set_difference(expected.begin(), expected.end(), found.begin(), found.end(), std::back_inserter(missed));
+    return missed.size();
+}
+
+}  // namespace
+
+TEST_CASE_METHOD(BroadPhaseFixture, "depth-aware records and ray intervals equal the CPU reference: spheres and boxes, single and dual", "[gpu][broadphase][depth]") {
+    HostMesh a = placed(makeSphere(1.0f, 20, 10), 0.3f, 1, 0.2f, 0.41f, {-0.5f, 0.07f, 0.03f}, "a");
+    HostMesh b = placed(makeSphere(0.9f, 18, 9), 1, 0.2f, 0.5f, 0.73f, {0.6f, -0.11f, 0.29f}, "b");
+    HostMesh c = placed(makeBox(0.5f, 3), 0.2f, 0.4f, 1, 1.1f, {0.1f, 0.8f, -0.3f}, "c");
+    for (std::uint32_t res : {64u, 128u})
+        for (bool dual : {false, true}) {
+            INFO("resolution " << res << (dual ? " dual" : " single"));
+            BroadPhaseSettings s;
+            s.resolution = res;
+            s.dual = dual;
+            s.direction = {0.2f, -0.3f, 1.0f};
+            s.depth_aware = true;
+            Run r = runBoth(ctx, bp, {&a, &b, &c}, s);
+            requireSameRays(r);
+            CHECK(r.gpu.collision_rays > 0);
+            CHECK_FALSE(r.gpu.records.empty());
+            requireSameRecords(r.gpu.records, r.ref.records, 1e-5f);
+            // The same collision rays as the paper's separation (Table 1's column keeps its
+            // meaning); how many triangles each keeps is the deep-overlap test's business.
+            s.depth_aware = false;
+            Run paper = runBoth(ctx, bp, {&a, &b, &c}, s);
+            CHECK(paper.gpu.collision_rays == r.gpu.collision_rays);
+            CHECK(paper.gpu.ray_image == r.gpu.ray_image);
+        }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE_METHOD(BroadPhaseFixture, "depth-aware: rays beyond the layer cap keep every depth, open surfaces use their near pairs", "[gpu][broadphase][depth]") {
+    std::vector<HostMesh> boxes;
+    for (int i = 0; i < 4; ++i)
+        boxes.push_back(placed(makeBox(0.35f), 0.3f, 1, 0.2f, 0.1f * float(i) + 0.2f, {0.03f, 0.02f, -1.8f + 1.2f * float(i)}, "b" + std::to_string(i)));
+    std::vector<const HostMesh*> ptrs;
+    for (auto& b : boxes) ptrs.push_back(&b);
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    s.depth_aware = true;
+    s.layer_cap = 4;
+    Run capped = runBoth(ctx, bp, ptrs, s);
+    requireSameRays(capped);
+    REQUIRE(capped.gpu.collision_rays > 0);
+    std::size_t every_depth = 0;
+    for (std::size_t i = 0; i < capped.gpu.ray_image.size(); ++i)
+        if (capped.gpu.ray_image[i]) {
+            // No collision but the cap's: no fragment information, every depth.
+            CHECK(capped.gpu.ray_depth[i][0] <= -3e38f);
+            CHECK(capped.gpu.ray_depth[i][1] >= 3e38f);
+            ++every_depth;
+        }
+    CHECK(every_depth == capped.gpu.collision_rays);
+    requireSameRecords(capped.gpu.records, capped.ref.records, 1e-5f);
+
+    auto cloth = clothGrid(3.0f, 3.0f, 12, 12);
+    REQUIRE(cloth);
+    HostMesh sheet = placed(*cloth, 1, 0.1f, 0.2f, 1.3f, {0.02f, 0.03f, 0.01f}, "cloth");
+    HostMesh ball = placed(makeSphere(0.8f), 0.3f, 1, 0.2f, 0.41f, {0.1f, 0.05f, 0.2f}, "ball");
+    s = {};
+    s.resolution = 64;
+    s.open_epsilon = 0.05f;
+    s.depth_aware = true;
+    for (bool dual : {false, true}) {
+        s.dual = dual;
+        Run r = runBoth(ctx, bp, {&sheet, &ball}, s, {true, false});
+        requireSameRays(r);
+        CHECK_FALSE(r.gpu.records.empty());
+        requireSameRecords(r.gpu.records, r.ref.records, 1e-5f);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE_METHOD(BroadPhaseFixture, "depth-aware: an object's own triangles are near pairs only when it self-collides", "[gpu][broadphase][depth]") {
+    auto tube = twistedTube(1.0f, 0.2f, 96, 12, 1.5f);
+    REQUIRE(tube);
+    HostMesh t = placed(*tube, 0.2f, 0.3f, 1, 0.2f, {0.02f, 0.03f, 0.01f}, "tube");
+    BroadPhaseSettings s;
+    s.resolution = 128;
+    s.depth_aware = true;
+    Run off = runBoth(ctx, bp, {&t}, s, {}, {false});
+    requireSameRays(off);
+    CHECK(off.gpu.collision_rays > 0);  // the paper's rules see the self-intersection
+    CHECK(off.gpu.records.empty());     // but no pair of the object may collide
+    Run on = runBoth(ctx, bp, {&t}, s, {}, {true});
+    requireSameRays(on);
+    requireSameRecords(on.gpu.records, on.ref.records, 1e-5f);
+    const auto expected = exactPairs({&t});
+    REQUIRE_FALSE(expected.empty());
+    const auto found = pairsOf(on.gpu.records);
+    CHECK(missing(found, expected) == 0);
+    CHECK(found.size() == expected.size());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE_METHOD(BroadPhaseFixture, "depth-aware: a deep overlap downloads a fraction of the paper's triangles and loses no pair it finds", "[gpu][broadphase][depth]") {
+    // Two fine spheres, centres 0.6 radius apart: every ray through the shared volume is a
+    // collision ray, so the paper keeps both spheres' triangles there.
+    HostMesh a = placed(makeSphere(1.0f, 96, 48), 0.3f, 1, 0.2f, 0.41f, {-0.3f, 0.02f, 0.03f}, "a");
+    HostMesh b = placed(makeSphere(1.0f, 96, 48), 1, 0.2f, 0.5f, 0.73f, {0.3f, -0.04f, 0.05f}, "b");
+    BroadPhaseSettings s;
+    s.resolution = 256;
+    s.direction = {0.31f, -0.07f, 1.0f};
+    Run paper = runBoth(ctx, bp, {&a, &b}, s);
+    s.depth_aware = true;
+    Run depth = runBoth(ctx, bp, {&a, &b}, s);
+    requireSameRays(depth);
+    requireSameRecords(depth.gpu.records, depth.ref.records, 1e-5f);
+    INFO("paper " << paper.gpu.records.size() << ", depth-aware " << depth.gpu.records.size());
+    CHECK(depth.gpu.records.size() * 3 < paper.gpu.records.size());
+    const auto expected = exactPairs({&a, &b});
+    const auto found = pairsOf(depth.gpu.records), found_paper = pairsOf(paper.gpu.records);
+    INFO("pairs " << expected.size() << ", found " << found.size() << ", by the paper's separation " << found_paper.size());
+    CHECK(missing(found, found_paper) == 0);
+    CHECK(missing(found, expected) * 50 <= expected.size());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE_METHOD(BroadPhaseFixture, "depth-aware: a box sunk into another, its sides seen edge-on, keeps every crossing pair", "[gpu][broadphase][depth]") {
+    // Axis-aligned boxes seen along z: the small box's sides have no area in the image, so no
+    // ray samples them, yet they are what crosses the big box's top face. Their depth
+    // ranges reach the windows of the faces that share their vertices (edge-on neighbours).
+    auto big = box({0.8f, 0.8f, 0.5f}, 2);
+    auto small = box({0.2f, 0.2f, 0.2f}, 1);
+    REQUIRE(big);
+    REQUIRE(small);
+    // Turned about z (sides stay parallel to the view), so no edge runs through pixel centres.
+    HostMesh a = placed(*big, 0, 0, 1, 0.31f, {0.01f, 0.02f, 0}, "big");
+    HostMesh b = placed(*small, 0, 0, 1, 0.53f, {0.13f, -0.07f, 0.61f}, "sunk");  // 0.09 below the top
+    BroadPhaseSettings s;
+    s.resolution = 64;
+    s.direction = {0, 0, 1};
+    Run paper = runBoth(ctx, bp, {&a, &b}, s);
+    s.depth_aware = true;
+    Run depth = runBoth(ctx, bp, {&a, &b}, s);
+    requireSameRays(depth);
+    requireSameRecords(depth.gpu.records, depth.ref.records, 1e-5f);
+    const auto expected = exactPairs({&a, &b});
+    const auto found = pairsOf(depth.gpu.records);
+    INFO("pairs " << expected.size() << ", found " << found.size() << ", by the paper's separation " << pairsOf(paper.gpu.records).size());
+    REQUIRE_FALSE(expected.empty());
+    CHECK(missing(found, expected) == 0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

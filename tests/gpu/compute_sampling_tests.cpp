@@ -1,7 +1,8 @@
 // The compute sampling backend against the raster backend on the same device, validation
 // on: the same depth complexity, collision-ray image (pixel for pixel) and records (byte
 // for byte) on generated scenes, single and dual peeling, layer caps, open surfaces,
-// one-invocation and tiled triangles, and samples exactly on edges.
+// one-invocation and tiled triangles, and samples exactly on edges; with depth-aware
+// separation also the rays' depth intervals (bit for bit).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -86,6 +87,9 @@ Compared compareBackends(test::ValidatedContext& ctx, BroadPhase& bp, const Scen
     REQUIRE(a.records.size() == b.records.size());
     CHECK(std::memcmp(a.records.data(), b.records.data(), a.records.size() * sizeof(CandidateTriangle)) == 0);
     CHECK(a.fragments > 0);
+    REQUIRE(a.ray_depth.size() == (s.depth_aware ? a.ray_image.size() : 0));
+    REQUIRE(b.ray_depth.size() == a.ray_depth.size());
+    CHECK(std::memcmp(a.ray_depth.data(), b.ray_depth.data(), a.ray_depth.size() * sizeof(a.ray_depth[0])) == 0);
     return c;
 }
 
@@ -228,6 +232,43 @@ TEST_CASE_METHOD(Fixture, "compute sampling equals raster whether triangles take
         CHECK(c.compute.compute_big > 0);  // at 256, the boxes' faces exceed the 64-px extent
         CHECK(c.compute.compute_items >= c.compute.compute_big);
     }
+}
+
+TEST_CASE_METHOD(Fixture, "compute sampling equals raster with depth-aware separation: every scene above", "[gpu][compute-sampling]") {
+    Scene tori;
+    tori.meshes.push_back(placed(torus(0.9f, 0.3f, 32, 12), 1, 0.1f, 0.2f, 0.3f, {-0.45f, 0.02f, 0.01f}));
+    tori.meshes.push_back(placed(torus(0.9f, 0.3f, 32, 12), 0.1f, 1, 0.3f, 1.5f, {0.45f, -0.03f, 0.05f}));
+    tori.meshes.push_back(placed(twistedTube(1.0f, 0.2f, 64, 10, 1.5f), 0.2f, 0.3f, 1, 0.2f, {0.1f, 0.9f, -0.2f}));
+    Scene boxes;
+    for (int i = 0; i < 4; ++i)
+        boxes.meshes.push_back(placed(box({0.35f, 0.35f, 0.35f}, 2), 0.3f, 1, 0.2f, 0.1f * float(i) + 0.2f,
+                                      {0.03f, 0.02f, -1.8f + 1.2f * float(i)}));
+    Scene cloth;
+    cloth.meshes.push_back(placed(clothGrid(3.0f, 3.0f, 16, 16, {.sag = 0.3f}), 1, 0.1f, 0.2f, 1.3f, {0.02f, 0.03f, 0.01f}));
+    cloth.meshes.push_back(placed(uvSphere(0.8f, 16, 8), 0.3f, 1, 0.2f, 0.41f, {0.1f, 0.05f, 0.2f}));
+    cloth.open = {true, false};
+    struct Case {
+        const char* name;
+        const Scene* scene;
+        std::uint32_t resolution, cap;
+    };
+    const Scene spheres = spheresAndBox();
+    for (const Case& k : {Case{"spheres and a box", &spheres, 128, 0}, Case{"tori and a twisted tube", &tori, 128, 0},
+                          Case{"boxes in a row, capped", &boxes, 64, 3}, Case{"open cloth", &cloth, 128, 0}})
+        for (bool dual : {false, true}) {
+            INFO(k.name << (dual ? ", dual" : ", single"));
+            BroadPhaseSettings s;
+            s.resolution = k.resolution;
+            s.layer_cap = k.cap;
+            s.dual = dual;
+            s.open_epsilon = 0.05f;
+            s.direction = {0.1f, 0.2f, 1.0f};
+            s.depth_aware = true;
+            if (dual) s.compute.list_budget_bytes = 0;  // drawing per step
+            Compared c = compareBackends(ctx, bp, *k.scene, s);
+            CHECK(c.raster.collision_rays > 0);
+            CHECK_FALSE(c.raster.records.empty());
+        }
 }
 
 TEST_CASE_METHOD(Fixture, "the backend is reported with a reason, and Auto follows the device", "[gpu][compute-sampling]") {

@@ -81,7 +81,9 @@ TEST_CASE("every mitigation only adds pairs to the paper's", "[stability][gpu]")
     REQUIRE(scenes);
     for (const TestScene& scene : *scenes) {
         auto world = worldWith(ctx, scene);
-        auto paper = world->detect(coarse());
+        DetectSettings paper_settings = coarse();
+        paper_settings.depth_aware = false;  // the paper's separation, as the variants use
+        auto paper = world->detect(paper_settings);
         REQUIRE(paper);
         for (const Variant& v : mitigationVariants()) {
             StabilityCase c{scene.name, {}, coarse(), {}};
@@ -93,6 +95,32 @@ TEST_CASE("every mitigation only adds pairs to the paper's", "[stability][gpu]")
             INFO(scene.name << " / " << v.name);
             CHECK(contains(r->pairs, paper->pairs));
             CHECK(r->stats.collision_rays >= paper->stats.collision_rays);
+        }
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("depth-aware separation finds every pair the paper's separation finds, at 64 and 256 rays", "[stability][gpu][depth]") {
+    ValidatedContext ctx;
+    auto scenes = allTestScenes();
+    REQUIRE(scenes);
+    for (const TestScene& scene : *scenes) {
+        auto world = worldWith(ctx, scene);
+        for (std::uint32_t resolution : {64u, 256u}) {
+            DetectSettings s = coarse();
+            s.resolution = resolution;
+            s.depth_aware = false;
+            auto paper = world->detect(s);
+            s.depth_aware = true;
+            auto depth = world->detect(s);
+            REQUIRE(paper);
+            REQUIRE(depth);
+            std::printf("stability | %-24s %4u rays: paper %zu pairs, %zu downloaded; depth-aware %zu pairs, %zu downloaded\n",
+                        scene.name.c_str(), resolution, paper->pairs.size(), paper->stats.triangles_downloaded, depth->pairs.size(),
+                        depth->stats.triangles_downloaded);
+            INFO(scene.name << " at " << resolution);
+            CHECK(contains(depth->pairs, paper->pairs));
+            CHECK(depth->stats.collision_rays == paper->stats.collision_rays);
         }
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

@@ -309,12 +309,15 @@ std::string describe(const std::string& case_name, const std::string& variant, c
 }
 
 std::vector<Variant> mitigationVariants() {
+    // The paper's separation throughout (depth_aware off): the cases document where the
+    // paper's sampling fails and what each mitigation adds to it.
     return {
-        {"paper", [](DetectSettings&, const StabilityCase&) {}},
-        {"axes=3", [](DetectSettings& s, const StabilityCase&) { s.axes = 3; }},
-        {"dilate", [](DetectSettings& s, const StabilityCase&) { s.coverage = Coverage::Dilate; }},
-        {"eps=2px", [](DetectSettings& s, const StabilityCase& c) { s.closed_epsilon = 2 * c.pixel; }},
+        {"paper", [](DetectSettings& s, const StabilityCase&) { s.depth_aware = false; }},
+        {"axes=3", [](DetectSettings& s, const StabilityCase&) { s.depth_aware = false, s.axes = 3; }},
+        {"dilate", [](DetectSettings& s, const StabilityCase&) { s.depth_aware = false, s.coverage = Coverage::Dilate; }},
+        {"eps=2px", [](DetectSettings& s, const StabilityCase& c) { s.depth_aware = false, s.closed_epsilon = 2 * c.pixel; }},
         {"all", [](DetectSettings& s, const StabilityCase& c) {
+             s.depth_aware = false;
              s.axes = 3;
              s.coverage = Coverage::Dilate;
              s.closed_epsilon = 2 * c.pixel;

@@ -21,9 +21,10 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"paper-packing", "paper", [](S& s) { s.packing = PackingMethod::Paper; }},
         {"open", "paper", [](S&) {}, true},
         {"async", "paper", [](S&) {}, false, true},
+        {"depth-sep", "modes", [](S& s) { s.depth_aware = true; }},  // depth-aware separation on
+        {"paper-sep", "modes", [](S& s) { s.depth_aware = false; }},  // the paper's separation
         // Issue 12's new settings join here when their DetectSettings fields land, e.g.
         // {"reliable", "modes", [](S& s) { s.broad_phase = BroadPhase::Reliable; }},
-        // {"depth-sep", "modes", [](S& s) { s.depth_aware_separation = true; }},
     };
     for (std::uint32_t r : resolutions)
         v.push_back({"res-" + std::to_string(r), "resolutions", [r](S& s) { s.resolution = r; }});

@@ -83,7 +83,7 @@ void ObjectSampling::recordMeasure(graph::Graph& g, const RunView& run, const Sa
 Result<void> ObjectSampling::preparePeeling(std::uint32_t depth_complexity) { return active_->preparePeeling(depth_complexity); }
 
 void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t steps,
-                                   graph::ResourceId bundles, graph::ResourceId rays) const {
+                                   graph::ResourceId bundles, graph::ResourceId rays, const DepthAwareIds& depth) const {
     const std::uint32_t pixels = run.frame.resolution * run.frame.resolution;
     const VkDeviceAddress frame = run.frame_address;
     const bool dual = run.frame.dual != 0;
@@ -102,6 +102,7 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
         auto classify = addPass(g, "classify[" + std::to_string(step) + "]", PassKind::Compute, Stage::Sampling);
         classify.read(b.counts).read(b.projection).readWrite(b.state).readWrite(b.front);
         if (dual) classify.readWrite(b.back);
+        if (depth.bounds.valid()) classify.read(depth.bounds).readWrite(depth.bundle_depth);
         classify.record([this, frame, pixels, step](PassContext& pc) {
             bindAndPush(pc, classify_, frame, 0, step);
             dispatchItems(pc, pixels);
@@ -110,6 +111,8 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
     auto finalize = addPass(g, "finalize", PassKind::Compute, Stage::Sampling);
     finalize.read(b.state).use(bundles, Use::StorageWrite).readWrite(b.header);
     if (rays.valid()) finalize.write(rays);
+    if (depth.bounds.valid()) finalize.read(b.counts).readWrite(depth.bundle_depth).read(depth.edge_depth);
+    if (depth.ray_depth.valid()) finalize.write(depth.ray_depth);
     finalize.record([this, frame, pixels](PassContext& pc) {
         bindAndPush(pc, finalize_, frame);
         dispatchItems(pc, pixels);

@@ -17,6 +17,14 @@
 
 namespace vkcollide::passes {
 
+// Depth-aware separation's buffers that classify and finalize use (invalid ids when off):
+// the triangle bounds, the bundles' depth intervals (level 0 holds each ray's while it is
+// peeled), the per-ray interval image (only with keep_ray_image) and the edge-on
+// triangles' depths per ray.
+struct DepthAwareIds {
+    graph::ResourceId bounds, bundle_depth, ray_depth, edge_depth;
+};
+
 class ObjectSampling {
 public:
     static Result<std::unique_ptr<ObjectSampling>> create(vk::Device& device);
@@ -33,9 +41,10 @@ public:
     // Before the peeling steps: the measured depth complexity, or 0 when predicted.
     [[nodiscard]] Result<void> preparePeeling(std::uint32_t depth_complexity);
     // "peel-init", `steps` x ("peel[i]", "classify[i]"), then "finalize" into `bundles`
-    // level 0 (and the collision-ray image into `rays` when valid).
-    void recordPeeling(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t steps,
-                       graph::ResourceId bundles, graph::ResourceId rays) const;
+    // level 0 (and the collision-ray image into `rays` when valid; with depth-aware
+    // separation the rays' depth intervals into `depth`).
+    void recordPeeling(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t steps, graph::ResourceId bundles,
+                       graph::ResourceId rays, const DepthAwareIds& depth) const;
     // Backend, its reason and the sampling statistics of the run; remembers the scene's
     // fragments per triangle for the next run's Auto choice.
     void report(const gpu::Header& header, std::uint32_t triangles, BroadPhaseResult& io_result);

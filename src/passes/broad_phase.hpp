@@ -49,6 +49,7 @@ public:
     [[nodiscard]] Result<void> submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings, std::uint32_t layers);
     [[nodiscard]] Result<BroadPhaseResult> collect();
     bool pending() const noexcept { return pending_; }
+    MethodTraits traits() const noexcept { return method_->traits(); }
     // After an InvalidMesh error from the GPU input check: what it found, per object (run
     // indices); at most one per kind of problem, so other objects may be bad too.
     const std::vector<ObjectFault>& faults() const noexcept { return faults_; }

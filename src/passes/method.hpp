@@ -40,6 +40,9 @@ struct MethodTraits {
     // BroadPhaseSettings::resolution must be a power of two in [kMinResolution,
     // kMaxResolution]; otherwise any value in [1, kMaxResolution].
     bool power_of_two_resolution = true;
+    // Its results are candidate pairs (BroadPhaseResult::has_pairs), not triangle records:
+    // one direction only (the multi-axis union unites records).
+    bool pairs = false;
 };
 
 class BroadPhaseMethod {

@@ -30,7 +30,7 @@ class ReliableMethod final : public BroadPhaseMethod {
 public:
     static Result<std::unique_ptr<BroadPhaseMethod>> create(vk::Device& device, BufferTable& io_table, const CoreBuffers& core);
 
-    MethodTraits traits() const noexcept override { return {false, false}; }
+    MethodTraits traits() const noexcept override { return {false, false, true}; }
     Result<void> prepare(const BroadPhaseSettings&, const RunShape&, gpu::Frame&) override { return {}; }
     void import(graph::Graph&) override {}
     void recordMeasure(graph::Graph&, const RunView&, const GraphBuffers&) const override {}

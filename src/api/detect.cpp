@@ -4,6 +4,7 @@
 
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
+#include "passes/cells/reliable_method.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {
@@ -25,6 +26,10 @@ Error CollisionWorld::Impl::describeFailure(const Error& e) const {
     return Error(e.code(), f.none_left ? "no object left to test: " + named_fault : named_fault, e.vkResult());
 }
 
+passes::MethodFactory CollisionWorld::Impl::methodFactory(DetectMethod method) {
+    return method == DetectMethod::Reliable ? passes::ReliableMethod::create : passes::PeelingMethod::create;
+}
+
 Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool measure) {
     if (pending()) return Error(ErrorCode::InvalidArgument, "submit while a detection is in flight: collect() it first");
     run_start = Clock::now();
@@ -34,7 +39,12 @@ Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool me
     for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run_settings, context->device())})
         if (!ok) return ok.error();
     const DetectSettings& s = run_settings;
+    if (s.method == DetectMethod::Reliable)
+        for (ObjectId id : run_ids)
+            if (auto ok = validation::checkReliableObject(objects[id].options.transform, objects[id].max_abs); !ok) return named(id, ok.error());
     passes::DetectionSettings d;
+    d.method = methodFactory(s.method);
+    d.broad.pair_mask = pairMask(run_ids);
     d.broad.resolution = *s.resolution;
     d.broad.direction = *s.direction;
     d.broad.layer_cap = s.layer_cap;
@@ -69,6 +79,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     }
     DetectStats& st = out.stats;
     st.objects = static_cast<std::uint32_t>(ids.size());
+    st.method = run_settings.method;
     st.resolution = *run_settings.resolution;
     st.direction = detected.directions[0];
     st.dual = run_settings.dual;
@@ -96,14 +107,40 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
         st.merging_ms += b.merging_ms;
         st.separation_ms += b.separation_ms;
         st.packing_ms += b.packing_ms;
+        st.footprints_ms += b.footprints_ms;
+        st.pairing_ms += b.pairing_ms;
+        st.filtering_ms += b.filtering_ms;
         st.readback_ms += b.readback_ms;
+    }
+    if (detected.hasPairs()) {
+        const passes::CellPairsStats& c = broad[0].cells;
+        st.cells = {c.entries, c.max_cell, c.deep_cells, c.candidate_cells, c.candidates, c.duplicates, c.filtered, c.survivors,
+                    c.gpu_triangles, c.runs, c.filter_ran};
+        st.collision_rays = c.candidate_cells;
+        st.backend_reason = "none: the reliable method samples no rays";
     }
 
     NarrowOptions options;
     for (ObjectId id : ids) options.self_collision.push_back(objects[id].options.self_collision);
-    if (pair_filter) options.may_collide = [this, &ids](std::uint32_t a, std::uint32_t b) { return pair_filter(ids[a], ids[b]); };
+    // The filter's kept answers (indices of the live objects the mask was built over), or
+    // the filter itself beyond the mask's object limit.
+    const passes::ObjectPairMask* mask = pair_filter && pair_mask.objects == run_ids.size() && !pair_mask_dirty ? &pair_mask : nullptr;
+    const std::vector<std::uint32_t>& live = detected.objects;
+    if (mask) options.may_collide = [mask, &live](std::uint32_t a, std::uint32_t b) { return mask->allows(live[a], live[b]); };
+    else if (pair_filter) options.may_collide = [this, &ids](std::uint32_t a, std::uint32_t b) { return pair_filter(ids[a], ids[b]); };
     const auto t0 = Clock::now();
-    auto narrow = runNarrowPhase(detected.candidates(), options, *pool, narrow_workspace);
+    Result<NarrowResult> narrow = Error(ErrorCode::InvalidArgument, "no narrow phase ran");
+    if (detected.hasPairs()) {
+        // Reliable: the survivors straight from the GPU's memory (deduplicated and sorted
+        // in parallel by the narrow phase), host meshes from the world's source, engine
+        // meshes' triangles from the download.
+        if (auto ok = syncSource(ids); !ok) return ok.error();
+        source.setGpuTriangles(broad[0].gpu_triangles);
+        narrow = runPairNarrowPhase(broad[0].pairs, source, options, *pool, narrow_workspace);
+        source.setGpuTriangles({});  // the download is overwritten by the next run
+    } else {
+        narrow = runNarrowPhase(detected.candidates(), options, *pool, narrow_workspace);
+    }
     st.narrow_ms = msSince(t0);
     if (!narrow) return narrow.error();
     st.narrow_threads = pool->threadCount();
@@ -111,11 +148,13 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;
     st.triangle_tests = narrow->stats.triangle_tests;
     st.positive_tests = narrow->stats.positive_tests;
+    if (detected.hasPairs()) st.triangles_downloaded = narrow->stats.candidates;  // distinct triangles in the pairs
     // Run indices grow with ids, so the sorted order survives the mapping.
     out.pairs = std::move(narrow->pairs);
     for (TrianglePair& p : out.pairs) p.object_a = ids[p.object_a], p.object_b = ids[p.object_b];
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
+    if (broad[0].scene_box) measured_box = broad[0].scene_box;
     st.gpu_memory_bytes = detection->memoryBytes();
     for (const Object& o : objects) st.gpu_memory_bytes += (o.vertices.valid() ? o.vertices.size() : 0) + (o.indices.valid() ? o.indices.size() : 0);
     st.total_ms = msSince(run_start);

@@ -7,6 +7,7 @@
 
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
+#include "config.h"
 #include "passes/engine_mesh.hpp"
 #include "passes/mesh_upload.hpp"
 #include "vk/device.hpp"
@@ -43,9 +44,40 @@ void CollisionWorld::Impl::liveMeshes(std::vector<passes::GpuMesh>& meshes, std:
         if (!objects[i].alive) continue;
         passes::GpuMesh m = objects[i].gpu;
         m.transform = objects[i].options.transform;
+        m.self_collision = objects[i].options.self_collision;
         meshes.push_back(m);
         ids.push_back(static_cast<ObjectId>(i));
     }
+}
+
+Result<void> CollisionWorld::Impl::syncSource(std::span<const ObjectId> ids) {
+    if (!source_dirty && std::equal(ids.begin(), ids.end(), source_ids.begin(), source_ids.end())) return {};
+    for (ObjectId id : source_ids)
+        if (id < objects.size()) objects[id].source_index = kNoSource;
+    source.clear();
+    source_ids.assign(ids.begin(), ids.end());
+    for (ObjectId id : ids) {
+        Object& o = objects[id];
+        auto added = o.host ? source.addHostMesh(o.host_positions, o.host_indices, o.options.transform)
+                            : source.addGpuMesh(o.gpu.triangle_count);
+        if (!added) return named(id, added.error());
+        o.source_index = *added;
+    }
+    source_dirty = false;
+    return {};
+}
+
+const passes::ObjectPairMask* CollisionWorld::Impl::pairMask(std::span<const ObjectId> ids) {
+    if (!pair_filter || ids.size() > gpu::kMaxFilterMaskObjects) return nullptr;
+    if (pair_mask_dirty || pair_mask.objects != ids.size()) {
+        const auto n = static_cast<std::uint32_t>(ids.size());
+        pair_mask.reset(n);
+        for (std::uint32_t a = 0; a < n; ++a)
+            for (std::uint32_t b = a + 1; b < n; ++b)
+                if (pair_filter(ids[a], ids[b])) pair_mask.allow(a, b);
+        pair_mask_dirty = false;
+    }
+    return &pair_mask;
 }
 
 CollisionWorld::CollisionWorld(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -54,7 +86,8 @@ CollisionWorld::~CollisionWorld() = default;  // Impl's detection waits for work
 Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context, const WorldOptions& options) {
     auto impl = std::make_unique<Impl>();
     impl->context = &context;
-    auto detection = passes::Detection::create(context.device());
+    // The default method's pipelines now; the other's when a detection first asks for it.
+    auto detection = passes::Detection::create(context.device(), Impl::methodFactory(DetectSettings{}.method));
     if (!detection) return detection.error();
     impl->detection = std::move(*detection);
     impl->pool = std::make_unique<ThreadPool>(options.threads);
@@ -76,6 +109,7 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     o.vertices = std::move(uploaded->buffers[0]);
     o.indices = std::move(uploaded->buffers[1]);
     Impl::measureHost(o, mesh.positions, mesh.indices);
+    o.host_positions = mesh.positions;
     o.host_indices = mesh.indices;
     w.objects.push_back(std::move(o));
     w.objectsChanged();
@@ -119,6 +153,8 @@ Result<void> CollisionWorld::setTransform(ObjectId id, const Transform3x4& t) {
     if (!o) return o.error();
     if (auto ok = validation::checkTransform(t); !ok) return w.named(id, ok.error());
     (*o)->options.transform = t;
+    if (!w.source_dirty && (*o)->source_index != Impl::kNoSource)
+        if (auto ok = w.source.setTransform((*o)->source_index, t); !ok) return w.named(id, ok.error());
     return {};
 }
 
@@ -139,11 +175,16 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     if (auto ok = validation::checkVertices(positions, o.gpu.vertex_count); !ok) return w.named(id, ok.error());
     std::memcpy(o.vertices.mapped(), positions.data(), positions.size_bytes());
     o.vertices.flush();
+    // Same count: the source's view of host_positions stays valid.
+    std::memcpy(o.host_positions.data(), positions.data(), positions.size_bytes());
     Impl::measureHost(o, positions, o.host_indices);
     return {};
 }
 
-void CollisionWorld::setPairFilter(std::function<bool(ObjectId, ObjectId)> may_collide) { impl_->pair_filter = std::move(may_collide); }
+void CollisionWorld::setPairFilter(std::function<bool(ObjectId, ObjectId)> may_collide) {
+    impl_->pair_filter = std::move(may_collide);
+    impl_->pair_mask_dirty = true;
+}
 
 std::size_t CollisionWorld::objectCount() const noexcept {
     return static_cast<std::size_t>(std::count_if(impl_->objects.begin(), impl_->objects.end(), [](const auto& o) { return o.alive; }));

@@ -60,6 +60,11 @@ inline constexpr double kCellsPerEdge = 2.0;
 inline constexpr std::uint32_t kMinAutoCells = 8, kMaxAutoCells = 4096;
 inline constexpr double kMaxCellsPerTriangle = 16.0;
 inline constexpr std::uint32_t kFallbackCells = 256;
+// ... and cells no smaller than this many float ulps of the scene's largest coordinate:
+// footprints are padded by about 6-10 ulps of the coordinates (docs/reliable.md), so finer
+// cells far from the origin only multiply footprints and candidates (1e-3 features at 1e4:
+// 128 cells needed 12 GiB of candidates, 3 cells a few MiB).
+inline constexpr double kMinCellUlps = 16.0;
 // The pair filter's answers are kept as a bit mask (n^2 bits: 2 MiB at 4096 objects,
 // computed when objects or the filter change) up to this many live objects; beyond, the
 // filter is called during each detection as the narrow phase needs it.

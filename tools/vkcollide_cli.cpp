@@ -23,15 +23,18 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: vkcollide info\n"
-    "       vkcollide detect SCENE... [--resolution N] [--pairs out.csv] [--stats out.json]\n"
+    "       vkcollide detect SCENE... [--method reliable|peeling] [--resolution N] [--pairs out.csv] [--stats out.json]\n"
     "                        [--direction x,y,z] [--cap L] [--dual] [--paper-packing] [--backend raster|compute|auto]\n"
     "                        [--no-self-collision] [--open] [--frames K] [--threads T] [--device NAME]\n"
     "                        [--no-robust-access]\n"
     "  SCENE: .obj (each o/g group is an object), .off or .ply (each file is an object)\n"
-    "  --resolution N      rays per image side (power of two); default: chosen from the scene\n"
+    "  --method M          reliable (default: every intersecting pair, cells and pairs on the GPU) or\n"
+    "                      peeling (the paper's depth peeling; --cap, --dual, --paper-packing, --backend apply to it)\n"
+    "  --resolution N      cells per side (reliable, any count up to 16384) or rays per image side (peeling, a\n"
+    "                      power of two); default: chosen from the scene\n"
     "  --pairs FILE        write the colliding pairs as CSV lines a,b (global triangle indices, a<b)\n"
     "  --stats FILE        write the statistics (the paper's Table 1, settings, stage times) as JSON\n"
-    "  --direction x,y,z   projection direction; default: the scene's thinnest axis\n"
+    "  --direction x,y,z   projection direction; default: the world axis most triangle area faces\n"
     "  --cap L             peel at most L layers (deeper rays count as colliding)\n"
     "  --dual              peel from the front and the back at once\n"
     "  --paper-packing     the paper's count/shift/move packing instead of the scan\n"
@@ -135,6 +138,7 @@ std::string statsJson(const DetectStats& st, const std::vector<std::string>& nam
     num("triangle_tests", double(st.triangle_tests));
     num("positive_tests", double(st.positive_tests));
     num("pairs", double(pairs));
+    j += "  \"method\": \"" + std::string(toString(st.method)) + "\",\n";
     num("resolution", st.resolution);
     j += "  \"direction\": [" + std::to_string(st.direction[0]) + ", " + std::to_string(st.direction[1]) + ", " +
          std::to_string(st.direction[2]) + "],\n";
@@ -149,6 +153,12 @@ std::string statsJson(const DetectStats& st, const std::vector<std::string>& nam
     num("merging_ms", st.merging_ms);
     num("separation_ms", st.separation_ms);
     num("packing_ms", st.packing_ms);
+    num("footprints_ms", st.footprints_ms);
+    num("pairing_ms", st.pairing_ms);
+    num("filtering_ms", st.filtering_ms);
+    num("cell_entries", double(st.cells.entries));
+    num("cell_candidates", double(st.cells.candidates));
+    num("cell_survivors", double(st.cells.survivors));
     num("readback_ms", st.readback_ms);
     num("narrow_ms", st.narrow_ms);
     num("narrow_threads", st.narrow_threads);
@@ -180,7 +190,13 @@ int detect(int argc, char** argv) {
         const std::string a = argv[i];
         auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
         std::uint32_t u = 0;
-        if (a == "--resolution") {
+        if (a == "--method") {
+            const char* v = value();
+            const std::string m = v ? v : "";
+            if (m == "reliable") settings.method = DetectMethod::Reliable;
+            else if (m == "peeling") settings.method = DetectMethod::Peeling;
+            else return fail("--method needs reliable or peeling");
+        } else if (a == "--resolution") {
             const char* v = value();
             if (!v || !parseUint(v, u)) return fail("--resolution needs a number");
             settings.resolution = u;
@@ -278,17 +294,28 @@ int detect(int argc, char** argv) {
     }
     const DetectStats& st = result->stats;
     std::printf("device: %s\n", (*ctx)->deviceInfo().name.c_str());
-    std::printf("scene: %zu objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u passes%s\n",
-                meshes.size(), st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
+    const bool reliable = st.method == DetectMethod::Reliable;
+    if (reliable)
+        std::printf("scene: %zu objects, %zu triangles; method reliable, %u cells per side, %llu footprints, %llu candidate pairs, %llu read back\n",
+                    meshes.size(), st.triangles, st.resolution, (unsigned long long)st.cells.entries, (unsigned long long)st.cells.candidates,
+                    (unsigned long long)st.cells.survivors);
+    else
+        std::printf("scene: %zu objects, %zu triangles; method peeling, resolution %u, depth complexity %u, %u layers in %u passes%s\n",
+                    meshes.size(), st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
     if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
-    std::printf("sampling backend: %s (%s)\n", toString(st.backend), st.backend_reason.c_str());
+    if (!reliable) std::printf("sampling backend: %s (%s)\n", toString(st.backend), st.backend_reason.c_str());
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);
     std::printf("colliding triangle pairs: %zu\n", result->pairs.size());
-    std::printf("times (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
-                st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
-                st.total_ms);
+    if (reliable)
+        std::printf("times (ms): front %.3f, footprints %.3f, pairing %.3f, filtering %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
+                    st.sampling_ms, st.footprints_ms, st.pairing_ms, st.filtering_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
+                    st.total_ms);
+    else
+        std::printf("times (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
+                    st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
+                    st.total_ms);
     if (!pairs_path.empty()) {
         std::string csv;
         csv.reserve(result->pairs.size() * 16);

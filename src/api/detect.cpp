@@ -33,7 +33,7 @@ passes::MethodFactory CollisionWorld::Impl::methodFactory(DetectMethod method) {
 Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool measure) {
     if (pending()) return Error(ErrorCode::InvalidArgument, "submit while a detection is in flight: collect() it first");
     run_start = Clock::now();
-    std::vector<passes::GpuMesh> meshes;
+    std::vector<passes::GpuMesh>& meshes = run_meshes;  // kept: no allocation per detection
     liveMeshes(meshes, run_ids);
     run_settings = resolve(settings, &run_note);
     for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run_settings, context->device())})
@@ -70,7 +70,8 @@ Result<DetectResult> CollisionWorld::Impl::collect() {
 Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detected) {
     const std::vector<passes::BroadPhaseResult>& broad = detected.axes;
     // Broad-phase object index -> ObjectId.
-    std::vector<ObjectId> ids;
+    std::vector<ObjectId>& ids = finish_ids;
+    ids.clear();
     for (std::uint32_t i : detected.objects) ids.push_back(run_ids[i]);
     DetectResult out;
     for (const passes::ObjectFault& f : detected.excluded) {
@@ -120,7 +121,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
         st.backend_reason = "none: the reliable method samples no rays";
     }
 
-    NarrowOptions options;
+    NarrowOptions& options = narrow_options;
+    options.self_collision.clear();
+    options.may_collide = {};
     for (ObjectId id : ids) options.self_collision.push_back(objects[id].options.self_collision);
     // The filter's kept answers (indices of the live objects the mask was built over), or
     // the filter itself beyond the mask's object limit.
@@ -142,6 +145,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
         narrow = runNarrowPhase(detected.candidates(), options, *pool, narrow_workspace);
     }
     st.narrow_ms = msSince(t0);
+    options.may_collide = {};  // it refers to this call's objects
     if (!narrow) return narrow.error();
     st.narrow_threads = pool->threadCount();
     st.narrow = narrow->stats;

@@ -208,10 +208,19 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         if (extent > 0 && typical_edge > 0 && reliable) {
             const double want = gpu::kCellsPerEdge * extent / typical_edge;
             const double budget = std::sqrt(std::max(gpu::kMaxCellsPerTriangle * double(triangles), double(gpu::kMinAutoCells) * gpu::kMinAutoCells));
-            const double n = std::min({std::ceil(want), double(gpu::kMaxAutoCells), std::floor(budget)});
-            s.resolution = static_cast<std::uint32_t>(std::max(n, double(gpu::kMinAutoCells)));
+            // Far from the origin, cells below the coordinates' rounding only add footprints.
+            double magnitude = 0;
+            for (int a = 0; a < 3; ++a) magnitude = std::max({magnitude, std::fabs(double(lo[a])), std::fabs(double(hi[a]))});
+            const double precise = magnitude > 0 ? extent / (gpu::kMinCellUlps * 0x1p-23 * magnitude) : INFINITY;
+            double n = std::min({std::ceil(want), double(gpu::kMaxAutoCells), std::floor(budget)});
+            n = std::max(n, double(gpu::kMinAutoCells));
+            const bool rounding = precise < n;
+            if (rounding) n = std::max(1.0, std::floor(precise));
+            s.resolution = static_cast<std::uint32_t>(n);
             std::snprintf(buf, sizeof buf, "resolution %u cells (%.0f per typical edge %.4g across extent %.4g%s)", *s.resolution,
-                          gpu::kCellsPerEdge, typical_edge, extent, want > budget ? ", capped at 16 cells per triangle" : "");
+                          gpu::kCellsPerEdge, typical_edge, extent,
+                          rounding ? ", fewer: cells no finer than the coordinates' rounding this far from the origin"
+                          : want > budget ? ", capped at 16 cells per triangle" : "");
         } else if (extent > 0 && typical_edge > 0) {
             const double want = kPixelsPerEdge * extent / typical_edge;
             s.resolution = std::clamp(nextPowerOfTwo(want), kMinAutoResolution, kMaxAutoResolution);

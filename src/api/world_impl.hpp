@@ -69,8 +69,11 @@ struct CollisionWorld::Impl {
     // before their buffers are freed.
     std::unique_ptr<passes::Detection> detection;
 
-    // The detection in flight.
+    // The detection in flight (vectors kept between detections).
+    std::vector<passes::GpuMesh> run_meshes;
     std::vector<ObjectId> run_ids;  // index in the detection's meshes -> ObjectId
+    std::vector<ObjectId> finish_ids;  // the broad phase's objects (bad ones left out) -> ObjectId
+    NarrowOptions narrow_options;
     DetectSettings run_settings;
     std::string run_note;
     std::chrono::steady_clock::time_point run_start;

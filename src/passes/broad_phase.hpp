@@ -72,7 +72,6 @@ private:
     static void addTimings(BroadPhaseResult& io_result, const graph::ExecutionReport& report);
 
     vk::Device* device_;
-    graph::Executor executor_;
     BufferTable table_;
     CoreBuffers core_{};
     std::unique_ptr<CommonStages> common_;
@@ -88,6 +87,9 @@ private:
         bool any_gpu_check = false;
         BroadPhaseResult first;  // timings of a separate measuring submission
     } run_;
+    // Declared last, destroyed first: it waits for work in flight (a wait that timed out
+    // leaves it in flight) before the buffers and the method's buffers are freed.
+    graph::Executor executor_;
 };
 
 }  // namespace vkcollide::passes

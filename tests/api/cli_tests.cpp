@@ -101,10 +101,11 @@ TEST_CASE("vkcollide detect writes the exact pairs as global triangle indices", 
         CHECK(exact);  // precision 100 %
         found += exact;
     }
-    CHECK(double(found) / double(expected.size()) >= 0.99);  // recall at 256² (see recall_tests.cpp)
+    CHECK(found == expected.size());  // the reliable method (default): every pair
     const std::string stats = readText(json);
     CHECK(stats.find("\"positive_tests\": " + std::to_string(got.size())) != std::string::npos);
     CHECK(stats.find("\"resolution\": 256") != std::string::npos);
+    CHECK(stats.find("\"method\": \"reliable\"") != std::string::npos);
     CHECK(stats.find("\"objects\": [\"sphere-a\", \"sphere-b\", \"third\", \"fourth\"]") != std::string::npos);
     fs::remove_all(dir);
 }

@@ -1,6 +1,7 @@
 #include "passes/cells/cell_pairs.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstring>
@@ -212,6 +213,22 @@ Result<void> CellPairs::ensureBuffers() {
          "cells-gpu-triangles"},
         {&buf_.marks, has_download_ ? (tris + 31) / 32 * 4 : 0, MemoryKind::DeviceLocal, 0, "cells-marks"},
     };
+    // Refuse what the device cannot hold before allocating anything (as the broad phase's
+    // table does): the heap sizes bound what fits, the engine's allocations live there too.
+    std::array<VkDeviceSize, VK_MAX_MEMORY_HEAPS> per_heap{};
+    VkDeviceSize total = 0;
+    for (const Plan& p : plan) {
+        const VkMemoryPropertyFlags required =
+            p.kind == MemoryKind::DeviceLocal ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
+        if (auto type = device_->findMemoryType(~0u, required)) per_heap[device_->memory.memoryTypes[*type].heapIndex] += p.size;
+        total += p.size;
+    }
+    for (std::uint32_t h = 0; h < device_->memory.memoryHeapCount; ++h)
+        if (per_heap[h] > device_->memory.memoryHeaps[h].size)
+            return Error(ErrorCode::OutOfMemory, "cell pairs: resolution " + std::to_string(resolution_) + " with " +
+                                                     std::to_string(triangles_) + " triangles needs " + gibText(total) +
+                                                     " of device memory, more than the " + gibText(device_->memory.memoryHeaps[h].size) +
+                                                     " memory heap holds: lower the resolution or split the scene");
     for (const Plan& p : plan) {
         const VkDeviceSize size = std::max<VkDeviceSize>(p.size, 16);
         if (size > limit)

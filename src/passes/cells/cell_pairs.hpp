@@ -154,7 +154,6 @@ private:
     Result<void> checkFailure(const gpu::CellsHeader& header);
 
     vk::Device* device_;
-    graph::Executor executor_;
     struct Pipelines {
         vk::Pipeline setup, big, scan, fill, sweep, deep, args, pairs;
     } pipes_;
@@ -175,6 +174,8 @@ private:
     std::uint32_t max_groups_x_ = 0;
     CellPairsCapacity capacity_;
     std::uint32_t runs_ = 0;
+    // Declared last, destroyed first: it waits for work in flight before the buffers go.
+    graph::Executor executor_;
 };
 
 }  // namespace vkcollide::passes

@@ -46,6 +46,7 @@ VKC_CONST kCellsKeySelf = 0x80000000u;
 VKC_CONST kCellsKeyObject = 0x7FFFFFFFu;
 // CellsParams.object_flags
 VKC_CONST kCellsObjectSelf = 1u;
+VKC_CONST kCellsObjectDownload = 2u;  // geometry only on the GPU: survivors' triangles go to gpu_triangles
 
 // CellsTriangle.mode
 VKC_CONST kCellsEdges = 1u;  // coordinates are moderate: the per-cell edge tests apply
@@ -62,7 +63,12 @@ VKC_CONST kCellsBadPosition = 32u;     // a position or transform entry not fini
 VKC_CONST kCellsBadProjection = 64u;   // a projection entry not finite or >= 2^62
 VKC_CONST kCellsBadWorld = 128u;       // a world coordinate >= 2^62
 VKC_CONST kCellsInconsistent = 256u;   // the fill found more footprints than the count (a bug)
-VKC_CONST kCellsOverflowMask = 15u;
+VKC_CONST kCellsOverflowTriangles = 512u;  // gpu_triangles
+VKC_CONST kCellsOverflowMask = 527u;       // the four overflows above and kCellsOverflowTriangles
+
+// Per-cell counts after the fill (CellsParams.counts): the sweep sets this bit in a cell's
+// count when it finds a candidate there, and the invocation that sets it counts the cell.
+VKC_CONST kCellsCandidateBit = 0x80000000u;
 
 // Inputs are refused at or above this magnitude (2^62): with them every intermediate of
 // the setup stays finite in float (docs/reliable.md, "Assumptions").
@@ -113,6 +119,16 @@ struct CellsCandidate {
     uint a, b, cell;
 };
 
+// A survivor's triangle of a download object, for the narrow phase (vkcollide::GpuTriangle,
+// 52 bytes): global id, vertex indices within its object, world vertices computed as the
+// CPU computes M * p (in double, rounded once) where the device has shaderFloat64, else the
+// setup's float world vertices (within CellsGeometry::eps of the CPU's).
+struct CellsGpuTriangle {
+    uint id;
+    uint vertex_index[3];
+    float v[9];
+};
+
 // Small results; the host reads them after each run.
 struct CellsHeader {
     uint flags;             // kCells* above
@@ -128,7 +144,9 @@ struct CellsHeader {
     uint neighbours;        // overlapping pairs the sweep left out: one object, a shared vertex index
     uint duplicates;        // candidates dropped: not their canonical cell
     uint filtered;          // candidates the filter proved disjoint
-    uint pad0, pad1, pad2;
+    uint gpu_triangles;     // survivors' triangles of download objects (needed capacity)
+    uint candidate_cells;   // cells where the sweep found at least one candidate
+    uint pad2;
 };
 
 // Everything the shaders need, uploaded once per run (Push.frame points here).
@@ -150,6 +168,8 @@ struct CellsParams {
     VKC_ADDRESS(uint64_t) candidates;    // CellsCandidate[candidate_capacity]
     VKC_ADDRESS(uint64_t) survivors;     // uvec2[survivor_capacity]: (a, b), a < b
     VKC_ADDRESS(uint64_t) args;          // uint[3 * kCellsArgsCount]
+    VKC_ADDRESS(uint64_t) gpu_triangles; // CellsGpuTriangle[gpu_triangle_capacity] (host-visible), or 0: none
+    VKC_ADDRESS(uint64_t) marks;         // uint[ceil(triangle_count / 32)]: downloaded already (cleared per run)
     uint resolution;                     // N
     uint cell_count;                     // N * N
     uint object_count;
@@ -162,6 +182,8 @@ struct CellsParams {
     uint block_count;                    // ceil(cell_count / kCellsScanBlock)
     uint max_groups_x;                   // maxComputeWorkGroupCount[0]
     uint use_filter;                     // 1: the double-precision filter runs
+    uint gpu_triangle_capacity;
+    uint pad;
 };
 
 // Unit test of the filter alone (cells_filter_test.comp): one pair per invocation.

@@ -95,6 +95,7 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
         uint out_slot = 0u;
         if (pass == 1u) {
             subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
+            subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
             out_slot = subgroupAppend(headerField(P, kHeaderCandidates), n);
             if (n == 0u) return;
         }
@@ -144,6 +145,7 @@ void chunkOfCell(CellsParams P, uint cell, uint begin, uint end, uint chunk) {
         if (after && o.zlo <= me.zhi && sweepPair(P, me.key, mine, o.key, o.triangle, neighbours)) ++n;
     }
     subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
+    subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
     uint slot = subgroupAppend(headerField(P, kHeaderCandidates), n);
     if (n == 0u) return;
     for (uint j = begin; j < stop; ++j) {

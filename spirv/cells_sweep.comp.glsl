@@ -36,6 +36,7 @@ void main() {
         if (after && o.zlo <= me.zhi && sweepPair(P, me.key, mine, o.key, o.triangle, neighbours)) ++n;
     }
     subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
+    subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
     uint slot = subgroupAppend(headerField(P, kHeaderCandidates), n);
     if (n == 0u) return;
     CellsCandidatesRef out_pairs = CellsCandidatesRef(P.candidates);

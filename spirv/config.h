@@ -106,6 +106,27 @@ VKC_CONST kCsTile = 8;
 inline constexpr double kPixelsPerEdge = 4.0;
 inline constexpr std::uint32_t kMinAutoResolution = 64, kMaxAutoResolution = 2048;
 inline constexpr std::uint32_t kFallbackResolution = 512;
+// Automatic resolution of the reliable method (cells per side, any integer): about this
+// many cells per typical triangle edge across the scene's extent. H200,
+// vkcollide_bench_cells: f = 2 was fastest on deep overlap (2.56M), the deforming pair and
+// the self-intersecting scenes, f = 1 on the pile of 60 meshes (0.77 against 0.9 ms);
+// counts by f in docs/reliable.md. Within the bounds, and at most kMaxCellsPerTriangle
+// cells per triangle (a scene whose extent dwarfs its triangles -- an object far away --
+// would otherwise pay N^2 cells of counts and scan for nothing). The fallback when no
+// edge length is known (GPU meshes without typical_edge_length, first detection).
+inline constexpr double kCellsPerEdge = 2.0;
+inline constexpr std::uint32_t kMinAutoCells = 8, kMaxAutoCells = 4096;
+inline constexpr double kMaxCellsPerTriangle = 16.0;
+inline constexpr std::uint32_t kFallbackCells = 256;
+// ... and cells no smaller than this many float ulps of the scene's largest coordinate:
+// footprints are padded by about 6-10 ulps of the coordinates (docs/reliable.md), so finer
+// cells far from the origin only multiply footprints and candidates (1e-3 features at 1e4:
+// 128 cells needed 12 GiB of candidates, 3 cells a few MiB).
+inline constexpr double kMinCellUlps = 16.0;
+// The pair filter's answers are kept as a bit mask (n^2 bits: 2 MiB at 4096 objects,
+// computed when objects or the filter change) up to this many live objects; beyond, the
+// filter is called during each detection as the narrow phase needs it.
+inline constexpr std::uint32_t kMaxFilterMaskObjects = 4096;
 // Automatic open epsilon: this fraction of the open objects' typical edge length.
 inline constexpr double kOpenEpsilonPerEdge = 0.5;
 // Resolutions the broad phase accepts (powers of two); the mip chain of ray bundles needs

@@ -49,9 +49,18 @@ enum class BadObjectPolicy {
 // which ran and why.
 enum class SamplingBackend { Auto, Raster, Compute };
 
+// How a detection's broad phase finds what the exact narrow phase tests (DetectSettings::
+// method; world.hpp says what each guarantees and costs).
+enum class DetectMethod {
+    Reliable,  // cells on a grid, candidate pairs formed and filtered on the GPU: every
+               // intersecting pair, touching included, at any resolution (docs/reliable.md)
+    Peeling,   // the paper: depth peeling along rays, the kept triangles read back
+};
+
 // Lower-case names as the command-line options spell them: "scan", "paper"; "centre",
-// "dilate", "conservative", "best"; "auto", "raster", "compute".
+// "dilate", "conservative", "best"; "auto", "raster", "compute"; "reliable", "peeling".
 const char* toString(PackingMethod method) noexcept;
+const char* toString(DetectMethod method) noexcept;
 const char* toString(Coverage coverage) noexcept;
 const char* toString(SamplingBackend backend) noexcept;
 

@@ -2,8 +2,9 @@
 //
 // A CollisionWorld holds the objects (mesh instances) of one scene on one Context and
 // finds every pair of intersecting triangles between them (and inside an object, if
-// its self-collision is on), with the GPU broad phase of Georgii, Krüger and
-// Westermann (2006) and an exact CPU narrow phase.
+// its self-collision is on), with a GPU broad phase and an exact CPU narrow phase. Two
+// broad phases (DetectSettings::method): the reliable cell pair stage (default: never
+// misses a pair) and the depth peeling of Georgii, Krüger and Westermann (2006).
 //
 //   auto ctx = vkcollide::Context::create();                    // or Context::adopt(engine device)
 //   auto world = vkcollide::CollisionWorld::create(**ctx);
@@ -61,31 +62,76 @@ struct ObjectOptions {
 // PackingMethod, Coverage, BadObjectPolicy, SamplingBackend: vkcollide/types.hpp.
 
 // Every field left empty is chosen from the scene (DetectStats::settings_note says how).
+//
+// The method (DetectSettings::method):
+//
+// Reliable (the default). A grid of N x N cells across the image plane of `direction`
+// (the grid's square fitted to the scene, or `region`; cells on its border reach to
+// infinity). Every triangle is listed in each cell its projection may touch, with an
+// interval that holds its depth over that cell, both grown by bounds on float rounding;
+// pairs of triangles whose intervals overlap in a cell are candidates; a conservative
+// double-precision triangle test on the GPU drops those it proves disjoint; the
+// survivors (pairs of triangle ids, plus the world vertices of engine meshes' triangles)
+// go to the exact narrow phase. Guarantee: every pair of triangles that intersect —
+// touching included (a shared point, an edge on a face, coplanar overlap, degenerate and
+// sliver triangles) — is found, at any resolution and along any direction; resolution
+// and direction change the speed only (docs/reliable.md has the proof and its
+// assumptions: positions, transform entries and world coordinates below 2^62 in
+// magnitude; an object beyond that is treated as a bad object, see bad_objects).
+// Cost: GPU passes over every triangle (its cells), every cell (a sweep) and every
+// candidate pair (the filter); about 100 bytes per triangle, 20 per footprint (2 to 10 per
+// triangle at the automatic resolution) and 12 per candidate of device memory; on the
+// host only the surviving pairs (within a few per cent of the intersecting ones for
+// different objects; more for self-collision) are read, in place, and tested. H200,
+// stage alone: 2.56M triangles overlapping deeply 3.8 ms, a pile of 60 meshes (610K)
+// 0.8 ms, a deforming 100K pair 0.2 ms. One submission; nothing is measured first.
+// It uses resolution (cells per side), direction, region and bad_objects; it ignores
+// layer_cap, dual, packing, backend, coverage, open_epsilon, closed_epsilon and
+// measure_layers (they shape the sampling of rays, which it does not do), and runs
+// axes = 3 as 1 (one grid finds everything; the note says so).
+//
+// Peeling (the paper). Depth peeling along N x N parallel rays, the triangles near rays
+// that cross two surfaces read back and paired on the host. Misses what no ray centre
+// sees (sub-pixel, sliver and edge-on triangles, touching contacts: docs/stability.md
+// measures each case and the settings that mitigate it); every field below applies.
 struct DetectSettings {
-    // Rays per image side, a power of two in [4, 16384]. Automatic: about four pixels
-    // per typical triangle edge across the scene's extent, within [64, 2048].
+    DetectMethod method = DetectMethod::Reliable;
+    // Reliable: cells per side, any integer in [1, 16384]. Automatic: about
+    // kCellsPerEdge (spirv/config.h; 2) cells per typical projected triangle edge across
+    // the scene's extent, within [kMinAutoCells, kMaxAutoCells] and at most
+    // kMaxCellsPerTriangle cells per triangle.
+    // Peeling: rays per image side, a power of two in [4, 16384]. Automatic: about four
+    // pixels per typical triangle edge across the scene's extent, within [64, 2048].
+    // Typical edges: measured for host meshes, ObjectOptions::typical_edge_length for GPU
+    // meshes; the extent: host meshes' boxes and, with GPU meshes, the scene box the last
+    // detection measured on the GPU (the first detection of a world has only the host's).
     std::optional<std::uint32_t> resolution;
-    // Projection direction. Automatic: the world axis along which the scene is thinnest,
-    // so the image covers its two widest extents.
+    // Projection direction. Automatic: the world axis along which the most triangle area
+    // faces (host meshes' area-weighted normals, measured when their geometry changes; GPU
+    // meshes, whose geometry the host never sees, counted as facing like the faces of the
+    // last measured scene box), so a flat cloth is seen face-on, not edge-on. Ties: z,
+    // then y, then x.
     std::optional<std::array<float, 3>> direction;
-    // Most layers to peel; rays deeper than this count as collision rays (conservative).
-    // 0: as many as the scene's depth complexity (measured), no more.
+    // Peeling: most layers to peel; rays deeper than this count as collision rays
+    // (conservative). 0: as many as the scene's depth complexity (measured), no more.
     std::uint32_t layer_cap = 0;
-    bool dual = false;  // peel from the front and the back at once (half the passes)
-    PackingMethod packing = PackingMethod::Scan;
-    SamplingBackend backend = SamplingBackend::Auto;
-    // Open surfaces: two hits closer than this along a ray (world units) may collide.
-    // Automatic: half the typical edge length of the open objects.
+    bool dual = false;  // peeling: peel from the front and the back at once (half the passes)
+    PackingMethod packing = PackingMethod::Scan;       // peeling
+    SamplingBackend backend = SamplingBackend::Auto;  // peeling
+    // Peeling, open surfaces: two hits closer than this along a ray (world units) may
+    // collide. Automatic: half the typical edge length of the open objects.
     std::optional<float> open_epsilon;
     // Sample only this world box (min x, y, z, max x, y, z); default: fit to the scene.
+    // Reliable: the grid's square spans this box's extent; what lies outside falls into
+    // the border cells (slower, never missed).
     std::optional<std::array<float, 6>> region;
-    // detect() only: measure the depth complexity before peeling (one extra host wait,
-    // exactly the layers needed). Off, and always in submit(): peel as many layers as the
-    // last detection measured (rays that need more become collision rays and the
+    // Peeling, detect() only: measure the depth complexity before peeling (one extra host
+    // wait, exactly the layers needed). Off, and always in submit(): peel as many layers
+    // as the last detection measured (rays that need more become collision rays and the
     // statistics say so); the first detection of a world measures.
     bool measure_layers = true;
 
-    // Beyond the paper (docs/stability.md measures each on the failure cases):
+    // Peeling, beyond the paper (docs/stability.md measures each on the failure cases):
     // Sampling directions: 1 (the paper), or 3: also the two directions perpendicular to
     // `direction`; each triangle's candidates from the three are united (their kept
     // regions mapped back to world boxes) and tested once. About 3x the GPU time.
@@ -134,8 +180,28 @@ struct PassTime {
     double gpu_ms = 0;
 };
 
+// The reliable method's cell pair stage, counted on the GPU (docs/reliable.md).
+struct CellStats {
+    std::uint64_t entries = 0;          // footprints: (triangle, cell) pairs
+    std::uint64_t max_cell = 0;         // most triangles in one cell
+    std::uint64_t deep_cells = 0;       // cells swept by the deep path (more than 256 entries)
+    std::uint64_t candidate_cells = 0;  // cells where the sweep found a candidate
+    std::uint64_t candidates = 0;       // pairs with overlapping depth in a cell (a pair may repeat across cells)
+    std::uint64_t duplicates = 0;       // of those, dropped: not the pair's first common cell
+    std::uint64_t filtered = 0;         // of those, dropped: proved disjoint by the GPU filter
+    std::uint64_t survivors = 0;        // pairs read back (8 bytes each)
+    std::uint64_t gpu_triangles = 0;    // engine meshes' triangles read back with their vertices (52 bytes each)
+    std::uint32_t runs = 1;             // submissions (more after a buffer grew)
+    bool filter_ran = false;            // the device has shaderFloat64
+};
+
 struct DetectStats {
-    // The paper's Table 1.
+    // The paper's Table 1. Peeling as in the paper. Reliable, the closest meaning:
+    //   collision rays        -> cells where the sweep found a candidate pair
+    //   triangles downloaded  -> distinct triangles named by the pairs read back (their ids
+    //                            crossed the bus; engine meshes' vertices too)
+    //   pot. coll. triangles, tri-tri tests, pos. tests -> the narrow phase's, as for peeling
+    //                            (tests: exact tests on the CPU; positive: pairs found)
     std::size_t triangles = 0;                        // "# tri's"
     std::size_t collision_rays = 0;                   // "# coll. rays"
     std::size_t triangles_downloaded = 0;             // "# tri's downl."
@@ -143,12 +209,14 @@ struct DetectStats {
     std::size_t triangle_tests = 0;                   // "# tri-tri tests"
     std::size_t positive_tests = 0;                   // "# pos. tests"
     NarrowStats narrow;                               // every narrow-phase counter
+    CellStats cells;                                  // reliable only
     // What ran.
+    DetectMethod method = DetectMethod::Reliable;
     std::uint32_t objects = 0;
-    std::uint32_t resolution = 0;
+    std::uint32_t resolution = 0;        // rays (peeling) or cells (reliable) per side
     std::array<float, 3> direction{};
-    std::uint32_t depth_complexity = 0;  // measured by this detection, over the rays that are peeled
-    std::uint32_t layers = 0;            // layers peeled
+    std::uint32_t depth_complexity = 0;  // peeling: measured by this detection, over the rays that are peeled
+    std::uint32_t layers = 0;            // peeling: layers peeled
     std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
     // Rays with more than 1,024 surfaces along them (gpu::kMaxRayFragments): collision rays
     // at once, without peeling (their triangles go to the exact narrow phase), and left out
@@ -158,14 +226,17 @@ struct DetectStats {
     bool layers_short = false;           // some rays had more layers than were peeled (no cap asked), or deep rays
     std::uint32_t axes = 1;              // sampling directions run (counts above are summed over them,
                                          // depth complexity and layers are their maximum)
-    Coverage coverage = Coverage::Centre;  // that ran: Centre, Dilate or Conservative (never Best)
-    SamplingBackend backend = SamplingBackend::Raster;  // object sampling that ran (never Auto); toString names it
-    std::string backend_reason;          // why (Auto's rule, or "asked for")
+    Coverage coverage = Coverage::Centre;  // peeling: that ran: Centre, Dilate or Conservative (never Best)
+    SamplingBackend backend = SamplingBackend::Raster;  // peeling: object sampling that ran (never Auto); toString names it
+    std::string backend_reason;          // why (Auto's rule, or "asked for"; reliable: none sampled)
     std::string settings_note;           // how automatic settings were chosen
     // Times.
     std::vector<PassTime> gpu_passes;    // GPU timestamps of every pass, in order
-    double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0;  // GPU
-    double readback_ms = 0;              // host: reading the count and the records
+    // GPU, per stage. sampling_ms includes the front (clear, GPU input checks, bounds, fit),
+    // which is all of it for the reliable method.
+    double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0;  // peeling
+    double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;                 // reliable
+    double readback_ms = 0;              // host: reading the header and the records or pairs
     double narrow_ms = 0;                // host: the CPU narrow phase
     double total_ms = 0;                 // host wall time from submit to result
     unsigned narrow_threads = 0;
@@ -232,9 +303,16 @@ public:
     // New positions of a host mesh (same count, every one finite).
     [[nodiscard]] Result<void> updateVertices(ObjectId id, std::span<const Float3> positions);
     // Which object pairs may collide (called with a < b); empty: every pair may. Called on
-    // the thread that calls detect() or collect(), once per distinct object pair with
-    // candidates. It must not throw: if it does, the world catches the exception, stops
-    // calling the filter for that detection and fails it with InvalidArgument naming the
+    // the thread that calls detect() or submit(). Contract: a pure function of the two ids.
+    // It is called for every pair of live objects at the next detection after
+    // setPairFilter, addMesh, addGpuMesh or removeObject (not in every detection), and its
+    // answers are kept as a bit mask that the GPU reads (the reliable method forms no pair
+    // of filtered objects: no GPU work for them) and the narrow phase applies. Call
+    // setPairFilter again when its answers change. Above kMaxFilterMaskObjects
+    // (spirv/config.h) live objects no mask is kept: the filter is then called in every
+    // detection (on the thread that calls detect() or collect()), once per object pair
+    // that has candidates. It must not throw: if it does, the world catches the exception,
+    // stops calling the filter and fails that detection with InvalidArgument naming the
     // pair and the exception's message (the world stays Ready).
     void setPairFilter(std::function<bool(ObjectId a, ObjectId b)> may_collide);
 

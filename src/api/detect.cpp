@@ -7,6 +7,7 @@
 
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
+#include "passes/cells/reliable_method.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {
@@ -28,18 +29,29 @@ Error CollisionWorld::Impl::describeFailure(const Error& e) const {
     return Error(e.code(), f.none_left ? "no object left to test: " + named_fault : named_fault, e.vkResult());
 }
 
+passes::MethodFactory CollisionWorld::Impl::methodFactory(DetectMethod method) {
+    return method == DetectMethod::Reliable ? passes::ReliableMethod::create : passes::PeelingMethod::create;
+}
+
 Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool measure) {
     if (pending()) return Error(ErrorCode::InvalidArgument, "submit while a detection is in flight: collect() it first");
     if (device_lost)
         return Error(ErrorCode::DeviceLost, "the device was lost in an earlier detection: destroy the world and create a new Context");
     run_start = Clock::now();
-    std::vector<passes::GpuMesh> meshes;
+    std::vector<passes::GpuMesh>& meshes = run_meshes;  // kept: no allocation per detection
     liveMeshes(meshes, run_ids);
     run_settings = resolve(settings, &run_note);
     for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run_settings, context->device())})
         if (!ok) return ok.error();
     const DetectSettings& s = run_settings;
+    if (s.method == DetectMethod::Reliable)
+        for (ObjectId id : run_ids)
+            if (auto ok = validation::checkReliableObject(objects[id].options.transform, objects[id].max_abs); !ok) return named(id, ok.error());
     passes::DetectionSettings d;
+    d.method = methodFactory(s.method);
+    auto mask = pairMask(run_ids);
+    if (!mask) return mask.error();
+    d.broad.pair_mask = *mask;
     d.broad.resolution = *s.resolution;
     d.broad.direction = *s.direction;
     d.broad.layer_cap = s.layer_cap;
@@ -67,7 +79,8 @@ Result<DetectResult> CollisionWorld::Impl::collect() {
 Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detected) {
     const std::vector<passes::BroadPhaseResult>& broad = detected.axes;
     // Broad-phase object index -> ObjectId.
-    std::vector<ObjectId> ids;
+    std::vector<ObjectId>& ids = finish_ids;
+    ids.clear();
     for (std::uint32_t i : detected.objects) ids.push_back(run_ids[i]);
     DetectResult out;
     for (const passes::ObjectFault& f : detected.excluded) {
@@ -76,6 +89,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     }
     DetectStats& st = out.stats;
     st.objects = static_cast<std::uint32_t>(ids.size());
+    st.method = run_settings.method;
     st.resolution = *run_settings.resolution;
     st.direction = detected.directions[0];
     st.dual = run_settings.dual;
@@ -104,33 +118,58 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
         st.merging_ms += b.merging_ms;
         st.separation_ms += b.separation_ms;
         st.packing_ms += b.packing_ms;
+        st.footprints_ms += b.footprints_ms;
+        st.pairing_ms += b.pairing_ms;
+        st.filtering_ms += b.filtering_ms;
         st.readback_ms += b.readback_ms;
     }
+    if (detected.hasPairs()) {
+        const passes::CellPairsStats& c = broad[0].cells;
+        st.cells = {c.entries, c.max_cell, c.deep_cells, c.candidate_cells, c.candidates, c.duplicates, c.filtered, c.survivors,
+                    c.gpu_triangles, c.runs, c.filter_ran};
+        st.collision_rays = c.candidate_cells;
+        st.backend_reason = "none: the reliable method samples no rays";
+    }
 
-    NarrowOptions options;
+    NarrowOptions& options = narrow_options;
+    options.self_collision.clear();
+    options.may_collide = {};
     for (ObjectId id : ids) options.self_collision.push_back(objects[id].options.self_collision);
     options.max_pairs = run_settings.max_pairs;
     options.max_box_pairs = run_settings.max_candidate_pairs;
-    // The filter must not throw (world.hpp); if it does, the exception stops here, the
-    // narrow phase sees "may not collide" from then on, and the detection fails naming it.
+    // The filter's kept answers (indices of the live objects the mask was built over), or
+    // the filter itself beyond the mask's object limit. The filter must not throw
+    // (world.hpp); if it does, the exception stops here, the narrow phase sees "may not
+    // collide" from then on, and the detection fails naming it.
     std::optional<Error> filter_threw;
-    if (pair_filter)
+    const passes::ObjectPairMask* mask = pair_filter && pair_mask.objects == run_ids.size() && !pair_mask_dirty ? &pair_mask : nullptr;
+    const std::vector<std::uint32_t>& live = detected.objects;
+    if (mask) {
+        options.may_collide = [mask, &live](std::uint32_t a, std::uint32_t b) { return mask->allows(live[a], live[b]); };
+    } else if (pair_filter) {
         options.may_collide = [this, &ids, &filter_threw](std::uint32_t a, std::uint32_t b) {
             if (filter_threw) return false;
-            std::string what;
-            try {
-                return pair_filter(ids[a], ids[b]);
-            } catch (const std::exception& e) {
-                what = std::string(": ") + e.what();
-            } catch (...) {
-            }
-            filter_threw = Error(ErrorCode::InvalidArgument, "the pair filter threw for objects " + std::to_string(ids[a]) + " and " +
-                                                                 std::to_string(ids[b]) + what + " (it must not throw)");
+            auto answer = callPairFilter(ids[a], ids[b]);
+            if (answer) return *answer;
+            filter_threw = answer.error();
             return false;
         };
+    }
     const auto t0 = Clock::now();
-    auto narrow = runNarrowPhase(detected.candidates(), options, *pool, narrow_workspace);
+    Result<NarrowResult> narrow = Error(ErrorCode::InvalidArgument, "no narrow phase ran");
+    if (detected.hasPairs()) {
+        // Reliable: the survivors straight from the GPU's memory (deduplicated and sorted
+        // in parallel by the narrow phase), host meshes from the world's source, engine
+        // meshes' triangles from the download.
+        if (auto ok = syncSource(ids); !ok) return ok.error();
+        source.setGpuTriangles(broad[0].gpu_triangles);
+        narrow = runPairNarrowPhase(broad[0].pairs, source, options, *pool, narrow_workspace);
+        source.setGpuTriangles({});  // the download is overwritten by the next run
+    } else {
+        narrow = runNarrowPhase(detected.candidates(), options, *pool, narrow_workspace);
+    }
     st.narrow_ms = msSince(t0);
+    options.may_collide = {};  // it refers to this call's objects
     if (filter_threw) return *filter_threw;
     if (!narrow) return narrow.error();
     if (narrow->pairs_left_out > 0) {
@@ -145,11 +184,13 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;
     st.triangle_tests = narrow->stats.triangle_tests;
     st.positive_tests = narrow->stats.positive_tests;
+    if (detected.hasPairs()) st.triangles_downloaded = narrow->stats.candidates;  // distinct triangles in the pairs
     // Run indices grow with ids, so the sorted order survives the mapping.
     out.pairs = std::move(narrow->pairs);
     for (TrianglePair& p : out.pairs) p.object_a = ids[p.object_a], p.object_b = ids[p.object_b];
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
+    if (broad[0].scene_box) measured_box = broad[0].scene_box;
     st.gpu_memory_bytes = detection->memoryBytes();
     for (const Object& o : objects) st.gpu_memory_bytes += (o.vertices.valid() ? o.vertices.size() : 0) + (o.indices.valid() ? o.indices.size() : 0);
     st.total_ms = msSince(run_start);

@@ -1,6 +1,8 @@
-// Automatic settings: what the world knows about its scene on the host (object boxes and
-// typical edge lengths) turned into a direction, a resolution, an open epsilon and a
-// coverage, with a note saying how each was chosen. The tunables are in spirv/config.h.
+// Automatic settings: what the world knows about its scene on the host (object boxes,
+// typical edge lengths and area-weighted normals of host meshes, the typical edge lengths
+// engines give for GPU meshes, and the scene box the last detection measured on the GPU)
+// turned into a direction, a resolution, an open epsilon and a coverage, with a note saying
+// how each was chosen. The tunables are in spirv/config.h.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -31,36 +33,86 @@ std::uint32_t nextPowerOfTwo(double x) {
     return p;
 }
 
+using Vec3 = std::array<double, 3>;
+Vec3 cross(const Vec3& a, const Vec3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// How much of an object's triangle area faces each world axis: sum over its triangles of
+// area * (n . axis)^2 in world space. Area vectors map by the cofactor matrix C of the
+// transform's linear part; C M C^T / |det|^(2/3) is exact for rotations with uniform scale
+// and a fair estimate for the rest (the direction is a speed choice for the reliable
+// method, a recall choice for peeling).
+Vec3 worldFacing(const std::array<double, 6>& m, const Transform3x4& t) {
+    const Vec3 r[3] = {Vec3{t[0], t[1], t[2]}, Vec3{t[4], t[5], t[6]}, Vec3{t[8], t[9], t[10]}};
+    const Vec3 c[3] = {cross(r[1], r[2]), cross(r[2], r[0]), cross(r[0], r[1])};
+    const double det = std::fabs(dot(r[0], c[0]));
+    const double norm = det > 0 ? std::cbrt(det * det) : 1.0;
+    Vec3 out{};
+    for (int a = 0; a < 3; ++a) {
+        const Vec3& v = c[a];
+        const double q = v[0] * v[0] * m[0] + v[1] * v[1] * m[1] + v[2] * v[2] * m[2] +
+                         2 * (v[0] * v[1] * m[3] + v[0] * v[2] * m[4] + v[1] * v[2] * m[5]);
+        out[a] = q / norm;
+    }
+    return out;
+}
+
+// The axis with the most facing area; within 1 %, z before y before x.
+int largestFacing(const Vec3& score) {
+    int best = 2;
+    for (int a : {1, 0})
+        if (score[a] > score[best] * 1.01) best = a;
+    return best;
+}
+
+void append(std::string& note, const std::string& part) { note += (note.empty() ? "" : "; ") + part; }
+
 }  // namespace
 
-// A host mesh's object-space box and mean edge length.
+// A host mesh's object-space box, mean edge length, area-weighted normal moments and
+// largest |coordinate|: one pass over its vertices and one over its triangles.
 void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices) {
     float lo[3] = {positions[0].x, positions[0].y, positions[0].z}, hi[3] = {lo[0], lo[1], lo[2]};
+    float max_abs = 0;
     for (const Float3& p : positions) {
         const float c[3] = {p.x, p.y, p.z};
-        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]), max_abs = std::max(max_abs, std::fabs(c[a]));
     }
     o.box = {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
+    o.max_abs = max_abs;
     double sum = 0;
-    auto dist = [&](std::uint32_t a, std::uint32_t b) {
-        const Float3 &p = positions[a], &q = positions[b];
-        return std::sqrt(double(p.x - q.x) * (p.x - q.x) + double(p.y - q.y) * (p.y - q.y) + double(p.z - q.z) * (p.z - q.z));
-    };
-    for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
-        sum += dist(indices[t], indices[t + 1]) + dist(indices[t + 1], indices[t + 2]) + dist(indices[t + 2], indices[t]);
+    std::array<double, 6> moment{};
+    auto at = [&](std::uint32_t i) { return Vec3{positions[i].x, positions[i].y, positions[i].z}; };
+    auto dist = [](const Vec3& p, const Vec3& q) { return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2])); };
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+        const Vec3 p0 = at(indices[t]), p1 = at(indices[t + 1]), p2 = at(indices[t + 2]);
+        sum += dist(p0, p1) + dist(p1, p2) + dist(p2, p0);
+        const Vec3 n = cross({p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]});
+        const double len = std::sqrt(dot(n, n));
+        if (!(len > 0)) continue;
+        const double w = 0.5 / len;  // area * n n^T = N N^T / (2 |N|)
+        moment[0] += w * n[0] * n[0], moment[1] += w * n[1] * n[1], moment[2] += w * n[2] * n[2];
+        moment[3] += w * n[0] * n[1], moment[4] += w * n[0] * n[2], moment[5] += w * n[1] * n[2];
+    }
+    o.area_moment = moment;
     o.edge_length = indices.empty() ? 0.0f : static_cast<float>(sum / double(indices.size()));
 }
 
-// Fills every automatic field from the host's knowledge of the scene: the world box of
-// the host meshes, the typical edge length of every object that has one.
+// Fills every automatic field from the host's knowledge of the scene.
 DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::string* note) const {
     DetectSettings s = in;
+    const bool reliable = s.method == DetectMethod::Reliable;
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     double edge_weighted = 0, edge_triangles = 0, open_edge = 0, open_triangles = 0;
-    bool any_box = false;
+    double host_triangles = 0, gpu_known_area = 0, gpu_known_triangles = 0, gpu_unknown_triangles = 0;
+    std::uint64_t triangles = 0;
+    Vec3 facing{};
+    bool any_box = false, any_gpu = false;
     for (const Object& o : objects) {
         if (!o.alive) continue;
         const Transform3x4& t = o.options.transform;
+        const double n = o.gpu.triangle_count, scale = maxScale(t);
+        triangles += o.gpu.triangle_count;
         if (o.host) {
             for (int c = 0; c < 8; ++c) {
                 const float p[3] = {o.box[(c & 1) ? 3 : 0], o.box[(c & 2) ? 4 : 1], o.box[(c & 4) ? 5 : 2]};
@@ -70,27 +122,71 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
                 }
             }
             any_box = true;
+            const Vec3 f = worldFacing(o.area_moment, t);
+            for (int a = 0; a < 3; ++a) facing[a] += f[a];
+            host_triangles += n;
+        } else {
+            any_gpu = true;
+            if (o.edge_length > 0) {
+                const double e = double(o.edge_length) * scale;
+                gpu_known_area += n * 0.4330127 * e * e, gpu_known_triangles += n;  // equilateral triangles of that edge
+            } else {
+                gpu_unknown_triangles += n;
+            }
         }
         if (o.edge_length > 0) {
-            const double e = double(o.edge_length) * maxScale(t), n = o.gpu.triangle_count;
+            const double e = double(o.edge_length) * scale;
             edge_weighted += e * n, edge_triangles += n;
             if (o.options.open) open_edge += e * n, open_triangles += n;
         }
     }
-    std::string why;
+    std::string why = std::string("method ") + toString(s.method);
+    // GPU meshes: the host never sees their geometry. Their extent is the scene box the
+    // last detection measured on the GPU; their facing is taken as that box's faces'.
+    const bool use_measured = any_gpu && measured_box.has_value();
+    if (use_measured) {
+        const auto& m = *measured_box;
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], m[a]), hi[a] = std::max(hi[a], m[a + 3]);
+        any_box = true;
+        const double host_area = facing[0] + facing[1] + facing[2];
+        const double per_triangle = host_triangles > 0 && host_area > 0 ? host_area / host_triangles
+                                    : gpu_known_triangles > 0         ? gpu_known_area / gpu_known_triangles
+                                                                      : 1.0;
+        const double gpu_area = gpu_known_area + gpu_unknown_triangles * per_triangle;
+        const double ext[3] = {double(m[3]) - m[0], double(m[4]) - m[1], double(m[5]) - m[2]};
+        const double faces[3] = {ext[1] * ext[2], ext[0] * ext[2], ext[0] * ext[1]};
+        const double total = faces[0] + faces[1] + faces[2];
+        if (total > 0)
+            for (int a = 0; a < 3; ++a) facing[a] += gpu_area * faces[a] / total;
+        append(why, "engine meshes' extent and facing from the scene box the last detection measured");
+    } else if (any_gpu) {
+        append(why, "engine meshes not measured yet (first detection): host meshes only");
+    }
     if (!s.direction) {
-        if (any_box) {
-            int thin = 0;
-            for (int a = 1; a < 3; ++a)
+        std::array<float, 3> d{0, 0, 0};
+        const double total = facing[0] + facing[1] + facing[2];
+        char buf[160];
+        if (total > 0) {
+            const int axis = largestFacing(facing);
+            d[axis] = 1;
+            std::snprintf(buf, sizeof buf, "direction %c (most triangle area faces it: x %.0f %%, y %.0f %%, z %.0f %%)", "xyz"[axis],
+                          100 * facing[0] / total, 100 * facing[1] / total, 100 * facing[2] / total);
+        } else if (any_box) {
+            int thin = 2;
+            for (int a : {1, 0})
                 if (hi[a] - lo[a] < hi[thin] - lo[thin]) thin = a;
-            std::array<float, 3> d{0, 0, 0};
             d[thin] = 1;
-            s.direction = d;
-            why += std::string("direction ") + "xyz"[thin] + " (the scene's thinnest axis)";
+            std::snprintf(buf, sizeof buf, "direction %c (no triangle area measured: the scene's thinnest axis)", "xyz"[thin]);
         } else {
-            s.direction = std::array<float, 3>{0, 0, 1};
-            why += "direction z (no host geometry to measure)";
+            d[2] = 1;
+            std::snprintf(buf, sizeof buf, "direction z (no geometry measured yet)");
         }
+        s.direction = d;
+        append(why, buf);
+    }
+    if (reliable && s.axes != 1) {
+        s.axes = 1;
+        append(why, "axes 1 (the reliable method's one grid finds every pair)");
     }
     const double typical_edge = edge_triangles > 0 ? edge_weighted / edge_triangles : 0;
     if (!s.resolution) {
@@ -99,35 +195,52 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         const double dl = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
         double extent = 0;
         if (any_box) {
-            const double size[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+            const double size[3] = {double(hi[0]) - lo[0], double(hi[1]) - lo[1], double(hi[2]) - lo[2]};
             for (int a = 0; a < 3; ++a) extent = std::max(extent, size[a] * std::sqrt(std::max(0.0, 1.0 - (d[a] / dl) * (d[a] / dl))));
-            if (s.region) {
-                const auto& r = *s.region;
-                extent = std::max({double(r[3] - r[0]), double(r[4] - r[1]), double(r[5] - r[2])});
-            }
         }
-        if (extent > 0 && typical_edge > 0) {
+        if (s.region) {
+            const auto& r = *s.region;
+            extent = std::max({double(r[3] - r[0]), double(r[4] - r[1]), double(r[5] - r[2])});
+        } else {
+            extent *= 1.0 + 2.0 * double(gpu::kFitMargin);  // the fit's square
+        }
+        char buf[200];
+        if (extent > 0 && typical_edge > 0 && reliable) {
+            const double want = gpu::kCellsPerEdge * extent / typical_edge;
+            const double budget = std::sqrt(std::max(gpu::kMaxCellsPerTriangle * double(triangles), double(gpu::kMinAutoCells) * gpu::kMinAutoCells));
+            // Far from the origin, cells below the coordinates' rounding only add footprints.
+            double magnitude = 0;
+            for (int a = 0; a < 3; ++a) magnitude = std::max({magnitude, std::fabs(double(lo[a])), std::fabs(double(hi[a]))});
+            const double precise = magnitude > 0 ? extent / (gpu::kMinCellUlps * 0x1p-23 * magnitude) : INFINITY;
+            double n = std::min({std::ceil(want), double(gpu::kMaxAutoCells), std::floor(budget)});
+            n = std::max(n, double(gpu::kMinAutoCells));
+            const bool rounding = precise < n;
+            if (rounding) n = std::max(1.0, std::floor(precise));
+            s.resolution = static_cast<std::uint32_t>(n);
+            std::snprintf(buf, sizeof buf, "resolution %u cells (%.0f per typical edge %.4g across extent %.4g%s)", *s.resolution,
+                          gpu::kCellsPerEdge, typical_edge, extent,
+                          rounding ? ", fewer: cells no finer than the coordinates' rounding this far from the origin"
+                          : want > budget ? ", capped at 16 cells per triangle" : "");
+        } else if (extent > 0 && typical_edge > 0) {
             const double want = kPixelsPerEdge * extent / typical_edge;
             s.resolution = std::clamp(nextPowerOfTwo(want), kMinAutoResolution, kMaxAutoResolution);
-            char buf[160];
             std::snprintf(buf, sizeof buf, "resolution %u (extent %.4g / typical edge %.4g x %.0f px per edge)", *s.resolution, extent,
                           typical_edge, kPixelsPerEdge);
-            why += (why.empty() ? "" : "; ") + std::string(buf);
         } else {
-            s.resolution = kFallbackResolution;
-            why += std::string(why.empty() ? "" : "; ") + "resolution " + std::to_string(kFallbackResolution) +
-                   " (no host geometry or edge length to measure)";
+            s.resolution = reliable ? gpu::kFallbackCells : kFallbackResolution;
+            std::snprintf(buf, sizeof buf, "resolution %u (no extent or typical edge length to measure)", *s.resolution);
         }
+        append(why, buf);
     }
     if (!s.open_epsilon) {
         s.open_epsilon = open_triangles > 0 ? static_cast<float>(kOpenEpsilonPerEdge * open_edge / open_triangles) : 0.0f;
-        if (open_triangles > 0) why += (why.empty() ? "" : "; ") + std::string("open epsilon half the open objects' typical edge");
+        if (open_triangles > 0 && !reliable) append(why, "open epsilon half the open objects' typical edge");
     }
     if (s.coverage == Coverage::Best) {
         s.coverage = context->device().conservative_rasterization ? Coverage::Conservative : Coverage::Dilate;
-        why += (why.empty() ? "" : "; ") + std::string(s.coverage == Coverage::Conservative
-                                                           ? "coverage conservative (the device rasterises conservatively)"
-                                                           : "coverage dilate (no conservative rasterisation on this device)");
+        if (!reliable)
+            append(why, s.coverage == Coverage::Conservative ? "coverage conservative (the device rasterises conservatively)"
+                                                             : "coverage dilate (no conservative rasterisation on this device)");
     }
     if (note) *note = why;
     return s;

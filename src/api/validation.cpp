@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "broadphase.h"
+#include "cells.h"
 #include "core/mesh_rules.hpp"
 #include "vk/device.hpp"
 
@@ -120,11 +121,20 @@ Result<void> checkEngineAddresses(const passes::GpuMesh& m, const GpuMeshDesc& d
 }
 
 Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
+    if (s.method != DetectMethod::Reliable && s.method != DetectMethod::Peeling)
+        return invalid("method " + std::to_string(int(s.method)) + " is not a DetectMethod");
+    const bool reliable = s.method == DetectMethod::Reliable;
     if (s.axes != 1 && s.axes != 3) return invalid("axes must be 1 or 3, not " + std::to_string(s.axes));
+    if (reliable && s.axes != 1) return invalid("the reliable method runs along one direction (axes 1; resolveSettings sets it)");
     const std::uint32_t n = s.resolution.value_or(0);
-    if (n < gpu::kMinResolution || n > gpu::kMaxResolution || (n & (n - 1)) != 0)
+    if (reliable) {
+        if (n < 1 || n > gpu::kCellsMaxResolution)
+            return invalid("resolution " + std::to_string(n) + " is not in [1, " + std::to_string(gpu::kCellsMaxResolution) +
+                           "] (cells per side of the reliable method)");
+    } else if (n < gpu::kMinResolution || n > gpu::kMaxResolution || (n & (n - 1)) != 0) {
         return invalid("resolution " + std::to_string(n) + " is not a power of two in [" + std::to_string(gpu::kMinResolution) + ", " +
                        std::to_string(gpu::kMaxResolution) + "]");
+    }
     if (!s.direction) return invalid("projection direction must be finite and non-zero");
     const auto& d = *s.direction;
     const float dl = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -144,6 +154,7 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         if (!(widest >= gpu::kMinSamplingExtent))
             return Error(ErrorCode::LimitExceeded, "sampling region is narrower than the smallest extent vkcollide can sample (1e-30 world units)");
     }
+    if (reliable) return {};  // coverage and backend shape ray sampling, which it does not do
     if (s.coverage == Coverage::Conservative && !device.conservative_rasterization)
         return Error(ErrorCode::UnsupportedFeature, "conservative coverage needs VK_EXT_conservative_rasterization, which " +
                                                         device.info.name + " lacks (or the adopted device did not enable): use dilation");
@@ -151,6 +162,16 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     // only. Auto falls back to raster; an explicit Compute is refused.
     if (s.coverage != Coverage::Centre && s.backend == SamplingBackend::Compute)
         return Error(ErrorCode::UnsupportedFeature, "thin-triangle coverage (dilate or conservative) needs the raster sampling backend");
+    return {};
+}
+
+Result<void> checkReliableObject(const Transform3x4& transform, float max_abs_position) {
+    // The cell stage's bounds hold below 2^62 (docs/reliable.md, "Assumptions").
+    constexpr float kLimit = 4.611686018427388e18f;
+    for (float t : transform)
+        if (!(std::fabs(t) < kLimit)) return invalid("transform entry " + std::to_string(t) + " is 2^62 or more in magnitude (the reliable method's limit)");
+    if (!(max_abs_position < kLimit))
+        return Error(ErrorCode::InvalidMesh, "has a vertex coordinate of magnitude 2^62 or more (the reliable method's limit)");
     return {};
 }
 

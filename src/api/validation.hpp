@@ -42,9 +42,13 @@ Result<void> checkDeclaredSizes(const GpuMeshDesc& desc, VkDeviceSize vertex_cap
 // Both buffers have device addresses (the description's addresses are more than the offsets).
 Result<void> checkEngineAddresses(const passes::GpuMesh& mesh, const GpuMeshDesc& desc);
 
-// Settings after automatic ones are filled in (resolveSettings): axes, resolution,
-// direction, epsilons, region, and coverage and backend against each other and the device.
+// Settings after automatic ones are filled in (resolveSettings): method, axes, resolution
+// (per method), direction, epsilons, region, and (peeling) coverage and backend against
+// each other and the device.
 Result<void> checkSettings(const DetectSettings& resolved, const vk::Device& device);
+// The reliable method's limit on an object (host meshes' largest |coordinate| is measured
+// when their geometry changes; GPU meshes pass 0 and are checked on the GPU).
+Result<void> checkReliableObject(const Transform3x4& transform, float max_abs_position);
 // The objects of one detection: at least one, fewer than 2^30 triangles in all.
 Result<void> checkScene(std::span<const passes::GpuMesh> meshes);
 

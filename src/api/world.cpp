@@ -9,6 +9,7 @@
 
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
+#include "config.h"
 #include "passes/engine_mesh.hpp"
 #include "passes/mesh_upload.hpp"
 #include "vk/device.hpp"
@@ -83,13 +84,60 @@ void CollisionWorld::Impl::liveMeshes(std::vector<passes::GpuMesh>& meshes, std:
     }
 }
 
+Result<void> CollisionWorld::Impl::syncSource(std::span<const ObjectId> ids) {
+    if (!source_dirty && std::equal(ids.begin(), ids.end(), source_ids.begin(), source_ids.end())) return {};
+    for (ObjectId id : source_ids)
+        if (id < objects.size()) objects[id].source_index = kNoSource;
+    source.clear();
+    source_ids.assign(ids.begin(), ids.end());
+    for (ObjectId id : ids) {
+        Object& o = objects[id];
+        auto added = o.host ? source.addHostMesh(o.host_positions, o.host_indices, o.options.transform)
+                            : source.addGpuMesh(o.gpu.triangle_count);
+        if (!added) return named(id, added.error());
+        o.source_index = *added;
+    }
+    source_dirty = false;
+    return {};
+}
+
+Result<bool> CollisionWorld::Impl::callPairFilter(ObjectId a, ObjectId b) const {
+    std::string what;
+    try {
+        return pair_filter(a, b);
+    } catch (const std::exception& e) {
+        what = std::string(": ") + e.what();
+    } catch (...) {
+    }
+    return Error(ErrorCode::InvalidArgument, "the pair filter threw for objects " + std::to_string(a) + " and " + std::to_string(b) +
+                                                 what + " (it must not throw)");
+}
+
+Result<const passes::ObjectPairMask*> CollisionWorld::Impl::pairMask(std::span<const ObjectId> ids) {
+    if (!pair_filter || ids.size() > gpu::kMaxFilterMaskObjects) return nullptr;
+    if (pair_mask_dirty || pair_mask.objects != ids.size()) {
+        const auto n = static_cast<std::uint32_t>(ids.size());
+        pair_mask.reset(n);
+        pair_mask_dirty = true;  // until every answer is in
+        for (std::uint32_t a = 0; a < n; ++a)
+            for (std::uint32_t b = a + 1; b < n; ++b) {
+                auto answer = callPairFilter(ids[a], ids[b]);
+                if (!answer) return answer.error();
+                if (*answer) pair_mask.allow(a, b);
+            }
+        pair_mask_dirty = false;
+    }
+    return &pair_mask;
+}
+
 CollisionWorld::CollisionWorld(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 CollisionWorld::~CollisionWorld() = default;  // Impl's detection waits for work in flight first
 
 Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context, const WorldOptions& options) {
     auto impl = std::make_unique<Impl>();
     impl->context = &context;
-    auto detection = passes::Detection::create(context.device());
+    // The default method's pipelines now; the other's when a detection first asks for it.
+    auto detection = passes::Detection::create(context.device(), Impl::methodFactory(DetectSettings{}.method));
     if (!detection) return detection.error();
     impl->detection = std::move(*detection);
     impl->pool = std::make_unique<ThreadPool>(options.threads);
@@ -113,6 +161,7 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     o.vertices = std::move(uploaded->buffers[0]);
     o.indices = std::move(uploaded->buffers[1]);
     Impl::measureHost(o, mesh.positions, mesh.indices);
+    o.host_positions = mesh.positions;
     o.host_indices = mesh.indices;
     w.objects.push_back(std::move(o));
     w.objectsChanged();
@@ -160,6 +209,8 @@ Result<void> CollisionWorld::setTransform(ObjectId id, const Transform3x4& t) {
     if ((*o)->host)
         if (auto ok = validation::checkWorldRange((*o)->box, t); !ok) return w.named(id, ok.error());
     (*o)->options.transform = t;
+    if (!w.source_dirty && (*o)->source_index != Impl::kNoSource)
+        if (auto ok = w.source.setTransform((*o)->source_index, t); !ok) return w.named(id, ok.error());
     return {};
 }
 
@@ -182,11 +233,16 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     if (auto ok = validation::checkWorldRange(validation::boxOf(positions), o.options.transform); !ok) return w.named(id, ok.error());
     std::memcpy(o.vertices.mapped(), positions.data(), positions.size_bytes());
     o.vertices.flush();
+    // Same count: the source's view of host_positions stays valid.
+    std::memcpy(o.host_positions.data(), positions.data(), positions.size_bytes());
     Impl::measureHost(o, positions, o.host_indices);
     return {};
 }
 
-void CollisionWorld::setPairFilter(std::function<bool(ObjectId, ObjectId)> may_collide) { impl_->pair_filter = std::move(may_collide); }
+void CollisionWorld::setPairFilter(std::function<bool(ObjectId, ObjectId)> may_collide) {
+    impl_->pair_filter = std::move(may_collide);
+    impl_->pair_mask_dirty = true;
+}
 
 std::size_t CollisionWorld::objectCount() const noexcept {
     return static_cast<std::size_t>(std::count_if(impl_->objects.begin(), impl_->objects.end(), [](const auto& o) { return o.alive; }));

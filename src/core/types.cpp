@@ -10,6 +10,14 @@ const char* toString(PackingMethod method) noexcept {
     return "?";
 }
 
+const char* toString(DetectMethod method) noexcept {
+    switch (method) {
+        case DetectMethod::Reliable: return "reliable";
+        case DetectMethod::Peeling: return "peeling";
+    }
+    return "?";
+}
+
 const char* toString(Coverage coverage) noexcept {
     switch (coverage) {
         case Coverage::Centre: return "centre";

@@ -33,10 +33,14 @@ CoreBuffers addCoreRows(BufferTable& t) {
 }
 
 // The rules validation.cpp checks at the API, asserted here.
-[[maybe_unused]] bool meetsPreconditions(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s, bool conservative) {
+[[maybe_unused]] bool meetsPreconditions(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s, bool conservative,
+                                         const MethodTraits& traits) {
     const std::uint32_t n = s.resolution;
     const float dl = s.direction[0] * s.direction[0] + s.direction[1] * s.direction[1] + s.direction[2] * s.direction[2];
-    bool ok = n >= gpu::kMinResolution && n <= gpu::kMaxResolution && (n & (n - 1)) == 0 && dl > 0 && std::isfinite(dl) &&
+    const bool resolution_ok = traits.power_of_two_resolution
+                                   ? n >= gpu::kMinResolution && n <= gpu::kMaxResolution && (n & (n - 1)) == 0
+                                   : n >= 1 && n <= gpu::kMaxResolution;
+    bool ok = resolution_ok && dl > 0 && std::isfinite(dl) &&
               !meshes.empty() && s.open_epsilon >= 0 && std::isfinite(s.open_epsilon) && s.closed_epsilon >= 0 &&
               std::isfinite(s.closed_epsilon) && s.coverage != Coverage::Best && (s.coverage != Coverage::Conservative || conservative);
     if (s.region)
@@ -48,7 +52,23 @@ CoreBuffers addCoreRows(BufferTable& t) {
         for (float t : m.transform) ok = ok && std::isfinite(t);
         total += m.triangle_count;
     }
+    if (s.pair_mask) ok = ok && s.pair_mask->objects == meshes.size();
     return ok && total < gpu::kMaxTriangles;
+}
+
+// The world AABB of a box in basis coordinates (the bounds pass's measure): each basis
+// axis contributes its interval along its unit vector.
+std::optional<std::array<float, 6>> worldBox(const ProjectionBasis& basis, const BasisBounds& b) {
+    const std::array<float, 3>* axes[3] = {&basis.u, &basis.v, &basis.d};
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) {
+        if (!(b.lo[k] <= b.hi[k]) || !std::isfinite(b.lo[k]) || !std::isfinite(b.hi[k])) return std::nullopt;
+        for (int w = 0; w < 3; ++w) {
+            const double x0 = double((*axes[k])[w]) * b.lo[k], x1 = double((*axes[k])[w]) * b.hi[k];
+            lo[w] += std::min(x0, x1), hi[w] += std::max(x0, x1);
+        }
+    }
+    return std::array<float, 6>{float(lo[0]), float(lo[1]), float(lo[2]), float(hi[0]), float(hi[1]), float(hi[2])};
 }
 
 }  // namespace
@@ -62,6 +82,8 @@ std::string describe(const ObjectFault& f) {
             return "triangle " + std::to_string(f.triangle) +
                    " has a vertex position that is NaN or infinite, or beyond +-1e30 after the object's transform (the sampling range)" +
                    affected;
+            return "triangle " + std::to_string(f.triangle) +
+                   " has a position, transform entry or world coordinate of magnitude 2^62 or more (the reliable method's limit)";
     }
     return "triangle " + std::to_string(f.triangle) + ": unknown problem";
 }
@@ -91,7 +113,7 @@ BroadPhase::~BroadPhase() {
 }
 
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
-    assert(meetsPreconditions(meshes, s, device_->conservative_rasterization));
+    assert(meetsPreconditions(meshes, s, device_->conservative_rasterization, method_->traits()));
     // Work an earlier run gave up on (Timeout) may still read these buffers.
     if (auto ok = executor_.settle(s.timeout_ns); !ok) {
         if (ok.error().code() != ErrorCode::Timeout) return ok.error();
@@ -106,8 +128,10 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     gpu::Frame fr{};
     if (auto ok = method_->prepare(s, shape, fr); !ok) return ok.error();
 
-    // Objects and the frame description.
-    auto* objs = static_cast<gpu::ObjectGpu*>(table_.buffer(core_.objects).mapped());
+    // Objects and the frame description (vectors reused run to run: no allocation in a
+    // steady scene).
+    std::vector<gpu::ObjectGpu>& objs = run_.objects;
+    objs.resize(shape.objects);
     std::uint32_t base = 0;
     for (std::uint32_t i = 0; i < shape.objects; ++i) {
         const GpuMesh& m = meshes[i];
@@ -124,6 +148,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
         objs[i] = o;
         base += m.triangle_count;
     }
+    std::memcpy(table_.buffer(core_.objects).mapped(), objs.data(), objs.size() * sizeof(gpu::ObjectGpu));
     table_.buffer(core_.objects).flush();
     table_.fillFrame(fr);
     fr.resolution = s.resolution;
@@ -144,16 +169,16 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     std::memcpy(table_.buffer(core_.frame).mapped(), &fr, sizeof(fr));
     table_.buffer(core_.frame).flush();
 
-    run_ = Prepared{};
     run_.frame = fr;
     run_.settings = s;
     run_.meshes.assign(meshes.begin(), meshes.end());
     run_.any_gpu_check = std::any_of(meshes.begin(), meshes.end(), [](const GpuMesh& m) { return m.check_on_gpu; });
+    run_.first = BroadPhaseResult{};
     return {};
 }
 
 RunView BroadPhase::view() const {
-    return {run_.settings, run_.meshes, run_.frame, table_.buffer(core_.frame).address(), run_.any_gpu_check};
+    return {run_.settings, run_.meshes, run_.frame, table_.buffer(core_.frame).address(), run_.any_gpu_check, run_.objects};
 }
 
 void BroadPhase::record(graph::Graph& g, bool measure, bool main) {
@@ -227,6 +252,11 @@ void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionRepo
 
 Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
+    if (!method_->traits().measures) {
+        // Nothing to measure: one submission.
+        if (auto ok = submit(meshes, s, 0); !ok) return ok.error();
+        return collect();
+    }
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
 
     // Submission 1: front and measurement; the method reads the header.
@@ -253,7 +283,6 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
     if (auto ok = method_->predict(view(), layers); !ok) return ok.error();
-    run_.first = BroadPhaseResult{};
     graph::Graph g;
     record(g, true, true);
     if (auto ok = executor_.submit(g, s.timeout_ns); !ok) return ok.error();
@@ -281,7 +310,15 @@ Result<BroadPhaseResult> BroadPhase::collect() {
     const BroadPhaseSettings& s = run_.settings;
     result.projection = s.region ? regionProjection(basis, *s.region, s.open_epsilon, s.closed_epsilon)
                                  : fitProjection(basis, boundsFromHeader(h), s.fit_margin, s.open_epsilon, s.closed_epsilon);
-    if (auto ok = method_->collect(view(), h, result); !ok) return ok.error();
+    if (!s.region) result.scene_box = worldBox(basis, boundsFromHeader(h));
+    if (auto ok = method_->collect(view(), h, result); !ok) {
+        if (ok.error().code() == ErrorCode::InvalidMesh)
+            if (const std::optional<ObjectFault> f = method_->fault(); f && f->object < run_.meshes.size()) {
+                faults_.push_back(*f);
+                return Error(ErrorCode::InvalidMesh, "object " + std::to_string(f->object) + ": " + describe(*f));
+            }
+        return ok.error();
+    }
     result.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return result;
 }

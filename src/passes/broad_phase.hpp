@@ -1,10 +1,12 @@
 // The GPU broad phase on the render graph: a common front (clear, GPU input checks, bounds,
-// fit), a method's stages (today PeelingMethod, the paper's passes 1-4: sampling, ray
-// merging, primitive separation, packing), then the header readback. docs/rooms.md maps
+// fit), a method's stages (PeelingMethod, the paper's passes 1-4: sampling, ray merging,
+// primitive separation, packing; or ReliableMethod, the cell pair stage), then the header
+// readback. docs/rooms.md maps
 // each stage to its file and each buffer to its row.
 //
 // run() makes two submissions with a host wait between them: the first measures (depth
-// complexity), the method reads it, the second does the rest. submit() records everything
+// complexity), the method reads it, the second does the rest (one submission for a method
+// that measures nothing). submit() records everything
 // in one submission from a predicted depth. Both go through one recording path (record()).
 //
 // Preconditions (the API checks them; src/api/validation.cpp): settings as documented in
@@ -61,11 +63,12 @@ public:
     // collecting it): its GPU work is settled like a timed-out one.
     void abandon() noexcept { pending_ = false; }
     [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
+    MethodTraits traits() const noexcept { return method_->traits(); }
     // After an InvalidMesh error from the GPU input check: what it found, per object (run
     // indices); at most one per kind of problem, so other objects may be bad too.
     const std::vector<ObjectFault>& faults() const noexcept { return faults_; }
     // Bytes of the GPU buffers the broad phase holds (its own, not the meshes').
-    std::uint64_t memoryBytes() const noexcept { return table_.bytes(); }
+    std::uint64_t memoryBytes() const noexcept { return table_.bytes() + method_->memoryBytes(); }
     // The projection the last run sampled with, as the GPU holds it (the fit's output, or
     // the caller's region as uploaded). For tests: BroadPhaseResult::projection is the host's.
     gpu::Projection gpuProjection() const;
@@ -84,7 +87,6 @@ private:
     static void addTimings(BroadPhaseResult& io_result, const graph::ExecutionReport& report);
 
     vk::Device* device_;
-    graph::Executor executor_;
     BufferTable table_;
     CoreBuffers core_{};
     std::unique_ptr<CommonStages> common_;
@@ -96,9 +98,13 @@ private:
         gpu::Frame frame{};
         BroadPhaseSettings settings;
         std::vector<GpuMesh> meshes;
+        std::vector<gpu::ObjectGpu> objects;  // as uploaded
         bool any_gpu_check = false;
         BroadPhaseResult first;  // timings of a separate measuring submission
     } run_;
+    // Declared last, destroyed first: it waits for work in flight (a wait that timed out
+    // leaves it in flight) before the buffers and the method's buffers are freed.
+    graph::Executor executor_;
 };
 
 }  // namespace vkcollide::passes

@@ -8,13 +8,16 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan_core.h>
 
 #include "broadphase.h"
 #include "graph/executor.hpp"
+#include "passes/cells/cell_pairs_stats.hpp"
 #include "passes/sampling/sampling_types.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/types.hpp"
@@ -38,11 +41,42 @@ struct GpuMesh {
     Transform3x4 transform = kIdentity3x4;  // row-major 3x4 object->world
     bool open = false;
     // Geometry only the GPU holds (an engine's buffers): each run checks its indices and
-    // positions there (host meshes are checked before upload).
+    // positions there (host meshes are checked before upload). Methods that form pairs on
+    // the GPU also download the world vertices of its triangles that are in a pair.
     bool check_on_gpu = false;
-    // Its own triangles may collide with each other. Only depth-aware separation reads it
-    // (pairs of one object that may not collide are no near pairs); true is conservative.
+    // Its own triangles may collide with each other: depth-aware separation makes no near
+    // pair of two of them when off, methods that form pairs on the GPU form none (the
+    // paper's method leaves that to the narrow phase). true is conservative.
     bool self_collision = true;
+};
+
+// Which pairs of different objects may collide, over a run's objects 0..n-1: bit
+// a * n + b (a < b) set when they may. Computed when objects or the filter change, never
+// per run (the world's setPairFilter contract); read by methods that form pairs on the GPU.
+struct ObjectPairMask {
+    std::uint32_t objects = 0;
+    std::vector<std::uint32_t> bits;  // (objects^2 + 31) / 32 words
+
+    void reset(std::uint32_t n) {
+        objects = n;
+        bits.assign((std::uint64_t(n) * n + 31) / 32, 0u);
+    }
+    void allow(std::uint32_t a, std::uint32_t b) {
+        const std::uint64_t bit = std::uint64_t(a) * objects + b;
+        bits[bit >> 5] |= 1u << (bit & 31);
+    }
+    bool allows(std::uint32_t a, std::uint32_t b) const {
+        if (a > b) std::swap(a, b);
+        const std::uint64_t bit = std::uint64_t(a) * objects + b;
+        return (bits[bit >> 5] >> (bit & 31)) & 1u;
+    }
+    // The mask of the objects `keep` (indices into this mask's objects, ascending).
+    void subset(const ObjectPairMask& from, std::span<const std::uint32_t> keep) {
+        reset(static_cast<std::uint32_t>(keep.size()));
+        for (std::uint32_t a = 0; a < keep.size(); ++a)
+            for (std::uint32_t b = a + 1; b < keep.size(); ++b)
+                if (from.allows(keep[a], keep[b])) allow(a, b);
+    }
 };
 
 struct BroadPhaseSettings {
@@ -70,6 +104,9 @@ struct BroadPhaseSettings {
     // its own box meets them in all three, and records carry the kept depth range. Off:
     // the paper's separation (screen boxes only).
     bool depth_aware = false;
+    // Methods that form pairs on the GPU: which object pairs may collide (null: all). Must
+    // outlive the run (until collect); its object count is the run's.
+    const ObjectPairMask* pair_mask = nullptr;
 };
 
 // A problem the GPU input check found in one object (kObjectCheckOnGpu meshes), as data:
@@ -78,6 +115,8 @@ struct ObjectFault {
     enum class Kind : std::uint8_t {
         IndexOutOfRange,    // an index >= the vertex count
         NonFinitePosition,  // a vertex position that is NaN or infinite, or beyond +-kMaxWorldCoordinate in world space
+        OutOfRange,         // a position, transform entry or world coordinate not below 2^62
+                            // (found by the reliable method's cell stage, docs/reliable.md)
     };
     std::uint32_t object = 0;              // index in the run's meshes
     Kind kind = Kind::IndexOutOfRange;
@@ -90,7 +129,16 @@ struct ObjectFault {
 std::string describe(const ObjectFault& fault);
 
 struct BroadPhaseResult {
+    // The paper's method: the kept triangles.
     std::vector<CandidateTriangle> records;  // in global triangle order
+    // Methods that form pairs on the GPU (has_pairs): candidate pairs of global triangle ids
+    // (the run's objects in order; unsorted, rarely repeated) and, for every triangle of a
+    // check_on_gpu mesh in a pair, its ids and world vertices. Views of the method's
+    // host-visible readback memory: valid until the broad phase's next run.
+    bool has_pairs = false;
+    std::span<const CandidatePair> pairs;
+    std::span<const GpuTriangle> gpu_triangles;
+    CellPairsStats cells;                    // the cell pair stage's counters (has_pairs)
     std::vector<std::uint8_t> ray_image;     // N*N, row-major, 1 = collision ray (if kept)
     // With depth_aware and keep_ray_image: each ray's depth interval (lo, hi) as its bundle
     // got it, row-major (lo > hi: none; +-3.4e38: every depth).
@@ -114,6 +162,11 @@ struct BroadPhaseResult {
     // GPU time per stage (passes/stage.hpp; the front's clear, checks and fit count as
     // sampling, as in the paper), and the host's reading of the results.
     double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
+    // The cell pair stage (Stage::Footprints, Pairing, Filtering).
+    double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;
+    // The scene's world box as the bounds pass measured it (min x, y, z, max x, y, z):
+    // every object, engine meshes included; empty with a caller's region.
+    std::optional<std::array<float, 6>> scene_box;
 };
 
 }  // namespace vkcollide::passes

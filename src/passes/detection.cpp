@@ -7,12 +7,12 @@
 
 namespace vkcollide::passes {
 
-Result<std::unique_ptr<Detection>> Detection::create(vk::Device& device) {
+Result<std::unique_ptr<Detection>> Detection::create(vk::Device& device, MethodFactory method) {
     std::unique_ptr<Detection> d(new Detection(device));
-    auto bp = BroadPhase::create(device);
+    auto bp = BroadPhase::create(device, method);
     if (!bp) return bp.error();
     d->broads_[0] = std::move(*bp);
-    d->broad_methods_[0] = PeelingMethod::create;
+    d->broad_methods_[0] = method;
     return d;
 }
 
@@ -38,6 +38,7 @@ std::uint64_t Detection::memoryBytes() const noexcept {
     std::uint64_t n = 0;
     for (const auto& bp : broads_)
         if (bp) n += bp->memoryBytes();
+    if (spare_) n += spare_->memoryBytes();
     return n;
 }
 
@@ -49,6 +50,12 @@ void Detection::selectRunObjects() {
         if (std::any_of(excluded_.begin(), excluded_.end(), [&](const ObjectFault& f) { return f.object == i; })) continue;
         run_meshes_.push_back(meshes_[i]);
         run_objects_.push_back(i);
+    }
+    // The pair mask follows the objects left in (rebuilt only in frames that leave one out).
+    run_pair_mask_ = settings_.broad.pair_mask;
+    if (run_pair_mask_ && run_meshes_.size() != meshes_.size()) {
+        subset_mask_.subset(*settings_.broad.pair_mask, run_objects_);
+        run_pair_mask_ = &subset_mask_;
     }
 }
 
@@ -71,16 +78,30 @@ Result<void> Detection::startAxes(bool measure) {
     for (std::uint32_t k = 0; k < axes_; ++k) {
         failed_axis_ = k;
         if (!broads_[k] || broad_methods_[k] != settings_.method) {
-            broads_[k].reset();
-            auto bp = BroadPhase::create(*device_, settings_.method);
-            if (!bp) return bp.error();
-            broads_[k] = std::move(*bp);
-            broad_methods_[k] = settings_.method;
             depth_known_[k] = false;
+            if (k == 0 && spare_ && spare_method_ == settings_.method) {
+                std::swap(broads_[0], spare_);
+                std::swap(broad_methods_[0], spare_method_);
+            } else {
+                if (k == 0 && broads_[0]) {
+                    spare_ = std::move(broads_[0]);
+                    spare_method_ = broad_methods_[0];
+                }
+                broads_[k].reset();
+                auto bp = BroadPhase::create(*device_, settings_.method);
+                if (!bp) return bp.error();
+                broads_[k] = std::move(*bp);
+                broad_methods_[k] = settings_.method;
+            }
         }
+        if (axes_ > 1 && broads_[k]->traits().pairs)
+            return Error(ErrorCode::InvalidArgument, "three sampling directions unite triangle records: the method asked for returns "
+                                                     "pairs and runs along one direction (axes = 1)");
         BroadPhaseSettings b = settings_.broad;
         b.direction = directions_[k];
-        if (measure || !depth_known_[k]) {
+        b.pair_mask = run_pair_mask_;
+        // A method that measures nothing is never waited for here unless asked (measure).
+        if (measure || (!depth_known_[k] && broads_[k]->traits().measures)) {
             auto r = broads_[k]->run(run_meshes_, b);
             if (!r) return r.error();
             ready_[k] = std::move(*r);

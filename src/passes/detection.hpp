@@ -2,7 +2,8 @@
 // directions, started (measured, or from the depth the last detection measured) and
 // collected; engine meshes that fail the GPU input check are left out and the run repeated
 // (BadObjectPolicy::Exclude), or the detection fails (Fail). With three directions the
-// candidates are united in world space (axis_union.hpp).
+// candidates are united in world space (axis_union.hpp). A method that returns pairs
+// (ReliableMethod) runs along one direction; its pairs are the candidates.
 //
 // Objects are named by their index in the span given to start(); the caller (the API) maps
 // indices to its objects and words the errors (failure() holds the findings as data).
@@ -23,7 +24,7 @@ namespace vkcollide::passes {
 
 struct DetectionSettings {
     BroadPhaseSettings broad;  // `direction` is the first direction
-    std::uint32_t axes = 1;    // 1, or 3: also the first direction's image axes u and v
+    std::uint32_t axes = 1;    // 1, or 3: also the first direction's image axes u and v (record methods only)
     BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
     // The broad-phase method every direction runs (a change recreates the broad phases).
     MethodFactory method = PeelingMethod::create;
@@ -39,12 +40,14 @@ struct DetectionResult {
     std::vector<CandidateTriangle> united;        // with several directions
     // What the narrow phase tests: the united records, or the one direction's.
     std::span<const CandidateTriangle> candidates() const { return axes.size() > 1 ? std::span<const CandidateTriangle>(united) : axes[0].records; }
+    // A method that returns pairs ran: axes[0].pairs (and gpu_triangles) are the candidates.
+    bool hasPairs() const { return axes.size() == 1 && axes[0].has_pairs; }
 };
 
 class Detection {
 public:
-    // Creates the first direction's broad phase (its pipelines) now.
-    static Result<std::unique_ptr<Detection>> create(vk::Device& device);
+    // Creates the first direction's broad phase (its pipelines) now, with `method`.
+    static Result<std::unique_ptr<Detection>> create(vk::Device& device, MethodFactory method = PeelingMethod::create);
     ~Detection();
     Detection(const Detection&) = delete;
     Detection& operator=(const Detection&) = delete;
@@ -92,6 +95,10 @@ private:
     // One broad phase per direction (the second and third only for three axes).
     std::array<std::unique_ptr<BroadPhase>, 3> broads_;
     std::array<MethodFactory, 3> broad_methods_{};  // the method each was created with
+    // The first direction's broad phase of the method used before the current one, kept
+    // so that alternating methods does not create pipelines again.
+    std::unique_ptr<BroadPhase> spare_;
+    MethodFactory spare_method_ = nullptr;
     std::array<std::uint32_t, 3> last_depth_{};
     std::array<bool, 3> depth_known_{};
     // The detection in flight.
@@ -102,6 +109,8 @@ private:
     std::vector<GpuMesh> meshes_;              // as given
     std::vector<std::uint32_t> run_objects_;   // broad-phase index -> index in meshes_
     std::vector<GpuMesh> run_meshes_;          // meshes_ without the excluded ones
+    const ObjectPairMask* run_pair_mask_ = nullptr;  // settings' mask, or subset_mask_ when objects are left out
+    ObjectPairMask subset_mask_;
     std::vector<ObjectFault> excluded_;
     std::array<bool, 3> axis_pending_{};                              // submitted, to collect
     std::array<std::optional<BroadPhaseResult>, 3> ready_;            // measured runs, complete

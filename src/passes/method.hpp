@@ -9,8 +9,9 @@
 // submits the main passes; submit() records all of it in one submission after predict().
 // BroadPhase::record is the one recording path for both.
 //
-// PeelingMethod (the paper: sampling, merging, separation, packing) is the one method
-// today. To add one: a class implementing this interface in its own folder under
+// PeelingMethod (the paper: sampling, merging, separation, packing) returns triangle
+// records; ReliableMethod (passes/cells/: the cell pair stage) measures nothing, runs in one
+// submission and returns candidate pairs (BroadPhaseResult::has_pairs). To add one: a class implementing this interface in its own folder under
 // src/passes/ (with a sources.cmake there), its buffers added as rows of the BufferTable
 // in its factory, its own gpu::Frame extension behind gpu::Frame::method if its shaders
 // need one; BroadPhase::create(device, yourFactory) runs it (docs/rooms.md).
@@ -18,6 +19,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 
 #include "passes/buffer_table.hpp"
@@ -30,9 +32,23 @@ struct CoreBuffers {
     BufferId frame, objects, projection, header, header_readback;
 };
 
+// What the broad phase needs to know about a method before a run.
+struct MethodTraits {
+    // It records measuring passes that run() waits for before the main ones (afterMeasure);
+    // without, run() is one submission (predict(), then collect()).
+    bool measures = true;
+    // BroadPhaseSettings::resolution must be a power of two in [kMinResolution,
+    // kMaxResolution]; otherwise any value in [1, kMaxResolution].
+    bool power_of_two_resolution = true;
+    // Its results are candidate pairs (BroadPhaseResult::has_pairs), not triangle records:
+    // one direction only (the multi-axis union unites records).
+    bool pairs = false;
+};
+
 class BroadPhaseMethod {
 public:
     virtual ~BroadPhaseMethod() = default;
+    virtual MethodTraits traits() const noexcept { return {}; }
     // Per run, after the table's buffers are reserved and before the frame is uploaded:
     // per-run choices, the method's own resources, and its fields of `io_frame`.
     [[nodiscard]] virtual Result<void> prepare(const BroadPhaseSettings& settings, const RunShape& shape, gpu::Frame& io_frame) = 0;
@@ -49,6 +65,11 @@ public:
     virtual void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const = 0;
     // After the last submission: the method's outputs and statistics into `io_result`.
     [[nodiscard]] virtual Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) = 0;
+    // After collect() failed with InvalidMesh: the object (run index) the method's own
+    // input checks blamed, if any (the broad phase adds it to its ObjectFaults).
+    virtual std::optional<ObjectFault> fault() const { return std::nullopt; }
+    // Bytes of GPU memory the method holds outside the table.
+    virtual std::uint64_t memoryBytes() const noexcept { return 0; }
 };
 
 // Creates a method on `device`, adding its rows to `io_table` (after the core rows).

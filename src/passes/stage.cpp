@@ -14,6 +14,9 @@ const char* toString(Stage stage) noexcept {
         case Stage::Separation: return "separation";
         case Stage::Packing: return "packing";
         case Stage::Readback: return "readback";
+        case Stage::Footprints: return "footprints";
+        case Stage::Pairing: return "pairing";
+        case Stage::Filtering: return "filtering";
     }
     return "?";
 }
@@ -25,6 +28,9 @@ void addStageTime(BroadPhaseResult& r, const graph::PassTiming& pass) {
         case Stage::Merging: r.merging_ms += pass.gpu_ms; break;
         case Stage::Separation: r.separation_ms += pass.gpu_ms; break;
         case Stage::Packing: r.packing_ms += pass.gpu_ms; break;
+        case Stage::Footprints: r.footprints_ms += pass.gpu_ms; break;
+        case Stage::Pairing: r.pairing_ms += pass.gpu_ms; break;
+        case Stage::Filtering: r.filtering_ms += pass.gpu_ms; break;
         case Stage::None:
         case Stage::Readback: break;
     }

@@ -26,6 +26,10 @@ enum class Stage : graph::StageTag {
     Separation,  // kept boxes per triangle (pass 3)
     Packing,     // compaction into the readback buffer (pass 4)
     Readback,    // copies the host reads
+    // The cell pair stage (ReliableMethod, passes/cells/):
+    Footprints,  // setup, big triangles, scan, fill: every triangle in the cells it may touch
+    Pairing,     // the sweep of every cell: candidate pairs
+    Filtering,   // canonical-cell dedupe, the double-precision filter, engine triangles' vertices
 };
 const char* toString(Stage stage) noexcept;
 // Adds one pass's GPU time to its stage's field of `io_result`.
@@ -43,6 +47,7 @@ struct RunView {
     const gpu::Frame& frame;  // as uploaded
     VkDeviceAddress frame_address = 0;
     bool any_gpu_check = false;  // some mesh has check_on_gpu
+    std::span<const gpu::ObjectGpu> objects;  // the meshes as uploaded (triangle bases, transforms)
 };
 
 // The table's buffers as resources of one graph (BufferTable::import); invalid ids for

@@ -182,7 +182,7 @@ TEST_CASE("vkcollide detect: errors name the option and the problem", "[cli][gpu
         {"--open 1", 2, "detect needs at least one scene file"},
         {a + " --resolution", 1, "--resolution needs a value (N)"},
         {a + " --resolution many", 1, "--resolution needs a number from 0 to 4294967295, got 'many'"},
-        {a + " --resolution 100", 1, "--resolution 100: resolution 100 is not a power of two"},
+        {a + " --method peeling --resolution 100", 1, "--resolution 100: resolution 100 is not a power of two"},
         {a + " --axes 2", 1, "--axes 2: axes must be 1 or 3"},
         {a + " --direction 1,0", 1, "--direction needs 3 comma-separated numbers, got 2"},
         {a + " --direction 0,0,0", 1, "--direction 0,0,0: projection direction must be finite and non-zero"},

@@ -101,10 +101,11 @@ TEST_CASE("vkcollide detect writes the exact pairs as global triangle indices", 
         CHECK(exact);  // precision 100 %
         found += exact;
     }
-    CHECK(double(found) / double(expected.size()) >= 0.99);  // recall at 256² (see recall_tests.cpp)
+    CHECK(found == expected.size());  // the reliable method (default): every pair
     const std::string stats = readText(json);
     CHECK(stats.find("\"positive_tests\": " + std::to_string(got.size())) != std::string::npos);
     CHECK(stats.find("\"resolution\": 256") != std::string::npos);
+    CHECK(stats.find("\"method\": \"reliable\"") != std::string::npos);
     CHECK(stats.find("\"objects\": [\"sphere-a\", \"sphere-b\", \"third\", \"fourth\"]") != std::string::npos);
     fs::remove_all(dir);
 }
@@ -120,7 +121,7 @@ TEST_CASE("vkcollide detect names bad input and bad options", "[cli][gpu]") {
     CHECK(runCli("detect --resolution", log) != 0);
     CHECK(runCli("", log) != 0);
     writeText(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    CHECK(runCli("detect " + (dir / "tri.obj").string() + " --resolution 100", log) != 0);
+    CHECK(runCli("detect " + (dir / "tri.obj").string() + " --method peeling --resolution 100", log) != 0);
     CHECK(readText(log).find("power of two") != std::string::npos);
     CHECK(runCli("detect " + (dir / "tri.obj").string() + " --bogus", log) != 0);
     CHECK(runCli("detect " + (dir / "tri.obj").string(), log) == 0);

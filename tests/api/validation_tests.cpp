@@ -92,10 +92,19 @@ TEST_CASE("detection settings are refused at the API, naming the rule", "[api][g
         {"axes", [](DetectSettings& s) { s.axes = 2; }, ErrorCode::InvalidArgument, "axes must be 1 or 3"},
         {"compute with dilation", [](DetectSettings& s) { s.coverage = Coverage::Dilate, s.backend = SamplingBackend::Compute; },
          ErrorCode::UnsupportedFeature, "raster sampling backend"},
+        // The reliable method: cells per side, any count in [1, 16384].
+        {"cells", [](DetectSettings& s) { s.method = DetectMethod::Reliable, s.resolution = 0; }, ErrorCode::InvalidArgument,
+         "not in [1, 16384]"},
+        {"cells too many", [](DetectSettings& s) { s.method = DetectMethod::Reliable, s.resolution = 16385; }, ErrorCode::InvalidArgument,
+         "cells per side"},
+        {"reliable direction", [](DetectSettings& s) { s.method = DetectMethod::Reliable, s.direction = std::array<float, 3>{0, 0, 0}; },
+         ErrorCode::InvalidArgument, "direction"},
+        {"method", [](DetectSettings& s) { s.method = static_cast<DetectMethod>(5); }, ErrorCode::InvalidArgument, "DetectMethod"},
     };
     for (const Bad& b : bad) {
         INFO(b.what);
         DetectSettings s;
+        s.method = DetectMethod::Peeling;  // the paper's rules unless the case says otherwise
         b.spoil(s);
         auto r = (*world)->detect(s);
         REQUIRE_FALSE(r);
@@ -108,6 +117,12 @@ TEST_CASE("detection settings are refused at the API, naming the rule", "[api][g
         CHECK_FALSE((*world)->pending());
     }
     CHECK((*world)->detect());  // still usable
+    // What only shapes the paper's ray sampling does not concern the reliable method.
+    DetectSettings reliable;
+    reliable.resolution = 100;
+    reliable.coverage = Coverage::Dilate;
+    reliable.backend = SamplingBackend::Compute;
+    CHECK((*world)->detect(reliable));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
@@ -151,4 +166,7 @@ TEST_CASE("GPU check findings are worded from data", "[api][validation]") {
     passes::ObjectFault nan{0, passes::ObjectFault::Kind::NonFinitePosition, 1, 9, 12};
     CHECK(passes::describe(nan) == "triangle 1 has a vertex position that is NaN or infinite, or beyond +-1e30 after the object's "
                                    "transform (the sampling range) (9 triangles affected)");
+    passes::ObjectFault far{2, passes::ObjectFault::Kind::OutOfRange, 4, 1, 30};
+    CHECK(passes::describe(far) ==
+          "triangle 4 has a position, transform entry or world coordinate of magnitude 2^62 or more (the reliable method's limit)");
 }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "api/engine_copy.hpp"
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/test_scenes.hpp"
@@ -41,52 +42,17 @@ std::vector<TrianglePair> referencePairs(const TestScene& scene) {
     return *ref;
 }
 
+// The paper's method, whose statistics (rays, layers, records) these tests check; the
+// reliable method has its own tests (reliable_tests.cpp).
 DetectSettings fixedSettings(std::uint32_t resolution) {
     DetectSettings s;
+    s.method = DetectMethod::Peeling;
     s.resolution = resolution;
     s.direction = std::array<float, 3>{0.15f, -0.2f, 1.0f};
     return s;
 }
 
 bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
-
-// An engine-owned copy of a mesh: positions in a strided vertex buffer, 16- or 32-bit indices.
-struct EngineMesh {
-    vk::Buffer vertices, indices;
-    GpuMeshDesc desc;
-};
-
-EngineMesh engineCopy(vk::Device& dev, const HostMesh& m, std::uint32_t stride, VkFormat format, bool index16) {
-    EngineMesh e;
-    auto vb = vk::Buffer::create(dev, m.positions.size() * stride, 0, vk::MemoryKind::Upload, "engine-vertices");
-    REQUIRE(vb);
-    auto* dst = static_cast<std::uint8_t*>(vb->mapped());
-    std::memset(dst, 0, m.positions.size() * stride);
-    for (std::size_t i = 0; i < m.positions.size(); ++i) std::memcpy(dst + i * stride, &m.positions[i], 12);
-    vb->flush();
-    const std::size_t index_bytes = index16 ? (m.indices.size() * 2 + 3) / 4 * 4 : m.indices.size() * 4;
-    auto ib = vk::Buffer::create(dev, index_bytes, 0, vk::MemoryKind::Upload, "engine-indices");
-    REQUIRE(ib);
-    if (index16) {
-        auto* idx = static_cast<std::uint16_t*>(ib->mapped());
-        for (std::size_t k = 0; k < m.indices.size(); ++k) idx[k] = static_cast<std::uint16_t>(m.indices[k]);
-    } else {
-        std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
-    }
-    ib->flush();
-    e.desc.vertex_buffer = vb->handle();
-    e.desc.vertex_buffer_size = vb->size();
-    e.desc.vertex_stride = stride;
-    e.desc.vertex_count = static_cast<std::uint32_t>(m.positions.size());
-    e.desc.position_format = format;
-    e.desc.index_buffer = ib->handle();
-    e.desc.index_buffer_size = ib->size();
-    e.desc.index_type = index16 ? VK_INDEX_TYPE_UINT16 : VK_INDEX_TYPE_UINT32;
-    e.desc.index_count = static_cast<std::uint32_t>(m.indices.size());
-    e.vertices = std::move(*vb);
-    e.indices = std::move(*ib);
-    return e;
-}
 
 }  // namespace
 
@@ -354,10 +320,17 @@ TEST_CASE("bad input gets an error that names the object and the problem", "[api
     REQUIRE(ok);
     CHECK_FALSE(world->setTransform(*ok + 1, {}));
     DetectSettings s;
+    s.method = DetectMethod::Peeling;
     s.resolution = 100;
     auto bad_res = world->detect(s);
     REQUIRE_FALSE(bad_res);
     CHECK(mentions(bad_res.error(), "power of two"));
+    s.method = DetectMethod::Reliable;  // cells per side: any count up to 16384
+    CHECK(world->detect(s));
+    s.resolution = 16385;
+    bad_res = world->detect(s);
+    REQUIRE_FALSE(bad_res);
+    CHECK(mentions(bad_res.error(), "16384"));
     CHECK(world->detect());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
@@ -368,9 +341,10 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     auto cloth = clothThroughSphere();
     REQUIRE(cloth);
     addScene(*world, *cloth);
-    auto s = world->resolveSettings();
+    const DetectSettings paper{.method = DetectMethod::Peeling};
+    auto s = world->resolveSettings(paper);
     REQUIRE(s);
-    // The scene is flattest along z; about four pixels per edge of the 40x40 cloth (3 / 40).
+    // The cloth faces z; about four pixels per edge of the 40x40 cloth (3 / 40).
     CHECK(*s->direction == std::array<float, 3>{0, 0, 1});
     REQUIRE(s->resolution);
     CHECK(*s->resolution == 256);
@@ -380,10 +354,10 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     auto fine = clothThroughSphere(2.0f);
     REQUIRE(fine);
     addScene(*fine_world, *fine);
-    auto fs = fine_world->resolveSettings();
+    auto fs = fine_world->resolveSettings(paper);
     REQUIRE(fs);
     CHECK(*fs->resolution == 2 * *s->resolution);
-    auto r = world->detect();
+    auto r = world->detect(paper);
     REQUIRE(r);
     CHECK(r->stats.resolution == *s->resolution);
     CHECK(r->stats.settings_note.find("resolution 256") != std::string::npos);

@@ -16,6 +16,9 @@ TEST_CASE("shared enums are named as the command-line options spell them", "[cor
     CHECK(std::string(toString(SamplingBackend::Auto)) == "auto");
     CHECK(std::string(toString(SamplingBackend::Raster)) == "raster");
     CHECK(std::string(toString(SamplingBackend::Compute)) == "compute");
+    CHECK(std::string(toString(DetectMethod::Reliable)) == "reliable");
+    CHECK(std::string(toString(DetectMethod::Peeling)) == "peeling");
+    CHECK(std::string(toString(static_cast<DetectMethod>(7))) == "?");
     // Out-of-range values (a cast from bad data) do not crash.
     CHECK(std::string(toString(static_cast<Coverage>(99))) == "?");
 }

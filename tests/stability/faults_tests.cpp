@@ -50,8 +50,11 @@ EngineMesh engineCopy(vk::Device& dev, const HostMesh& m) {
     return e;
 }
 
+// The paper's method: the memory check below is its table's (broadPhaseMemory); the
+// reliable method's handling of bad engine meshes is tested in tests/api/reliable_tests.cpp.
 DetectSettings fixed(std::uint32_t resolution = 128) {
     DetectSettings s;
+    s.method = DetectMethod::Peeling;
     s.resolution = resolution;
     s.direction = std::array<float, 3>{0.15f, -0.2f, 1.0f};
     return s;

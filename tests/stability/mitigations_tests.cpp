@@ -24,8 +24,10 @@ std::unique_ptr<CollisionWorld> worldWith(ValidatedContext& ctx, const TestScene
     return std::move(*w);
 }
 
+// The paper's method, which the mitigations extend.
 DetectSettings coarse(std::array<float, 3> direction = {0.15f, -0.2f, 1.0f}) {
     DetectSettings s;
+    s.method = DetectMethod::Peeling;
     s.resolution = 64;
     s.direction = direction;
     return s;

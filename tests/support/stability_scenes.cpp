@@ -38,6 +38,7 @@ std::array<float, 6> regionCube() { return {-kRegionHalf, -kRegionHalf, -kRegion
 
 DetectSettings onGrid(std::array<float, 3> direction) {
     DetectSettings s;
+    s.method = DetectMethod::Peeling;
     s.resolution = kCaseResolution;
     s.direction = direction;
     s.region = regionCube();
@@ -187,6 +188,7 @@ Result<StabilityCase> farFromOrigin(float distance) {
     char name[64];
     std::snprintf(name, sizeof name, "1e-3 features at %g", double(distance));
     StabilityCase c{name, {"far", {}}, {}, {}};
+    c.settings.method = DetectMethod::Peeling;
     c.settings.resolution = 128;
     c.settings.direction = kZ;
     // The offset between the two lives in the meshes, so both share one translation that
@@ -225,6 +227,7 @@ Result<StabilityCase> farObject(bool with_region) {
     if (!spheres) return spheres.error();
     c.scene = std::move(*spheres);
     if (auto r = add(c.scene, box({0.3f, 0.3f, 0.3f}, 2), named("far box", at(1000, 0, 0))); !r) return r.error();
+    c.settings.method = DetectMethod::Peeling;
     c.settings.resolution = 128;
     c.settings.direction = kZ;
     if (with_region) c.settings.region = std::array<float, 6>{-3.0f, -2.0f, -1.2f, 1.6f, 1.6f, 1.4f};
@@ -322,6 +325,13 @@ std::vector<Variant> mitigationVariants() {
              s.coverage = Coverage::Dilate;
              s.closed_epsilon = 2 * c.pixel;
          }},
+    };
+}
+
+std::vector<Variant> reliableVariants() {
+    return {
+        {"reliable", [](DetectSettings& s, const StabilityCase&) { s.method = DetectMethod::Reliable; }},
+        {"reliable-auto", [](DetectSettings& s, const StabilityCase&) { s = DetectSettings{}; }},
     };
 }
 

@@ -20,7 +20,7 @@ inline constexpr float kRegionHalf = 1.5f;
 inline constexpr std::uint32_t kCaseResolution = 64;
 inline constexpr float kPixel = 2 * kRegionHalf / kCaseResolution;  // world size of a pixel
 
-// One edge case: a scene, the settings the paper's method would use on it, and the
+// One edge case: a scene, the settings the paper's method (DetectMethod::Peeling) would use on it, and the
 // reference pairs it is measured against (usually the scene's own; the far-from-origin
 // case measures against the same geometry placed at the origin).
 struct StabilityCase {
@@ -78,5 +78,8 @@ struct Variant {
     std::function<void(DetectSettings&, const StabilityCase&)> apply;
 };
 std::vector<Variant> mitigationVariants();
+// The reliable method on the case's grid (its resolution as cells per side, direction and
+// region), then with every setting automatic.
+std::vector<Variant> reliableVariants();
 
 }  // namespace vkcollide::test

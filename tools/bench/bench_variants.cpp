@@ -7,27 +7,36 @@ namespace vkcollide::bench {
 
 std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) {
     using S = DetectSettings;
+    // The paper's method, explicitly: its mitigations, backends and knobs only mean
+    // something there (the default is the reliable method since it landed).
+    const auto paper = [](std::function<void(S&)> more) {
+        return [more = std::move(more)](S& s) {
+            s.method = DetectMethod::Peeling;
+            more(s);
+        };
+    };
     std::vector<Variant> v = {
         // name            group          what changes
         {"default", "default", [](S&) {}},
-        {"axes3", "mitigations", [](S& s) { s.axes = 3; }},
-        {"best", "mitigations", [](S& s) { s.coverage = Coverage::Best; }},
-        {"axes3-best", "mitigations", [](S& s) { s.axes = 3, s.coverage = Coverage::Best; }},
-        {"dual", "mitigations", [](S& s) { s.dual = true; }},
-        {"raster", "backends", [](S& s) { s.backend = SamplingBackend::Raster; }},
-        {"compute", "backends", [](S& s) { s.backend = SamplingBackend::Compute; }},
-        {"cap2", "paper", [](S& s) { s.layer_cap = 2; }},
-        {"cap4", "paper", [](S& s) { s.layer_cap = 4; }},
-        {"paper-packing", "paper", [](S& s) { s.packing = PackingMethod::Paper; }},
-        {"open", "paper", [](S&) {}, true},
-        {"async", "paper", [](S&) {}, false, true},
-        {"depth-sep", "modes", [](S& s) { s.depth_aware = true; }},  // depth-aware separation on
-        {"paper-sep", "modes", [](S& s) { s.depth_aware = false; }},  // the paper's separation
-        // Issue 12's new settings join here when their DetectSettings fields land, e.g.
-        // {"reliable", "modes", [](S& s) { s.broad_phase = BroadPhase::Reliable; }},
+        {"reliable", "modes", [](S& s) { s.method = DetectMethod::Reliable; }},
+        {"peeling", "modes", paper([](S&) {})},  // the default before the reliable method
+        {"axes3", "mitigations", paper([](S& s) { s.axes = 3; })},
+        {"best", "mitigations", paper([](S& s) { s.coverage = Coverage::Best; })},
+        {"axes3-best", "mitigations", paper([](S& s) { s.axes = 3, s.coverage = Coverage::Best; })},
+        {"dual", "mitigations", paper([](S& s) { s.dual = true; })},
+        {"raster", "backends", paper([](S& s) { s.backend = SamplingBackend::Raster; })},
+        {"compute", "backends", paper([](S& s) { s.backend = SamplingBackend::Compute; })},
+        {"cap2", "paper", paper([](S& s) { s.layer_cap = 2; })},
+        {"cap4", "paper", paper([](S& s) { s.layer_cap = 4; })},
+        {"paper-packing", "paper", paper([](S& s) { s.packing = PackingMethod::Paper; })},
+        {"open", "paper", paper([](S&) {}), true},
+        {"async", "paper", paper([](S&) {}), false, true},
+        {"reliable-async", "modes", [](S& s) { s.method = DetectMethod::Reliable; }, false, true},
+        {"depth-sep", "modes", paper([](S& s) { s.depth_aware = true; })},   // peeling, depth-aware separation on
+        {"paper-sep", "modes", paper([](S& s) { s.depth_aware = false; })},  // peeling, the paper's separation (the old default)
     };
     for (std::uint32_t r : resolutions)
-        v.push_back({"res-" + std::to_string(r), "resolutions", [r](S& s) { s.resolution = r; }});
+        v.push_back({"res-" + std::to_string(r), "resolutions", paper([r](S& s) { s.resolution = r; })});
     return v;
 }
 

@@ -178,7 +178,8 @@ int main(int argc, char** argv) {
            "layer_cap,packing,open,async,depth_complexity,layers,peel_passes,"
            "sampling_ms,merging_ms,separation_ms,packing_ms,gpu_ms,readback_ms,narrow_ms,update_ms,total_ms,"
            "collision_rays,downloaded,pot_colliding,tests,positive_tests,pairs,reference_pairs,reference_crossing,"
-           "found_crossing,recall,recall_crossing,precision,gpu_mib,host_peak_mib,narrow_threads,reference_s,reference_cached,settings_note\n";
+           "found_crossing,recall,recall_crossing,precision,gpu_mib,host_peak_mib,narrow_threads,reference_s,reference_cached,"
+           "method,footprints_ms,pairing_ms,filtering_ms,cell_candidates,cell_survivors,settings_note\n";
     std::vector<Summary> summaries;
     std::printf("%-9s %-24s %-14s %-8s %5s %9s %9s %9s %9s %8s %8s %8s\n", "set", "scene", "variant", "backend", "res", "gpu ms", "narrow ms",
                 "total ms", "downl.", "recall", "crossing", "prec.");
@@ -272,9 +273,12 @@ int main(int argc, char** argv) {
                               st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, st.positive_tests, r->pairs.size(),
                               ref.pairs.size(), crossing, found_crossing, cmp.recall, recall_crossing, cmp.precision,
                               double(st.gpu_memory_bytes) / (1024.0 * 1024.0), peakHostMiB(), st.narrow_threads, ref.seconds, ref.from_cache ? 1 : 0);
-                csv << row << csvField(st.settings_note) << '\n';
+                char cells[256];
+                std::snprintf(cells, sizeof cells, "%s,%.4f,%.4f,%.4f,%llu,%llu,", toString(st.method), st.footprints_ms, st.pairing_ms,
+                              st.filtering_ms, (unsigned long long)st.cells.candidates, (unsigned long long)st.cells.survivors);
+                csv << row << cells << csvField(st.settings_note) << '\n';
                 csv.flush();
-                sum.backend = toString(st.backend);
+                sum.backend = st.method == DetectMethod::Reliable ? "cells" : toString(st.backend);
                 sum.resolution = st.resolution;
                 ++sum.frames;
                 sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += cmp.true_positives, sum.reference += ref.pairs.size();

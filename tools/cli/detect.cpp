@@ -28,12 +28,19 @@ int fail(const std::string& what) {
 void printSummary(const std::string& device, const Scene& scene, const vkcollide::DetectResult& r) {
     const vkcollide::DetectStats& st = r.stats;
     std::printf("device: %s\n", device.c_str());
-    std::printf("scene: %zu objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u passes%s%s\n",
-                scene.objects.size(), st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes,
-                st.dual ? " (dual)" : "", st.axes > 1 ? ", 3 directions" : "");
-    if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
-    std::printf("sampling backend: %s (%s), coverage %s\n", vkcollide::toString(st.backend), st.backend_reason.c_str(),
-                vkcollide::toString(st.coverage));
+    if (st.method == vkcollide::DetectMethod::Reliable) {
+        std::printf("scene: %zu objects, %zu triangles; method reliable, %u cells per side, %llu footprints, %llu candidate pairs, %llu read back\n",
+                    scene.objects.size(), st.triangles, st.resolution, static_cast<unsigned long long>(st.cells.entries),
+                    static_cast<unsigned long long>(st.cells.candidates), static_cast<unsigned long long>(st.cells.survivors));
+        if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
+    } else {
+        std::printf("scene: %zu objects, %zu triangles; method peeling, resolution %u, depth complexity %u, %u layers in %u passes%s%s\n",
+                    scene.objects.size(), st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes,
+                    st.dual ? " (dual)" : "", st.axes > 1 ? ", 3 directions" : "");
+        if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
+        std::printf("sampling backend: %s (%s), coverage %s\n", vkcollide::toString(st.backend), st.backend_reason.c_str(),
+                    vkcollide::toString(st.coverage));
+    }
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);
@@ -41,9 +48,13 @@ void printSummary(const std::string& device, const Scene& scene, const vkcollide
     if (st.deep_rays) std::printf("deep rays (more surfaces than the peeling range, collision rays without peeling): %u\n", st.deep_rays);
     if (r.incomplete) std::printf("incomplete: %s\n", r.incomplete->message().c_str());
     for (const vkcollide::ExcludedObject& e : r.excluded) std::printf("excluded: %s\n", e.error.message().c_str());
-    std::printf("times (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
-                st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
-                st.total_ms);
+    if (st.method == vkcollide::DetectMethod::Reliable)
+        std::printf("times (ms): footprints %.3f, pairing %.3f, filtering %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
+                    st.footprints_ms, st.pairing_ms, st.filtering_ms, st.readback_ms, st.narrow_ms, st.narrow_threads, st.total_ms);
+    else
+        std::printf("times (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
+                    st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
+                    st.total_ms);
     std::printf("GPU memory: %.1f MiB\n", static_cast<double>(st.gpu_memory_bytes) / (1024.0 * 1024.0));
 }
 

@@ -139,6 +139,11 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     j.beginArray(JsonWriter::Layout::Inline);
     for (float d : st.direction) j.number(d);
     j.endArray();
+    j.member("method", [&] { j.string(vkcollide::toString(st.method)); });
+    count("cell_entries", st.cells.entries);
+    count("cell_candidates", st.cells.candidates);
+    count("cell_survivors", st.cells.survivors);
+    count("deep_rays", st.deep_rays);
     count("axes", st.axes);
     count("depth_complexity", st.depth_complexity);
     count("layers", st.layers);
@@ -154,6 +159,9 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     ms("merging_ms", st.merging_ms);
     ms("separation_ms", st.separation_ms);
     ms("packing_ms", st.packing_ms);
+    ms("footprints_ms", st.footprints_ms);
+    ms("pairing_ms", st.pairing_ms);
+    ms("filtering_ms", st.filtering_ms);
     ms("readback_ms", st.readback_ms);
     ms("narrow_ms", st.narrow_ms);
     count("narrow_threads", st.narrow_threads);

@@ -64,7 +64,10 @@ Result<void> path(CommandLine& c, std::string_view text) {
 // ObjectOptions has its option.
 const std::vector<Option>& options() {
     static const std::vector<Option> table = {
-        {"--resolution", "N", Section::Settings, "rays per image side, a power of two in [4, 16384] (default: from the typical triangle edge)",
+        {"--method", "M", Section::Settings, "reliable (default: every intersecting pair, cells and pairs on the GPU) or peeling (the paper's depth peeling)",
+         "reliable: GPU passes over triangles, cells and candidate pairs; peeling: faster on some scenes, may miss pairs (docs/stability.md)",
+         setting<&DetectSettings::method>, "method", show<&DetectSettings::method>},
+        {"--resolution", "N", Section::Settings, "reliable: cells per side, 1 to 16384; peeling: rays per image side, a power of two in [4, 16384] (default: from the typical triangle edge)",
          "GPU time and memory grow with N^2; a larger N resolves thinner contacts and downloads fewer triangles",
          setting<&DetectSettings::resolution>, "resolution", show<&DetectSettings::resolution>},
         {"--direction", "x,y,z", Section::Settings, "projection direction (default: chosen from the scene)",

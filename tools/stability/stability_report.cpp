@@ -33,11 +33,12 @@ int main(int argc, char** argv) {
     };
     for (const StabilityCase& c : *cases) {
         if (!filter.empty() && c.name.find(filter) == std::string::npos) continue;
-        for (const Variant& v : mitigationVariants()) {
-            DetectSettings s = c.settings;
-            v.apply(s, c);
-            line(c.name, v.name, measureCase(**ctx, c, s, 4));
-        }
+        for (const auto& variants : {mitigationVariants(), reliableVariants()})
+            for (const Variant& v : variants) {
+                DetectSettings s = c.settings;
+                v.apply(s, c);
+                line(c.name, v.name, measureCase(**ctx, c, s, 4));
+            }
     }
     if (!filter.empty()) return 0;
     // What the mitigations cost where nothing goes wrong: the recall guard's scenes and settings.
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
         if (!reference) return 1;
         for (std::uint32_t resolution : {64u, 256u}) {
             StabilityCase c{scene.name + " " + std::to_string(resolution), scene, {}, *reference};
+            c.settings.method = DetectMethod::Peeling;
             c.settings.resolution = resolution;
             c.settings.direction = std::array<float, 3>{0.15f, -0.2f, 1.0f};
             c.pixel = 3.0f / float(resolution);

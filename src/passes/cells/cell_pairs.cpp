@@ -1,7 +1,9 @@
 #include "passes/cells/cell_pairs.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <string>
 
@@ -12,7 +14,9 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 64 && sizeof(gpu::CellsParams) == 184);
+static_assert(sizeof(gpu::CellsHeader) == 64 && sizeof(gpu::CellsParams) == 208);
+static_assert(sizeof(gpu::CellsGpuTriangle) == sizeof(GpuTriangle) && offsetof(gpu::CellsGpuTriangle, v) == offsetof(GpuTriangle, v));
+static_assert(sizeof(CandidatePair) == 8);
 static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);
 
 // Element counts beyond which a buffer index would not fit the shaders' 32-bit signed
@@ -79,6 +83,13 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     if (!in.self_collision.empty() && in.self_collision.size() != in.objects.size())
         return Error(ErrorCode::InvalidArgument, "cell pairs: self_collision has " + std::to_string(in.self_collision.size()) +
                                                      " entries for " + std::to_string(in.objects.size()) + " objects");
+    if (!in.download.empty() && in.download.size() != in.objects.size())
+        return Error(ErrorCode::InvalidArgument, "cell pairs: download has " + std::to_string(in.download.size()) + " entries for " +
+                                                     std::to_string(in.objects.size()) + " objects");
+    const std::uint64_t mask_words = (std::uint64_t(in.objects.size()) * in.objects.size() + 31) / 32;
+    if (!in.pair_mask.empty() && in.pair_mask.size() != mask_words)
+        return Error(ErrorCode::InvalidArgument, "cell pairs: pair_mask has " + std::to_string(in.pair_mask.size()) + " words for " +
+                                                     std::to_string(in.objects.size()) + " objects (" + std::to_string(mask_words) + " needed)");
     std::uint64_t total = 0;
     for (std::size_t i = 0; i < in.objects.size(); ++i) {
         const gpu::ObjectGpu& o = in.objects[i];
@@ -105,8 +116,13 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     projection_address_ = in.projection_address;
     use_filter_ = settings.filter && filterSupported();
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
-    has_pair_mask_ = static_cast<bool>(in.may_collide);
+    has_pair_mask_ = !in.pair_mask.empty() || static_cast<bool>(in.may_collide);
+    download_triangles_ = 0;
+    for (std::size_t i = 0; i < in.download.size(); ++i)
+        if (in.download[i]) download_triangles_ += in.objects[i].triangle_count;
+    has_download_ = download_triangles_ > 0;
     runs_ = 0;
+    bad_input_.reset();
     const std::uint32_t device_limit = device_->properties.limits.maxComputeWorkGroupCount[0];
     max_groups_x_ = settings.max_workgroups_x ? std::min(settings.max_workgroups_x, device_limit) : device_limit;
 
@@ -121,17 +137,25 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     capacity_.items = pick(settings.initial.items, capacity_.items, std::max<std::uint64_t>(tris / 32, 1024));
     capacity_.candidates = pick(settings.initial.candidates, capacity_.candidates, std::max<std::uint64_t>(2 * tris, 4096));
     capacity_.survivors = pick(settings.initial.survivors, capacity_.survivors, std::max<std::uint64_t>(tris / 2, 4096));
+    if (has_download_)  // never more than the download objects' triangles
+        capacity_.gpu_triangles = pick(settings.initial.gpu_triangles, capacity_.gpu_triangles,
+                                       std::min<std::uint64_t>(download_triangles_, std::max<std::uint64_t>(capacity_.survivors, 4096)));
     if (auto ok = ensureBuffers(); !ok) return ok.error();
 
     // Per-run uploads: objects, object flags, the pair mask and the projection.
     std::memcpy(buf_.objects.mapped(), objects_.data(), objects_.size() * sizeof(gpu::ObjectGpu));
     buf_.objects.flush();
-    if (has_self_) {
+    if (has_self_ || has_download_) {
         auto* flags = static_cast<std::uint32_t*>(buf_.object_flags.mapped());
-        for (std::size_t i = 0; i < objects_.size(); ++i) flags[i] = in.self_collision[i] ? gpu::kCellsObjectSelf : 0u;
+        for (std::size_t i = 0; i < objects_.size(); ++i)
+            flags[i] = (has_self_ && in.self_collision[i] ? gpu::kCellsObjectSelf : 0u) |
+                       (has_download_ && in.download[i] ? gpu::kCellsObjectDownload : 0u);
         buf_.object_flags.flush();
     }
-    if (has_pair_mask_) {
+    if (!in.pair_mask.empty()) {
+        std::memcpy(buf_.pair_mask.mapped(), in.pair_mask.data(), in.pair_mask.size_bytes());
+        buf_.pair_mask.flush();
+    } else if (has_pair_mask_) {
         const std::uint64_t n = objects_.size();
         auto* bits = static_cast<std::uint32_t*>(buf_.pair_mask.mapped());
         std::memset(bits, 0, (n * n + 31) / 32 * 4);
@@ -185,7 +209,26 @@ Result<void> CellPairs::ensureBuffers() {
         {&buf_.candidates, VkDeviceSize(capacity_.candidates) * sizeof(gpu::CellsCandidate), MemoryKind::DeviceLocal, 0, "cells-candidates"},
         {&buf_.survivors, VkDeviceSize(capacity_.survivors) * 8, MemoryKind::Readback, 0, "cells-survivors"},
         {&buf_.args, gpu::kCellsArgsCount * 12, MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, "cells-args"},
+        {&buf_.gpu_triangles, has_download_ ? VkDeviceSize(capacity_.gpu_triangles) * sizeof(GpuTriangle) : 0, MemoryKind::Readback, 0,
+         "cells-gpu-triangles"},
+        {&buf_.marks, has_download_ ? (tris + 31) / 32 * 4 : 0, MemoryKind::DeviceLocal, 0, "cells-marks"},
     };
+    // Refuse what the device cannot hold before allocating anything (as the broad phase's
+    // table does): the heap sizes bound what fits, the engine's allocations live there too.
+    std::array<VkDeviceSize, VK_MAX_MEMORY_HEAPS> per_heap{};
+    VkDeviceSize total = 0;
+    for (const Plan& p : plan) {
+        const VkMemoryPropertyFlags required =
+            p.kind == MemoryKind::DeviceLocal ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
+        if (auto type = device_->findMemoryType(~0u, required)) per_heap[device_->memory.memoryTypes[*type].heapIndex] += p.size;
+        total += p.size;
+    }
+    for (std::uint32_t h = 0; h < device_->memory.memoryHeapCount; ++h)
+        if (per_heap[h] > device_->memory.memoryHeaps[h].size)
+            return Error(ErrorCode::OutOfMemory, "cell pairs: resolution " + std::to_string(resolution_) + " with " +
+                                                     std::to_string(triangles_) + " triangles needs " + gibText(total) +
+                                                     " of device memory, more than the " + gibText(device_->memory.memoryHeaps[h].size) +
+                                                     " memory heap holds: lower the resolution or split the scene");
     for (const Plan& p : plan) {
         const VkDeviceSize size = std::max<VkDeviceSize>(p.size, 16);
         if (size > limit)
@@ -204,7 +247,7 @@ Result<void> CellPairs::ensureBuffers() {
 void CellPairs::writeParams() {
     gpu::CellsParams p{};
     p.objects = buf_.objects.address();
-    p.object_flags = has_self_ ? buf_.object_flags.address() : 0;
+    p.object_flags = has_self_ || has_download_ ? buf_.object_flags.address() : 0;
     p.pair_mask = has_pair_mask_ ? buf_.pair_mask.address() : 0;
     p.projection = projection_address_ ? projection_address_ : buf_.projection.address();
     p.header = buf_.header.address();
@@ -220,6 +263,9 @@ void CellPairs::writeParams() {
     p.candidates = buf_.candidates.address();
     p.survivors = buf_.survivors.address();
     p.args = buf_.args.address();
+    p.gpu_triangles = has_download_ ? buf_.gpu_triangles.address() : 0;
+    p.marks = has_download_ ? buf_.marks.address() : 0;
+    p.gpu_triangle_capacity = has_download_ ? capacity_.gpu_triangles : 0;
     p.resolution = resolution_;
     p.cell_count = resolution_ * resolution_;
     p.object_count = static_cast<std::uint32_t>(objects_.size());
@@ -236,7 +282,7 @@ void CellPairs::writeParams() {
     buf_.params.flush();
 }
 
-Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) const {
+Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) {
     const std::uint32_t errors = h.flags & ~gpu::kCellsOverflowMask;
     if (!errors) return {};
     if (errors & gpu::kCellsInconsistent)
@@ -244,7 +290,9 @@ Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) const {
     std::string where = "triangle " + std::to_string(h.bad_triangle);
     for (std::size_t i = objects_.size(); i-- > 0;) {
         if (objects_[i].triangle_base <= h.bad_triangle && objects_[i].triangle_count > 0) {
-            where = "object " + std::to_string(i) + ", triangle " + std::to_string(h.bad_triangle - objects_[i].triangle_base);
+            const std::uint32_t local = h.bad_triangle - objects_[i].triangle_base;
+            where = "object " + std::to_string(i) + ", triangle " + std::to_string(local);
+            if (!(errors & gpu::kCellsBadProjection)) bad_input_ = BadInput{errors, static_cast<std::uint32_t>(i), local};
             break;
         }
     }
@@ -256,8 +304,9 @@ Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) const {
     return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has a world coordinate not below 2^62");
 }
 
-Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
+Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
     ++runs_;
+    survivor_count_ = gpu_triangle_count_ = 0;
     buf_.header_rb.invalidate();
     gpu::CellsHeader h;
     std::memcpy(&h, buf_.header_rb.mapped(), sizeof h);
@@ -269,34 +318,64 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
         if (h.flags & gpu::kCellsOverflowEntries) capacity_.entries = std::max(capacity_.entries, grown(h.entries));
         if (h.flags & gpu::kCellsOverflowCandidates) capacity_.candidates = std::max(capacity_.candidates, grown(h.candidates));
         if (h.flags & gpu::kCellsOverflowSurvivors) capacity_.survivors = std::max(capacity_.survivors, grown(h.survivors));
+        if (h.flags & gpu::kCellsOverflowTriangles)
+            capacity_.gpu_triangles = std::max(capacity_.gpu_triangles, std::min(grown(h.gpu_triangles), std::max(download_triangles_, 1u)));
         if (auto ok = ensureBuffers(); !ok) return ok.error();
         writeParams();
         return Outcome::Rerun;
     }
-    CellPairsStats& s = out.stats;
+    s = CellPairsStats{};
     s.entries = h.entries;
     s.big_triangles = h.big_triangles;
     s.items = h.items;
     s.deep_cells = h.deep_cells;
     s.max_cell = h.max_cell;
+    s.candidate_cells = h.candidate_cells;
     s.candidates = h.candidates;
     s.neighbours = h.neighbours;
     s.duplicates = h.duplicates;
     s.filtered = h.filtered;
     s.survivors = h.survivors;
+    s.gpu_triangles = h.gpu_triangles;
     s.runs = runs_;
     s.filter_ran = use_filter_;
-    buf_.survivors.invalidate(0, VkDeviceSize(h.survivors) * 8);
-    std::vector<std::uint64_t> keys(h.survivors);
-    const auto* raw = static_cast<const std::uint32_t*>(buf_.survivors.mapped());
-    for (std::uint32_t i = 0; i < h.survivors; ++i) keys[i] = (std::uint64_t(raw[2 * i]) << 32) | raw[2 * i + 1];
+    survivor_count_ = h.survivors;
+    gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;
+    if (survivor_count_) buf_.survivors.invalidate(0, VkDeviceSize(survivor_count_) * 8);
+    if (gpu_triangle_count_) buf_.gpu_triangles.invalidate(0, VkDeviceSize(gpu_triangle_count_) * sizeof(GpuTriangle));
+    return Outcome::Complete;
+}
+
+std::span<const CandidatePair> CellPairs::survivors() const noexcept {
+    if (!survivor_count_) return {};
+    return {static_cast<const CandidatePair*>(buf_.survivors.mapped()), survivor_count_};
+}
+
+std::span<const GpuTriangle> CellPairs::gpuTriangles() const noexcept {
+    if (!gpu_triangle_count_) return {};
+    return {static_cast<const GpuTriangle*>(buf_.gpu_triangles.mapped()), gpu_triangle_count_};
+}
+
+Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
+    auto outcome = finish(out.stats);
+    if (!outcome || *outcome == Outcome::Rerun) return outcome;
+    const std::span<const CandidatePair> raw = survivors();
+    std::vector<std::uint64_t> keys(raw.size());
+    for (std::size_t i = 0; i < raw.size(); ++i) keys[i] = (std::uint64_t(raw[i].a) << 32) | raw[i].b;
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    s.host_duplicates = h.survivors - keys.size();
+    out.stats.host_duplicates = raw.size() - keys.size();
     out.pairs.resize(keys.size());
     for (std::size_t i = 0; i < keys.size(); ++i)
         out.pairs[i] = {static_cast<std::uint32_t>(keys[i] >> 32), static_cast<std::uint32_t>(keys[i] & 0xFFFFFFFFu)};
     return Outcome::Complete;
+}
+
+Result<graph::ExecutionReport> CellPairs::runAgain(vk::Buffer* projection) {
+    survivor_count_ = gpu_triangle_count_ = 0;
+    graph::Graph g;
+    record(g, projection ? g.importBuffer("projection", *projection) : graph::ResourceId{});
+    return executor_.run(g);
 }
 
 Result<CellPairsResult> CellPairs::run(const CellPairsInput& input, const CellPairsSettings& settings) {
@@ -327,7 +406,7 @@ std::uint64_t CellPairs::memoryBytes() const noexcept {
     for (const vk::Buffer* b : {&buf_.params, &buf_.objects, &buf_.object_flags, &buf_.pair_mask, &buf_.projection, &buf_.header,
                                 &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,
                                 &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.candidates,
-                                &buf_.survivors, &buf_.args})
+                                &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks})
         total += b->size();
     return total;
 }

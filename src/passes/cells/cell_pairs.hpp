@@ -10,9 +10,15 @@
 //   sweep     per cell: pairs whose depth intervals overlap and whose objects may collide
 //   pairs     per candidate: neighbour rule, canonical cell, double-precision filter;
 //             survivors appended as (a, b) global triangle ids, a < b
+//             (download objects: survivors' triangles with their world vertices too)
 // One submission, no host round trip inside a run. Every capacity is checked on the GPU:
 // an overflow sets a flag with the size needed, and run() grows that buffer and runs
 // again, so no pair is lost and nothing is accessed out of bounds.
+//
+// Two ways to use it: run() (prepare, record, run and finish on its own executor, pairs
+// sorted and unique), or as part of a larger graph (ReliableMethod): prepare(), record()
+// after the passes that write the projection, and after that graph ran finish(stats), the
+// survivors read in place (survivors(), gpuTriangles()), with runAgain() after an overflow.
 //
 // Not thread-safe; one instance per user (it owns its buffers and executor). Buffers are
 // kept between runs and only grow, so a steady scene allocates nothing per run.
@@ -27,6 +33,8 @@
 #include <vector>
 
 #include "cells.h"
+#include "vkcollide/narrow.hpp"
+#include "passes/cells/cell_pairs_stats.hpp"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
 
@@ -48,8 +56,14 @@ struct CellPairsInput {
     VkDeviceAddress projection_address = 0;
     std::uint32_t resolution = 256;          // cells per side, 1 .. gpu::kCellsMaxResolution
     std::vector<std::uint8_t> self_collision;  // per object (non-zero: test its own pairs); empty: none
-    // Whether two different objects a < b may collide; empty: every pair may.
+    // Whether two different objects a < b may collide, as bits a * n + b over the n
+    // objects ((n^2 + 31) / 32 words, uploaded as they are), or as a function called for
+    // every a < b in prepare(); neither: every pair may.
+    std::span<const std::uint32_t> pair_mask;
     std::function<bool(std::uint32_t a, std::uint32_t b)> may_collide;
+    // Per object (non-zero: its geometry is only on the GPU): every survivor's triangle of
+    // such an object is written, once, to gpuTriangles(). Empty: none.
+    std::span<const std::uint8_t> download;
 };
 
 // Element counts of the buffers whose size is only known on the GPU. 0: estimate from
@@ -59,6 +73,7 @@ struct CellPairsCapacity {
     std::uint32_t items = 0;       // big-triangle work items (8 bytes)
     std::uint32_t candidates = 0;  // candidate pairs (12 bytes)
     std::uint32_t survivors = 0;   // surviving pairs (8 bytes, host-visible memory)
+    std::uint32_t gpu_triangles = 0;  // survivors' triangles of download objects (52 bytes, host-visible)
 };
 
 struct CellPairsSettings {
@@ -71,22 +86,6 @@ struct CellPairsSettings {
     // Dispatches are split into rows of at most this many workgroups (0: the device's
     // maxComputeWorkGroupCount[0]); tests set it small to exercise the split.
     std::uint32_t max_workgroups_x = 0;
-};
-
-struct CellPairsStats {
-    std::uint64_t entries = 0;        // footprints: (triangle, cell) pairs
-    std::uint64_t big_triangles = 0;  // triangles counted and filled in work items
-    std::uint64_t items = 0;
-    std::uint64_t deep_cells = 0;     // cells with more than kCellsSmallCell entries
-    std::uint64_t max_cell = 0;       // most entries in one cell
-    std::uint64_t candidates = 0;     // pairs the sweep found (with duplicates across cells)
-    std::uint64_t neighbours = 0;     // left out by the sweep (not candidates): one object, shared vertex index
-    std::uint64_t duplicates = 0;     // dropped: not the pair's canonical cell
-    std::uint64_t filtered = 0;       // dropped: proved disjoint by the filter
-    std::uint64_t survivors = 0;
-    std::uint64_t host_duplicates = 0;  // survivors kept twice (canonical scan out of budget), removed
-    std::uint32_t runs = 0;           // submissions this call took (1 without overflow)
-    bool filter_ran = false;
 };
 
 struct CellPairsResult {
@@ -119,6 +118,25 @@ public:
     // InvalidArgument for bad input found on the GPU (naming object and triangle).
     enum class Outcome { Complete, Rerun };
     [[nodiscard]] Result<Outcome> finish(CellPairsResult& out);
+    // The same without host work beyond the header: Complete fills `out_stats` (not
+    // host_duplicates) and makes survivors() and gpuTriangles() valid.
+    [[nodiscard]] Result<Outcome> finish(CellPairsStats& out_stats);
+    // After a Complete finish, until the next prepare(), record() or runAgain(): the
+    // survivors as the GPU wrote them (global ids, a < b, unsorted, a rare pair twice)
+    // and the download objects' triangles, read in place from host-visible (cached where
+    // the device has it) memory.
+    std::span<const CandidatePair> survivors() const noexcept;
+    std::span<const GpuTriangle> gpuTriangles() const noexcept;
+    // After finish() returned Rerun: records the stage alone and runs it on the stage's
+    // own executor (waits). `projection`: the buffer holding the projection when the input
+    // gave projection_address (its contents are kept from the first run).
+    [[nodiscard]] Result<graph::ExecutionReport> runAgain(vk::Buffer* projection);
+    // After finish() failed on bad input found on the GPU: the flags (gpu::kCellsBad*),
+    // the object (index in the input) and its triangle.
+    struct BadInput {
+        std::uint32_t flags = 0, object = 0, triangle = 0;
+    };
+    const std::optional<BadInput>& badInput() const noexcept { return bad_input_; }
 
     // prepare(), then record, run and finish with its own executor until complete (at
     // most settings.max_runs runs; then OutOfMemory).
@@ -133,10 +151,9 @@ private:
     explicit CellPairs(vk::Device& device) : device_(&device), executor_(device) {}
     Result<void> ensureBuffers();
     void writeParams();
-    Result<void> checkFailure(const gpu::CellsHeader& header) const;
+    Result<void> checkFailure(const gpu::CellsHeader& header);
 
     vk::Device* device_;
-    graph::Executor executor_;
     struct Pipelines {
         vk::Pipeline setup, big, scan, fill, sweep, deep, args, pairs;
     } pipes_;
@@ -144,16 +161,21 @@ private:
     struct Buffers {
         vk::Buffer params, objects, object_flags, pair_mask, projection, header, header_rb;
         vk::Buffer triangles, geometry, counts, offsets, block_sums, entries, entry_cells;
-        vk::Buffer big_items, deep_items, candidates, survivors, args;
+        vk::Buffer big_items, deep_items, candidates, survivors, args, gpu_triangles, marks;
     } buf_;
     // The prepared run.
     std::vector<gpu::ObjectGpu> objects_;
     std::uint32_t triangles_ = 0, resolution_ = 0;
     VkDeviceAddress projection_address_ = 0;
-    bool use_filter_ = false, has_pair_mask_ = false, has_self_ = false;
+    bool use_filter_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
+    std::uint32_t download_triangles_ = 0;
+    std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish
+    std::optional<BadInput> bad_input_;
     std::uint32_t max_groups_x_ = 0;
     CellPairsCapacity capacity_;
     std::uint32_t runs_ = 0;
+    // Declared last, destroyed first: it waits for work in flight before the buffers go.
+    graph::Executor executor_;
 };
 
 }  // namespace vkcollide::passes

@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "passes/cells/cell_pairs.hpp"
+#include "passes/stage.hpp"
 
 namespace vkcollide::passes {
 namespace {
@@ -30,6 +31,9 @@ void dispatch(const PassContext& pc, std::uint64_t groups, std::uint64_t max_x) 
 
 std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize; }
 
+// Each pass declares its stage, so a broad phase sums its GPU time (stage.hpp).
+graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage stage) { return addPass(g, name, kind, stage); }
+
 }  // namespace
 
 void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
@@ -51,15 +55,22 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
     const auto candidates = g.importBuffer("cells-candidates", buf_.candidates);
     const auto survivors = g.importBuffer("cells-survivors", buf_.survivors, true);
     const auto args = g.importBuffer("cells-args", buf_.args);
+    const auto gpu_triangles = g.importBuffer("cells-gpu-triangles", buf_.gpu_triangles, true);
+    const auto marks = g.importBuffer("cells-marks", buf_.marks);
+    const VkBuffer marks_buffer = has_download_ ? buf_.marks.handle() : VK_NULL_HANDLE;
+    const VkDeviceSize marks_bytes = (VkDeviceSize(std::max(triangles_, 1u)) + 31) / 32 * 4;
     const VkBuffer args_buffer = buf_.args.handle();
     const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
     const VkBuffer counts_buffer = buf_.counts.handle();
     const auto& P = pipes_;
     const std::uint64_t max_x = max_groups_x_;
-    const vk::Pipeline* pairs = use_filter_ ? &filter_pipeline_ : &P.pairs;
+    // The double-precision variant wherever the device has it (P.use_filter switches the
+    // filter): it also computes download objects' world vertices as the CPU does.
+    const vk::Pipeline* pairs = filterSupported() ? &filter_pipeline_ : &P.pairs;
 
-    g.addPass("cells-clear", PassKind::Transfer).use(header, Use::TransferDst).use(counts, Use::TransferDst).record(
-        [header_buffer, counts_buffer, cells](PassContext& pc) {
+    pass(g, "cells-clear", PassKind::Transfer, Stage::Footprints).use(header, Use::TransferDst).use(counts, Use::TransferDst)
+        .use(marks, Use::TransferDst).record(
+        [header_buffer, counts_buffer, cells, marks_buffer, marks_bytes](PassContext& pc) {
             // Writes the engine submitted earlier (vertex buffers it skinned or simulated)
             // become visible to everything this run does.
             VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
@@ -75,9 +86,10 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             pc.fns().vkCmdFillBuffer(pc.cmd, header_buffer, 4, 4, 0xFFFFFFFFu);
             pc.fns().vkCmdFillBuffer(pc.cmd, header_buffer, 8, sizeof(gpu::CellsHeader) - 8, 0);
             pc.fns().vkCmdFillBuffer(pc.cmd, counts_buffer, 0, cells * 4, 0);
+            if (marks_buffer != VK_NULL_HANDLE) pc.fns().vkCmdFillBuffer(pc.cmd, marks_buffer, 0, marks_bytes, 0);
         });
 
-    auto setup = g.addPass("cells-setup", PassKind::Compute);
+    auto setup = pass(g, "cells-setup", PassKind::Compute, Stage::Footprints);
     setup.readWrite(header).write(tris).write(geometry).readWrite(counts).write(big).write(args);
     if (projection.valid()) setup.read(projection);
     setup.record([&P, params, tri_groups, max_x](PassContext& pc) {
@@ -88,7 +100,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
     });
 
-    g.addPass("cells-count-big", PassKind::Compute)
+    pass(g, "cells-count-big", PassKind::Compute, Stage::Footprints)
         .indirect(args)
         .read(tris)
         .read(big)
@@ -99,7 +111,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsBig * 12);
         });
 
-    g.addPass("cells-scan", PassKind::Compute)
+    pass(g, "cells-scan", PassKind::Compute, Stage::Footprints)
         .readWrite(counts)
         .readWrite(offsets)
         .readWrite(sums)
@@ -120,7 +132,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
         });
 
-    g.addPass("cells-fill", PassKind::Compute)
+    pass(g, "cells-fill", PassKind::Compute, Stage::Footprints)
         .indirect(args)
         .read(tris)
         .read(big)
@@ -136,11 +148,12 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsBig * 12);
         });
 
-    g.addPass("cells-sweep", PassKind::Compute)
+    pass(g, "cells-sweep", PassKind::Compute, Stage::Pairing)
         .indirect(args)
         .read(entries)
         .read(entry_cells)
         .read(offsets)
+        .readWrite(counts)  // kCellsCandidateBit: cells with a candidate
         .read(deep)
         .readWrite(header)
         .write(candidates)
@@ -150,23 +163,25 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             bind(pc, P.deep, params);
             pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsDeep * 12);
         });
-    g.addPass("cells-pair-args", PassKind::Compute).read(header).write(args).record([&P, params](PassContext& pc) {
+    pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing).read(header).write(args).record([&P, params](PassContext& pc) {
         bind(pc, P.args, params, 2);
         pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
     });
-    g.addPass("cells-pairs", PassKind::Compute)
+    pass(g, "cells-pairs", PassKind::Compute, Stage::Filtering)
         .indirect(args)
         .read(candidates)
         .read(tris)
         .read(geometry)
         .readWrite(header)
+        .readWrite(marks)
+        .write(gpu_triangles)
         .write(survivors)
         .record([pairs, params, args_buffer](PassContext& pc) {
             bind(pc, *pairs, params);
             pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsPairs * 12);
         });
 
-    g.addPass("cells-readback", PassKind::Transfer)
+    pass(g, "cells-readback", PassKind::Transfer, Stage::Readback)
         .use(header, Use::TransferSrc)
         .use(header_rb, Use::TransferDst)
         .record([header_buffer, header_rb_buffer](PassContext& pc) {

@@ -3,6 +3,7 @@
 list(APPEND VKCOLLIDE_GPU_SOURCES
   ${S}/passes/cells/cell_pairs.cpp
   ${S}/passes/cells/cell_pairs_record.cpp
+  ${S}/passes/cells/reliable_method.cpp
 )
 list(APPEND VKCOLLIDE_SHADERS
   cells_setup.comp cells_big.comp cells_scan.comp cells_fill.comp cells_sweep.comp cells_deep.comp cells_args.comp

@@ -1,0 +1,76 @@
+#include "passes/cells/reliable_method.hpp"
+
+#include <algorithm>
+#include <string>
+
+namespace vkcollide::passes {
+
+Result<std::unique_ptr<BroadPhaseMethod>> ReliableMethod::create(vk::Device& device, BufferTable& table, const CoreBuffers& core) {
+    auto cells = CellPairs::create(device);
+    if (!cells) return cells.error();
+    return std::unique_ptr<BroadPhaseMethod>(new ReliableMethod(table, core, std::move(*cells)));
+}
+
+// The stage's input from the run: the objects as uploaded, the projection the front's fit
+// writes (or the caller's region, uploaded there), per-object flags and the pair mask.
+Result<void> ReliableMethod::prepareStage(const RunView& run) {
+    fault_.reset();
+    const std::size_t n = run.meshes.size();
+    CellPairsInput& in = input_;
+    in.objects = run.objects;
+    in.projection.reset();
+    in.projection_address = table_->buffer(core_.projection).address();
+    in.resolution = run.settings.resolution;
+    in.self_collision.resize(n);
+    download_.resize(n);
+    bool any_self = false, any_download = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        in.self_collision[i] = run.meshes[i].self_collision ? 1 : 0;
+        download_[i] = run.meshes[i].check_on_gpu ? 1 : 0;
+        any_self = any_self || run.meshes[i].self_collision;
+        any_download = any_download || run.meshes[i].check_on_gpu;
+    }
+    if (!any_self) in.self_collision.clear();  // keeps its capacity
+    in.download = any_download ? std::span<const std::uint8_t>(download_) : std::span<const std::uint8_t>();
+    in.pair_mask = run.settings.pair_mask ? std::span<const std::uint32_t>(run.settings.pair_mask->bits) : std::span<const std::uint32_t>();
+    return cells_->prepare(in);
+}
+
+void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
+    cells_->record(g, buffers[core_.projection]);
+}
+
+Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, BroadPhaseResult& result) {
+    const CellPairsSettings limits;
+    for (std::uint32_t runs = 1;; ++runs) {
+        auto outcome = cells_->finish(result.cells);
+        if (!outcome) {
+            // Bad input only this stage checks (magnitudes of 2^62 and more): named as a
+            // fault of the object, so the detection's BadObjectPolicy applies to it.
+            if (const auto& bad = cells_->badInput(); bad && bad->object < run.meshes.size()) {
+                const bool index = (bad->flags & gpu::kCellsBadIndex) != 0;
+                fault_ = ObjectFault{bad->object, index ? ObjectFault::Kind::IndexOutOfRange : ObjectFault::Kind::OutOfRange,
+                                     bad->triangle, 1, run.meshes[bad->object].vertex_count};
+            }
+            return outcome.error();
+        }
+        if (*outcome == CellPairs::Outcome::Complete) break;
+        if (runs >= limits.max_runs)
+            return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(runs) + " runs (entries " +
+                                                     std::to_string(cells_->capacity().entries) + ", candidates " +
+                                                     std::to_string(cells_->capacity().candidates) + ")");
+        // An overflow: the stage alone again, its buffers grown; the projection stays.
+        auto report = cells_->runAgain(&table_->buffer(core_.projection));
+        if (!report) return report.error();
+        for (const graph::PassTiming& p : report->passes) {
+            addStageTime(result, p);
+            result.passes.push_back(p);
+        }
+    }
+    result.has_pairs = true;
+    result.pairs = cells_->survivors();
+    result.gpu_triangles = cells_->gpuTriangles();
+    return {};
+}
+
+}  // namespace vkcollide::passes

@@ -182,6 +182,9 @@ TEST_CASE("cells filter: exact touching, shared vertices and edges, coplanar pai
     }
     const Tally t = check(ctx, "exact contacts", cases);
     CHECK(t.intersecting > 20000);
+    // Coplanar disjoint pairs (flat cloth, box faces) are proved apart in the plane.
+    CHECK(t.disjoint > 1000);
+    CHECK(t.rejected_disjoint == t.disjoint);
 }
 
 TEST_CASE("cells filter: near-coplanar crossings, slivers and needles, 1e6 coordinates", "[cells][gpu][filter]") {

@@ -44,7 +44,7 @@ HostMesh tetrahedron(std::string name, Float3 a, Float3 b, Float3 c, Float3 d) {
 }  // namespace
 
 Result<PathologicalCase> repeatedTriangle(std::uint32_t copies) {
-    PathologicalCase c{"one triangle x " + std::to_string(copies), {"repeated triangle", {}}, {}, {}};
+    PathologicalCase c{"one triangle x " + std::to_string(copies), {"repeated triangle", {}}, {.method = DetectMethod::Peeling}, {}};
     HostMesh stack{"stack", {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}}, {}};
     stack.indices.reserve(std::size_t{copies} * 3);
     for (std::uint32_t k = 0; k < copies; ++k) stack.indices.insert(stack.indices.end(), {0u, 1u, 2u});
@@ -73,7 +73,7 @@ std::string repeatedCornerFace(std::uint32_t corners) {
 }
 
 Result<PathologicalCase> slabsOverContact(std::uint32_t slabs) {
-    PathologicalCase c{std::to_string(slabs) + " slabs over a contact", {"slabs", {}}, {}, {}};
+    PathologicalCase c{std::to_string(slabs) + " slabs over a contact", {"slabs", {}}, {.method = DetectMethod::Peeling}, {}};
     c.scene.objects.push_back({tetrahedron("a", {-0.8f, -0.8f, 0.0f}, {0.6f, -0.8f, 0.0f}, {-0.8f, 0.6f, 0.0f}, {-0.8f, -0.8f, 0.9f}),
                                named("tetrahedron a")});
     c.scene.objects.push_back({tetrahedron("b", {-0.5f, -0.5f, 0.1f}, {0.8f, -0.5f, 0.1f}, {-0.5f, 0.8f, 0.1f}, {-0.5f, -0.5f, 1.0f}),
@@ -97,7 +97,7 @@ Result<PathologicalCase> slabsOverContact(std::uint32_t slabs) {
 }
 
 Result<PathologicalCase> crossingTriangles(std::uint32_t count) {
-    PathologicalCase c{std::to_string(count) + " mutually crossing triangles", {"crossing", {}}, {}, {}};
+    PathologicalCase c{std::to_string(count) + " mutually crossing triangles", {"crossing", {}}, {.method = DetectMethod::Peeling}, {}};
     HostMesh fan{"crossing", {}, {}};
     const double pi = std::acos(-1.0);
     for (std::uint32_t k = 0; k < count; ++k) {
@@ -122,7 +122,7 @@ Result<PathologicalCase> crossingTriangles(std::uint32_t count) {
 }
 
 Result<PathologicalCase> manyObjects(std::uint32_t count) {
-    PathologicalCase c{std::to_string(count) + " objects", {"many objects", {}}, {}, {}};
+    PathologicalCase c{std::to_string(count) + " objects", {"many objects", {}}, {.method = DetectMethod::Peeling}, {}};
     const auto side = static_cast<std::uint32_t>(std::ceil(std::cbrt(double(count))));
     for (std::uint32_t i = 0; i < count; ++i) {
         // Odd ones shifted a little, so neighbours cross instead of sharing face planes.
@@ -142,7 +142,7 @@ Result<PathologicalCase> manyObjects(std::uint32_t count) {
 Result<PathologicalCase> scaledCrossing(float scale) {
     char label[64];
     std::snprintf(label, sizeof label, "crossing triangles at scale %g", double(scale));
-    PathologicalCase c{label, {"scaled", {}}, {}, {}};
+    PathologicalCase c{label, {"scaled", {}}, {.method = DetectMethod::Peeling}, {}};
     auto scaled = [scale](Float3 p) { return Float3{p.x * scale, p.y * scale, p.z * scale}; };
     HostMesh flat{"flat", {scaled({-1, -1, 0}), scaled({1, -1, 0}), scaled({0, 1, 0})}, {0, 1, 2}};
     HostMesh standing{"standing", {scaled({0, -0.5f, -1}), scaled({0.05f, 0.5f, 1}), scaled({0, 0.5f, -1})}, {0, 1, 2}};

@@ -37,6 +37,8 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
     };
     for (std::uint32_t r : resolutions)
         v.push_back({"res-" + std::to_string(r), "resolutions", paper([r](S& s) { s.resolution = r; })});
+    for (std::uint32_t r : resolutions)  // the reliable method at a fixed grid (its automatic one is the default)
+        v.push_back({"cells-" + std::to_string(r), "cell-resolutions", [r](S& s) { s.resolution = r; }});
     return v;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <tuple>
 
@@ -38,6 +39,27 @@ Result<void> checkVertices(std::span<const Float3> positions, std::uint32_t vert
         if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
             return Error(ErrorCode::InvalidMesh, "vertex " + std::to_string(i) + " is NaN or infinite");
     return {};
+}
+
+VertexScan copyAndScan(std::span<const Float3> positions, std::span<Float3> out) {
+    // One pass, component-wise min/max without branches (NaN compares false and is caught
+    // by the magnitude test), so that a million vertices cost about one memory copy.
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    float big = 0;
+    bool finite = true;
+    const std::size_t n = positions.size();
+    const Float3* in = positions.data();
+    Float3* dst = out.data();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Float3 p = in[i];
+        dst[i] = p;
+        lo[0] = std::min(lo[0], p.x), lo[1] = std::min(lo[1], p.y), lo[2] = std::min(lo[2], p.z);
+        hi[0] = std::max(hi[0], p.x), hi[1] = std::max(hi[1], p.y), hi[2] = std::max(hi[2], p.z);
+        const float m = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
+        finite &= m <= std::numeric_limits<float>::max();  // false for NaN and infinity
+        big = std::max(big, m);
+    }
+    return {{lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}, big, finite};
 }
 
 std::array<float, 6> boxOf(std::span<const Float3> positions) {
@@ -105,19 +127,26 @@ Result<void> checkGpuMeshDesc(const GpuMeshDesc& d) {
     return {};
 }
 
-Result<void> checkDeclaredSizes(const GpuMeshDesc& d, VkDeviceSize vertex_capacity, VkDeviceSize index_capacity) {
-    for (auto [declared, capacity, what] : {std::tuple{d.vertex_buffer_size, vertex_capacity, "vertex"},
-                                            std::tuple{d.index_buffer_size, index_capacity, "index"}})
-        if (capacity < declared)
-            return Error(ErrorCode::BufferTooSmall, std::string(what) + " buffer is declared as " + std::to_string(declared) +
-                                                        " bytes but holds at most " + std::to_string(capacity));
+Result<void> checkSameTopology(const GpuMeshDesc& was, const GpuMeshDesc& now) {
+    const auto differs = [](const char* what, std::uint64_t a, std::uint64_t b) {
+        return invalid(std::string("setGpuMeshBuffers keeps the topology: ") + what + " " + std::to_string(b) + " differs from the " +
+                       std::to_string(a) + " the object was added with (remove it and add it again instead)");
+    };
+    if (now.vertex_count != was.vertex_count) return differs("vertex count", was.vertex_count, now.vertex_count);
+    if (now.index_count != was.index_count) return differs("index count", was.index_count, now.index_count);
+    if (now.position_format != was.position_format) return differs("position format", was.position_format, now.position_format);
+    if (now.index_type != was.index_type) return differs("index type", was.index_type, now.index_type);
     return {};
 }
 
-Result<void> checkEngineAddresses(const passes::GpuMesh& m, const GpuMeshDesc& d) {
-    if (m.vertices == d.vertex_offset || m.indices == d.index_offset)
-        return invalid("a buffer has no device address (create it with SHADER_DEVICE_ADDRESS usage)");
-    return {};
+VkDeviceSize vertexBytes(const GpuMeshDesc& d) {
+    const VkDeviceSize position_bytes = d.position_format == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 12;
+    return VkDeviceSize(d.vertex_count - 1) * d.vertex_stride + position_bytes;
+}
+
+VkDeviceSize indexBytes(const GpuMeshDesc& d) {
+    // 16-bit indices are read in whole 4-byte words.
+    return d.index_type == VK_INDEX_TYPE_UINT16 ? (VkDeviceSize(d.index_count) * 2 + 3) / 4 * 4 : VkDeviceSize(d.index_count) * 4;
 }
 
 Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {

@@ -46,12 +46,14 @@ Result<void> checkSync(const SubmitSync& sync) {
 
 }  // namespace
 
-// The slot the next detection goes into: the one not in flight (the second is created on
-// first use and predicts from the first's measured depth).
+// The slot the next detection goes into: slot 0 when none is in flight (a world that never
+// pipelines never allocates the second), else the other one (created on first use; it
+// predicts from the first's measured depth).
 Result<CollisionWorld::Impl::Run*> CollisionWorld::Impl::freeRun() {
     if (inFlight() == runs.size())
         return Error(ErrorCode::InvalidArgument, "submit while " + std::to_string(runs.size()) +
                                                      " detections are in flight (CollisionWorld::kMaxInFlight): collect() one first");
+    if (inFlight() == 0) oldest = 0;
     const std::uint32_t k = runs[oldest].in_flight ? 1 - oldest : oldest;
     Run& run = runs[k];
     if (!run.detection) {
@@ -60,7 +62,6 @@ Result<CollisionWorld::Impl::Run*> CollisionWorld::Impl::freeRun() {
         run.detection = std::move(*created);
         run.detection->shareDepth(*runs[1 - k].detection);
     }
-    if (!runs[oldest].in_flight) oldest = k;
     return &run;
 }
 

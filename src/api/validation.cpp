@@ -55,9 +55,10 @@ VertexScan copyAndScan(std::span<const Float3> positions, std::span<Float3> out)
         dst[i] = p;
         lo[0] = std::min(lo[0], p.x), lo[1] = std::min(lo[1], p.y), lo[2] = std::min(lo[2], p.z);
         hi[0] = std::max(hi[0], p.x), hi[1] = std::max(hi[1], p.y), hi[2] = std::max(hi[2], p.z);
-        const float m = std::max(std::fabs(p.x), std::max(std::fabs(p.y), std::fabs(p.z)));
-        finite &= m <= std::numeric_limits<float>::max();  // false for NaN and infinity
-        big = std::max(big, m);
+        const float ax = std::fabs(p.x), ay = std::fabs(p.y), az = std::fabs(p.z);
+        constexpr float kMax = std::numeric_limits<float>::max();
+        finite &= (ax <= kMax) & (ay <= kMax) & (az <= kMax);  // false for NaN and infinity
+        big = std::max(big, std::max(ax, std::max(ay, az)));
     }
     return {{lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}, big, finite};
 }

@@ -159,9 +159,8 @@ public:
     // queue is ordered after it). Frames count on across loops: timeline values only grow.
     void deform(int frame, int pose_frame, bool synced) {
         VkCommandBuffer cmd = cmds_[frame % 2];
-        // The previous use of this command buffer is complete: frame f - 2's deformation,
-        // waited for by that frame's detection, collected before frame f.
-        REQUIRE(f_.vkResetCommandBuffer(cmd, 0) == VK_SUCCESS);
+        // Begin resets it (RESET_COMMAND_BUFFER pool): its previous use, frame - 2's
+        // deformation, is complete (that frame's detection waited for it and was collected).
         VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
         bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         REQUIRE(f_.vkBeginCommandBuffer(cmd, &bi) == VK_SUCCESS);
@@ -290,7 +289,7 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
     for (int f = 0; f < kFrames; ++f) {
         auto ref = CollisionWorld::create(validated.context(), {.threads = 1});
         REQUIRE(ref);
-        for (int k = 0; k < 2; ++k) REQUIRE((*ref)->addMesh({deformed(*rest[k], poseOf(k, f)), rest[k]->indices}));
+        for (int k = 0; k < 2; ++k) REQUIRE((*ref)->addMesh({"", deformed(*rest[k], poseOf(k, f)), rest[k]->indices}));
         auto r = (*ref)->detect();
         REQUIRE(r);
         CHECK(r->pairs.empty() == !overlapping(f));

@@ -211,13 +211,18 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     Impl::Object& o = **found;
     if (!o.host) return w.named(id, Error(ErrorCode::InvalidArgument, "is a GPU mesh: write its vertex buffer instead"));
     if (positions.size() != o.gpu.vertex_count) return w.named(id, validation::checkVertices(positions, o.gpu.vertex_count).error());
-    // One pass over the caller's array (copy, finiteness, box), into the spare host copy so
-    // that a refused update changes nothing; then one copy into the upload buffer.
+    // One pass over the caller's array (copy, finiteness, box) into the spare host copy and
+    // straight into the upload buffer (no detection is in flight: nothing reads it now). A
+    // refused update puts the upload buffer back from the host copy and changes nothing.
     o.spare_positions.resize(positions.size());
-    const validation::VertexScan scan = validation::copyAndScan(positions, o.spare_positions);
-    if (!scan.finite) return w.named(id, validation::checkVertices(positions, o.gpu.vertex_count).error());
-    if (auto ok = validation::checkWorldRange(scan.box, o.options.transform); !ok) return w.named(id, ok.error());
-    std::memcpy(o.vertices.mapped(), o.spare_positions.data(), positions.size_bytes());
+    auto* upload = static_cast<Float3*>(o.vertices.mapped());
+    const validation::VertexScan scan = validation::copyAndScan(positions, o.spare_positions, upload);
+    auto refused = [&](const Error& e) {
+        std::memcpy(upload, o.host_positions.data(), positions.size_bytes());
+        return w.named(id, e);
+    };
+    if (!scan.finite) return refused(validation::checkVertices(positions, o.gpu.vertex_count).error());
+    if (auto ok = validation::checkWorldRange(scan.box, o.options.transform); !ok) return refused(ok.error());
     o.vertices.flush();
     std::swap(o.host_positions, o.spare_positions);
     w.source_dirty = true;  // the narrow phase's source borrowed the other array

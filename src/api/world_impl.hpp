@@ -147,7 +147,7 @@ struct CollisionWorld::Impl {
     static void measureHost(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
     // The typical edge and area moment alone (updateVertices measures the box as it copies).
     static void measureShape(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
-    static constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 16;
+    static constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 14;
 
     // engine_mesh.cpp: an engine mesh as the broad phase reads it, every rule checked
     // (errors name the object).

@@ -57,7 +57,11 @@ Result<CollisionWorld::Impl::Run*> CollisionWorld::Impl::freeRun() {
     const std::uint32_t k = runs[oldest].in_flight ? 1 - oldest : oldest;
     Run& run = runs[k];
     if (!run.detection) {
-        auto created = passes::Detection::create(device(), methodFactory(DetectSettings{}.method));
+        Result<std::unique_ptr<passes::Detection>> created = Error(ErrorCode::OutOfMemory, "host memory ran out creating the second slot");
+        try {
+            created = passes::Detection::create(device(), methodFactory(DetectSettings{}.method));
+        } catch (const std::bad_alloc&) {
+        }
         if (!created) return created.error();
         run.detection = std::move(*created);
         run.detection->shareDepth(*runs[1 - k].detection);

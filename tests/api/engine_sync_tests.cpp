@@ -175,7 +175,20 @@ TEST_CASE("a submit() that fails still signals what it promised; a bad SubmitSyn
     auto value = timeline->value();
     REQUIRE(value);
     CHECK(*value == 5);  // nothing submitted for the refused syncs
-    REQUIRE(world->detect());
+    auto expected = world->detect();
+    REQUIRE(expected);
+
+    // Binary semaphores: one detection signals, the next (in flight at the same time) waits.
+    auto binary = vk::Semaphore::createBinary(ctx.device(), "engine-binary");
+    REQUIRE(binary);
+    const SemaphoreSubmit handoff[] = {{binary->handle()}};
+    REQUIRE(world->submit({}, {.signal = handoff}));
+    REQUIRE(world->submit({}, {.wait = handoff}));
+    for (int k = 0; k < 2; ++k) {
+        auto r = world->collect();
+        REQUIRE(r);
+        CHECK(r->pairs == expected->pairs);
+    }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

@@ -95,7 +95,7 @@ struct EngineCommands {
 
 }  // namespace
 
-TEST_CASE("submit() waits for and signals the engine's timeline; ready() and tryCollect() never block", "[api][gpu][sync]") {
+TEST_CASE("submit() waits for and signals the engine's timeline, ready() and tryCollect() never block", "[api][gpu][sync]") {
     ValidatedContext ctx;
     auto world = makeWorld(ctx);
     auto scene = overlappingSpheres();
@@ -143,7 +143,7 @@ TEST_CASE("submit() waits for and signals the engine's timeline; ready() and try
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("a submit() that fails still signals what it promised; a bad SubmitSync is refused before anything runs",
+TEST_CASE("a submit() that fails still signals what it promised, a bad SubmitSync is refused before anything runs",
           "[api][gpu][sync]") {
     ValidatedContext ctx;
     auto world = makeWorld(ctx);
@@ -192,7 +192,7 @@ TEST_CASE("a submit() that fails still signals what it promised; a bad SubmitSyn
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("record() puts the detection into the engine's command buffer; where it needs two submissions it is refused by name",
+TEST_CASE("record() puts the detection into the engine's command buffer, where it needs two submissions it is refused by name",
           "[api][gpu][sync]") {
     ValidatedContext ctx;
     vk::Device& dev = ctx.device();
@@ -335,7 +335,7 @@ TEST_CASE("setGpuMeshBuffers re-points an engine mesh, keeps its id, and refuses
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("calls that change what work in flight reads fail by name; so do calls from a second thread or a callback",
+TEST_CASE("calls that change what work in flight reads fail by name, so do calls from a second thread or a callback",
           "[api][gpu]") {
     ValidatedContext ctx;
     // The engine's job system: runs the loops on the caller, and in its first loop tries the
@@ -427,7 +427,7 @@ TEST_CASE("gpu_memory_bytes is every byte the world holds: the device's own coun
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("updateVertices refuses a NaN and changes nothing; a good update moves the pairs", "[api][gpu]") {
+TEST_CASE("updateVertices refuses a NaN and changes nothing, a good update moves the pairs", "[api][gpu]") {
     ValidatedContext ctx;
     auto world = makeWorld(ctx);
     auto scene = overlappingSpheres();

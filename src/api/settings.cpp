@@ -201,7 +201,7 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         s.direction = d;
         append(why, buf);
     }
-    if (reliable && s.axes != 1) {
+    if (reliable && s.axes == 3) {  // any other count stays, for the check to name it
         s.axes = 1;
         append(why, "axes 1 (the reliable method's one grid finds every pair)");
     }
@@ -221,13 +221,14 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         } else {
             extent *= 1.0 + 2.0 * double(gpu::kFitMargin);  // the fit's square
         }
+        // Far from the origin, cells below the coordinates' rounding only add footprints.
+        double magnitude = 0;
+        if (any_box)
+            for (int a = 0; a < 3; ++a) magnitude = std::max({magnitude, std::fabs(double(lo[a])), std::fabs(double(hi[a]))});
         char buf[200];
         if (extent > 0 && typical_edge > 0 && reliable) {
             const double want = gpu::kCellsPerEdge * extent / typical_edge;
             const double budget = std::sqrt(std::max(gpu::kMaxCellsPerTriangle * double(triangles), double(gpu::kMinAutoCells) * gpu::kMinAutoCells));
-            // Far from the origin, cells below the coordinates' rounding only add footprints.
-            double magnitude = 0;
-            for (int a = 0; a < 3; ++a) magnitude = std::max({magnitude, std::fabs(double(lo[a])), std::fabs(double(hi[a]))});
             const double precise = magnitude > 0 ? extent / (gpu::kMinCellUlps * 0x1p-23 * magnitude) : INFINITY;
             double n = std::min({std::ceil(want), double(gpu::kMaxAutoCells), std::floor(budget)});
             n = std::max(n, double(gpu::kMinAutoCells));
@@ -243,6 +244,11 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
             s.resolution = std::clamp(nextPowerOfTwo(want), kMinAutoResolution, kMaxAutoResolution);
             std::snprintf(buf, sizeof buf, "resolution %u (extent %.4g / typical edge %.4g x %.0f px per edge)", *s.resolution, extent,
                           typical_edge, kPixelsPerEdge);
+        } else if (reliable && extent <= 0 && magnitude > 0) {
+            // The scene collapsed to a point in float (features below the rounding this far
+            // from the origin): finer cells would only repeat every footprint.
+            s.resolution = 1;
+            std::snprintf(buf, sizeof buf, "resolution 1 cell (the scene has no extent in float at magnitude %.3g)", magnitude);
         } else {
             s.resolution = reliable ? gpu::kFallbackCells : kFallbackResolution;
             std::snprintf(buf, sizeof buf, "resolution %u (no extent or typical edge length to measure)", *s.resolution);

@@ -87,6 +87,7 @@ TEST_CASE("vkcollide detect --json: pairs, responses, objects and statistics agr
 
 TEST_CASE("vkcollide detect --png: colliding triangles highlighted, objects coloured, rays on request", "[cli][gpu]") {
     Scene touching("png", 1.2f);
+    touching.files += " --method peeling";  // the collision rays are the peeling method's
     const std::string png = touching.scratch.path("scene.png");
     const Json j = detectJson(touching.scratch, touching.files + " --resolution 64 --png " + png);
     REQUIRE(j["frames"][0]["pairs"].size() > 0);
@@ -165,7 +166,8 @@ TEST_CASE("vkcollide --help: every option says what it does and what it costs", 
         "--no-measure-layers", "--axes", "--coverage", "--closed-epsilon", "--bad-objects", "--paper-packing", "--name",
         "--open", "--self", "--no-self-collision", "--transform", "--translate", "--rotate", "--scale", "--gpu-mesh",
         "--edge-length", "--sequence", "--frame-files", "--frames", "--threads", "--device", "--no-robust-access",
-        "--validation", "--quiet", "--pairs", "--json", "--stats", "--csv", "--png", "--png-size", "--view", "--rays"};
+        "--validation", "--quiet", "--pairs", "--json", "--stats", "--csv", "--png", "--png-size", "--view", "--rays",
+        "--method", "--timeout", "--max-pairs", "--max-candidate-pairs"};
     CHECK(std::set<std::string>(options.begin(), options.end()) == tested);
 }
 
@@ -193,7 +195,9 @@ TEST_CASE("vkcollide detect: errors name the option and the problem", "[cli][gpu
         {a + " --backend gpu", 1, "--backend needs auto, raster or compute, got 'gpu'"},
         {a + " --packing zip", 1, "--packing needs scan or paper, got 'zip'"},
         {a + " --bad-objects ignore", 1, "--bad-objects needs exclude or fail, got 'ignore'"},
-        {a + " --coverage dilate --backend compute", 1, "--backend compute, --coverage dilate: thin-triangle coverage"},
+        {a + " --method cells", 1, "--method needs reliable or peeling, got 'cells'"},
+        {a + " --max-pairs lots", 1, "--max-pairs needs a whole number"},
+        {a + " --method peeling --coverage dilate --backend compute", 1, "--backend compute, --coverage dilate: thin-triangle coverage"},
         {a + " --dual=yes", 1, "--dual takes no value"},
         {a + " --open 2", 1, "--open names file 2, but there is 1 file (numbered from 1)"},
         {a + " --self x", 1, "--self needs all, none or file numbers like 1,3-4"},

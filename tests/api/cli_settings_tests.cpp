@@ -12,14 +12,17 @@ using namespace clitest;
 
 namespace {
 
-// Two overlapping spheres (a at the origin, b moved along x), one OFF file each.
+// Two overlapping spheres (a at the origin, b moved along x), one OFF file each. `files`
+// also names the peeling method: most options shape its ray sampling (the reliable
+// method, the default, is tested at the end).
 struct TwoSpheres {
     Scratch scratch{"settings"};
-    std::string files;
+    std::string files, plain_files;
     std::vector<vkcollide::HostMesh> world;
     explicit TwoSpheres(float gap_x = 1.2f) {
         world = {sphere("a", {0, 0, 0}), sphere("b", {gap_x, 0.1f, 0.05f})};
-        files = writeMesh(scratch, "a.off", world[0]) + " " + writeMesh(scratch, "b.off", world[1]);
+        plain_files = writeMesh(scratch, "a.off", world[0]) + " " + writeMesh(scratch, "b.off", world[1]);
+        files = plain_files + " --method peeling";
     }
 };
 
@@ -198,4 +201,35 @@ TEST_CASE("vkcollide detect: the JSON's settings name every DetectSettings optio
     options.erase("--paper-packing");
     CHECK(j["settings"]["asked"].object().size() == options.size());
     CHECK(j["settings"]["used"].object().size() == options.size());
+}
+
+TEST_CASE("vkcollide detect: --method chooses the broad phase, reliable by default, with the same pairs here", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json reliable = detectJson(s.scratch, s.plain_files);
+    CHECK(reliable["settings"]["used"]["method"].string() == "reliable");
+    CHECK(stats(reliable)["method"].string() == "reliable");
+    CHECK(stats(reliable)["cell_entries"].number() > 0);
+    CHECK(stats(reliable)["cell_survivors"].number() >= static_cast<double>(reliable["frames"][0]["pairs"].size()));
+    CHECK_FALSE(hasPass(reliable, "pack-scan"));
+    const Json peeling = detectJson(s.scratch, s.plain_files + " --method peeling --resolution 512");
+    CHECK(stats(peeling)["method"].string() == "peeling");
+    CHECK(hasPass(peeling, "pack-scan"));
+    REQUIRE(reliable["frames"][0]["pairs"].size() > 0);
+    CHECK(jsonPairs(peeling["frames"][0]) == jsonPairs(reliable["frames"][0]));
+}
+
+TEST_CASE("vkcollide detect: --max-pairs keeps that many and says the rest were left out, --timeout and --max-candidate-pairs reach the settings",
+          "[cli][gpu]") {
+    TwoSpheres s;
+    const Json all = detectJson(s.scratch, s.plain_files);
+    REQUIRE(all["frames"][0]["pairs"].size() > 3);
+    Run run;
+    const Json capped = detectJson(s.scratch, s.plain_files + " --max-pairs 3 --timeout 30000 --max-candidate-pairs 100000000", run);
+    CHECK(capped["settings"]["used"]["max_pairs"].number() == 3);
+    CHECK(capped["settings"]["used"]["timeout_ms"].number() == 30000);
+    CHECK(capped["settings"]["used"]["max_candidate_pairs"].number() == 100000000);
+    CHECK(capped["frames"][0]["pairs"].size() == 3);
+    const Run few = runCli("detect " + s.plain_files + " --max-candidate-pairs 1");
+    CHECK(few.status != 0);
+    CHECK(few.err.find("max_box_pairs") != std::string::npos);
 }

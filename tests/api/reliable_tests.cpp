@@ -235,7 +235,7 @@ TEST_CASE("reliable: bad engine meshes are left out or fail the detection, namin
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("reliable: host meshes beyond 2^62 are refused by name, the pair filter is kept on the GPU", "[api][gpu][reliable]") {
+TEST_CASE("reliable: host meshes beyond 2^62 are refused by name, and the pair filter is kept on the GPU", "[api][gpu][reliable]") {
     ValidatedContext ctx;
     auto scene = overlappingSpheres(0.5f);
     REQUIRE(scene);

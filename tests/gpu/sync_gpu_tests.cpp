@@ -44,7 +44,7 @@ std::uint32_t wordAt(const vk::Buffer& buffer, std::size_t index) {
 
 }  // namespace
 
-TEST_CASE("timeline and binary semaphores order three submissions behind a host signal, polls and timeouts leave them pending",
+TEST_CASE("timeline and binary semaphores order three submissions behind a host signal, and polls and timeouts leave them pending",
           "[gpu][sync]") {
     test::ValidatedContext ctx;
     vk::Device& dev = ctx.device();

@@ -197,6 +197,7 @@ TEST_CASE("two tetrahedra under thousands of slabs find every pair, on both back
         for (SamplingBackend backend : {SamplingBackend::Raster, SamplingBackend::Compute}) {
             INFO(slabs << " slabs, " << toString(backend));
             auto r = detectWith(*world, c->settings, backend);
+            INFO((r ? std::string() : r.error().message()));
             REQUIRE(r);
             checkExact(r->pairs, *c->reference);
             CHECK((r->stats.deep_rays > 0) == (slabs > 1000));

@@ -15,11 +15,13 @@
 
 namespace vkcollide::test {
 
-// A scene, the settings it is run with, and the exact pairs where they are known.
+// A scene, the settings it is run with, and the exact pairs where they are known. The
+// cases stress the peeling method's passes (fragment counts, peeling depth, backends), so
+// their settings name it.
 struct PathologicalCase {
     std::string name;
     TestScene scene;
-    DetectSettings settings;
+    DetectSettings settings{.method = DetectMethod::Peeling};
     std::optional<std::vector<TrianglePair>> reference;
 };
 

@@ -123,7 +123,7 @@ TEST_CASE("queue hooks: lock, the engine's submit and unlock around every submis
     CHECK(scope.fake().submits.size() == 2);  // each went through the engine's path to the driver
 }
 
-TEST_CASE("queue hooks come as a lock/unlock pair, a hook that throws fails the submission, not the process",
+TEST_CASE("queue hooks come as a lock/unlock pair, and a hook that throws fails the submission, not the process",
           "[contract][hooks][error]") {
     FakeVulkanScope scope;
     test::FakeEngineDevice engine;
@@ -316,7 +316,7 @@ TEST_CASE("allocation callbacks reach every object vkcollide creates, and every 
     CHECK(scope.fake().devices_alive == 0);
 }
 
-TEST_CASE("every pipeline goes through the engine's pipeline cache, the Context creates none then", "[contract][hooks][cache]") {
+TEST_CASE("every pipeline goes through the engine's pipeline cache, and the Context creates none then", "[contract][hooks][cache]") {
     FakeVulkanScope scope;
     test::FakeEngineDevice engine;
     AdoptedDevice lent = engine.lend(scope.fake());

@@ -185,7 +185,7 @@ TEST_CASE("device loss while pending: DeviceLost, the submission stays Lost and 
     CHECK(scope.fake().fences_alive == 0);
 }
 
-TEST_CASE("a failed vkQueueSubmit2 leaves nothing pending, device loss there leaves it Lost", "[contract][submission][error]") {
+TEST_CASE("a failed vkQueueSubmit2 leaves nothing pending, and device loss there leaves it Lost", "[contract][submission][error]") {
     FakeVulkanScope scope;
     auto ctx = test::createFakeContext();
     vk::Submission s = makeSubmission(*ctx);

@@ -34,6 +34,8 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/passes/stage.cpp
   ${S}/passes/triangle_bounds.cpp
   ${S}/api/detect.cpp
+  ${S}/api/engine_mesh.cpp
+  ${S}/api/engine_sync.cpp
   ${S}/api/settings.cpp
   ${S}/api/validation.cpp
   ${S}/api/world.cpp

@@ -89,7 +89,8 @@ int main(int argc, char** argv) {
 
     // The sphere stands on the floor: they touch, and that is of no interest. Only pairs
     // with the cloth (itself included) are tested.
-    (*world)->setPairFilter([&](ObjectId a, ObjectId b) { return !(a == obstacles[0].id && b == obstacles[1].id); });
+    if (auto ok = (*world)->setPairFilter([&](ObjectId a, ObjectId b) { return !(a == obstacles[0].id && b == obstacles[1].id); }); !ok)
+        return fail(ok.error());
 
     // The cloth: a grid folded like a page being turned, one half above the other, laid
     // horizontally above the sphere and turned a little, so the halves land on each other.

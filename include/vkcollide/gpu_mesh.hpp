@@ -7,12 +7,19 @@
 
 namespace vkcollide {
 
+// The usage GpuMeshDesc::vertex_usage and index_usage assume when the engine does not
+// state its own: what vkcollide needs (context.hpp, "What vkcollide needs of an engine's
+// buffers").
+inline constexpr VkBufferUsageFlags kGpuMeshBufferUsage =
+    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+
 // Geometry that lives only in the engine's GPU buffers, on the Context's device.
-// Both buffers need VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT and
-// VK_BUFFER_USAGE_STORAGE_BUFFER_BIT and memory bound before use. The engine must not
+// Both buffers need VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT usage and memory bound
+// (allocated with VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT) before use. The engine must not
 // write them while a detection that reads them is in flight (between submit() and
-// collect()); writes it submitted earlier to the Context's queue are made visible by a
-// barrier at the start of each detection.
+// collect(), or until submit()'s signal semaphores: world.hpp); writes it submitted
+// earlier to the Context's queue are made visible by a barrier at the start of each
+// detection, writes on other queues by submit()'s wait semaphores.
 struct GpuMeshDesc {
     VkBuffer vertex_buffer = VK_NULL_HANDLE;
     VkDeviceSize vertex_buffer_size = 0;  // size the buffer was created with
@@ -26,6 +33,14 @@ struct GpuMeshDesc {
     VkDeviceSize index_offset = 0;  // multiple of 4
     VkIndexType index_type = VK_INDEX_TYPE_UINT32;  // or VK_INDEX_TYPE_UINT16
     std::uint32_t index_count = 0;  // 3 per triangle
+
+    // The usage flags each buffer was created with (VkBufferCreateInfo::usage), which Vulkan
+    // cannot be asked for. A buffer declared without VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT
+    // is refused by name (asking for its address would itself be invalid). The default
+    // states that the buffers have what vkcollide needs; state the real flags to have them
+    // checked.
+    VkBufferUsageFlags vertex_usage = kGpuMeshBufferUsage;
+    VkBufferUsageFlags index_usage = kGpuMeshBufferUsage;
 };
 
 }  // namespace vkcollide

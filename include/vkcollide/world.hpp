@@ -16,13 +16,26 @@
 //     auto hits = (*world)->detect();                           // pairs, responses, statistics
 //   or, without stalling the frame:
 //     (*world)->submit();  ... render ...  auto hits = (*world)->collect();
+//   with the engine's semaphores (submit(settings, sync)), into the engine's command buffer
+//   (record()), polled (ready(), tryCollect()), or pipelined: submit frame N+1 before
+//   collecting frame N (docs/api.md, "Engines: synchronisation and latency").
 //
 // Meshes are what an engine renders: indexed triangle lists, no preprocessing and no
 // hierarchy. Vertices of GPU meshes may change every frame (skinning, simulation): the
 // world reads them when a detection is submitted.
 //
-// Thread safety: a CollisionWorld is used from one thread at a time, the thread that
-// uses its Context.
+// Thread safety: a CollisionWorld is used from one thread at a time (not always the same
+// one). A call made while another call of the same world runs on another thread, or from
+// inside one of its callbacks (the pair filter, the engine's executor), is refused with
+// InvalidArgument naming both calls, and changes nothing. Destroying a world while one of
+// its calls runs stops the process with a message (a destructor cannot return an error).
+//
+// What the world cannot guard: the engine's own writes. vkcollide reads engine buffers
+// (addGpuMesh, setGpuMeshBuffers) through device addresses, which neither it nor the
+// validation layer can see. Writing or freeing such a buffer while a detection that reads
+// it is in flight (from submit() or record() until collect() returns, or until its signal
+// semaphores are signalled: see submit()) gives pairs of torn geometry or reads freed
+// memory. Order the engine's writes with the semaphores of submit() or after collect().
 #pragma once
 
 #include <array>
@@ -240,8 +253,10 @@ struct DetectStats {
     double narrow_ms = 0;                // host: the CPU narrow phase
     double total_ms = 0;                 // host wall time from submit to result
     unsigned narrow_threads = 0;
-    // Memory: GPU buffers held by the world (uploaded meshes and the broad phase's buffers;
-    // engine-owned buffers not counted).
+    // Memory: device memory held by the world, in Context::deviceMemoryInUse()'s unit (the
+    // memory requirements' sizes): uploaded meshes, the broad phases' buffers, images and
+    // cached transients, both slots when two detections were in flight. With one world on a
+    // Context this is deviceMemoryInUse(). Engine-owned buffers are not counted.
     std::uint64_t gpu_memory_bytes = 0;
 };
 
@@ -278,7 +293,14 @@ enum class WorldState : std::uint8_t {
 };
 
 struct WorldOptions {
-    unsigned threads = 0;  // narrow-phase worker threads; 0: all hardware threads
+    // Threads of the world's own pool for the narrow phase (vkcollide/thread_pool.hpp);
+    // 0: all hardware threads. Ignored with `executor`.
+    unsigned threads = 0;
+    // Optional: the engine's job system (a CallbackExecutor around its parallel-for, or its
+    // own Executor). The narrow phase runs its loops there and the world starts no thread.
+    // Borrowed: it must outlive the world. Called from the thread that calls detect(),
+    // collect() or tryCollect(), one loop at a time; it must not call into the world.
+    Executor* executor = nullptr;
 };
 
 class CollisionWorld {
@@ -291,16 +313,33 @@ public:
 
     // Host arrays, checked (validateMesh) and uploaded. The world keeps no pointer to `mesh`.
     [[nodiscard]] Result<ObjectId> addMesh(const HostMesh& mesh, const ObjectOptions& options = {});
-    // Engine-owned buffers; checked against the declared sizes and formats. Index values
-    // and vertex values live only on the GPU: each detection checks them there; an object
-    // with an index out of range or a position not finite is left out of that detection
-    // and named in DetectResult::excluded (or fails it: DetectSettings::bad_objects).
+    // Engine-owned buffers; checked against the declared sizes, formats and usage
+    // (GpuMeshDesc). Index values and vertex values live only on the GPU: each detection
+    // checks them there; an object with an index out of range or a position not finite is
+    // left out of that detection and named in DetectResult::excluded (or fails it:
+    // DetectSettings::bad_objects). The buffers must stay alive until the object is removed
+    // or re-pointed (setGpuMeshBuffers) and no detection that reads them is in flight.
     [[nodiscard]] Result<ObjectId> addGpuMesh(const GpuMeshDesc& mesh, const ObjectOptions& options = {});
+    // Re-points an engine mesh at other buffers (double buffering: the engine writes one
+    // pair while a detection reads the other). Same topology: the same vertex count, index
+    // count, position format and index type (stride, offsets and buffers may differ); the
+    // new description is checked as addGpuMesh checks it. Keeps the id, the options, the
+    // measured depth complexity and everything automatic settings learnt: no extra work in
+    // the next detection. Allowed while detections are in flight: they read the buffers they
+    // were submitted with (keep those alive and unwritten until collected or signalled), the
+    // next submit() reads the new ones.
+    // Errors: InvalidArgument (no such object, a host mesh, another topology: named),
+    // plus addGpuMesh's; on error nothing changes.
+    [[nodiscard]] Result<void> setGpuMeshBuffers(ObjectId id, const GpuMeshDesc& mesh);
     [[nodiscard]] Result<void> removeObject(ObjectId id);
 
+    // Moves an object. Allowed while detections are in flight: each uses the transforms of
+    // its submit() (on the GPU and in the narrow phase), the next submit() the new one.
     [[nodiscard]] Result<void> setTransform(ObjectId id, const Transform3x4& object_to_world);
     [[nodiscard]] Result<void> setSelfCollision(ObjectId id, bool on);
-    // New positions of a host mesh (same count, every one finite).
+    // New positions of a host mesh (same count, every one finite): written straight into the
+    // mesh's upload buffer; the object's box and the typical edge length for automatic
+    // settings are updated in the same pass (docs/api.md gives the cost).
     [[nodiscard]] Result<void> updateVertices(ObjectId id, std::span<const Float3> positions);
     // Which object pairs may collide (called with a < b); empty: every pair may. Called on
     // the thread that calls detect() or submit(). Contract: a pure function of the two ids.
@@ -308,13 +347,14 @@ public:
     // setPairFilter, addMesh, addGpuMesh or removeObject (not in every detection), and its
     // answers are kept as a bit mask that the GPU reads (the reliable method forms no pair
     // of filtered objects: no GPU work for them) and the narrow phase applies. Call
-    // setPairFilter again when its answers change. Above kMaxFilterMaskObjects
+    // setPairFilter again when its answers change. Fails (InvalidArgument, nothing changed)
+    // while a detection is in flight: its narrow phase still uses the filter. Above kMaxFilterMaskObjects
     // (spirv/config.h) live objects no mask is kept: the filter is then called in every
     // detection (on the thread that calls detect() or collect()), once per object pair
     // that has candidates. It must not throw: if it does, the world catches the exception,
     // stops calling the filter and fails that detection with InvalidArgument naming the
     // pair and the exception's message (the world stays Ready).
-    void setPairFilter(std::function<bool(ObjectId a, ObjectId b)> may_collide);
+    [[nodiscard]] Result<void> setPairFilter(std::function<bool(ObjectId a, ObjectId b)> may_collide);
 
     std::size_t objectCount() const noexcept;
     std::size_t triangleCount() const noexcept;
@@ -327,12 +367,69 @@ public:
     // device has (nothing is allocated then; the world stays usable), DeviceLost (create a
     // new Context), InvalidMesh for a bad engine mesh under BadObjectPolicy::Fail.
     [[nodiscard]] Result<DetectResult> detect(const DetectSettings& settings = {});
+    // ---- Detections in flight (docs/api.md, "Engines: synchronisation and latency") ------
+    //
     // Records and submits the GPU work and returns; collect() waits for it and runs the
-    // narrow phase. One detection in flight at a time; objects must not change until
-    // collect() returns (calls that would change them fail).
-    [[nodiscard]] Result<void> submit(const DetectSettings& settings = {});
+    // narrow phase. Up to kMaxInFlight detections may be in flight: submit frame N+1 before
+    // collect() of frame N, and frame N's narrow phase runs on the host while frame N+1's
+    // GPU work runs (the second slot's GPU buffers are allocated on its first use, as many
+    // again as the first's); collect() returns them in submission order.
+    // While a detection is in flight, setTransform and setGpuMeshBuffers work (the
+    // detection keeps what it was submitted with); addMesh, addGpuMesh, removeObject,
+    // updateVertices, setSelfCollision and setPairFilter fail with InvalidArgument naming
+    // the call (the in-flight work reads what they change).
+    // Peeling: submit() peels as many layers as the last detection measured (one
+    // submission; DetectSettings::measure_layers is ignored); when none is known (the first
+    // detection, or after objects were added or removed) it measures first, with a host
+    // wait between two submissions.
+    //
+    // sync: the engine's semaphores (context.hpp, SubmitSync; binary or timeline, created
+    // on the Context's device; the spans are read during the call only). The GPU work waits
+    // for sync.wait before it starts (e.g. the engine's deformation of its meshes on another
+    // queue) and signals sync.signal when it has finished, so that the engine may write the
+    // meshes again, or consume the detection, without a CPU wait. A detection of several
+    // queue submissions (peeling with axes 3, or a measuring submission) waits in the first
+    // and signals in the last. Timeline waits may be signalled after submit() returns, but
+    // not when this submit() measures (above): its host wait would wait for them (up to
+    // timeout_ms). Binary waits follow Vulkan's rule (the signal already submitted).
+    // If submit() fails, its waits and signals are still submitted (as a batch of only
+    // those) so that no engine queue waits forever; except when `sync` itself is invalid
+    // (a null semaphore or a 0 stage mask: InvalidArgument, nothing submitted).
+    // Caveat: collect() may run GPU work again after the signal, reading the engine's
+    // meshes a second time: when a buffer of the reliable method overflowed
+    // (DetectStats::cells.runs > 1; buffers grow and keep their size, so this happens in the
+    // first frames of a growing scene) or when an engine mesh failed the GPU check and is
+    // left out (DetectResult::excluded). Geometry the engine wrote after the signal is then
+    // what that rerun sees; an engine that must rule this out writes after collect().
+    //
+    // Queue-family ownership: vkcollide reads engine buffers on the Context's queue family;
+    // an EXCLUSIVE buffer written on a queue of another family must be released there and
+    // acquired on the Context's family before the detection (context.hpp, "Sharing").
+    [[nodiscard]] Result<void> submit(const DetectSettings& settings = {}, const SubmitSync& sync = {});
+    // As submit(), but records the GPU work into the engine's command buffer instead of
+    // submitting it (context.hpp, EngineCommandBuffer: the engine submits it to a queue of
+    // the Context's family, in a batch that signals target.timeline to target.value; it
+    // orders it after its mesh writes with its own barriers or semaphores). Needs a
+    // detection of one submission: the reliable method, or peeling with axes 1 once the
+    // depth complexity is known; refused by name otherwise (InvalidArgument). Also refused:
+    // a null command buffer or timeline, a value the timeline has reached, a device without
+    // timelineSemaphore (UnsupportedFeature). collect() and the world's destruction wait
+    // for target.value without a time limit: submit the command buffer first.
+    [[nodiscard]] Result<void> record(const EngineCommandBuffer& target, const DetectSettings& settings = {});
+    // Waits for the oldest detection in flight and runs its narrow phase.
+    // Errors: InvalidArgument when none is in flight, and detect()'s.
     [[nodiscard]] Result<DetectResult> collect();
+    // Whether collect() would find the oldest detection's GPU work finished (it may still
+    // run GPU work again: see the caveat above). Never waits. Errors: InvalidArgument when
+    // none is in flight, DeviceLost.
+    [[nodiscard]] Result<bool> ready();
+    // collect() if ready(), else std::nullopt at once (nothing changed: still in flight).
+    [[nodiscard]] Result<std::optional<DetectResult>> tryCollect();
+    // A detection is in flight (submitted or recorded, not yet collected).
     bool pending() const noexcept;
+    // How many detections are in flight (0, 1 or kMaxInFlight).
+    std::uint32_t inFlight() const noexcept;
+    static constexpr std::uint32_t kMaxInFlight = 2;
     // Ready, Busy or DeviceLost (polls the GPU's progress; never waits).
     WorldState state() const;
 

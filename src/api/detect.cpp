@@ -21,11 +21,12 @@ double msSince(Clock::time_point t0) { return std::chrono::duration<double, std:
 
 // An error of the detection, with the objects the GPU check named (indices in the run's
 // meshes) named by id: the only place the API words those findings.
-Error CollisionWorld::Impl::describeFailure(const Error& e) const {
-    const passes::Detection::Failure& f = detection->failure();
+Error CollisionWorld::Impl::describeFailure(const Run& run, const Error& e) const {
+    const passes::Detection::Failure& f = run.detection->failure();
     if (f.faults.empty()) return e;
     const passes::ObjectFault& first = f.faults.front();
-    const std::string named_fault = who(run_ids.at(first.object), objects.at(run_ids.at(first.object)).name) + ": " + passes::describe(first);
+    const ObjectId id = run.ids.at(first.object);
+    const std::string named_fault = who(id, objects.at(id).name) + ": " + passes::describe(first);
     return Error(e.code(), f.none_left ? "no object left to test: " + named_fault : named_fault, e.vkResult());
 }
 
@@ -33,23 +34,20 @@ passes::MethodFactory CollisionWorld::Impl::methodFactory(DetectMethod method) {
     return method == DetectMethod::Reliable ? passes::ReliableMethod::create : passes::PeelingMethod::create;
 }
 
-Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool measure) {
-    if (pending()) return Error(ErrorCode::InvalidArgument, "submit while a detection is in flight: collect() it first");
-    if (device_lost)
-        return Error(ErrorCode::DeviceLost, "the device was lost in an earlier detection: destroy the world and create a new Context");
-    run_start = Clock::now();
-    std::vector<passes::GpuMesh>& meshes = run_meshes;  // kept: no allocation per detection
-    liveMeshes(meshes, run_ids);
-    run_settings = resolve(settings, &run_note);
-    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run_settings, context->device())})
+Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
+    run.start = Clock::now();
+    std::vector<passes::GpuMesh>& meshes = run.meshes;  // kept: no allocation per detection
+    liveMeshes(meshes, run.ids);
+    run.settings = resolve(settings, &run.note);
+    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, context->device())})
         if (!ok) return ok.error();
-    const DetectSettings& s = run_settings;
+    const DetectSettings& s = run.settings;
     if (s.method == DetectMethod::Reliable)
-        for (ObjectId id : run_ids)
+        for (ObjectId id : run.ids)
             if (auto ok = validation::checkReliableObject(objects[id].options.transform, objects[id].max_abs); !ok) return named(id, ok.error());
     passes::DetectionSettings d;
     d.method = methodFactory(s.method);
-    auto mask = pairMask(run_ids);
+    auto mask = pairMask(run.ids);
     if (!mask) return mask.error();
     d.broad.pair_mask = *mask;
     d.broad.resolution = *s.resolution;
@@ -66,17 +64,21 @@ Result<void> CollisionWorld::Impl::start(const DetectSettings& settings, bool me
     d.broad.depth_aware = s.depth_aware;
     d.axes = s.axes;
     d.bad_objects = s.bad_objects;
-    if (auto ok = detection->start(meshes, d, measure); !ok) return noted(describeFailure(ok.error()));
+    if (auto ok = run.detection->start(meshes, d, measure, target); !ok) return noted(describeFailure(run, ok.error()));
+    run.in_flight = true;
     return {};
 }
 
-Result<DetectResult> CollisionWorld::Impl::collect() {
-    auto r = detection->collect();
-    if (!r) return noted(describeFailure(r.error()));
-    return finish(std::move(*r));
+Result<DetectResult> CollisionWorld::Impl::collect(Run& run) {
+    run.in_flight = false;
+    auto r = run.detection->collect();
+    if (!r) return noted(describeFailure(run, r.error()));
+    return finish(run, std::move(*r));
 }
 
-Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detected) {
+Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionResult detected) {
+    const std::vector<ObjectId>& run_ids = run.ids;
+    const DetectSettings& run_settings = run.settings;
     const std::vector<passes::BroadPhaseResult>& broad = detected.axes;
     // Broad-phase object index -> ObjectId.
     std::vector<ObjectId>& ids = finish_ids;
@@ -95,7 +97,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     st.dual = run_settings.dual;
     st.axes = static_cast<std::uint32_t>(broad.size());
     st.coverage = run_settings.coverage;
-    st.settings_note = run_note;
+    st.settings_note = run.note;
     st.backend = broad[0].backend;
     st.backend_reason = broad[0].backend_reason;
     for (std::uint32_t k = 1; k < broad.size(); ++k)
@@ -134,7 +136,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     NarrowOptions& options = narrow_options;
     options.self_collision.clear();
     options.may_collide = {};
-    for (ObjectId id : ids) options.self_collision.push_back(objects[id].options.self_collision);
+    // As the objects were at start() (they may have moved since: pipelining).
+    for (std::uint32_t i : detected.objects) options.self_collision.push_back(run.meshes[i].self_collision);
     options.max_pairs = run_settings.max_pairs;
     options.max_box_pairs = run_settings.max_candidate_pairs;
     // The filter's kept answers (indices of the live objects the mask was built over), or
@@ -162,11 +165,14 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
         // in parallel by the narrow phase), host meshes from the world's source, engine
         // meshes' triangles from the download.
         if (auto ok = syncSource(ids); !ok) return ok.error();
+        for (std::uint32_t i : detected.objects)
+            if (const Object& o = objects[run_ids[i]]; o.host && o.source_index != kNoSource)
+                if (auto ok = source.setTransform(o.source_index, run.meshes[i].transform); !ok) return named(run_ids[i], ok.error());
         source.setGpuTriangles(broad[0].gpu_triangles);
-        narrow = runPairNarrowPhase(broad[0].pairs, source, options, *pool, narrow_workspace);
+        narrow = runPairNarrowPhase(broad[0].pairs, source, options, *executor, narrow_workspace);
         source.setGpuTriangles({});  // the download is overwritten by the next run
     } else {
-        narrow = runNarrowPhase(detected.candidates(), options, *pool, narrow_workspace);
+        narrow = runNarrowPhase(detected.candidates(), options, *executor, narrow_workspace);
     }
     st.narrow_ms = msSince(t0);
     options.may_collide = {};  // it refers to this call's objects
@@ -179,7 +185,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
                                    " intersecting pairs, more than DetectSettings::max_pairs (" + std::to_string(run_settings.max_pairs) +
                                    "): kept " + std::to_string(narrow->pairs.size()) + ", left out " + std::to_string(narrow->pairs_left_out));
     }
-    st.narrow_threads = pool->threadCount();
+    st.narrow_threads = executor->threadCount();
     st.narrow = narrow->stats;
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;
     st.triangle_tests = narrow->stats.triangle_tests;
@@ -191,9 +197,11 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
     if (broad[0].scene_box) measured_box = broad[0].scene_box;
-    st.gpu_memory_bytes = detection->memoryBytes();
-    for (const Object& o : objects) st.gpu_memory_bytes += (o.vertices.valid() ? o.vertices.size() : 0) + (o.indices.valid() ? o.indices.size() : 0);
-    st.total_ms = msSince(run_start);
+    // Everything the world holds: both slots' broad phases (with their cached transients and
+    // the methods' own buffers) and the uploaded meshes, in Context::deviceMemoryInUse's unit.
+    for (const Run& r : runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;
+    for (const Object& o : objects) st.gpu_memory_bytes += o.vertices.memoryBytes() + o.indices.memoryBytes();
+    st.total_ms = msSince(run.start);
     return out;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <tuple>
 
@@ -38,6 +39,58 @@ Result<void> checkVertices(std::span<const Float3> positions, std::uint32_t vert
         if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
             return Error(ErrorCode::InvalidMesh, "vertex " + std::to_string(i) + " is NaN or infinite");
     return {};
+}
+
+VertexScan copyAndScan(std::span<const Float3> positions, std::span<Float3> out, Float3* also_out) {
+    // One pass over the floats in blocks of four vertices (12 floats: the components repeat
+    // with period 3, so lane j of a block always holds component j % 3): branch-free per-lane
+    // minimum, maximum and magnitude that the compiler vectorizes, folded into components at
+    // the end. A NaN or infinity fails the magnitude test (NaN compares false). About one
+    // memory copy for a million vertices instead of a scalar loop's four. `also_out` (the
+    // upload buffer) is written in the same pass: the caller's array is read once.
+    constexpr float kMax = std::numeric_limits<float>::max();
+    float lo[12], hi[12], big[12];
+    int finite[12];
+    for (int j = 0; j < 12; ++j) lo[j] = INFINITY, hi[j] = -INFINITY, big[j] = 0, finite[j] = 1;
+    const std::size_t n = positions.size(), blocks = n / 4;
+    const float* in = &positions.data()->x;
+    float* dst = &out.data()->x;
+    float* dst2 = also_out ? &also_out->x : dst;  // dst again: the second store is harmless
+    static_assert(sizeof(Float3) == 12, "Float3 is three packed floats");
+    for (std::size_t k = 0; k < blocks; ++k) {
+        const float* p = in + 12 * k;
+        float* d = dst + 12 * k;
+        float* d2 = dst2 + 12 * k;
+        for (int j = 0; j < 12; ++j) {
+            const float v = p[j], a = std::fabs(v);
+            d[j] = v;
+            d2[j] = v;
+            lo[j] = v < lo[j] ? v : lo[j];
+            hi[j] = v > hi[j] ? v : hi[j];
+            big[j] = a > big[j] ? a : big[j];
+            finite[j] &= int(a <= kMax);
+        }
+    }
+    for (std::size_t i = 4 * blocks * 3; i < 3 * n; ++i) {  // the last vertices, one float at a time
+        const int j = int(i % 3);
+        const float v = in[i], a = std::fabs(v);
+        dst[i] = v;
+        dst2[i] = v;
+        lo[j] = v < lo[j] ? v : lo[j];
+        hi[j] = v > hi[j] ? v : hi[j];
+        big[j] = a > big[j] ? a : big[j];
+        finite[j] &= int(a <= kMax);
+    }
+    VertexScan r;
+    r.box = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (int j = 0; j < 12; ++j) {
+        const int c = j % 3;
+        r.box[c] = std::min(r.box[c], lo[j]);
+        r.box[c + 3] = std::max(r.box[c + 3], hi[j]);
+        r.max_abs = std::max(r.max_abs, big[j]);
+        r.finite = r.finite && finite[j];
+    }
+    return r;
 }
 
 std::array<float, 6> boxOf(std::span<const Float3> positions) {
@@ -105,19 +158,26 @@ Result<void> checkGpuMeshDesc(const GpuMeshDesc& d) {
     return {};
 }
 
-Result<void> checkDeclaredSizes(const GpuMeshDesc& d, VkDeviceSize vertex_capacity, VkDeviceSize index_capacity) {
-    for (auto [declared, capacity, what] : {std::tuple{d.vertex_buffer_size, vertex_capacity, "vertex"},
-                                            std::tuple{d.index_buffer_size, index_capacity, "index"}})
-        if (capacity < declared)
-            return Error(ErrorCode::BufferTooSmall, std::string(what) + " buffer is declared as " + std::to_string(declared) +
-                                                        " bytes but holds at most " + std::to_string(capacity));
+Result<void> checkSameTopology(const GpuMeshDesc& was, const GpuMeshDesc& now) {
+    const auto differs = [](const char* what, std::uint64_t a, std::uint64_t b) {
+        return invalid(std::string("setGpuMeshBuffers keeps the topology: ") + what + " " + std::to_string(b) + " differs from the " +
+                       std::to_string(a) + " the object was added with (remove it and add it again instead)");
+    };
+    if (now.vertex_count != was.vertex_count) return differs("vertex count", was.vertex_count, now.vertex_count);
+    if (now.index_count != was.index_count) return differs("index count", was.index_count, now.index_count);
+    if (now.position_format != was.position_format) return differs("position format", was.position_format, now.position_format);
+    if (now.index_type != was.index_type) return differs("index type", was.index_type, now.index_type);
     return {};
 }
 
-Result<void> checkEngineAddresses(const passes::GpuMesh& m, const GpuMeshDesc& d) {
-    if (m.vertices == d.vertex_offset || m.indices == d.index_offset)
-        return invalid("a buffer has no device address (create it with SHADER_DEVICE_ADDRESS usage)");
-    return {};
+VkDeviceSize vertexBytes(const GpuMeshDesc& d) {
+    const VkDeviceSize position_bytes = d.position_format == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 12;
+    return VkDeviceSize(d.vertex_count - 1) * d.vertex_stride + position_bytes;
+}
+
+VkDeviceSize indexBytes(const GpuMeshDesc& d) {
+    // 16-bit indices are read in whole 4-byte words.
+    return d.index_type == VK_INDEX_TYPE_UINT16 ? (VkDeviceSize(d.index_count) * 2 + 3) / 4 * 4 : VkDeviceSize(d.index_count) * 4;
 }
 
 Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {

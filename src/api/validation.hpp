@@ -32,15 +32,26 @@ Result<void> checkTypicalEdge(float typical_edge_length);
 Result<void> checkWorldRange(const std::array<float, 6>& box, const Transform3x4& transform);
 // The box of `positions` (at least one).
 std::array<float, 6> boxOf(std::span<const Float3> positions);
+// updateVertices' one pass over the caller's positions: copies them to `out` (same size)
+// and to `also_out` when not null (as many Float3s), and measures their box and largest
+// |coordinate|; `finite` is false if any is NaN or infinite (checkVertices then names the
+// first).
+struct VertexScan {
+    std::array<float, 6> box{};
+    float max_abs = 0;
+    bool finite = true;
+};
+VertexScan copyAndScan(std::span<const Float3> positions, std::span<Float3> out, Float3* also_out = nullptr);
 
 // A GpuMeshDesc's layout: handles, counts, format, stride and offset alignment, index type,
 // 16-bit reach, and that the declared sizes cover what the counts need (16-bit indices are
 // read in whole 4-byte words: the buffer must cover the padding).
 Result<void> checkGpuMeshDesc(const GpuMeshDesc& desc);
-// The declared sizes against what the buffers can hold (passes::engineBufferCapacity).
-Result<void> checkDeclaredSizes(const GpuMeshDesc& desc, VkDeviceSize vertex_capacity, VkDeviceSize index_capacity);
-// Both buffers have device addresses (the description's addresses are more than the offsets).
-Result<void> checkEngineAddresses(const passes::GpuMesh& mesh, const GpuMeshDesc& desc);
+// setGpuMeshBuffers: the same vertex count, index count, position format and index type.
+Result<void> checkSameTopology(const GpuMeshDesc& was, const GpuMeshDesc& now);
+// The bytes of each buffer a detection reads from its offset on (the layout's rules met).
+VkDeviceSize vertexBytes(const GpuMeshDesc& desc);
+VkDeviceSize indexBytes(const GpuMeshDesc& desc);
 
 // Settings after automatic ones are filled in (resolveSettings): method, axes, resolution
 // (per method), direction, epsilons, region, and (peeling) coverage and backend against

@@ -1,5 +1,6 @@
-// CollisionWorld: the registry of objects and the public methods. Automatic settings are
-// in settings.cpp, one detection in detect.cpp, every input rule in validation.cpp.
+// CollisionWorld: the registry of objects and the public methods that change it. Engine
+// meshes are in engine_mesh.cpp, automatic settings in settings.cpp, one detection in
+// detect.cpp, detections in flight in engine_sync.cpp, every input rule in validation.cpp.
 #include "vkcollide/world.hpp"
 
 #include <algorithm>
@@ -10,32 +11,10 @@
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
 #include "config.h"
-#include "passes/engine_mesh.hpp"
 #include "passes/mesh_upload.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {
-namespace {
-
-// No exception crosses the API: host memory running out anywhere in a detection (the
-// records read back, the union of three axes, the narrow phase's arrays, the result)
-// becomes OutOfMemory, and the detection in flight is forgotten (its GPU work is waited
-// for like a timed-out one's).
-template <typename F>
-auto hostGuarded(passes::Detection& detection, F&& f) -> decltype(f()) {
-    try {
-        return f();
-    } catch (const std::bad_alloc&) {
-        detection.abandon();
-        return Error(ErrorCode::OutOfMemory, "host memory ran out during the detection");
-    } catch (const std::length_error&) {
-        detection.abandon();
-        return Error(ErrorCode::OutOfMemory, "an array of the detection would exceed its largest size");
-    }
-}
-
-}  // namespace
-
 std::string CollisionWorld::Impl::who(ObjectId id, const std::string& name) {
     return "object " + std::to_string(id) + " ('" + name + "')";
 }
@@ -47,12 +26,14 @@ Result<CollisionWorld::Impl::Object*> CollisionWorld::Impl::find(ObjectId id, co
 }
 
 Result<void> CollisionWorld::Impl::notPending(const char* what) const {
-    if (pending()) return Error(ErrorCode::InvalidArgument, std::string(what) + " while a detection is in flight: collect() it first");
+    if (pending())
+        return Error(ErrorCode::InvalidArgument, std::string(what) + " while a detection is in flight (it reads what " + what +
+                                                     " changes): collect() it first");
     return {};
 }
 
 Result<void> CollisionWorld::Impl::notBusy(const char* what) const {
-    if (detection->busy())
+    if (busy())
         return Error(ErrorCode::Timeout, std::string(what) + " while the GPU work of a detection that timed out still runs " +
                                              "(state() is Busy until it ends): try again later");
     return {};
@@ -131,7 +112,10 @@ Result<const passes::ObjectPairMask*> CollisionWorld::Impl::pairMask(std::span<c
 }
 
 CollisionWorld::CollisionWorld(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-CollisionWorld::~CollisionWorld() = default;  // Impl's detection waits for work in flight first
+CollisionWorld::~CollisionWorld() {
+    impl_->guard.requireIdle("CollisionWorld destroyed");
+    // Impl's runs are destroyed first: they wait for work in flight.
+}
 
 Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context, const WorldOptions& options) {
     auto impl = std::make_unique<Impl>();
@@ -139,13 +123,20 @@ Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context,
     // The default method's pipelines now; the other's when a detection first asks for it.
     auto detection = passes::Detection::create(context.device(), Impl::methodFactory(DetectSettings{}.method));
     if (!detection) return detection.error();
-    impl->detection = std::move(*detection);
-    impl->pool = std::make_unique<ThreadPool>(options.threads);
+    impl->runs[0].detection = std::move(*detection);
+    if (options.executor) {
+        impl->executor = options.executor;  // the engine's job system: no thread of our own
+    } else {
+        impl->own_pool = std::make_unique<ThreadPool>(options.threads);
+        impl->executor = impl->own_pool.get();
+    }
     return std::unique_ptr<CollisionWorld>(new CollisionWorld(std::move(impl)));
 }
 
 Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptions& options) {
     Impl& w = *impl_;
+    auto scope = w.guard.enter("CollisionWorld::addMesh");
+    if (!scope) return scope.error();
     if (auto ok = w.notPending("addMesh"); !ok) return ok.error();
     Impl::Object o;
     const ObjectId id = w.newId(options, o);
@@ -168,28 +159,10 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     return id;
 }
 
-Result<ObjectId> CollisionWorld::addGpuMesh(const GpuMeshDesc& d, const ObjectOptions& options) {
-    Impl& w = *impl_;
-    if (auto ok = w.notPending("addGpuMesh"); !ok) return ok.error();
-    Impl::Object o;
-    const ObjectId id = w.newId(options, o);
-    if (auto ok = validation::checkGpuMeshDesc(d); !ok) return Impl::named(id, o.name, ok.error());
-    // The declared sizes cannot exceed what the buffers were created with.
-    const VkDeviceSize vertex_capacity = passes::engineBufferCapacity(w.device(), d.vertex_buffer);
-    const VkDeviceSize index_capacity = passes::engineBufferCapacity(w.device(), d.index_buffer);
-    for (auto ok : {validation::checkDeclaredSizes(d, vertex_capacity, index_capacity), validation::checkTransform(options.transform),
-                    validation::checkTypicalEdge(options.typical_edge_length)})
-        if (!ok) return Impl::named(id, o.name, ok.error());
-    o.gpu = passes::describeEngineMesh(w.device(), d, options.open);
-    if (auto ok = validation::checkEngineAddresses(o.gpu, d); !ok) return Impl::named(id, o.name, ok.error());
-    o.edge_length = options.typical_edge_length;
-    w.objects.push_back(std::move(o));
-    w.objectsChanged();
-    return id;
-}
-
 Result<void> CollisionWorld::removeObject(ObjectId id) {
     Impl& w = *impl_;
+    auto scope = w.guard.enter("CollisionWorld::removeObject");
+    if (!scope) return scope.error();
     for (auto ok : {w.notPending("removeObject"), w.notBusy("removeObject")})
         if (!ok) return ok.error();
     auto o = w.find(id, "removeObject");
@@ -199,9 +172,12 @@ Result<void> CollisionWorld::removeObject(ObjectId id) {
     return {};
 }
 
+// Allowed while detections are in flight: each keeps the transforms of its submit() (the
+// GPU's copy is made then, the narrow phase takes Run::meshes' at finish()).
 Result<void> CollisionWorld::setTransform(ObjectId id, const Transform3x4& t) {
     Impl& w = *impl_;
-    if (auto ok = w.notPending("setTransform"); !ok) return ok.error();
+    auto scope = w.guard.enter("CollisionWorld::setTransform");
+    if (!scope) return scope.error();
     auto o = w.find(id, "setTransform");
     if (!o) return o.error();
     if (auto ok = validation::checkTransform(t); !ok) return w.named(id, ok.error());
@@ -215,6 +191,9 @@ Result<void> CollisionWorld::setTransform(ObjectId id, const Transform3x4& t) {
 }
 
 Result<void> CollisionWorld::setSelfCollision(ObjectId id, bool on) {
+    auto scope = impl_->guard.enter("CollisionWorld::setSelfCollision");
+    if (!scope) return scope.error();
+    if (auto ok = impl_->notPending("setSelfCollision"); !ok) return ok.error();
     auto o = impl_->find(id, "setSelfCollision");
     if (!o) return o.error();
     (*o)->options.self_collision = on;
@@ -223,25 +202,43 @@ Result<void> CollisionWorld::setSelfCollision(ObjectId id, bool on) {
 
 Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3> positions) {
     Impl& w = *impl_;
+    auto scope = w.guard.enter("CollisionWorld::updateVertices");
+    if (!scope) return scope.error();
     for (auto ok : {w.notPending("updateVertices"), w.notBusy("updateVertices")})
         if (!ok) return ok.error();
     auto found = w.find(id, "updateVertices");
     if (!found) return found.error();
     Impl::Object& o = **found;
     if (!o.host) return w.named(id, Error(ErrorCode::InvalidArgument, "is a GPU mesh: write its vertex buffer instead"));
-    if (auto ok = validation::checkVertices(positions, o.gpu.vertex_count); !ok) return w.named(id, ok.error());
-    if (auto ok = validation::checkWorldRange(validation::boxOf(positions), o.options.transform); !ok) return w.named(id, ok.error());
-    std::memcpy(o.vertices.mapped(), positions.data(), positions.size_bytes());
+    if (positions.size() != o.gpu.vertex_count) return w.named(id, validation::checkVertices(positions, o.gpu.vertex_count).error());
+    // One pass over the caller's array (copy, finiteness, box) into the spare host copy and
+    // straight into the upload buffer (no detection is in flight: nothing reads it now). A
+    // refused update puts the upload buffer back from the host copy and changes nothing.
+    o.spare_positions.resize(positions.size());
+    auto* upload = static_cast<Float3*>(o.vertices.mapped());
+    const validation::VertexScan scan = validation::copyAndScan(positions, o.spare_positions, upload);
+    auto refused = [&](const Error& e) {
+        std::memcpy(upload, o.host_positions.data(), positions.size_bytes());
+        return w.named(id, e);
+    };
+    if (!scan.finite) return refused(validation::checkVertices(positions, o.gpu.vertex_count).error());
+    if (auto ok = validation::checkWorldRange(scan.box, o.options.transform); !ok) return refused(ok.error());
     o.vertices.flush();
-    // Same count: the source's view of host_positions stays valid.
-    std::memcpy(o.host_positions.data(), positions.data(), positions.size_bytes());
-    Impl::measureHost(o, positions, o.host_indices);
+    std::swap(o.host_positions, o.spare_positions);
+    w.source_dirty = true;  // the narrow phase's source borrowed the other array
+    o.box = scan.box;
+    o.max_abs = scan.max_abs;
+    Impl::measureShape(o, o.host_positions, o.host_indices);
     return {};
 }
 
-void CollisionWorld::setPairFilter(std::function<bool(ObjectId, ObjectId)> may_collide) {
+Result<void> CollisionWorld::setPairFilter(std::function<bool(ObjectId, ObjectId)> may_collide) {
+    auto scope = impl_->guard.enter("CollisionWorld::setPairFilter");
+    if (!scope) return scope.error();
+    if (auto ok = impl_->notPending("setPairFilter"); !ok) return ok.error();
     impl_->pair_filter = std::move(may_collide);
     impl_->pair_mask_dirty = true;
+    return {};
 }
 
 std::size_t CollisionWorld::objectCount() const noexcept {
@@ -254,14 +251,9 @@ std::size_t CollisionWorld::triangleCount() const noexcept {
     return n;
 }
 
-bool CollisionWorld::pending() const noexcept { return impl_->pending(); }
-
-WorldState CollisionWorld::state() const {
-    if (impl_->device_lost) return WorldState::DeviceLost;
-    return impl_->detection->busy() ? WorldState::Busy : WorldState::Ready;
-}
-
 Result<DetectSettings> CollisionWorld::resolveSettings(const DetectSettings& settings) const {
+    auto scope = impl_->guard.enter("CollisionWorld::resolveSettings");
+    if (!scope) return scope.error();
     std::vector<passes::GpuMesh> meshes;
     std::vector<ObjectId> ids;
     impl_->liveMeshes(meshes, ids);
@@ -270,21 +262,6 @@ Result<DetectSettings> CollisionWorld::resolveSettings(const DetectSettings& set
     for (auto ok : {validation::checkScene(meshes), validation::checkSettings(s, impl_->context->device())})
         if (!ok) return ok.error();
     return s;
-}
-
-Result<DetectResult> CollisionWorld::detect(const DetectSettings& settings) {
-    return hostGuarded(*impl_->detection, [&]() -> Result<DetectResult> {
-        if (auto ok = impl_->start(settings, settings.measure_layers); !ok) return ok.error();
-        return impl_->collect();
-    });
-}
-
-Result<void> CollisionWorld::submit(const DetectSettings& settings) {
-    return hostGuarded(*impl_->detection, [&] { return impl_->start(settings, false); });
-}
-
-Result<DetectResult> CollisionWorld::collect() {
-    return hostGuarded(*impl_->detection, [&] { return impl_->collect(); });
 }
 
 }  // namespace vkcollide

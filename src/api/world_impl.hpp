@@ -1,6 +1,8 @@
-// CollisionWorld's state, shared by the files of src/api/: the registry (world.cpp), the
-// automatic settings (settings.cpp), one detection (detect.cpp). Input rules are checked in
-// validation.cpp; the GPU work of a detection is passes::Detection.
+// CollisionWorld's state, shared by the files of src/api/: the registry (world.cpp), engine
+// meshes (engine_mesh.cpp), the automatic settings (settings.cpp), one detection
+// (detect.cpp), detections in flight and the engine's synchronisation (engine_sync.cpp).
+// Input rules are checked in validation.cpp; the GPU work of a detection is
+// passes::Detection.
 #pragma once
 
 #include <array>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "core/use_guard.hpp"
 #include "passes/detection.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -30,8 +33,10 @@ struct CollisionWorld::Impl {
         // (reliable method) and for measuring after updateVertices (reading the upload
         // buffer back would cross the bus: it may be write-combined device memory).
         std::vector<Float3> host_positions;
+        std::vector<Float3> spare_positions;  // updateVertices writes here, then swaps
         std::vector<std::uint32_t> host_indices;
         passes::GpuMesh gpu;           // addresses, counts, flags (transform set per run)
+        GpuMeshDesc engine_desc;       // engine meshes: as given (setGpuMeshBuffers keeps its topology)
         // Object-space box (host meshes) and typical edge length (object units; measured for
         // host meshes, given for GPU meshes), for the automatic settings.
         std::array<float, 6> box{};
@@ -46,8 +51,25 @@ struct CollisionWorld::Impl {
     };
     static constexpr std::uint32_t kNoSource = 0xFFFFFFFFu;
 
+    // One detection, from start() to finish(): its GPU part and what the narrow phase
+    // needs of the objects as they were at start() (ids, transforms, flags), so that the
+    // objects may move (setTransform) and engine meshes change buffers (setGpuMeshBuffers)
+    // while it is in flight. Two of them: a second detection may be submitted before the
+    // first is collected (pipelining, docs/api.md).
+    struct Run {
+        std::unique_ptr<passes::Detection> detection;  // slot 1: created on first use
+        bool in_flight = false;
+        std::vector<passes::GpuMesh> meshes;
+        std::vector<ObjectId> ids;  // index in the detection's meshes -> ObjectId
+        DetectSettings settings;
+        std::string note;
+        std::chrono::steady_clock::time_point start;
+    };
+
+    UseGuard guard{"CollisionWorld"};
     Context* context = nullptr;
-    std::unique_ptr<ThreadPool> pool;
+    std::unique_ptr<ThreadPool> own_pool;  // unless WorldOptions::executor
+    Executor* executor = nullptr;          // the narrow phase's: own_pool or the engine's
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
     std::function<bool(ObjectId, ObjectId)> pair_filter;
     std::vector<Object> objects;
@@ -65,24 +87,29 @@ struct CollisionWorld::Impl {
     // The scene box the last detection measured on the GPU (engine meshes included), for
     // the automatic settings of scenes with GPU meshes.
     std::optional<std::array<float, 6>> measured_box;
-    // Declared after the objects: destroyed first, it waits for a detection in flight
-    // before their buffers are freed.
-    std::unique_ptr<passes::Detection> detection;
+    // A batch of only the engine's waits and signals, for a submit() that failed after it
+    // was given them (engine_sync.cpp); created on first use.
+    vk::Submission sync_only;
+    // Declared after the objects: destroyed first, they wait for a detection in flight
+    // before their buffers are freed. runs[oldest] is collected next.
+    std::array<Run, 2> runs;
+    std::uint32_t oldest = 0;
 
     // A detection met a lost device (WorldState::DeviceLost): every later one fails at once.
     bool device_lost = false;
 
-    // The detection in flight (vectors kept between detections).
-    std::vector<passes::GpuMesh> run_meshes;
-    std::vector<ObjectId> run_ids;  // index in the detection's meshes -> ObjectId
+    // finish()'s scratch (vectors kept between detections).
     std::vector<ObjectId> finish_ids;  // the broad phase's objects (bad ones left out) -> ObjectId
     NarrowOptions narrow_options;
-    DetectSettings run_settings;
-    std::string run_note;
-    std::chrono::steady_clock::time_point run_start;
 
     vk::Device& device() { return context->device(); }
-    bool pending() const { return detection->pending(); }
+    std::uint32_t inFlight() const { return std::uint32_t(runs[0].in_flight) + std::uint32_t(runs[1].in_flight); }
+    bool pending() const { return inFlight() > 0; }
+    bool busy() const {
+        for (const Run& r : runs)
+            if (r.detection && r.detection->busy()) return true;
+        return false;
+    }
 
     // "object 3 ('cloth')": how every error names an object, in one place.
     static std::string who(ObjectId id, const std::string& name);
@@ -99,7 +126,8 @@ struct CollisionWorld::Impl {
     Error noted(Error e);
     ObjectId newId(const ObjectOptions& options, Object& out) const;
     void objectsChanged() {
-        detection->forgetDepth();
+        for (Run& r : runs)
+            if (r.detection) r.detection->forgetDepth();
         source_dirty = pair_mask_dirty = true;
     }
     // The source for the detection's objects (`ids`, in run order); rebuilt when needed.
@@ -117,13 +145,26 @@ struct CollisionWorld::Impl {
     // (validation::checkSettings checks the result).
     DetectSettings resolve(const DetectSettings& in, std::string* note) const;
     static void measureHost(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
+    // The typical edge and area moment alone (updateVertices measures the box as it copies).
+    static void measureShape(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
+    static constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 14;
+
+    // engine_mesh.cpp: an engine mesh as the broad phase reads it, every rule checked
+    // (errors name the object).
+    Result<passes::GpuMesh> describeEngineMesh(ObjectId id, const std::string& name, const GpuMeshDesc& desc, bool open) const;
 
     // detect.cpp
     static passes::MethodFactory methodFactory(DetectMethod method);
-    Result<void> start(const DetectSettings& settings, bool measure);
-    Result<DetectResult> collect();
-    Error describeFailure(const Error& e) const;
-    Result<DetectResult> finish(passes::DetectionResult detected);
+    // Starts a detection in `run` (target: the engine's semaphores or command buffer).
+    Result<void> start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
+    Result<DetectResult> collect(Run& run);
+    Error describeFailure(const Run& run, const Error& e) const;
+    Result<DetectResult> finish(Run& run, passes::DetectionResult detected);
+
+    // engine_sync.cpp: the slot a new detection starts in (created when needed), and the
+    // one detect()/submit()/record() path.
+    Result<Run*> freeRun();
+    Result<void> begin(const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
 };
 
 }  // namespace vkcollide

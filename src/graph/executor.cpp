@@ -137,7 +137,14 @@ bool Executor::busy() const {
     return !ok && ok.error().vkResult() == VK_TIMEOUT;
 }
 
-Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns) {
+std::uint64_t Executor::memoryBytes() const noexcept {
+    std::uint64_t n = 0;
+    for (const auto& [name, b] : buffers_) n += b.buffer.memoryBytes();
+    for (const auto& [name, i] : images_) n += i.image.memoryBytes();
+    return n;
+}
+
+Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, SubmitTarget* target, bool signal) {
     auto plan = graph.compile();
     if (!plan) return plan.error();
     const auto& f = device_->fns;
@@ -166,7 +173,8 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns) {
     PassContext ctx;
     ctx.device = device_;
     if (auto ok = prepareResources(graph, *plan, ctx); !ok) return ok.error();
-    auto cmd = submission_.begin();
+    const bool into_engine = target && target->engine;
+    auto cmd = into_engine ? submission_.beginIn(*target->engine) : submission_.begin();
     if (!cmd) return cmd.error();
     ctx.cmd = *cmd;
 
@@ -228,7 +236,23 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns) {
         f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
     }
     recordBarriers(ctx.cmd, plan->final_barriers, ctx);
-    return submission_.submit();
+    if (into_engine) {
+        // The engine submits the command buffer and orders it with its own semaphores.
+        if (auto ok = submission_.submit(); !ok) return ok.error();
+        target->waits_submitted = target->signals_submitted = true;
+        return {};
+    }
+    SubmitSync sync;
+    if (target) {
+        if (!target->waits_submitted) sync.wait = target->sync.wait;
+        if (signal) sync.signal = target->sync.signal;
+    }
+    if (auto ok = submission_.submit(sync); !ok) return ok.error();
+    if (target) {
+        target->waits_submitted = true;
+        target->signals_submitted = target->signals_submitted || signal;
+    }
+    return {};
 }
 
 Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {

@@ -45,6 +45,18 @@ struct ExecutionReport {
     double total_gpu_ms = 0;         // first pass start to last pass end
 };
 
+// Where one submission's work goes and what it waits for and signals (the API's submit()
+// and record(), issue 16): the engine's semaphores in the queue submission, or the
+// engine's command buffer instead of a submission of our own. A detection may take several
+// queue submissions: the engine's waits go into the first one made (waits_submitted says
+// whether that happened), its signals into the one its caller marks as the last.
+struct SubmitTarget {
+    SubmitSync sync;
+    const EngineCommandBuffer* engine = nullptr;  // record into it (its timeline tells completion)
+    bool waits_submitted = false;    // sync.wait is in a submission that succeeded
+    bool signals_submitted = false;  // sync.signal is (or the engine's command buffer holds the work)
+};
+
 // How long the executor waits for the GPU unless told otherwise.
 inline constexpr std::uint64_t kDefaultTimeoutNs = 60ull * 1000 * 1000 * 1000;
 
@@ -61,7 +73,11 @@ public:
 
     // Compiles, records and submits the graph; returns without waiting for it (but waits
     // up to timeout_ns for the previous submission first).
-    [[nodiscard]] Result<void> submit(const Graph& graph, std::uint64_t timeout_ns = kDefaultTimeoutNs);
+    // `target` (optional): the engine's waits (unless already submitted) and, when
+    // `signal`, its signals go into this submission, or the work is recorded into the
+    // engine's command buffer; the target's flags are updated on success.
+    [[nodiscard]] Result<void> submit(const Graph& graph, std::uint64_t timeout_ns = kDefaultTimeoutNs,
+                                      SubmitTarget* target = nullptr, bool signal = true);
     // Waits for the last submission and reads its timestamps.
     [[nodiscard]] Result<ExecutionReport> collect(std::uint64_t timeout_ns = kDefaultTimeoutNs);
     // submit() then collect().
@@ -70,6 +86,11 @@ public:
     [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns);
     // Whether submitted work is still running (polls; never waits).
     bool busy() const;
+    // Done once the last submission has finished, NotYet while it runs; never waits.
+    // Errors: DeviceLost, or the status query's.
+    [[nodiscard]] Result<vk::Completion> poll() { return submission_.valid() ? submission_.poll() : vk::Completion::Done; }
+    // Bytes of device memory of the cached transient buffers and images.
+    std::uint64_t memoryBytes() const noexcept;
 
 private:
     Result<void> prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx);

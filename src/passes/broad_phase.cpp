@@ -251,19 +251,24 @@ void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionRepo
     }
 }
 
-Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
+Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s, graph::SubmitTarget* target,
+                                         bool signal) {
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
     if (!method_->traits().measures) {
         // Nothing to measure: one submission.
-        if (auto ok = submit(meshes, s, 0); !ok) return ok.error();
+        if (auto ok = submit(meshes, s, 0, target, signal); !ok) return ok.error();
         return collect();
     }
+    if (target && target->engine)
+        return Error(ErrorCode::InvalidArgument, "the peeling method measures the depth complexity in a submission of its own and "
+                                                 "waits for it on the host: it cannot be recorded into an engine's command buffer");
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
 
     // Submission 1: front and measurement; the method reads the header.
     graph::Graph g1;
     record(g1, true, false);
-    auto report1 = executor_.run(g1, s.timeout_ns);
+    if (auto ok = executor_.submit(g1, s.timeout_ns, target, false); !ok) return ok.error();
+    auto report1 = executor_.collect(s.timeout_ns);
     if (!report1) return report1.error();
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
@@ -275,18 +280,19 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     // Submission 2: the method's main passes.
     graph::Graph g2;
     record(g2, false, true);
-    if (auto ok = executor_.submit(g2, s.timeout_ns); !ok) return ok.error();
+    if (auto ok = executor_.submit(g2, s.timeout_ns, target, signal); !ok) return ok.error();
     pending_ = true;
     return collect();
 }
 
-Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s, std::uint32_t layers) {
+Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s, std::uint32_t layers,
+                                graph::SubmitTarget* target, bool signal) {
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
     if (auto ok = method_->predict(view(), layers); !ok) return ok.error();
     graph::Graph g;
     record(g, true, true);
-    if (auto ok = executor_.submit(g, s.timeout_ns); !ok) return ok.error();
+    if (auto ok = executor_.submit(g, s.timeout_ns, target, signal); !ok) return ok.error();
     pending_ = true;
     return {};
 }

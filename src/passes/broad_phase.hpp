@@ -47,18 +47,27 @@ public:
     BroadPhase& operator=(const BroadPhase&) = delete;
     // Two submissions with a host wait between them: the first measures the depth
     // complexity, the second peels exactly that many layers (or the cap).
-    [[nodiscard]] Result<BroadPhaseResult> run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
+    // `target` (optional): the engine's waits go into the first submission, its signals
+    // into the last (graph::SubmitTarget); not into an engine's command buffer (run() waits
+    // on the host between its submissions: refused with InvalidArgument).
+    [[nodiscard]] Result<BroadPhaseResult> run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings,
+                                               graph::SubmitTarget* target = nullptr, bool signal = true);
     // One submission that peels `layers` layers (at most the cap) whatever the depth
     // complexity turns out to be: rays with more layers become collision rays
     // (conservative). collect() waits and reads the result; it reports the depth
     // complexity measured in the same submission.
-    [[nodiscard]] Result<void> submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings, std::uint32_t layers);
+    // `target` (optional): the engine's semaphores (signals only when `signal`) or its
+    // command buffer (graph::SubmitTarget).
+    [[nodiscard]] Result<void> submit(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings, std::uint32_t layers,
+                                      graph::SubmitTarget* target = nullptr, bool signal = true);
     [[nodiscard]] Result<BroadPhaseResult> collect();
     bool pending() const noexcept { return pending_; }
     // After a run or collect() failed with ErrorCode::Timeout its GPU work goes on: busy()
     // polls it, settle() waits for it. The next run() or submit() settles first (with its
     // own timeout) and fails with Timeout while that work still runs.
     bool busy() const { return executor_.busy(); }
+    // Done when the submission in flight has finished (collect() will not wait); never waits.
+    [[nodiscard]] Result<vk::Completion> poll() { return executor_.poll(); }
     // Forgets the run in flight without waiting for it (after host memory ran out while
     // collecting it): its GPU work is settled like a timed-out one.
     void abandon() noexcept { pending_ = false; }
@@ -68,7 +77,7 @@ public:
     // indices); at most one per kind of problem, so other objects may be bad too.
     const std::vector<ObjectFault>& faults() const noexcept { return faults_; }
     // Bytes of the GPU buffers the broad phase holds (its own, not the meshes').
-    std::uint64_t memoryBytes() const noexcept { return table_.bytes() + method_->memoryBytes(); }
+    std::uint64_t memoryBytes() const noexcept { return table_.bytes() + method_->memoryBytes() + executor_.memoryBytes(); }
     // The projection the last run sampled with, as the GPU holds it (the fit's output, or
     // the caller's region as uploaded). For tests: BroadPhaseResult::projection is the host's.
     gpu::Projection gpuProjection() const;

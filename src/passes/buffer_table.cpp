@@ -93,7 +93,7 @@ std::vector<std::pair<BufferId, VkDeviceSize>> BufferTable::cleared() const {
 
 std::uint64_t BufferTable::bytes() const noexcept {
     std::uint64_t n = 0;
-    for (const Entry& e : entries_) n += e.buffer.valid() ? e.buffer.size() : 0;
+    for (const Entry& e : entries_) n += e.buffer.valid() ? e.buffer.memoryBytes() : 0;
     return n;
 }
 

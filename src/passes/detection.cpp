@@ -74,8 +74,9 @@ Error Detection::failed(Error e) {
 // Starts every axis: measured (two submissions, waited for) or with the layers predicted
 // by the last detection (one submission, left in flight). Stops at the first error; the
 // axes already started stay for gather() to drain.
-Result<void> Detection::startAxes(bool measure) {
+Result<void> Detection::startAxes(bool measure, graph::SubmitTarget* target) {
     for (std::uint32_t k = 0; k < axes_; ++k) {
+        const bool last = k + 1 == axes_;  // the engine's signals go with the last direction
         failed_axis_ = k;
         if (!broads_[k] || broad_methods_[k] != settings_.method) {
             depth_known_[k] = false;
@@ -102,11 +103,16 @@ Result<void> Detection::startAxes(bool measure) {
         b.pair_mask = run_pair_mask_;
         // A method that measures nothing is never waited for here unless asked (measure).
         if (measure || (!depth_known_[k] && broads_[k]->traits().measures)) {
-            auto r = broads_[k]->run(run_meshes_, b);
+            if (target && target->engine)
+                return Error(ErrorCode::InvalidArgument,
+                             "record: the peeling method measures the depth complexity first (the first detection, or after "
+                             "objects were added or removed), with a host wait between two submissions; run detect() or "
+                             "submit() once, or use the reliable method");
+            auto r = broads_[k]->run(run_meshes_, b, target, last);
             if (!r) return r.error();
             ready_[k] = std::move(*r);
         } else {
-            if (auto ok = broads_[k]->submit(run_meshes_, b, std::max(last_depth_[k], 1u)); !ok) return ok.error();
+            if (auto ok = broads_[k]->submit(run_meshes_, b, std::max(last_depth_[k], 1u), target, last); !ok) return ok.error();
             axis_pending_[k] = true;
         }
     }
@@ -167,7 +173,7 @@ Result<void> Detection::excludeBad() {
 // more run per bad object (two when two are named at once), only in frames that have one.
 Result<std::vector<BroadPhaseResult>> Detection::runExcluding() {
     for (;;) {
-        const Result<void> ok = startAxes(true);
+        const Result<void> ok = startAxes(true, nullptr);
         const std::uint32_t failed = failed_axis_;
         auto r = gather();  // drains what startAxes started, even after an error
         if (!ok) {
@@ -179,8 +185,21 @@ Result<std::vector<BroadPhaseResult>> Detection::runExcluding() {
     }
 }
 
-Result<void> Detection::start(std::span<const GpuMesh> meshes, const DetectionSettings& s, bool measure) {
+Result<bool> Detection::ready() {
+    for (std::uint32_t k = 0; k < broads_.size(); ++k) {
+        if (!axis_pending_[k] || !broads_[k]) continue;
+        auto done = broads_[k]->poll();
+        if (!done) return done.error();
+        if (*done == vk::Completion::NotYet) return false;
+    }
+    return true;
+}
+
+Result<void> Detection::start(std::span<const GpuMesh> meshes, const DetectionSettings& s, bool measure, graph::SubmitTarget* target) {
     if (pending_) return Error(ErrorCode::InvalidArgument, "submit while a detection is in flight: collect() it first");
+    if (target && target->engine && s.axes > 1)
+        return Error(ErrorCode::InvalidArgument, "record: three sampling directions make three submissions; an engine's command "
+                                                 "buffer takes one (axes = 1)");
     failure_ = {};
     settings_ = s;
     axes_ = s.axes;
@@ -203,7 +222,7 @@ Result<void> Detection::start(std::span<const GpuMesh> meshes, const DetectionSe
     }
     // A bad engine mesh found while measuring here (no depth known yet) fails the call;
     // one found by the submission is left out in collect().
-    if (auto ok = startAxes(false); !ok) {
+    if (auto ok = startAxes(false, target); !ok) {
         const std::uint32_t failed_at = failed_axis_;
         (void)gather();
         failed_axis_ = failed_at;

@@ -56,10 +56,21 @@ public:
     // complexity first (two submissions, waited for); otherwise it peels as many layers as
     // its last measurement (one submission, left in flight), measuring only where none is
     // known yet. Preconditions as BroadPhase's; settings.axes is 1 or 3.
-    [[nodiscard]] Result<void> start(std::span<const GpuMesh> meshes, const DetectionSettings& settings, bool measure);
+    // `target` (optional, not with `measure`): the engine's waits go into the detection's
+    // first queue submission, its signals into its last (the last direction's); or, with
+    // target->engine, the one submission is recorded into the engine's command buffer
+    // (refused by name where the detection needs more than one: three directions, or a
+    // method that must measure first). The target's flags say what was submitted, also
+    // after an error.
+    [[nodiscard]] Result<void> start(std::span<const GpuMesh> meshes, const DetectionSettings& settings, bool measure,
+                                     graph::SubmitTarget* target = nullptr);
     // Waits for every direction, leaving out bad engine meshes and running again as needed.
     [[nodiscard]] Result<DetectionResult> collect();
     bool pending() const noexcept { return pending_; }
+    // Whether collect() would find the GPU work done (it may still run GPU work again: a
+    // buffer that overflowed, an engine mesh to leave out). Never waits. Not pending: true.
+    // Errors: DeviceLost, or the status query's.
+    [[nodiscard]] Result<bool> ready();
     // GPU work of a detection that failed with Timeout is still running (polls; never
     // waits). Buffers it reads must not change or be freed until it ends; the next start()
     // waits for it (with its own timeout) and fails with Timeout while it runs.
@@ -69,6 +80,12 @@ public:
     void abandon() noexcept;
     // The scene changed: the next detection measures instead of predicting its depth.
     void forgetDepth() noexcept { depth_known_.fill(false); }
+    // Takes the depth `other` last measured (a second detection in flight predicts from the
+    // first's measurement instead of measuring again).
+    void shareDepth(const Detection& other) noexcept {
+        last_depth_ = other.last_depth_;
+        depth_known_ = other.depth_known_;
+    }
     // Bytes of the broad phases' GPU buffers.
     std::uint64_t memoryBytes() const noexcept;
 
@@ -84,7 +101,7 @@ public:
 private:
     explicit Detection(vk::Device& device) : device_(&device) {}
     void selectRunObjects();
-    Result<void> startAxes(bool measure);
+    Result<void> startAxes(bool measure, graph::SubmitTarget* target);
     Result<std::vector<BroadPhaseResult>> gather();
     bool excludable(const Error& e) const;
     Result<void> excludeBad();

@@ -1,22 +1,11 @@
 #include "passes/engine_mesh.hpp"
 
-#include "vk/device.hpp"
-
 namespace vkcollide::passes {
 
-VkDeviceSize engineBufferCapacity(const vk::Device& device, VkBuffer buffer) {
-    VkMemoryRequirements req{};
-    device.fns.vkGetBufferMemoryRequirements(device.device, buffer, &req);
-    return req.size;
-}
-
-GpuMesh describeEngineMesh(const vk::Device& device, const GpuMeshDesc& d, bool open) {
-    VkBufferDeviceAddressInfo ai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+GpuMesh describeEngineMesh(const GpuMeshDesc& d, VkDeviceAddress vertices, VkDeviceAddress indices, bool open) {
     GpuMesh m;
-    ai.buffer = d.vertex_buffer;
-    m.vertices = device.fns.vkGetBufferDeviceAddress(device.device, &ai) + d.vertex_offset;
-    ai.buffer = d.index_buffer;
-    m.indices = device.fns.vkGetBufferDeviceAddress(device.device, &ai) + d.index_offset;
+    m.vertices = vertices;
+    m.indices = indices;
     m.vertex_stride = d.vertex_stride;
     m.vertex_count = d.vertex_count;
     m.index16 = d.index_type == VK_INDEX_TYPE_UINT16;

@@ -40,6 +40,7 @@ public:
     Result<void> predict(const RunView& run, std::uint32_t layers) override;
     void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
     Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
+    std::uint64_t memoryBytes() const noexcept override { return sampling_->memoryBytes(); }
 
 private:
     PeelingMethod(BufferTable& table, const CoreBuffers& core) : table_(&table), core_(core) {}

@@ -54,6 +54,8 @@ public:
     // Where the buffer is bound: its own VkDeviceMemory, or a range of the engine's.
     VkDeviceMemory memory() const noexcept { return memory_.memory; }
     VkDeviceSize memoryOffset() const noexcept { return memory_.offset; }
+    // Bytes of device memory counted for it (Context::deviceMemoryInUse's unit: >= size()).
+    VkDeviceSize memoryBytes() const noexcept { return memory_.size; }
     void reset();
 
 private:
@@ -88,6 +90,8 @@ public:
     VkImageView levelView(std::uint32_t level) const { return level_views_.at(level); }
     const ImageDesc& desc() const noexcept { return desc_; }
     bool valid() const noexcept { return image_ != VK_NULL_HANDLE; }
+    // Bytes of device memory counted for it (Context::deviceMemoryInUse's unit).
+    VkDeviceSize memoryBytes() const noexcept { return memory_.size; }
     void reset();
 
 private:

@@ -249,10 +249,10 @@ TEST_CASE("reliable: host meshes beyond 2^62 are refused by name, and the pair f
     auto all = world->detect();
     REQUIRE(all);
     int calls = 0;
-    world->setPairFilter([&](ObjectId a, ObjectId b) {
+    REQUIRE(world->setPairFilter([&](ObjectId a, ObjectId b) {
         ++calls;
         return !(a == ids[0] && b == ids[1]);
-    });
+    }));
     auto filtered = world->detect();
     REQUIRE(filtered);
     const int calls_first = calls;
@@ -265,7 +265,7 @@ TEST_CASE("reliable: host meshes beyond 2^62 are refused by name, and the pair f
     CHECK(filtered->stats.cells.candidates < all->stats.cells.candidates);  // no GPU work for the filtered pair
     REQUIRE(world->detect());
     CHECK(calls == calls_first);  // answers kept: not called again
-    world->setPairFilter({});
+    REQUIRE(world->setPairFilter({}));
 
     HostMesh far = scene->objects[3].mesh;
     far.positions[0].x = 1e30f;

@@ -145,12 +145,19 @@ TEST_CASE("engine mesh layouts are checked without a device", "[api][validation]
     CHECK(mentions(r.error(), "pad by 2 bytes"));
     short16.index_buffer_size = 8;
     CHECK(validation::checkGpuMeshDesc(short16));
-    CHECK_FALSE(validation::checkDeclaredSizes(d, 48, 16));
-    CHECK(validation::checkDeclaredSizes(d, 64, 24));
-    passes::GpuMesh no_address;
-    no_address.vertices = d.vertex_offset;
-    no_address.indices = 256;
-    CHECK_FALSE(validation::checkEngineAddresses(no_address, d));
+    GpuMeshDesc other = d;
+    other.vertex_stride = 16;  // a different layout of the same topology: fine
+    other.vertex_buffer_size = 64;
+    CHECK(validation::checkSameTopology(d, other));
+    other.index_count = 9;
+    auto topology = validation::checkSameTopology(d, other);
+    REQUIRE_FALSE(topology);
+    CHECK(mentions(topology.error(), "index count 9 differs from the 6"));
+    other = d;
+    other.position_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    CHECK_FALSE(validation::checkSameTopology(d, other));
+    CHECK(validation::vertexBytes(d) == 48);
+    CHECK(validation::indexBytes(short16) == 8);
     CHECK(validation::checkTypicalEdge(0.0f));
     CHECK_FALSE(validation::checkTypicalEdge(-1.0f));
     const Float3 points[2] = {{0, 0, 0}, {1, std::numeric_limits<float>::quiet_NaN(), 0}};

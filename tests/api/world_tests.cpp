@@ -103,15 +103,24 @@ TEST_CASE("submit()/collect() gives detect()'s pairs and guards the objects in f
     REQUIRE(sync);
     REQUIRE(world->submit(fixedSettings(128)));
     CHECK(world->pending());
-    auto blocked = world->setTransform(ids[0], scene->objects[0].options.transform);
+    // What the work in flight reads cannot change; a transform can (each detection keeps
+    // the one it was submitted with: engine_sync_tests.cpp).
+    auto blocked = world->setSelfCollision(ids[0], true);
     REQUIRE_FALSE(blocked);
-    CHECK(mentions(blocked.error(), "in flight"));
-    CHECK_FALSE(world->submit(fixedSettings(128)));
-    auto async = world->collect();
-    REQUIRE(async);
+    CHECK(mentions(blocked.error(), "setSelfCollision while a detection is in flight"));
+    REQUIRE(world->setTransform(ids[0], scene->objects[0].options.transform));
+    REQUIRE(world->submit(fixedSettings(128)));  // a second one in flight (pipelining)
+    CHECK(world->inFlight() == 2);
+    auto third = world->submit(fixedSettings(128));
+    REQUIRE_FALSE(third);
+    CHECK(mentions(third.error(), "kMaxInFlight"));
+    for (int k = 0; k < 2; ++k) {
+        auto async = world->collect();
+        REQUIRE(async);
+        CHECK(async->pairs == sync->pairs);
+        CHECK(async->stats.layers == sync->stats.depth_complexity);  // the layers measured last time
+    }
     CHECK_FALSE(world->pending());
-    CHECK(async->pairs == sync->pairs);
-    CHECK(async->stats.layers == sync->stats.depth_complexity);  // the layers measured last time
     CHECK_FALSE(world->collect());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
@@ -168,7 +177,7 @@ TEST_CASE("self-collision flag, pair filter, removal and vertex updates", "[api]
     auto spheres = overlappingSpheres();
     REQUIRE(spheres);
     const auto ids = addScene(*world, *spheres);  // ids continue after the tube's
-    world->setPairFilter([&](ObjectId a, ObjectId b) { return !(a == ids[0] && b == ids[1]); });
+    REQUIRE(world->setPairFilter([&](ObjectId a, ObjectId b) { return !(a == ids[0] && b == ids[1]); }));
     auto filtered = world->detect(fixedSettings(128));
     REQUIRE(filtered);
     bool saw_a_c = false;
@@ -177,7 +186,7 @@ TEST_CASE("self-collision flag, pair filter, removal and vertex updates", "[api]
         saw_a_c |= p.object_a == ids[0] && p.object_b == ids[2];
     }
     CHECK(saw_a_c);
-    world->setPairFilter({});
+    REQUIRE(world->setPairFilter({}));
 
     REQUIRE(world->removeObject(*id));
     CHECK_FALSE(world->removeObject(*id));

@@ -232,20 +232,20 @@ TEST_CASE("a pair filter that throws fails its detection by name, and the world 
     auto c = repeatedTriangle(3);  // objects 0 (three copies) and 1 (crossing them)
     REQUIRE(c);
     auto world = worldOf(ctx.context(), c->scene);
-    world->setPairFilter([](ObjectId a, ObjectId b) -> bool {
+    REQUIRE(world->setPairFilter([](ObjectId a, ObjectId b) -> bool {
         if (a == 0 && b == 1) throw std::runtime_error("no rule for 0 and 1");
         return true;
-    });
+    }));
     auto r = world->detect(c->settings);
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::InvalidArgument);
     CHECK(mentions(r.error(), "pair filter threw for objects 0 and 1: no rule for 0 and 1"));
     CHECK(world->state() == WorldState::Ready);
-    world->setPairFilter([](ObjectId, ObjectId) -> bool { throw 7; });
+    REQUIRE(world->setPairFilter([](ObjectId, ObjectId) -> bool { throw 7; }));
     auto odd = world->detect(c->settings);
     REQUIRE_FALSE(odd);
     CHECK(mentions(odd.error(), "pair filter threw"));
-    world->setPairFilter([](ObjectId, ObjectId) { return true; });
+    REQUIRE(world->setPairFilter([](ObjectId, ObjectId) { return true; }));
     auto ok = world->detect(c->settings);
     REQUIRE(ok);
     CHECK((ok->pairs == *c->reference));

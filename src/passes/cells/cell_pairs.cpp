@@ -407,8 +407,8 @@ std::uint64_t CellPairs::memoryBytes() const noexcept {
                                 &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,
                                 &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.candidates,
                                 &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks})
-        total += b->size();
-    return total;
+        total += b->memoryBytes();
+    return total + executor_.memoryBytes();
 }
 
 }  // namespace vkcollide::passes

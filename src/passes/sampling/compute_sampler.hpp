@@ -57,6 +57,11 @@ public:
     // "csample-gather" when the lists were too short.
     void recordPeelStep(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t step) const override;
     void report(BroadPhaseResult& io_result) const override { io_result.compute_fragment_lists = fragment_lists_; }
+    std::uint64_t memoryBytes() const noexcept override {
+        std::uint64_t n = 0;
+        for (const vk::Buffer* b : {&frame_, &triangles_, &lists_, &items_, &counters_, &args_buf_, &fill_, &fragments_}) n += b->memoryBytes();
+        return n;
+    }
 
 private:
     explicit ComputeSampler(vk::Device& device) : device_(&device) {}

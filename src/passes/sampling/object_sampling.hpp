@@ -48,6 +48,10 @@ public:
     // Backend, its reason and the sampling statistics of the run; remembers the scene's
     // fragments per triangle for the next run's Auto choice.
     void report(const gpu::Header& header, std::uint32_t triangles, BroadPhaseResult& io_result);
+    // Bytes of device memory of the backends' own buffers.
+    std::uint64_t memoryBytes() const noexcept {
+        return (raster_ ? raster_->memoryBytes() : 0) + (compute_ ? compute_->memoryBytes() : 0);
+    }
 
 private:
     explicit ObjectSampling(vk::Device& device) : device_(&device) {}

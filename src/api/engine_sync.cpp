@@ -1,0 +1,156 @@
+// Detections from start to result: detect(), submit() with the engine's semaphores,
+// record() into the engine's command buffer, polling (ready, tryCollect), and two
+// detections in flight (pipelining; docs/api.md, "Engines: synchronisation and latency").
+#include <new>
+#include <stdexcept>
+
+#include "api/world_impl.hpp"
+#include "vk/device.hpp"
+
+namespace vkcollide {
+namespace {
+
+// No exception crosses the API: host memory running out anywhere in a detection (the
+// records read back, the union of three axes, the narrow phase's arrays, the result)
+// becomes OutOfMemory, and the detection is forgotten (its GPU work is waited for like a
+// timed-out one's).
+template <typename F>
+auto hostGuarded(passes::Detection& detection, bool& io_in_flight, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const std::bad_alloc&) {
+        detection.abandon();
+        io_in_flight = false;
+        return Error(ErrorCode::OutOfMemory, "host memory ran out during the detection");
+    } catch (const std::length_error&) {
+        detection.abandon();
+        io_in_flight = false;
+        return Error(ErrorCode::OutOfMemory, "an array of the detection would exceed its largest size");
+    }
+}
+
+// Refused before anything is submitted: Vulkan would reject these, and a batch of only
+// the waits and signals could not be made from them either.
+Result<void> checkSync(const SubmitSync& sync) {
+    for (auto [list, what] : {std::pair{sync.wait, "wait"}, std::pair{sync.signal, "signal"}})
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            if (list[i].semaphore == VK_NULL_HANDLE)
+                return Error(ErrorCode::InvalidArgument, "submit: SubmitSync::" + std::string(what) + "[" + std::to_string(i) +
+                                                             "] has a null semaphore");
+            if (list[i].stages == 0)
+                return Error(ErrorCode::InvalidArgument, "submit: SubmitSync::" + std::string(what) + "[" + std::to_string(i) +
+                                                             "] has stage mask 0 (ALL_COMMANDS: all of the detection's work)");
+        }
+    return {};
+}
+
+}  // namespace
+
+// The slot the next detection goes into: slot 0 when none is in flight (a world that never
+// pipelines never allocates the second), else the other one (created on first use; it
+// predicts from the first's measured depth).
+Result<CollisionWorld::Impl::Run*> CollisionWorld::Impl::freeRun() {
+    if (inFlight() == runs.size())
+        return Error(ErrorCode::InvalidArgument, "submit while " + std::to_string(runs.size()) +
+                                                     " detections are in flight (CollisionWorld::kMaxInFlight): collect() one first");
+    if (inFlight() == 0) oldest = 0;
+    const std::uint32_t k = runs[oldest].in_flight ? 1 - oldest : oldest;
+    Run& run = runs[k];
+    if (!run.detection) {
+        Result<std::unique_ptr<passes::Detection>> created = Error(ErrorCode::OutOfMemory, "host memory ran out creating the second slot");
+        try {
+            created = passes::Detection::create(device(), methodFactory(DetectSettings{}.method));
+        } catch (const std::bad_alloc&) {
+        }
+        if (!created) return created.error();
+        run.detection = std::move(*created);
+        run.detection->shareDepth(*runs[1 - k].detection);
+    }
+    return &run;
+}
+
+Result<void> CollisionWorld::Impl::begin(const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
+    if (device_lost)
+        return Error(ErrorCode::DeviceLost, "the device was lost in an earlier detection: destroy the world and create a new Context");
+    auto run = freeRun();
+    if (!run) return run.error();
+    return hostGuarded(*(*run)->detection, (*run)->in_flight, [&] { return start(**run, settings, measure, target); });
+}
+
+Result<DetectResult> CollisionWorld::detect(const DetectSettings& settings) {
+    Impl& w = *impl_;
+    auto scope = w.guard.enter("CollisionWorld::detect");
+    if (!scope) return scope.error();
+    if (w.pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
+    if (auto ok = w.begin(settings, settings.measure_layers, nullptr); !ok) return ok.error();
+    Impl::Run& run = w.runs[w.oldest];
+    return hostGuarded(*run.detection, run.in_flight, [&] { return w.collect(run); });
+}
+
+Result<void> CollisionWorld::submit(const DetectSettings& settings, const SubmitSync& sync) {
+    Impl& w = *impl_;
+    auto scope = w.guard.enter("CollisionWorld::submit");
+    if (!scope) return scope.error();
+    if (auto ok = checkSync(sync); !ok) return ok.error();
+    graph::SubmitTarget target{sync};
+    auto started = w.begin(settings, false, &target);
+    if (!started && !target.signals_submitted && !(sync.wait.empty() && sync.signal.empty())) {
+        // Keep the promise made to the engine's queues: its waits consumed and its
+        // signals made, after whatever of this detection was submitted.
+        if (!w.sync_only.valid())
+            if (auto s = vk::Submission::create(w.device())) w.sync_only = std::move(*s);
+        if (w.sync_only.valid()) {
+            SubmitSync rest = sync;
+            if (target.waits_submitted) rest.wait = {};
+            (void)w.sync_only.submitSyncOnly(rest);  // a failure here is the device's, reported by the next call
+        }
+    }
+    return started;
+}
+
+Result<void> CollisionWorld::record(const EngineCommandBuffer& target, const DetectSettings& settings) {
+    Impl& w = *impl_;
+    auto scope = w.guard.enter("CollisionWorld::record");
+    if (!scope) return scope.error();
+    graph::SubmitTarget into{{}, &target};
+    return w.begin(settings, false, &into);
+}
+
+Result<DetectResult> CollisionWorld::collect() {
+    Impl& w = *impl_;
+    auto scope = w.guard.enter("CollisionWorld::collect");
+    if (!scope) return scope.error();
+    if (!w.pending()) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
+    Impl::Run& run = w.runs[w.oldest];
+    w.oldest = 1 - w.oldest;  // the other slot, in flight or not, is the oldest now
+    return hostGuarded(*run.detection, run.in_flight, [&] { return w.collect(run); });
+}
+
+Result<bool> CollisionWorld::ready() {
+    Impl& w = *impl_;
+    auto scope = w.guard.enter("CollisionWorld::ready");
+    if (!scope) return scope.error();
+    if (!w.pending()) return Error(ErrorCode::InvalidArgument, "ready without a detection in flight: submit() first");
+    auto done = w.runs[w.oldest].detection->ready();
+    if (!done) return w.noted(done.error());
+    return *done;
+}
+
+Result<std::optional<DetectResult>> CollisionWorld::tryCollect() {
+    auto done = ready();
+    if (!done) return done.error();
+    if (!*done) return std::optional<DetectResult>();
+    auto r = collect();
+    if (!r) return r.error();
+    return std::optional<DetectResult>(std::move(*r));
+}
+
+bool CollisionWorld::pending() const noexcept { return impl_->pending(); }
+std::uint32_t CollisionWorld::inFlight() const noexcept { return impl_->inFlight(); }
+
+WorldState CollisionWorld::state() const {
+    if (impl_->device_lost) return WorldState::DeviceLost;
+    return impl_->busy() ? WorldState::Busy : WorldState::Ready;
+}
+
+}  // namespace vkcollide

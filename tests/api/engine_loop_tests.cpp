@@ -1,0 +1,353 @@
+// An engine as engines are written, and an example of the engine seams (docs/api.md):
+//  * its own VkDevice, created with enableRequiredFeatures() (plus timelineSemaphore), on
+//    the validated instance so that the validation layer (with synchronization
+//    validation) watches it; its entry points loaded as an engine's loader would;
+//  * two spheres deformed every frame by its own compute shader
+//    (tests/shaders/engine_deform.comp.glsl) into one of two vertex buffers each;
+//  * Context::adopt, addGpuMesh on its buffers, setGpuMeshBuffers to double-buffer;
+//  * two timeline semaphores: `deformed` (the engine signals f + 1 after deforming frame
+//    f; the detection waits for it) and `detected` (the detection signals f + 1; the engine
+//    waits for it before it overwrites that frame's buffers two frames later);
+//  * detect(), then submit()/collect(), then a pipelined loop (frame f submitted before
+//    frame f - 1 is collected).
+// Every frame's pairs are those of the same geometry added as host meshes, pairs exist
+// where the spheres overlap and none where they are apart.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cstring>
+#include <vector>
+
+#include "support/gpu_fixture.hpp"
+#include "test_shaders/all.hpp"
+#include "vk/loader.hpp"
+#include "vkcollide/scene.hpp"
+#include "vkcollide/world.hpp"
+
+using namespace vkcollide;
+
+namespace {
+
+constexpr int kFrames = 6;
+
+// Frame f: sphere 0 scaled and moved along x, sphere 1 moved the other way.
+struct Pose {
+    float scale, x;
+};
+Pose poseOf(int object, int frame) {
+    static constexpr float kApart[kFrames] = {0.4f, 3.0f, 0.5f, 0.3f, 4.0f, 0.45f};  // half the centre distance
+    const float d = kApart[frame];
+    return object == 0 ? Pose{frame % 2 ? 0.75f : 1.0f, -d} : Pose{1.0f, d};
+}
+bool overlapping(int frame) { return poseOf(1, frame).x - poseOf(0, frame).x < 1.6f; }
+
+// What the shader computes, in the same float operations.
+std::vector<Float3> deformed(const HostMesh& rest, Pose pose) {
+    std::vector<Float3> out(rest.positions.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const Float3 p = rest.positions[i];
+        out[i] = {p.x * pose.scale + pose.x, p.y * pose.scale, p.z * pose.scale};
+    }
+    return out;
+}
+
+class Engine {
+public:
+    explicit Engine(vk::Device& validated) : host_(validated) {
+        // The device: what vkcollide needs (one call) and what this engine needs.
+        features_.pNext = &v12_;
+        v12_.pNext = &v13_;
+        enableRequiredFeatures(features_, v12_, v13_);
+        v12_.timelineSemaphore = VK_TRUE;
+        const float priority = 1.0f;
+        VkDeviceQueueCreateInfo queue{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        queue.queueFamilyIndex = host_.queue_family;
+        queue.queueCount = 1;
+        queue.pQueuePriorities = &priority;
+        VkDeviceCreateInfo ci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+        ci.pNext = &features_;
+        ci.queueCreateInfoCount = 1;
+        ci.pQueueCreateInfos = &queue;
+        REQUIRE(host_.instance_fns.vkCreateDevice(host_.physical, &ci, nullptr, &device_) == VK_SUCCESS);
+        auto fns = vk::loadDeviceFunctions(host_.instance_fns, device_, false);
+        REQUIRE(fns);
+        f_ = *fns;
+        f_.vkGetDeviceQueue(device_, host_.queue_family, 0, &queue_);
+
+        VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        pi.queueFamilyIndex = host_.queue_family;
+        REQUIRE(f_.vkCreateCommandPool(device_, &pi, nullptr, &pool_) == VK_SUCCESS);
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = pool_;
+        ai.commandBufferCount = 2;
+        REQUIRE(f_.vkAllocateCommandBuffers(device_, &ai, cmds_.data()) == VK_SUCCESS);
+        deformed_ = timeline();
+        detected_ = timeline();
+
+        const auto spirv = shaders::engine_deform_comp;
+        VkShaderModuleCreateInfo si{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        si.codeSize = spirv.size_bytes();
+        si.pCode = spirv.data();
+        VkShaderModule module = VK_NULL_HANDLE;
+        REQUIRE(f_.vkCreateShaderModule(device_, &si, nullptr, &module) == VK_SUCCESS);
+        const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push)};
+        VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+        li.pushConstantRangeCount = 1;
+        li.pPushConstantRanges = &range;
+        REQUIRE(f_.vkCreatePipelineLayout(device_, &li, nullptr, &layout_) == VK_SUCCESS);
+        VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        pci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
+        pci.layout = layout_;
+        REQUIRE(f_.vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pci, nullptr, &pipeline_) == VK_SUCCESS);
+        f_.vkDestroyShaderModule(device_, module, nullptr);
+    }
+    ~Engine() {
+        f_.vkDeviceWaitIdle(device_);
+        for (auto& m : meshes_)
+            for (Buffer* b : {&m.rest, &m.out[0], &m.out[1], &m.indices}) {
+                f_.vkDestroyBuffer(device_, b->buffer, nullptr);
+                f_.vkFreeMemory(device_, b->memory, nullptr);
+            }
+        for (VkSemaphore s : {deformed_, detected_}) f_.vkDestroySemaphore(device_, s, nullptr);
+        f_.vkDestroyPipeline(device_, pipeline_, nullptr);
+        f_.vkDestroyPipelineLayout(device_, layout_, nullptr);
+        f_.vkDestroyCommandPool(device_, pool_, nullptr);
+        f_.vkDestroyDevice(device_, nullptr);
+    }
+    Engine(const Engine&) = delete;
+    Engine& operator=(const Engine&) = delete;
+
+    AdoptedDevice lend() const {
+        AdoptedDevice lent;
+        lent.get_instance_proc_addr = host_.global.vkGetInstanceProcAddr;
+        lent.instance = host_.instance;
+        lent.physical_device = host_.physical;
+        lent.device = device_;
+        lent.queue_family = host_.queue_family;
+        lent.queue = queue_;
+        lent.enabled_features = &features_;
+        return lent;
+    }
+
+    // A mesh the engine deforms: rest positions, two output buffers, indices.
+    void addMesh(const HostMesh& m) {
+        Mesh& e = meshes_.emplace_back();
+        e.count = static_cast<std::uint32_t>(m.positions.size());
+        e.rest = buffer(m.positions.size() * sizeof(Float3), m.positions.data());
+        for (Buffer& out : e.out) out = buffer(m.positions.size() * sizeof(Float3), nullptr);
+        e.indices = buffer(m.indices.size() * 4, m.indices.data());
+        e.index_count = static_cast<std::uint32_t>(m.indices.size());
+    }
+    // Where frame `frame`'s positions of mesh k are: the buffer the shader writes then.
+    GpuMeshDesc desc(std::size_t k, int frame) const {
+        const Mesh& m = meshes_[k];
+        GpuMeshDesc d;
+        d.vertex_buffer = m.out[frame % 2].buffer;
+        d.vertex_buffer_size = m.out[frame % 2].size;
+        d.vertex_count = m.count;
+        d.index_buffer = m.indices.buffer;
+        d.index_buffer_size = m.indices.size;
+        d.index_count = m.index_count;
+        d.vertex_usage = d.index_usage = kUsage;  // declared, so vkcollide checks them
+        return d;
+    }
+
+    // Deforms every mesh into its buffer frame % 2, posed as frame `pose` of the scene; the
+    // GPU work waits until the detection that read that buffer (frame - 2) is done, and
+    // signals deformed = frame + 1. synced = false: no semaphores (detect() on the same
+    // queue is ordered after it). Frames count on across loops: timeline values only grow.
+    void deform(int frame, int pose_frame, bool synced) {
+        VkCommandBuffer cmd = cmds_[frame % 2];
+        // Begin resets it (RESET_COMMAND_BUFFER pool): its previous use, frame - 2's
+        // deformation, is complete (that frame's detection waited for it and was collected).
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        REQUIRE(f_.vkBeginCommandBuffer(cmd, &bi) == VK_SUCCESS);
+        f_.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+        for (std::size_t k = 0; k < meshes_.size(); ++k) {
+            const Pose pose = poseOf(static_cast<int>(k), pose_frame);
+            const Push push{address(meshes_[k].rest), address(meshes_[k].out[frame % 2]), {pose.x, 0, 0}, pose.scale, meshes_[k].count};
+            f_.vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            f_.vkCmdDispatch(cmd, (meshes_[k].count + 63) / 64, 1, 1);
+        }
+        REQUIRE(f_.vkEndCommandBuffer(cmd) == VK_SUCCESS);
+        VkCommandBufferSubmitInfo ci{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+        ci.commandBuffer = cmd;
+        const VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, nullptr, detected_,
+                                         std::uint64_t(frame >= 2 ? frame - 1 : 0), VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT};
+        const VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, nullptr, deformed_, std::uint64_t(frame + 1),
+                                           VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT};
+        VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+        submit.commandBufferInfoCount = 1;
+        submit.pCommandBufferInfos = &ci;
+        submit.waitSemaphoreInfoCount = synced ? 1 : 0;
+        submit.pWaitSemaphoreInfos = &wait;
+        submit.signalSemaphoreInfoCount = synced ? 1 : 0;
+        submit.pSignalSemaphoreInfos = &signal;
+        REQUIRE(f_.vkQueueSubmit2(queue_, 1, &submit, VK_NULL_HANDLE) == VK_SUCCESS);
+    }
+    // The detection of frame f waits for its deformation and signals detected = f + 1.
+    std::array<SemaphoreSubmit, 1> waitDeformed(int frame) const { return {{{deformed_, std::uint64_t(frame + 1)}}}; }
+    std::array<SemaphoreSubmit, 1> signalDetected(int frame) const { return {{{detected_, std::uint64_t(frame + 1)}}}; }
+    void idle() { REQUIRE(f_.vkDeviceWaitIdle(device_) == VK_SUCCESS); }
+
+private:
+    static constexpr VkBufferUsageFlags kUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    struct Buffer {
+        VkBuffer buffer = VK_NULL_HANDLE;
+        VkDeviceMemory memory = VK_NULL_HANDLE;
+        VkDeviceSize size = 0;
+    };
+    struct Mesh {
+        Buffer rest, indices;
+        std::array<Buffer, 2> out;
+        std::uint32_t count = 0, index_count = 0;
+    };
+    struct Push {
+        VkDeviceAddress rest, out;
+        float offset[3];
+        float scale;
+        std::uint32_t count;
+        std::uint32_t pad;
+    };
+
+    // A host-visible buffer with device-address memory (what vkcollide asks of engine
+    // buffers), filled from `data` when given.
+    Buffer buffer(VkDeviceSize size, const void* data) {
+        Buffer b;
+        b.size = size;
+        VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+        bi.size = size;
+        bi.usage = kUsage;
+        REQUIRE(f_.vkCreateBuffer(device_, &bi, nullptr, &b.buffer) == VK_SUCCESS);
+        VkMemoryRequirements req{};
+        f_.vkGetBufferMemoryRequirements(device_, b.buffer, &req);
+        VkPhysicalDeviceMemoryProperties props{};
+        host_.instance_fns.vkGetPhysicalDeviceMemoryProperties(host_.physical, &props);
+        const VkMemoryPropertyFlags want = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        std::uint32_t type = 0;
+        while (!((req.memoryTypeBits >> type) & 1u) || (props.memoryTypes[type].propertyFlags & want) != want) ++type;
+        VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+        flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+        VkMemoryAllocateInfo mi{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        mi.pNext = &flags;
+        mi.allocationSize = req.size;
+        mi.memoryTypeIndex = type;
+        REQUIRE(f_.vkAllocateMemory(device_, &mi, nullptr, &b.memory) == VK_SUCCESS);
+        REQUIRE(f_.vkBindBufferMemory(device_, b.buffer, b.memory, 0) == VK_SUCCESS);
+        if (data) {
+            void* mapped = nullptr;
+            REQUIRE(f_.vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &mapped) == VK_SUCCESS);
+            std::memcpy(mapped, data, size);
+            f_.vkUnmapMemory(device_, b.memory);
+        }
+        return b;
+    }
+    VkDeviceAddress address(const Buffer& b) const {
+        VkBufferDeviceAddressInfo ai{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+        ai.buffer = b.buffer;
+        return f_.vkGetBufferDeviceAddress(device_, &ai);
+    }
+    VkSemaphore timeline() {
+        VkSemaphoreTypeCreateInfo ti{VK_STRUCTURE_TYPE_SEMAPHORE_TYPE_CREATE_INFO};
+        ti.semaphoreType = VK_SEMAPHORE_TYPE_TIMELINE;
+        VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+        si.pNext = &ti;
+        VkSemaphore s = VK_NULL_HANDLE;
+        REQUIRE(f_.vkCreateSemaphore(device_, &si, nullptr, &s) == VK_SUCCESS);
+        return s;
+    }
+
+    vk::Device& host_;
+    VkPhysicalDeviceFeatures2 features_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    VkPhysicalDeviceVulkan12Features v12_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceVulkan13Features v13_{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+    VkDevice device_ = VK_NULL_HANDLE;
+    vk::DeviceFunctions f_{};
+    VkQueue queue_ = VK_NULL_HANDLE;
+    VkCommandPool pool_ = VK_NULL_HANDLE;
+    std::array<VkCommandBuffer, 2> cmds_{};
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkSemaphore deformed_ = VK_NULL_HANDLE, detected_ = VK_NULL_HANDLE;
+    std::vector<Mesh> meshes_;
+};
+
+}  // namespace
+
+TEST_CASE("an engine deforms two meshes on its own device, double-buffers and synchronises with timelines: every frame's contacts",
+          "[api][gpu][engine]") {
+    test::ValidatedContext validated;
+    auto a = uvSphere(1.0f, 24, 12), b = uvSphere(0.6f, 20, 10);
+    REQUIRE(a);
+    REQUIRE(b);
+    const HostMesh* rest[2] = {&*a, &*b};
+
+    // The reference: each frame's geometry as host meshes, in a world of its own.
+    std::vector<std::vector<TrianglePair>> expected;
+    for (int f = 0; f < kFrames; ++f) {
+        auto ref = CollisionWorld::create(validated.context(), {.threads = 1});
+        REQUIRE(ref);
+        for (int k = 0; k < 2; ++k) REQUIRE((*ref)->addMesh({"", deformed(*rest[k], poseOf(k, f)), rest[k]->indices}));
+        auto r = (*ref)->detect();
+        REQUIRE(r);
+        CHECK(r->pairs.empty() == !overlapping(f));
+        expected.push_back(r->pairs);
+    }
+
+    Engine engine(validated.device());
+    for (const HostMesh* m : rest) engine.addMesh(*m);
+    {
+        auto context = Context::adopt(engine.lend());
+        REQUIRE(context);
+        auto world = CollisionWorld::create(**context, {.threads = 2});
+        REQUIRE(world);
+        CollisionWorld& w = **world;
+        ObjectId ids[2];
+        for (std::size_t k = 0; k < 2; ++k) {
+            auto id = w.addGpuMesh(engine.desc(k, 0), {.name = k ? "small" : "large"});
+            REQUIRE(id);
+            ids[k] = *id;
+        }
+        auto repoint = [&](int f) {
+            for (std::size_t k = 0; k < 2; ++k) REQUIRE(w.setGpuMeshBuffers(ids[k], engine.desc(k, f)));
+        };
+
+        // 1. detect(): the deformation is ordered before it on the same queue.
+        for (int f = 0; f < 2; ++f) {
+            engine.deform(f, f, false);
+            repoint(f);
+            auto r = w.detect();
+            REQUIRE(r);
+            CHECK(r->pairs == expected[f]);
+        }
+        engine.idle();
+        // 2. submit()/collect(), synchronised by the timelines only (the engine never waits
+        // on the CPU); 3. pipelined: frame g submitted before frame g - 1 is collected.
+        int g = 0;  // frames with semaphores, over both loops
+        for (bool pipelined : {false, true}) {
+            INFO("pipelined " << pipelined);
+            for (int f = 0; f < kFrames; ++f, ++g) {
+                engine.deform(g, f, true);
+                repoint(g);
+                const auto wait = engine.waitDeformed(g);
+                const auto signal = engine.signalDetected(g);
+                REQUIRE(w.submit({}, {.wait = wait, .signal = signal}));
+                if (pipelined && f == 0) continue;
+                auto r = w.collect();
+                REQUIRE(r);
+                const int collected = pipelined ? f - 1 : f;
+                INFO("frame " << collected);
+                CHECK(r->pairs == expected[collected]);
+            }
+            if (pipelined) {
+                auto last = w.collect();
+                REQUIRE(last);
+                CHECK(last->pairs == expected[kFrames - 1]);
+            }
+        }
+        engine.idle();
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(validated);
+}

@@ -1,0 +1,197 @@
+// Frame loops as an engine runs them (issue 13 items 4 and 5), one CSV row per case:
+//  * update: CollisionWorld::updateVertices on a host mesh of about --vertices vertices
+//    (a UV sphere), milliseconds per call and per million vertices (median of --frames);
+//  * detect / submit / pipelined: a deforming pair of engine meshes (two spheres of about
+//    --triangles triangles each, written by the host into host-visible buffers, double
+//    buffered with setGpuMeshBuffers), per frame the host wall time from writing the
+//    vertices to having the result, median over --frames after two warm-up frames:
+//      detect     detect() every frame;
+//      submit     submit() then collect() every frame;
+//      pipelined  submit() of frame N, then collect() of frame N - 1 (the narrow phase of
+//                 N - 1 runs while N's GPU work runs); latency one frame.
+//    with the GPU stage times of the detection collected that frame.
+//
+//   vkcollide_bench_frames [--vertices 1000000] [--triangles 100000] [--frames 30]
+//                          [--methods reliable,peeling] [--threads 0]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "vk/resources.hpp"
+#include "vkcollide/scene.hpp"
+#include "vkcollide/world.hpp"
+
+using namespace vkcollide;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+double median(std::vector<double> v) {
+    if (v.empty()) return 0;
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+[[noreturn]] void die(const std::string& what) {
+    std::fprintf(stderr, "vkcollide_bench_frames: %s\n", what.c_str());
+    std::exit(1);
+}
+
+// A sphere with about `triangles` triangles (2 * segments * rings).
+HostMesh sphere(float radius, std::uint64_t triangles) {
+    const auto rings = static_cast<std::uint32_t>(std::max(4.0, std::sqrt(double(triangles) / 4)));
+    auto m = uvSphere(radius, 2 * rings, rings);
+    if (!m) die(m.error().message());
+    return std::move(*m);
+}
+
+// Frame f's positions: the rest shape breathing and sliding along x (the two overlap).
+void pose(const HostMesh& rest, int frame, float dx, std::vector<Float3>& out) {
+    const float s = 1.0f + 0.05f * std::sin(0.3f * float(frame));
+    out.resize(rest.positions.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        const Float3 p = rest.positions[i];
+        out[i] = {p.x * s + dx, p.y * s, p.z * s};
+    }
+}
+
+struct EngineMesh {
+    vk::Buffer vertices[2], indices;
+    GpuMeshDesc desc(int slot) const {
+        GpuMeshDesc d;
+        d.vertex_buffer = vertices[slot].handle();
+        d.vertex_buffer_size = vertices[slot].size();
+        d.vertex_count = static_cast<std::uint32_t>(vertices[slot].size() / sizeof(Float3));
+        d.index_buffer = indices.handle();
+        d.index_buffer_size = indices.size();
+        d.index_count = static_cast<std::uint32_t>(indices.size() / 4);
+        return d;
+    }
+};
+
+EngineMesh engineMesh(vk::Device& dev, const HostMesh& m) {
+    EngineMesh e;
+    for (vk::Buffer& b : e.vertices) {
+        auto vb = vk::Buffer::create(dev, m.positions.size() * sizeof(Float3), 0, vk::MemoryKind::Upload, "bench-vertices");
+        if (!vb) die(vb.error().message());
+        b = std::move(*vb);
+    }
+    auto ib = vk::Buffer::create(dev, m.indices.size() * 4, 0, vk::MemoryKind::Upload, "bench-indices");
+    if (!ib) die(ib.error().message());
+    std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
+    ib->flush();
+    e.indices = std::move(*ib);
+    return e;
+}
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> out;
+    std::size_t start = 0;
+    for (std::size_t comma; (comma = s.find(',', start)) != std::string::npos; start = comma + 1) out.push_back(s.substr(start, comma - start));
+    out.push_back(s.substr(start));
+    return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::uint64_t vertices = 1000000, triangles = 100000;
+    int frames = 30;
+    unsigned threads = 0;
+    std::vector<std::string> methods = {"reliable", "peeling"};
+    for (int i = 1; i + 1 < argc; i += 2) {
+        const std::string key = argv[i], value = argv[i + 1];
+        if (key == "--vertices") vertices = std::stoull(value);
+        else if (key == "--triangles") triangles = std::stoull(value);
+        else if (key == "--frames") frames = std::max(3, std::stoi(value));
+        else if (key == "--threads") threads = static_cast<unsigned>(std::stoul(value));
+        else if (key == "--methods") methods = split(value);
+        else die("unknown option " + key);
+    }
+    auto ctx = Context::create();
+    if (!ctx) die(ctx.error().message());
+    std::printf("case,method,triangles,vertices,frames,update_ms,update_ms_per_1M_vertices,frame_ms,gpu_ms,readback_ms,narrow_ms,"
+                "submit_to_result_ms,pairs,device\n");
+    const std::string device = (*ctx)->deviceInfo().name;
+
+    {  // updateVertices alone.
+        const HostMesh big = sphere(1.0f, 2 * vertices);  // a UV sphere has about half as many vertices as triangles
+        auto world = CollisionWorld::create(**ctx, {.threads = threads});
+        if (!world) die(world.error().message());
+        auto id = (*world)->addMesh(big, {.name = "big"});
+        if (!id) die(id.error().message());
+        std::vector<Float3> next;
+        std::vector<double> times;
+        for (int f = 0; f < frames; ++f) {
+            pose(big, f, 0, next);
+            const auto t0 = Clock::now();
+            if (auto ok = (*world)->updateVertices(*id, next); !ok) die(ok.error().message());
+            times.push_back(msSince(t0));
+        }
+        const double ms = median(times), n = double(big.positions.size());
+        std::printf("update,-,%zu,%zu,%d,%.3f,%.3f,,,,,,,%s\n", big.triangleCount(), big.positions.size(), frames, ms, ms * 1e6 / n,
+                    device.c_str());
+    }
+
+    const HostMesh a = sphere(1.0f, triangles), b = sphere(0.8f, triangles);
+    for (const std::string& method : methods) {
+        DetectSettings settings;
+        settings.method = method == "peeling" ? DetectMethod::Peeling : DetectMethod::Reliable;
+        for (const char* mode : {"detect", "submit", "pipelined"}) {
+            auto world = CollisionWorld::create(**ctx, {.threads = threads});
+            if (!world) die(world.error().message());
+            CollisionWorld& w = **world;
+            EngineMesh ea = engineMesh((*ctx)->device(), a), eb = engineMesh((*ctx)->device(), b);
+            auto ia = w.addGpuMesh(ea.desc(0), {.name = "a"});
+            auto ib = w.addGpuMesh(eb.desc(0), {.name = "b"});
+            if (!ia || !ib) die((ia ? ib : ia).error().message());
+            std::vector<Float3> pa, pb;
+            std::vector<double> frame_ms, gpu_ms, narrow_ms, total_ms, readback_ms;
+            std::size_t pairs = 0;
+            const bool pipelined = std::string(mode) == "pipelined";
+            auto record = [&](const Result<DetectResult>& r, double ms) {
+                if (!r) die(r.error().message());
+                frame_ms.push_back(ms);
+                gpu_ms.push_back(r->stats.sampling_ms + r->stats.merging_ms + r->stats.separation_ms + r->stats.packing_ms +
+                                 r->stats.footprints_ms + r->stats.pairing_ms + r->stats.filtering_ms);
+                narrow_ms.push_back(r->stats.narrow_ms);
+                total_ms.push_back(r->stats.total_ms);
+                readback_ms.push_back(r->stats.readback_ms);
+                pairs = r->pairs.size();
+            };
+            for (int f = 0; f < frames + 2; ++f) {
+                const auto t0 = Clock::now();
+                // Buffer f % 2: the detection that read it (frame f - 2) has been collected.
+                pose(a, f, -0.8f, pa);
+                pose(b, f, 0.8f, pb);
+                std::memcpy(ea.vertices[f % 2].mapped(), pa.data(), pa.size() * sizeof(Float3));
+                std::memcpy(eb.vertices[f % 2].mapped(), pb.data(), pb.size() * sizeof(Float3));
+                ea.vertices[f % 2].flush();
+                eb.vertices[f % 2].flush();
+                if (auto ok = w.setGpuMeshBuffers(*ia, ea.desc(f % 2)); !ok) die(ok.error().message());
+                if (auto ok = w.setGpuMeshBuffers(*ib, eb.desc(f % 2)); !ok) die(ok.error().message());
+                Result<DetectResult> r = Error(ErrorCode::InvalidArgument, "none");
+                if (std::string(mode) == "detect") {
+                    r = w.detect(settings);
+                } else {
+                    if (auto ok = w.submit(settings); !ok) die(ok.error().message());
+                    if (pipelined && f == 0) continue;
+                    r = w.collect();
+                }
+                if (f >= 2) record(r, msSince(t0));
+            }
+            if (pipelined) (void)w.collect();
+            std::printf("%s,%s,%zu,,%d,,,%.3f,%.3f,%.3f,%.3f,%.3f,%zu,%s\n", mode, method.c_str(), a.triangleCount() + b.triangleCount(),
+                        frames, median(frame_ms), median(gpu_ms), median(readback_ms), median(narrow_ms), median(total_ms), pairs,
+                        device.c_str());
+        }
+    }
+    return 0;
+}

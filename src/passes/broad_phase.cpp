@@ -82,6 +82,7 @@ std::string describe(const ObjectFault& f) {
             return "triangle " + std::to_string(f.triangle) +
                    " has a vertex position that is NaN or infinite, or beyond +-1e30 after the object's transform (the sampling range)" +
                    affected;
+        case ObjectFault::Kind::OutOfRange:
             return "triangle " + std::to_string(f.triangle) +
                    " has a position, transform entry or world coordinate of magnitude 2^62 or more (the reliable method's limit)";
     }

@@ -191,7 +191,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(passes::DetectionResult detect
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
     if (broad[0].scene_box) measured_box = broad[0].scene_box;
-    st.gpu_memory_bytes = detection->memoryBytes();
+    if (run_settings.contacts)
+        if (auto ok = addContacts(detected, ids, out); !ok) return ok.error();
+    st.gpu_memory_bytes = detection->memoryBytes() + (contact_stage ? contact_stage->memoryBytes() : 0);
     for (const Object& o : objects) st.gpu_memory_bytes += (o.vertices.valid() ? o.vertices.size() : 0) + (o.indices.valid() ? o.indices.size() : 0);
     st.total_ms = msSince(run_start);
     return out;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "passes/contacts/contact_stage.hpp"
 #include "passes/detection.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -68,6 +69,9 @@ struct CollisionWorld::Impl {
     // Declared after the objects: destroyed first, it waits for a detection in flight
     // before their buffers are freed.
     std::unique_ptr<passes::Detection> detection;
+    // Object-level contacts (DetectSettings::contacts), created at the first detection
+    // that asks for them.
+    std::unique_ptr<passes::ContactStage> contact_stage;
 
     // A detection met a lost device (WorldState::DeviceLost): every later one fails at once.
     bool device_lost = false;
@@ -124,6 +128,9 @@ struct CollisionWorld::Impl {
     Result<DetectResult> collect();
     Error describeFailure(const Error& e) const;
     Result<DetectResult> finish(passes::DetectionResult detected);
+    // contacts.cpp: DetectResult::contacts and their statistics, after the narrow phase
+    // (`out.pairs` mapped to ObjectIds); `ids`: the detection's objects.
+    Result<void> addContacts(const passes::DetectionResult& detected, std::span<const ObjectId> ids, DetectResult& io_out);
 };
 
 }  // namespace vkcollide

@@ -91,6 +91,7 @@ Result<void> CollisionWorld::Impl::addContacts(const passes::DetectionResult& de
 
     DetectStats& st = out.stats;
     st.contacts_gpu_ms = r->gpu_ms;
+    st.gpu_passes.push_back({"contacts", r->gpu_ms});  // both submissions, so GPU sums over passes include them
     st.contact_rays_x = r->width;
     st.contact_rays_y = r->height;
     st.contact_layers = r->layers;

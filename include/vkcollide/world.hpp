@@ -185,7 +185,7 @@ struct DetectSettings {
     // the region where those boxes overlap, sorts each ray's hits and walks them. Cost:
     // GPU time about one sampling pass of those objects at that resolution, 72 bytes per
     // triangle and 4 + 8 x (most hits on one ray) bytes per ray of GPU memory
-    // (docs/contacts.md measures it: on lavapipe it adds 5-60 % to a detection).
+    // (docs/contacts.md measures it: on lavapipe it adds 3-60 % to a detection).
     bool contacts = false;
     // Rays across the longer side of the region where closed objects' boxes overlap, an
     // integer in [kMinContactResolution, kMaxContactResolution] (16 .. 4096). The error of

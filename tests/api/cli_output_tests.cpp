@@ -194,7 +194,8 @@ TEST_CASE("vkcollide --help: every option says what it does and what it costs", 
         "--no-measure-layers", "--axes", "--coverage", "--closed-epsilon", "--bad-objects", "--paper-packing", "--name",
         "--open", "--self", "--no-self-collision", "--transform", "--translate", "--rotate", "--scale", "--gpu-mesh",
         "--edge-length", "--sequence", "--frame-files", "--frames", "--threads", "--device", "--no-robust-access",
-        "--validation", "--quiet", "--pairs", "--json", "--stats", "--csv", "--png", "--png-size", "--view", "--rays"};
+        "--validation", "--quiet", "--pairs", "--json", "--stats", "--csv", "--png", "--png-size", "--view", "--rays",
+        "--contacts", "--contact-resolution"};
     CHECK(std::set<std::string>(options.begin(), options.end()) == tested);
 }
 

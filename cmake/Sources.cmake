@@ -33,6 +33,7 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/passes/separation.cpp
   ${S}/passes/stage.cpp
   ${S}/passes/triangle_bounds.cpp
+  ${S}/api/contacts.cpp
   ${S}/api/detect.cpp
   ${S}/api/engine_mesh.cpp
   ${S}/api/engine_sync.cpp

@@ -49,6 +49,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include "vkcollide/contacts.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/gpu_mesh.hpp"
 #include "vkcollide/mesh.hpp"
@@ -186,6 +187,24 @@ struct DetectSettings {
     // about 9 per candidate (8.7M for 1M candidates, docs/narrow_phase.md), 2^27 = 134M
     // takes about a second to sweep on two cores.
     std::uint64_t max_candidate_pairs = std::uint64_t{1} << 27;
+
+    // Object-level contacts (vkcollide/contacts.hpp, docs/contacts.md): for every pair of
+    // closed objects whose volumes overlap, the intersection volume, a contact normal, the
+    // penetration depth along it and the centroid, in DetectResult::contacts. Either
+    // method; the contacts are the same whatever the method. Off by default: it is a
+    // second GPU stage after the broad phase (two short submissions, waited for in
+    // detect() or collect(): the first measures the objects' boxes), which draws the
+    // closed objects whose boxes overlap another's along contact_resolution^2 rays across
+    // the region where those boxes overlap, sorts each ray's hits and walks them. Cost:
+    // GPU time about one sampling pass of those objects at that resolution, 72 bytes per
+    // triangle and 4 + 8 x (most hits on one ray) bytes per ray of GPU memory
+    // (docs/contacts.md measures it: on lavapipe it adds 3-60 % to a detection).
+    bool contacts = false;
+    // Rays across the longer side of the region where closed objects' boxes overlap, an
+    // integer in [kMinContactResolution, kMaxContactResolution] (16 .. 4096). The error of
+    // the volume shrinks about linearly with it (docs/contacts.md). Automatic:
+    // kDefaultContactResolution (spirv/contacts.h; 128).
+    std::optional<std::uint32_t> contact_resolution;
 };
 
 struct PassTime {
@@ -251,6 +270,13 @@ struct DetectStats {
     double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;                 // reliable
     double readback_ms = 0;              // host: reading the header and the records or pairs
     double narrow_ms = 0;                // host: the CPU narrow phase
+    // Contacts (DetectSettings::contacts): the stage's host wall time (both submissions,
+    // waits and reading), its GPU time, and its rays (width x height), the most hits on one
+    // ray, the candidate object pairs (closed, allowed, boxes overlapping), rays inside
+    // more than 16 objects at once (those extra objects ignored there) and submissions.
+    double contacts_ms = 0, contacts_gpu_ms = 0;
+    std::uint32_t contact_rays_x = 0, contact_rays_y = 0, contact_layers = 0;
+    std::uint32_t contact_candidate_pairs = 0, contact_nested_rays = 0, contact_runs = 0;
     double total_ms = 0;                 // host wall time from submit to result
     unsigned narrow_threads = 0;
     // Memory: device memory held by the world, in Context::deviceMemoryInUse()'s unit (the
@@ -272,6 +298,10 @@ struct DetectResult {
     std::vector<TrianglePair> pairs;
     std::vector<TriangleResponse> responses;  // one per colliding triangle, world space
     std::vector<ExcludedObject> excluded;     // engine meshes that failed the GPU check this time
+    // With DetectSettings::contacts: one per pair of closed objects whose volumes overlap
+    // or whose triangles intersect (filtered pairs and excluded objects have none), sorted
+    // by (object_a, object_b). Empty otherwise.
+    std::vector<ObjectContact> contacts;
     DetectStats stats;
     // DetectSettings::max_pairs was reached: the intersecting pairs found beyond it (not in
     // `pairs`, not in `responses`), and an error (LimitExceeded) that says so. Empty and 0

@@ -197,9 +197,12 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
     if (broad[0].scene_box) measured_box = broad[0].scene_box;
+    if (run.settings.contacts)
+        if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
     // Everything the world holds: both slots' broad phases (with their cached transients and
     // the methods' own buffers) and the uploaded meshes, in Context::deviceMemoryInUse's unit.
     for (const Run& r : runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;
+    st.gpu_memory_bytes += contact_stage ? contact_stage->memoryBytes() : 0;
     for (const Object& o : objects) st.gpu_memory_bytes += o.vertices.memoryBytes() + o.indices.memoryBytes();
     st.total_ms = msSince(run.start);
     return out;

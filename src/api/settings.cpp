@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "api/world_impl.hpp"
+#include "contacts.h"
 #include "broadphase.h"
 #include "vk/device.hpp"
 
@@ -265,6 +266,7 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
             append(why, s.coverage == Coverage::Conservative ? "coverage conservative (the device rasterises conservatively)"
                                                              : "coverage dilate (no conservative rasterisation on this device)");
     }
+    if (s.contacts && !s.contact_resolution) s.contact_resolution = gpu::kDefaultContactResolution;
     if (note) *note = why;
     return s;
 }

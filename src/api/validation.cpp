@@ -9,6 +9,7 @@
 
 #include "broadphase.h"
 #include "cells.h"
+#include "contacts.h"
 #include "core/mesh_rules.hpp"
 #include "vk/device.hpp"
 
@@ -214,6 +215,10 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         if (!(widest >= gpu::kMinSamplingExtent))
             return Error(ErrorCode::LimitExceeded, "sampling region is narrower than the smallest extent vkcollide can sample (1e-30 world units)");
     }
+    if (s.contact_resolution &&
+        (*s.contact_resolution < gpu::kMinContactResolution || *s.contact_resolution > gpu::kMaxContactResolution))
+        return invalid("contact_resolution " + std::to_string(*s.contact_resolution) + " is not in [" +
+                       std::to_string(gpu::kMinContactResolution) + ", " + std::to_string(gpu::kMaxContactResolution) + "]");
     if (reliable) return {};  // coverage and backend shape ray sampling, which it does not do
     if (s.coverage == Coverage::Conservative && !device.conservative_rasterization)
         return Error(ErrorCode::UnsupportedFeature, "conservative coverage needs VK_EXT_conservative_rasterization, which " +

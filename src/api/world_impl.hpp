@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/use_guard.hpp"
+#include "passes/contacts/contact_stage.hpp"
 #include "passes/detection.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -94,6 +95,9 @@ struct CollisionWorld::Impl {
     // before their buffers are freed. runs[oldest] is collected next.
     std::array<Run, 2> runs;
     std::uint32_t oldest = 0;
+    // Object-level contacts (DetectSettings::contacts), created at the first detection
+    // that asks for them; used by collect(), one at a time.
+    std::unique_ptr<passes::ContactStage> contact_stage;
 
     // A detection met a lost device (WorldState::DeviceLost): every later one fails at once.
     bool device_lost = false;
@@ -165,6 +169,10 @@ struct CollisionWorld::Impl {
     // one detect()/submit()/record() path.
     Result<Run*> freeRun();
     Result<void> begin(const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
+    // contacts.cpp: DetectResult::contacts and their statistics, after the narrow phase
+    // (`out.pairs` mapped to ObjectIds); `ids`: the detection's objects.
+    Result<void> addContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,
+                             DetectResult& io_out);
 };
 
 }  // namespace vkcollide

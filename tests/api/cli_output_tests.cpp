@@ -85,6 +85,35 @@ TEST_CASE("vkcollide detect --json: pairs, responses, objects and statistics agr
     CHECK(stats_file["objects"][1].string() == "b");
 }
 
+TEST_CASE("vkcollide detect --contacts: the object pair's contact in --json and the summary", "[cli][gpu]") {
+    Scene s("contacts", 1.2f);
+    const Json plain = detectJson(s.scratch, s.files);
+    CHECK(plain["frames"][0]["contacts"].size() == 0);
+    Run run;
+    const Json j = detectJson(s.scratch, s.files + " --contacts --contact-resolution 64", run);
+    CHECK(j["settings"]["used"]["contacts"].boolean());
+    CHECK(j["settings"]["used"]["contact_resolution"].number() == 64);
+    const Json& contacts = j["frames"][0]["contacts"];
+    REQUIRE(contacts.size() == 1);
+    const Json& c = contacts[0];
+    CHECK(c["object_a"].number() == 0);
+    CHECK(c["object_b"].number() == 1);
+    CHECK_FALSE(c["contained"].boolean());
+    // Two unit spheres 1.2 apart: a lens of 0.86 (analytic; the 320-triangle icospheres'
+    // is smaller), the normal along the centre line (a into b), depth 0.8.
+    CHECK(c["volume"].number() > 0.6);
+    CHECK(c["volume"].number() < 0.9);
+    CHECK(c["normal"][0].number() > 0.98);
+    CHECK(c["depth"].number() > 0.6);
+    CHECK(c["depth"].number() < 0.85);
+    CHECK(c["point"][0].number() > 0.5);
+    CHECK(c["point"][0].number() < 0.7);
+    // 64 rays across the longer side of the spheres' box overlap.
+    const Json& st = j["frames"][0]["stats"];
+    CHECK(std::max(st["contact_rays_x"].number(), st["contact_rays_y"].number()) == 64);
+    CHECK(run.out.find("contact a - b: volume") != std::string::npos);
+}
+
 TEST_CASE("vkcollide detect --png: colliding triangles highlighted, objects coloured, rays on request", "[cli][gpu]") {
     Scene touching("png", 1.2f);
     touching.files += " --method peeling";  // the collision rays are the peeling method's
@@ -167,7 +196,7 @@ TEST_CASE("vkcollide --help: every option says what it does and what it costs", 
         "--open", "--self", "--no-self-collision", "--transform", "--translate", "--rotate", "--scale", "--gpu-mesh",
         "--edge-length", "--sequence", "--frame-files", "--frames", "--threads", "--device", "--no-robust-access",
         "--validation", "--quiet", "--pairs", "--json", "--stats", "--csv", "--png", "--png-size", "--view", "--rays",
-        "--method", "--timeout", "--max-pairs", "--max-candidate-pairs"};
+        "--method", "--timeout", "--max-pairs", "--max-candidate-pairs", "--contacts", "--contact-resolution"};
     CHECK(std::set<std::string>(options.begin(), options.end()) == tested);
 }
 
@@ -189,6 +218,7 @@ TEST_CASE("vkcollide detect: errors name the option and the problem", "[cli][gpu
         {a + " --direction 1,0", 1, "--direction needs 3 comma-separated numbers, got 2"},
         {a + " --direction 0,0,0", 1, "--direction 0,0,0: projection direction must be finite and non-zero"},
         {a + " --open-epsilon -1", 1, "--open-epsilon -1: open_epsilon must be finite and >= 0"},
+        {a + " --contacts --contact-resolution 8", 1, "--contact-resolution 8: contact_resolution 8 is not in [16, 4096]"},
         {a + " --closed-epsilon nan", 1, "--closed-epsilon needs a finite number, got 'nan'"},
         {a + " --region 1,1,1,0,0,0", 1, "--region 1,1,1,0,0,0: sampling region must be finite with min <= max"},
         {a + " --coverage fuzzy", 1, "--coverage needs centre, dilate, conservative or best, got 'fuzzy'"},

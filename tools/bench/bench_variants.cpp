@@ -34,6 +34,9 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"reliable-async", "modes", [](S& s) { s.method = DetectMethod::Reliable; }, false, true},
         {"depth-sep", "modes", paper([](S& s) { s.depth_aware = true; })},   // peeling, depth-aware separation on
         {"paper-sep", "modes", paper([](S& s) { s.depth_aware = false; })},  // peeling, the paper's separation (the old default)
+        // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".
+        {"contacts", "contacts", [](S& s) { s.contacts = true; }},
+        {"contacts-256", "contacts", [](S& s) { s.contacts = true, s.contact_resolution = 256u; }},
     };
     for (std::uint32_t r : resolutions)
         v.push_back({"res-" + std::to_string(r), "resolutions", paper([r](S& s) { s.resolution = r; })});

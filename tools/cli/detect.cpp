@@ -45,6 +45,13 @@ void printSummary(const std::string& device, const Scene& scene, const vkcollide
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);
     std::printf("colliding triangle pairs: %zu\n", r.pairs.size());
+    for (const vkcollide::ObjectContact& c : r.contacts)
+        std::printf("contact %s - %s: volume %.6g, normal (%.4f, %.4f, %.4f), depth %.6g, at (%.6g, %.6g, %.6g)%s\n",
+                    scene.objects.at(c.object_a).options.name.c_str(), scene.objects.at(c.object_b).options.name.c_str(), c.volume,
+                    c.normal.x, c.normal.y, c.normal.z, c.depth, c.point.x, c.point.y, c.point.z, c.contained ? ", contained" : "");
+    if (st.contact_rays_x)
+        std::printf("contacts: %u x %u rays, %u candidate object pairs, %.3f ms (GPU %.3f)\n", st.contact_rays_x, st.contact_rays_y,
+                    st.contact_candidate_pairs, st.contacts_ms, st.contacts_gpu_ms);
     if (st.deep_rays) std::printf("deep rays (more surfaces than the peeling range, collision rays without peeling): %u\n", st.deep_rays);
     if (r.incomplete) std::printf("incomplete: %s\n", r.incomplete->message().c_str());
     for (const vkcollide::ExcludedObject& e : r.excluded) std::printf("excluded: %s\n", e.error.message().c_str());

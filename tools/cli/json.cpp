@@ -164,6 +164,11 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     ms("filtering_ms", st.filtering_ms);
     ms("readback_ms", st.readback_ms);
     ms("narrow_ms", st.narrow_ms);
+    ms("contacts_ms", st.contacts_ms);
+    ms("contacts_gpu_ms", st.contacts_gpu_ms);
+    count("contact_rays_x", st.contact_rays_x);
+    count("contact_rays_y", st.contact_rays_y);
+    count("contact_candidate_pairs", st.contact_candidate_pairs);
     count("narrow_threads", st.narrow_threads);
     ms("total_ms", st.total_ms);
     count("gpu_memory_bytes", st.gpu_memory_bytes);

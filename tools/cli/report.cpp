@@ -142,7 +142,25 @@ void Report::frame(std::size_t frame, const Scene& scene, const vkcollide::Detec
         j.endObject();
     }
     j.endArray();
-    // Object-pair contacts (issue 15 part 1) go here, as "contacts", once the library reports them.
+    // Object-pair contacts (--contacts; empty without it): docs/contacts.md.
+    j.key("contacts");
+    j.beginArray();
+    for (const vkcollide::ObjectContact& c : result.contacts) {
+        j.beginObject(Layout::Inline);
+        j.member("object_a", [&] { j.integer(c.object_a); });
+        j.member("object_b", [&] { j.integer(c.object_b); });
+        j.member("volume", [&] { j.number(c.volume); });
+        for (const auto& [key, v] : {std::pair<const char*, vkcollide::Float3>{"normal", c.normal}, {"point", c.point}}) {
+            j.key(key);
+            j.beginArray(Layout::Inline);
+            for (float x : {v.x, v.y, v.z}) j.number(x);
+            j.endArray();
+        }
+        j.member("depth", [&] { j.number(c.depth); });
+        j.member("contained", [&] { j.boolean(c.contained); });
+        j.endObject();
+    }
+    j.endArray();
     j.key("excluded");
     j.beginArray();
     for (const vkcollide::ExcludedObject& e : result.excluded) {

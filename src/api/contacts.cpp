@@ -1,0 +1,105 @@
+// Object-level contacts of one detection (DetectSettings::contacts): the contact stage run
+// on the detection's objects (bad engine meshes already left out) along its direction,
+// with the pair filter's answers; its sums turned into ObjectContacts named by ObjectId,
+// each marked contained or not from the detection's triangle pairs.
+#include <algorithm>
+#include <chrono>
+
+#include "api/world_impl.hpp"
+
+namespace vkcollide {
+namespace {
+
+Float3 toFloat3(const std::array<double, 3>& v) {
+    return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
+}
+
+}  // namespace
+
+Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,
+                                               DetectResult& out) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!contact_stage) {
+        auto cs = passes::ContactStage::create(device());
+        if (!cs) return cs.error();
+        contact_stage = std::move(*cs);
+    }
+    std::vector<passes::GpuMesh> meshes;
+    meshes.reserve(detected.objects.size());
+    for (std::uint32_t i : detected.objects) meshes.push_back(run.meshes[i]);
+    passes::ContactInput in;
+    in.meshes = meshes;
+    in.direction = detected.directions[0];
+    in.resolution = *run.settings.contact_resolution;
+    in.timeout_ns = std::uint64_t{run.settings.timeout_ms} * 1000000;
+    // The filter's answers, as the narrow phase had them (detect.cpp): the kept mask, or
+    // the filter itself beyond the mask's object limit.
+    std::optional<Error> filter_threw;
+    const passes::ObjectPairMask* mask = pair_filter && pair_mask.objects == run.ids.size() && !pair_mask_dirty ? &pair_mask : nullptr;
+    const std::vector<std::uint32_t>& live = detected.objects;
+    if (mask) {
+        in.may_collide = [mask, &live](std::uint32_t a, std::uint32_t b) { return mask->allows(live[a], live[b]); };
+    } else if (pair_filter) {
+        in.may_collide = [this, ids, &filter_threw](std::uint32_t a, std::uint32_t b) {
+            if (filter_threw) return false;
+            auto answer = callPairFilter(ids[a], ids[b]);
+            if (answer) return *answer;
+            filter_threw = answer.error();
+            return false;
+        };
+    }
+    auto r = contact_stage->run(in);
+    if (filter_threw) return *filter_threw;
+    if (!r) return r.error();
+
+    // Object pairs with intersecting triangles (ObjectIds, a < b): not contained.
+    std::vector<std::array<ObjectId, 2>> touching;
+    for (const TrianglePair& p : out.pairs)
+        if (p.object_a != p.object_b) touching.push_back({p.object_a, p.object_b});
+    std::sort(touching.begin(), touching.end());
+    touching.erase(std::unique(touching.begin(), touching.end()), touching.end());
+    auto intersecting = [&](ObjectId a, ObjectId b) { return std::binary_search(touching.begin(), touching.end(), std::array<ObjectId, 2>{a, b}); };
+
+    std::vector<ObjectContact>& contacts = out.contacts;
+    for (const passes::StageContact& c : r->contacts) {
+        ObjectContact oc;
+        oc.object_a = ids[c.a];
+        oc.object_b = ids[c.b];
+        oc.volume = static_cast<float>(c.volume);
+        oc.normal = toFloat3(c.normal);
+        oc.depth = static_cast<float>(c.depth);
+        oc.point = toFloat3(c.point);
+        oc.contained = !intersecting(oc.object_a, oc.object_b);
+        contacts.push_back(oc);
+    }
+    // Closed pairs whose triangles intersect but whose overlap no ray sampled (touching,
+    // thinner than a ray spacing): a contact with volume 0 at the middle of their boxes'
+    // overlap.
+    for (const auto& [a, b] : touching) {
+        if (objects[a].options.open || objects[b].options.open) continue;
+        if (std::any_of(contacts.begin(), contacts.end(), [&](const ObjectContact& c) { return c.object_a == a && c.object_b == b; })) continue;
+        ObjectContact oc;
+        oc.object_a = a;
+        oc.object_b = b;
+        for (std::size_t k = 0; k < r->candidates.size(); ++k)
+            if (ids[r->candidates[k][0]] == a && ids[r->candidates[k][1]] == b) oc.point = toFloat3(r->candidate_middles[k]);
+        contacts.push_back(oc);
+    }
+    // Run indices grow with ids: the stage's order survives; the volume-0 ones are merged in.
+    std::sort(contacts.begin(), contacts.end(),
+              [](const ObjectContact& x, const ObjectContact& y) { return x.object_a < y.object_a || (x.object_a == y.object_a && x.object_b < y.object_b); });
+
+    DetectStats& st = out.stats;
+    st.contacts_gpu_ms = r->gpu_ms;
+    st.gpu_passes.push_back({"contacts", r->gpu_ms});  // both submissions, so GPU sums over passes include them
+    st.contact_rays_x = r->width;
+    st.contact_rays_y = r->height;
+    st.contact_layers = r->layers;
+    st.contact_candidate_pairs = static_cast<std::uint32_t>(r->candidates.size());
+    st.contact_nested_rays = r->nested_rays;
+    st.contact_runs = r->runs;
+    st.contacts_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return {};
+}
+
+}  // namespace vkcollide

@@ -1,0 +1,261 @@
+// Object-level contacts (DetectSettings::contacts) through the public API, validation on,
+// against closed forms: two overlapping spheres (lens volume, centroid, normal along the
+// centre line, depth r1 + r2 - d), a box inside a box (containment, the inner box's
+// volume), a sphere half sunk into a box (half the sphere mesh's volume, the face's
+// normal, depth r); then what must hold whatever the scene: both methods give the same
+// contacts, filtered pairs and open objects get none, nested objects grow the ray lists,
+// bad settings are named.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "support/gpu_fixture.hpp"
+#include "support/test_scenes.hpp"
+#include "vkcollide/scene.hpp"
+#include "vkcollide/world.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::unique_ptr<CollisionWorld> makeWorld(ValidatedContext& ctx) {
+    auto w = CollisionWorld::create(ctx.context(), {.threads = 2});
+    REQUIRE(w);
+    return std::move(*w);
+}
+
+Transform3x4 translation(double x, double y, double z) {
+    return {1, 0, 0, float(x), 0, 1, 0, float(y), 0, 0, 1, float(z)};
+}
+
+// The mesh's exact volume (divergence theorem), in object units.
+double meshVolume(const HostMesh& m) {
+    double v = 0;
+    for (std::size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const Float3 &a = m.positions[m.indices[t]], &b = m.positions[m.indices[t + 1]], &c = m.positions[m.indices[t + 2]];
+        v += (double(a.x) * (double(b.y) * c.z - double(b.z) * c.y) - double(a.y) * (double(b.x) * c.z - double(b.z) * c.x) +
+              double(a.z) * (double(b.x) * c.y - double(b.y) * c.x)) / 6.0;
+    }
+    return v;
+}
+
+double angleDegrees(Float3 n, std::array<double, 3> d) {
+    const double ld = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    const double ln = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
+    const double c = (n.x * d[0] + n.y * d[1] + n.z * d[2]) / (ld * ln);
+    return std::acos(std::clamp(c, -1.0, 1.0)) * 180.0 / kPi;
+}
+
+double distance(Float3 p, std::array<double, 3> q) {
+    return std::sqrt((p.x - q[0]) * (p.x - q[0]) + (p.y - q[1]) * (p.y - q[1]) + (p.z - q[2]) * (p.z - q[2]));
+}
+
+// Two spheres r1 (at the origin) and r2 (at distance d along `axis`): the lens.
+struct Lens {
+    double volume, depth;
+    double centroid;  // distance of the lens's centroid from sphere 1's centre along the axis
+};
+Lens lens(double r1, double r2, double d) {
+    const double a = (d * d + r1 * r1 - r2 * r2) / (2 * d);  // plane of the circle of intersection
+    const double h1 = r1 - a, h2 = r2 - (d - a);              // cap heights
+    auto cap = [](double r, double h) { return kPi * h * h * (3 * r - h) / 3; };
+    auto capCentroid = [](double r, double h) { return 3 * (2 * r - h) * (2 * r - h) / (4 * (3 * r - h)); };  // from the centre
+    const double v1 = cap(r1, h1), v2 = cap(r2, h2);
+    // Cap 1 lies beyond the plane from sphere 1's centre (+axis); cap 2 before it, facing sphere 1.
+    const double c1 = capCentroid(r1, h1), c2 = d - capCentroid(r2, h2);
+    return {v1 + v2, r1 + r2 - d, (v1 * c1 + v2 * c2) / (v1 + v2)};
+}
+
+struct TwoSpheres {
+    HostMesh s1, s2;
+    double r1 = 1.0, r2 = 0.8, d = 1.2;
+    std::array<double, 3> axis{0.8, 0.48, 0.36};  // unit
+    Transform3x4 at2() const { return translation(axis[0] * d, axis[1] * d, axis[2] * d); }
+};
+
+TwoSpheres twoSpheres() {
+    TwoSpheres s;
+    // Level 4: 5120 triangles; the faces lie within 0.0006 r inside the sphere, so the
+    // meshes' lens is within 0.3 % of the analytic one (the reference here).
+    auto a = icosphere(float(s.r1), 4), b = icosphere(float(s.r2), 4);
+    REQUIRE(a);
+    REQUIRE(b);
+    s.s1 = std::move(*a);
+    s.s2 = std::move(*b);
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("contacts: two spheres give the lens volume, centroid, centre-line normal and depth r1 + r2 - d", "[contacts][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    const TwoSpheres s = twoSpheres();
+    auto a = world->addMesh(s.s1, {.name = "one"});
+    auto b = world->addMesh(s.s2, {.name = "two", .transform = s.at2()});
+    REQUIRE(a);
+    REQUIRE(b);
+    auto r = world->detect({.contacts = true});
+    REQUIRE(r);
+    REQUIRE(r->contacts.size() == 1);
+    const ObjectContact& c = r->contacts[0];
+    const Lens L = lens(s.r1, s.r2, s.d);
+    CHECK(c.object_a == *a);
+    CHECK(c.object_b == *b);
+    CHECK_FALSE(c.contained);
+    CHECK(r->stats.contact_rays_x > 0);
+    INFO("volume " << c.volume << " vs " << L.volume << ", depth " << c.depth << " vs " << L.depth);
+    CHECK(std::fabs(c.volume - L.volume) < 0.02 * L.volume);
+    // From a (sphere 1) into b: along +axis.
+    CHECK(angleDegrees(c.normal, s.axis) < 3.0);
+    // Depth: within two ray spacings (region side / 128) of the closed form.
+    const double spacing = 1.6 / 128;
+    CHECK(std::fabs(c.depth - L.depth) < 2 * spacing);
+    const std::array<double, 3> centroid{s.axis[0] * L.centroid, s.axis[1] * L.centroid, s.axis[2] * L.centroid};
+    CHECK(distance(c.point, centroid) < spacing);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("contacts: a box inside a box is contained, with the inner box's volume and no normal", "[contacts][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto outer = box({1, 1, 1}, 2), inner = box({0.3f, 0.2f, 0.4f}, 2);
+    REQUIRE(outer);
+    REQUIRE(inner);
+    auto a = world->addMesh(*outer, {.name = "outer"});
+    auto b = world->addMesh(*inner, {.name = "inner", .transform = translation(0.1, -0.2, 0.3)});
+    REQUIRE(a);
+    REQUIRE(b);
+    for (DetectMethod method : {DetectMethod::Reliable, DetectMethod::Peeling}) {
+        INFO("method " << toString(method));
+        auto r = world->detect({.method = method, .contacts = true});
+        REQUIRE(r);
+        CHECK(r->pairs.empty());
+        REQUIRE(r->contacts.size() == 1);
+        const ObjectContact& c = r->contacts[0];
+        CHECK(c.contained);
+        const double volume = meshVolume(*inner);  // 0.192, exact for a box
+        CHECK(std::fabs(c.volume - volume) < 0.02 * volume);
+        CHECK(c.normal.x == 0);
+        CHECK(c.normal.y == 0);
+        CHECK(c.normal.z == 0);
+        CHECK(c.depth == 0);
+        CHECK(distance(c.point, {0.1, -0.2, 0.3}) < 0.01);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("contacts: a sphere half sunk into a box gives half its volume, the face normal and depth r", "[contacts][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto slab = box({1, 1, 0.5f}, 1);
+    // Even rings: the equator is a ring of vertices in the plane z = 0, so the mesh below
+    // it is exactly half the mesh (the fair reference is the mesh's own volume / 2).
+    auto ball = uvSphere(0.4f, 48, 24);
+    REQUIRE(slab);
+    REQUIRE(ball);
+    auto a = world->addMesh(*slab, {.name = "slab"});
+    auto b = world->addMesh(*ball, {.name = "ball", .transform = translation(0.1, 0.2, 0.5)});
+    REQUIRE(a);
+    REQUIRE(b);
+    auto r = world->detect({.contacts = true});
+    REQUIRE(r);
+    REQUIRE(r->contacts.size() == 1);
+    const ObjectContact& c = r->contacts[0];
+    const double half = meshVolume(*ball) / 2;
+    INFO("volume " << c.volume << " vs " << half << ", depth " << c.depth);
+    CHECK_FALSE(c.contained);
+    CHECK(std::fabs(c.volume - half) < 0.02 * half);
+    CHECK(angleDegrees(c.normal, {0, 0, 1}) < 2.0);  // from the slab (a) into the ball (b)
+    CHECK(std::fabs(c.depth - 0.4) < 0.02);
+    CHECK(distance(c.point, {0.1, 0.2, 0.5 - 3 * 0.4 / 8}) < 0.01);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("contacts: the same whatever the method, filtered pairs and open objects get none", "[contacts][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    const TwoSpheres s = twoSpheres();
+    auto a = world->addMesh(s.s1, {.name = "one"});
+    auto b = world->addMesh(s.s2, {.name = "two", .transform = s.at2()});
+    auto cloth = clothGrid(3.0f, 3.0f, 8, 8);
+    REQUIRE(cloth);
+    auto c = world->addMesh(*cloth, {.name = "cloth", .open = true});
+    REQUIRE(a);
+    REQUIRE(b);
+    REQUIRE(c);
+    auto reliable = world->detect({.method = DetectMethod::Reliable, .contacts = true});
+    auto peeling = world->detect({.method = DetectMethod::Peeling, .contacts = true});
+    REQUIRE(reliable);
+    REQUIRE(peeling);
+    CHECK(!reliable->pairs.empty());
+    REQUIRE(reliable->contacts.size() == 1);  // the cloth is open: pairs only
+    REQUIRE(peeling->contacts.size() == 1);
+    const ObjectContact &x = reliable->contacts[0], &y = peeling->contacts[0];
+    CHECK(x.volume == y.volume);
+    CHECK(x.depth == y.depth);
+    CHECK((x.normal.x == y.normal.x && x.normal.y == y.normal.y && x.normal.z == y.normal.z));
+    CHECK((x.point.x == y.point.x && x.point.y == y.point.y && x.point.z == y.point.z));
+    CHECK(x.contained == y.contained);
+
+    REQUIRE(world->setPairFilter([&](ObjectId p, ObjectId q) { return !(p == *a && q == *b); }));
+    auto filtered = world->detect({.contacts = true});
+    REQUIRE(filtered);
+    CHECK(filtered->contacts.empty());
+    REQUIRE(world->setPairFilter({}));
+    auto off = world->detect();
+    REQUIRE(off);
+    CHECK(off->contacts.empty());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("contacts: nested spheres grow the ray lists and every pair is contained", "[contacts][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    // Nine concentric spheres: 18 hits per central ray, more than the 16 slots a ray starts
+    // with, so the first run overflows and the stage runs again with longer lists.
+    std::vector<ObjectId> ids;
+    std::vector<double> volumes;
+    for (int k = 0; k < 9; ++k) {
+        auto m = icosphere(0.5f + 0.05f * float(k), 3);
+        REQUIRE(m);
+        volumes.push_back(meshVolume(*m));
+        auto id = world->addMesh(*m, {.name = "shell " + std::to_string(k)});
+        REQUIRE(id);
+        ids.push_back(*id);
+    }
+    auto r = world->detect({.contacts = true, .contact_resolution = 64});
+    REQUIRE(r);
+    CHECK(r->stats.contact_runs >= 2);
+    CHECK(r->stats.contact_layers >= 18);
+    REQUIRE(r->contacts.size() == 36);
+    for (const ObjectContact& c : r->contacts) {
+        CHECK(c.contained);
+        const double inner = volumes[std::min(c.object_a, c.object_b) - ids[0]];
+        CHECK(std::fabs(c.volume - inner) < 0.03 * inner);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("contacts: bad settings are named, no closed object gives no contact", "[contacts][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto cloth = clothGrid(2.0f, 2.0f, 4, 4);
+    REQUIRE(cloth);
+    REQUIRE(world->addMesh(*cloth, {.open = true}));
+    REQUIRE(world->addMesh(*cloth, {.open = true, .transform = translation(0.1, 0.1, 0)}));
+    auto none = world->detect({.contacts = true});
+    REQUIRE(none);
+    CHECK(none->contacts.empty());
+    for (std::uint32_t bad : {0u, 15u, 4097u}) {
+        auto r = world->detect({.contacts = true, .contact_resolution = bad});
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code() == ErrorCode::InvalidArgument);
+        CHECK(r.error().message().find("contact_resolution") != std::string::npos);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -77,17 +77,28 @@ int main(int argc, char** argv) {
         if (result = (*world)->detect(settings); !result) return fail(result.error().message());
 
     const DetectStats& st = result->stats;
-    std::printf("sampling backend: %s (%s)\n", toString(st.backend), st.backend_reason.c_str());
-    std::printf("scene: %u objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u peeling passes%s\n",
-                st.objects, st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
+    if (st.method == DetectMethod::Reliable) {
+        std::printf("method: reliable (every intersecting pair; cells and pairs on the GPU)\n");
+        std::printf("scene: %u objects, %zu triangles; %u cells per side, %llu footprints, %llu candidate pairs, %llu read back\n",
+                    st.objects, st.triangles, st.resolution, static_cast<unsigned long long>(st.cells.entries),
+                    static_cast<unsigned long long>(st.cells.candidates), static_cast<unsigned long long>(st.cells.survivors));
+    } else {
+        std::printf("method: peeling; sampling backend: %s (%s)\n", toString(st.backend), st.backend_reason.c_str());
+        std::printf("scene: %u objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u peeling passes%s\n",
+                    st.objects, st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
+    }
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);
     std::printf("colliding triangle pairs: %zu\n", result->pairs.size());
     std::printf("GPU passes (ms):");
     for (const auto& p : st.gpu_passes) std::printf(" %s %.3f;", p.name.c_str(), p.gpu_ms);
-    std::printf("\nstages (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f, readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
-                st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
-                st.total_ms);
+    if (st.method == DetectMethod::Reliable)
+        std::printf("\nstages (ms): footprints %.3f, pairing %.3f, filtering %.3f (GPU), readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
+                    st.footprints_ms, st.pairing_ms, st.filtering_ms, st.readback_ms, st.narrow_ms, st.narrow_threads, st.total_ms);
+    else
+        std::printf("\nstages (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f, readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
+                    st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
+                    st.total_ms);
     return result->pairs.empty() ? fail("expected collisions in the bundled scene, found none") : 0;
 }

@@ -60,14 +60,18 @@ DispatchShape dispatchShape(std::uint64_t groups, std::uint32_t max_x, std::uint
     return {static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y)};
 }
 
-void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups) {
+void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups, std::uint32_t max_x) {
     const std::uint32_t* limit = pc.device->properties.limits.maxComputeWorkGroupCount;
-    const DispatchShape shape = dispatchShape(groups, limit[0], limit[1]);
+    const DispatchShape shape = dispatchShape(groups, std::min(max_x, limit[0]), limit[1]);
     // Never for vkcollide's counts (see the header); recording nothing would be silent, so
     // stop here in every build.
     if (shape.x == 0 && groups != 0) std::abort();
     if (shape.x == 0) return;
     pc.fns().vkCmdDispatch(pc.cmd, shape.x, shape.y, 1);
+}
+
+void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups) {
+    dispatchGroups(pc, groups, pc.device->properties.limits.maxComputeWorkGroupCount[0]);
 }
 
 void dispatchItems(const graph::PassContext& pc, std::uint64_t items, std::uint32_t size) {

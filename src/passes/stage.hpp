@@ -71,6 +71,9 @@ std::uint32_t groups(std::uint64_t items, std::uint32_t size = gpu::kGroupSize);
 // groupIndex() (spirv/dispatch.glsl.inc) and ignores those past its count: the last row
 // may be partly beyond it.
 void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups);
+// The same in rows of at most `max_x` workgroups (at most the device's limit): for stages
+// that also give their shaders the row width (their indirect arguments use it too).
+void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups, std::uint32_t max_x);
 // The same for `items` invocations of `size` per workgroup.
 void dispatchItems(const graph::PassContext& pc, std::uint64_t items, std::uint32_t size = gpu::kGroupSize);
 // The (x, y) layout dispatchGroups records for `groups` under the limits (x, y); {0, 0}

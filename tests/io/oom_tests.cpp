@@ -1,33 +1,23 @@
 // Allocation failure inside the readers is ErrorCode::OutOfMemory, never an exception
-// (the API promises none). This test program replaces the global operator new with one
-// that, while a FailLargeAllocations guard is alive, refuses every allocation above a
-// size, so a valid but large input runs out of memory at a known point.
+// (the API promises none). This test program replaces the global operator new
+// (support/fail_large_allocations.cpp): while a FailLargeAllocations guard is alive, every
+// allocation above a size fails, so a valid but large input runs out of memory at a known
+// point.
 #include <catch2/catch.hpp>
 
-#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <limits>
-#include <new>
 #include <string>
 
 #include <unistd.h>
 
+#include "support/fail_large_allocations.hpp"
 #include "vkcollide/io.hpp"
 #include "vkcollide/scene.hpp"
 
 namespace {
-
-std::atomic<std::size_t> g_fail_above{std::numeric_limits<std::size_t>::max()};
-
-struct FailLargeAllocations {
-    explicit FailLargeAllocations(std::size_t bytes) { g_fail_above.store(bytes); }
-    ~FailLargeAllocations() { g_fail_above.store(std::numeric_limits<std::size_t>::max()); }
-    FailLargeAllocations(const FailLargeAllocations&) = delete;
-    FailLargeAllocations& operator=(const FailLargeAllocations&) = delete;
-};
 
 // A valid mesh file of `rows` x `rows` vertices; its parsed arrays take about 24 * rows^2 bytes.
 vkcollide::HostMesh bigGrid(std::uint32_t rows) {
@@ -38,27 +28,8 @@ vkcollide::HostMesh bigGrid(std::uint32_t rows) {
 
 }  // namespace
 
-// Every replaceable form, so that no allocation is made by one allocator and freed by
-// another (AddressSanitizer checks that pairing).
-void* operator new(std::size_t bytes) {
-    if (bytes > g_fail_above.load(std::memory_order_relaxed)) throw std::bad_alloc();
-    if (void* p = std::malloc(bytes ? bytes : 1)) return p;
-    throw std::bad_alloc();
-}
-void* operator new[](std::size_t bytes) { return ::operator new(bytes); }
-void* operator new(std::size_t bytes, const std::nothrow_t&) noexcept {
-    if (bytes > g_fail_above.load(std::memory_order_relaxed)) return nullptr;
-    return std::malloc(bytes ? bytes : 1);
-}
-void* operator new[](std::size_t bytes, const std::nothrow_t& tag) noexcept { return ::operator new(bytes, tag); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
-
 using namespace vkcollide;
+using vkcollide::test::FailLargeAllocations;
 
 TEST_CASE("each reader turns an allocation failure into OutOfMemory naming the source", "[io][oom]") {
     const HostMesh grid = bigGrid(400);  // 160,000 vertices: 1.9 MB of positions

@@ -21,14 +21,6 @@ void bind(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress params, 
     pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 }
 
-// `groups` workgroups in rows of at most `max_x` (maxComputeWorkGroupCount[0]; the shaders
-// linearise gl_WorkGroupID).
-void dispatch(const PassContext& pc, std::uint64_t groups, std::uint64_t max_x) {
-    if (groups == 0) return;
-    const std::uint64_t x = std::min(groups, max_x);
-    pc.fns().vkCmdDispatch(pc.cmd, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>((groups + x - 1) / x), 1);
-}
-
 std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize; }
 
 // Each pass declares its stage, so a broad phase sums its GPU time (stage.hpp).
@@ -63,7 +55,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
     const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
     const VkBuffer counts_buffer = buf_.counts.handle();
     const auto& P = pipes_;
-    const std::uint64_t max_x = max_groups_x_;
+    const std::uint32_t max_x = max_groups_x_;
     // The double-precision variant wherever the device has it (P.use_filter switches the
     // filter): it also computes download objects' world vertices as the CPU does.
     const vk::Pipeline* pairs = filterSupported() ? &filter_pipeline_ : &P.pairs;
@@ -94,7 +86,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
     if (projection.valid()) setup.read(projection);
     setup.record([&P, params, tri_groups, max_x](PassContext& pc) {
         bind(pc, P.setup, params);
-        dispatch(pc, tri_groups, max_x);
+        dispatchGroups(pc, tri_groups, max_x);
         pc.shaderBarrier();
         bind(pc, P.args, params, 0);
         pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
@@ -120,13 +112,13 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         .write(args)
         .record([&P, params, blocks, max_x](PassContext& pc) {
             bind(pc, P.scan, params, 0);
-            dispatch(pc, blocks, max_x);
+            dispatchGroups(pc, blocks, max_x);
             pc.shaderBarrier();
             bind(pc, P.scan, params, 1);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
             pc.shaderBarrier();
             bind(pc, P.scan, params, 2);
-            dispatch(pc, blocks, max_x);
+            dispatchGroups(pc, blocks, max_x);
             pc.shaderBarrier();
             bind(pc, P.args, params, 1);
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
@@ -143,7 +135,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         .write(entry_cells)
         .record([&P, params, tri_groups, args_buffer, max_x](PassContext& pc) {
             bind(pc, P.fill, params);
-            dispatch(pc, tri_groups, max_x);
+            dispatchGroups(pc, tri_groups, max_x);
             bind(pc, P.big, params, 1);  // other cells than the small triangles': no barrier needed
             pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsBig * 12);
         });

@@ -24,12 +24,6 @@ static_assert(sizeof(gpu::CtTriangle) == 72 && sizeof(gpu::ContactsPair) == 80);
 constexpr VkDeviceSize kMaxListBytes = VkDeviceSize(1) << 30;
 constexpr std::uint32_t kMaxRuns = 6;
 
-void dispatch(const PassContext& pc, std::uint64_t groups, std::uint64_t max_x) {
-    if (groups == 0) return;
-    const std::uint64_t x = std::min(groups, max_x);
-    pc.fns().vkCmdDispatch(pc.cmd, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>((groups + x - 1) / x), 1);
-}
-
 std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kContactsGroupSize - 1) / gpu::kContactsGroupSize; }
 
 std::string mib(VkDeviceSize bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
@@ -90,10 +84,11 @@ Result<std::vector<std::array<float, 6>>> ContactStage::measureBoxes(const Conta
         pc.fns().vkCmdFillBuffer(pc.cmd, bounds_buffer, half, half, 0u);
     });
     const VkDeviceAddress params = buf_.params.address();
-    const std::uint64_t tri_groups = groupsFor(params_.triangle_count), max_x = params_.max_groups_x;
+    const std::uint64_t tri_groups = groupsFor(params_.triangle_count);
+    const std::uint32_t max_x = params_.max_groups_x;
     addPass(g, "contacts-bounds", PassKind::Compute, Stage::None).readWrite(bounds).record([this, params, tri_groups, max_x](PassContext& pc) {
         bindAndPush(pc, pipes_.bounds, params);
-        dispatch(pc, tri_groups, max_x);
+        dispatchGroups(pc, tri_groups, max_x);
     });
     addPass(g, "contacts-bounds-readback", PassKind::Transfer, Stage::None)
         .use(bounds, Use::TransferSrc)
@@ -135,7 +130,7 @@ void ContactStage::recordMain(graph::Graph& g) {
     const VkDeviceSize rays = VkDeviceSize(params_.width) * params_.height;
     const VkDeviceSize table_bytes = VkDeviceSize(table_size_) * sizeof(gpu::ContactsPair);
     const VkDeviceAddress params = buf_.params.address();
-    const std::uint64_t max_x = params_.max_groups_x;
+    const std::uint32_t max_x = params_.max_groups_x;
     const std::uint64_t tri_groups = groupsFor(params_.triangle_count), ray_groups = groupsFor(rays);
 
     addPass(g, "contacts-clear", PassKind::Transfer, Stage::None)
@@ -158,7 +153,7 @@ void ContactStage::recordMain(graph::Graph& g) {
         .write(args)
         .record([this, params, tri_groups, max_x](PassContext& pc) {
             bindAndPush(pc, pipes_.setup, params);
-            dispatch(pc, tri_groups, max_x);
+            dispatchGroups(pc, tri_groups, max_x);
             pc.shaderBarrier();
             bindAndPush(pc, pipes_.tiles, params, 0, 1);  // the tile pass's arguments
             pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
@@ -182,10 +177,10 @@ void ContactStage::recordMain(graph::Graph& g) {
         .readWrite(header)
         .record([this, params, ray_groups, max_x](PassContext& pc) {
             bindAndPush(pc, pipes_.walk, params, 0, 0);
-            dispatch(pc, ray_groups, max_x);
+            dispatchGroups(pc, ray_groups, max_x);
             pc.shaderBarrier();
             bindAndPush(pc, pipes_.walk, params, 0, 1);
-            dispatch(pc, ray_groups, max_x);
+            dispatchGroups(pc, ray_groups, max_x);
         });
     addPass(g, "contacts-readback", PassKind::Transfer, Stage::None)
         .use(header, Use::TransferSrc)

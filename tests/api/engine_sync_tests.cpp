@@ -11,6 +11,7 @@
 
 #include "api/engine_copy.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/world_fixture.hpp"
 #include "support/test_scenes.hpp"
 #include "vk/semaphore.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -24,22 +25,6 @@ namespace {
 constexpr std::uint64_t kForever = UINT64_MAX;
 
 bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
-
-std::unique_ptr<CollisionWorld> makeWorld(ValidatedContext& ctx, WorldOptions options = {.threads = 2}) {
-    auto w = CollisionWorld::create(ctx.context(), options);
-    REQUIRE(w);
-    return std::move(*w);
-}
-
-std::vector<ObjectId> addScene(CollisionWorld& world, const TestScene& scene) {
-    std::vector<ObjectId> ids;
-    for (const SceneObject& o : scene.objects) {
-        auto id = world.addMesh(o.mesh, o.options);
-        REQUIRE(id);
-        ids.push_back(*id);
-    }
-    return ids;
-}
 
 DetectSettings peeling() {
     DetectSettings s;

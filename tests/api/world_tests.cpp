@@ -10,6 +10,7 @@
 #include "api/engine_copy.hpp"
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/world_fixture.hpp"
 #include "support/test_scenes.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/world.hpp"
@@ -18,22 +19,6 @@ using namespace vkcollide;
 using namespace vkcollide::test;
 
 namespace {
-
-std::unique_ptr<CollisionWorld> makeWorld(ValidatedContext& ctx) {
-    auto w = CollisionWorld::create(ctx.context(), {.threads = 2});
-    REQUIRE(w);
-    return std::move(*w);
-}
-
-std::vector<ObjectId> addScene(CollisionWorld& world, const TestScene& scene) {
-    std::vector<ObjectId> ids;
-    for (const SceneObject& o : scene.objects) {
-        auto id = world.addMesh(o.mesh, o.options);
-        REQUIRE(id);
-        ids.push_back(*id);
-    }
-    return ids;
-}
 
 std::vector<TrianglePair> referencePairs(const TestScene& scene) {
     auto objects = scene.reference();

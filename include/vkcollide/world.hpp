@@ -241,6 +241,7 @@ struct DetectStats {
     std::size_t triangle_tests = 0;                   // "# tri-tri tests"
     std::size_t positive_tests = 0;                   // "# pos. tests"
     NarrowStats narrow;                               // every narrow-phase counter
+    NarrowTimings narrow_timings;                     // the narrow phase's stages (host wall clock)
     CellStats cells;                                  // reliable only
     // What ran.
     DetectMethod method = DetectMethod::Reliable;

@@ -187,6 +187,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     }
     st.narrow_threads = executor->threadCount();
     st.narrow = narrow->stats;
+    st.narrow_timings = narrow->timings;
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;
     st.triangle_tests = narrow->stats.triangle_tests;
     st.positive_tests = narrow->stats.positive_tests;

@@ -1,6 +1,7 @@
 #include "bench_variants.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 namespace vkcollide::bench {
@@ -40,6 +41,15 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
     };
     for (std::uint32_t r : resolutions)
         v.push_back({"res-" + std::to_string(r), "resolutions", paper([r](S& s) { s.resolution = r; })});
+    // The reliable method at a multiple of its automatic grid: how its cost and the choice
+    // of kCellsPerEdge depend on the cell size.
+    for (double f : {0.5, 0.7, 1.4, 2.0}) {
+        char name[32];
+        std::snprintf(name, sizeof name, "cells-x%g", f);
+        Variant scaled{name, "cell-scales", [](S&) {}};
+        scaled.resolution_scale = f;
+        v.push_back(std::move(scaled));
+    }
     for (std::uint32_t r : resolutions)  // the reliable method at a fixed grid (its automatic one is the default)
         v.push_back({"cells-" + std::to_string(r), "cell-resolutions", [r](S& s) { s.resolution = r; }});
     return v;

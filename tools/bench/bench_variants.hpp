@@ -17,6 +17,9 @@ struct Variant {
     std::function<void(DetectSettings&)> apply;
     bool open = false;   // every object added as an open surface
     bool async = false;  // submit() + collect() instead of detect()
+    // > 0: the resolution the world chooses automatically for the scene, times this
+    // (applied after `apply`, through CollisionWorld::resolveSettings).
+    double resolution_scale = 0;
 };
 
 // Every named variant, plus one "res-N" (group "resolutions") per entry of `resolutions`.

@@ -2,8 +2,12 @@
 //
 //   vkcollide_bench [--set tuning|held-out|all] [--scenes a,b,...] [--variants default,mitigations,...]
 //                   [--resolutions 512,1024,...] [--scale S] [--frames K] [--threads N]
-//                   [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--list] [--reference-only]
+//                   [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--profile FILE] [--warmup-ms MS]
+//                   [--list] [--reference-only]
 //
+// --profile FILE writes where each timed frame's time went (GPU passes, narrow-phase stages,
+// host totals; tools/bench/profile_table.sh sums it up). --warmup-ms MS detects untimed for
+// that long before each scene and variant: a GPU's clocks drop while it idles.
 // --reference-only builds the chosen scenes and their exact references (filling the cache)
 // and prints per frame the triangles, reference pairs, crossing pairs and seconds; no GPU.
 // For each scene (bench_scenes.hpp) and settings variant (bench_variants.cpp) it runs one
@@ -89,6 +93,8 @@ struct Summary {
 
 struct Options {
     std::string set = "all", data = "data/cgal", csv = "vkcollide_bench.csv", cache = "bench-cache", variants = "default,mitigations,resolutions";
+    double warmup_ms = 0;  // untimed detections per scene and variant before its frames
+    std::string profile;  // long-form per-stage times (GPU passes, narrow-phase stages), empty: none
     std::vector<std::string> scenes;
     std::vector<std::uint32_t> resolutions = {512, 1024, 2048, 4096};
     double scale = 1.0;
@@ -98,10 +104,33 @@ struct Options {
     bool reference_only = false;
 };
 
+void writeProfile(std::ofstream& out, const std::string& prefix, const DetectStats& st, double update_ms, double total_ms) {
+    char line[512];
+    auto row = [&](const char* kind, const std::string& stage, double ms) {
+        std::snprintf(line, sizeof line, "%s,%s,%s,%.4f\n", prefix.c_str(), kind, csvField(stage).c_str(), ms);
+        out << line;
+    };
+    for (const PassTime& p : st.gpu_passes) row("gpu", p.name, p.gpu_ms);
+    const NarrowTimings& n = st.narrow_timings;
+    row("narrow", "validate", n.validate_ms);
+    row("narrow", "gather", n.gather_ms);
+    row("narrow", "sweep", n.sweep_ms);
+    row("narrow", "filter", n.filter_ms);
+    row("narrow", "test", n.test_ms);
+    row("narrow", "sort", n.sort_ms);
+    row("narrow", "response", n.response_ms);
+    row("narrow", "total", n.total_ms);
+    row("host", "readback", st.readback_ms);
+    row("host", "narrow", st.narrow_ms);
+    row("host", "update", update_ms);
+    row("host", "total", total_ms);
+    out.flush();
+}
+
 int usage() {
     std::fprintf(stderr, "usage: vkcollide_bench [--set tuning|held-out|all] [--scenes a,b] [--variants names|groups|all] "
                          "[--resolutions 512,1024] [--scale S] [--frames K] [--threads N] [--data DIR] [--cache DIR | --no-cache] "
-                         "[--csv FILE] [--list] [--reference-only]\n");
+                         "[--csv FILE] [--profile FILE] [--warmup-ms MS] [--list] [--reference-only]\n");
     return 2;
 }
 
@@ -128,6 +157,8 @@ int main(int argc, char** argv) {
         else if (a == "--data") opt.data = argv[++i];
         else if (a == "--cache") opt.cache = argv[++i];
         else if (a == "--csv") opt.csv = argv[++i];
+        else if (a == "--profile") opt.profile = argv[++i];
+        else if (a == "--warmup-ms") opt.warmup_ms = std::atof(argv[++i]);
         else return usage();
     }
     if (opt.set != "all" && opt.set != "tuning" && opt.set != "held-out") return usage();
@@ -174,6 +205,12 @@ int main(int argc, char** argv) {
     if (!ctx) return std::fprintf(stderr, "vkcollide_bench: %s\n", ctx.error().message().c_str()), 1;
     const std::string device = csvField((*ctx)->deviceInfo().name);
     std::ofstream csv(opt.csv);
+    // One row per stage of every timed frame: where each frame's time went.
+    std::ofstream profile;
+    if (!opt.profile.empty()) {
+        profile.open(opt.profile);
+        profile << "device,scene,variant,frame,kind,stage,ms\n";
+    }
     csv << "device,set,scene,motion,triangles,objects,gpu_objects,scale,variant,frame,backend,resolution,direction,axes,coverage,dual,"
            "layer_cap,packing,open,async,depth_complexity,layers,peel_passes,"
            "sampling_ms,merging_ms,separation_ms,packing_ms,gpu_ms,readback_ms,narrow_ms,update_ms,total_ms,"
@@ -227,6 +264,18 @@ int main(int argc, char** argv) {
             const std::vector<ObjectId>& ids = in_world->ids;
             DetectSettings settings;
             v.apply(settings);
+            if (v.resolution_scale > 0) {
+                auto resolved = (*world)->resolveSettings(settings);
+                if (!resolved) {
+                    failed(scene->name + ", " + v.name, resolved.error());
+                    continue;
+                }
+                settings.resolution = std::max(1u, static_cast<std::uint32_t>(std::lround(*resolved->resolution * v.resolution_scale)));
+            }
+            // The GPU's clocks drop while it idles (scene building, the reference): detect
+            // until it has been busy for --warmup-ms before the frames are timed.
+            for (const auto w0 = Clock::now(); ms(w0, Clock::now()) < opt.warmup_ms;)
+                if (!(*world)->detect(settings)) break;
             Summary sum{setName(scene->set), scene->name, v.name, "", 0, 0, triangles};
             for (int f = -1; f < timed; ++f) {  // f = -1: warm-up on frame 0, not written
                 const int mf = scene->motion == Motion::Rigid ? 0 : std::max(f, 0);
@@ -278,6 +327,7 @@ int main(int argc, char** argv) {
                               st.filtering_ms, (unsigned long long)st.cells.candidates, (unsigned long long)st.cells.survivors);
                 csv << row << cells << csvField(st.settings_note) << '\n';
                 csv.flush();
+                if (profile.is_open()) writeProfile(profile, device + ',' + scene->name + ',' + v.name + ',' + std::to_string(f), st, update_ms, total_ms);
                 sum.backend = st.method == DetectMethod::Reliable ? "cells" : toString(st.backend);
                 sum.resolution = st.resolution;
                 ++sum.frames;

@@ -28,7 +28,7 @@ namespace {
 // (a test costs 0.05 to 1 microseconds, more when the exact fallback runs).
 constexpr std::size_t kTestGrain = 512;
 // Items per task of the linear loops that build the result.
-constexpr std::size_t kResultGrain = 16384;
+constexpr std::size_t kResultGrain = 2048;
 
 struct Vec3d {
     double x = 0, y = 0, z = 0;
@@ -60,7 +60,7 @@ void respond(const Buffer<std::uint64_t>& colliding, const SlotData& slots, std:
             ends[2 * k + 1] = keyOf(static_cast<std::uint32_t>(colliding[k]), static_cast<std::uint32_t>(k));
         }
     });
-    parallelRadixSort(ex, ends, ws.contribution_scratch, 32 + bitsFor(slot_count));
+    parallelRadixSort(ex, ends, ws.contribution_scratch, 32 + bitsFor(slot_count), 32);  // built in pair order
     // Responders: where the slot changes in the sorted keys.
     Buffer<std::uint32_t>& begin_of = ws.responder_begin;
     begin_of.resize(ends.size() + 1);

@@ -33,12 +33,12 @@ namespace {
 using narrow::Buffer;
 using narrow::keyOf;
 
-constexpr std::size_t kPairGrain = 16384;
+constexpr std::size_t kPairGrain = 2048;
 // Slots through one marker per id while ids span at most this many per input pair (plus
 // a constant); beyond, through sorting the pairs' ends.
 constexpr std::size_t kDenseIdsPerPair = 8;
 constexpr std::size_t kDenseIdsFree = std::size_t{1} << 16;
-constexpr std::size_t kPairUpGrain = 4096;
+constexpr std::size_t kPairUpGrain = 1024;
 // Ends are numbered in 32 bits.
 constexpr std::size_t kMaxPairs = (std::size_t{1} << 31) - 1;
 
@@ -136,7 +136,7 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
                 ends[2 * k + 1] = (std::uint64_t{in_pairs[k].b} << end_bits) | (2 * k + 1);
             }
         });
-        narrow::parallelSortKeys(ex, ends, ws.ends_scratch, id_bits + end_bits);
+        narrow::parallelSortKeys(ex, ends, ws.ends_scratch, id_bits + end_bits, end_bits);  // built in end order
         Buffer<std::uint32_t>& slot_begin = ws.responder_begin;  // borrowed: free until the responses
         slot_begin.resize(ends.size() + 1);
         slot_count = narrow::compact(

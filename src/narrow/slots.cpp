@@ -12,7 +12,7 @@ namespace {
 
 // Slots per gather task: a task walks the objects and the sorted GPU table from its first
 // slot on, so it starts with two binary searches.
-constexpr std::size_t kGatherGrain = 4096;
+constexpr std::size_t kGatherGrain = 1024;
 // world_begin of an object transformed per slot.
 constexpr std::size_t kNotWhole = std::numeric_limits<std::size_t>::max();
 
@@ -67,7 +67,7 @@ std::optional<Error> gatherSlots(const TriangleSource& source, const Buffer<std:
         executor.parallelFor(table.size(), 1u << 16, [&](std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) table_keys[k] = (std::uint64_t{table[k].id} << 32) | k;
         });
-        parallelRadixSort(executor, table_keys, scratch, 64);
+        parallelRadixSort(executor, table_keys, scratch, 64, 32);  // low half: k, ascending
         for (std::size_t k = 1; k < table_keys.size(); ++k) {
             if ((table_keys[k] >> 32) == (table_keys[k - 1] >> 32)) {
                 return Error(ErrorCode::InvalidArgument,

@@ -1,0 +1,74 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "narrow/radix_sort.hpp"
+#include "vkcollide/thread_pool.hpp"
+
+using vkcollide::ThreadPool;
+using vkcollide::narrow::Buffer;
+
+namespace {
+
+// Keys (value << low_bits) | position: ascending in the low bits, as the narrow phase
+// builds them, with values of `value_bits` bits repeating often.
+std::vector<std::uint64_t> positionKeys(std::size_t n, int value_bits, int low_bits, std::uint32_t seed) {
+    std::mt19937_64 rng(seed);
+    std::vector<std::uint64_t> keys(n);
+    const std::uint64_t values = std::uint64_t{1} << value_bits;
+    for (std::size_t i = 0; i < n; ++i) keys[i] = ((rng() % values) << low_bits) | (low_bits > 0 ? i : 0);
+    return keys;
+}
+
+Buffer<std::uint64_t> toBuffer(const std::vector<std::uint64_t>& v) {
+    Buffer<std::uint64_t> b;
+    b.resize(v.size());
+    std::copy(v.begin(), v.end(), b.begin());
+    return b;
+}
+
+}  // namespace
+
+// Skipping the low bits must give what a full sort gives when the input ascends in them:
+// both the serial path (below kSerialBelow) and the parallel one, any thread count.
+TEST_CASE("radix sorts that skip already-ordered low bits equal a full sort", "[narrow][radix]") {
+    for (unsigned threads : {1u, 3u, 8u}) {
+        ThreadPool pool(threads);
+        for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(100), std::size_t(5000), std::size_t(70000)}) {
+            for (int low_bits : {0, 5, 17, 32}) {
+                if (low_bits > 0 && (std::uint64_t{1} << low_bits) < n) continue;  // positions must fit
+                for (int value_bits : {1, 9, 23}) {
+                    std::vector<std::uint64_t> expected = positionKeys(n, value_bits, low_bits, 7u + unsigned(n) + unsigned(low_bits));
+                    Buffer<std::uint64_t> a = toBuffer(expected), b = toBuffer(expected), scratch;
+                    std::sort(expected.begin(), expected.end());
+                    vkcollide::narrow::parallelRadixSort(pool, a, scratch, value_bits + low_bits, low_bits);
+                    vkcollide::narrow::parallelSortKeys(pool, b, scratch, value_bits + low_bits, low_bits);
+                    INFO("threads " << threads << ", n " << n << ", low bits " << low_bits << ", value bits " << value_bits);
+                    REQUIRE(std::equal(a.begin(), a.end(), expected.begin(), expected.end()));
+                    REQUIRE(std::equal(b.begin(), b.end(), expected.begin(), expected.end()));
+                }
+            }
+        }
+    }
+}
+
+// With first_bit 0 they are plain sorts of arbitrary keys.
+TEST_CASE("radix sorts of unordered keys", "[narrow][radix]") {
+    ThreadPool pool(4);
+    std::mt19937_64 rng(11);
+    for (std::size_t n : {std::size_t(3), std::size_t(40000)}) {
+        for (int bits : {8, 30, 64}) {
+            std::vector<std::uint64_t> expected(n);
+            for (auto& k : expected) k = bits == 64 ? rng() : rng() & ((std::uint64_t{1} << bits) - 1);
+            Buffer<std::uint64_t> a = toBuffer(expected), b = toBuffer(expected), scratch;
+            std::sort(expected.begin(), expected.end());
+            vkcollide::narrow::parallelRadixSort(pool, a, scratch, bits);
+            vkcollide::narrow::parallelSortKeys(pool, b, scratch, bits);
+            REQUIRE(std::equal(a.begin(), a.end(), expected.begin(), expected.end()));
+            REQUIRE(std::equal(b.begin(), b.end(), expected.begin(), expected.end()));
+        }
+    }
+}

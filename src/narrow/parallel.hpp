@@ -74,7 +74,7 @@ private:
 
 // Below this many items the scan, the compaction and the sorts run on the calling thread.
 // Low on purpose: the GPU host's cores take about 85 ns per pair for the pair path's
-// serial sorting (7K pairs: 0.6 ms on one thread), and 16 threads cut that 5-10x.
+// serial sorting (7K pairs: 0.6 ms on one thread, 0.3 ms on 16 with these thresholds).
 inline constexpr std::size_t kSerialBelow = 1u << 12;
 
 // Replaces data[i] by the sum of data[0..i) and returns the total.

@@ -1,18 +1,20 @@
 #!/usr/bin/env bash
-# Charts of vkcollide_bench CSVs with gnuplot (Debian's gnuplot-nox):
+# Charts of vkcollide_bench CSVs with gnuplot (Debian's gnuplot-nox; tools/bench/frontier.sh
+# --install-deps installs it):
 #   tools/bench/plot.sh RESULTS.csv[,MORE.csv] OUTDIR
-# frontier.png  per scene, total time per frame against crossing-pair recall: every settings
-#               variant is its own series (a new mode appears as soon as the CSV has its rows;
-#               the res-N variants form one "resolution" line)
-# stages.png    time per stage against triangle count (the default variant)
+# frontier.png  crossing-pair recall against end-to-end ms per frame, one panel per scene kind,
+#               every settings variant its own series (tools/bench/frontier.sh: a new mode
+#               appears as soon as the CSV has its rows; res-N / cells-N variants form sweep lines;
+#               held-out scenes open markers). docs/results.md's chart adds the defaults before
+#               and the older sweeps through frontier.sh itself (the command is there).
+# stages.png    time per stage against triangle count (the default variant's peeling stages)
 # layers.png    GPU time against layers peeled (every point)
-# Each (scene, variant) is averaged over its frames first; crossing recall is found/total
-# crossing pairs summed over the frames. Columns are found by name, so CSVs with other
-# column orders (or older ones without found_crossing: recall_crossing is averaged) mix.
+# For the stage and layer charts each (scene, variant) is averaged over its frames; columns are
+# found by name, so CSVs with other column orders (or older ones without found_crossing) mix.
 set -euo pipefail
 csvs="$1"; out="$2"
 mkdir -p "$out"
-command -v gnuplot >/dev/null || { echo "plot.sh: gnuplot missing (apt-get install gnuplot-nox)" >&2; exit 1; }
+command -v gnuplot >/dev/null || { echo "plot.sh: gnuplot missing: tools/bench/frontier.sh --install-deps (apt-get install gnuplot-nox)" >&2; exit 1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 IFS=, read -r -a files <<< "$csvs"
 for f in "${files[@]}"; do grep -v '^#' "$f"; done | awk -F, -v OFS=' ' '
@@ -20,40 +22,13 @@ for f in "${files[@]}"; do grep -v '^#' "$f"; done | awk -F, -v OFS=' ' '
   { v = $c["variant"]; if (!("found_crossing" in c) && !("set" in c)) v = v "-" $c["backend"]  # issue-7 CSVs
     k = $c["scene"] SUBSEP v; n[k]++; tri[k] = $c["triangles"]; lay[k] += $c["layers"]; res[k] = $c["resolution"]
     s[k] += $c["sampling_ms"]; m[k] += $c["merging_ms"] + $c["separation_ms"]; p[k] += $c["packing_ms"]
-    r[k] += $c["readback_ms"]; nw[k] += $c["narrow_ms"]; g[k] += $c["gpu_ms"]; t[k] += $c["total_ms"]
-    if ("found_crossing" in c) { fc[k] += $c["found_crossing"]; rc[k] += $c["reference_crossing"] } else { ar[k] += $c["recall_crossing"] } }
+    r[k] += $c["readback_ms"]; nw[k] += $c["narrow_ms"]; g[k] += $c["gpu_ms"]; t[k] += $c["total_ms"] }
   END { for (k in n) { split(k, a, SUBSEP)
-    cr = rc[k] > 0 ? fc[k] / rc[k] : (ar[k] > 0 ? ar[k] / n[k] : 1)
-    print a[1], a[2], res[k], tri[k], lay[k]/n[k], s[k]/n[k], m[k]/n[k], p[k]/n[k], r[k]/n[k], nw[k]/n[k], g[k]/n[k], t[k]/n[k], cr } }' \
+    print a[1], a[2], res[k], tri[k], lay[k]/n[k], s[k]/n[k], m[k]/n[k], p[k]/n[k], r[k]/n[k], nw[k]/n[k], g[k]/n[k], t[k]/n[k] } }' \
   | sort -k1,1 -k2,2 > "$tmp/points"
-# columns: 1 scene 2 variant 3 res 4 tris 5 layers 6 sampling 7 merge+sep 8 packing 9 readback 10 narrow 11 gpu 12 total 13 crossing recall
+# columns: 1 scene 2 variant 3 res 4 tris 5 layers 6 sampling 7 merge+sep 8 packing 9 readback 10 narrow 11 gpu 12 total
 [ -s "$tmp/points" ] || { echo "plot.sh: no rows in $csvs" >&2; exit 1; }
-scenes=$(cut -d' ' -f1 "$tmp/points" | sort -u)
-variants=$(cut -d' ' -f2 "$tmp/points" | grep -v '^res-' | sort -u || true)
-n=$(echo "$scenes" | wc -l); cols=$(( n < 4 ? n : 4 )); rows=$(( (n + cols - 1) / cols ))
-{
-  echo "set terminal pngcairo size $((420 * cols)),$((330 * rows + 60)) font ',9'"
-  echo "set output '$out/frontier.png'"
-  echo "set multiplot layout $rows,$cols title 'Speed against accuracy per scene: total ms per frame (log) vs crossing-pair recall; one series per settings variant'"
-  echo "set logscale x; set grid; set key bottom right font ',7'; set yrange [*:1.005]"
-  i=0
-  for s in $scenes; do
-    plots=""
-    awk -v s="$s" '$1 == s && $2 ~ /^res-/' "$tmp/points" | sort -k3,3n > "$tmp/res_$i"
-    [ -s "$tmp/res_$i" ] && plots="'$tmp/res_$i' using 12:13 with linespoints lc rgb 'gray40' pt 7 title 'resolution sweep',"
-    j=0
-    for v in $variants; do
-      j=$((j + 1))
-      awk -v s="$s" -v v="$v" '$1 == s && $2 == v' "$tmp/points" > "$tmp/v_${i}_$j"
-      [ -s "$tmp/v_${i}_$j" ] && plots="$plots '$tmp/v_${i}_$j' using 12:13 with points lc $j pt $((j % 13 + 1)) ps 1.5 title '$v',"
-    done
-    echo "set title '$s' font ',10'"
-    echo "plot ${plots%,}"
-    i=$((i + 1))
-  done
-  echo "unset multiplot"
-} > "$tmp/frontier.gp"
-gnuplot "$tmp/frontier.gp" 2>&1 | { grep -v "empty . range" >&2 || true; }  # one-point panels warn
+bash "$(dirname "$0")/frontier.sh" "$out/frontier.png" "${files[@]}" >/dev/null
 awk '$2 == "default"' "$tmp/points" | sort -k4,4n > "$tmp/stages"
 if [ -s "$tmp/stages" ]; then gnuplot <<GP
 set terminal pngcairo size 1000,700

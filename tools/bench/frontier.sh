@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# The speed-accuracy chart of docs/results.md: crossing-pair recall against end-to-end time per
+# frame, one panel per scene kind, every settings variant its own series.
+#   tools/bench/frontier.sh [--title T] [--legend NAME=TEXT]... [--link FROM:TO] OUT.png CSV[@NAME[@REGEX]]...
+#   tools/bench/frontier.sh --install-deps        (gnuplot-nox from Debian's archive, if missing)
+# Each point is one (scene, series), means over frames >= 1 (tools/bench/steady.awk): x is
+# total_ms (vertex update + detect: what an engine waits for), log scale; y is crossing pairs
+# found / crossing pairs of the exact reference, on an axis spaced by the share missed (0, 90,
+# 99, 99.9, 100 %) so that one pair lost in 10,000 still shows; on the face-to-face contact
+# scenes, which have next to no crossing pairs, recall of all pairs (touching included).
+# Series: a CSV's variants by name (default = the reliable method, peeling, paper-sep, ...), or
+# with @NAME every row of that CSV is series NAME (a CSV of another build, e.g. the defaults
+# before), and @REGEX keeps only the variants it matches (issue-7 CSVs: VARIANT-BACKEND, e.g.
+# ^single-compute$). --legend gives a series its legend text. Resolution sweeps (res-N and
+# cells-N variants; issue-7 CSVs over --resolutions) are dashed lines, one per scene. --link
+# draws a grey line per scene from series FROM's point to TO's and names the scene at FROM
+# (otherwise at its slowest point). Filled markers: tuning scenes; open markers and italic
+# names: held-out scenes (never used to choose anything). Panels: frontier.awk's kind().
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+usage() { sed -n '4,5p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
+title="Speed against accuracy per scene kind: crossing-pair recall against end-to-end ms per frame"
+link=""
+tmp=$(mktemp -d)
+if [ -n "${FRONTIER_KEEP:-}" ]; then echo "frontier.sh: keeping $tmp" >&2; else trap 'rm -rf "$tmp"' EXIT; fi
+: > "$tmp/legends.tsv"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --title) title="$2"; shift 2 ;;
+    --legend) printf '%s\t%s\n' "${2%%=*}" "${2#*=}" >> "$tmp/legends.tsv"; shift 2 ;;
+    --link) link="$2"; shift 2 ;;
+    --install-deps)
+      dpkg-query -W -f='${Status}' gnuplot-nox 2>/dev/null | grep -q "install ok installed" && exit 0
+      sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+      $sudo apt-get update -q
+      DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends gnuplot-nox
+      exit 0 ;;
+    --*) usage ;;
+    *) break ;;
+  esac
+done
+[ $# -ge 2 ] || usage
+out="$1"; shift
+command -v gnuplot >/dev/null || { echo "frontier.sh: gnuplot missing: run tools/bench/frontier.sh --install-deps" >&2; exit 1; }
+
+args=()   # steady.awk takes label= and pick= before each file
+for spec in "$@"; do
+  IFS=@ read -r file name pick <<< "$spec"
+  [ -r "$file" ] || { echo "frontier.sh: cannot read $file" >&2; exit 1; }
+  args+=("label=$name" "pick=$pick" "$file")
+done
+awk -f "$here/steady.awk" "${args[@]}" > "$tmp/steady.tsv"
+[ "$(wc -l < "$tmp/steady.tsv")" -gt 1 ] || { echo "frontier.sh: no rows with frame >= 1 in $*" >&2; exit 1; }
+awk -F'\t' -v tmp="$tmp" -v out="$out" -v title="$title" -v link="$link" -f "$here/frontier.awk" "$tmp/legends.tsv" "$tmp/steady.tsv"
+gnuplot "$tmp/frontier.gp"
+echo "frontier.sh: wrote $out"

@@ -279,6 +279,10 @@ struct DetectStats {
     std::uint32_t contact_rays_x = 0, contact_rays_y = 0, contact_layers = 0;
     std::uint32_t contact_candidate_pairs = 0, contact_nested_rays = 0, contact_runs = 0;
     double total_ms = 0;                 // host wall time from submit to result
+    // Host wall time of its parts: start (settings, recording, queue submission) and the
+    // broad phase's collection (waiting for the GPU, reading the results back); the
+    // narrow phase is narrow_ms.
+    double host_start_ms = 0, host_collect_ms = 0;
     unsigned narrow_threads = 0;
     // Memory: device memory held by the world, in Context::deviceMemoryInUse()'s unit (the
     // memory requirements' sizes): uploaded meshes, the broad phases' buffers, images and

@@ -66,12 +66,15 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.bad_objects = s.bad_objects;
     if (auto ok = run.detection->start(meshes, d, measure, target); !ok) return noted(describeFailure(run, ok.error()));
     run.in_flight = true;
+    run.start_ms = msSince(run.start);
     return {};
 }
 
 Result<DetectResult> CollisionWorld::Impl::collect(Run& run) {
     run.in_flight = false;
+    const auto t0 = Clock::now();
     auto r = run.detection->collect();
+    run.wait_ms = msSince(t0);
     if (!r) return noted(describeFailure(run, r.error()));
     return finish(run, std::move(*r));
 }
@@ -206,6 +209,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.gpu_memory_bytes += contact_stage ? contact_stage->memoryBytes() : 0;
     for (const Object& o : objects) st.gpu_memory_bytes += o.vertices.memoryBytes() + o.indices.memoryBytes();
     st.total_ms = msSince(run.start);
+    st.host_start_ms = run.start_ms;
+    st.host_collect_ms = run.wait_ms;
     return out;
 }
 

@@ -65,6 +65,7 @@ struct CollisionWorld::Impl {
         DetectSettings settings;
         std::string note;
         std::chrono::steady_clock::time_point start;
+        double start_ms = 0, wait_ms = 0;  // host: start() (settings, record, submit); collect's wait and readback
     };
 
     UseGuard guard{"CollisionWorld"};

@@ -9,13 +9,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out="${1:-docs/bench/frontier.png}"
-run=docs/bench/h200_2026-11-25
+run="${RUN:-docs/bench/h200_2026-11-25}"  # RUN=folder: another run with tuning.csv and held-out.csv
+before=docs/bench/h200_2026-11-25/before_old_defaults.csv
 bash tools/bench/frontier.sh \
   --title "NVIDIA H200: crossing-pair recall against end-to-end ms per frame, per scene kind (means of frames >= 1)" \
   --link before:default \
   --legend "before=defaults before this session (earlier build)" \
   --legend "nov22=peeling at 256²-4096² (2026-11-22 build)" \
   --legend "link=grey line: one scene, defaults before to reliable" \
-  "$out" "$run/tuning.csv" "$run/held-out.csv" "$run/before_old_defaults.csv@before" \
+  "$out" "$run/tuning.csv" "$run/held-out.csv" "$before@before" \
   "docs/bench/h200_vkcollide_small.csv@nov22@^single-compute\$" "docs/bench/h200_vkcollide_large.csv@nov22@^single-compute\$" >&2
-bash tools/bench/before_after.sh "$run/before_old_defaults.csv" "$run/tuning.csv,$run/held-out.csv"
+bash tools/bench/before_after.sh "$before" "$run/tuning.csv,$run/held-out.csv"

@@ -120,6 +120,8 @@ void writeProfile(std::ofstream& out, const std::string& prefix, const DetectSta
     row("narrow", "sort", n.sort_ms);
     row("narrow", "response", n.response_ms);
     row("narrow", "total", n.total_ms);
+    row("host", "start", st.host_start_ms);
+    row("host", "collect", st.host_collect_ms);
     row("host", "readback", st.readback_ms);
     row("host", "narrow", st.narrow_ms);
     row("host", "update", update_ms);

@@ -77,7 +77,7 @@ TEST_CASE("updateVertices over four threads gives what a world built from the sa
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("updateVertices names a bad vertex in the last chunk; a refused update changes nothing", "[api][gpu]") {
+TEST_CASE("updateVertices names a bad vertex in the last chunk, and a refused update changes nothing", "[api][gpu]") {
     ValidatedContext ctx;
     const Scene scene;
     auto world = worldOf(ctx, scene.big, scene.small);

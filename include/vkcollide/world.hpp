@@ -378,7 +378,7 @@ public:
     // detection or resolveSettings() that needs them (not if `direction`, `resolution`
     // and `open_epsilon` are given): at most 16,384 sampled triangles, on the executor.
     // Cost: about the time to write 12 bytes per vertex twice, once over the bus when the
-    // upload buffer is device memory: 0.86 ms per million vertices on two cores with the
+    // upload buffer is device memory: 0.6-0.9 ms per million vertices on two cores with the
     // upload buffer in host memory (lavapipe); docs/api.md, "Costs", has the measurements
     // and where the time goes. Measuring the shape costs the next detection up to 0.16 ms
     // per changed mesh on one thread (16,384 sampled triangles of a 2M-triangle mesh).

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "api/host_passes.hpp"
 #include "api/world_impl.hpp"
 #include "contacts.h"
 #include "broadphase.h"
@@ -70,9 +71,8 @@ void append(std::string& note, const std::string& part) { note += (note.empty() 
 
 }  // namespace
 
-// A host mesh's object-space box, mean edge length, area-weighted normal moments and
-// largest |coordinate|: one pass over its vertices and one over its triangles.
-void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices) {
+// A host mesh's object-space box and largest |coordinate|: one pass over its vertices.
+void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positions) {
     float lo[3] = {positions[0].x, positions[0].y, positions[0].z}, hi[3] = {lo[0], lo[1], lo[2]};
     float max_abs = 0;
     for (const Float3& p : positions) {
@@ -81,43 +81,31 @@ void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positi
     }
     o.box = {lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]};
     o.max_abs = max_abs;
-    measureShape(o, positions, indices);
+    o.shape_stale = true;
 }
 
-// The typical edge and the area moment steer automatic settings only (resolution rounded
-// to a power of two or a cell count, direction the largest of three facings), so a
-// deterministic sample of at most kShapeSampleTriangles evenly spaced triangles measures
-// them as well as all of them would, at a bounded cost per updateVertices (a 2M-triangle
-// mesh: 1/123 of the work; about 0.3 ms on two shared cores). Meshes up to the sample
-// size are measured in full.
-void CollisionWorld::Impl::measureShape(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices) {
-    const std::size_t triangles = indices.size() / 3;
-    const std::size_t step = triangles <= kShapeSampleTriangles ? 1 : (triangles + kShapeSampleTriangles - 1) / kShapeSampleTriangles;
-    std::size_t sampled = 0;
-    double sum = 0;
-    std::array<double, 6> moment{};
-    auto at = [&](std::uint32_t i) { return Vec3{positions[i].x, positions[i].y, positions[i].z}; };
-    auto dist = [](const Vec3& p, const Vec3& q) { return std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2])); };
-    for (std::size_t t = 0; t < triangles * 3; t += 3 * step) {
-        ++sampled;
-        const Vec3 p0 = at(indices[t]), p1 = at(indices[t + 1]), p2 = at(indices[t + 2]);
-        sum += dist(p0, p1) + dist(p1, p2) + dist(p2, p0);
-        const Vec3 n = cross({p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]});
-        const double len = std::sqrt(dot(n, n));
-        if (!(len > 0)) continue;
-        const double w = 0.5 / len;  // area * n n^T = N N^T / (2 |N|)
-        moment[0] += w * n[0] * n[0], moment[1] += w * n[1] * n[1], moment[2] += w * n[2] * n[2];
-        moment[3] += w * n[0] * n[1], moment[4] += w * n[0] * n[2], moment[5] += w * n[1] * n[2];
+// The shapes steer automatic settings only (resolution rounded to a power of two or a cell
+// count, direction the largest of three facings), so a deterministic sample of at most
+// kShapeSampleTriangles evenly spaced triangles measures them as well as all of them
+// would (host_passes::measureShape). They are measured here, when a detection or
+// resolveSettings needs them, not in every updateVertices: a deforming mesh updated several
+// times per detection is measured once, and not at all when the settings that use the
+// shape are given. The direction and resolution use every object's; the open epsilon only
+// open objects'.
+void CollisionWorld::Impl::measureShapes(const DetectSettings& in) const {
+    const bool all = !in.direction || !in.resolution, open = !in.open_epsilon;
+    for (const Object& o : objects) {
+        if (!o.alive || !o.host || !o.shape_stale || !(all || (open && o.options.open))) continue;
+        const host_passes::Shape shape = host_passes::measureShape(*executor, o.host_positions, o.host_indices);
+        o.edge_length = shape.edge_length;
+        o.area_moment = shape.area_moment;
+        o.shape_stale = false;
     }
-    // Scaled to the whole mesh: the moment is a sum over triangles.
-    const double scale = sampled ? double(triangles) / double(sampled) : 0.0;
-    for (double& m : moment) m *= scale;
-    o.area_moment = moment;
-    o.edge_length = sampled ? static_cast<float>(sum / double(3 * sampled)) : 0.0f;
 }
 
 // Fills every automatic field from the host's knowledge of the scene.
 DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::string* note) const {
+    measureShapes(in);
     DetectSettings s = in;
     const bool reliable = s.method == DetectMethod::Reliable;
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};

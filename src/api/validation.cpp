@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <string>
 #include <tuple>
 
@@ -38,60 +37,12 @@ Result<void> checkVertices(std::span<const Float3> positions, std::uint32_t vert
         return invalid(std::to_string(positions.size()) + " positions given for " + std::to_string(vertex_count) + " vertices");
     for (std::size_t i = 0; i < positions.size(); ++i)
         if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
-            return Error(ErrorCode::InvalidMesh, "vertex " + std::to_string(i) + " is NaN or infinite");
+            return nonFiniteVertex(i);
     return {};
 }
 
-VertexScan copyAndScan(std::span<const Float3> positions, std::span<Float3> out, Float3* also_out) {
-    // One pass over the floats in blocks of four vertices (12 floats: the components repeat
-    // with period 3, so lane j of a block always holds component j % 3): branch-free per-lane
-    // minimum, maximum and magnitude that the compiler vectorizes, folded into components at
-    // the end. A NaN or infinity fails the magnitude test (NaN compares false). About one
-    // memory copy for a million vertices instead of a scalar loop's four. `also_out` (the
-    // upload buffer) is written in the same pass: the caller's array is read once.
-    constexpr float kMax = std::numeric_limits<float>::max();
-    float lo[12], hi[12], big[12];
-    int finite[12];
-    for (int j = 0; j < 12; ++j) lo[j] = INFINITY, hi[j] = -INFINITY, big[j] = 0, finite[j] = 1;
-    const std::size_t n = positions.size(), blocks = n / 4;
-    const float* in = &positions.data()->x;
-    float* dst = &out.data()->x;
-    float* dst2 = also_out ? &also_out->x : dst;  // dst again: the second store is harmless
-    static_assert(sizeof(Float3) == 12, "Float3 is three packed floats");
-    for (std::size_t k = 0; k < blocks; ++k) {
-        const float* p = in + 12 * k;
-        float* d = dst + 12 * k;
-        float* d2 = dst2 + 12 * k;
-        for (int j = 0; j < 12; ++j) {
-            const float v = p[j], a = std::fabs(v);
-            d[j] = v;
-            d2[j] = v;
-            lo[j] = v < lo[j] ? v : lo[j];
-            hi[j] = v > hi[j] ? v : hi[j];
-            big[j] = a > big[j] ? a : big[j];
-            finite[j] &= int(a <= kMax);
-        }
-    }
-    for (std::size_t i = 4 * blocks * 3; i < 3 * n; ++i) {  // the last vertices, one float at a time
-        const int j = int(i % 3);
-        const float v = in[i], a = std::fabs(v);
-        dst[i] = v;
-        dst2[i] = v;
-        lo[j] = v < lo[j] ? v : lo[j];
-        hi[j] = v > hi[j] ? v : hi[j];
-        big[j] = a > big[j] ? a : big[j];
-        finite[j] &= int(a <= kMax);
-    }
-    VertexScan r;
-    r.box = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
-    for (int j = 0; j < 12; ++j) {
-        const int c = j % 3;
-        r.box[c] = std::min(r.box[c], lo[j]);
-        r.box[c + 3] = std::max(r.box[c + 3], hi[j]);
-        r.max_abs = std::max(r.max_abs, big[j]);
-        r.finite = r.finite && finite[j];
-    }
-    return r;
+Error nonFiniteVertex(std::size_t index) {
+    return Error(ErrorCode::InvalidMesh, "vertex " + std::to_string(index) + " is NaN or infinite");
 }
 
 std::array<float, 6> boxOf(std::span<const Float3> positions) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 
@@ -32,16 +33,8 @@ Result<void> checkTypicalEdge(float typical_edge_length);
 Result<void> checkWorldRange(const std::array<float, 6>& box, const Transform3x4& transform);
 // The box of `positions` (at least one).
 std::array<float, 6> boxOf(std::span<const Float3> positions);
-// updateVertices' one pass over the caller's positions: copies them to `out` (same size)
-// and to `also_out` when not null (as many Float3s), and measures their box and largest
-// |coordinate|; `finite` is false if any is NaN or infinite (checkVertices then names the
-// first).
-struct VertexScan {
-    std::array<float, 6> box{};
-    float max_abs = 0;
-    bool finite = true;
-};
-VertexScan copyAndScan(std::span<const Float3> positions, std::span<Float3> out, Float3* also_out = nullptr);
+// The error for a NaN or infinite vertex (checkVertices' and updateVertices' words).
+Error nonFiniteVertex(std::size_t index);
 
 // A GpuMeshDesc's layout: handles, counts, format, stride and offset alignment, index type,
 // 16-bit reach, and that the declared sizes cover what the counts need (16-bit indices are

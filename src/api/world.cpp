@@ -8,6 +8,7 @@
 #include <new>
 #include <stdexcept>
 
+#include "api/host_passes.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
 #include "config.h"
@@ -151,7 +152,7 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     o.gpu = uploaded->meshes[0];
     o.vertices = std::move(uploaded->buffers[0]);
     o.indices = std::move(uploaded->buffers[1]);
-    Impl::measureHost(o, mesh.positions, mesh.indices);
+    Impl::measureHost(o, mesh.positions);
     o.host_positions = mesh.positions;
     o.host_indices = mesh.indices;
     w.objects.push_back(std::move(o));
@@ -211,24 +212,26 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     Impl::Object& o = **found;
     if (!o.host) return w.named(id, Error(ErrorCode::InvalidArgument, "is a GPU mesh: write its vertex buffer instead"));
     if (positions.size() != o.gpu.vertex_count) return w.named(id, validation::checkVertices(positions, o.gpu.vertex_count).error());
-    // One pass over the caller's array (copy, finiteness, box) into the spare host copy and
-    // straight into the upload buffer (no detection is in flight: nothing reads it now). A
-    // refused update puts the upload buffer back from the host copy and changes nothing.
+    // One pass over the caller's array, split over the executor's threads: copied into the
+    // spare host copy and straight into the upload buffer (no detection is in flight:
+    // nothing reads it now), checked and boxed on the way. A refused update puts the upload
+    // buffer back from the host copy and changes nothing. The shape (typical edge, area
+    // moment) is measured later, when automatic settings need it (measureShapes).
     o.spare_positions.resize(positions.size());
     auto* upload = static_cast<Float3*>(o.vertices.mapped());
-    const validation::VertexScan scan = validation::copyAndScan(positions, o.spare_positions, upload);
+    const host_passes::VertexScan scan = host_passes::copyAndScan(*w.executor, positions, o.spare_positions, upload);
     auto refused = [&](const Error& e) {
         std::memcpy(upload, o.host_positions.data(), positions.size_bytes());
         return w.named(id, e);
     };
-    if (!scan.finite) return refused(validation::checkVertices(positions, o.gpu.vertex_count).error());
+    if (!scan.finite) return refused(validation::nonFiniteVertex(scan.first_bad));
     if (auto ok = validation::checkWorldRange(scan.box, o.options.transform); !ok) return refused(ok.error());
     o.vertices.flush();
     std::swap(o.host_positions, o.spare_positions);
     w.source_dirty = true;  // the narrow phase's source borrowed the other array
     o.box = scan.box;
     o.max_abs = scan.max_abs;
-    Impl::measureShape(o, o.host_positions, o.host_indices);
+    o.shape_stale = true;
     return {};
 }
 

@@ -31,22 +31,27 @@ struct CollisionWorld::Impl {
         bool host = false;
         vk::Buffer vertices, indices;  // host meshes: uploaded copies
         // Host meshes: positions and indices again, for the narrow phase's TriangleSource
-        // (reliable method) and for measuring after updateVertices (reading the upload
-        // buffer back would cross the bus: it may be write-combined device memory).
+        // (reliable method) and for measuring the shape (reading the upload buffer back
+        // would cross the bus: it may be write-combined device memory).
         std::vector<Float3> host_positions;
-        std::vector<Float3> spare_positions;  // updateVertices writes here, then swaps
+        // updateVertices writes here, then swaps: a refused update leaves host_positions
+        // as they were.
+        std::vector<Float3> spare_positions;
         std::vector<std::uint32_t> host_indices;
         passes::GpuMesh gpu;           // addresses, counts, flags (transform set per run)
         GpuMeshDesc engine_desc;       // engine meshes: as given (setGpuMeshBuffers keeps its topology)
-        // Object-space box (host meshes) and typical edge length (object units; measured for
-        // host meshes, given for GPU meshes), for the automatic settings.
+        // Object-space box (host meshes) and largest |coordinate| (the reliable method's
+        // limit), measured when the geometry changes.
         std::array<float, 6> box{};
-        float edge_length = 0;
-        // Host meshes, measured when their geometry changes: sum over triangles of
-        // area * n n^T (xx, yy, zz, xy, xz, yz; object space) for the direction, and the
-        // largest |coordinate| (the reliable method's limit).
-        std::array<double, 6> area_moment{};
         float max_abs = 0;
+        // For the automatic settings: the typical edge length (object units; given for GPU
+        // meshes) and, host meshes, the sum over triangles of area * n n^T (xx, yy, zz, xy,
+        // xz, yz; object space). A cache for host meshes: after their geometry changes
+        // (shape_stale) they are measured by the next resolve() that needs them
+        // (measureShapes), not by addMesh or updateVertices; hence mutable.
+        mutable float edge_length = 0;
+        mutable std::array<double, 6> area_moment{};
+        mutable bool shape_stale = false;
         // Index of the object in `source` (kNoSource: not in it).
         std::uint32_t source_index = 0xFFFFFFFFu;
     };
@@ -147,12 +152,14 @@ struct CollisionWorld::Impl {
     void liveMeshes(std::vector<passes::GpuMesh>& out_meshes, std::vector<ObjectId>& out_ids) const;
 
     // settings.cpp: every automatic field filled in from the host's knowledge of the scene
-    // (validation::checkSettings checks the result).
+    // (validation::checkSettings checks the result); stale shapes are measured first when
+    // an automatic field needs them (measureShapes).
     DetectSettings resolve(const DetectSettings& in, std::string* note) const;
-    static void measureHost(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
-    // The typical edge and area moment alone (updateVertices measures the box as it copies).
-    static void measureShape(Object& o, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
-    static constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 14;
+    // A new host mesh's box and largest |coordinate|; its shape is left to measureShapes.
+    static void measureHost(Object& o, std::span<const Float3> positions);
+    // Measures the shape of every live host mesh whose geometry changed since it was last
+    // measured, on the executor, if `in` leaves a setting automatic that uses shapes.
+    void measureShapes(const DetectSettings& in) const;
 
     // engine_mesh.cpp: an engine mesh as the broad phase reads it, every rule checked
     // (errors name the object).

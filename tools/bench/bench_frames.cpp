@@ -1,6 +1,18 @@
 // Frame loops as an engine runs them (issue 13 items 4 and 5), one CSV row per case:
 //  * update: CollisionWorld::updateVertices on a host mesh of about --vertices vertices
-//    (a UV sphere), milliseconds per call and per million vertices (median of --frames);
+//    (a UV sphere), milliseconds per call and per million vertices (median of --frames),
+//    on a world of --threads threads; then where that time goes, one row each (update_ms):
+//      update-1t         the same on a world of one thread;
+//      update-resolve    resolveSettings() after each update: the shape measurement that
+//                        updateVertices leaves to the automatic settings, plus resolving;
+//      upload-memory     the memory type upload buffers get (method column: its flags);
+//      part:<name>       the pieces alone, on a thread pool of --threads (or 1: -1t) and a
+//                        mapped upload buffer as the world's (its memory type):
+//        memcpy-host       a plain copy of the positions into host memory (parallel);
+//        memcpy-upload     a plain copy into the upload buffer: the bus's write rate;
+//        scan-host         updateVertices' pass without the upload buffer;
+//        fused / staged    updateVertices' pass, both ways of writing the upload buffer
+//                          (host_passes::UploadWrites; the world uses fused);
 //  * detect / submit / pipelined: a deforming pair of engine meshes (two spheres of about
 //    --triangles triangles each, written by the host into host-visible buffers, double
 //    buffered with setGpuMeshBuffers), per frame the host wall time from writing the
@@ -12,7 +24,7 @@
 //    with the GPU stage times of the detection collected that frame.
 //
 //   vkcollide_bench_frames [--vertices 1000000] [--triangles 100000] [--frames 30]
-//                          [--methods reliable,peeling] [--threads 0]
+//                          [--methods reliable,peeling|none] [--threads 0]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -20,10 +32,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "api/host_passes.hpp"
+#include "vk/device.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/scene.hpp"
+#include "vkcollide/thread_pool.hpp"
 #include "vkcollide/world.hpp"
 
 using namespace vkcollide;
@@ -91,6 +107,62 @@ EngineMesh engineMesh(vk::Device& dev, const HostMesh& m) {
     return e;
 }
 
+// Median milliseconds of `frames` calls of f(frame).
+template <typename F>
+double timeMedian(int frames, F&& f) {
+    std::vector<double> times;
+    for (int i = 0; i < frames; ++i) {
+        const auto t0 = Clock::now();
+        f(i);
+        times.push_back(msSince(t0));
+    }
+    return median(times);
+}
+
+std::string memoryFlags(VkMemoryPropertyFlags f) {
+    std::string out;
+    auto add = [&](VkMemoryPropertyFlags bit, const char* name) {
+        if (f & bit) out += (out.empty() ? "" : "+") + std::string(name);
+    };
+    add(VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, "device-local");
+    add(VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT, "host-visible");
+    add(VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, "coherent");
+    add(VK_MEMORY_PROPERTY_HOST_CACHED_BIT, "cached");
+    return out;
+}
+
+// The update's pieces alone (see the top of the file), on the device's upload memory.
+void updateParts(vk::Device& dev, const HostMesh& big, int frames, unsigned threads, const std::string& device) {
+    const std::size_t n = big.positions.size();
+    const double per_1m = 1e6 / double(n);
+    auto row = [&](const std::string& name, double ms) {
+        std::printf("%s,-,%zu,%zu,%d,%.3f,%.3f,,,,,,,%s\n", name.c_str(), big.triangleCount(), n, frames, ms, ms * per_1m, device.c_str());
+    };
+    const auto type = dev.findMemoryType(~0u, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    std::printf("upload-memory,%s,,,,,,,,,,,,%s\n", type ? memoryFlags(dev.memory.memoryTypes[*type].propertyFlags).c_str() : "none",
+                device.c_str());
+    auto buffer = vk::Buffer::create(dev, n * sizeof(Float3), 0, vk::MemoryKind::Upload, "bench-upload");
+    if (!buffer) die(buffer.error().message());
+    auto* upload = static_cast<Float3*>(buffer->mapped());
+    std::vector<Float3> host(n), next;
+    pose(big, 1, 0, next);
+    ThreadPool one(1), many(threads);
+    for (ThreadPool* pool : {&many, &one}) {
+        const std::string suffix = pool == &one ? "-1t" : "";
+        const std::size_t grain = std::max<std::size_t>(host_passes::kMinChunkVertices, (n / (4 * pool->threadCount()) + 15) / 16 * 16);
+        auto copyTo = [&](Float3* dst) {
+            pool->parallelFor(n, grain, [&](std::size_t b, std::size_t e) { std::memcpy(dst + b, next.data() + b, (e - b) * sizeof(Float3)); });
+        };
+        row("part:memcpy-host" + suffix, timeMedian(frames, [&](int) { copyTo(host.data()); }));
+        row("part:memcpy-upload" + suffix, timeMedian(frames, [&](int) { copyTo(upload); }));
+        row("part:scan-host" + suffix, timeMedian(frames, [&](int) { (void)host_passes::copyAndScan(*pool, next, host, nullptr); }));
+        for (auto writes : {host_passes::UploadWrites::Fused, host_passes::UploadWrites::Staged})
+            row(std::string(writes == host_passes::UploadWrites::Fused ? "part:fused" : "part:staged") + suffix,
+                timeMedian(frames, [&](int) { (void)host_passes::copyAndScan(*pool, next, host, upload, writes); }));
+    }
+}
+
 std::vector<std::string> split(const std::string& s) {
     std::vector<std::string> out;
     std::size_t start = 0;
@@ -115,33 +187,48 @@ int main(int argc, char** argv) {
         else if (key == "--methods") methods = split(value);
         else die("unknown option " + key);
     }
+    for (const std::string& method : methods)
+        if (method != "reliable" && method != "peeling" && method != "none") die("unknown method " + method);
     auto ctx = Context::create();
     if (!ctx) die(ctx.error().message());
     std::printf("case,method,triangles,vertices,frames,update_ms,update_ms_per_1M_vertices,frame_ms,gpu_ms,readback_ms,narrow_ms,"
                 "submit_to_result_ms,pairs,device\n");
     const std::string device = (*ctx)->deviceInfo().name;
 
-    {  // updateVertices alone.
+    {  // updateVertices alone, then its parts.
         const HostMesh big = sphere(1.0f, 2 * vertices);  // a UV sphere has about half as many vertices as triangles
-        auto world = CollisionWorld::create(**ctx, {.threads = threads});
-        if (!world) die(world.error().message());
-        auto id = (*world)->addMesh(big, {.name = "big"});
-        if (!id) die(id.error().message());
-        std::vector<Float3> next;
-        std::vector<double> times;
-        for (int f = 0; f < frames; ++f) {
-            pose(big, f, 0, next);
-            const auto t0 = Clock::now();
-            if (auto ok = (*world)->updateVertices(*id, next); !ok) die(ok.error().message());
-            times.push_back(msSince(t0));
+        const double n = double(big.positions.size());
+        const std::vector<unsigned> thread_counts = threads == 1 ? std::vector<unsigned>{1} : std::vector<unsigned>{threads, 1};
+        for (unsigned world_threads : thread_counts) {
+            auto world = CollisionWorld::create(**ctx, {.threads = world_threads});
+            if (!world) die(world.error().message());
+            auto id = (*world)->addMesh(big, {.name = "big"});
+            if (!id) die(id.error().message());
+            std::vector<Float3> next;
+            std::vector<double> times, resolve;
+            for (int f = 0; f < frames; ++f) {
+                pose(big, f, 0, next);
+                const auto t0 = Clock::now();
+                if (auto ok = (*world)->updateVertices(*id, next); !ok) die(ok.error().message());
+                times.push_back(msSince(t0));
+                if (world_threads != threads) continue;
+                const auto t1 = Clock::now();
+                if (auto s = (*world)->resolveSettings(); !s) die(s.error().message());
+                resolve.push_back(msSince(t1));
+            }
+            const char* name = world_threads == threads ? "update" : "update-1t";
+            std::printf("%s,-,%zu,%zu,%d,%.3f,%.3f,,,,,,,%s\n", name, big.triangleCount(), big.positions.size(), frames, median(times),
+                        median(times) * 1e6 / n, device.c_str());
+            if (!resolve.empty())
+                std::printf("update-resolve,-,%zu,%zu,%d,%.3f,%.3f,,,,,,,%s\n", big.triangleCount(), big.positions.size(), frames,
+                            median(resolve), median(resolve) * 1e6 / n, device.c_str());
         }
-        const double ms = median(times), n = double(big.positions.size());
-        std::printf("update,-,%zu,%zu,%d,%.3f,%.3f,,,,,,,%s\n", big.triangleCount(), big.positions.size(), frames, ms, ms * 1e6 / n,
-                    device.c_str());
+        updateParts((*ctx)->device(), big, frames, threads == 0 ? std::thread::hardware_concurrency() : threads, device);
     }
 
     const HostMesh a = sphere(1.0f, triangles), b = sphere(0.8f, triangles);
     for (const std::string& method : methods) {
+        if (method == "none") continue;
         DetectSettings settings;
         settings.method = method == "peeling" ? DetectMethod::Peeling : DetectMethod::Reliable;
         for (const char* mode : {"detect", "submit", "pipelined"}) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 13 items 4 and 5 on the GPU machine, in one go (about a minute): updateVertices per
-# million vertices, and detect() against submit()/collect() against the pipelined loop, for
+# million vertices and its parts, and detect() against submit()/collect() against the pipelined loop, for
 # a deforming 100K and 1M pair, both methods. One CSV; the columns are explained at the top
 # of tools/bench/bench_frames.cpp.
 #
@@ -14,5 +14,5 @@ threads="${THREADS:-16}"; frames="${FRAMES:-60}"
 mkdir -p "$out"
 {
   "$bench" --vertices 1000000 --triangles 100000 --frames "$frames" --threads "$threads"
-  "$bench" --vertices 1000000 --triangles 1000000 --frames "$frames" --threads "$threads" | tail -n +3
+  "$bench" --vertices 1000000 --triangles 1000000 --frames "$frames" --threads "$threads" | grep -E '^(detect|submit|pipelined),'
 } | tee "$out/frames.csv"

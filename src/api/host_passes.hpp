@@ -1,0 +1,60 @@
+// The world's passes over a host mesh's positions, split over its Executor (host code only,
+// no Vulkan): updateVertices' one pass (copy into the host copy and the upload buffer,
+// finiteness, box) and the shape measurement behind the automatic settings (typical edge,
+// area moment). Both give the same result on every executor and thread count.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "vkcollide/thread_pool.hpp"
+#include "vkcollide/types.hpp"
+
+namespace vkcollide::host_passes {
+
+// What updateVertices learns of new positions in its one pass.
+struct VertexScan {
+    std::array<float, 6> box{};  // min x, y, z, max x, y, z (meaningful when finite)
+    float max_abs = 0;           // largest |coordinate|
+    bool finite = true;
+    std::size_t first_bad = 0;   // !finite: the index of the first NaN or infinite vertex
+};
+
+// How the upload buffer is written (it may be write-combined device memory across the bus,
+// written fastest in whole 64-byte lines: other cache misses in between compete for the
+// buffers that combine the writes and may flush a line half-written):
+//   Fused   each block of four vertices is stored to the host copy and the upload buffer
+//           at once: one pass, the caller's array read once (the default);
+//   Staged  per 12 KB step, the host copy first, then that step (still in L1) copied to the
+//           upload buffer with no other miss in between.
+// vkcollide_bench_frames times both on the device's upload memory.
+enum class UploadWrites { Fused, Staged };
+
+// Copies `in` to `out` (as many Float3s, host memory) and, when `upload` is not null, to
+// `upload` (as many Float3s: the mapped upload buffer, only ever written, in whole 64-byte
+// lines per thread when it is 64-byte aligned), and scans `in` (box, largest magnitude,
+// first non-finite vertex) in the same pass. Chunks of at least kMinChunkVertices run on
+// the executor's threads; the caller's thread alone below that. The result is exact (a
+// min/max reduction) and names the same first bad vertex on every executor and thread
+// count. Precondition: in.size() == out.size() >= 1; no overlap.
+VertexScan copyAndScan(Executor& executor, std::span<const Float3> in, std::span<Float3> out, Float3* upload,
+                       UploadWrites writes = UploadWrites::Fused);
+inline constexpr std::size_t kMinChunkVertices = std::size_t{1} << 14;
+
+// The shape of a host mesh for the automatic settings: the mean edge length and the sum over
+// triangles of area * n n^T (xx, yy, zz, xy, xz, yz; object space), both from at most
+// kShapeSampleTriangles evenly spaced triangles (the moment scaled to the whole mesh).
+// Partial sums are formed over fixed runs of kShapeChunk sampled triangles and added in
+// order, so the result does not depend on the executor. Precondition: every index is in
+// range (validated meshes).
+struct Shape {
+    float edge_length = 0;
+    std::array<double, 6> area_moment{};
+};
+Shape measureShape(Executor& executor, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
+inline constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 14;
+inline constexpr std::size_t kShapeChunk = 1024;
+
+}  // namespace vkcollide::host_passes

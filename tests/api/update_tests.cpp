@@ -1,0 +1,164 @@
+// updateVertices through the world, split over several threads (issue 13 item 4): a mesh
+// of several chunks gives what a world built from the same positions gives (pairs read by
+// the GPU from the upload buffer and by the narrow phase from the host copy; automatic
+// settings measured lazily), a bad vertex in the last chunk is named, and a refused update
+// changes nothing.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "api/host_passes.hpp"
+#include "support/gpu_fixture.hpp"
+#include "support/world_fixture.hpp"
+#include "vkcollide/scene.hpp"
+#include "vkcollide/world.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+
+HostMesh sphere(float radius, std::uint32_t rings, float dx) {
+    auto m = uvSphere(radius, 2 * rings, rings);
+    REQUIRE(m);
+    for (Float3& p : m->positions) p.x += dx;
+    return std::move(*m);
+}
+
+// A big sphere (several chunks of the update's pass on four threads) and a small one
+// through its surface.
+struct Scene {
+    HostMesh big = sphere(1.0f, 170, 0.0f), small = sphere(0.3f, 12, 1.0f);
+};
+
+// Both objects added to a world of four threads; ids 0 and 1. `open`: the big one open.
+std::unique_ptr<CollisionWorld> worldOf(ValidatedContext& ctx, const HostMesh& big, const HostMesh& small, bool open = false) {
+    auto w = makeWorld(ctx, {.threads = 4});
+    REQUIRE(w->addMesh(big, {.name = "big", .open = open}));
+    REQUIRE(w->addMesh(small, {.name = "small"}));
+    return w;
+}
+
+void requireSameSettings(const DetectSettings& a, const DetectSettings& b) {
+    CHECK(a.direction == b.direction);
+    CHECK(a.resolution == b.resolution);
+    CHECK(a.open_epsilon == b.open_epsilon);
+}
+
+}  // namespace
+
+TEST_CASE("updateVertices over four threads gives what a world built from the same positions gives", "[api][gpu]") {
+    ValidatedContext ctx;
+    const Scene scene;
+    REQUIRE(scene.big.positions.size() > 3 * host_passes::kMinChunkVertices);
+    auto world = worldOf(ctx, scene.big, scene.small);
+    REQUIRE(world->detect());
+    // Squashed to half its height, twice as wide, and moved: other pairs, other edges,
+    // another facing; the settings now come from the new shape.
+    HostMesh moved = scene.big;
+    for (Float3& p : moved.positions) p = {2.0f * p.x - 1.2f, 2.0f * p.y, 0.5f * p.z};
+    REQUIRE(world->updateVertices(0, moved.positions));
+    auto fresh = worldOf(ctx, moved, scene.small);
+    for (const DetectSettings& s : {DetectSettings{}, DetectSettings{.method = DetectMethod::Peeling}}) {
+        auto want = fresh->resolveSettings(s), got = world->resolveSettings(s);
+        REQUIRE(want);
+        REQUIRE(got);
+        requireSameSettings(*got, *want);
+        auto want_pairs = fresh->detect(s), got_pairs = world->detect(s);
+        REQUIRE(want_pairs);
+        REQUIRE(got_pairs);
+        CHECK_FALSE(got_pairs->pairs.empty());
+        CHECK(got_pairs->pairs == want_pairs->pairs);
+        CHECK(got_pairs->stats.settings_note == want_pairs->stats.settings_note);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("updateVertices names a bad vertex in the last chunk, and a refused update changes nothing", "[api][gpu]") {
+    ValidatedContext ctx;
+    const Scene scene;
+    auto world = worldOf(ctx, scene.big, scene.small);
+    auto before = world->detect();
+    REQUIRE(before);
+    REQUIRE_FALSE(before->pairs.empty());
+    auto before_settings = world->resolveSettings();
+    REQUIRE(before_settings);
+
+    // Moved apart (no pairs if any of it were taken), spoilt at the very end (the last
+    // chunk): the first bad vertex is named, not the last.
+    const std::size_t n = scene.big.positions.size();
+    std::vector<Float3> apart = scene.big.positions;
+    for (Float3& p : apart) p.x += 30;
+    std::vector<Float3> bad = apart;
+    bad[n - 1].z = std::numeric_limits<float>::quiet_NaN();
+    bad[n - 2].x = std::numeric_limits<float>::infinity();
+    auto nan = world->updateVertices(0, bad);
+    REQUIRE_FALSE(nan);
+    CHECK(nan.error().code() == ErrorCode::InvalidMesh);
+    CHECK(nan.error().message() == "object 0 ('big'): vertex " + std::to_string(n - 2) + " is NaN or infinite");
+    // Beyond the sampling range: refused after the whole pass wrote the upload buffer.
+    std::vector<Float3> far = apart;
+    far[n / 2].y = 3e30f;
+    auto range = world->updateVertices(0, far);
+    REQUIRE_FALSE(range);
+    CHECK(range.error().code() == ErrorCode::LimitExceeded);
+    CHECK(mentions(range.error(), "big"));
+
+    // Nothing changed: the GPU's upload buffer, the narrow phase's host copy and the
+    // automatic settings are as before.
+    auto same_settings = world->resolveSettings();
+    REQUIRE(same_settings);
+    requireSameSettings(*same_settings, *before_settings);
+    auto same = world->detect();
+    REQUIRE(same);
+    CHECK(same->pairs == before->pairs);
+    CHECK(same->stats.settings_note == before->stats.settings_note);
+
+    REQUIRE(world->updateVertices(0, apart));
+    auto after = world->detect();
+    REQUIRE(after);
+    CHECK(after->pairs.empty());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("shapes are measured when automatic settings need them, also after detections that did not", "[api][gpu]") {
+    ValidatedContext ctx;
+    const Scene scene;
+    // Open: the open epsilon (peeling) uses its typical edge even when direction and
+    // resolution are given.
+    auto world = worldOf(ctx, scene.big, scene.small, true);
+    REQUIRE(world->resolveSettings());  // both shapes measured
+    // Both objects get finer (half the size, half the edges).
+    HostMesh finer = scene.big, small = scene.small;
+    for (HostMesh* m : {&finer, &small})
+        for (Float3& p : m->positions) p = {0.5f * p.x, 0.5f * p.y, 0.5f * p.z};
+    REQUIRE(world->updateVertices(0, finer.positions));
+    REQUIRE(world->updateVertices(1, small.positions));
+    auto fresh = worldOf(ctx, finer, small, true);
+
+    DetectSettings given;  // nothing automatic: no shape is needed
+    given.method = DetectMethod::Peeling;
+    given.direction = std::array<float, 3>{0, 0, 1};
+    given.resolution = 256;
+    given.open_epsilon = 0.001f;
+    REQUIRE(world->detect(given));
+    DetectSettings open_auto = given;  // the open epsilon alone automatic
+    open_auto.open_epsilon.reset();
+    auto want = fresh->resolveSettings(open_auto), got = world->resolveSettings(open_auto);
+    REQUIRE(want);
+    REQUIRE(got);
+    CHECK(*got->open_epsilon == *want->open_epsilon);
+    CHECK(*got->open_epsilon > 0);
+    // Everything automatic (the closed object's shape too, which the open epsilon did not
+    // need): the same as a world that saw these positions from the start.
+    for (const DetectSettings& s : {DetectSettings{}, DetectSettings{.method = DetectMethod::Peeling}}) {
+        auto w = fresh->resolveSettings(s), g = world->resolveSettings(s);
+        REQUIRE(w);
+        REQUIRE(g);
+        requireSameSettings(*g, *w);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

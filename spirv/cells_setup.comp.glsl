@@ -165,6 +165,17 @@ void main() {
         }
     }
 
+    // The budget: every footprint box cell, summed without wrapping (a lane's is below
+    // 2^28, so each 16-bit half sums below 2^32 over a subgroup). The subgroup that passes
+    // the budget flags the run; its footprints are still counted below (small triangles:
+    // at most kCellsSmallBox each), but nothing after this pass runs.
+    uint64_t boxes = (uint64_t(subgroupAdd(bad == 0u ? bbox_cells >> 16 : 0u)) << 16) +
+                     uint64_t(subgroupAdd(bad == 0u ? bbox_cells & 0xFFFFu : 0u));
+    if (subgroupElect() && boxes > 0ul) {
+        uint64_t before = atomicAdd(Uint64sRef(headerField(P, kHeaderBoxCells)).v[0], boxes);
+        if (before + boxes > uint64_t(P.budget)) raiseFlag(P, kCellsOverBudget);
+    }
+
     // Big triangles: work items (t, chunk), one atomic per subgroup.
     uint first = subgroupAppend(headerField(P, kHeaderItems), big_chunks);
     subgroupCount(headerField(P, kHeaderBigTriangles), big_chunks > 0u ? 1u : 0u);

@@ -60,7 +60,7 @@ VKC_CONST kCellsOverflowCandidates = 4u;
 VKC_CONST kCellsOverflowSurvivors = 8u;
 VKC_CONST kCellsBadIndex = 16u;        // an index >= the object's vertex count
 VKC_CONST kCellsBadPosition = 32u;     // a position or transform entry not finite or >= 2^62
-VKC_CONST kCellsBadProjection = 64u;   // a projection entry not finite or >= 2^62
+// (64 is free: projections are made usable by the setup, cells_setup.comp's stageRow)
 VKC_CONST kCellsBadWorld = 128u;       // a world coordinate >= 2^62
 VKC_CONST kCellsInconsistent = 256u;   // the fill found more footprints than the count (a bug)
 VKC_CONST kCellsOverflowTriangles = 512u;  // gpu_triangles

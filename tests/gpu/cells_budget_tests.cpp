@@ -2,7 +2,8 @@
 // cells of the footprint boxes, the pairs of footprints sharing a cell (what the sweep
 // compares) and the candidate pairs are each checked against it; past one the run fails
 // with LimitExceeded naming the count, no buffer grows beyond the budget, and the stage
-// runs again afterwards.
+// runs again afterwards. Also: projection rows that are huge or not finite (what the fit
+// writes for a scene narrower or thinner than about 2^-62) still give every pair.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -182,5 +183,78 @@ TEST_CASE("cells: first capacities never exceed a small budget, a budget of 0 fa
     auto unbounded = runWith(**none, s, std::numeric_limits<std::uint64_t>::max());
     REQUIRE(unbounded);
     CHECK(unbounded->pairs == full->pairs);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("cells: projection rows of 2^62 or more, or not finite when written on the GPU, still give every pair",
+          "[cells][gpu][limits]") {
+    ValidatedContext ctx;
+    CellScene scene;
+    for (float x : {0.0f, 0.6f}) {
+        auto ball = uvSphere(0.5f, 16, 8);
+        REQUIRE(ball);
+        scene.meshes.push_back(std::move(*ball));
+        scene.transforms.push_back(translation(x, 0.1f * x, 0.0f));
+    }
+    const auto reference = referencePairs(scene);
+    REQUIRE(reference.size() > 20);
+    const gpu::Projection fitted = fitProjection(scene, {0.2, 0.3, 1.0});
+    const float huge = std::ldexp(1.0f, 70), nan = std::numeric_limits<float>::quiet_NaN();
+    auto scaled = [&](std::initializer_list<int> rows, float by) {
+        gpu::Projection p = fitted;
+        for (int r : rows) p.row[r] = {p.row[r].x * by, p.row[r].y * by, p.row[r].z * by, p.row[r].w * by};
+        return p;
+    };
+    auto cells = passes::CellPairs::create(ctx.device());
+    REQUIRE(cells);
+    // Given by the host: rows times 2^70 (finite), scaled back below 2^62 on the GPU.
+    for (auto rows : {std::initializer_list<int>{2}, std::initializer_list<int>{0, 1}}) {
+        CellRunOptions opt;
+        opt.resolution = 32;
+        opt.projection = scaled(rows, huge);
+        INFO("row " << *rows.begin() << " times 2^70");
+        requireAllFound(runCells(ctx, **cells, scene, opt), reference);
+    }
+    // Written by an earlier pass (as the detection's fit writes it): a depth row of NaN
+    // (a fit that divided by a subnormal depth extent), an x row of infinity.
+    const UploadedScene up = uploadScene(ctx.device(), scene);
+    for (auto rows : {std::initializer_list<int>{2}, std::initializer_list<int>{0}}) {
+        INFO("row " << *rows.begin() << " not finite");
+        const gpu::Projection pr = *rows.begin() == 2 ? scaled(rows, nan) : scaled(rows, std::numeric_limits<float>::infinity());
+        auto staging = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::Upload, "projection-staging");
+        auto written = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::DeviceLocal, "projection");
+        REQUIRE(staging);
+        REQUIRE(written);
+        std::memcpy(staging->mapped(), &pr, sizeof pr);
+        staging->flush();
+        passes::CellPairsInput in;
+        in.objects = up.objects;
+        in.projection_address = written->address();
+        in.resolution = 32;
+        REQUIRE((*cells)->prepare(in));
+        graph::Executor executor(ctx.device());
+        passes::CellPairsResult out;
+        for (int attempt = 0;; ++attempt) {
+            REQUIRE(attempt < 8);
+            graph::Graph g;
+            const auto src = g.importBuffer("projection-staging", *staging);
+            const auto dst = g.importBuffer("projection", *written);
+            const VkBuffer from = staging->handle(), to = written->handle();
+            g.addPass("write-projection", graph::PassKind::Transfer)
+                .use(src, graph::Use::TransferSrc)
+                .use(dst, graph::Use::TransferDst)
+                .record([from, to](graph::PassContext& pc) {
+                    VkBufferCopy copy{0, 0, sizeof(gpu::Projection)};
+                    pc.fns().vkCmdCopyBuffer(pc.cmd, from, to, 1, &copy);
+                });
+            (*cells)->record(g, dst);
+            REQUIRE(executor.run(g));
+            auto outcome = (*cells)->finish(out);
+            INFO((outcome ? std::string() : outcome.error().message()));
+            REQUIRE(outcome);
+            if (*outcome == passes::CellPairs::Outcome::Complete) break;
+        }
+        requireAllFound(CellRun{out, toObjectPairs(up.objects, out.pairs)}, reference);
+    }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

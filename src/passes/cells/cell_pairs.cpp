@@ -78,10 +78,10 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
                                                      std::to_string(gpu::kCellsMaxResolution) + "]");
     if (in.projection.has_value() == (in.projection_address != 0))
         return Error(ErrorCode::InvalidArgument, "cell pairs: give either a host projection or a projection address, not both or neither");
-    if (in.projection) {
+    if (in.projection) {  // rows of 2^62 or more are scaled on the GPU (cells_setup.comp)
         for (const gpu::vec4& row : in.projection->row)
-            if (!moderate(row.x) || !moderate(row.y) || !moderate(row.z) || !moderate(row.w))
-                return Error(ErrorCode::InvalidArgument, "cell pairs: projection entries must be finite and below 2^62");
+            if (!std::isfinite(row.x) || !std::isfinite(row.y) || !std::isfinite(row.z) || !std::isfinite(row.w))
+                return Error(ErrorCode::InvalidArgument, "cell pairs: projection entries must be finite");
     }
     if (!in.self_collision.empty() && in.self_collision.size() != in.objects.size())
         return Error(ErrorCode::InvalidArgument, "cell pairs: self_collision has " + std::to_string(in.self_collision.size()) +
@@ -301,12 +301,10 @@ Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) {
         if (objects_[i].triangle_base <= h.bad_triangle && objects_[i].triangle_count > 0) {
             const std::uint32_t local = h.bad_triangle - objects_[i].triangle_base;
             where = "object " + std::to_string(i) + ", triangle " + std::to_string(local);
-            if (!(errors & gpu::kCellsBadProjection)) bad_input_ = BadInput{errors, static_cast<std::uint32_t>(i), local};
+            bad_input_ = BadInput{errors, static_cast<std::uint32_t>(i), local};
             break;
         }
     }
-    if (errors & gpu::kCellsBadProjection)
-        return Error(ErrorCode::InvalidArgument, "cell pairs: a projection entry is not finite or not below 2^62");
     if (errors & gpu::kCellsBadIndex) return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has an index beyond its vertices");
     if (errors & gpu::kCellsBadPosition)
         return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has a position or transform entry that is not finite or not below 2^62");

@@ -55,7 +55,9 @@ namespace vkcollide::passes {
 struct CellPairsInput {
     std::span<const gpu::ObjectGpu> objects;
     // World -> sampling space: x, y in [0, 1] across the grid, z the depth (any affine map
-    // with finite rows below 2^62; points outside [0, 1]^2 fall into the border cells).
+    // with finite rows; points outside [0, 1]^2 fall into the border cells; rows of 2^62
+    // or more are scaled by a power of two, and a written projection's non-finite rows
+    // become 0, both on the GPU: slower, never a pair lost).
     // Either given here, or written by an earlier pass of the same graph at
     // `projection_address` (then record() needs that buffer's ResourceId).
     std::optional<gpu::Projection> projection;

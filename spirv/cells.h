@@ -60,11 +60,23 @@ VKC_CONST kCellsOverflowCandidates = 4u;
 VKC_CONST kCellsOverflowSurvivors = 8u;
 VKC_CONST kCellsBadIndex = 16u;        // an index >= the object's vertex count
 VKC_CONST kCellsBadPosition = 32u;     // a position or transform entry not finite or >= 2^62
-VKC_CONST kCellsBadProjection = 64u;   // a projection entry not finite or >= 2^62
+// (64 is free: projections are made usable by the setup, cells_setup.comp's stageRow)
 VKC_CONST kCellsBadWorld = 128u;       // a world coordinate >= 2^62
 VKC_CONST kCellsInconsistent = 256u;   // the fill found more footprints than the count (a bug)
 VKC_CONST kCellsOverflowTriangles = 512u;  // gpu_triangles
 VKC_CONST kCellsOverflowMask = 527u;       // the four overflows above and kCellsOverflowTriangles
+// Past the budget (CellsParams.budget): the footprint boxes span more cells than the budget
+// (setup), or more pairs of footprints share a cell than kCellsComparisonsPerBudget times
+// it (scan). Later passes do nothing; the host reports LimitExceeded, never grows a buffer
+// for it. (Candidates beyond the budget are found by the host from the header's count.)
+VKC_CONST kCellsOverBudget = 1024u;
+
+// The budget bounds the stage's memory and time: footprint box cells (so footprints) and
+// candidate pairs at most CellsParams.budget each, and the pairs of footprints that share a
+// cell -- what the sweep compares, k (k - 1) / 2 in a cell of k -- at most this many times
+// the budget (a comparison costs far less than a candidate, which is written, deduplicated
+// and filtered).
+VKC_CONST kCellsComparisonsPerBudget = 64u;
 
 // Per-cell counts after the fill (CellsParams.counts): the sweep sets this bit in a cell's
 // count when it finds a candidate there, and the invocation that sets it counts the cell.
@@ -129,13 +141,13 @@ struct CellsGpuTriangle {
     float v[9];
 };
 
-// Small results; the host reads them after each run.
+// Small results; the host reads them after each run. The 64-bit counters count without
+// wrapping whatever the scene: the host reads from them what a run needed.
 struct CellsHeader {
     uint flags;             // kCells* above
     uint bad_triangle;      // smallest global triangle id with bad input (~0u: none)
-    uint entries;           // footprints (needed entry capacity)
+    uint entries;           // footprints (needed entry capacity; at most box_cells when the scan ran)
     uint items;             // big-triangle work items (needed item capacity)
-    uint candidates;        // candidate pairs the sweep found (needed capacity)
     uint survivors;         // pairs that passed (needed capacity)
     uint big_triangles;     // triangles handled in work items
     uint deep_cells;        // cells swept by the deep path
@@ -146,7 +158,9 @@ struct CellsHeader {
     uint filtered;          // candidates the filter proved disjoint
     uint gpu_triangles;     // survivors' triangles of download objects (needed capacity)
     uint candidate_cells;   // cells where the sweep found at least one candidate
-    uint pad2;
+    uint64_t candidates;    // candidate pairs the sweep found (needed capacity)
+    uint64_t box_cells;     // cells of the triangles' clamped footprint boxes, summed (setup)
+    uint64_t comparisons;   // pairs of footprints sharing a cell, k (k - 1) / 2 summed over cells (scan)
 };
 
 // Everything the shaders need, uploaded once per run (Push.frame points here).
@@ -183,7 +197,7 @@ struct CellsParams {
     uint max_groups_x;                   // maxComputeWorkGroupCount[0]
     uint use_filter;                     // 1: the double-precision filter runs
     uint gpu_triangle_capacity;
-    uint pad;
+    uint budget;                         // kCellsOverBudget above; at most 2^31 - 1
 };
 
 // Unit test of the filter alone (cells_filter_test.comp): one pair per invocation.

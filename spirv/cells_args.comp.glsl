@@ -20,6 +20,6 @@ void main() {
         writeDispatch(P, kCellsArgsSweep, failed ? 0u : groupsFor(h.entries));
         writeDispatch(P, kCellsArgsDeep, failed ? 0u : min(h.deep_items, P.deep_capacity));
     } else {
-        writeDispatch(P, kCellsArgsPairs, failed ? 0u : groupsFor(min(h.candidates, P.candidate_capacity)));
+        writeDispatch(P, kCellsArgsPairs, failed ? 0u : groupsFor(uint(min(h.candidates, uint64_t(P.candidate_capacity)))));
     }
 }

@@ -29,13 +29,13 @@ bool sweepBefore(uint a, uint b) { return s_zlo[a] < s_zlo[b] || (s_zlo[a] == s_
 // (object, zlo, index) order, the sort's.
 bool orderedBefore(uint a, uint b) { return objectOf(a) < objectOf(b) || (objectOf(a) == objectOf(b) && sweepBefore(a, b)); }
 
-void emit(CellsParams P, inout uint slot, uint ta, uint tb, uint cell) {
-    if (slot < P.candidate_capacity) {
+void emit(CellsParams P, inout uint64_t slot, uint ta, uint tb, uint cell) {
+    if (slot < uint64_t(P.candidate_capacity)) {
         CellsCandidate c;
         c.a = min(ta, tb);
         c.b = max(ta, tb);
         c.cell = cell;
-        CellsCandidatesRef(P.candidates).c[slot] = c;
+        CellsCandidatesRef(P.candidates).c[uint(slot)] = c;
     } else {
         atomicOr(cellsHeader(P).h.flags, kCellsOverflowCandidates);
     }
@@ -92,12 +92,16 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
 
     uint n = 0u, neighbours = 0u;
     for (uint pass = 0u; pass < 2u; ++pass) {
-        uint out_slot = 0u;
+        uint64_t out_slot = 0ul;
         if (pass == 1u) {
             subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
             subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
-            out_slot = subgroupAppend(headerField(P, kHeaderCandidates), n);
+            out_slot = subgroupAppend64(headerField(P, kHeaderCandidates), n);
             if (n == 0u) return;
+            if (out_slot >= uint64_t(P.candidate_capacity)) {  // none fits: skip the second scan
+                raiseFlag(P, kCellsOverflowCandidates);
+                return;
+            }
         }
         for (uint p = tid; p < k; p += kCellsGroupSize) {
             uint a = s_order[p];
@@ -146,8 +150,12 @@ void chunkOfCell(CellsParams P, uint cell, uint begin, uint end, uint chunk) {
     }
     subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
     subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
-    uint slot = subgroupAppend(headerField(P, kHeaderCandidates), n);
+    uint64_t slot = subgroupAppend64(headerField(P, kHeaderCandidates), n);  // n < 2^19, as in the sweep
     if (n == 0u) return;
+    if (slot >= uint64_t(P.candidate_capacity)) {  // none fits: skip the second scan
+        raiseFlag(P, kCellsOverflowCandidates);
+        return;
+    }
     for (uint j = begin; j < stop; ++j) {
         CellsEntry o = entries.e[j];
         bool after = o.zlo > me.zlo || (o.zlo == me.zlo && j > e);

@@ -2,9 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 // Cell pair stage, scan of the per-cell footprint counts into entry offsets, in three
 // steps (Push.step) with a barrier between them:
-//   0: one workgroup per block of kCellsScanBlock cells: the block's sum, the deepest cell;
+//   0: one workgroup per block of kCellsScanBlock cells: the block's sum, the deepest cell,
+//      the pairs of footprints its cells hold (what the sweep will compare);
 //   1: one workgroup: exclusive scan of the block sums (in place), the total, checked
-//      against the entry capacity (overflow: flag, and every later pass does nothing);
+//      against the entry capacity (overflow: flag, and every later pass does nothing), and
+//      the comparisons checked against the budget (kCellsOverBudget: the same);
 //   2: one workgroup per block: each cell's offset, its count reset to 0 (the fill's
 //      cursor), and work items for cells deeper than kCellsSmallCell.
 #include "cells_common.glsl.inc"
@@ -12,6 +14,19 @@
 layout(local_size_x = kCellsGroupSize) in;
 
 const uint kPerInvocation = kCellsScanBlock / kCellsGroupSize;
+
+// Sum over the workgroup in 64 bits (the comparisons of a block may pass 2^32).
+shared uint64_t s_wide[kCellsGroupSize];
+uint64_t groupReduceAdd64(uint64_t value) {
+    const uint i = gl_LocalInvocationIndex;
+    s_wide[i] = value;
+    barrier();
+    for (uint stride = kCellsGroupSize / 2u; stride > 0u; stride >>= 1) {
+        if (i < stride) s_wide[i] += s_wide[i + stride];
+        barrier();
+    }
+    return s_wide[0];
+}
 
 void main() {
     CellsParams P = params();
@@ -30,6 +45,8 @@ void main() {
             cellsHeader(P).h.entries = carry;
             offsets.v[P.cell_count] = carry;
             if (carry > P.entry_capacity) atomicOr(cellsHeader(P).h.flags, kCellsOverflowEntries);
+            // Complete: step 0 counted every cell. Beyond the budget the sweep never runs.
+            if (Uint64sRef(headerField(P, kHeaderComparisons)).v[0] > comparisonBudget(P)) raiseFlag(P, kCellsOverBudget);
         }
         return;
     }
@@ -44,11 +61,18 @@ void main() {
         most = max(most, v[k]);
     }
     if (pc.step == 0u) {
+        // Totals fit in 32 bits: the setup let the scan run, so the footprints are at most
+        // the budget's box cells (below 2^31); a cell's pairs need 64.
+        uint64_t pairs = 0ul;
+        for (uint k = 0u; k < kPerInvocation; ++k)
+            if (v[k] > 1u) pairs += uint64_t(v[k]) * uint64_t(v[k] - 1u) / 2ul;
         uint total = groupReduceAdd(sum);
         uint deepest = groupReduceMax(most);
+        uint64_t block_pairs = groupReduceAdd64(pairs);
         if (gl_LocalInvocationIndex == 0u) {
             sums.v[block] = total;
             atomicMax(cellsHeader(P).h.max_cell, deepest);
+            if (block_pairs > 0ul) atomicAdd(Uint64sRef(headerField(P, kHeaderComparisons)).v[0], block_pairs);
         }
         return;
     }

@@ -27,6 +27,26 @@ bool moderate(float x) { return ((floatBitsToUint(x) >> 23) & 0xFFu) < kCellsMax
 bool moderate(vec4 v) { return moderate(v.x) && moderate(v.y) && moderate(v.z) && moderate(v.w); }
 bool moderate(vec3 v) { return moderate(v.x) && moderate(v.y) && moderate(v.z); }
 
+// The projection as the stage uses it. Any affine map is a valid projection
+// (docs/reliable.md: the grid and the depth only decide speed), and every later pass reads
+// the triangles the setup wrote, so all see the same map. A row with an entry of 2^62 or
+// more (the fit's rows are 1 / extent: a scene narrower than about 2^-62 across the grid,
+// or thinner than that in depth) is scaled by a power of two to below 2^62 (exact, or
+// where an entry becomes subnormal another affine map). A row with a non-finite entry
+// (the fit divided by a subnormal extent) becomes 0: every triangle then shares that
+// coordinate. A scaled or zero depth row changes no footprint and widens depth intervals
+// (more candidates); scaled or zero x or y rows put the scene into the first cells
+// (correct, as slow as one cell). The host refuses a non-finite projection it is given.
+uint exponentBits(float x) { return (floatBitsToUint(x) >> 23) & 0xFFu; }
+vec4 stageRow(vec4 row) {
+    uint top = max(max(exponentBits(row.x), exponentBits(row.y)), max(exponentBits(row.z), exponentBits(row.w)));
+    if (top == 0xFFu) return vec4(0.0);
+    if (top < kCellsMaxExponentBits) return row;
+    uint shift = top - kCellsMaxExponentBits + 1u;  // at most 66: 2^-shift is a normal float
+    precise vec4 scaled = row * uintBitsToFloat((127u - shift) << 23);
+    return scaled;
+}
+
 // One row of an affine map, evaluated in a fixed order.
 float affineRow(vec4 row, vec3 p) {
     precise float r = ((row.x * p.x + row.y * p.y) + row.z * p.z) + row.w;
@@ -65,7 +85,7 @@ void main() {
         }
         if (!moderate(obj.model[0]) || !moderate(obj.model[1]) || !moderate(obj.model[2])) bad |= kCellsBadPosition;
         Projection pr = ProjectionRef(P.projection).p;
-        if (!moderate(pr.row[0]) || !moderate(pr.row[1]) || !moderate(pr.row[2])) bad |= kCellsBadProjection;
+        for (uint r = 0u; r < 3u; ++r) pr.row[r] = stageRow(pr.row[r]);
         // Bad input: every later pass is skipped and the host reports the error.
         if (bad != 0u) p[0] = p[1] = p[2] = vec3(0.0);
 
@@ -163,6 +183,17 @@ void main() {
             big_chunks = (bbox_cells + kCellsChunkCells - 1u) / kCellsChunkCells;
             live = false;
         }
+    }
+
+    // The budget: every footprint box cell, summed without wrapping (a lane's is below
+    // 2^28, so each 16-bit half sums below 2^32 over a subgroup). The subgroup that passes
+    // the budget flags the run; its footprints are still counted below (small triangles:
+    // at most kCellsSmallBox each), but nothing after this pass runs.
+    uint64_t boxes = (uint64_t(subgroupAdd(bad == 0u ? bbox_cells >> 16 : 0u)) << 16) +
+                     uint64_t(subgroupAdd(bad == 0u ? bbox_cells & 0xFFFFu : 0u));
+    if (subgroupElect() && boxes > 0ul) {
+        uint64_t before = atomicAdd(Uint64sRef(headerField(P, kHeaderBoxCells)).v[0], boxes);
+        if (before + boxes > uint64_t(P.budget)) raiseFlag(P, kCellsOverBudget);
     }
 
     // Big triangles: work items (t, chunk), one atomic per subgroup.

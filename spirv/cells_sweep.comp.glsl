@@ -37,19 +37,25 @@ void main() {
     }
     subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
     subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
-    uint slot = subgroupAppend(headerField(P, kHeaderCandidates), n);
+    // n < 2^19: the scan let the sweep run, so no cell holds more than 2^19 entries
+    // (kCellsComparisonsPerBudget * budget < 2^37 pairs); totals stay far below 2^32.
+    uint64_t slot = subgroupAppend64(headerField(P, kHeaderCandidates), n);
     if (n == 0u) return;
+    if (slot >= uint64_t(P.candidate_capacity)) {  // none fits: the run is void, skip the second scan
+        raiseFlag(P, kCellsOverflowCandidates);
+        return;
+    }
     CellsCandidatesRef out_pairs = CellsCandidatesRef(P.candidates);
     for (uint j = begin; j < end; ++j) {
         CellsEntry o = entries.e[j];
         bool after = o.zlo > me.zlo || (o.zlo == me.zlo && j > e);
         if (after && o.zlo <= me.zhi && sweepPair(P, me.key, mine, o.key, o.triangle, neighbours)) {
-            if (slot < P.candidate_capacity) {
+            if (slot < uint64_t(P.candidate_capacity)) {
                 CellsCandidate c;
                 c.a = min(me.triangle, o.triangle);
                 c.b = max(me.triangle, o.triangle);
                 c.cell = cell;
-                out_pairs.c[slot] = c;
+                out_pairs.c[uint(slot)] = c;
             } else {
                 atomicOr(cellsHeader(P).h.flags, kCellsOverflowCandidates);
             }

@@ -180,12 +180,21 @@ struct DetectSettings {
     // responses, the narrow phase's hits); found pairs beyond the budget are counted, not
     // kept.
     std::uint64_t max_pairs = std::uint64_t{1} << 24;
-    // Most pairs of candidate triangles whose boxes overlap, which the narrow phase sweeps
-    // (DetectStats::narrow.sap_pairs): past it the detection stops and fails with
-    // LimitExceeded. Bounds its time and memory (up to 8 bytes each) where candidates pile
-    // up in one place: k copies of one triangle give k^2/2 such pairs. Real scenes make
-    // about 9 per candidate (8.7M for 1M candidates, docs/narrow_phase.md), 2^27 = 134M
-    // takes about a second to sweep on two cores.
+    // The candidate budget: past it the detection stops and fails with LimitExceeded,
+    // naming the count it needed and this setting (an error, nothing partial: unlike
+    // max_pairs). Bounds time and memory where candidates pile up in one place: k copies of
+    // one triangle give k^2/2 pairs. Either way the world stays usable after the error.
+    // Peeling: the pairs of candidate triangles whose boxes overlap, which the narrow phase
+    // sweeps (DetectStats::narrow.sap_pairs, up to 8 bytes each). Real scenes make about 9
+    // per candidate (8.7M for 1M candidates, docs/narrow_phase.md); 2^27 = 134M takes
+    // about a second to sweep on two cores.
+    // Reliable: the GPU cell stage's work and memory (docs/stability.md, "Limits"): the
+    // cells of the triangles' footprint boxes (each footprint costs 20 bytes of GPU memory)
+    // and the candidate pairs the cells form (12 bytes each, DetectStats::cells.candidates)
+    // at most this many each, the pairs of footprints sharing a cell (what the cells'
+    // sweep compares) at most 64 times it; no GPU buffer grows beyond it. Two 1.28M-triangle
+    // spheres overlapping deeply need 15.6M box cells, 5.2e8 comparisons and 181K
+    // candidates at the automatic resolution.
     std::uint64_t max_candidate_pairs = std::uint64_t{1} << 27;
 
     // Object-level contacts (vkcollide/contacts.hpp, docs/contacts.md): for every pair of

@@ -62,6 +62,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.region = s.region;
     d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
     d.broad.depth_aware = s.depth_aware;
+    d.broad.max_candidate_pairs = s.max_candidate_pairs;  // the reliable method's GPU budget
     d.axes = s.axes;
     d.bad_objects = s.bad_objects;
     if (auto ok = run.detection->start(meshes, d, measure, target); !ok) return noted(describeFailure(run, ok.error()));

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -107,6 +108,10 @@ struct BroadPhaseSettings {
     // Methods that form pairs on the GPU: which object pairs may collide (null: all). Must
     // outlive the run (until collect); its object count is the run's.
     const ObjectPairMask* pair_mask = nullptr;
+    // Methods that form pairs on the GPU: their budget (CellPairsSettings::max_candidate_pairs;
+    // DetectSettings::max_candidate_pairs in a detection). Past it the run fails with
+    // LimitExceeded.
+    std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
 };
 
 // A problem the GPU input check found in one object (kObjectCheckOnGpu meshes), as data:

@@ -229,7 +229,11 @@ TEST_CASE("vkcollide detect: --max-pairs keeps that many and says the rest were 
     CHECK(capped["settings"]["used"]["timeout_ms"].number() == 30000);
     CHECK(capped["settings"]["used"]["max_candidate_pairs"].number() == 100000000);
     CHECK(capped["frames"][0]["pairs"].size() == 3);
+    // The reliable method (the default) checks the budget on the GPU, before the narrow phase.
     const Run few = runCli("detect " + s.plain_files + " --max-candidate-pairs 1");
     CHECK(few.status != 0);
-    CHECK(few.err.find("max_box_pairs") != std::string::npos);
+    CHECK(few.err.find("max_candidate_pairs (1)") != std::string::npos);
+    const Run few_peeling = runCli("detect " + s.plain_files + " --method peeling --max-candidate-pairs 1");
+    CHECK(few_peeling.status != 0);
+    CHECK(few_peeling.err.find("max_box_pairs") != std::string::npos);
 }

@@ -1,8 +1,8 @@
-// Pathological scenes (issue 17): each ends in the exact pairs or a named error, on both
-// sampling backends, with the validation layer quiet (no access outside a buffer that it
-// could see) and in bounded time. The sizes are the smallest that reach each limit; the
-// large ones the issue names run in tools/stability/pathological_report.cpp
-// (docs/stability.md, "Limits").
+// Pathological scenes (issue 17) under the peeling method: each ends in the exact pairs or
+// a named error, on both sampling backends, with the validation layer quiet (no access
+// outside a buffer that it could see) and in bounded time. The sizes are the smallest that
+// reach each limit. The same scenes under the reliable method (the default):
+// reliable_limits_tests.cpp; docs/stability.md, "Pathological scenes", says what each does.
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -153,7 +153,8 @@ TEST_CASE("fragment counts do not wrap: 70,000 copies of one triangle count 70,0
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("a face of 999,999 repeated corners ends in a named error within the box-pair budget", "[stability][gpu][limits]") {
+TEST_CASE("a face of 999,999 repeated corners ends in a named error within the candidate budget, under either method",
+          "[stability][gpu][limits]") {
     ValidatedContext ctx;
     auto meshes = readMesh(repeatedCornerFace(999999), MeshFormat::Obj, "face.obj");
     REQUIRE(meshes);
@@ -163,26 +164,35 @@ TEST_CASE("a face of 999,999 repeated corners ends in a named error within the b
     REQUIRE(world);
     auto face = (*world)->addMesh(meshes->front(), {.name = "face", .self_collision = true});
     REQUIRE(face);
-    DetectSettings s;
-    // The peeling method's narrow-phase budget. (The reliable method has no budget on its
-    // GPU candidates yet: this face would grow its buffers until the device runs out.)
-    s.method = DetectMethod::Peeling;
-    s.resolution = 8;
-    s.direction = std::array<float, 3>{0.2f, 0.3f, 1.0f};
-    // Every triangle is a candidate (deep rays), and all of them overlap: 5e11 box pairs.
-    auto r = (*world)->detect(s);
+    // The default method: every triangle in every cell of the face's footprint, 5e12 pairs
+    // of footprints to compare, refused by the GPU stage's budget before the sweep runs.
+    DetectSettings reliable;
+    auto r = (*world)->detect(reliable);
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::LimitExceeded);
-    CHECK(mentions(r.error(), "max_box_pairs"));
+    CHECK(mentions(r.error(), "max_candidate_pairs"));
+    CHECK(mentions(r.error(), "999997 footprints in one cell"));
+    CHECK((*world)->state() == WorldState::Ready);
+    // The peeling method: every triangle is a candidate (deep rays), and all of them overlap:
+    // 5e11 box pairs, past the narrow phase's budget.
+    DetectSettings peeling{.method = DetectMethod::Peeling};
+    peeling.resolution = 8;
+    peeling.direction = std::array<float, 3>{0.2f, 0.3f, 1.0f};
+    auto p = (*world)->detect(peeling);
+    REQUIRE_FALSE(p);
+    CHECK(p.error().code() == ErrorCode::LimitExceeded);
+    CHECK(mentions(p.error(), "max_box_pairs"));
     CHECK((*world)->state() == WorldState::Ready);
     // The world goes on: without the face, a small scene gives its pairs.
     REQUIRE((*world)->removeObject(*face));
     auto small = repeatedTriangle(3);
     REQUIRE(small);
     for (const SceneObject& o : small->scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
-    auto again = (*world)->detect(small->settings);
-    REQUIRE(again);
-    CHECK(again->pairs.size() == 3);  // ids shifted by the removed face: count only
+    for (const DetectSettings& s : {small->settings, DetectSettings{}}) {
+        auto again = (*world)->detect(s);
+        REQUIRE(again);
+        CHECK(again->pairs.size() == 3);  // ids shifted by the removed face: count only
+    }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

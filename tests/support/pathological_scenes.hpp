@@ -40,8 +40,9 @@ std::string repeatedCornerFace(std::uint32_t corners);
 // Two overlapping tetrahedra (object 0 and 1) under `slabs` thin closed slabs stacked along
 // the direction (object 2, 12 triangles each), sampled in a fixed region at 16 rays: every
 // ray through the contact crosses 2 * slabs + 4 or more surfaces. Reference: the
-// tetrahedra's pairs (the slabs touch nothing).
-Result<PathologicalCase> slabsOverContact(std::uint32_t slabs);
+// tetrahedra's pairs (the slabs touch nothing); without `with_reference` none (computing
+// it takes seconds for tens of thousands of slabs).
+Result<PathologicalCase> slabsOverContact(std::uint32_t slabs, bool with_reference = true);
 
 // `count` triangles in one self-colliding object, each in its own plane through the z axis
 // and each containing a piece of that axis from the origin up: every two intersect, so

@@ -111,8 +111,9 @@ const std::vector<Option>& options() {
         {"--max-pairs", "N", Section::Settings, "most colliding pairs to keep (default 16777216); more are counted and reported",
          "about 40 bytes per pair kept", setting<&DetectSettings::max_pairs>, "max_pairs", show<&DetectSettings::max_pairs>},
         {"--max-candidate-pairs", "N", Section::Settings,
-         "most candidate pairs with overlapping boxes the narrow phase sweeps (default 134217728); past it the detection fails",
-         "bounds the narrow phase's time and memory (up to 8 bytes per pair)", setting<&DetectSettings::max_candidate_pairs>,
+         "the candidate budget (default 134217728): reliable: footprint box cells and GPU candidate pairs, 64x as many "
+         "comparisons; peeling: box pairs the narrow phase sweeps; past it the detection fails",
+         "bounds time and memory: reliable 20 bytes per footprint and 12 per candidate on the GPU, peeling up to 8 bytes per pair", setting<&DetectSettings::max_candidate_pairs>,
          "max_candidate_pairs", show<&DetectSettings::max_candidate_pairs>},
         flag("--contacts", Section::Settings,
              "object-level contacts of closed objects: intersection volume, normal, depth and centroid per overlapping pair (docs/contacts.md)",

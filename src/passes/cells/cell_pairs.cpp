@@ -14,7 +14,9 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 64 && sizeof(gpu::CellsParams) == 208);
+static_assert(sizeof(gpu::CellsHeader) == 80 && sizeof(gpu::CellsParams) == 208);
+static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
+              offsetof(gpu::CellsHeader, comparisons) == 72);  // kHeaderCandidates, ... in cells_common.glsl.inc
 static_assert(sizeof(gpu::CellsGpuTriangle) == sizeof(GpuTriangle) && offsetof(gpu::CellsGpuTriangle, v) == offsetof(GpuTriangle, v));
 static_assert(sizeof(CandidatePair) == 8);
 static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);
@@ -23,8 +25,9 @@ static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);
 // access chains.
 constexpr std::uint64_t kMaxElements = 0x7FFFFFFFull;
 
-std::uint32_t grown(std::uint64_t needed) {
-    return static_cast<std::uint32_t>(std::min<std::uint64_t>(kMaxElements, needed + needed / 4 + 1024));
+// 1.25x what a run needed, within the budget (which holds what was needed).
+std::uint32_t grown(std::uint64_t needed, std::uint32_t budget) {
+    return static_cast<std::uint32_t>(std::max<std::uint64_t>(needed, std::min<std::uint64_t>(budget, needed + needed / 4 + 1024)));
 }
 
 bool moderate(float x) { return std::isfinite(x) && std::fabs(x) < 4.611686018427388e18f; }
@@ -75,10 +78,10 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
                                                      std::to_string(gpu::kCellsMaxResolution) + "]");
     if (in.projection.has_value() == (in.projection_address != 0))
         return Error(ErrorCode::InvalidArgument, "cell pairs: give either a host projection or a projection address, not both or neither");
-    if (in.projection) {
+    if (in.projection) {  // rows of 2^62 or more are scaled on the GPU (cells_setup.comp)
         for (const gpu::vec4& row : in.projection->row)
-            if (!moderate(row.x) || !moderate(row.y) || !moderate(row.z) || !moderate(row.w))
-                return Error(ErrorCode::InvalidArgument, "cell pairs: projection entries must be finite and below 2^62");
+            if (!std::isfinite(row.x) || !std::isfinite(row.y) || !std::isfinite(row.z) || !std::isfinite(row.w))
+                return Error(ErrorCode::InvalidArgument, "cell pairs: projection entries must be finite");
     }
     if (!in.self_collision.empty() && in.self_collision.size() != in.objects.size())
         return Error(ErrorCode::InvalidArgument, "cell pairs: self_collision has " + std::to_string(in.self_collision.size()) +
@@ -123,15 +126,20 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     has_download_ = download_triangles_ > 0;
     runs_ = 0;
     bad_input_.reset();
+    asked_budget_ = settings.max_candidate_pairs;
+    budget_ = static_cast<std::uint32_t>(std::min(settings.max_candidate_pairs, kMaxElements));
     const std::uint32_t device_limit = device_->properties.limits.maxComputeWorkGroupCount[0];
     max_groups_x_ = settings.max_workgroups_x ? std::min(settings.max_workgroups_x, device_limit) : device_limit;
 
-    // Capacities: the caller's, else what earlier runs needed, else an estimate.
+    // Capacities: the caller's, else what earlier runs needed, else an estimate; a new
+    // buffer never holds more elements than the budget (what earlier runs with a larger
+    // budget allocated is kept: it costs nothing more).
     const std::uint64_t tris = std::max<std::uint64_t>(triangles_, 1);
-    auto pick = [](std::uint32_t asked, std::uint32_t current, std::uint64_t estimate) {
-        if (asked) return asked;
+    const std::uint64_t most = std::max<std::uint32_t>(budget_, 1);
+    auto pick = [most](std::uint32_t asked, std::uint32_t current, std::uint64_t estimate) {
+        if (asked) return static_cast<std::uint32_t>(std::min<std::uint64_t>(asked, most));
         if (current) return current;
-        return static_cast<std::uint32_t>(std::min<std::uint64_t>(kMaxElements, estimate));
+        return static_cast<std::uint32_t>(std::min(most, estimate));
     };
     capacity_.entries = pick(settings.initial.entries, capacity_.entries, std::max<std::uint64_t>(8 * tris, 4096));
     capacity_.items = pick(settings.initial.items, capacity_.items, std::max<std::uint64_t>(tris / 32, 1024));
@@ -278,12 +286,13 @@ void CellPairs::writeParams() {
     p.block_count = (p.cell_count + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     p.max_groups_x = max_groups_x_;
     p.use_filter = use_filter_ ? 1u : 0u;
+    p.budget = budget_;
     std::memcpy(buf_.params.mapped(), &p, sizeof p);
     buf_.params.flush();
 }
 
 Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) {
-    const std::uint32_t errors = h.flags & ~gpu::kCellsOverflowMask;
+    const std::uint32_t errors = h.flags & ~(gpu::kCellsOverflowMask | gpu::kCellsOverBudget);
     if (!errors) return {};
     if (errors & gpu::kCellsInconsistent)
         return Error(ErrorCode::VulkanError, "cell pairs: the fill found more footprints than the count (internal error)");
@@ -292,16 +301,41 @@ Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) {
         if (objects_[i].triangle_base <= h.bad_triangle && objects_[i].triangle_count > 0) {
             const std::uint32_t local = h.bad_triangle - objects_[i].triangle_base;
             where = "object " + std::to_string(i) + ", triangle " + std::to_string(local);
-            if (!(errors & gpu::kCellsBadProjection)) bad_input_ = BadInput{errors, static_cast<std::uint32_t>(i), local};
+            bad_input_ = BadInput{errors, static_cast<std::uint32_t>(i), local};
             break;
         }
     }
-    if (errors & gpu::kCellsBadProjection)
-        return Error(ErrorCode::InvalidArgument, "cell pairs: a projection entry is not finite or not below 2^62");
     if (errors & gpu::kCellsBadIndex) return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has an index beyond its vertices");
     if (errors & gpu::kCellsBadPosition)
         return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has a position or transform entry that is not finite or not below 2^62");
     return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has a world coordinate not below 2^62");
+}
+
+// Past the budget: the count the run needed, the budget, and what to change. The counts
+// are complete where they are checked: the setup sums every triangle's box, the scan every
+// cell's pairs, and candidates are only counted by a sweep that ran in full.
+Result<void> CellPairs::checkBudget(const gpu::CellsHeader& h) const {
+    const std::string budget = asked_budget_ > budget_ ? "the stage's limit of " + std::to_string(budget_) + " (32-bit buffer indices)"
+                                                       : "max_candidate_pairs (" + std::to_string(budget_) + ")";
+    const std::string where = " at resolution " + std::to_string(resolution_) + " (" + std::to_string(triangles_) + " triangles)";
+    if (h.box_cells > budget_)
+        return Error(ErrorCode::LimitExceeded, "cell pairs: the triangles' footprint boxes span " + std::to_string(h.box_cells) +
+                                                   " cells" + where + ", more than " + budget +
+                                                   ": lower the resolution or raise max_candidate_pairs");
+    const std::uint64_t comparisons = std::uint64_t{budget_} * gpu::kCellsComparisonsPerBudget;
+    if (h.comparisons > comparisons)
+        return Error(ErrorCode::LimitExceeded,
+                     "cell pairs: " + std::to_string(h.comparisons) + " pairs of footprints share a cell" + where + " (up to " +
+                         std::to_string(h.max_cell) + " footprints in one cell), more than " +
+                         std::to_string(gpu::kCellsComparisonsPerBudget) + " x " + budget + " = " + std::to_string(comparisons) +
+                         " the sweep may compare: stacked or repeated triangles? Lower the resolution or raise max_candidate_pairs");
+    if (h.candidates > budget_)
+        return Error(ErrorCode::LimitExceeded, "cell pairs: " + std::to_string(h.candidates) + " candidate pairs" + where +
+                                                   " (triangles that may collide, with overlapping depth in a cell), more than " +
+                                                   budget + ": stacked or repeated triangles?");
+    if (h.flags & gpu::kCellsOverBudget)  // never without one of the counts above
+        return Error(ErrorCode::VulkanError, "cell pairs: the budget flag is set but no count exceeds it (internal error)");
+    return {};
 }
 
 Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
@@ -311,21 +345,27 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
     gpu::CellsHeader h;
     std::memcpy(&h, buf_.header_rb.mapped(), sizeof h);
     if (auto ok = checkFailure(h); !ok) return ok.error();
+    if (auto ok = checkBudget(h); !ok) return ok.error();
     if (h.flags & gpu::kCellsOverflowMask) {
         // Only the first overflow's count is reliable (later passes did nothing): grow it,
-        // and the rerun reports the next one if any.
-        if (h.flags & gpu::kCellsOverflowItems) capacity_.items = std::max(capacity_.items, grown(h.items));
-        if (h.flags & gpu::kCellsOverflowEntries) capacity_.entries = std::max(capacity_.entries, grown(h.entries));
-        if (h.flags & gpu::kCellsOverflowCandidates) capacity_.candidates = std::max(capacity_.candidates, grown(h.candidates));
-        if (h.flags & gpu::kCellsOverflowSurvivors) capacity_.survivors = std::max(capacity_.survivors, grown(h.survivors));
+        // and the rerun reports the next one if any. Within the budget every need is at
+        // most the budget: entries <= box cells, items <= box cells / 64 (a big triangle's
+        // box has more than 64 cells, an item covers up to 4096), survivors <= candidates.
+        if (h.flags & gpu::kCellsOverflowItems) capacity_.items = std::max(capacity_.items, grown(h.items, budget_));
+        if (h.flags & gpu::kCellsOverflowEntries) capacity_.entries = std::max(capacity_.entries, grown(h.entries, budget_));
+        if (h.flags & gpu::kCellsOverflowCandidates) capacity_.candidates = std::max(capacity_.candidates, grown(h.candidates, budget_));
+        if (h.flags & gpu::kCellsOverflowSurvivors) capacity_.survivors = std::max(capacity_.survivors, grown(h.survivors, budget_));
         if (h.flags & gpu::kCellsOverflowTriangles)
-            capacity_.gpu_triangles = std::max(capacity_.gpu_triangles, std::min(grown(h.gpu_triangles), std::max(download_triangles_, 1u)));
+            capacity_.gpu_triangles =
+                std::max(capacity_.gpu_triangles, std::min(grown(h.gpu_triangles, static_cast<std::uint32_t>(kMaxElements)), std::max(download_triangles_, 1u)));
         if (auto ok = ensureBuffers(); !ok) return ok.error();
         writeParams();
         return Outcome::Rerun;
     }
     s = CellPairsStats{};
     s.entries = h.entries;
+    s.box_cells = h.box_cells;
+    s.comparisons = h.comparisons;
     s.big_triangles = h.big_triangles;
     s.items = h.items;
     s.deep_cells = h.deep_cells;

@@ -13,7 +13,12 @@
 //             (download objects: survivors' triangles with their world vertices too)
 // One submission, no host round trip inside a run. Every capacity is checked on the GPU:
 // an overflow sets a flag with the size needed, and run() grows that buffer and runs
-// again, so no pair is lost and nothing is accessed out of bounds.
+// again, so no pair is lost and nothing is accessed out of bounds. A budget
+// (CellPairsSettings::max_candidate_pairs) bounds what the scene may ask for: the setup
+// sums the footprint boxes and the scan the pairs of footprints sharing a cell before
+// anything grows or the sweep runs, the sweep counts candidates in 64 bits; past it the
+// run fails with LimitExceeded, so pathological scenes (stacks of identical triangles)
+// cost bounded time and memory.
 //
 // Two ways to use it: run() (prepare, record, run and finish on its own executor, pairs
 // sorted and unique), or as part of a larger graph (ReliableMethod): prepare(), record()
@@ -27,6 +32,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -49,7 +55,9 @@ namespace vkcollide::passes {
 struct CellPairsInput {
     std::span<const gpu::ObjectGpu> objects;
     // World -> sampling space: x, y in [0, 1] across the grid, z the depth (any affine map
-    // with finite rows below 2^62; points outside [0, 1]^2 fall into the border cells).
+    // with finite rows; points outside [0, 1]^2 fall into the border cells; rows of 2^62
+    // or more are scaled by a power of two, and a written projection's non-finite rows
+    // become 0, both on the GPU: slower, never a pair lost).
     // Either given here, or written by an earlier pass of the same graph at
     // `projection_address` (then record() needs that buffer's ResourceId).
     std::optional<gpu::Projection> projection;
@@ -79,7 +87,16 @@ struct CellPairsCapacity {
 struct CellPairsSettings {
     // Run the double-precision filter where the device has shaderFloat64 enabled.
     bool filter = true;
-    // Capacities of the first run; they grow (to 1.25x what was needed) on overflow.
+    // The budget of a run (DetectSettings::max_candidate_pairs in a detection; the stage's
+    // own limit is 2^31 - 1, its buffers' 32-bit indices): the cells of the triangles'
+    // clamped footprint boxes (so the footprints, 20 bytes each, and the count pass's work)
+    // and the candidate pairs (12 bytes each) at most this many each, and the pairs of
+    // footprints sharing a cell (the sweep's comparisons) at most
+    // gpu::kCellsComparisonsPerBudget times it. Past one of them finish() fails with
+    // LimitExceeded naming the count; no buffer ever grows beyond the budget's elements.
+    std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
+    // Capacities of the first run (at most the budget); they grow (to 1.25x what was
+    // needed, at most the budget) on overflow.
     CellPairsCapacity initial;
     // Runs allowed per call (the first plus reruns after overflows).
     std::uint32_t max_runs = 8;
@@ -115,7 +132,9 @@ public:
     // After the recorded graph ran: reads the header. Complete: `out` holds the pairs
     // and statistics. Rerun: a buffer overflowed; it has been grown (and the parameters
     // re-uploaded), so record and run the stage again. Errors: InvalidMesh or
-    // InvalidArgument for bad input found on the GPU (naming object and triangle).
+    // InvalidArgument for bad input found on the GPU (naming object and triangle);
+    // LimitExceeded past the budget (CellPairsSettings::max_candidate_pairs), naming the
+    // count the run needed. After any error the stage is ready for the next prepare().
     enum class Outcome { Complete, Rerun };
     [[nodiscard]] Result<Outcome> finish(CellPairsResult& out);
     // The same without host work beyond the header: Complete fills `out_stats` (not
@@ -152,6 +171,7 @@ private:
     Result<void> ensureBuffers();
     void writeParams();
     Result<void> checkFailure(const gpu::CellsHeader& header);
+    Result<void> checkBudget(const gpu::CellsHeader& header) const;
 
     vk::Device* device_;
     struct Pipelines {
@@ -172,6 +192,8 @@ private:
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish
     std::optional<BadInput> bad_input_;
     std::uint32_t max_groups_x_ = 0;
+    std::uint32_t budget_ = 0;             // the run's budget, at most kMaxElements
+    std::uint64_t asked_budget_ = 0;       // as the settings gave it (for the messages)
     CellPairsCapacity capacity_;
     std::uint32_t runs_ = 0;
     // Declared last, destroyed first: it waits for work in flight before the buffers go.

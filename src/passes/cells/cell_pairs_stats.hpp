@@ -8,6 +8,8 @@ namespace vkcollide::passes {
 
 struct CellPairsStats {
     std::uint64_t entries = 0;        // footprints: (triangle, cell) pairs
+    std::uint64_t box_cells = 0;      // cells of the footprint boxes (>= entries; the budget's first count)
+    std::uint64_t comparisons = 0;    // pairs of footprints sharing a cell (the budget's second count)
     std::uint64_t big_triangles = 0;  // triangles counted and filled in work items
     std::uint64_t items = 0;
     std::uint64_t deep_cells = 0;     // cells with more than kCellsSmallCell entries

@@ -33,7 +33,9 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     if (!any_self) in.self_collision.clear();  // keeps its capacity
     in.download = any_download ? std::span<const std::uint8_t>(download_) : std::span<const std::uint8_t>();
     in.pair_mask = run.settings.pair_mask ? std::span<const std::uint32_t>(run.settings.pair_mask->bits) : std::span<const std::uint32_t>();
-    return cells_->prepare(in);
+    CellPairsSettings settings;
+    settings.max_candidate_pairs = run.settings.max_candidate_pairs;
+    return cells_->prepare(in, settings);
 }
 
 void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {

@@ -1,0 +1,321 @@
+// Pathological scenes (issue 17) under the reliable method, the default: each ends in the
+// exact pairs or a named error (LimitExceeded naming the count and
+// DetectSettings::max_candidate_pairs, or the extent), in bounded time, with the validation
+// layer quiet, and the world goes on after the error. The same scenes under the peeling
+// method: pathological_tests.cpp. docs/stability.md, "Pathological scenes", has the
+// numbers.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstring>
+#include <optional>
+#include <string>
+
+#include "cells.h"
+#include "support/gpu_fixture.hpp"
+#include "support/pathological_scenes.hpp"
+#include "support/world_fixture.hpp"
+#include "vk/resources.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+
+void checkExact(const std::vector<TrianglePair>& found, const std::vector<TrianglePair>& reference) {
+    const PairComparison cmp = comparePairs(found, reference);
+    INFO("found " << found.size() << ", reference " << reference.size() << ", missed " << cmp.false_negatives << ", spurious "
+                  << cmp.false_positives);
+    CHECK(cmp.false_negatives == 0);
+    CHECK(cmp.false_positives == 0);
+    CHECK(found.size() == reference.size());
+}
+
+// The case's scene with the automatic settings of the default method (the case's own
+// settings are the peeling method's rays), or with `s`.
+DetectSettings reliable(DetectSettings s = {}) {
+    s.method = DetectMethod::Reliable;
+    return s;
+}
+
+// A LimitExceeded that names the budget.
+void checkBudgetError(const Result<DetectResult>& r, const std::string& count) {
+    REQUIRE_FALSE(r);
+    INFO(r.error().message());
+    CHECK(r.error().code() == ErrorCode::LimitExceeded);
+    CHECK(mentions(r.error(), "max_candidate_pairs"));
+    CHECK(mentions(r.error(), count));
+}
+
+// An engine-owned copy of a mesh (packed positions, 32-bit indices).
+struct EngineMesh {
+    vk::Buffer vertices, indices;
+    GpuMeshDesc desc;
+};
+
+EngineMesh engineCopy(vk::Device& dev, const HostMesh& m) {
+    EngineMesh e;
+    auto vb = vk::Buffer::create(dev, m.positions.size() * 12, 0, vk::MemoryKind::Upload, "engine-vertices");
+    auto ib = vk::Buffer::create(dev, m.indices.size() * 4, 0, vk::MemoryKind::Upload, "engine-indices");
+    REQUIRE(vb);
+    REQUIRE(ib);
+    std::memcpy(vb->mapped(), m.positions.data(), m.positions.size() * 12);
+    std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
+    vb->flush();
+    ib->flush();
+    e.desc.vertex_buffer = vb->handle();
+    e.desc.vertex_buffer_size = vb->size();
+    e.desc.vertex_count = static_cast<std::uint32_t>(m.positions.size());
+    e.desc.index_buffer = ib->handle();
+    e.desc.index_buffer_size = ib->size();
+    e.desc.index_count = static_cast<std::uint32_t>(m.indices.size());
+    e.vertices = std::move(*vb);
+    e.indices = std::move(*ib);
+    return e;
+}
+
+std::unique_ptr<CollisionWorld> worldOf(ValidatedContext& ctx, const PathologicalCase& c, std::vector<EngineMesh>* engine = nullptr) {
+    auto w = makeWorld(ctx);
+    for (const SceneObject& o : c.scene.objects) {
+        if (engine) {
+            engine->push_back(engineCopy(ctx.device(), o.mesh));
+            REQUIRE(w->addGpuMesh(engine->back().desc, o.options));
+        } else {
+            REQUIRE(w->addMesh(o.mesh, o.options));
+        }
+    }
+    return w;
+}
+
+}  // namespace
+
+TEST_CASE("reliable: a stack of 65,545 copies of a triangle fails naming its count, 1,100 copies give every pair",
+          "[stability][gpu][limits][reliable]") {
+    ValidatedContext ctx;
+    auto deep = repeatedTriangle(65545);
+    auto sorted = repeatedTriangle(1100);  // deeper than kCellsDeepShared: the chunked sweep
+    REQUIRE(deep);
+    REQUIRE(sorted);
+    for (bool engine : {false, true}) {
+        INFO((engine ? "engine buffers" : "host meshes"));
+        // The automatic resolution for host meshes (8 cells here); a world of engine meshes
+        // alone knows no extent before its first successful detection and takes 256,
+        // where 1,100 copies are 1.9e10 comparisons: beyond the budget too.
+        DetectSettings s = reliable();
+        if (engine) s.resolution = 8;
+        std::vector<EngineMesh> keep;
+        auto world = worldOf(ctx, *deep, engine ? &keep : nullptr);
+        // Every copy in every cell it covers, with the crossing triangle: 65,546 deep.
+        auto r = world->detect(s);
+        checkBudgetError(r, "65546 footprints in one cell");
+        CHECK(mentions(r.error(), "pairs of footprints share a cell"));
+        CHECK(world->state() == WorldState::Ready);
+
+        std::vector<EngineMesh> keep_sorted;
+        auto fits = worldOf(ctx, *sorted, engine ? &keep_sorted : nullptr);
+        auto found = fits->detect(s);
+        INFO((found ? std::string() : found.error().message()));
+        REQUIRE(found);
+        checkExact(found->pairs, *sorted->reference);
+        CHECK(found->stats.cells.max_cell >= 1100);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("reliable: after LimitExceeded the world detects again, with a larger budget the same pairs",
+          "[stability][gpu][limits][reliable]") {
+    ValidatedContext ctx;
+    auto c = repeatedTriangle(1100);
+    REQUIRE(c);
+    auto world = worldOf(ctx, *c);
+    DetectSettings tight = reliable();
+    tight.max_candidate_pairs = 10000;
+    for (int round = 0; round < 2; ++round) {
+        INFO("round " << round);
+        checkBudgetError(world->detect(tight), "max_candidate_pairs (10000)");
+        CHECK(world->state() == WorldState::Ready);
+        auto r = world->detect(reliable());
+        REQUIRE(r);
+        checkExact(r->pairs, *c->reference);
+    }
+    // submit()/collect() fail and recover the same way.
+    REQUIRE(world->submit(tight));
+    checkBudgetError(world->collect(), "max_candidate_pairs (10000)");
+    REQUIRE(world->submit(reliable()));
+    auto collected = world->collect();
+    REQUIRE(collected);
+    checkExact(collected->pairs, *c->reference);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("reliable: a contact under 32,768 slabs fails naming its count, under 300 and 1,000 slabs gives every pair",
+          "[stability][gpu][limits][reliable]") {
+    ValidatedContext ctx;
+    auto many = slabsOverContact(32768, false);
+    REQUIRE(many);
+    auto world = worldOf(ctx, *many);
+    auto r = world->detect(reliable());
+    checkBudgetError(r, "pairs of footprints share a cell");
+    CHECK(world->state() == WorldState::Ready);
+    // Fewer slabs: each cell under them holds about 8 footprints per slab (a chunked sweep
+    // compares every pair of them), and the contact's pairs are found. 1,000 slabs at the
+    // automatic 8 cells take 4 s on lavapipe (2e9 comparisons); 2 cells, a quarter of it.
+    for (std::uint32_t slabs : {300u, 1000u}) {
+        INFO(slabs << " slabs");
+        auto few = slabsOverContact(slabs);
+        REQUIRE(few);
+        REQUIRE_FALSE(few->reference->empty());
+        auto fits = worldOf(ctx, *few);
+        DetectSettings s = reliable();
+        if (slabs > 300) s.resolution = 2;
+        auto found = fits->detect(s);
+        INFO((found ? std::string() : found.error().message()));
+        REQUIRE(found);
+        checkExact(found->pairs, *few->reference);
+        CHECK(found->stats.cells.max_cell > gpu::kCellsDeepShared);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("reliable: a thousand objects give the exact reference's pairs", "[stability][gpu][limits][reliable]") {
+    ValidatedContext ctx;
+    auto c = manyObjects(1000);
+    REQUIRE(c);
+    REQUIRE_FALSE(c->reference->empty());
+    auto world = worldOf(ctx, *c);
+    for (std::optional<std::uint32_t> resolution : {std::optional<std::uint32_t>{}, std::optional<std::uint32_t>{256}}) {
+        DetectSettings s = reliable();
+        s.resolution = resolution;
+        auto r = world->detect(s);
+        REQUIRE(r);
+        checkExact(r->pairs, *c->reference);
+        CHECK(r->stats.objects == 1000);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("reliable: mutually crossing triangles: max_candidate_pairs and max_pairs name their counts",
+          "[stability][gpu][limits][reliable]") {
+    ValidatedContext ctx;
+    // 10,000: 50M intersecting pairs, every triangle in the cells along the z axis. A
+    // budget of 2^22 bounds the sweep's comparisons at 2^28: refused before it runs.
+    auto huge = crossingTriangles(10000);
+    REQUIRE(huge);
+    auto world = worldOf(ctx, *huge);
+    DetectSettings s = reliable();
+    s.max_candidate_pairs = std::uint64_t{1} << 22;
+    auto r = world->detect(s);
+    checkBudgetError(r, "max_candidate_pairs (4194304)");
+    CHECK(mentions(r.error(), "10000 footprints in one cell"));
+
+    // 300: 44,850 pairs, found whole; a candidate budget below what the sweep forms names
+    // that count; max_pairs keeps the first 20,000 and counts the rest.
+    auto c = crossingTriangles(300);
+    REQUIRE(c);
+    const std::size_t all = std::size_t{300} * 299 / 2;
+    REQUIRE(c->reference->size() == all);
+    auto fits = worldOf(ctx, *c);
+    auto full = fits->detect(reliable());
+    REQUIRE(full);
+    checkExact(full->pairs, *c->reference);
+    const std::uint64_t candidates = full->stats.cells.candidates;
+    REQUIRE(candidates > 100000);
+    DetectSettings tight = reliable();
+    tight.max_candidate_pairs = 100000;
+    auto stopped = fits->detect(tight);
+    checkBudgetError(stopped, std::to_string(candidates) + " candidate pairs");
+    CHECK(fits->state() == WorldState::Ready);
+
+    DetectSettings capped = reliable();
+    capped.max_pairs = 20000;
+    std::vector<TrianglePair> kept_before;
+    for (unsigned threads : {1u, 2u}) {
+        INFO(threads << " threads");
+        auto w = makeWorld(ctx, {.threads = threads});
+        addScene(*w, c->scene);
+        auto capped_run = w->detect(capped);
+        REQUIRE(capped_run);
+        CHECK(capped_run->pairs.size() == 20000);
+        CHECK(capped_run->pairs_left_out == all - 20000);
+        REQUIRE(capped_run->incomplete);
+        CHECK(capped_run->incomplete->code() == ErrorCode::LimitExceeded);
+        CHECK(mentions(*capped_run->incomplete, "max_pairs"));
+        CHECK(std::includes(c->reference->begin(), c->reference->end(), capped_run->pairs.begin(), capped_run->pairs.end()));
+        if (!kept_before.empty()) CHECK((capped_run->pairs == kept_before));
+        kept_before = capped_run->pairs;
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("reliable: coordinates from subnormal to 2^62 give the pair or a named error", "[stability][gpu][limits][reliable]") {
+    ValidatedContext ctx;
+    // Inside the reliable method's range (below 2^62) and wider than the 1e-30 every method
+    // needs: the pair. 1e-29 and 1e-25 put the fitted projection's rows above 2^62: the
+    // stage scales them back (before: "a projection entry is not finite or not below 2^62").
+    for (float scale : {1e-29f, 1e-25f, 1.0f, 1e18f}) {
+        INFO("scale " << scale);
+        auto c = scaledCrossing(scale);
+        REQUIRE(c);
+        auto world = worldOf(ctx, *c);
+        auto r = world->detect(reliable());
+        INFO((r ? std::string() : r.error().message()));
+        REQUIRE(r);
+        checkExact(r->pairs, *c->reference);
+    }
+    // 2^62 and more (1e19, 1e29): the reliable method's limit, named with the object.
+    for (float scale : {1e19f, 1e29f}) {
+        INFO("scale " << scale);
+        auto c = scaledCrossing(scale);
+        REQUIRE(c);
+        auto world = worldOf(ctx, *c);
+        auto r = world->detect(reliable());
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code() == ErrorCode::InvalidMesh);
+        CHECK(mentions(r.error(), "'flat'"));
+        CHECK(mentions(r.error(), "2^62"));
+        CHECK(world->state() == WorldState::Ready);
+    }
+    // Narrower than 1e-30 or subnormal: LimitExceeded, as for the peeling method.
+    for (float scale : {1e-35f, 1e-40f}) {
+        INFO("scale " << scale);
+        auto c = scaledCrossing(scale);
+        REQUIRE(c);
+        auto world = worldOf(ctx, *c);
+        auto r = world->detect(reliable());
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code() == ErrorCode::LimitExceeded);
+        CHECK(mentions(r.error(), "1e-30"));
+    }
+    // Flat scenes whose depth extent is tiny or subnormal (the fit's depth row is 1 / extent,
+    // infinite for the subnormal one): the pair.
+    for (float dz : {1e-20f, 1e-40f}) {
+        INFO("depth extent " << dz);
+        auto world = makeWorld(ctx);
+        REQUIRE(world->addMesh(HostMesh{"a", {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}}, {.name = "a"}));
+        REQUIRE(world->addMesh(HostMesh{"b", {{0.2f, 0.2f, 0}, {1.2f, 0.2f, dz}, {0.2f, 1.2f, 0}}, {0, 1, 2}}, {.name = "b"}));
+        auto r = world->detect(reliable());
+        INFO((r ? std::string() : r.error().message()));
+        REQUIRE(r);
+        CHECK(r->pairs.size() == 1);
+    }
+    // 1e38 in engine buffers: the GPU check leaves them out and names them.
+    auto far = scaledCrossing(1e38f);
+    auto near = scaledCrossing(1.0f);
+    REQUIRE(far);
+    REQUIRE(near);
+    std::vector<EngineMesh> keep;
+    auto world = worldOf(ctx, *far, &keep);
+    auto none = world->detect(reliable());
+    REQUIRE_FALSE(none);
+    CHECK(none.error().code() == ErrorCode::InvalidMesh);
+    CHECK(mentions(none.error(), "no object left"));
+    keep.push_back(engineCopy(ctx.device(), near->scene.objects[0].mesh));
+    REQUIRE(world->addGpuMesh(keep.back().desc, {.name = "near"}));
+    auto r = world->detect(reliable());
+    REQUIRE(r);
+    CHECK(r->pairs.empty());
+    CHECK(r->excluded.size() == 2);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -21,6 +21,9 @@
 //      submit     submit() then collect() every frame;
 //      pipelined  submit() of frame N, then collect() of frame N - 1 (the narrow phase of
 //                 N - 1 runs while N's GPU work runs); latency one frame.
+//      alternating  detect() and submit() + collect() on alternate frames of one world:
+//                 two rows (detect-alternating, submit-alternating), frame medians only,
+//                 the fairest comparison of the two (same world, same clocks).
 //    with the GPU stage times of the detection collected that frame.
 //
 //   vkcollide_bench_frames [--vertices 1000000] [--triangles 100000] [--frames 30]
@@ -233,7 +236,7 @@ int main(int argc, char** argv) {
         if (method == "none") continue;
         DetectSettings settings;
         settings.method = method == "peeling" ? DetectMethod::Peeling : DetectMethod::Reliable;
-        for (const char* mode : {"detect", "submit", "pipelined"}) {
+        for (const char* mode : {"detect", "submit", "pipelined", "alternating"}) {
             auto world = CollisionWorld::create(**ctx, {.threads = threads});
             if (!world) die(world.error().message());
             CollisionWorld& w = **world;
@@ -245,6 +248,8 @@ int main(int argc, char** argv) {
             std::vector<double> frame_ms, gpu_ms, narrow_ms, total_ms, readback_ms;
             std::size_t pairs = 0;
             const bool pipelined = std::string(mode) == "pipelined";
+            const bool alternating = std::string(mode) == "alternating";
+            std::vector<double> submit_frame_ms;  // alternating: the submit() + collect() frames
             auto record = [&](const Result<DetectResult>& r, double ms) {
                 if (!r) die(r.error().message());
                 frame_ms.push_back(ms);
@@ -279,16 +284,29 @@ int main(int argc, char** argv) {
                 if (auto ok = w.setGpuMeshBuffers(*ia, ea.desc(f % 2)); !ok) die(ok.error().message());
                 if (auto ok = w.setGpuMeshBuffers(*ib, eb.desc(f % 2)); !ok) die(ok.error().message());
                 Result<DetectResult> r = Error(ErrorCode::InvalidArgument, "none");
-                if (std::string(mode) == "detect") {
+                const bool by_submit = alternating && f % 2 == 1;
+                if (std::string(mode) == "detect" || (alternating && !by_submit)) {
                     r = w.detect(settings);
                 } else {
                     if (auto ok = w.submit(settings); !ok) die(ok.error().message());
                     if (pipelined && f == 0) continue;
                     r = w.collect();
                 }
-                if (f >= 2) record(r, msSince(t0));
+                if (f >= 2 && by_submit) {
+                    if (!r) die(r.error().message());
+                    submit_frame_ms.push_back(msSince(t0));
+                } else if (f >= 2) {
+                    record(r, msSince(t0));
+                }
             }
             if (pipelined) (void)w.collect();
+            if (alternating) {  // the same world and clocks, detect() and submit() + collect() frame by frame
+                std::printf("detect-alternating,%s,%zu,,%zu,,,%.3f,,,,,%zu,%s\n", method.c_str(), a.triangleCount() + b.triangleCount(),
+                            frame_ms.size(), median(frame_ms), pairs, device.c_str());
+                std::printf("submit-alternating,%s,%zu,,%zu,,,%.3f,,,,,%zu,%s\n", method.c_str(), a.triangleCount() + b.triangleCount(),
+                            submit_frame_ms.size(), median(submit_frame_ms), pairs, device.c_str());
+                continue;
+            }
             std::printf("%s,%s,%zu,,%d,,,%.3f,%.3f,%.3f,%.3f,%.3f,%zu,%s\n", mode, method.c_str(), a.triangleCount() + b.triangleCount(),
                         frames, median(frame_ms), median(gpu_ms), median(readback_ms), median(narrow_ms), median(total_ms), pairs,
                         device.c_str());

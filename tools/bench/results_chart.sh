@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # docs/results.md's speed-accuracy chart and before/after table, from the committed H200 CSVs:
 #   tools/bench/results_chart.sh [OUT.png]     (default docs/bench/frontier.png; the table goes to stdout)
-# Series: the 2026-11-25 run (tuning.csv, held-out.csv: default = the reliable method, peeling,
+# Series: the 2026-11-25 afternoon run (h200_2026-11-25b: tuning.csv, held-out.csv, warm clocks; default = the reliable method, peeling,
 # paper-sep), the defaults before this session (before_old_defaults.csv, measured with the earlier
 # build), and the 2026-11-22 resolution sweep of the paper's method on the same kind of machine
 # (h200_vkcollide_small.csv 256-4096, h200_vkcollide_large.csv 512-2048: single peeling, compute
@@ -9,7 +9,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out="${1:-docs/bench/frontier.png}"
-run="${RUN:-docs/bench/h200_2026-11-25}"  # RUN=folder: another run with tuning.csv and held-out.csv
+run="${RUN:-docs/bench/h200_2026-11-25b}"  # RUN=folder: another run with tuning.csv and held-out.csv
 before=docs/bench/h200_2026-11-25/before_old_defaults.csv
 bash tools/bench/frontier.sh \
   --title "NVIDIA H200: crossing-pair recall against end-to-end ms per frame, per scene kind (means of frames >= 1)" \

@@ -65,7 +65,7 @@ struct ObjectGpu {
     uint triangle_count;
     uint triangle_base;              // global id of triangle 0
     uint flags;                      // kObjectOpen, kObjectIndex16
-    uint pad0;
+    uint vertex_base;                // index of vertex 0 in its bounds batch (CommonStages::recordFront)
     vec4 model[3];                   // rows of the 3x4 object-to-world transform
 };
 

@@ -134,6 +134,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
     std::vector<gpu::ObjectGpu>& objs = run_.objects;
     objs.resize(shape.objects);
     std::uint32_t base = 0;
+    std::uint64_t vertex_base = 0;  // within the bounds pass's batch (CommonStages::recordFront)
     for (std::uint32_t i = 0; i < shape.objects; ++i) {
         const GpuMesh& m = meshes[i];
         gpu::ObjectGpu o{};
@@ -143,6 +144,9 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
         o.vertex_count = m.vertex_count;
         o.triangle_count = m.triangle_count;
         o.triangle_base = base;
+        if (vertex_base + m.vertex_count > kBoundsBatchVertices) vertex_base = 0;  // a new batch
+        o.vertex_base = static_cast<std::uint32_t>(vertex_base);
+        vertex_base += m.vertex_count;
         o.flags = (m.open ? gpu::kObjectOpen : 0u) | (m.index16 ? gpu::kObjectIndex16 : 0u) |
                   (m.check_on_gpu ? gpu::kObjectCheckOnGpu : 0u) | (m.self_collision ? gpu::kObjectSelfCollide : 0u);
         for (int r = 0; r < 3; ++r) o.model[r] = {m.transform[r * 4], m.transform[r * 4 + 1], m.transform[r * 4 + 2], m.transform[r * 4 + 3]};

@@ -61,9 +61,17 @@ void CommonStages::recordFront(graph::Graph& g, const RunView& run, const GraphB
     }
     if (!run.settings.region) {
         addPass(g, "bounds", PassKind::Compute, Stage::Prepare).readWrite(header).record([this, run](PassContext& pc) {
-            for (std::uint32_t i = 0; i < run.meshes.size(); ++i) {
-                bindAndPush(pc, bounds_, run.frame_address, i);
-                dispatchItems(pc, run.meshes[i].vertex_count);
+            // One dispatch per batch of objects (vertex_base restarts at each; one batch
+            // unless the scene has more than kBoundsBatchVertices vertices).
+            const std::span<const gpu::ObjectGpu> objects = run.objects;
+            for (std::uint32_t first = 0; first < objects.size();) {
+                std::uint32_t end = first + 1;
+                while (end < objects.size() &&
+                       objects[end].vertex_base == std::uint64_t{objects[end - 1].vertex_base} + objects[end - 1].vertex_count)
+                    ++end;
+                bindAndPush(pc, bounds_, run.frame_address, first, end - first);
+                dispatchItems(pc, std::uint64_t{objects[end - 1].vertex_base} + objects[end - 1].vertex_count);
+                first = end;
             }
         });
         addPass(g, "fit", PassKind::Compute, Stage::Prepare)

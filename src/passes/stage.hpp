@@ -41,6 +41,10 @@ using BufferId = std::uint32_t;
 // The run being recorded. Refers to the broad phase's own copy of the run's inputs, which
 // lives until the next prepare(), so record callbacks (run at submission, after the
 // recording functions returned) may capture it by value.
+// Vertices per dispatch of the bounds pass at most (gpu::ObjectGpu::vertex_base counts
+// within a batch and is 32-bit): one batch unless a scene has more.
+inline constexpr std::uint64_t kBoundsBatchVertices = std::uint64_t{1} << 31;
+
 struct RunView {
     const BroadPhaseSettings& settings;
     std::span<const GpuMesh> meshes;

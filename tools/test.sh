@@ -9,7 +9,7 @@
 #      gpu: all of them, ~3 minutes of the run's time; the Vulkan driver and the layer are
 #      not instrumented, tools/sanitize/ says how their leaks are told apart from ours);
 #   3. the host-only code (no Vulkan) under ASan + UBSan, every test labelled host.
-# About 12 minutes on two cores from a fresh clone (docs/stability.md, "CI coverage").
+# About 15 minutes on two cores from a fresh clone (docs/stability.md, "CI coverage").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/deps.sh

@@ -75,7 +75,9 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
     // Closed pairs whose triangles intersect but whose overlap no ray sampled (touching,
     // thinner than a ray spacing): a contact with volume 0 at the middle of their boxes'
     // overlap.
-    for (const auto& [a, b] : touching) {
+    for (const auto& pair : touching) {
+        // Not a structured binding: clang before 16 cannot capture one in the lambda below.
+        const ObjectId a = pair[0], b = pair[1];
         if (objects[a].options.open || objects[b].options.open) continue;
         if (std::any_of(contacts.begin(), contacts.end(), [&](const ObjectContact& c) { return c.object_a == a && c.object_b == b; })) continue;
         ObjectContact oc;

@@ -58,7 +58,11 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.backend = s.backend;
     d.broad.open_epsilon = *s.open_epsilon;
     d.broad.closed_epsilon = s.closed_epsilon;
-    d.broad.coverage = s.coverage;  // resolve() turned Best into Conservative or Dilate
+    // resolve() turned Best into Conservative or Dilate. The reliable method samples no
+    // rays and ignores coverage (checkSettings does not check it then): Centre, so that a
+    // Conservative it was given on a device without conservative rasterisation does not
+    // break the broad phase's precondition.
+    d.broad.coverage = s.method == DetectMethod::Reliable ? Coverage::Centre : s.coverage;
     d.broad.region = s.region;
     d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
     d.broad.depth_aware = s.depth_aware;

@@ -65,7 +65,7 @@ Run runBoth(test::ValidatedContext& ctx, BroadPhase& bp, const std::vector<const
     auto gpu = bp.run(scene->meshes, settings);
     INFO((gpu ? std::string() : gpu.error().message()));
     REQUIRE(gpu);
-    std::vector<test::ReferenceObject> objects;
+    std::vector<test::BroadPhaseObject> objects;
     for (std::size_t i = 0; i < meshes.size(); ++i)
         objects.push_back({meshes[i], i < open.size() && open[i], i >= self.size() || self[i]});
     Run run{std::move(*gpu), {}};

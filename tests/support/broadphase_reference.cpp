@@ -150,8 +150,8 @@ std::size_t ReferenceResult::ambiguousCount() const {
     return static_cast<std::size_t>(std::count(ambiguous.begin(), ambiguous.end(), std::uint8_t(1)));
 }
 
-ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects, const passes::BroadPhaseSettings& s,
-                                    std::uint32_t layers, const GpuRays& gpu) {
+ReferenceResult referenceBroadPhase(const std::vector<BroadPhaseObject>& objects, const passes::BroadPhaseSettings& s, std::uint32_t layers,
+                                    const GpuRays& gpu) {
     const std::uint32_t n = s.resolution;
     const bool depth_aware = s.depth_aware;
     const gpu::Projection proj = passes::regionProjection(passes::projectionBasis(s.direction), *s.region, s.open_epsilon, 0);
@@ -184,7 +184,7 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
     // rule), give each fragment the GPU's 64-bit key, sort each ray, apply the rules.
     std::vector<std::vector<std::uint64_t>> frags(std::size_t(n) * n);
     std::uint32_t tri_base = 0;
-    for (const ReferenceObject& obj : objects) {
+    for (const BroadPhaseObject& obj : objects) {
         const HostMesh& m = *obj.mesh;
         for (std::uint32_t t = 0; t < m.triangleCount(); ++t) {
             double x[3], y[3];
@@ -244,7 +244,7 @@ ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects,
         if (std::fabs(o) < rounding) io_ambiguous = 1;
         if (o < 0) return kNone;
         if (ta.object == tb.object) {
-            const ReferenceObject& obj = objects[ta.object];
+            const BroadPhaseObject& obj = objects[ta.object];
             if (!obj.self_collision || neighbours(*obj.mesh, ta.local, tb.local)) return kNone;
             const float cosine = ta.normal.x * tb.normal.x + ta.normal.y * tb.normal.y + ta.normal.z * tb.normal.z;
             if (std::fabs(cosine - gpu::kSilhouetteCos) < kCosAmbiguity) io_ambiguous = 1;

@@ -14,7 +14,9 @@
 
 namespace vkcollide::test {
 
-struct ReferenceObject {
+// Not named ReferenceObject: exact_reference.hpp has one, and two classes of one name in
+// one program break the one-definition rule (ASan saw std::vector code of one run on the other).
+struct BroadPhaseObject {
     const HostMesh* mesh = nullptr;  // world-space positions (identity transform)
     bool open = false;
     bool self_collision = true;      // as passes::GpuMesh::self_collision
@@ -43,7 +45,7 @@ struct GpuRays {
 // Runs the four passes. `layers` is the number of layers the GPU peeled (min of depth
 // complexity and cap). When `gpu` is given, passes 2-4 start from its rays, so they are
 // checked exactly even where pass 1 has an ambiguous sample.
-ReferenceResult referenceBroadPhase(const std::vector<ReferenceObject>& objects, const passes::BroadPhaseSettings& settings,
+ReferenceResult referenceBroadPhase(const std::vector<BroadPhaseObject>& objects, const passes::BroadPhaseSettings& settings,
                                     std::uint32_t layers, const GpuRays& gpu = {});
 
 }  // namespace vkcollide::test

@@ -3,6 +3,7 @@
 // the writers never produce (groups, polygons, relative indices, comments, skipped
 // PLY elements). Usage: write_fuzz_seeds <folder>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string folder = argv[1];
+    std::error_code made;
+    std::filesystem::create_directories(folder, made);
     std::vector<vkcollide::HostMesh> meshes;
     for (auto r : {vkcollide::uvSphere(1.0f, 5, 3), vkcollide::torus(2.0f, 0.5f, 4, 3),
                    vkcollide::box(vkcollide::Float3{1.0f, 0.5f, 2.0f}, 1), vkcollide::clothGrid(1.0f, 1.0f, 2, 1)}) {

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "stability_support.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/pathological_scenes.hpp"
 #include "vk/device.hpp"
@@ -21,7 +22,6 @@ using namespace vkcollide::test;
 
 namespace {
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
 
 std::unique_ptr<CollisionWorld> worldOf(Context& context, const TestScene& scene, unsigned threads = 2) {
     auto w = CollisionWorld::create(context, {.threads = threads});

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "passes/broad_phase.hpp"
+#include "stability_support.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/test_scenes.hpp"
 #include "vk/loader.hpp"
@@ -21,35 +22,6 @@ using namespace vkcollide::test;
 
 namespace {
 
-// An engine-owned copy of a mesh: packed positions, 32-bit indices, host-visible.
-struct EngineMesh {
-    vk::Buffer vertices, indices;
-    GpuMeshDesc desc;
-    float* positions() { return static_cast<float*>(vertices.mapped()); }
-    std::uint32_t* index() { return static_cast<std::uint32_t*>(indices.mapped()); }
-    void flush() { vertices.flush(), indices.flush(); }
-};
-
-EngineMesh engineCopy(vk::Device& dev, const HostMesh& m) {
-    EngineMesh e;
-    auto vb = vk::Buffer::create(dev, m.positions.size() * 12, 0, vk::MemoryKind::Upload, "engine-vertices");
-    auto ib = vk::Buffer::create(dev, m.indices.size() * 4, 0, vk::MemoryKind::Upload, "engine-indices");
-    REQUIRE(vb);
-    REQUIRE(ib);
-    std::memcpy(vb->mapped(), m.positions.data(), m.positions.size() * 12);
-    std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
-    e.desc.vertex_buffer = vb->handle();
-    e.desc.vertex_buffer_size = vb->size();
-    e.desc.vertex_count = static_cast<std::uint32_t>(m.positions.size());
-    e.desc.index_buffer = ib->handle();
-    e.desc.index_buffer_size = ib->size();
-    e.desc.index_count = static_cast<std::uint32_t>(m.indices.size());
-    e.vertices = std::move(*vb);
-    e.indices = std::move(*ib);
-    e.flush();
-    return e;
-}
-
 // The paper's method: the memory check below is its table's (broadPhaseMemory); the
 // reliable method's handling of bad engine meshes is tested in tests/api/reliable_tests.cpp.
 DetectSettings fixed(std::uint32_t resolution = 128) {
@@ -60,7 +32,6 @@ DetectSettings fixed(std::uint32_t resolution = 128) {
     return s;
 }
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
 
 // The pairs of the scene without object `skip` (host meshes, ids renumbered back).
 std::vector<TrianglePair> pairsWithout(ValidatedContext& ctx, const TestScene& scene, std::vector<ObjectId> skip) {

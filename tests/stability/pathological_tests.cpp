@@ -10,70 +10,13 @@
 #include "broadphase.h"
 #include "passes/broad_phase.hpp"
 #include "passes/mesh_upload.hpp"
-#include "support/gpu_fixture.hpp"
-#include "support/pathological_scenes.hpp"
-#include "vk/resources.hpp"
+#include "stability_support.hpp"
 #include "vkcollide/io.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::test;
 
 namespace {
-
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
-
-// The pairs against the reference, reported as counts (pair lists are long).
-void checkExact(const std::vector<TrianglePair>& found, const std::vector<TrianglePair>& reference) {
-    const PairComparison cmp = comparePairs(found, reference);
-    INFO("found " << found.size() << ", reference " << reference.size() << ", missed " << cmp.false_negatives << ", spurious "
-                  << cmp.false_positives);
-    CHECK(cmp.false_negatives == 0);
-    CHECK(cmp.false_positives == 0);
-    CHECK(found.size() == reference.size());
-}
-
-// An engine-owned copy of a mesh (packed positions, 32-bit indices).
-struct EngineMesh {
-    vk::Buffer vertices, indices;
-    GpuMeshDesc desc;
-};
-
-EngineMesh engineCopy(vk::Device& dev, const HostMesh& m) {
-    EngineMesh e;
-    auto vb = vk::Buffer::create(dev, m.positions.size() * 12, 0, vk::MemoryKind::Upload, "engine-vertices");
-    auto ib = vk::Buffer::create(dev, m.indices.size() * 4, 0, vk::MemoryKind::Upload, "engine-indices");
-    REQUIRE(vb);
-    REQUIRE(ib);
-    std::memcpy(vb->mapped(), m.positions.data(), m.positions.size() * 12);
-    std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
-    vb->flush();
-    ib->flush();
-    e.desc.vertex_buffer = vb->handle();
-    e.desc.vertex_buffer_size = vb->size();
-    e.desc.vertex_count = static_cast<std::uint32_t>(m.positions.size());
-    e.desc.index_buffer = ib->handle();
-    e.desc.index_buffer_size = ib->size();
-    e.desc.index_count = static_cast<std::uint32_t>(m.indices.size());
-    e.vertices = std::move(*vb);
-    e.indices = std::move(*ib);
-    return e;
-}
-
-// The case's objects as host meshes (or, with `engine`, as engine buffers kept in `keep`).
-std::unique_ptr<CollisionWorld> worldOf(ValidatedContext& ctx, const PathologicalCase& c, bool engine = false,
-                                        std::vector<EngineMesh>* keep = nullptr) {
-    auto w = CollisionWorld::create(ctx.context(), {.threads = 2});
-    REQUIRE(w);
-    for (const SceneObject& o : c.scene.objects) {
-        if (engine) {
-            keep->push_back(engineCopy(ctx.device(), o.mesh));
-            REQUIRE((*w)->addGpuMesh(keep->back().desc, o.options));
-        } else {
-            REQUIRE((*w)->addMesh(o.mesh, o.options));
-        }
-    }
-    return std::move(*w);
-}
 
 Result<DetectResult> detectWith(CollisionWorld& w, DetectSettings s, SamplingBackend backend) {
     s.backend = backend;
@@ -90,7 +33,7 @@ TEST_CASE("one triangle repeated past the deepest peeled ray gives every pair, o
     REQUIRE(deep);
     for (bool engine : {false, true}) {
         std::vector<EngineMesh> keep;
-        auto world = worldOf(ctx, *deep, engine, &keep);
+        auto world = worldOf(ctx, *deep, engine ? &keep : nullptr);
         for (SamplingBackend backend : {SamplingBackend::Raster, SamplingBackend::Compute}) {
             INFO((engine ? "engine buffers, " : "host meshes, ") << toString(backend));
             auto r = detectWith(*world, deep->settings, backend);
@@ -354,7 +297,7 @@ TEST_CASE("coordinates inside the sampling range give the pair on both backends,
         auto near = scaledCrossing(1.0f);
         REQUIRE(near);
         std::vector<EngineMesh> keep;
-        auto world = worldOf(ctx, *far, true, &keep);
+        auto world = worldOf(ctx, *far, &keep);
         for (SamplingBackend backend : {SamplingBackend::Raster, SamplingBackend::Compute}) {
             INFO(toString(backend));
             // Both objects bad: nothing left to test.

@@ -12,26 +12,12 @@
 #include <string>
 
 #include "cells.h"
-#include "support/gpu_fixture.hpp"
-#include "support/pathological_scenes.hpp"
-#include "support/world_fixture.hpp"
-#include "vk/resources.hpp"
+#include "stability_support.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::test;
 
 namespace {
-
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
-
-void checkExact(const std::vector<TrianglePair>& found, const std::vector<TrianglePair>& reference) {
-    const PairComparison cmp = comparePairs(found, reference);
-    INFO("found " << found.size() << ", reference " << reference.size() << ", missed " << cmp.false_negatives << ", spurious "
-                  << cmp.false_positives);
-    CHECK(cmp.false_negatives == 0);
-    CHECK(cmp.false_positives == 0);
-    CHECK(found.size() == reference.size());
-}
 
 // The case's scene with the automatic settings of the default method (the case's own
 // settings are the peeling method's rays), or with `s`.
@@ -47,46 +33,6 @@ void checkBudgetError(const Result<DetectResult>& r, const std::string& count) {
     CHECK(r.error().code() == ErrorCode::LimitExceeded);
     CHECK(mentions(r.error(), "max_candidate_pairs"));
     CHECK(mentions(r.error(), count));
-}
-
-// An engine-owned copy of a mesh (packed positions, 32-bit indices).
-struct EngineMesh {
-    vk::Buffer vertices, indices;
-    GpuMeshDesc desc;
-};
-
-EngineMesh engineCopy(vk::Device& dev, const HostMesh& m) {
-    EngineMesh e;
-    auto vb = vk::Buffer::create(dev, m.positions.size() * 12, 0, vk::MemoryKind::Upload, "engine-vertices");
-    auto ib = vk::Buffer::create(dev, m.indices.size() * 4, 0, vk::MemoryKind::Upload, "engine-indices");
-    REQUIRE(vb);
-    REQUIRE(ib);
-    std::memcpy(vb->mapped(), m.positions.data(), m.positions.size() * 12);
-    std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
-    vb->flush();
-    ib->flush();
-    e.desc.vertex_buffer = vb->handle();
-    e.desc.vertex_buffer_size = vb->size();
-    e.desc.vertex_count = static_cast<std::uint32_t>(m.positions.size());
-    e.desc.index_buffer = ib->handle();
-    e.desc.index_buffer_size = ib->size();
-    e.desc.index_count = static_cast<std::uint32_t>(m.indices.size());
-    e.vertices = std::move(*vb);
-    e.indices = std::move(*ib);
-    return e;
-}
-
-std::unique_ptr<CollisionWorld> worldOf(ValidatedContext& ctx, const PathologicalCase& c, std::vector<EngineMesh>* engine = nullptr) {
-    auto w = makeWorld(ctx);
-    for (const SceneObject& o : c.scene.objects) {
-        if (engine) {
-            engine->push_back(engineCopy(ctx.device(), o.mesh));
-            REQUIRE(w->addGpuMesh(engine->back().desc, o.options));
-        } else {
-            REQUIRE(w->addMesh(o.mesh, o.options));
-        }
-    }
-    return w;
 }
 
 }  // namespace

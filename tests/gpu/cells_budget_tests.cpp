@@ -221,39 +221,10 @@ TEST_CASE("cells: projection rows of 2^62 or more, or not finite when written on
     for (auto rows : {std::initializer_list<int>{2}, std::initializer_list<int>{0}}) {
         INFO("row " << *rows.begin() << " not finite");
         const gpu::Projection pr = *rows.begin() == 2 ? scaled(rows, nan) : scaled(rows, std::numeric_limits<float>::infinity());
-        auto staging = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::Upload, "projection-staging");
-        auto written = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::DeviceLocal, "projection");
-        REQUIRE(staging);
-        REQUIRE(written);
-        std::memcpy(staging->mapped(), &pr, sizeof pr);
-        staging->flush();
         passes::CellPairsInput in;
         in.objects = up.objects;
-        in.projection_address = written->address();
         in.resolution = 32;
-        REQUIRE((*cells)->prepare(in));
-        graph::Executor executor(ctx.device());
-        passes::CellPairsResult out;
-        for (int attempt = 0;; ++attempt) {
-            REQUIRE(attempt < 8);
-            graph::Graph g;
-            const auto src = g.importBuffer("projection-staging", *staging);
-            const auto dst = g.importBuffer("projection", *written);
-            const VkBuffer from = staging->handle(), to = written->handle();
-            g.addPass("write-projection", graph::PassKind::Transfer)
-                .use(src, graph::Use::TransferSrc)
-                .use(dst, graph::Use::TransferDst)
-                .record([from, to](graph::PassContext& pc) {
-                    VkBufferCopy copy{0, 0, sizeof(gpu::Projection)};
-                    pc.fns().vkCmdCopyBuffer(pc.cmd, from, to, 1, &copy);
-                });
-            (*cells)->record(g, dst);
-            REQUIRE(executor.run(g));
-            auto outcome = (*cells)->finish(out);
-            INFO((outcome ? std::string() : outcome.error().message()));
-            REQUIRE(outcome);
-            if (*outcome == passes::CellPairs::Outcome::Complete) break;
-        }
+        const passes::CellPairsResult out = runWithWrittenProjection(ctx, **cells, in, pr);
         requireAllFound(CellRun{out, toObjectPairs(up.objects, out.pairs)}, reference);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

@@ -173,41 +173,13 @@ TEST_CASE("cells: projection written by an earlier pass of the same graph", "[ce
 
     UploadedScene up = uploadScene(ctx.device(), scene);
     const gpu::Projection pr = fitProjection(scene, opt.direction);
-    auto staging = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::Upload, "projection-staging");
-    auto device_projection = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::DeviceLocal, "projection");
-    REQUIRE(staging);
-    REQUIRE(device_projection);
-    std::memcpy(staging->mapped(), &pr, sizeof pr);
-    staging->flush();
     passes::CellPairsInput in;
     in.objects = up.objects;
-    in.projection_address = device_projection->address();
     in.resolution = 64;
     in.self_collision = scene.self;
     auto other = passes::CellPairs::create(ctx.device());
     REQUIRE(other);
-    REQUIRE((*other)->prepare(in));
-    graph::Executor executor(ctx.device());
-    passes::CellPairsResult out;
-    for (int attempt = 0;; ++attempt) {
-        REQUIRE(attempt < 8);
-        graph::Graph g;
-        const auto src = g.importBuffer("projection-staging", *staging);
-        const auto dst = g.importBuffer("projection", *device_projection);
-        const VkBuffer from = staging->handle(), to = device_projection->handle();
-        g.addPass("write-projection", graph::PassKind::Transfer)
-            .use(src, graph::Use::TransferSrc)
-            .use(dst, graph::Use::TransferDst)
-            .record([from, to](graph::PassContext& pc) {
-                VkBufferCopy copy{0, 0, sizeof(gpu::Projection)};
-                pc.fns().vkCmdCopyBuffer(pc.cmd, from, to, 1, &copy);
-            });
-        (*other)->record(g, dst);
-        REQUIRE(executor.run(g));
-        auto outcome = (*other)->finish(out);
-        REQUIRE(outcome);
-        if (*outcome == passes::CellPairs::Outcome::Complete) break;
-    }
+    const passes::CellPairsResult out = runWithWrittenProjection(ctx, **other, in, pr);
     REQUIRE(expected.pairs.size() > 50);
     CHECK(toObjectPairs(up.objects, out.pairs) == expected.pairs);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

@@ -9,10 +9,13 @@
 #include <cstring>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
+#include "graph/executor.hpp"
+#include "graph/graph.hpp"
 #include "passes/cells/cell_pairs.hpp"
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
@@ -170,6 +173,46 @@ inline void requireAllFound(const CellRun& run, const std::vector<TrianglePair>&
         UNSCOPED_INFO("missed (" << c.missed[i].object_a << ", " << c.missed[i].triangle_a << ") x (" << c.missed[i].object_b
                                  << ", " << c.missed[i].triangle_b << ")");
     REQUIRE(c.false_negatives == 0);
+}
+
+// The stage run as part of a larger graph: an earlier pass of that graph writes the
+// projection `pr` into a device-local buffer (as the detection's fit does) and the stage
+// reads it there; rerun until complete (at most 8 runs). `in` is used as given, its
+// projection_address set here.
+inline passes::CellPairsResult runWithWrittenProjection(ValidatedContext& ctx, passes::CellPairs& stage, passes::CellPairsInput in,
+                                                        const gpu::Projection& pr) {
+    auto staging = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::Upload, "projection-staging");
+    auto written = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::DeviceLocal, "projection");
+    REQUIRE(staging);
+    REQUIRE(written);
+    std::memcpy(staging->mapped(), &pr, sizeof pr);
+    staging->flush();
+    in.projection.reset();
+    in.projection_address = written->address();
+    REQUIRE(stage.prepare(in));
+    graph::Executor executor(ctx.device());
+    passes::CellPairsResult out;
+    for (int attempt = 0;; ++attempt) {
+        REQUIRE(attempt < 8);
+        graph::Graph g;
+        const auto src = g.importBuffer("projection-staging", *staging);
+        const auto dst = g.importBuffer("projection", *written);
+        const VkBuffer from = staging->handle(), to = written->handle();
+        g.addPass("write-projection", graph::PassKind::Transfer)
+            .use(src, graph::Use::TransferSrc)
+            .use(dst, graph::Use::TransferDst)
+            .record([from, to](graph::PassContext& pc) {
+                VkBufferCopy copy{0, 0, sizeof(gpu::Projection)};
+                pc.fns().vkCmdCopyBuffer(pc.cmd, from, to, 1, &copy);
+            });
+        stage.record(g, dst);
+        REQUIRE(executor.run(g));
+        auto outcome = stage.finish(out);
+        INFO((outcome ? std::string() : outcome.error().message()));
+        REQUIRE(outcome);
+        if (*outcome == passes::CellPairs::Outcome::Complete) break;
+    }
+    return out;
 }
 
 }  // namespace vkcollide::test

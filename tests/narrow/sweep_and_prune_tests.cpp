@@ -175,34 +175,42 @@ TEST_CASE("Sweep and prune skips pairs of objects that do not self-collide", "[n
 
 TEST_CASE("Radix sort orders 64-bit keys stably", "[narrow][sort]") {
     std::mt19937_64 rng(5);
-    for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(2047), std::size_t(2048), std::size_t(5000)}) {
-        std::vector<narrow::KeyIndex> items(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            // Few distinct high bytes, some duplicates, some keys using all 64 bits.
-            const std::uint64_t r = rng();
-            const std::uint64_t key = (i % 7 == 0) ? r : ((r % 50) << 32) | (r % 300);
-            items[i] = {key, static_cast<std::uint32_t>(i)};
-        }
-        std::vector<narrow::KeyIndex> expected = items;
-        std::stable_sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
-        narrow::radixSort(items);
-        REQUIRE(items.size() == expected.size());
-        for (std::size_t i = 0; i < n; ++i) {
-            REQUIRE(items[i].key == expected[i].key);
-            REQUIRE(items[i].index == expected[i].index);
+    for (unsigned threads : {1u, 3u}) {
+        ThreadPool pool(threads);
+        // Below and above kSerialBelow: the serial and the parallel path.
+        for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(2047), std::size_t(2048), std::size_t(5000)}) {
+            narrow::Buffer<narrow::KeyIndex> items, scratch;
+            items.resize(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                // Few distinct high bytes, some duplicates, some keys using all 64 bits.
+                const std::uint64_t r = rng();
+                const std::uint64_t key = (i % 7 == 0) ? r : ((r % 50) << 32) | (r % 300);
+                items[i] = {key, static_cast<std::uint32_t>(i)};
+            }
+            std::vector<narrow::KeyIndex> expected(items.begin(), items.end());
+            std::stable_sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) { return a.key < b.key; });
+            narrow::parallelRadixSort(pool, items, scratch, 64);
+            REQUIRE(items.size() == expected.size());
+            for (std::size_t i = 0; i < n; ++i) {
+                REQUIRE(items[i].key == expected[i].key);
+                REQUIRE(items[i].index == expected[i].index);
+            }
         }
     }
 }
 
-TEST_CASE("Radix sort can leave a payload in the low bytes unsorted", "[narrow][sort]") {
+TEST_CASE("Radix sort can leave a payload in the low bits unsorted", "[narrow][sort]") {
     std::mt19937 rng(9);
-    for (std::size_t n : {std::size_t(100), std::size_t(3000)}) {  // comparison sort, radix passes
+    ThreadPool pool(3);
+    for (std::size_t n : {std::size_t(100), std::size_t(3000), std::size_t(9000)}) {  // serial, serial, parallel
         // High half: a key with many ties; low half: the original position.
-        std::vector<std::uint64_t> items(n);
+        narrow::Buffer<std::uint64_t> items, scratch;
+        items.resize(n);
         for (std::size_t i = 0; i < n; ++i) items[i] = (std::uint64_t{rng() % 40} << 32) | i;
-        std::vector<std::uint64_t> expected = items;
+        std::vector<std::uint64_t> expected(items.begin(), items.end());
         std::stable_sort(expected.begin(), expected.end(), [](auto a, auto b) { return (a >> 32) < (b >> 32); });
-        narrow::radixSort(items, 4);
-        CHECK(items == expected);  // ties keep their order: sorted by the whole key
+        narrow::parallelRadixSort(pool, items, scratch, 64, 32);
+        // Ties keep their order: sorted by the whole key.
+        CHECK(std::vector<std::uint64_t>(items.begin(), items.end()) == expected);
     }
 }

@@ -260,29 +260,26 @@ int main(int argc, char** argv) {
                 readback_ms.push_back(r->stats.readback_ms);
                 pairs = r->pairs.size();
             };
+            // Frame `f`'s poses written by the host into vertex buffer `buffer` of both meshes.
+            auto writeFrame = [&](int f, int buffer) {
+                pose(a, f, -0.8f, pa);
+                pose(b, f, 0.8f, pb);
+                std::memcpy(ea.vertices[buffer].mapped(), pa.data(), pa.size() * sizeof(Float3));
+                std::memcpy(eb.vertices[buffer].mapped(), pb.data(), pb.size() * sizeof(Float3));
+                ea.vertices[buffer].flush();
+                eb.vertices[buffer].flush();
+                if (auto ok = w.setGpuMeshBuffers(*ia, ea.desc(buffer)); !ok) die(ok.error().message());
+                if (auto ok = w.setGpuMeshBuffers(*ib, eb.desc(buffer)); !ok) die(ok.error().message());
+            };
             // The GPU's clocks drop while it idles (building this world): detect until it
             // has been busy for --warmup-ms, so every mode starts at the same clocks.
-            pose(a, 0, -0.8f, pa);
-            pose(b, 0, 0.8f, pb);
-            std::memcpy(ea.vertices[1].mapped(), pa.data(), pa.size() * sizeof(Float3));
-            std::memcpy(eb.vertices[1].mapped(), pb.data(), pb.size() * sizeof(Float3));
-            ea.vertices[1].flush();
-            eb.vertices[1].flush();
-            if (auto ok = w.setGpuMeshBuffers(*ia, ea.desc(1)); !ok) die(ok.error().message());
-            if (auto ok = w.setGpuMeshBuffers(*ib, eb.desc(1)); !ok) die(ok.error().message());
+            writeFrame(0, 1);
             for (const auto w0 = Clock::now(); msSince(w0) < warmup_ms;)
                 if (!w.detect(settings)) break;
             for (int f = 0; f < frames + 2; ++f) {
                 const auto t0 = Clock::now();
                 // Buffer f % 2: the detection that read it (frame f - 2) has been collected.
-                pose(a, f, -0.8f, pa);
-                pose(b, f, 0.8f, pb);
-                std::memcpy(ea.vertices[f % 2].mapped(), pa.data(), pa.size() * sizeof(Float3));
-                std::memcpy(eb.vertices[f % 2].mapped(), pb.data(), pb.size() * sizeof(Float3));
-                ea.vertices[f % 2].flush();
-                eb.vertices[f % 2].flush();
-                if (auto ok = w.setGpuMeshBuffers(*ia, ea.desc(f % 2)); !ok) die(ok.error().message());
-                if (auto ok = w.setGpuMeshBuffers(*ib, eb.desc(f % 2)); !ok) die(ok.error().message());
+                writeFrame(f, f % 2);
                 Result<DetectResult> r = Error(ErrorCode::InvalidArgument, "none");
                 const bool by_submit = alternating && f % 2 == 1;
                 if (std::string(mode) == "detect" || (alternating && !by_submit)) {

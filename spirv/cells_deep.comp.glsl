@@ -7,7 +7,9 @@
 // object tests itself, skipping neighbours that share a vertex index), finds by binary search the first entry after it in (zlo, index)
 // order and pairs with the following ones until one starts beyond its zhi. So a cell
 // where one object piles up (silhouettes, fans of slivers around a vertex) costs no more
-// than its pairs and a binary search per run, not its entries squared. Deeper cells come
+// than its pairs and a binary search per run, not its entries squared; the vertex indices
+// of self-colliding objects' entries are loaded with the cell, so the neighbour rule (most
+// of such a cell's pairs) reads shared memory. Deeper cells come
 // in chunks of kCellsGroupSize entries, each entry scanning the whole cell as the shallow
 // sweep does.
 #include "cells_common.glsl.inc"
@@ -15,11 +17,10 @@
 layout(local_size_x = kCellsGroupSize) in;
 
 shared float s_zlo[kCellsDeepShared];
-shared float s_zhi[kCellsDeepShared];
 shared uint s_key[kCellsDeepShared];
-shared uint s_tri[kCellsDeepShared];
 shared uint s_order[kCellsDeepShared];
 shared uint s_runs[kCellsDeepShared + 1];  // first sorted position of each object's run, then k
+shared uvec3 s_index[kCellsDeepShared];  // vertex indices of entries whose object tests itself (neighbour rule)
 
 const float kFloatMax = 3.4028234663852886e38;
 
@@ -50,9 +51,10 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
         if (x < k) {
             CellsEntry en = CellsEntriesRef(P.entries).e[begin + x];
             s_zlo[x] = en.zlo;
-            s_zhi[x] = en.zhi;
             s_key[x] = en.key;
-            s_tri[x] = en.triangle;
+            // Loaded once here, not once per pair: a self-colliding object's deep cell
+            // (a pole's fan of slivers) pairs mostly neighbours.
+            if ((en.key & kCellsKeySelf) != 0u) s_index[x] = triangleIndices(P, en.triangle);
         } else {
             s_zlo[x] = kFloatMax;  // padding sorts last: the largest object, then index >= k
             s_key[x] = kCellsKeyObject;
@@ -105,7 +107,8 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
         }
         for (uint p = tid; p < k; p += kCellsGroupSize) {
             uint a = s_order[p];
-            uvec3 mine = (s_key[a] & kCellsKeySelf) != 0u ? triangleIndices(P, s_tri[a]) : uvec3(~0u);
+            CellsEntry me = CellsEntriesRef(P.entries).e[begin + a];  // its zhi and triangle: read once, not kept in shared memory
+            uvec3 mine = (s_key[a] & kCellsKeySelf) != 0u ? s_index[a] : uvec3(~0u);
             for (uint r = 0u; r < runs; ++r) {
                 uint first = s_runs[r], end = s_runs[r + 1u];
                 if (!mayCollide(P, s_key[a], s_key[s_order[first]])) continue;
@@ -118,14 +121,15 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
                 if (lo < end && s_order[lo] == a) ++lo;
                 for (uint q = lo; q < end; ++q) {
                     uint b = s_order[q];
-                    if (s_zlo[b] > s_zhi[a]) break;
-                    uint dropped = 0u;
-                    if (!sweepPair(P, s_key[a], mine, s_key[b], s_tri[b], dropped)) {
-                        if (pass == 0u) neighbours += dropped;
+                    if (s_zlo[b] > me.zhi) break;
+                    // sweepPair's rule, the indices from shared memory.
+                    if (!mayCollide(P, s_key[a], s_key[b])) continue;
+                    if (s_key[a] == s_key[b] && shareIndex(mine, s_index[b])) {
+                        if (pass == 0u) ++neighbours;
                         continue;
                     }
                     if (pass == 0u) ++n;
-                    else emit(P, out_slot, s_tri[a], s_tri[b], cell);
+                    else emit(P, out_slot, me.triangle, CellsEntriesRef(P.entries).e[begin + b].triangle, cell);
                 }
             }
         }

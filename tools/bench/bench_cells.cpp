@@ -7,7 +7,8 @@
 // For each scene and each resolution factor f (cells per side = f * projected extent /
 // mean edge length: f = 1 is about one cell per typical edge) it runs one warm-up (buffers
 // grow to what the scene needs) and K timed runs, and prints: entries per triangle, the
-// deepest cell and the cells deeper than kCellsSmallCell, candidates, the overlapping
+// deepest cell and the cells deeper than kCellsSmallCell, the pairs of footprints sharing
+// a cell (what the sweep compares), candidates, the overlapping
 // pairs the sweep left out as neighbours, the percentages of candidates the pair pass
 // dropped as duplicates and as proved disjoint, survivors, the exact pairs and the recall against them
 // (tests/support/exact_reference.cpp), candidates per true pair, the median GPU time (first
@@ -326,8 +327,8 @@ int main(int argc, char** argv) {
     graph::Executor executor(device);
     std::printf("device: %s, filter %s, scale %g, %d timed runs (deforming: %d frames)\n", device.info.name.c_str(),
                 (*stage)->filterSupported() ? "on (shaderFloat64)" : "off", scale, repeat, frames);
-    std::printf("%-15s %9s %5s %5s %6s %11s %6s %9s %7s %10s %9s %5s %5s %9s %8s %8s %7s %8s %8s | %6s %6s %6s %6s %6s %6s\n", "scene", "tris", "dir",
-                "f", "N", "entries", "e/tri", "max_cell", "deep", "cands", "nbrs", "dup%", "flt%", "survive", "exact", "recall", "c/pair", "gpu_ms", "wall_ms",
+    std::printf("%-15s %9s %5s %5s %6s %11s %6s %9s %7s %11s %10s %9s %5s %5s %9s %8s %8s %7s %8s %8s | %6s %6s %6s %6s %6s %6s\n", "scene", "tris", "dir",
+                "f", "N", "entries", "e/tri", "max_cell", "deep", "compared", "cands", "nbrs", "dup%", "flt%", "survive", "exact", "recall", "c/pair", "gpu_ms", "wall_ms",
                 "setup", "big", "scan", "fill", "sweep", "pairs");
     for (const SceneSpec& spec : allScenes()) {
         if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), spec.name) == wanted.end()) continue;
@@ -410,6 +411,7 @@ int main(int argc, char** argv) {
                 row.stats.max_cell = std::max(row.stats.max_cell, s.max_cell);
                 row.stats.deep_cells += s.deep_cells;
                 row.stats.candidates += s.candidates;
+                row.stats.comparisons += s.comparisons;
                 row.stats.survivors += s.survivors;
                 row.stats.neighbours += s.neighbours;
                 row.stats.duplicates += s.duplicates;
@@ -444,10 +446,10 @@ int main(int argc, char** argv) {
                 std::snprintf(per_pair, sizeof per_pair, "%.1f", exact ? double(row.stats.candidates) / double(exact) : 0.0);
             }
             const double cands = std::max<double>(1.0, double(row.stats.candidates));
-            std::printf("%-15s %9zu %5c %5.2f %6u %11.0f %6.2f %9llu %7.0f %10.0f %9.0f %5.1f %5.1f %9.0f %8.0f %8s %7s %8.3f %8.3f | %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f\n",
+            std::printf("%-15s %9zu %5c %5.2f %6u %11.0f %6.2f %9llu %7.0f %11.0f %10.0f %9.0f %5.1f %5.1f %9.0f %8.0f %8s %7s %8.3f %8.3f | %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f\n",
                         spec.name.c_str(), tris, axis, factors[fi], row.n, double(row.stats.entries) * per_frame,
                         tris ? double(row.stats.entries) * per_frame / double(tris) : 0.0, (unsigned long long)row.stats.max_cell,
-                        double(row.stats.deep_cells) * per_frame,
+                        double(row.stats.deep_cells) * per_frame, double(row.stats.comparisons) * per_frame,
                         double(row.stats.candidates) * per_frame, double(row.stats.neighbours) * per_frame,
                         100.0 * double(row.stats.duplicates) / cands, 100.0 * double(row.stats.filtered) / cands,
                         double(row.stats.survivors) * per_frame, double(exact) * per_frame,

@@ -24,9 +24,13 @@ NarrowWorkspace::Impl& NarrowWorkspace::impl() {
 namespace narrow {
 namespace {
 
-// Exact tests per task: large enough to amortise the hand-out, small enough to balance
-// (a test costs 0.05 to 1 microseconds, more when the exact fallback runs).
-constexpr std::size_t kTestGrain = 512;
+// Exact tests per task: about four tasks per thread, within [kMinTestGrain, kMaxTestGrain]:
+// large enough to amortise the hand-out, small enough to balance (a test costs 0.05 to 1
+// microseconds, more when the exact fallback runs) and, for the few hundred tests of a
+// light contact, to spread them over the threads at all (a fixed 512 ran 650 tests as two
+// tasks). Results do not depend on it: hits are concatenated in test order.
+constexpr std::size_t kMinTestGrain = 32;
+constexpr std::size_t kMaxTestGrain = 512;
 // Items per task of the linear loops that build the result.
 constexpr std::size_t kResultGrain = 2048;
 
@@ -108,6 +112,8 @@ void respond(const Buffer<std::uint64_t>& colliding, const SlotData& slots, std:
 
 }  // namespace
 
+std::size_t testGrain(std::size_t tests, unsigned threads) { return grainFor(tests, threads, 4, kMinTestGrain, kMaxTestGrain); }
+
 void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::size_t slot_count, bool tests_in_order,
                     const NarrowOptions& options, Executor& ex, NarrowWorkspace::Impl& ws, NarrowResult& out,
                     StageClock& clock) {
@@ -139,7 +145,8 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     // tests more per thread) and always counted; past the budget the first max_pairs hits
     // in test order are kept (below), whatever the scheduling was.
     const std::size_t total_tests = test_begin.back();
-    const std::size_t test_tasks = taskCount(total_tests, kTestGrain);
+    const std::size_t test_grain = testGrain(total_tests, ex.threadCount());
+    const std::size_t test_tasks = taskCount(total_tests, test_grain);
     std::vector<std::vector<std::uint64_t>>& hits = ws.hits;  // (lower slot, higher slot) per hit
     hits.resize(test_tasks);
     std::vector<std::size_t>& object_filtered = ws.object_filtered;
@@ -151,7 +158,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     std::atomic<std::size_t> stored{0};
     const std::size_t budget = options.max_pairs;
     const auto testTask = [&](std::size_t begin, std::size_t end, bool keep) {
-        const std::size_t task_index = begin / kTestGrain;
+        const std::size_t task_index = begin / test_grain;
         // Built in a local (keeping the capacity of the last call) and moved back at the
         // end: tasks sit next to each other in memory, and growing vectors in place would
         // share cache lines between threads.
@@ -190,10 +197,10 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
         found_per_task[task_index] = hit_total;
         kept[task_index] = keep ? 1 : 0;
     };
-    ex.parallelFor(total_tests, kTestGrain, [&](std::size_t begin, std::size_t end) {
+    ex.parallelFor(total_tests, test_grain, [&](std::size_t begin, std::size_t end) {
         const bool keep = stored.load(std::memory_order_relaxed) < budget;
         testTask(begin, end, keep);
-        if (keep) stored.fetch_add(hits[begin / kTestGrain].size(), std::memory_order_relaxed);
+        if (keep) stored.fetch_add(hits[begin / test_grain].size(), std::memory_order_relaxed);
     });
     std::size_t filtered_late = 0, hit_count = 0, found_count = 0;
     for (std::size_t t = 0; t < test_tasks; ++t) {
@@ -209,7 +216,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
                 hits[t].clear();
                 continue;
             }
-            if (!kept[t] && found_per_task[t] > 0) testTask(t * kTestGrain, std::min(total_tests, (t + 1) * kTestGrain), true);
+            if (!kept[t] && found_per_task[t] > 0) testTask(t * test_grain, std::min(total_tests, (t + 1) * test_grain), true);
             if (hits[t].size() > room) hits[t].resize(room);
             room -= hits[t].size();
         }

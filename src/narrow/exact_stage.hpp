@@ -40,6 +40,9 @@ private:
     Clock::time_point start_, mark_;
 };
 
+// Exact tests per parallel task for `tests` tests on `threads` threads.
+std::size_t testGrain(std::size_t tests, unsigned threads);
+
 // Stages 3 to 6 on the pairs that `tasks` found (their counters already in out.stats):
 // may_collide once per distinct object pair (ascending, this thread), the exact tests in
 // parallel, the colliding pairs in canonical order (sorted unless `tests_in_order`: the

@@ -21,6 +21,10 @@ struct PairTask {
     std::size_t sap_pairs = 0, filtered_pairs = 0, neighbour_pairs = 0;
 };
 
+struct Vec3d {
+    double x = 0, y = 0, z = 0;
+};
+
 inline std::uint64_t keyOf(std::uint32_t high, std::uint32_t low) { return (std::uint64_t{high} << 32) | low; }
 
 // Times the stages of one call.

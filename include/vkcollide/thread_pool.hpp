@@ -34,6 +34,13 @@ public:
     // throw and must not call parallelFor on the same executor.
     virtual void parallelFor(std::size_t count, std::size_t grain,
                              const std::function<void(std::size_t, std::size_t)>& body) = 0;
+
+    // A hint that loops able to use `threads` threads (the caller included) follow within
+    // about a hundred microseconds: an executor whose threads sleep between calls may start
+    // waking them now, so that the first loop that needs them does not wait for them. The
+    // narrow phase calls it on entry when its input is large enough. Never required for
+    // correctness; the default does nothing. Same thread rules as parallelFor.
+    virtual void prepare(unsigned threads) noexcept { static_cast<void>(threads); }
 };
 
 // An engine's parallel-for: run run_task(k) once for every k in [0, task_count), on any
@@ -67,7 +74,9 @@ private:
 // thread that calls parallelFor works on the loop too, so a pool of N threads starts
 // N - 1 workers. Chunks are handed out with one atomic increment each. After a loop,
 // workers poll for about 100 microseconds (the narrow phase runs about ten loops back to
-// back), then sleep until the next loop.
+// back), then sleep until the next loop. A loop wakes only as many sleeping workers as it
+// has chunks for (the caller wakes one, each woken worker the next); prepare() starts
+// waking them before the loop.
 //
 // Thread safety: parallelFor may be called from any thread; calls are serialised (one
 // loop runs at a time). The destructor must not run concurrently with parallelFor.
@@ -89,6 +98,10 @@ public:
     // As Executor::parallelFor. A loop of one chunk runs on the calling thread alone.
     void parallelFor(std::size_t count, std::size_t grain,
                      const std::function<void(std::size_t, std::size_t)>& body) override;
+
+    // As Executor::prepare: wakes up to threads - 1 sleeping workers (one now, the others
+    // through the chain) and returns; does nothing while another thread runs a loop.
+    void prepare(unsigned threads) noexcept override;
 
     struct Shared;  // the state workers and the caller share (src/narrow/thread_pool.cpp)
 

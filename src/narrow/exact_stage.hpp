@@ -21,6 +21,10 @@ struct PairTask {
     std::size_t sap_pairs = 0, filtered_pairs = 0, neighbour_pairs = 0;
 };
 
+struct Vec3d {
+    double x = 0, y = 0, z = 0;
+};
+
 inline std::uint64_t keyOf(std::uint32_t high, std::uint32_t low) { return (std::uint64_t{high} << 32) | low; }
 
 // Times the stages of one call.
@@ -39,6 +43,9 @@ public:
 private:
     Clock::time_point start_, mark_;
 };
+
+// Exact tests per parallel task for `tests` tests on `threads` threads.
+std::size_t testGrain(std::size_t tests, unsigned threads);
 
 // Stages 3 to 6 on the pairs that `tasks` found (their counters already in out.stats):
 // may_collide once per distinct object pair (ascending, this thread), the exact tests in

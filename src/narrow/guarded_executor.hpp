@@ -28,6 +28,7 @@ public:
     explicit GuardedExecutor(Executor& inner) : inner_(inner) {}
 
     unsigned threadCount() const noexcept override { return inner_.threadCount(); }
+    void prepare(unsigned threads) noexcept override { inner_.prepare(threads); }
 
     void parallelFor(std::size_t count, std::size_t grain,
                      const std::function<void(std::size_t, std::size_t)>& body) override {

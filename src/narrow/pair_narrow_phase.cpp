@@ -41,6 +41,11 @@ constexpr std::size_t kDenseIdsFree = std::size_t{1} << 16;
 constexpr std::size_t kPairUpGrain = 1024;
 // Ends are numbered in 32 bits.
 constexpr std::size_t kMaxPairs = (std::size_t{1} << 31) - 1;
+// From this many input pairs on, the executor is told on entry that the tests will use
+// several threads (Executor::prepare): a pool's workers, asleep since the last call (the
+// GPU's 0.3-2 ms), wake during the checks, slots and gather instead of when the tests
+// need them. Below, the tests take a few microseconds and waking costs more.
+constexpr std::size_t kPrepareFrom = 256;
 
 int bitsFor(std::uint64_t max_value) { return std::max(1, static_cast<int>(std::bit_width(max_value))); }
 
@@ -66,6 +71,10 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
     if (input > kMaxPairs) {
         return Error(ErrorCode::InvalidArgument, "runPairNarrowPhase: " + std::to_string(input) + " pairs (at most " +
                                                      std::to_string(kMaxPairs) + ")");
+    }
+    if (input >= kPrepareFrom) {
+        const unsigned threads = ex.threadCount();
+        ex.prepare(static_cast<unsigned>(std::min<std::size_t>(threads, narrow::taskCount(input, narrow::testGrain(input, threads)))));
     }
     const std::uint32_t total = source.totalTriangles();
     const int id_bits = bitsFor(total == 0 ? 0 : total - 1);

@@ -15,6 +15,22 @@ namespace {
 constexpr std::size_t kGatherGrain = 1024;
 // world_begin of an object transformed per slot.
 constexpr std::size_t kNotWhole = std::numeric_limits<std::size_t>::max();
+// The gather is bound by memory latency, not arithmetic: each slot loads three indices
+// from its mesh, then three positions they name, both usually cache misses (a pile's
+// meshes are megabytes, and between two detections the GPU wait and the engine evict
+// them). Slot s prefetches the indices of slot s + kIndicesAhead and, those having
+// arrived meanwhile, the positions of slot s + kPositionsAhead, so several slots' misses
+// overlap instead of following one another.
+constexpr std::size_t kIndicesAhead = 8;
+constexpr std::size_t kPositionsAhead = 4;
+
+inline void prefetch(const void* p) {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p);
+#else
+    static_cast<void>(p);
+#endif
+}
 
 std::string triangleName(std::uint32_t object, std::uint32_t triangle) {
     return "object " + std::to_string(object) + " triangle " + std::to_string(triangle);
@@ -117,6 +133,19 @@ std::optional<Error> gatherSlots(const TriangleSource& source, const Buffer<std:
             while (id >= source.triangleBase(object + 1)) ++object;
             const std::uint32_t triangle = id - source.triangleBase(object);
             const TriangleSource::Object& o = objects[object];
+            if (!o.gpu) {
+                // Ahead within this object only (ids ascend, so the test is one compare).
+                const std::uint32_t object_end = source.triangleBase(object + 1);
+                if (s + kIndicesAhead < end && ids[s + kIndicesAhead] < object_end) {
+                    prefetch(&o.indices[3 * std::size_t{ids[s + kIndicesAhead] - source.triangleBase(object)}]);
+                }
+                if (s + kPositionsAhead < end && ids[s + kPositionsAhead] < object_end) {
+                    const std::uint32_t* ahead = &o.indices[3 * std::size_t{ids[s + kPositionsAhead] - source.triangleBase(object)}];
+                    for (int k = 0; k < 3; ++k) {
+                        if (ahead[k] < o.positions.size()) prefetch(&o.positions[ahead[k]]);
+                    }
+                }
+            }
             SlotTag& tag = out_tags[s];
             SlotVertices& verts = out_vertices[s];
             tag.object = object;

@@ -16,6 +16,14 @@
 //    std::atomic::wait. Then everyone, the caller included, takes chunks with one
 //    fetch_add on `next` each: no lock, so 16 threads handing out thousands of chunks do
 //    not queue on a mutex (the old pool took one per chunk).
+//  - Waking is a chain: the caller wakes one sleeper and leaves in `wakes` how many more
+//    the loop can use (chunks beyond the threads already awake); every worker that returns
+//    from its sleep passes one on. A futex wake costs the waker microseconds (an IPI per
+//    thread), and waking all 15 workers of a 16-thread pool for a loop of two chunks cost
+//    the caller more than the loop; now it pays for one, and the rest wake in parallel.
+//  - prepare() starts such a chain without a loop (an epoch bump with no loop open), so
+//    workers asleep since the last call are polling by the time the loops that need them
+//    come (the narrow phase calls it on entry).
 //  - Finished chunks are counted in `done`, once per thread and loop; the caller waits
 //    for done == chunks.
 //  - A worker announces itself in `active` before it touches the loop and checks that
@@ -66,6 +74,23 @@ struct ThreadPool::Shared {
     alignas(64) std::atomic<std::size_t> done{0};      // chunks finished
     alignas(64) std::atomic<int> active{0};            // workers inside the open loop
     alignas(64) std::atomic<int> sleepers{0};          // workers blocked in epoch.wait
+    alignas(64) std::atomic<int> wakes{0};             // sleepers still to wake (the chain)
+
+    // Wakes `wanted` sleepers (at most as many as there are): one now, the rest by the
+    // chain. The caller has bumped the epoch.
+    void wakeSleepers(int wanted) {
+        if (wanted <= 0 || sleepers.load() == 0) return;
+        wakes.store(wanted - 1);
+        epoch.notify_one();
+    }
+
+    // Passes one wake of the chain on, if one is owed.
+    void passWake() {
+        int owed = wakes.load(std::memory_order_relaxed);
+        while (owed > 0 && !wakes.compare_exchange_weak(owed, owed - 1)) {
+        }
+        if (owed > 0) epoch.notify_one();
+    }
 
     // Runs chunks until none is left; returns how many it ran.
     std::size_t runChunks() {
@@ -99,6 +124,9 @@ struct ThreadPool::Shared {
                 sleepers.fetch_add(1);
                 epoch.wait(seen);
                 sleepers.fetch_sub(1);
+                // Whatever woke us (a notify or an epoch that moved before we slept), a
+                // wake of the chain may be owed to the next sleeper.
+                passWake();
             }
             seen = epoch.load(std::memory_order_acquire);
             if (stopping.load(std::memory_order_acquire)) return;
@@ -155,13 +183,29 @@ void ThreadPool::parallelFor(std::size_t count, std::size_t grain,
     s.done.store(0, std::memory_order_relaxed);
     s.open.store(true);
     s.epoch.fetch_add(1);
-    if (s.sleepers.load() > 0) s.epoch.notify_all();
+    // Threads the loop can use besides the caller, less those awake (polling) already.
+    const int useful = static_cast<int>(std::min<std::size_t>(chunks - 1, workers_.size()));
+    const int sleeping = s.sleepers.load();
+    s.wakeSleepers(useful - (static_cast<int>(workers_.size()) - sleeping));
 
     const std::size_t ran = s.runChunks();
     if (ran) s.done.fetch_add(ran, std::memory_order_relaxed);
     spinUntil([&] { return s.done.load(std::memory_order_acquire) == chunks; });
     s.open.store(false);
     spinUntil([&] { return s.active.load() == 0; });
+}
+
+void ThreadPool::prepare(unsigned threads) noexcept {
+    if (workers_.empty() || threads < 2) return;
+    // A loop running on another thread keeps the workers awake anyway; never block on it.
+    if (!submit_mutex_.try_lock()) return;
+    std::lock_guard submit_lock(submit_mutex_, std::adopt_lock);
+    Shared& s = *shared_;
+    // An epoch with no loop open: woken workers find `open` false and go back to polling.
+    s.epoch.fetch_add(1);
+    const int wanted = static_cast<int>(std::min<std::size_t>(threads - 1, workers_.size()));
+    const int sleeping = s.sleepers.load();
+    s.wakeSleepers(wanted - (static_cast<int>(workers_.size()) - sleeping));
 }
 
 CallbackExecutor::CallbackExecutor(unsigned thread_count, ParallelForCallback parallel_for)

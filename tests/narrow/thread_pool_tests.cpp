@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <functional>
 #include <thread>
 #include <vector>
@@ -117,4 +118,45 @@ TEST_CASE("CallbackExecutor hands loops to an engine's parallel-for", "[narrow][
         }
     }
     CHECK(vkcollide::CallbackExecutor(0, {}).threadCount() == 1);
+}
+
+TEST_CASE("ThreadPool wakes sleeping workers for a loop and on prepare()", "[narrow][threads]") {
+    // Between loops the workers poll about 100 us and then sleep; a loop (or prepare())
+    // wakes one and each woken worker the next. Every index must still run exactly once,
+    // and over the rounds the workers must take part (each loop is ~1 ms of chunks).
+    ThreadPool pool(4);
+    pool.prepare(1);  // a no-op: one thread is the caller
+    ThreadPool single(1);
+    single.prepare(4);  // a no-op: no worker
+    std::atomic<long> by_workers{0};
+    const std::thread::id caller = std::this_thread::get_id();
+    for (int round = 0; round < 10; ++round) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));  // the workers fall asleep
+        if (round % 2 == 1) pool.prepare(4);
+        std::vector<std::atomic<int>> seen(64);
+        pool.parallelFor(64, 1, [&](std::size_t begin, std::size_t end) {
+            const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(20);
+            while (std::chrono::steady_clock::now() < until) {
+            }
+            for (std::size_t i = begin; i < end; ++i) seen[i].fetch_add(1);
+            if (std::this_thread::get_id() != caller) by_workers.fetch_add(1);
+        });
+        for (std::size_t i = 0; i < seen.size(); ++i) REQUIRE(seen[i].load() == 1);
+    }
+    CHECK(by_workers.load() > 0);
+}
+
+TEST_CASE("ThreadPool::prepare while other threads run loops", "[narrow][threads]") {
+    ThreadPool pool(3);
+    std::atomic<long> total{0};
+    std::atomic<bool> stop{false};
+    std::thread preparer([&] {
+        while (!stop.load()) pool.prepare(3);
+    });
+    for (int k = 0; k < 200; ++k) {
+        pool.parallelFor(100, 7, [&](std::size_t begin, std::size_t end) { total.fetch_add(static_cast<long>(end - begin)); });
+    }
+    stop.store(true);
+    preparer.join();
+    CHECK(total.load() == 200L * 100L);
 }

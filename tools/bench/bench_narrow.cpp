@@ -3,7 +3,7 @@
 //   bench_narrow [--threads 1,2,16] [--sizes 10000,100000,1000000] [--scenes demo,spheres,torus-box]
 //                [--modes all,near,contact] [--self on,off] [--paths records,lean,pairs] [--pair-repeats 0.1]
 //                [--repeat 7] [--margin 1.0] [--filter] [--fresh] [--candidates FILE]... [--resolution N]
-//                [--dump PREFIX] [--csv PATH]
+//                [--pairs-sent boxes|hits] [--gap-us 0] [--dump PREFIX] [--csv PATH]
 //
 // Candidates come from tests/support/exact_reference.hpp's allTrianglesAsCandidates: every
 // triangle with its world AABB mapped to [0,1] as box and depth (an orthographic camera
@@ -19,8 +19,11 @@
 // deep overlap (two spheres of size/2 triangles overlapping by 85 % of their size: with
 // `near`, about 1M candidates for size 1,200,000), `twin` a sphere and a copy turned by 3
 // degrees (surfaces crossing all over: several tests per triangle) and `pile` its 60-mesh
-// pile (60 spheres of 9,940 triangles, fixed size). Meshes are in object space with a
-// transform per object; world positions are computed as the exact reference does.
+// pile (60 spheres of 9,940 triangles, fixed size), `graze` two spheres of size/2 triangles
+// meeting along one small circle (centres 1.8 radii apart: with `--pairs-sent hits`, about
+// 500 pairs for size 100,000, near the ~650 of docs/results.md's deform-pair-100K). Meshes
+// are in object space with a transform per object; world positions are computed as the
+// exact reference does.
 // --candidates reads a raw array of CandidateTriangle (80 bytes each, e.g. the records of a
 // GPU broad phase; only the records path).
 //
@@ -33,7 +36,10 @@
 // meshes and transforms, `pairs` runs runPairNarrowPhase on what a GPU pair stage without
 // its triangle filter would send: every pair of boxes overlapping in x, y and z that the
 // self-collision switch allows and that shares no vertex index, as global ids, a fraction
-// (--pair-repeats) sent twice reversed, shuffled. Every path and thread count must give
+// (--pair-repeats) sent twice reversed, shuffled. `--pairs-sent hits` sends only the pairs
+// whose triangles intersect (what the GPU pair stage sends after its conservative triangle
+// test, less its few near misses: the pair counts of docs/results.md's read-back column),
+// repeats and shuffle as before. Every path and thread count must give
 // the same pairs (a gpu-* workload only warns between paths: the GPU computes its records'
 // vertices itself).
 //
@@ -43,6 +49,10 @@
 // --dump writes each workload's candidates to PREFIX<scene>-<size>-<mode>.bin (the format
 // --candidates reads), e.g. to profile the GPU's candidates without the GPU.
 //
+// --gap-us sleeps that long before every timed call, as the GPU's 0.3-2 ms between two
+// detections does: the pool's workers have gone to sleep when the call starts (without it
+// they are still polling from the previous call, which a frame loop never sees).
+//
 // Each configuration runs once to warm up, then `repeat` times; the table shows the median
 // of each stage (ms), the fastest total and the median process CPU time (all threads,
 // polling workers included). --filter sets NarrowOptions::may_collide (allowing
@@ -51,6 +61,7 @@
 // without one (every call allocates its arrays).
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -61,12 +72,14 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <thread>
 #include <unordered_map>
 #include <vector>
 
 #include "passes/broad_phase.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/sweep_and_prune.hpp"
+#include "narrow/triangle_intersection.hpp"
 #include "passes/mesh_upload.hpp"
 #include "support/exact_reference.hpp"
 #include "vkcollide/context.hpp"
@@ -86,6 +99,8 @@ struct Options {
     std::vector<bool> self = {true};  // self-collision of every object, one row each
     std::vector<std::string> paths = {"records"};
     double pair_repeats = 0.1;  // pair path: this fraction of the pairs is sent twice (reversed)
+    bool hits_only = false;     // pair path: send only the pairs whose triangles intersect
+    unsigned gap_us = 0;        // sleep before each timed call
     std::vector<std::string> files;
     unsigned repeat = 7;
     std::uint32_t resolution = 512;
@@ -162,6 +177,12 @@ Options parseArgs(int argc, char** argv) {
             }
         } else if (a == "--pair-repeats") {
             o.pair_repeats = std::stod(value());
+        } else if (a == "--pairs-sent") {
+            const std::string v = value();
+            if (v != "boxes" && v != "hits") die("--pairs-sent takes boxes or hits");
+            o.hits_only = v == "hits";
+        } else if (a == "--gap-us") {
+            o.gap_us = static_cast<unsigned>(std::stoul(value()));
         } else if (a == "--modes") {
             o.modes = splitList(value());
         } else if (a == "--candidates") {
@@ -182,7 +203,7 @@ Options parseArgs(int argc, char** argv) {
             o.csv = value();
         } else {
             die("unknown argument " + a +
-                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --dump, --csv)");
+                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --pairs-sent, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --gap-us, --dump, --csv)");
         }
     }
     if (o.threads.empty()) die("--threads needs at least one count");
@@ -258,6 +279,13 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
         const HostMesh sphere = generated(uvSphere(1.0f, s, s / 2));
         objects.push_back({sphere, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}});
         objects.push_back({sphere, rotationTranslation(0.3, 1, 0.2, 3 * kPi / 180, {0, 0, 0})});
+    } else if (scene == "graze") {
+        // Two unit spheres of size/2 triangles, centres 1.8 apart: they cross along one
+        // circle of radius 0.44, a light contact between two detailed meshes.
+        const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
+        const HostMesh sphere = generated(uvSphere(1.0f, s, s / 2));
+        objects.push_back({sphere, rotationTranslation(0.2, 1, 0.1, 0.5, {-0.9f, 0.0f, 0.0f})});
+        objects.push_back({sphere, rotationTranslation(1, 0.3, 0.2, 1.3, {0.9f, 0.05f, 0.02f})});
     } else if (scene == "pile") {
         // Issue 13's pile: 60 unit spheres of 9,940 triangles (596,400 in all) on a grid
         // 1.8 apart, each turned its own way (tools/bench/bench_scenes.cpp's sphereGrid,
@@ -270,7 +298,7 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
                                                          2 * kPi * hash01(7 * i + 5), t)});
         }
     } else {
-        die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, twin, pile, gpu-demo, gpu-deep, gpu-pile)");
+        die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, twin, graze, pile, gpu-demo, gpu-deep, gpu-pile)");
     }
     return objects;
 }
@@ -437,9 +465,9 @@ struct LeanInputs {
 // The source holds the scene's object-space meshes and transforms; records are the
 // candidates without vertices; pairs are what a GPU pair stage without its triangle
 // filter would send: every pair of boxes overlapping in x, y and z that the
-// self-collision switch allows and that shares no vertex index, as global ids, a
-// fraction sent twice (reversed), shuffled.
-LeanInputs leanInputs(const Workload& w, bool self, double repeats, bool with_pairs) {
+// self-collision switch allows and that shares no vertex index (with hits_only: and whose
+// triangles intersect), as global ids, a fraction sent twice (reversed), shuffled.
+LeanInputs leanInputs(const Workload& w, bool self, double repeats, bool hits_only, bool with_pairs) {
     LeanInputs in;
     for (const SceneObject& o : w.objects) take(in.source.addHostMesh(o.mesh.positions, o.mesh.indices, o.transform), "source");
     in.records.reserve(w.candidates.size());
@@ -451,6 +479,7 @@ LeanInputs leanInputs(const Workload& w, bool self, double repeats, bool with_pa
     for (const narrow::IndexPair& p : narrow::sweepAndPrunePairs(w.candidates, &pool)) {
         const CandidateTriangle &a = w.candidates[p.i], &b = w.candidates[p.j];
         if (a.object == b.object && (!self || narrow::shareIndex(a.vertex_index, b.vertex_index))) continue;
+        if (hits_only && !narrow::trianglesIntersect(a.v, b.v)) continue;
         in.pairs.push_back({in.source.triangleBase(a.object) + a.triangle, in.source.triangleBase(b.object) + b.triangle});
     }
     const std::size_t distinct = in.pairs.size();
@@ -476,7 +505,7 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
         options.default_self_collision = self;
         if (o.filter) options.may_collide = [](std::uint32_t, std::uint32_t) { return true; };
         LeanInputs lean;
-        if (lean_paths && !w.objects.empty()) lean = leanInputs(w, self, o.pair_repeats, pair_path);
+        if (lean_paths && !w.objects.empty()) lean = leanInputs(w, self, o.pair_repeats, o.hits_only, pair_path);
         std::vector<TrianglePair> reference_pairs;
         bool first = true, warned = false;
         for (const std::string& path : o.paths) {
@@ -491,6 +520,7 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
                 std::vector<double> cpu;
                 NarrowStats stats;
                 for (unsigned r = 0; r <= o.repeat; ++r) {
+                    if (o.gap_us) std::this_thread::sleep_for(std::chrono::microseconds(o.gap_us));
                     const double cpu_start = processCpuMs();
                     Result<NarrowResult> result = Error(ErrorCode::InvalidArgument, "no path");
                     if (path == "records") {
@@ -570,8 +600,8 @@ int main(int argc, char** argv) {
         std::fprintf(csv, "scene,mode,self,path,triangles,inputs,threads,candidates,potentially_colliding,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
                           "positive_tests,input_pairs,validate_ms,gather_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
     }
-    std::printf("median of %u runs (ms)%s%s\n", o.repeat, o.filter ? ", with may_collide" : "",
-                o.fresh ? ", no workspace" : ", one workspace per row");
+    std::printf("median of %u runs (ms)%s%s%s, %u us between calls\n", o.repeat, o.filter ? ", with may_collide" : "",
+                o.fresh ? ", no workspace" : ", one workspace per row", o.hits_only ? ", intersecting pairs sent" : "", o.gap_us);
     std::printf("%-12s %-8s %-4s %-7s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode",
                 "self", "path", "tris", "inputs", "thr", "cand pairs", "tests", "pairs", "validate", "gather", "sweep", "filter",
                 "test", "sort", "response", "total", "total min", "cpu");

@@ -6,7 +6,7 @@
 //                   [--list] [--reference-only]
 //
 // --profile FILE writes where each timed frame's time went (GPU passes, narrow-phase stages,
-// host totals; tools/bench/profile_table.sh sums it up). --warmup-ms MS detects untimed for
+// host totals, the detection's host parts as detect:*; tools/bench/profile_table.sh sums it up). --warmup-ms MS detects untimed for
 // that long before each scene and variant: a GPU's clocks drop while it idles.
 // --reference-only builds the chosen scenes and their exact references (filling the cache)
 // and prints per frame the triangles, reference pairs, crossing pairs and seconds; no GPU.

@@ -292,6 +292,24 @@ struct DetectStats {
     // broad phase's collection (waiting for the GPU, reading the results back); the
     // narrow phase is narrow_ms.
     double host_start_ms = 0, host_collect_ms = 0;
+    // Where the host time of start and collection goes beyond the GPU passes (ms, host wall
+    // clock; summed over the detection's queue submissions and sampling directions):
+    double host_settings_ms = 0;  // the live objects, automatic settings (shapes measured
+                                  // when stale), validation, the pair filter's mask
+    double host_upload_ms = 0;    // the broad phase's per-run inputs: waiting for earlier
+                                  // work, buffers sized, objects, frame and the method's inputs written
+    double host_declare_ms = 0;   // the render graph declared (its passes and resources)
+    double host_compile_ms = 0;   // the render graph compiled (order, barriers), or its last plan reused
+    double host_record_ms = 0;    // transient resources, timestamp queries, the command buffer recorded
+    double host_submit_ms = 0;    // the command buffer ended and handed to the queue
+    double host_wait_ms = 0;      // waiting for the GPU to finish (fences)
+    double gpu_span_ms = 0;       // the GPU's own span: first pass's start to last pass's end
+                                  // (timestamps; barriers and gaps between passes included)
+    // From each queue submission's return to the host's waking up after it, less its GPU
+    // span: queue launch latency, GPU time outside the timestamps, wake-up latency. With
+    // submit() and collect() apart it also counts the host's work in between.
+    double launch_wake_ms = 0;
+    std::uint32_t submissions = 0;  // queue submissions the broad phase made
     unsigned narrow_threads = 0;
     // Memory: device memory held by the world, in Context::deviceMemoryInUse()'s unit (the
     // memory requirements' sizes): uploaded meshes, the broad phases' buffers, images and

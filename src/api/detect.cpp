@@ -69,6 +69,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.max_candidate_pairs = s.max_candidate_pairs;  // the reliable method's GPU budget
     d.axes = s.axes;
     d.bad_objects = s.bad_objects;
+    run.settings_ms = msSince(run.start);
     if (auto ok = run.detection->start(meshes, d, measure, target); !ok) return noted(describeFailure(run, ok.error()));
     run.in_flight = true;
     run.start_ms = msSince(run.start);
@@ -132,6 +133,15 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.pairing_ms += b.pairing_ms;
         st.filtering_ms += b.filtering_ms;
         st.readback_ms += b.readback_ms;
+        st.host_upload_ms += b.host.upload_ms;
+        st.host_declare_ms += b.host.declare_ms;
+        st.host_compile_ms += b.host.compile_ms;
+        st.host_record_ms += b.host.record_ms;
+        st.host_submit_ms += b.host.submit_ms;
+        st.host_wait_ms += b.host.wait_ms;
+        st.gpu_span_ms += b.host.gpu_span_ms;
+        st.launch_wake_ms += b.host.launch_wake_ms;
+        st.submissions += b.host.submissions;
     }
     if (detected.hasPairs()) {
         const passes::CellPairsStats& c = broad[0].cells;
@@ -216,6 +226,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.total_ms = msSince(run.start);
     st.host_start_ms = run.start_ms;
     st.host_collect_ms = run.wait_ms;
+    st.host_settings_ms = run.settings_ms;
     return out;
 }
 

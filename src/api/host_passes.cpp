@@ -155,47 +155,89 @@ VertexScan copyAndScan(Executor& executor, std::span<const Float3> in, std::span
     return r;
 }
 
-Shape measureShape(Executor& executor, std::span<const Float3> positions, std::span<const std::uint32_t> indices) {
-    using Vec3 = std::array<double, 3>;
-    const std::size_t triangles = indices.size() / 3;
-    const std::size_t step = triangles <= kShapeSampleTriangles ? 1 : (triangles + kShapeSampleTriangles - 1) / kShapeSampleTriangles;
-    const std::size_t sampled = triangles == 0 ? 0 : (triangles - 1) / step + 1;
-    struct Partial {
-        double sum = 0;
-        std::array<double, 6> moment{};
-    };
-    std::vector<Partial> parts((sampled + kShapeChunk - 1) / kShapeChunk);
-    executor.parallelFor(sampled, kShapeChunk, [&](std::size_t begin, std::size_t end) {
-        Partial p;
-        auto at = [&](std::uint32_t i) { return Vec3{positions[i].x, positions[i].y, positions[i].z}; };
-        auto dist = [](const Vec3& a, const Vec3& b) {
-            return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-        };
-        for (std::size_t k = begin; k < end; ++k) {
-            const std::size_t t = 3 * k * step;
-            const Vec3 p0 = at(indices[t]), p1 = at(indices[t + 1]), p2 = at(indices[t + 2]);
-            p.sum += dist(p0, p1) + dist(p1, p2) + dist(p2, p0);
-            const Vec3 u{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, v{p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
-            const Vec3 c{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-            const double len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-            if (!(len > 0)) continue;
-            const double w = 0.5 / len;  // area * n n^T = N N^T / (2 |N|)
-            p.moment[0] += w * c[0] * c[0], p.moment[1] += w * c[1] * c[1], p.moment[2] += w * c[2] * c[2];
-            p.moment[3] += w * c[0] * c[1], p.moment[4] += w * c[0] * c[2], p.moment[5] += w * c[1] * c[2];
-        }
-        parts[begin / kShapeChunk] = p;
-    });
-    Shape s;
+namespace {
+
+// One mesh's sampling: every step-th triangle, `sampled` of them, in runs of kShapeChunk.
+struct ShapeSampling {
+    std::size_t triangles = 0, step = 1, sampled = 0, first_run = 0;
+};
+
+struct ShapePartial {
     double sum = 0;
-    for (const Partial& p : parts) {
-        sum += p.sum;
-        for (int i = 0; i < 6; ++i) s.area_moment[i] += p.moment[i];
+    std::array<double, 6> moment{};
+};
+
+// The partial sums of sampled triangles [begin, end) of one mesh.
+ShapePartial shapeRun(const ShapeMesh& mesh, std::size_t step, std::size_t begin, std::size_t end) {
+    using Vec3 = std::array<double, 3>;
+    ShapePartial p;
+    auto at = [&](std::uint32_t i) { return Vec3{mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z}; };
+    auto dist = [](const Vec3& a, const Vec3& b) {
+        return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    };
+    for (std::size_t k = begin; k < end; ++k) {
+        const std::size_t t = 3 * k * step;
+        const Vec3 p0 = at(mesh.indices[t]), p1 = at(mesh.indices[t + 1]), p2 = at(mesh.indices[t + 2]);
+        p.sum += dist(p0, p1) + dist(p1, p2) + dist(p2, p0);
+        const Vec3 u{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, v{p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+        const Vec3 c{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+        const double len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (!(len > 0)) continue;
+        const double w = 0.5 / len;  // area * n n^T = N N^T / (2 |N|)
+        p.moment[0] += w * c[0] * c[0], p.moment[1] += w * c[1] * c[1], p.moment[2] += w * c[2] * c[2];
+        p.moment[3] += w * c[0] * c[1], p.moment[4] += w * c[0] * c[2], p.moment[5] += w * c[1] * c[2];
     }
-    // Scaled to the whole mesh: the moment is a sum over triangles.
-    const double scale = sampled ? double(triangles) / double(sampled) : 0.0;
-    for (double& m : s.area_moment) m *= scale;
-    s.edge_length = sampled ? static_cast<float>(sum / double(3 * sampled)) : 0.0f;
+    return p;
+}
+
+}  // namespace
+
+Shape measureShape(Executor& executor, std::span<const Float3> positions, std::span<const std::uint32_t> indices) {
+    const ShapeMesh mesh{positions, indices};
+    Shape s;
+    measureShapes(executor, std::span(&mesh, 1), std::span(&s, 1));
     return s;
+}
+
+void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::span<Shape> out) {
+    std::vector<ShapeSampling> sampling(meshes.size());
+    std::size_t runs = 0;
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        ShapeSampling& m = sampling[i];
+        m.triangles = meshes[i].indices.size() / 3;
+        m.step = m.triangles <= kShapeSampleTriangles ? 1 : (m.triangles + kShapeSampleTriangles - 1) / kShapeSampleTriangles;
+        m.sampled = m.triangles == 0 ? 0 : (m.triangles - 1) / m.step + 1;
+        m.first_run = runs;
+        runs += (m.sampled + kShapeChunk - 1) / kShapeChunk;
+    }
+    // One item per run of kShapeChunk sampled triangles of some mesh: the same runs, so
+    // the same partial sums, as measuring each mesh alone.
+    std::vector<ShapePartial> parts(runs);
+    executor.parallelFor(runs, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t r = begin; r < end; ++r) {
+            const auto mesh = std::upper_bound(sampling.begin(), sampling.end(), r,
+                                               [](std::size_t run, const ShapeSampling& m) { return run < m.first_run; }) - 1;
+            // Meshes without triangles own no run, so several may share a first_run: the
+            // last of them (upper_bound - 1) is the one with runs.
+            const std::size_t i = static_cast<std::size_t>(mesh - sampling.begin());
+            const std::size_t first = (r - mesh->first_run) * kShapeChunk;
+            parts[r] = shapeRun(meshes[i], mesh->step, first, std::min(first + kShapeChunk, mesh->sampled));
+        }
+    });
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        const ShapeSampling& m = sampling[i];
+        Shape s;
+        double sum = 0;
+        for (std::size_t r = m.first_run; r < m.first_run + (m.sampled + kShapeChunk - 1) / kShapeChunk; ++r) {
+            sum += parts[r].sum;
+            for (int k = 0; k < 6; ++k) s.area_moment[k] += parts[r].moment[k];
+        }
+        // Scaled to the whole mesh: the moment is a sum over triangles.
+        const double scale = m.sampled ? double(m.triangles) / double(m.sampled) : 0.0;
+        for (double& v : s.area_moment) v *= scale;
+        s.edge_length = m.sampled ? static_cast<float>(sum / double(3 * m.sampled)) : 0.0f;
+        out[i] = s;
+    }
 }
 
 }  // namespace vkcollide::host_passes

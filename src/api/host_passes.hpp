@@ -54,6 +54,14 @@ struct Shape {
     std::array<double, 6> area_moment{};
 };
 Shape measureShape(Executor& executor, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
+// Several meshes' shapes in one parallel loop (the executor's threads started once, not
+// once per mesh: a detection of deforming meshes measures every one of them); out[i] is
+// measureShape(meshes[i]) exactly. Precondition: out.size() == meshes.size().
+struct ShapeMesh {
+    std::span<const Float3> positions;
+    std::span<const std::uint32_t> indices;
+};
+void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::span<Shape> out);
 inline constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 14;
 inline constexpr std::size_t kShapeChunk = 1024;
 

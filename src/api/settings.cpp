@@ -92,14 +92,24 @@ void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positi
 // times per detection is measured once, and not at all when the settings that use the
 // shape are given. The direction and resolution use every object's; the open epsilon only
 // open objects'.
+// All of them in one parallel loop: a scene of deforming meshes starts the executor's
+// threads once per detection, not once per mesh.
 void CollisionWorld::Impl::measureShapes(const DetectSettings& in) const {
     const bool all = !in.direction || !in.resolution, open = !in.open_epsilon;
+    std::vector<const Object*> stale;
+    std::vector<host_passes::ShapeMesh> meshes;
     for (const Object& o : objects) {
         if (!o.alive || !o.host || !o.shape_stale || !(all || (open && o.options.open))) continue;
-        const host_passes::Shape shape = host_passes::measureShape(*executor, o.host_positions, o.host_indices);
-        o.edge_length = shape.edge_length;
-        o.area_moment = shape.area_moment;
-        o.shape_stale = false;
+        stale.push_back(&o);
+        meshes.push_back({o.host_positions, o.host_indices});
+    }
+    if (stale.empty()) return;
+    std::vector<host_passes::Shape> shapes(stale.size());
+    host_passes::measureShapes(*executor, meshes, shapes);
+    for (std::size_t i = 0; i < stale.size(); ++i) {
+        stale[i]->edge_length = shapes[i].edge_length;
+        stale[i]->area_moment = shapes[i].area_moment;
+        stale[i]->shape_stale = false;
     }
 }
 

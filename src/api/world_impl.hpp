@@ -71,6 +71,7 @@ struct CollisionWorld::Impl {
         std::string note;
         std::chrono::steady_clock::time_point start;
         double start_ms = 0, wait_ms = 0;  // host: start() (settings, record, submit); collect's wait and readback
+        double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host_settings_ms)
     };
 
     UseGuard guard{"CollisionWorld"};

@@ -1,5 +1,7 @@
 #include "graph/executor.hpp"
 
+#include <algorithm>
+
 namespace vkcollide::graph {
 
 ResourceId Graph::importBuffer(std::string name, vk::Buffer& buffer, bool host_readback) {
@@ -21,7 +23,24 @@ void PassContext::shaderBarrier() const {
     device->fns.vkCmdPipelineBarrier2(cmd, &di);
 }
 
+HostTimes& HostTimes::operator+=(const HostTimes& o) noexcept {
+    upload_ms += o.upload_ms;
+    declare_ms += o.declare_ms;
+    compile_ms += o.compile_ms;
+    record_ms += o.record_ms;
+    submit_ms += o.submit_ms;
+    wait_ms += o.wait_ms;
+    gpu_span_ms += o.gpu_span_ms;
+    launch_wake_ms += o.launch_wake_ms;
+    submissions += o.submissions;
+    return *this;
+}
+
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msBetween(Clock::time_point t0, Clock::time_point t1) { return std::chrono::duration<double, std::milli>(t1 - t0).count(); }
 
 // The submission's wait, with a timeout reported as ErrorCode::Timeout.
 Result<void> waitFor(vk::Submission& s, std::uint64_t timeout_ns) {
@@ -84,10 +103,25 @@ Result<void> Executor::prepareResources(const Graph& graph, const GraphPlan& pla
     return {};
 }
 
-void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx) const {
+Result<void> Executor::planFor(const Graph& graph) {
+    graph.planKey(scratch_key_);
+    if (plan_valid_ && scratch_key_ == plan_key_) return {};
+    plan_valid_ = false;
+    ++compilations_;
+    auto compiled = graph.compile();
+    if (!compiled) return compiled.error();
+    plan_ = std::move(*compiled);
+    std::swap(plan_key_, scratch_key_);
+    plan_valid_ = true;
+    return {};
+}
+
+void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx) {
     if (barriers.empty()) return;
-    std::vector<VkImageMemoryBarrier2> images;
-    std::vector<VkBufferMemoryBarrier2> buffers;
+    std::vector<VkImageMemoryBarrier2>& images = image_barriers_;
+    std::vector<VkBufferMemoryBarrier2>& buffers = buffer_barriers_;
+    images.clear();
+    buffers.clear();
     for (const Barrier& b : barriers) {
         if (b.is_image) {
             const vk::Image& img = ctx.image(b.resource);
@@ -145,8 +179,12 @@ std::uint64_t Executor::memoryBytes() const noexcept {
 }
 
 Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, SubmitTarget* target, bool signal) {
-    auto plan = graph.compile();
-    if (!plan) return plan.error();
+    const Clock::time_point t_start = Clock::now();
+    pending_host_ = HostTimes{};
+    if (auto ok = planFor(graph); !ok) return ok.error();
+    const GraphPlan* plan = &plan_;
+    const Clock::time_point t_compiled = Clock::now();
+    pending_host_.compile_ms = msBetween(t_start, t_compiled);
     const auto& f = device_->fns;
     if (!submission_.valid()) {
         auto s = vk::Submission::create(*device_);
@@ -236,9 +274,13 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
         f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
     }
     recordBarriers(ctx.cmd, plan->final_barriers, ctx);
+    const Clock::time_point t_recorded = Clock::now();
+    pending_host_.record_ms = msBetween(t_compiled, t_recorded);
+    pending_host_.submissions = 1;
     if (into_engine) {
         // The engine submits the command buffer and orders it with its own semaphores.
         if (auto ok = submission_.submit(); !ok) return ok.error();
+        pending_submitted_at_ = Clock::now();
         target->waits_submitted = target->signals_submitted = true;
         return {};
     }
@@ -248,6 +290,8 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
         if (signal) sync.signal = target->sync.signal;
     }
     if (auto ok = submission_.submit(sync); !ok) return ok.error();
+    pending_submitted_at_ = Clock::now();
+    pending_host_.submit_ms = msBetween(t_recorded, pending_submitted_at_);
     if (target) {
         target->waits_submitted = true;
         target->signals_submitted = target->signals_submitted || signal;
@@ -256,9 +300,13 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
 }
 
 Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
+    const Clock::time_point t_wait = Clock::now();
     if (auto ok = waitFor(submission_, timeout_ns); !ok) return ok.error();
+    const Clock::time_point t_woken = Clock::now();
     ExecutionReport report;
     report.culled = pending_culled_;
+    report.host = pending_host_;
+    report.host.wait_ms = msBetween(t_wait, t_woken);
     const auto count = static_cast<std::uint32_t>(2 * pending_names_.size());
     if (count == 0) return report;
     std::vector<std::uint64_t> stamps(count);
@@ -274,6 +322,8 @@ Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
         report.passes.push_back({pending_names_[i], double((t1 - t0) & mask) * period_ms, pending_stages_[i]});
     }
     report.total_gpu_ms = double(((stamps[count - 1] & mask) - (stamps[0] & mask)) & mask) * period_ms;
+    report.host.gpu_span_ms = report.total_gpu_ms;
+    report.host.launch_wake_ms = std::max(0.0, msBetween(pending_submitted_at_, t_woken) - report.total_gpu_ms);
     return report;
 }
 

@@ -3,6 +3,7 @@
 // with its barriers, submits it and reports each pass's GPU time from timestamps.
 #pragma once
 
+#include <chrono>
 #include <map>
 #include <string>
 #include <vector>
@@ -39,10 +40,32 @@ struct PassTiming {
     StageTag stage = 0;  // as the pass declared it
 };
 
+// Host wall time (steady clock, ms) around submissions: where a detection's host time goes
+// beyond the GPU passes. The executor fills compile..launch_wake for each submission it
+// makes; upload and declare belong to the code that builds the graph (the broad phase).
+// Sums over several submissions add up (operator+=).
+struct HostTimes {
+    double upload_ms = 0;       // the builder's per-run inputs written (buffers sized, uploads)
+    double declare_ms = 0;      // the builder's graph declared (passes, resources, callbacks)
+    double compile_ms = 0;      // Graph::compile, or the check that the last plan still applies
+    double record_ms = 0;       // wait for the previous submission, transients, timestamp queries, command recording
+    double submit_ms = 0;       // command buffer ended and handed to the queue
+    double wait_ms = 0;         // collect(): waiting for the GPU
+    double gpu_span_ms = 0;     // ExecutionReport::total_gpu_ms: first pass's start to last pass's end
+    // From the queue submission's return to collect()'s waking up, less gpu_span_ms (at
+    // least 0): the queue's launch latency, the GPU's gaps before the first and after the last timestamp,
+    // and the wake-up of the waiting thread, when collect() follows submit() at once; with
+    // host work in between, that work too (and it is no longer all latency).
+    double launch_wake_ms = 0;
+    std::uint32_t submissions = 0;
+    HostTimes& operator+=(const HostTimes& o) noexcept;
+};
+
 struct ExecutionReport {
     std::vector<PassTiming> passes;  // in execution order
     std::vector<std::string> culled;
     double total_gpu_ms = 0;         // first pass start to last pass end
+    HostTimes host;                  // this submission's host side (upload and declare: 0)
 };
 
 // Where one submission's work goes and what it waits for and signals (the API's submit()
@@ -71,8 +94,8 @@ public:
     Executor(const Executor&) = delete;
     Executor& operator=(const Executor&) = delete;
 
-    // Compiles, records and submits the graph; returns without waiting for it (but waits
-    // up to timeout_ns for the previous submission first).
+    // Compiles (or reuses the last plan: planKey()), records and submits the graph; returns
+    // without waiting for it (but waits up to timeout_ns for the previous submission first).
     // `target` (optional): the engine's waits (unless already submitted) and, when
     // `signal`, its signals go into this submission, or the work is recorded into the
     // engine's command buffer; the target's flags are updated on success.
@@ -91,12 +114,25 @@ public:
     [[nodiscard]] Result<vk::Completion> poll() { return submission_.valid() ? submission_.poll() : vk::Completion::Done; }
     // Bytes of device memory of the cached transient buffers and images.
     std::uint64_t memoryBytes() const noexcept;
+    // How many times submit() compiled a graph; a graph whose planKey() equals the last
+    // compiled one's reuses its plan (for tests).
+    std::uint64_t compilations() const noexcept { return compilations_; }
 
 private:
     Result<void> prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx);
-    void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx) const;
+    // The plan of `graph`: the last one when its planKey() is unchanged, else compiled.
+    Result<void> planFor(const Graph& graph);
+    void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx);
 
     vk::Device* device_;
+    // The last plan compiled and its graph's planKey(); scratch_key_: this submission's.
+    GraphPlan plan_;
+    std::vector<std::uint64_t> plan_key_, scratch_key_;
+    bool plan_valid_ = false;
+    std::uint64_t compilations_ = 0;
+    // recordBarriers()'s scratch, kept between submissions.
+    std::vector<VkImageMemoryBarrier2> image_barriers_;
+    std::vector<VkBufferMemoryBarrier2> buffer_barriers_;
     // Mutable for busy(): polling the fence changes nothing the executor promises.
     mutable vk::Submission submission_;
     VkQueryPool queries_ = VK_NULL_HANDLE;
@@ -117,6 +153,8 @@ private:
     std::vector<std::string> pending_names_;
     std::vector<StageTag> pending_stages_;
     std::vector<std::string> pending_culled_;
+    HostTimes pending_host_;                                  // the submission in flight's, so far
+    std::chrono::steady_clock::time_point pending_submitted_at_;  // when its queue submission returned
 };
 
 }  // namespace vkcollide::graph

@@ -242,6 +242,27 @@ void Graph::repeatPass(const std::string& name, PassKind kind, std::uint32_t cou
 
 // ---- compile ----------------------------------------------------------------
 
+// Keep in step with compile(): every field it reads is here (tests/graph/graph_plan_tests.cpp
+// changes each one and expects a different key).
+void Graph::planKey(std::vector<std::uint64_t>& out) const {
+    using U = std::uint64_t;
+    out.clear();
+    out.push_back(U(resources_.size()) | U(passes_.size()) << 32);
+    for (const ResourceDecl& r : resources_) {
+        out.push_back(U(r.is_image) | U(r.imported) << 1 | U(r.host_readback) << 2 | U(r.image.mip_levels) << 32);
+        out.push_back(U(std::uint32_t(r.initial_layout)) | U(std::uint32_t(r.final_layout)) << 32);
+    }
+    for (const PassDecl& p : passes_) {
+        out.push_back(U(p.kind) | U(p.side_effects) << 8 | U(static_cast<bool>(p.record)) << 9 | U(p.accesses.size()) << 32);
+        out.push_back(U(p.render_width) | U(p.render_height) << 32);
+        for (const Access& a : p.accesses) {
+            out.push_back(U(a.resource.index) | U(a.use) << 32);
+            out.push_back(U(a.base_mip) | U(a.mip_count) << 32);
+            out.push_back(U(std::uint32_t(a.load_op)));
+        }
+    }
+}
+
 Result<GraphPlan> Graph::compile() const {
     const auto n_res = static_cast<std::uint32_t>(resources_.size());
     const auto n_pass = static_cast<std::uint32_t>(passes_.size());

@@ -161,6 +161,12 @@ public:
 
     // Checks every declaration and derives the plan. Phases are commented in the .cpp.
     [[nodiscard]] Result<GraphPlan> compile() const;
+    // Everything compile() reads, flattened into `out` (its capacity reused): graphs with
+    // equal keys compile to equal plans, so an executor may reuse the last plan (the
+    // declarations of a detection repeat frame after frame). Not in it, because compile()
+    // never reads them: names, buffer sizes, image formats and extents, clear values,
+    // external resources and what the record callbacks capture.
+    void planKey(std::vector<std::uint64_t>& out) const;
 
     const std::vector<ResourceDecl>& resources() const noexcept { return resources_; }
     const std::vector<PassDecl>& passes() const noexcept { return passes_; }

@@ -71,6 +71,10 @@ std::optional<std::array<float, 6>> worldBox(const ProjectionBasis& basis, const
     return std::array<float, 6>{float(lo[0]), float(lo[1]), float(lo[2]), float(hi[0]), float(hi[1]), float(hi[2])};
 }
 
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
 }  // namespace
 
 std::string describe(const ObjectFault& f) {
@@ -114,6 +118,14 @@ BroadPhase::~BroadPhase() {
 }
 
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
+    const Clock::time_point t0 = Clock::now();
+    auto ok = prepareRun(meshes, s);
+    run_.host = graph::HostTimes{};
+    run_.host.upload_ms = msSince(t0);
+    return ok;
+}
+
+Result<void> BroadPhase::prepareRun(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     assert(meetsPreconditions(meshes, s, device_->conservative_rasterization, method_->traits()));
     // Work an earlier run gave up on (Timeout) may still read these buffers.
     if (auto ok = executor_.settle(s.timeout_ns); !ok) {
@@ -187,6 +199,7 @@ RunView BroadPhase::view() const {
 }
 
 void BroadPhase::record(graph::Graph& g, bool measure, bool main) {
+    const Clock::time_point t0 = Clock::now();
     const RunView run = view();
     const GraphBuffers buffers = table_.import(g);
     method_->import(g);
@@ -196,6 +209,7 @@ void BroadPhase::record(graph::Graph& g, bool measure, bool main) {
     }
     if (main) method_->recordMain(g, run, buffers);
     common_->recordReadback(g, buffers, core_);
+    run_.host.declare_ms += msSince(t0);
 }
 
 gpu::Header BroadPhase::readHeader() const {
@@ -253,6 +267,7 @@ void BroadPhase::addTimings(BroadPhaseResult& result, const graph::ExecutionRepo
         addStageTime(result, p);
         result.passes.push_back(p);
     }
+    result.host += report.host;
 }
 
 Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s, graph::SubmitTarget* target,
@@ -293,7 +308,9 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
                                 graph::SubmitTarget* target, bool signal) {
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
+    const Clock::time_point t_predict = Clock::now();
     if (auto ok = method_->predict(view(), layers); !ok) return ok.error();
+    run_.host.upload_ms += msSince(t_predict);
     graph::Graph g;
     record(g, true, true);
     if (auto ok = executor_.submit(g, s.timeout_ns, target, signal); !ok) return ok.error();
@@ -313,6 +330,7 @@ Result<BroadPhaseResult> BroadPhase::collect() {
     if (auto ok = checkExtent(h); !ok) return ok.error();
     BroadPhaseResult result = std::move(run_.first);
     addTimings(result, *report);
+    result.host += run_.host;
     // A single submission measures the depth complexity in the same run; with a
     // separate measuring submission, the second header keeps the first's value.
     result.depth_complexity = h.depth_complexity;

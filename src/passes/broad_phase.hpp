@@ -84,11 +84,13 @@ public:
 
 private:
     explicit BroadPhase(vk::Device& device) : device_(&device), executor_(device) {}
-    // Sizes the buffers, lets the method prepare, uploads objects, frame and projection.
+    // Sizes the buffers, lets the method prepare, uploads objects, frame and projection
+    // (timed as run_.host.upload_ms).
     Result<void> prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
+    Result<void> prepareRun(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
     RunView view() const;
     // The one recording path: front and the method's measuring passes (`measure`), its
-    // main passes (`main`), then the header readback.
+    // main passes (`main`), then the header readback (timed into run_.host.declare_ms).
     void record(graph::Graph& g, bool measure, bool main);
     gpu::Header readHeader() const;
     Result<void> checkInputs(const gpu::Header& header);
@@ -110,6 +112,7 @@ private:
         std::vector<gpu::ObjectGpu> objects;  // as uploaded
         bool any_gpu_check = false;
         BroadPhaseResult first;  // timings of a separate measuring submission
+        graph::HostTimes host;   // its upload and declaration times (the executor's come with its reports)
     } run_;
     // Declared last, destroyed first: it waits for work in flight (a wait that timed out
     // leaves it in flight) before the buffers and the method's buffers are freed.

@@ -159,6 +159,7 @@ struct BroadPhaseResult {
     // the fit repeated on the host from the bounds the GPU measured (passes/projection.hpp).
     gpu::Projection projection{};
     std::vector<graph::PassTiming> passes;   // both submissions, in order
+    graph::HostTimes host;                   // host time around the submissions, summed over them
     SamplingBackend backend = SamplingBackend::Raster;  // the one that ran (never Auto)
     std::string backend_reason;              // one line: why
     std::uint64_t fragments = 0;             // covered pixels summed over all triangles

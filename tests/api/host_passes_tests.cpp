@@ -68,6 +68,21 @@ bool sameBits(const std::vector<Float3>& a, const std::vector<Float3>& b) {
     return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Float3)) == 0;
 }
 
+// A grid of n x n quads with a bump: edges of several lengths, normals of every sign.
+void grid(std::uint32_t n, std::vector<Float3>& p, std::vector<std::uint32_t>& idx) {
+    p.clear(), idx.clear();
+    for (std::uint32_t j = 0; j <= n; ++j)
+        for (std::uint32_t i = 0; i <= n; ++i) {
+            const float x = float(i) / float(n), y = float(j) / float(n) * 1.5f;
+            p.push_back({x, y, 0.2f * std::sin(6 * x) * std::cos(4 * y)});
+        }
+    for (std::uint32_t j = 0; j < n; ++j)
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const std::uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            idx.insert(idx.end(), {a, b, d, a, d, c});
+        }
+}
+
 }  // namespace
 
 TEST_CASE("updateVertices' pass copies and boxes exactly on every executor and size", "[api][host]") {
@@ -135,20 +150,6 @@ TEST_CASE("updateVertices' pass names the first NaN or infinite vertex whichever
 
 TEST_CASE("the shape measure is the same on every executor, and a plain loop's on small meshes", "[api][host]") {
     const auto pool = executors();
-    // A grid of n x n quads with a bump: edges of several lengths, normals of every sign.
-    auto grid = [](std::uint32_t n, std::vector<Float3>& p, std::vector<std::uint32_t>& idx) {
-        p.clear(), idx.clear();
-        for (std::uint32_t j = 0; j <= n; ++j)
-            for (std::uint32_t i = 0; i <= n; ++i) {
-                const float x = float(i) / float(n), y = float(j) / float(n) * 1.5f;
-                p.push_back({x, y, 0.2f * std::sin(6 * x) * std::cos(4 * y)});
-            }
-        for (std::uint32_t j = 0; j < n; ++j)
-            for (std::uint32_t i = 0; i < n; ++i) {
-                const std::uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
-                idx.insert(idx.end(), {a, b, d, a, d, c});
-            }
-    };
     std::vector<Float3> p;
     std::vector<std::uint32_t> idx;
     SECTION("small: one run of triangles, the plain loop's sums bit for bit") {
@@ -198,5 +199,34 @@ TEST_CASE("the shape measure is the same on every executor, and a plain loop's o
             CHECK(s.edge_length == first.edge_length);
             CHECK(s.area_moment == first.area_moment);
         }
+    }
+}
+
+TEST_CASE("several shapes measured in one loop are each mesh's own measure, exactly", "[api][host]") {
+    const auto pool = executors();
+    // Sizes around the sampling limit and the run length, and a mesh without triangles
+    // between two others (it owns no run).
+    std::vector<std::vector<Float3>> positions;
+    std::vector<std::vector<std::uint32_t>> indices;
+    for (std::uint32_t n : {300u, 0u, 20u, 1u, 100u}) {
+        std::vector<Float3> p;
+        std::vector<std::uint32_t> idx;
+        if (n > 0) grid(n, p, idx);
+        else p = randomPositions(3, 1);
+        positions.push_back(std::move(p));
+        indices.push_back(std::move(idx));
+    }
+    std::vector<host_passes::ShapeMesh> meshes;
+    for (std::size_t i = 0; i < positions.size(); ++i) meshes.push_back({positions[i], indices[i]});
+    for (const auto& ex : pool) {
+        std::vector<host_passes::Shape> shapes(meshes.size());
+        host_passes::measureShapes(*ex, meshes, shapes);
+        for (std::size_t i = 0; i < meshes.size(); ++i) {
+            INFO("mesh " << i);
+            const auto alone = host_passes::measureShape(*ex, positions[i], indices[i]);
+            CHECK(shapes[i].edge_length == alone.edge_length);
+            CHECK(shapes[i].area_moment == alone.area_moment);
+        }
+        CHECK(shapes[1].edge_length == 0.0f);
     }
 }

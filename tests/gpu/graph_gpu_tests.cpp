@@ -82,6 +82,12 @@ TEST_CASE("raster then compute: watertight coverage counted twice, barriers deri
         CHECK(report->passes[1].name == "draw");
         for (const auto& p : report->passes) CHECK(p.gpu_ms >= 0.0);
         CHECK(report->total_gpu_ms > 0.0);
+        // The host side of the one submission; the second run reuses the plan.
+        CHECK(report->host.submissions == 1u);
+        CHECK(report->host.gpu_span_ms == report->total_gpu_ms);
+        CHECK(report->host.wait_ms >= 0.0);
+        CHECK(report->host.launch_wake_ms >= 0.0);
+        CHECK(exec.compilations() == 1u);
         readback->invalidate();
         std::uint32_t values[2];
         std::memcpy(values, readback->mapped(), sizeof(values));

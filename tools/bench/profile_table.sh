@@ -3,7 +3,8 @@
 # `vkcollide_bench --profile FILE` output, one row per scene and variant.
 #   tools/bench/profile_table.sh profile.csv [variant]
 # Columns: the GPU passes (timestamps) in the order they ran, then the narrow phase's
-# stages and the host totals (wall clock).
+# stages, the host totals (wall clock) and the detection's host parts (detect:*, DetectStats'
+# host_*_ms, gpu_span_ms, launch_wake_ms; detect:rest is total_ms outside the named parts).
 exec awk -v want="${2:-}" -f - "$1" <<'AWK'
 BEGIN{FS=","}
 FNR==1{next}

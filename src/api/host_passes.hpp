@@ -62,7 +62,7 @@ struct ShapeMesh {
     std::span<const std::uint32_t> indices;
 };
 void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::span<Shape> out);
-inline constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 14;
-inline constexpr std::size_t kShapeChunk = 1024;
+inline constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 12;
+inline constexpr std::size_t kShapeChunk = 512;
 
 }  // namespace vkcollide::host_passes

@@ -157,9 +157,19 @@ VertexScan copyAndScan(Executor& executor, std::span<const Float3> in, std::span
 
 namespace {
 
-// One mesh's sampling: every step-th triangle, `sampled` of them, in runs of kShapeChunk.
+// One mesh's sampling: all its triangles up to kShapeSampleTriangles, else that many in
+// evenly spaced blocks of kShapeBlock consecutive ones (neighbouring triangles share vertex
+// cache lines: a sample of single triangles spread over the mesh misses the cache about
+// four times per triangle, and the vertices were just written by other cores), measured in
+// runs of kShapeChunk.
 struct ShapeSampling {
-    std::size_t triangles = 0, step = 1, sampled = 0, first_run = 0;
+    std::size_t triangles = 0, sampled = 0, first_run = 0;
+
+    std::size_t triangleOf(std::size_t k) const {
+        if (sampled == triangles) return k;
+        constexpr std::size_t kBlocks = kShapeSampleTriangles / kShapeBlock;
+        return (k / kShapeBlock) * triangles / kBlocks + k % kShapeBlock;
+    }
 };
 
 struct ShapePartial {
@@ -168,7 +178,7 @@ struct ShapePartial {
 };
 
 // The partial sums of sampled triangles [begin, end) of one mesh.
-ShapePartial shapeRun(const ShapeMesh& mesh, std::size_t step, std::size_t begin, std::size_t end) {
+ShapePartial shapeRun(const ShapeMesh& mesh, const ShapeSampling& sampling, std::size_t begin, std::size_t end) {
     using Vec3 = std::array<double, 3>;
     ShapePartial p;
     auto at = [&](std::uint32_t i) { return Vec3{mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z}; };
@@ -176,7 +186,7 @@ ShapePartial shapeRun(const ShapeMesh& mesh, std::size_t step, std::size_t begin
         return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
     };
     for (std::size_t k = begin; k < end; ++k) {
-        const std::size_t t = 3 * k * step;
+        const std::size_t t = 3 * sampling.triangleOf(k);
         const Vec3 p0 = at(mesh.indices[t]), p1 = at(mesh.indices[t + 1]), p2 = at(mesh.indices[t + 2]);
         p.sum += dist(p0, p1) + dist(p1, p2) + dist(p2, p0);
         const Vec3 u{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, v{p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
@@ -205,8 +215,7 @@ void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::s
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         ShapeSampling& m = sampling[i];
         m.triangles = meshes[i].indices.size() / 3;
-        m.step = m.triangles <= kShapeSampleTriangles ? 1 : (m.triangles + kShapeSampleTriangles - 1) / kShapeSampleTriangles;
-        m.sampled = m.triangles == 0 ? 0 : (m.triangles - 1) / m.step + 1;
+        m.sampled = std::min(m.triangles, kShapeSampleTriangles);
         m.first_run = runs;
         runs += (m.sampled + kShapeChunk - 1) / kShapeChunk;
     }
@@ -221,7 +230,7 @@ void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::s
             // last of them (upper_bound - 1) is the one with runs.
             const std::size_t i = static_cast<std::size_t>(mesh - sampling.begin());
             const std::size_t first = (r - mesh->first_run) * kShapeChunk;
-            parts[r] = shapeRun(meshes[i], mesh->step, first, std::min(first + kShapeChunk, mesh->sampled));
+            parts[r] = shapeRun(meshes[i], *mesh, first, std::min(first + kShapeChunk, mesh->sampled));
         }
     });
     for (std::size_t i = 0; i < meshes.size(); ++i) {

@@ -45,7 +45,8 @@ inline constexpr std::size_t kMinChunkVertices = std::size_t{1} << 14;
 
 // The shape of a host mesh for the automatic settings: the mean edge length and the sum over
 // triangles of area * n n^T (xx, yy, zz, xy, xz, yz; object space), both from at most
-// kShapeSampleTriangles evenly spaced triangles (the moment scaled to the whole mesh).
+// kShapeSampleTriangles triangles in evenly spaced blocks of kShapeBlock consecutive ones
+// (the moment scaled to the whole mesh).
 // Partial sums are formed over fixed runs of kShapeChunk sampled triangles and added in
 // order, so the result does not depend on the executor. Precondition: every index is in
 // range (validated meshes).
@@ -64,5 +65,7 @@ struct ShapeMesh {
 void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::span<Shape> out);
 inline constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 12;
 inline constexpr std::size_t kShapeChunk = 512;
+inline constexpr std::size_t kShapeBlock = 32;
+static_assert(kShapeSampleTriangles % kShapeBlock == 0 && kShapeChunk % kShapeBlock == 0);
 
 }  // namespace vkcollide::host_passes

@@ -86,7 +86,7 @@ void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positi
 
 // The shapes steer automatic settings only (resolution rounded to a power of two or a cell
 // count, direction the largest of three facings), so a deterministic sample of at most
-// kShapeSampleTriangles evenly spaced triangles measures them as well as all of them
+// kShapeSampleTriangles triangles (evenly spaced blocks) measures them as well as all of them
 // would (host_passes::measureShape). They are measured here, when a detection or
 // resolveSettings needs them, not in every updateVertices: a deforming mesh updated several
 // times per detection is measured once, and not at all when the settings that use the

@@ -173,6 +173,14 @@ struct DetectSettings {
     // detection fails with ErrorCode::Timeout; its GPU work goes on and the world is
     // WorldState::Busy until it ends (CollisionWorld::state()).
     std::uint32_t timeout_ms = 60000;
+    // How the thread that collects a detection waits for its GPU work: it sleeps until
+    // shortly (0.15 ms) before the work's expected end (the submission time plus the last
+    // detection's GPU time), then polls the GPU's fence for up to wait_poll_us
+    // microseconds, then sleeps for the rest of timeout_ms. A sleeping wait alone wakes
+    // the thread 0.05-0.2 ms after the GPU finishes (NVIDIA's driver on an H200,
+    // docs/results.md); polling wakes it at once, and keeps one core busy for at most about
+    // wait_poll_us + 150 microseconds per detection. 0: sleep only.
+    std::uint32_t wait_poll_us = 500;
     // Most colliding pairs a detection returns. When the exact phase finds more, the
     // result holds max_pairs of them (the same ones for the same input, not necessarily
     // the smallest) with their responses, and DetectResult::pairs_left_out and

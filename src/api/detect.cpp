@@ -65,6 +65,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.coverage = s.method == DetectMethod::Reliable ? Coverage::Centre : s.coverage;
     d.broad.region = s.region;
     d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
+    d.broad.poll_ns = std::uint64_t{s.wait_poll_us} * 1000;
     d.broad.depth_aware = s.depth_aware;
     d.broad.max_candidate_pairs = s.max_candidate_pairs;  // the reliable method's GPU budget
     d.axes = s.axes;

@@ -42,11 +42,14 @@ using Clock = std::chrono::steady_clock;
 
 double msBetween(Clock::time_point t0, Clock::time_point t1) { return std::chrono::duration<double, std::milli>(t1 - t0).count(); }
 
+Error timeoutError(std::uint64_t timeout_ns) {
+    return Error(ErrorCode::Timeout, "GPU work did not finish within " + std::to_string(timeout_ns / 1000000) + " ms", VK_TIMEOUT);
+}
+
 // The submission's wait, with a timeout reported as ErrorCode::Timeout.
 Result<void> waitFor(vk::Submission& s, std::uint64_t timeout_ns) {
     auto ok = s.wait(timeout_ns);
-    if (!ok && ok.error().vkResult() == VK_TIMEOUT)
-        return Error(ErrorCode::Timeout, "GPU work did not finish within " + std::to_string(timeout_ns / 1000000) + " ms", VK_TIMEOUT);
+    if (!ok && ok.error().vkResult() == VK_TIMEOUT) return timeoutError(timeout_ns);
     return ok;
 }
 
@@ -299,9 +302,35 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
     return {};
 }
 
+Result<void> Executor::waitForCollect(std::uint64_t timeout_ns) {
+    if (poll_ns_ == 0 || !submission_.valid() || !submission_.pending()) return waitFor(submission_, timeout_ns);
+    const Clock::time_point start = Clock::now();
+    auto spent = [&] { return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count()); };
+    // Sleep until kPollLeadNs before the expected end, if that is still ahead.
+    const Clock::time_point expected = pending_submitted_at_ + std::chrono::nanoseconds(last_gpu_span_ns_);
+    const auto ahead = std::chrono::duration_cast<std::chrono::nanoseconds>(expected - start).count();
+    if (ahead > std::int64_t{kPollLeadNs}) {
+        const std::uint64_t sleep_ns = std::min<std::uint64_t>(static_cast<std::uint64_t>(ahead) - kPollLeadNs, timeout_ns);
+        auto done = submission_.waitFor(sleep_ns);
+        if (!done) return done.error();
+        if (*done == vk::Completion::Done) return {};
+    }
+    const std::uint64_t poll_from = spent();
+    while (spent() - poll_from < poll_ns_ && spent() < timeout_ns) {
+        auto done = submission_.poll();
+        if (!done) return done.error();
+        if (*done == vk::Completion::Done) return {};
+    }
+    const std::uint64_t used = spent();
+    auto done = submission_.waitFor(used < timeout_ns ? timeout_ns - used : 0);
+    if (!done) return done.error();
+    if (*done == vk::Completion::NotYet) return timeoutError(timeout_ns);
+    return {};
+}
+
 Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
     const Clock::time_point t_wait = Clock::now();
-    if (auto ok = waitFor(submission_, timeout_ns); !ok) return ok.error();
+    if (auto ok = waitForCollect(timeout_ns); !ok) return ok.error();
     const Clock::time_point t_woken = Clock::now();
     ExecutionReport report;
     report.culled = pending_culled_;
@@ -323,6 +352,7 @@ Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
     }
     report.total_gpu_ms = double(((stamps[count - 1] & mask) - (stamps[0] & mask)) & mask) * period_ms;
     report.host.gpu_span_ms = report.total_gpu_ms;
+    last_gpu_span_ns_ = static_cast<std::uint64_t>(report.total_gpu_ms * 1e6);
     report.host.launch_wake_ms = std::max(0.0, msBetween(pending_submitted_at_, t_woken) - report.total_gpu_ms);
     return report;
 }

@@ -101,12 +101,22 @@ public:
     // engine's command buffer; the target's flags are updated on success.
     [[nodiscard]] Result<void> submit(const Graph& graph, std::uint64_t timeout_ns = kDefaultTimeoutNs,
                                       SubmitTarget* target = nullptr, bool signal = true);
-    // Waits for the last submission and reads its timestamps.
+    // Waits for the last submission and reads its timestamps. With polling set
+    // (setWaitPolling), the wait sleeps until shortly before the work's expected end, then
+    // polls the fence.
     [[nodiscard]] Result<ExecutionReport> collect(std::uint64_t timeout_ns = kDefaultTimeoutNs);
     // submit() then collect().
     [[nodiscard]] Result<ExecutionReport> run(const Graph& graph, std::uint64_t timeout_ns = kDefaultTimeoutNs);
     // Waits up to timeout_ns for any work in flight, also work a collect() gave up on.
     [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns);
+    // How collect() waits: 0 (the default) sleeps in the driver's wait, which wakes the
+    // thread 0.05-0.2 ms after the GPU finishes (NVIDIA's driver on an H200: docs/results.md);
+    // otherwise it sleeps until kPollLeadNs before the work's expected end (the submission
+    // time plus the last collected GPU span), polls the fence for up to poll_ns from there,
+    // and sleeps for the rest of the timeout if the work is still running. Polling keeps
+    // the waiting core busy for at most about poll_ns + kPollLeadNs per collect().
+    void setWaitPolling(std::uint64_t poll_ns) noexcept { poll_ns_ = poll_ns; }
+    static constexpr std::uint64_t kPollLeadNs = 150'000;
     // Whether submitted work is still running (polls; never waits).
     bool busy() const;
     // Done once the last submission has finished, NotYet while it runs; never waits.
@@ -123,6 +133,8 @@ private:
     // The plan of `graph`: the last one when its planKey() is unchanged, else compiled.
     Result<void> planFor(const Graph& graph);
     void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx);
+    // collect()'s wait for the last submission (setWaitPolling).
+    Result<void> waitForCollect(std::uint64_t timeout_ns);
 
     vk::Device* device_;
     // The last plan compiled and its graph's planKey(); scratch_key_: this submission's.
@@ -137,6 +149,8 @@ private:
     mutable vk::Submission submission_;
     VkQueryPool queries_ = VK_NULL_HANDLE;
     std::uint32_t query_capacity_ = 0;
+    std::uint64_t poll_ns_ = 0;
+    std::uint64_t last_gpu_span_ns_ = 0;  // the last collected submission's, for the expected end
     // Transients cached by name; recreated when the description changes.
     struct CachedBuffer {
         VkDeviceSize size = 0;

@@ -133,6 +133,7 @@ Result<void> BroadPhase::prepareRun(std::span<const GpuMesh> meshes, const Broad
         return Error(ErrorCode::Timeout, "the GPU work of an earlier detection that timed out is still running (" +
                                              ok.error().message() + " more)", ok.error().vkResult());
     }
+    executor_.setWaitPolling(s.poll_ns);
     std::uint64_t total = 0;
     for (const GpuMesh& m : meshes) total += m.triangle_count;
     const RunShape shape{s.resolution, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(meshes.size()), s.keep_ray_image,

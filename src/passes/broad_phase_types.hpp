@@ -100,6 +100,8 @@ struct BroadPhaseSettings {
     // Longest wait for one submission (ns); beyond it the run fails with ErrorCode::Timeout
     // and its GPU work is left to finish on its own (BroadPhase::busy()).
     std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;
+    // How collect() waits for the GPU (graph::Executor::setWaitPolling): 0 sleeps only.
+    std::uint64_t poll_ns = 0;
     // Depth-aware separation (docs/broadphase.md): collision rays carry the depth interval
     // of their near pairs, bundles are (x, y, depth) boxes, a triangle is kept only where
     // its own box meets them in all three, and records carry the kept depth range. Off:

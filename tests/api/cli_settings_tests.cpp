@@ -218,15 +218,17 @@ TEST_CASE("vkcollide detect: --method chooses the broad phase, reliable by defau
     CHECK(jsonPairs(peeling["frames"][0]) == jsonPairs(reliable["frames"][0]));
 }
 
-TEST_CASE("vkcollide detect: --max-pairs keeps that many and says the rest were left out, --timeout and --max-candidate-pairs reach the settings",
+TEST_CASE("vkcollide detect: --max-pairs keeps that many and says the rest were left out, --timeout, --wait-poll and --max-candidate-pairs reach the settings",
           "[cli][gpu]") {
     TwoSpheres s;
     const Json all = detectJson(s.scratch, s.plain_files);
     REQUIRE(all["frames"][0]["pairs"].size() > 3);
     Run run;
-    const Json capped = detectJson(s.scratch, s.plain_files + " --max-pairs 3 --timeout 30000 --max-candidate-pairs 100000000", run);
+    const Json capped = detectJson(s.scratch, s.plain_files + " --max-pairs 3 --timeout 30000 --wait-poll 0 --max-candidate-pairs 100000000", run);
     CHECK(capped["settings"]["used"]["max_pairs"].number() == 3);
     CHECK(capped["settings"]["used"]["timeout_ms"].number() == 30000);
+    CHECK(capped["settings"]["used"]["wait_poll_us"].number() == 0);
+    CHECK(all["settings"]["used"]["wait_poll_us"].number() == 500);
     CHECK(capped["settings"]["used"]["max_candidate_pairs"].number() == 100000000);
     CHECK(capped["frames"][0]["pairs"].size() == 3);
     // The reliable method (the default) checks the budget on the GPU, before the narrow phase.

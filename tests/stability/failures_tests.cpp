@@ -42,6 +42,7 @@ WorldState settled(CollisionWorld& w) {
 // one at a time).
 struct Injected {
     static inline PFN_vkWaitForFences wait = nullptr;
+    static inline PFN_vkGetFenceStatus status = nullptr;  // polled waits (DetectSettings::wait_poll_us)
     static inline PFN_vkQueueSubmit2 submit = nullptr;
     static inline PFN_vkAllocateMemory allocate = nullptr;
     static inline std::atomic<bool> lose_device{false};
@@ -53,6 +54,11 @@ struct Injected {
         ++calls;
         const VkResult r = wait(d, n, f, all, t);
         return lose_device ? VK_ERROR_DEVICE_LOST : r;
+    }
+    static VKAPI_ATTR VkResult VKAPI_CALL statusLost(VkDevice d, VkFence f) {
+        ++calls;
+        const VkResult r = status(d, f);
+        return lose_device && r != VK_NOT_READY ? VK_ERROR_DEVICE_LOST : r;
     }
     static VKAPI_ATTR VkResult VKAPI_CALL submitLost(VkQueue q, uint32_t n, const VkSubmitInfo2* s, VkFence f) {
         ++calls;
@@ -66,9 +72,11 @@ struct Injected {
 
     explicit Injected(vk::Device& device) : device_(&device) {
         wait = device.fns.vkWaitForFences;
+        status = device.fns.vkGetFenceStatus;
         submit = device.fns.vkQueueSubmit2;
         allocate = device.fns.vkAllocateMemory;
         device.fns.vkWaitForFences = waitLost;
+        device.fns.vkGetFenceStatus = statusLost;
         device.fns.vkQueueSubmit2 = submitLost;
         device.fns.vkAllocateMemory = allocateSome;
         lose_device = false;
@@ -77,6 +85,7 @@ struct Injected {
     }
     ~Injected() {
         device_->fns.vkWaitForFences = wait;
+        device_->fns.vkGetFenceStatus = status;
         device_->fns.vkQueueSubmit2 = submit;
         device_->fns.vkAllocateMemory = allocate;
     }
@@ -159,17 +168,55 @@ TEST_CASE("a detection that runs out of time fails with Timeout, the world is Bu
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
+TEST_CASE("a polling wait finds the same pairs and still honours the timeout", "[stability][gpu][failures]") {
+    ValidatedContext ctx;
+    auto c = slabsOverContact(150);  // about a second of GPU work on lavapipe
+    REQUIRE(c);
+    auto world = worldOf(ctx.context(), c->scene);
+    for (std::uint32_t poll : {0u, 500u, 2'000'000u}) {
+        INFO("wait_poll_us " << poll);
+        DetectSettings s = c->settings;
+        s.wait_poll_us = poll;
+        auto r = world->detect(s);
+        REQUIRE(r);
+        CHECK((r->pairs == *c->reference));
+    }
+    // Polling for up to two seconds does not outlast a 1 ms timeout.
+    DetectSettings impatient = c->settings;
+    impatient.measure_layers = false;
+    impatient.timeout_ms = 1;
+    impatient.wait_poll_us = 2'000'000;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto r = world->detect(impatient);
+    const double waited_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (r) {
+        WARN("the GPU finished 304 peeling steps within 1 ms: the timeout was not reached");
+    } else {
+        CHECK(r.error().code() == ErrorCode::Timeout);
+        CHECK(mentions(r.error(), "did not finish within 1 ms"));
+        CHECK(waited_s < 1.9);  // not the whole polling budget (the recording takes a few ms)
+    }
+    CHECK(settled(*world) == WorldState::Ready);
+    auto again = world->detect(c->settings);
+    REQUIRE(again);
+    CHECK((again->pairs == *c->reference));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
 TEST_CASE("a lost device fails the detection with DeviceLost and every later one at once", "[stability][gpu][failures]") {
     ValidatedContext ctx;
     auto c = slabsOverContact(2);
     REQUIRE(c);
     for (bool at_submit : {false, true}) {
-        INFO((at_submit ? "vkQueueSubmit2" : "vkWaitForFences") << " reports the loss");
+        INFO((at_submit ? "vkQueueSubmit2" : "vkWaitForFences or vkGetFenceStatus") << " reports the loss");
         Injected faults(ctx.device());
         auto world = worldOf(ctx.context(), c->scene);
         REQUIRE(world->detect(c->settings));
         Injected::lose_device = true;
-        if (at_submit) ctx.device().fns.vkWaitForFences = Injected::wait;  // only the submission fails
+        if (at_submit) {  // only the submission fails
+            ctx.device().fns.vkWaitForFences = Injected::wait;
+            ctx.device().fns.vkGetFenceStatus = Injected::status;
+        }
         auto r = world->detect(c->settings);
         REQUIRE_FALSE(r);
         CHECK(r.error().code() == ErrorCode::DeviceLost);

@@ -100,6 +100,7 @@ DetectSettings decodeSettings(const SettingsBytes& b) {
         case 15: s.timeout_ms = 5; break;
         default: break;  // the default: a minute
     }
+    if (b[6] & 16) s.wait_poll_us = (b[6] & 32) ? 0 : 1u << 20;  // sleep only, or poll up to a second
     constexpr std::array<std::uint64_t, 4> kMaxPairs = {std::uint64_t{1} << 24, 0, 1, 3};
     s.max_pairs = kMaxPairs[b[7] % kMaxPairs.size()];
     constexpr std::array<std::uint64_t, 4> kMaxCandidatePairs = {std::uint64_t{1} << 27, 0, 1, 10};
@@ -131,6 +132,7 @@ std::string describe(const DetectSettings& s) {
     add(s.axes != d.axes, "axes " + std::to_string(s.axes));
     add(s.layer_cap != d.layer_cap, "layer_cap " + std::to_string(s.layer_cap));
     add(s.timeout_ms != d.timeout_ms, "timeout_ms " + std::to_string(s.timeout_ms));
+    add(s.wait_poll_us != d.wait_poll_us, "wait_poll_us " + std::to_string(s.wait_poll_us));
     add(s.max_pairs != d.max_pairs, "max_pairs " + std::to_string(s.max_pairs));
     add(s.max_candidate_pairs != d.max_candidate_pairs, "max_candidate_pairs " + std::to_string(s.max_candidate_pairs));
     return out;

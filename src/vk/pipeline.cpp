@@ -1,6 +1,8 @@
 // Compute and graphics pipelines with their layouts (src/vk/pipeline.hpp).
 #include "vk/pipeline.hpp"
 
+#include "vk/shader_limits.hpp"
+
 #include <vector>
 
 namespace vkcollide::vk {
@@ -67,6 +69,11 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
 Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::uint32_t> spirv,
                                          std::span<const Binding> bindings, std::uint32_t push_constant_bytes,
                                          const std::string& name) {
+    // A device below the shader's workgroup size or shared memory fails here, by name.
+    auto needs = readComputeNeeds(spirv);
+    if (!needs) return Error(ErrorCode::InvalidArgument, "compute pipeline '" + name + "': " + needs.error().message());
+    if (auto over = exceededComputeLimit(*needs, device.properties.limits, name))
+        return Error(ErrorCode::UnsupportedFeature, *over + " on " + device.info.name);
     Pipeline p;
     if (auto ok = p.createLayout(device, bindings, push_constant_bytes, VK_SHADER_STAGE_COMPUTE_BIT, name); !ok)
         return ok.error();

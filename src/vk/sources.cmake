@@ -9,5 +9,6 @@ list(APPEND VKCOLLIDE_GPU_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/pipeline_cache.cpp
   ${CMAKE_CURRENT_LIST_DIR}/queue.cpp
   ${CMAKE_CURRENT_LIST_DIR}/semaphore.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/shader_limits.cpp
   ${CMAKE_CURRENT_LIST_DIR}/submission.cpp
 )

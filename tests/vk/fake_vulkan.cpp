@@ -196,6 +196,11 @@ void fillProperties(VkPhysicalDevice p, VkPhysicalDeviceProperties& out) {
     out.limits.timestampPeriod = 1.0f;
     out.limits.nonCoherentAtomSize = d.non_coherent_atom_size;
     out.limits.maxComputeWorkGroupCount[0] = out.limits.maxComputeWorkGroupCount[1] = out.limits.maxComputeWorkGroupCount[2] = 65535;
+    // A desktop GPU's compute limits (Pipeline::createCompute checks shaders against them).
+    out.limits.maxComputeSharedMemorySize = 49152;
+    out.limits.maxComputeWorkGroupInvocations = 1024;
+    out.limits.maxComputeWorkGroupSize[0] = out.limits.maxComputeWorkGroupSize[1] = 1024;
+    out.limits.maxComputeWorkGroupSize[2] = 64;
     // The pipeline cache header (FakeVulkan::cacheHeader) repeats these.
     out.vendorID = 0x1234;
     out.deviceID = static_cast<std::uint32_t>(physicalIndex(p) + 1);

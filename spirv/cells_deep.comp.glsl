@@ -13,6 +13,7 @@
 // in chunks of kCellsGroupSize entries, each entry scanning the whole cell as the shallow
 // sweep does.
 #include "cells_common.glsl.inc"
+#include "cells_sweep.glsl.inc"
 #include "workgroup.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
@@ -29,19 +30,6 @@ uint objectOf(uint a) { return s_key[a] & kCellsKeyObject; }
 bool sweepBefore(uint a, uint b) { return s_zlo[a] < s_zlo[b] || (s_zlo[a] == s_zlo[b] && a < b); }
 // (object, zlo, index) order, the sort's.
 bool orderedBefore(uint a, uint b) { return objectOf(a) < objectOf(b) || (objectOf(a) == objectOf(b) && sweepBefore(a, b)); }
-
-void emit(CellsParams P, inout uint64_t slot, uint ta, uint tb, uint cell) {
-    if (slot < uint64_t(P.candidate_capacity)) {
-        CellsCandidate c;
-        c.a = min(ta, tb);
-        c.b = max(ta, tb);
-        c.cell = cell;
-        CellsCandidatesRef(P.candidates).c[uint(slot)] = c;
-    } else {
-        atomicOr(cellsHeader(P).h.flags, kCellsOverflowCandidates);
-    }
-    ++slot;
-}
 
 void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
     const uint tid = gl_LocalInvocationIndex;
@@ -129,42 +117,24 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
                         continue;
                     }
                     if (pass == 0u) ++n;
-                    else emit(P, out_slot, me.triangle, CellsEntriesRef(P.entries).e[begin + b].triangle, cell);
+                    else emitCandidate(P, out_slot, me.triangle, CellsEntriesRef(P.entries).e[begin + b].triangle, cell);
                 }
             }
         }
     }
 }
 
+// Chunk `chunk` of a cell deeper than kCellsDeepShared: kCellsGroupSize of its entries,
+// each scanned against the whole cell as the shallow sweep does.
 void chunkOfCell(CellsParams P, uint cell, uint begin, uint end, uint chunk) {
-    CellsEntriesRef entries = CellsEntriesRef(P.entries);
     uint e = begin + chunk * kCellsGroupSize + gl_LocalInvocationIndex;
-    uint stop = e < end ? end : begin;
     CellsEntry me;
     uvec3 mine = uvec3(~0u);
     if (e < end) {
-        me = entries.e[e];
+        me = CellsEntriesRef(P.entries).e[e];
         if ((me.key & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
     }
-    uint n = 0u, neighbours = 0u;
-    for (uint j = begin; j < stop; ++j) {
-        CellsEntry o = entries.e[j];
-        bool after = o.zlo > me.zlo || (o.zlo == me.zlo && j > e);
-        if (after && o.zlo <= me.zhi && sweepPair(P, me.key, mine, o.key, o.triangle, neighbours)) ++n;
-    }
-    subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
-    subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
-    uint64_t slot = subgroupAppend64(headerField(P, kHeaderCandidates), n);  // n < 2^19, as in the sweep
-    if (n == 0u) return;
-    if (slot >= uint64_t(P.candidate_capacity)) {  // none fits: skip the second scan
-        raiseFlag(P, kCellsOverflowCandidates);
-        return;
-    }
-    for (uint j = begin; j < stop; ++j) {
-        CellsEntry o = entries.e[j];
-        bool after = o.zlo > me.zlo || (o.zlo == me.zlo && j > e);
-        if (after && o.zlo <= me.zhi && sweepPair(P, me.key, mine, o.key, o.triangle, neighbours)) emit(P, slot, me.triangle, o.triangle, cell);
-    }
+    sweepEntry(P, cell, e, me, mine, begin, e < end ? end : begin);
 }
 
 void main() {

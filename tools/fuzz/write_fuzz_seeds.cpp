@@ -3,21 +3,16 @@
 // the writers never produce (groups, polygons, relative indices, comments, skipped
 // PLY elements). Usage: write_fuzz_seeds <folder>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
+#include "fuzz/seed_files.hpp"
 #include "vkcollide/io.hpp"
 #include "vkcollide/scene.hpp"
 
 namespace {
 
-bool writeFile(const std::string& path, const std::string& bytes) {
-    std::ofstream out(path, std::ios::binary);
-    out << bytes;
-    return static_cast<bool>(out);
-}
+bool writeFile(const std::string& path, const std::string& bytes) { return vkcollide::fuzz::writeSeed(path, bytes); }
 
 }  // namespace
 
@@ -27,8 +22,7 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string folder = argv[1];
-    std::error_code made;
-    std::filesystem::create_directories(folder, made);
+    const bool made = vkcollide::fuzz::makeCorpusFolder(folder);
     std::vector<vkcollide::HostMesh> meshes;
     for (auto r : {vkcollide::uvSphere(1.0f, 5, 3), vkcollide::torus(2.0f, 0.5f, 4, 3),
                    vkcollide::box(vkcollide::Float3{1.0f, 0.5f, 2.0f}, 1), vkcollide::clothGrid(1.0f, 1.0f, 2, 1)}) {
@@ -38,7 +32,7 @@ int main(int argc, char** argv) {
         }
         meshes.push_back(std::move(*r));
     }
-    bool ok = writeFile(folder + "/all.obj", vkcollide::writeObj(meshes));
+    bool ok = made && writeFile(folder + "/all.obj", vkcollide::writeObj(meshes));
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const std::string stem = folder + "/" + meshes[i].name;
         ok = ok && writeFile(stem + ".off", vkcollide::writeOff(meshes[i]));
@@ -65,9 +59,5 @@ int main(int argc, char** argv) {
                          "f -1 -2 -3/-9223372036854775808/9223372036854775807\n");
     ok = ok && writeFile(folder + "/extremes.off",
                          "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -9223372036854775808\n");
-    if (!ok) {
-        std::fprintf(stderr, "cannot write into %s\n", folder.c_str());
-        return 1;
-    }
-    return 0;
+    return vkcollide::fuzz::corpusStatus(ok, folder);
 }

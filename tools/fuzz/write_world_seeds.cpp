@@ -2,11 +2,10 @@
 // call, each refusal, each setting, each way to end a detection), in the byte format of
 // world_program.hpp. Tiny meshes on the 1/16 grid. Usage: write_world_seeds <folder>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
+#include "fuzz/seed_files.hpp"
 #include "fuzz/world_program.hpp"
 
 using namespace vkcollide::fuzz;
@@ -107,7 +106,11 @@ struct Settings {
         return *this;
     }
     Settings& timeout(std::uint8_t code) {
-        b[6] = code;
+        b[6] = static_cast<std::uint8_t>((b[6] & ~15) | code);
+        return *this;
+    }
+    Settings& waitPoll(bool sleep_only) {  // else poll up to a second
+        b[6] = static_cast<std::uint8_t>(b[6] | 16 | (sleep_only ? 32 : 0));
         return *this;
     }
     Settings& maxPairs(std::uint8_t code) {
@@ -303,8 +306,10 @@ int main(int argc, char** argv) {
                                        .remove(0)
                                        .updateVertices(1, 0, {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}})
                                        .detect()
-                                       .submit(Settings().timeout(13))
+                                       .submit(Settings().timeout(13).waitPoll(false))
                                        .collect()
+                                       .detect(Settings().waitPoll(true))
+                                       .detect(Settings().waitPoll(false).peeling())
                                        .submit(Settings().timeout(14).peeling())
                                        .newWorld()  // destroyed with a detection in flight
                                        .addMesh(flatTriangle())
@@ -392,17 +397,10 @@ int main(int argc, char** argv) {
                                                                    .submit(Settings().coverage(2).backend(2))
                                                                    .collect());
 
-    std::error_code made;
-    std::filesystem::create_directories(folder, made);
-    bool ok = !made;
+    bool ok = makeCorpusFolder(folder);
     for (const auto& [name, program] : seeds) {
-        std::ofstream out(folder + "/" + name, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(program.bytes().data()), static_cast<std::streamsize>(program.bytes().size()));
-        ok = ok && static_cast<bool>(out);
+        const auto& bytes = program.bytes();
+        ok = writeSeed(folder + "/" + name, std::span(reinterpret_cast<const char*>(bytes.data()), bytes.size())) && ok;
     }
-    if (!ok) {
-        std::fprintf(stderr, "cannot write into %s\n", folder.c_str());
-        return 1;
-    }
-    return 0;
+    return corpusStatus(ok, folder);
 }

@@ -195,6 +195,25 @@ TEST_CASE("reliable: mutually crossing triangles: max_candidate_pairs and max_pa
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
+namespace {
+
+// The crossing pair scaled by `scale` (pathological_scenes.hpp), detected by the reliable
+// method in a world of its own: the result, the world's state after it, the exact pair.
+struct ScaledDetection {
+    Result<DetectResult> result;
+    WorldState state;
+    std::vector<TrianglePair> reference;
+};
+ScaledDetection detectScaled(ValidatedContext& ctx, float scale) {
+    auto c = scaledCrossing(scale);
+    REQUIRE(c);
+    auto world = worldOf(ctx, *c);
+    auto r = world->detect(reliable());
+    return {std::move(r), world->state(), *c->reference};
+}
+
+}  // namespace
+
 TEST_CASE("reliable: coordinates from subnormal to 2^62 give the pair or a named error", "[stability][gpu][limits][reliable]") {
     ValidatedContext ctx;
     // Inside the reliable method's range (below 2^62) and wider than the 1e-30 every method
@@ -202,37 +221,28 @@ TEST_CASE("reliable: coordinates from subnormal to 2^62 give the pair or a named
     // stage scales them back (before: "a projection entry is not finite or not below 2^62").
     for (float scale : {1e-29f, 1e-25f, 1.0f, 1e18f}) {
         INFO("scale " << scale);
-        auto c = scaledCrossing(scale);
-        REQUIRE(c);
-        auto world = worldOf(ctx, *c);
-        auto r = world->detect(reliable());
-        INFO((r ? std::string() : r.error().message()));
-        REQUIRE(r);
-        checkExact(r->pairs, *c->reference);
+        const ScaledDetection d = detectScaled(ctx, scale);
+        INFO((d.result ? std::string() : d.result.error().message()));
+        REQUIRE(d.result);
+        checkExact(d.result->pairs, d.reference);
     }
     // 2^62 and more (1e19, 1e29): the reliable method's limit, named with the object.
     for (float scale : {1e19f, 1e29f}) {
         INFO("scale " << scale);
-        auto c = scaledCrossing(scale);
-        REQUIRE(c);
-        auto world = worldOf(ctx, *c);
-        auto r = world->detect(reliable());
-        REQUIRE_FALSE(r);
-        CHECK(r.error().code() == ErrorCode::InvalidMesh);
-        CHECK(mentions(r.error(), "'flat'"));
-        CHECK(mentions(r.error(), "2^62"));
-        CHECK(world->state() == WorldState::Ready);
+        const ScaledDetection d = detectScaled(ctx, scale);
+        REQUIRE_FALSE(d.result);
+        CHECK(d.result.error().code() == ErrorCode::InvalidMesh);
+        CHECK(mentions(d.result.error(), "'flat'"));
+        CHECK(mentions(d.result.error(), "2^62"));
+        CHECK(d.state == WorldState::Ready);
     }
     // Narrower than 1e-30 or subnormal: LimitExceeded, as for the peeling method.
     for (float scale : {1e-35f, 1e-40f}) {
         INFO("scale " << scale);
-        auto c = scaledCrossing(scale);
-        REQUIRE(c);
-        auto world = worldOf(ctx, *c);
-        auto r = world->detect(reliable());
-        REQUIRE_FALSE(r);
-        CHECK(r.error().code() == ErrorCode::LimitExceeded);
-        CHECK(mentions(r.error(), "1e-30"));
+        const ScaledDetection d = detectScaled(ctx, scale);
+        REQUIRE_FALSE(d.result);
+        CHECK(d.result.error().code() == ErrorCode::LimitExceeded);
+        CHECK(mentions(d.result.error(), "1e-30"));
     }
     // Flat scenes whose depth extent is tiny or subnormal (the fit's depth row is 1 / extent,
     // infinite for the subnormal one): the pair.

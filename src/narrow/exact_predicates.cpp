@@ -111,6 +111,14 @@ inline Expansion<16> det3(const Float3& p, const Float3& q, const Float3& r, con
 
 inline int signOf(double x) { return (x > 0) - (x < 0); }
 
+// zeroFactors: the filters' free exact answer for contacts along axis-aligned planes and
+// lines (boxes resting on boxes: every test of such a pair would otherwise take the exact
+// path). With float inputs a rounded difference is 0 only when the two floats are equal
+// (x - y rounds to 0 only for x == y), a nonzero one is at least 2^-149 in magnitude, so a
+// product of two or three of them is at least 2^-447 and never rounds to 0 in double. So a
+// product term that rounds to 0 has an exact zero factor and is exactly 0; when the
+// filter's permanent (the sum of the terms' magnitudes) is 0, so is the exact determinant.
+
 
 // The nine differences b - a, c - a, d - a, rounded to double; true when all are exact,
 // which is the rule for float inputs (a float difference fits a double unless the two
@@ -200,6 +208,7 @@ int orient3d(const Float3& a, const Float3& b, const Float3& c, const Float3& d)
                              std::fabs(baz) * (std::fabs(cax_day) + std::fabs(cay_dax));
     const double bound = kOrient3dBound * permanent;
     if (det > bound || -det > bound) return signOf(det);
+    if (permanent == 0) return 0;  // every term has an exact zero factor (zeroFactors)
     return orient3dExact(a, b, c, d);
 }
 
@@ -224,6 +233,7 @@ int PlaneOrientation::side(const Float3& d) const noexcept {
     const double permanent = std::fabs(wx) * magnitude_[0] + std::fabs(wy) * magnitude_[1] + std::fabs(wz) * magnitude_[2];
     const double bound = kOrient3dBound * permanent;
     if (det > bound || -det > bound) return signOf(det);
+    if (permanent == 0) return 0;  // every term has an exact zero factor (zeroFactors)
     return orient3dExact(a_, b_, c_, d);
 }
 
@@ -241,6 +251,7 @@ int orient2d(const Float2& a, const Float2& b, const Float2& c) noexcept {
     const double det = left - right;
     const double bound = kOrient2dBound * (std::fabs(left) + std::fabs(right));
     if (det > bound || -det > bound) return signOf(det);
+    if (left == 0 && right == 0) return 0;  // both products have an exact zero factor (zeroFactors)
     return orient2dExact(a, b, c);
 }
 

@@ -231,3 +231,34 @@ TEST_CASE("Exact predicates on coordinates spanning 10 to 70 binades", "[narrow]
     }
     CHECK(zeros > 20);  // coplanar cases occur (many constructions round off the plane)
 }
+
+TEST_CASE("Shared coordinates (axis-aligned contacts, the filters' zero shortcut) agree with big-integer arithmetic",
+          "[narrow][predicates]") {
+    // Coordinates from a few values, so that many differences are exactly zero (points on
+    // common axis-aligned planes and lines, as boxes resting on boxes give), mixed with
+    // values one ulp apart, subnormals and huge ones, where a product may be tiny or a
+    // difference inexact.
+    std::mt19937 rng(20261125);
+    const float values[] = {0.0f, 1.0f, -1.0f, 0.5f, std::nextafter(1.0f, 2.0f), 3.0f, 1e-45f, -1e-45f, 1e-38f, 1e30f, -1e30f, 7.25e-20f};
+    std::uniform_int_distribution<int> pick(0, static_cast<int>(std::size(values)) - 1);
+    std::uniform_int_distribution<int> free_axis(0, 3);
+    auto point = [&](int fixed) {
+        Float3 p{values[pick(rng)], values[pick(rng)], values[pick(rng)]};
+        if (fixed == 0) p.x = 1.0f;  // all four points on x = 1 in this draw
+        if (fixed == 1) p.y = 1.0f;
+        if (fixed == 2) p.z = 1.0f;
+        return p;
+    };
+    int zeros = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const int fixed = free_axis(rng);
+        const Float3 a = point(fixed), b = point(fixed), c = point(fixed), d = point(fixed);
+        const int expected = bigOrient3d(a, b, c, d);
+        zeros += expected == 0;
+        REQUIRE(orient3d(a, b, c, d) == expected);
+        REQUIRE(PlaneOrientation(a, b, c).side(d) == expected);
+        const Float2 p{a.x, a.y}, q{b.x, b.y}, r{c.x, c.z};
+        REQUIRE(orient2d(p, q, r) == bigOrient2d(p, q, r));
+    }
+    CHECK(zeros > 100000);  // the shortcut's case is most of them
+}

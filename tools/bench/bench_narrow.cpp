@@ -5,6 +5,7 @@
 //                [--repeat 7] [--margin 1.0] [--filter] [--fresh] [--candidates FILE]... [--resolution N]
 //                [--pairs-sent boxes|hits] [--gap-us 0] [--dump PREFIX] [--csv PATH]
 //   bench_narrow --wake-probe [--threads 16] [--repeat 7] [--gap-us 2000]
+//   bench_narrow --front-probe [scene options as above] (bench_narrow_probes.hpp)
 //
 // Candidates come from tests/support/exact_reference.hpp's allTrianglesAsCandidates: every
 // triangle with its world AABB mapped to [0,1] as box and depth (an orthographic camera
@@ -71,13 +72,13 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
-#include <mutex>
 #include <random>
 #include <string>
 #include <thread>
 #include <unordered_map>
 #include <vector>
 
+#include "bench_narrow_probes.hpp"
 #include "passes/broad_phase.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/sweep_and_prune.hpp"
@@ -112,6 +113,7 @@ struct Options {
     std::string csv;
     std::string dump;  // prefix for raw candidate files, empty: none
     bool wake_probe = false;
+    bool front_probe = false;  // pair path: time the front's two forms instead of whole calls
 };
 
 // One object of a generated scene: an object-space mesh and its object -> world transform
@@ -206,9 +208,11 @@ Options parseArgs(int argc, char** argv) {
             o.csv = value();
         } else if (a == "--wake-probe") {
             o.wake_probe = true;
+        } else if (a == "--front-probe") {
+            o.front_probe = true;
         } else {
             die("unknown argument " + a +
-                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --pairs-sent, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --gap-us, --dump, --csv, --wake-probe)");
+                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --pairs-sent, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --gap-us, --dump, --csv, --wake-probe, --front-probe)");
         }
     }
     if (o.threads.empty()) die("--threads needs at least one count");
@@ -495,56 +499,6 @@ LeanInputs leanInputs(const Workload& w, bool self, double repeats, bool hits_on
     return in;
 }
 
-// --wake-probe: how long after a call starts the pool's sleeping workers take part. Per
-// thread count: `repeat` rounds of a sleep (--gap-us, at least 2 ms: the workers sleep),
-// then a loop of 64 chunks per thread of 2 us each, with and without prepare() just
-// before it; the median time from the call until the first, half and last worker took
-// its first chunk (a worker that took none counts as the loop's end).
-void wakeProbe(const Options& o) {
-    using Clock = std::chrono::steady_clock;
-    std::printf("%-8s %-8s %10s %10s %10s %10s\n", "threads", "prepare", "first us", "half us", "last us", "loop us");
-    for (const unsigned threads : o.threads) {
-        ThreadPool pool(threads);
-        const unsigned workers = pool.threadCount() - 1;
-        if (workers == 0) continue;
-        for (const bool prepare : {false, true}) {
-            std::vector<double> first, half, last, loop;
-            for (unsigned round = 0; round < o.repeat; ++round) {
-                std::this_thread::sleep_for(std::chrono::microseconds(std::max(2000u, o.gap_us)));
-                std::mutex m;
-                std::vector<std::pair<std::thread::id, double>> joined;
-                const std::thread::id caller = std::this_thread::get_id();
-                const Clock::time_point start = Clock::now();
-                const auto since = [&] { return std::chrono::duration<double, std::micro>(Clock::now() - start).count(); };
-                if (prepare) pool.prepare(pool.threadCount());
-                pool.parallelFor(64 * std::size_t{pool.threadCount()}, 1, [&](std::size_t, std::size_t) {
-                    const Clock::time_point until = Clock::now() + std::chrono::microseconds(2);
-                    const std::thread::id self = std::this_thread::get_id();
-                    if (self != caller) {
-                        const std::lock_guard lock(m);
-                        if (std::none_of(joined.begin(), joined.end(), [&](const auto& j) { return j.first == self; })) {
-                            joined.push_back({self, since()});
-                        }
-                    }
-                    while (Clock::now() < until) {
-                    }
-                });
-                const double end = since();
-                std::vector<double> t;
-                for (const auto& j : joined) t.push_back(j.second);
-                t.resize(workers, end);
-                std::sort(t.begin(), t.end());
-                first.push_back(t.front());
-                half.push_back(t[(workers - 1) / 2]);
-                last.push_back(t.back());
-                loop.push_back(end);
-            }
-            std::printf("%-8u %-8s %10.1f %10.1f %10.1f %10.1f\n", pool.threadCount(), prepare ? "yes" : "no", median(first),
-                        median(half), median(last), median(loop));
-        }
-    }
-}
-
 void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
     if (!o.dump.empty() && w.mode != "file") {
         const std::string path = o.dump + w.scene + "-" + std::to_string(w.triangles) + "-" + w.mode + ".bin";
@@ -563,6 +517,11 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
         if (lean_paths && !w.objects.empty()) lean = leanInputs(w, self, o.pair_repeats, o.hits_only, pair_path);
         std::vector<TrianglePair> reference_pairs;
         bool first = true, warned = false;
+        if (o.front_probe && pair_path && !w.objects.empty()) {
+            bench::frontProbe(w.scene + " " + std::to_string(w.triangles) + (self ? " self" : ""), lean.pairs,
+                              lean.source.totalTriangles(), o.threads, o.repeat, o.gap_us);
+            continue;
+        }
         for (const std::string& path : o.paths) {
             if (path != "records" && w.objects.empty()) continue;  // a candidate file has no meshes
             std::vector<TrianglePair> path_pairs;
@@ -649,7 +608,7 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
 int main(int argc, char** argv) {
     const Options o = parseArgs(argc, argv);
     if (o.wake_probe) {
-        wakeProbe(o);
+        bench::wakeProbe(o.threads, o.repeat, o.gap_us);
         return 0;
     }
     std::FILE* csv = nullptr;
@@ -659,9 +618,13 @@ int main(int argc, char** argv) {
         std::fprintf(csv, "scene,mode,self,path,triangles,inputs,threads,candidates,potentially_colliding,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
                           "positive_tests,input_pairs,validate_ms,gather_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
     }
-    std::printf("median of %u runs (ms)%s%s%s, %u us between calls\n", o.repeat, o.filter ? ", with may_collide" : "",
-                o.fresh ? ", no workspace" : ", one workspace per row", o.hits_only ? ", intersecting pairs sent" : "", o.gap_us);
-    std::printf("%-12s %-8s %-4s %-7s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode",
+    if (o.front_probe) {
+        bench::frontProbeHeader();
+    } else {
+        std::printf("median of %u runs (ms)%s%s%s, %u us between calls\n", o.repeat, o.filter ? ", with may_collide" : "",
+                    o.fresh ? ", no workspace" : ", one workspace per row", o.hits_only ? ", intersecting pairs sent" : "", o.gap_us);
+    }
+    if (!o.front_probe) std::printf("%-12s %-8s %-4s %-7s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode",
                 "self", "path", "tris", "inputs", "thr", "cand pairs", "tests", "pairs", "validate", "gather", "sweep", "filter",
                 "test", "sort", "response", "total", "total min", "cpu");
     for (const std::string& path : o.files) runWorkload(loadWorkload(path), o, csv);

@@ -129,7 +129,7 @@ std::optional<Error> gatherSlots(const TriangleSource& source, const Buffer<std:
     const std::size_t grain =
         n < 2 * kMinGatherGrain ? std::max<std::size_t>(n, 1) : grainFor(n, executor.threadCount(), 2, kMinGatherGrain, kMaxGatherGrain);
     std::vector<std::optional<TaskError>> errors(taskCount(n, grain));
-    executor.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
+    executor.parallelFor(n, grain, [&, grain](std::size_t begin, std::size_t end) {
         // The object of the first slot, then walk: slots ascend.
         std::uint32_t object = objectOf(source, ids[begin]);
         std::size_t cursor = 0;  // into table_keys

@@ -297,21 +297,40 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     // (lower slot, higher slot) keys sorts the pairs.
     Buffer<std::uint64_t>& colliding = ws.colliding;
     colliding.resize(hit_count);
+    out.pairs.resize(hit_count);
+    // Plain pointers and copies: the strided slot views read through std::byte, which may
+    // alias anything, so members reached through references would be reloaded per pair.
+    const auto fill = [hit_keys = colliding.data(), pairs_out = out.pairs.data(), object = slots.object,
+                       triangle = slots.triangle](std::size_t k) {
+        const auto i = static_cast<std::uint32_t>(hit_keys[k] >> 32), j = static_cast<std::uint32_t>(hit_keys[k]);
+        pairs_out[k] = {object[i], triangle[i], object[j], triangle[j]};
+    };
     {
-        std::vector<std::size_t> at(hits.size() + 1, 0);
+        // Each task's hits copied to their place (and, already in order, turned into pairs
+        // on the way): in parallel only when the copy outweighs a fork-join.
+        std::vector<std::size_t>& at = ws.hit_begin;
+        at.assign(hits.size() + 1, 0);
         for (std::size_t t = 0; t < hits.size(); ++t) at[t + 1] = at[t] + hits[t].size();
-        ex.parallelFor(hits.size(), 16, [&](std::size_t first, std::size_t last) {
-            for (std::size_t t = first; t < last; ++t) std::copy(hits[t].begin(), hits[t].end(), colliding.begin() + at[t]);
+        const auto place = [&, in_order = tests_in_order](std::size_t first, std::size_t last) {
+            for (std::size_t t = first; t < last; ++t) {
+                std::copy(hits[t].begin(), hits[t].end(), colliding.begin() + at[t]);
+                if (!in_order) continue;
+                const std::size_t end = at[t + 1];
+                for (std::size_t k = at[t]; k < end; ++k) fill(k);
+            }
+        };
+        if (hit_count < kSerialBelow) {
+            place(0, hits.size());
+        } else {
+            ex.parallelFor(hits.size(), 16, place);
+        }
+    }
+    if (!tests_in_order) {
+        parallelRadixSort(ex, colliding, ws.colliding_scratch, 32 + bitsFor(slot_count));
+        ex.parallelFor(hit_count, kResultGrain, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) fill(k);
         });
     }
-    if (!tests_in_order) parallelRadixSort(ex, colliding, ws.colliding_scratch, 32 + bitsFor(slot_count));
-    out.pairs.resize(hit_count);
-    ex.parallelFor(hit_count, kResultGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) {
-            const auto i = static_cast<std::uint32_t>(colliding[k] >> 32), j = static_cast<std::uint32_t>(colliding[k]);
-            out.pairs[k] = {slots.object[i], slots.triangle[i], slots.object[j], slots.triangle[j]};
-        }
-    });
     stats.positive_tests = hit_count + out.pairs_left_out;
     clock.lap(timings.sort_ms);
 

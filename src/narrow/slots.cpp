@@ -11,8 +11,13 @@ namespace vkcollide::narrow {
 namespace {
 
 // Slots per gather task: a task walks the objects and the sorted GPU table from its first
-// slot on, so it starts with two binary searches.
-constexpr std::size_t kGatherGrain = 1024;
+// slot on, so it starts with two binary searches. At most kMaxGatherGrain; down to
+// kMinGatherGrain so that the thousand-odd slots of a light contact spread over about
+// two tasks per thread (each slot is a few cache misses: threads overlap them), and on
+// the calling thread alone below 2 * kMinGatherGrain (a loop that wakes a sleeping
+// worker costs the caller more than gathering them).
+constexpr std::size_t kMaxGatherGrain = 1024;
+constexpr std::size_t kMinGatherGrain = 256;
 // world_begin of an object transformed per slot.
 constexpr std::size_t kNotWhole = std::numeric_limits<std::size_t>::max();
 // The gather is bound by memory latency, not arithmetic: each slot loads three indices
@@ -121,13 +126,15 @@ std::optional<Error> gatherSlots(const TriangleSource& source, const Buffer<std:
         std::size_t slot;
         Error error;
     };
-    std::vector<std::optional<TaskError>> errors(taskCount(n, kGatherGrain));
-    executor.parallelFor(n, kGatherGrain, [&](std::size_t begin, std::size_t end) {
+    const std::size_t grain =
+        n < 2 * kMinGatherGrain ? std::max<std::size_t>(n, 1) : grainFor(n, executor.threadCount(), 2, kMinGatherGrain, kMaxGatherGrain);
+    std::vector<std::optional<TaskError>> errors(taskCount(n, grain));
+    executor.parallelFor(n, grain, [&, grain](std::size_t begin, std::size_t end) {
         // The object of the first slot, then walk: slots ascend.
         std::uint32_t object = objectOf(source, ids[begin]);
         std::size_t cursor = 0;  // into table_keys
         bool cursor_set = false;
-        const auto fail = [&](std::size_t slot, Error e) { errors[begin / kGatherGrain] = TaskError{slot, std::move(e)}; };
+        const auto fail = [&](std::size_t slot, Error e) { errors[begin / grain] = TaskError{slot, std::move(e)}; };
         for (std::size_t s = begin; s < end; ++s) {
             const std::uint32_t id = ids[s];
             while (id >= source.triangleBase(object + 1)) ++object;

@@ -16,12 +16,15 @@
 //    std::atomic::wait. Then everyone, the caller included, takes chunks with one
 //    fetch_add on `next` each: no lock, so 16 threads handing out thousands of chunks do
 //    not queue on a mutex (the old pool took one per chunk).
-//  - Waking is a chain: the caller wakes one sleeper and leaves in `wakes` how many more
+//  - Waking is a tree: the caller wakes one sleeper and leaves in `wakes` how many more
 //    the loop can use (chunks beyond the threads already awake); every worker that returns
-//    from its sleep passes one on. A futex wake costs the waker microseconds (an IPI per
-//    thread), and waking all 15 workers of a 16-thread pool for a loop of two chunks cost
-//    the caller more than the loop; now it pays for one, and the rest wake in parallel.
-//  - prepare() starts such a chain without a loop (an epoch bump with no loop open), so
+//    from its sleep passes up to kWakeFanOut of them on. A futex wake costs the waker
+//    microseconds (an IPI per thread), and waking all 15 workers of a 16-thread pool for a
+//    loop of two chunks cost the caller more than the loop; now it pays for one. A chain
+//    (one wake passed on per worker) woke the 15th worker 15 wake latencies after the
+//    call (tens of microseconds each where idle cores sleep deeply or are virtual): later
+//    than the narrow phase's exact tests; a tree of two per worker wakes them in four.
+//  - prepare() starts such a tree without a loop (an epoch bump with no loop open), so
 //    workers asleep since the last call are polling by the time the loops that need them
 //    come (the narrow phase calls it on entry).
 //  - Finished chunks are counted in `done`, once per thread and loop; the caller waits
@@ -38,6 +41,8 @@ namespace {
 // How long an idle worker polls for the next loop before it sleeps. Waking a sleeping
 // thread costs tens of microseconds; polling this long costs at most this much CPU per loop.
 constexpr auto kPoll = std::chrono::microseconds(100);
+// Wakes of the tree each woken worker passes on.
+constexpr int kWakeFanOut = 2;
 
 void relax() {
 #if defined(__SSE2__)
@@ -74,22 +79,25 @@ struct ThreadPool::Shared {
     alignas(64) std::atomic<std::size_t> done{0};      // chunks finished
     alignas(64) std::atomic<int> active{0};            // workers inside the open loop
     alignas(64) std::atomic<int> sleepers{0};          // workers blocked in epoch.wait
-    alignas(64) std::atomic<int> wakes{0};             // sleepers still to wake (the chain)
+    alignas(64) std::atomic<int> wakes{0};             // sleepers still to wake (the tree)
 
     // Wakes `wanted` sleepers (at most as many as there are): one now, the rest by the
-    // chain. The caller has bumped the epoch.
+    // tree. The caller has bumped the epoch.
     void wakeSleepers(int wanted) {
         if (wanted <= 0 || sleepers.load() == 0) return;
         wakes.store(wanted - 1);
         epoch.notify_one();
     }
 
-    // Passes one wake of the chain on, if one is owed.
+    // Passes up to kWakeFanOut wakes of the tree on, as many as are owed.
     void passWake() {
-        int owed = wakes.load(std::memory_order_relaxed);
-        while (owed > 0 && !wakes.compare_exchange_weak(owed, owed - 1)) {
+        for (int k = 0; k < kWakeFanOut; ++k) {
+            int owed = wakes.load(std::memory_order_relaxed);
+            while (owed > 0 && !wakes.compare_exchange_weak(owed, owed - 1)) {
+            }
+            if (owed <= 0) return;
+            epoch.notify_one();
         }
-        if (owed > 0) epoch.notify_one();
     }
 
     // Runs chunks until none is left; returns how many it ran.
@@ -124,8 +132,8 @@ struct ThreadPool::Shared {
                 sleepers.fetch_add(1);
                 epoch.wait(seen);
                 sleepers.fetch_sub(1);
-                // Whatever woke us (a notify or an epoch that moved before we slept), a
-                // wake of the chain may be owed to the next sleeper.
+                // Whatever woke us (a notify or an epoch that moved before we slept),
+                // wakes of the tree may be owed to other sleepers.
                 passWake();
             }
             seen = epoch.load(std::memory_order_acquire);

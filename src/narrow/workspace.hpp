@@ -32,7 +32,7 @@ struct vkcollide::NarrowWorkspace::Impl {
     narrow::Buffer<std::uint32_t> pair_slots;  // 2 per distinct pair
     // Back half.
     std::vector<narrow::PairTask> pair_tasks;
-    std::vector<std::size_t> test_begin, object_filtered;
+    std::vector<std::size_t> test_begin, object_filtered, hit_begin;
     std::vector<std::vector<std::uint64_t>> hits;
     std::vector<std::size_t> found;   // per test task: hits found, stored or not (max_pairs)
     std::vector<std::uint8_t> kept;  // per test task: its hits are stored

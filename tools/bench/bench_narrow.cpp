@@ -4,6 +4,8 @@
 //                [--modes all,near,contact] [--self on,off] [--paths records,lean,pairs] [--pair-repeats 0.1]
 //                [--repeat 7] [--margin 1.0] [--filter] [--fresh] [--candidates FILE]... [--resolution N]
 //                [--pairs-sent boxes|hits] [--gap-us 0] [--dump PREFIX] [--csv PATH]
+//   bench_narrow --wake-probe [--threads 16] [--repeat 7] [--gap-us 2000]
+//   bench_narrow --front-probe [scene options as above] (bench_narrow_probes.hpp)
 //
 // Candidates come from tests/support/exact_reference.hpp's allTrianglesAsCandidates: every
 // triangle with its world AABB mapped to [0,1] as box and depth (an orthographic camera
@@ -76,6 +78,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "bench_narrow_probes.hpp"
 #include "passes/broad_phase.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/sweep_and_prune.hpp"
@@ -109,6 +112,8 @@ struct Options {
     bool fresh = false;  // no NarrowWorkspace: allocate every call
     std::string csv;
     std::string dump;  // prefix for raw candidate files, empty: none
+    bool wake_probe = false;
+    bool front_probe = false;  // pair path: time the front's two forms instead of whole calls
 };
 
 // One object of a generated scene: an object-space mesh and its object -> world transform
@@ -201,9 +206,13 @@ Options parseArgs(int argc, char** argv) {
             o.dump = value();
         } else if (a == "--csv") {
             o.csv = value();
+        } else if (a == "--wake-probe") {
+            o.wake_probe = true;
+        } else if (a == "--front-probe") {
+            o.front_probe = true;
         } else {
             die("unknown argument " + a +
-                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --pairs-sent, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --gap-us, --dump, --csv)");
+                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --pairs-sent, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --gap-us, --dump, --csv, --wake-probe, --front-probe)");
         }
     }
     if (o.threads.empty()) die("--threads needs at least one count");
@@ -508,6 +517,11 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
         if (lean_paths && !w.objects.empty()) lean = leanInputs(w, self, o.pair_repeats, o.hits_only, pair_path);
         std::vector<TrianglePair> reference_pairs;
         bool first = true, warned = false;
+        if (o.front_probe && pair_path && !w.objects.empty()) {
+            bench::frontProbe(w.scene + " " + std::to_string(w.triangles) + (self ? " self" : ""), lean.pairs,
+                              lean.source.totalTriangles(), o.threads, o.repeat, o.gap_us);
+            continue;
+        }
         for (const std::string& path : o.paths) {
             if (path != "records" && w.objects.empty()) continue;  // a candidate file has no meshes
             std::vector<TrianglePair> path_pairs;
@@ -593,6 +607,10 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
 
 int main(int argc, char** argv) {
     const Options o = parseArgs(argc, argv);
+    if (o.wake_probe) {
+        bench::wakeProbe(o.threads, o.repeat, o.gap_us);
+        return 0;
+    }
     std::FILE* csv = nullptr;
     if (!o.csv.empty()) {
         csv = std::fopen(o.csv.c_str(), "w");
@@ -600,9 +618,13 @@ int main(int argc, char** argv) {
         std::fprintf(csv, "scene,mode,self,path,triangles,inputs,threads,candidates,potentially_colliding,sap_pairs,filtered_pairs,neighbour_pairs,triangle_tests,"
                           "positive_tests,input_pairs,validate_ms,gather_ms,sweep_ms,filter_ms,test_ms,sort_ms,response_ms,total_ms,total_min_ms,cpu_ms\n");
     }
-    std::printf("median of %u runs (ms)%s%s%s, %u us between calls\n", o.repeat, o.filter ? ", with may_collide" : "",
-                o.fresh ? ", no workspace" : ", one workspace per row", o.hits_only ? ", intersecting pairs sent" : "", o.gap_us);
-    std::printf("%-12s %-8s %-4s %-7s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode",
+    if (o.front_probe) {
+        bench::frontProbeHeader();
+    } else {
+        std::printf("median of %u runs (ms)%s%s%s, %u us between calls\n", o.repeat, o.filter ? ", with may_collide" : "",
+                    o.fresh ? ", no workspace" : ", one workspace per row", o.hits_only ? ", intersecting pairs sent" : "", o.gap_us);
+    }
+    if (!o.front_probe) std::printf("%-12s %-8s %-4s %-7s %9s %9s %4s %10s %9s %7s | %8s %8s %8s %8s %8s %8s %8s | %9s %9s %8s\n", "scene", "mode",
                 "self", "path", "tris", "inputs", "thr", "cand pairs", "tests", "pairs", "validate", "gather", "sweep", "filter",
                 "test", "sort", "response", "total", "total min", "cpu");
     for (const std::string& path : o.files) runWorkload(loadWorkload(path), o, csv);

@@ -75,8 +75,9 @@ private:
 // N - 1 workers. Chunks are handed out with one atomic increment each. After a loop,
 // workers poll for about 100 microseconds (the narrow phase runs about ten loops back to
 // back), then sleep until the next loop. A loop wakes only as many sleeping workers as it
-// has chunks for (the caller wakes one, each woken worker the next); prepare() starts
-// waking them before the loop.
+// has chunks for (as a tree: the caller wakes one, each woken worker up to two more, so
+// the last of 15 is awake after about four wake latencies); prepare() starts waking them
+// before the loop.
 //
 // Thread safety: parallelFor may be called from any thread; calls are serialised (one
 // loop runs at a time). The destructor must not run concurrently with parallelFor.
@@ -100,7 +101,7 @@ public:
                      const std::function<void(std::size_t, std::size_t)>& body) override;
 
     // As Executor::prepare: wakes up to threads - 1 sleeping workers (one now, the others
-    // through the chain) and returns; does nothing while another thread runs a loop.
+    // through the tree of wakes) and returns; does nothing while another thread runs a loop.
     void prepare(unsigned threads) noexcept override;
 
     struct Shared;  // the state workers and the caller share (src/narrow/thread_pool.cpp)

@@ -91,7 +91,7 @@ void declare(Graph& g, const Params& p, vk::Buffer& counters_buffer, const vk::P
 
 }  // namespace
 
-TEST_CASE("a steady graph is recorded once and submitted again; a changed push constant, dispatch size or object records anew",
+TEST_CASE("a steady graph is recorded once and submitted again, and a changed push constant, dispatch size or object records anew",
           "[gpu][graph][reuse]") {
     test::ValidatedContext ctx;
     vk::Device& dev = ctx.device();

@@ -123,7 +123,7 @@ void recordSample(CommandTape& t, std::uint32_t object, std::uint32_t x, VkBuffe
 
 }  // namespace
 
-TEST_CASE("equal commands give equal tapes; a changed push constant, dispatch size or buffer does not", "[graph][tape]") {
+TEST_CASE("equal commands give equal tapes, and a changed push constant, dispatch size or buffer a different one", "[graph][tape]") {
     const VkBuffer a = fakeHandle<VkBuffer>(0x30), b = fakeHandle<VkBuffer>(0x31);
     CommandTape first, same, other;
     recordSample(first, 1, 8, a);

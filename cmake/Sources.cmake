@@ -6,6 +6,7 @@ set(VKCOLLIDE_HOST_SOURCES
   ${S}/core/mesh.cpp
   ${S}/core/types.cpp
   ${S}/graph/graph.cpp
+  ${S}/graph/command_tape.cpp  # plain data; replayed through a dispatch table
   ${S}/api/host_passes.cpp  # the world's passes over host positions (no Vulkan)
 )
 # Subsystems owned elsewhere append to VKCOLLIDE_HOST_SOURCES in their own list file.

@@ -20,8 +20,10 @@ void PassContext::shaderBarrier() const {
     VkDependencyInfo di{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
     di.memoryBarrierCount = 1;
     di.pMemoryBarriers = &mb;
-    device->fns.vkCmdPipelineBarrier2(cmd, &di);
+    tape_->pipelineBarrier(di);
 }
+
+PassContext::DirectCommandBuffer::operator VkCommandBuffer() const { return ctx_->executor_->directCommands(); }
 
 HostTimes& HostTimes::operator+=(const HostTimes& o) noexcept {
     upload_ms += o.upload_ms;
@@ -33,6 +35,7 @@ HostTimes& HostTimes::operator+=(const HostTimes& o) noexcept {
     gpu_span_ms += o.gpu_span_ms;
     launch_wake_ms += o.launch_wake_ms;
     submissions += o.submissions;
+    reused += o.reused;
     return *this;
 }
 
@@ -119,7 +122,7 @@ Result<void> Executor::planFor(const Graph& graph) {
     return {};
 }
 
-void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx) {
+void Executor::tapeBarriers(const std::vector<Barrier>& barriers, const PassContext& ctx) {
     if (barriers.empty()) return;
     std::vector<VkImageMemoryBarrier2>& images = image_barriers_;
     std::vector<VkBufferMemoryBarrier2>& buffers = buffer_barriers_;
@@ -160,7 +163,84 @@ void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& b
     di.pImageMemoryBarriers = images.data();
     di.bufferMemoryBarrierCount = static_cast<std::uint32_t>(buffers.size());
     di.pBufferMemoryBarriers = buffers.data();
-    device_->fns.vkCmdPipelineBarrier2(cmd, &di);
+    tape_.pipelineBarrier(di);
+}
+
+void Executor::tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& ctx) {
+    std::uint32_t q = 0;
+    for (const PlannedPass& planned : plan.order) {
+        const PassDecl& p = graph.passes()[planned.pass];
+        pending_names_.push_back(p.name);
+        pending_stages_.push_back(p.stage);
+        tapeBarriers(planned.barriers, ctx);
+        tape_.writeTimestamp(VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries_, q++);
+        if (p.kind == PassKind::Raster) {
+            std::vector<VkRenderingAttachmentInfo>& colors = colors_;
+            colors.clear();
+            VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            bool has_depth = false;
+            std::uint32_t width = p.render_width, height = p.render_height;
+            for (const Access& a : p.accesses) {
+                if (a.use != Use::ColorAttachment && a.use != Use::DepthAttachment) continue;
+                const vk::Image& img = ctx.image(a.resource);
+                VkRenderingAttachmentInfo att{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+                att.imageView = img.levelView(0);
+                att.loadOp = a.load_op;
+                att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+                att.clearValue = a.clear;
+                if (width == 0) {
+                    width = img.desc().width;
+                    height = img.desc().height;
+                }
+                if (a.use == Use::ColorAttachment) {
+                    att.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+                    colors.push_back(att);
+                } else {
+                    att.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+                    depth = att;
+                    has_depth = true;
+                }
+            }
+            ctx.render_width = width;
+            ctx.render_height = height;
+            VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+            ri.renderArea = {{0, 0}, {width, height}};
+            ri.layerCount = 1;
+            ri.colorAttachmentCount = static_cast<std::uint32_t>(colors.size());
+            ri.pColorAttachments = colors.data();
+            ri.pDepthAttachment = has_depth ? &depth : nullptr;
+            tape_.beginRendering(ri);
+            tape_.setViewport({0, 0, float(width), float(height), 0, 1});
+            tape_.setScissor({{0, 0}, {width, height}});
+            p.record(ctx);
+            tape_.endRendering();
+        } else {
+            p.record(ctx);
+        }
+        tape_.writeTimestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
+    }
+    tapeBarriers(plan.final_barriers, ctx);
+}
+
+VkCommandBuffer Executor::directCommands() {
+    went_direct_ = true;
+    if (direct_error_) return recording_;
+    if (!recording_) {
+        held_valid_ = false;  // begin() resets the pool
+        auto cmd = submission_.begin(vk::Submission::Reuse::Once);
+        if (!cmd) {
+            // Only out-of-memory gets here (the previous work was waited for). The callback
+            // records into a command buffer that is not recording, which submit() never
+            // submits: it returns this error instead.
+            direct_error_ = cmd.error();
+            recording_ = submission_.commandBuffer();
+            return recording_;
+        }
+        recording_ = *cmd;
+    }
+    tape_.replay(device_->fns, recording_, replayed_);
+    replayed_ = tape_.size();
+    return recording_;
 }
 
 Result<void> Executor::settle(std::uint64_t timeout_ns) {
@@ -200,6 +280,7 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
     const auto pass_count = static_cast<std::uint32_t>(plan->order.size());
     const std::uint32_t needed = 2 * pass_count + 2;
     if (needed > query_capacity_) {
+        held_valid_ = false;  // it writes timestamps into the pool destroyed here
         if (queries_) f.vkDestroyQueryPool(device_->device, queries_, device_->allocator());
         queries_ = VK_NULL_HANDLE;
         VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
@@ -213,70 +294,42 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
 
     PassContext ctx;
     ctx.device = device_;
+    ctx.tape_ = &tape_;
+    ctx.executor_ = this;
     if (auto ok = prepareResources(graph, *plan, ctx); !ok) return ok.error();
     const bool into_engine = target && target->engine;
-    auto cmd = into_engine ? submission_.beginIn(*target->engine) : submission_.begin();
-    if (!cmd) return cmd.error();
-    ctx.cmd = *cmd;
+    recording_ = VK_NULL_HANDLE;
+    replayed_ = 0;
+    went_direct_ = false;
+    direct_error_.reset();
+    if (into_engine) {
+        auto cmd = submission_.beginIn(*target->engine);
+        if (!cmd) return cmd.error();
+        recording_ = *cmd;
+    }
 
     pending_names_.clear();
     pending_stages_.clear();
     pending_culled_.clear();
     for (std::uint32_t c : plan->culled) pending_culled_.push_back(graph.passes()[c].name);
-    std::uint32_t q = 0;
-    for (const PlannedPass& planned : plan->order) {
-        const PassDecl& p = graph.passes()[planned.pass];
-        pending_names_.push_back(p.name);
-        pending_stages_.push_back(p.stage);
-        recordBarriers(ctx.cmd, planned.barriers, ctx);
-        f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries_, q++);
-        if (p.kind == PassKind::Raster) {
-            std::vector<VkRenderingAttachmentInfo> colors;
-            VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            bool has_depth = false;
-            std::uint32_t width = p.render_width, height = p.render_height;
-            for (const Access& a : p.accesses) {
-                if (a.use != Use::ColorAttachment && a.use != Use::DepthAttachment) continue;
-                const vk::Image& img = ctx.image(a.resource);
-                VkRenderingAttachmentInfo att{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-                att.imageView = img.levelView(0);
-                att.loadOp = a.load_op;
-                att.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-                att.clearValue = a.clear;
-                if (width == 0) {
-                    width = img.desc().width;
-                    height = img.desc().height;
-                }
-                if (a.use == Use::ColorAttachment) {
-                    att.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-                    colors.push_back(att);
-                } else {
-                    att.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-                    depth = att;
-                    has_depth = true;
-                }
-            }
-            ctx.render_width = width;
-            ctx.render_height = height;
-            VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-            ri.renderArea = {{0, 0}, {width, height}};
-            ri.layerCount = 1;
-            ri.colorAttachmentCount = static_cast<std::uint32_t>(colors.size());
-            ri.pColorAttachments = colors.data();
-            ri.pDepthAttachment = has_depth ? &depth : nullptr;
-            f.vkCmdBeginRendering(ctx.cmd, &ri);
-            VkViewport vp{0, 0, float(width), float(height), 0, 1};
-            VkRect2D sc{{0, 0}, {width, height}};
-            f.vkCmdSetViewport(ctx.cmd, 0, 1, &vp);
-            f.vkCmdSetScissor(ctx.cmd, 0, 1, &sc);
-            p.record(ctx);
-            f.vkCmdEndRendering(ctx.cmd);
-        } else {
-            p.record(ctx);
+    tape_.clear();
+    tapePlan(graph, *plan, ctx);
+    if (direct_error_) return *direct_error_;
+    // Nothing the held command buffer names was destroyed since it was recorded (a count
+    // read after the tape was built: nothing the tape names is destroyed while it is).
+    const std::uint64_t generation = device_->resource_generation.load(std::memory_order_relaxed);
+    const bool reuse = !into_engine && !went_direct_ && held_valid_ && submission_.canResubmit() &&
+                       held_generation_ == generation && tape_ == held_;
+    if (!reuse) {
+        if (!recording_) {
+            held_valid_ = false;  // begin() resets the pool
+            auto cmd = submission_.begin(into_engine || went_direct_ ? vk::Submission::Reuse::Once : vk::Submission::Reuse::Again);
+            if (!cmd) return cmd.error();
+            recording_ = *cmd;
         }
-        f.vkCmdWriteTimestamp2(ctx.cmd, VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
+        tape_.replay(f, recording_, replayed_);
+        replayed_ = tape_.size();
     }
-    recordBarriers(ctx.cmd, plan->final_barriers, ctx);
     const Clock::time_point t_recorded = Clock::now();
     pending_host_.record_ms = msBetween(t_compiled, t_recorded);
     pending_host_.submissions = 1;
@@ -292,7 +345,18 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
         if (!target->waits_submitted) sync.wait = target->sync.wait;
         if (signal) sync.signal = target->sync.signal;
     }
-    if (auto ok = submission_.submit(sync); !ok) return ok.error();
+    if (reuse) {
+        if (auto ok = submission_.resubmit(sync); !ok) return ok.error();
+        ++reuses_;
+        pending_host_.reused = 1;
+    } else {
+        if (auto ok = submission_.submit(sync); !ok) return ok.error();
+        if (!went_direct_) {
+            std::swap(held_, tape_);
+            held_generation_ = generation;
+            held_valid_ = true;
+        }
+    }
     pending_submitted_at_ = Clock::now();
     pending_host_.submit_ms = msBetween(t_recorded, pending_submitted_at_);
     if (target) {

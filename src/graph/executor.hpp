@@ -1,38 +1,28 @@
 // Render graph, device side: allocates transient resources (kept between executions, so a
 // per-frame graph does not reallocate), records the compiled plan into one command buffer
 // with its barriers, submits it and reports each pass's GPU time from timestamps.
+//
+// Reuse: the plan's commands go onto a command tape first (graph/pass_context.hpp); when
+// the tape equals the one the executor's own command buffer was recorded from and no
+// buffer, image or pipeline of the device was destroyed since (vk::Device::
+// resource_generation), that command buffer is submitted again without recording (the
+// timestamp queries are reset on the host, so it writes fresh ones). Otherwise the tape is
+// replayed into the command buffer, and kept. Never reused: work recorded into an engine's
+// command buffer, and a submission whose callbacks used PassContext::cmd directly.
 #pragma once
 
 #include <chrono>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "graph/command_tape.hpp"
 #include "graph/graph.hpp"
+#include "graph/pass_context.hpp"
 #include "vk/resources.hpp"
 
 namespace vkcollide::graph {
-
-class PassContext {
-public:
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    vk::Device* device = nullptr;
-    std::uint32_t render_width = 0, render_height = 0;  // raster passes
-
-    const vk::DeviceFunctions& fns() const { return device->fns; }
-    const vk::Buffer& buffer(ResourceId id) const { return *buffers_.at(id.index); }
-    VkDeviceAddress address(ResourceId id) const { return buffer(id).address(); }
-    const vk::Image& image(ResourceId id) const { return *images_.at(id.index); }
-
-    // A barrier between two dependent dispatches or draws inside one pass (mip chains,
-    // multi-step scans): all shader writes become visible to later shader reads and writes.
-    void shaderBarrier() const;
-
-private:
-    friend class Executor;
-    std::vector<const vk::Buffer*> buffers_;
-    std::vector<const vk::Image*> images_;
-};
 
 struct PassTiming {
     std::string name;
@@ -48,7 +38,9 @@ struct HostTimes {
     double upload_ms = 0;       // the builder's per-run inputs written (buffers sized, uploads)
     double declare_ms = 0;      // the builder's graph declared (passes, resources, callbacks)
     double compile_ms = 0;      // Graph::compile, or the check that the last plan still applies
-    double record_ms = 0;       // wait for the previous submission, transients, timestamp queries, command recording
+    // Wait for the previous submission, transients, timestamp queries, the command tape
+    // built and compared, and the command buffer recorded from it (unless reused).
+    double record_ms = 0;
     double submit_ms = 0;       // command buffer ended and handed to the queue
     double wait_ms = 0;         // collect(): waiting for the GPU
     double gpu_span_ms = 0;     // ExecutionReport::total_gpu_ms: first pass's start to last pass's end
@@ -58,6 +50,7 @@ struct HostTimes {
     // host work in between, that work too (and it is no longer all latency).
     double launch_wake_ms = 0;
     std::uint32_t submissions = 0;
+    std::uint32_t reused = 0;  // of the submissions: command buffers submitted again, not recorded
     HostTimes& operator+=(const HostTimes& o) noexcept;
 };
 
@@ -127,14 +120,24 @@ public:
     // How many times submit() compiled a graph; a graph whose planKey() equals the last
     // compiled one's reuses its plan (for tests).
     std::uint64_t compilations() const noexcept { return compilations_; }
+    // How many times submit() submitted its command buffer again instead of recording it
+    // (for tests; HostTimes::reused says it per submission).
+    std::uint64_t reuses() const noexcept { return reuses_; }
 
 private:
     Result<void> prepareResources(const Graph& graph, const GraphPlan& plan, PassContext& ctx);
     // The plan of `graph`: the last one when its planKey() is unchanged, else compiled.
     Result<void> planFor(const Graph& graph);
-    void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers, const PassContext& ctx);
     // collect()'s wait for the last submission (setWaitPolling).
     Result<void> waitForCollect(std::uint64_t timeout_ns);
+    // The plan's commands, the executor's own (barriers, timestamps, rendering) and the
+    // passes', onto tape_.
+    void tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& ctx);
+    void tapeBarriers(const std::vector<Barrier>& barriers, const PassContext& ctx);
+    // PassContext::cmd's conversion: the command buffer, recording, with tape_ replayed
+    // into it up to now.
+    VkCommandBuffer directCommands();
+    friend class PassContext::DirectCommandBuffer;
 
     vk::Device* device_;
     // The last plan compiled and its graph's planKey(); scratch_key_: this submission's.
@@ -142,9 +145,24 @@ private:
     std::vector<std::uint64_t> plan_key_, scratch_key_;
     bool plan_valid_ = false;
     std::uint64_t compilations_ = 0;
-    // recordBarriers()'s scratch, kept between submissions.
+    // tapeBarriers()'s scratch, kept between submissions.
     std::vector<VkImageMemoryBarrier2> image_barriers_;
     std::vector<VkBufferMemoryBarrier2> buffer_barriers_;
+    std::vector<VkRenderingAttachmentInfo> colors_;
+    // This submission's commands, and those the own command buffer holds (held_valid_:
+    // submission_.canResubmit() with them, recorded at resource generation held_generation_).
+    CommandTape tape_, held_;
+    bool held_valid_ = false;
+    std::uint64_t held_generation_ = 0;
+    std::uint64_t reuses_ = 0;
+    // The recording of this submission once begun (the engine's command buffer from the
+    // start, our own once a callback goes direct or the tape is replayed), how much of
+    // tape_ it holds, whether a callback recorded directly, and a begin() that failed
+    // under a direct callback (submit() returns it).
+    VkCommandBuffer recording_ = VK_NULL_HANDLE;
+    std::size_t replayed_ = 0;
+    bool went_direct_ = false;
+    std::optional<Error> direct_error_;
     // Mutable for busy(): polling the fence changes nothing the executor promises.
     mutable vk::Submission submission_;
     VkQueryPool queries_ = VK_NULL_HANDLE;

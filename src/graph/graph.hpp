@@ -72,7 +72,7 @@ struct Access {
     VkClearValue clear{};
 };
 
-class PassContext;  // defined by the executor
+class PassContext;  // graph/pass_context.hpp: resources and recording calls, onto the executor's tape
 using RecordFn = std::function<void(PassContext&)>;
 
 // What a pass belongs to, in the terms of the code that builds the graph (the broad phase

@@ -41,14 +41,14 @@ void CommonStages::recordFront(graph::Graph& g, const RunView& run, const GraphB
         VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
         dep.memoryBarrierCount = 1;
         dep.pMemoryBarriers = &mb;
-        pc.fns().vkCmdPipelineBarrier2(pc.cmd, &dep);
+        pc.pipelineBarrier(dep);
         // Disjoint ranges: counters 0, bound minima +inf (ordered), maxima and checks 0.
         constexpr VkDeviceSize mins = offsetof(gpu::Header, bounds), maxs = mins + 12;
         const VkBuffer h = pc.buffer(header).handle();
-        pc.fns().vkCmdFillBuffer(pc.cmd, h, 0, mins, 0);
-        pc.fns().vkCmdFillBuffer(pc.cmd, h, mins, 12, 0xFFFFFFFFu);
-        pc.fns().vkCmdFillBuffer(pc.cmd, h, maxs, sizeof(gpu::Header) - maxs, 0);
-        for (const auto& [id, size] : zeroed) pc.fns().vkCmdFillBuffer(pc.cmd, pc.buffer(id).handle(), 0, size, 0);
+        pc.fillBuffer(h, 0, mins, 0);
+        pc.fillBuffer(h, mins, 12, 0xFFFFFFFFu);
+        pc.fillBuffer(h, maxs, sizeof(gpu::Header) - maxs, 0);
+        for (const auto& [id, size] : zeroed) pc.fillBuffer(pc.buffer(id).handle(), 0, size, 0);
     });
     if (run.any_gpu_check) {
         addPass(g, "validate", PassKind::Compute, Stage::Prepare).readWrite(header).record([this, run](PassContext& pc) {
@@ -79,7 +79,7 @@ void CommonStages::recordFront(graph::Graph& g, const RunView& run, const GraphB
             .write(buffers[core.projection])
             .record([this, frame](PassContext& pc) {
                 bindAndPush(pc, fit_, frame);
-                pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+                pc.dispatch(1, 1, 1);
             });
     }
 }
@@ -91,7 +91,7 @@ void CommonStages::recordReadback(graph::Graph& g, const GraphBuffers& buffers, 
         .use(header_rb, Use::TransferDst)
         .record([header, header_rb](PassContext& pc) {
             VkBufferCopy copy{0, 0, sizeof(gpu::Header)};
-            pc.fns().vkCmdCopyBuffer(pc.cmd, pc.buffer(header).handle(), pc.buffer(header_rb).handle(), 1, &copy);
+            pc.copyBuffer(pc.buffer(header).handle(), pc.buffer(header_rb).handle(), copy);
         });
 }
 

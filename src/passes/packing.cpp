@@ -43,7 +43,7 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
                 dispatchGroups(pc, rows);
                 pc.shaderBarrier();
                 bindAndPush(pc, scan_counts_, frame, 0, rows);
-                pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+                pc.dispatch(1, 1, 1);
             });
         addPass(g, "pack-shift", PassKind::Compute, Stage::Packing)
             .read(b.sparse)
@@ -71,7 +71,7 @@ void Packing::record(graph::Graph& g, const RunView& run, const Buffers& b) cons
             dispatchGroups(pc, blocks);
             pc.shaderBarrier();
             bindAndPush(pc, scan_counts_, frame, 0, blocks);
-            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+            pc.dispatch(1, 1, 1);
         });
     auto scatter = addPass(g, "pack-scatter", PassKind::Compute, Stage::Packing);
     scatter.read(b.sparse).read(b.scratch).read(b.projection).write(b.records);

@@ -43,11 +43,11 @@ graph::PassBuilder addPass(graph::Graph& g, std::string name, graph::PassKind ki
 void bindAndPush(const graph::PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint32_t object,
                  std::uint32_t step, std::uint32_t level, std::uint32_t coverage) {
     gpu::Push push{frame, object, step, level, coverage};
-    pc.fns().vkCmdBindPipeline(pc.cmd, p.bindPoint(), p.handle());
+    pc.bindPipeline(p.bindPoint(), p.handle());
     const VkShaderStageFlags stages = p.bindPoint() == VK_PIPELINE_BIND_POINT_COMPUTE
                                           ? VkShaderStageFlags(VK_SHADER_STAGE_COMPUTE_BIT)
                                           : VkShaderStageFlags(VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT);
-    pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), stages, 0, sizeof(push), &push);
+    pc.pushConstants(p.layout(), stages, 0, sizeof(push), &push);
 }
 
 std::uint32_t groups(std::uint64_t items, std::uint32_t size) { return static_cast<std::uint32_t>((items + size - 1) / size); }
@@ -67,7 +67,7 @@ void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups, std::uin
     // stop here in every build.
     if (shape.x == 0 && groups != 0) std::abort();
     if (shape.x == 0) return;
-    pc.fns().vkCmdDispatch(pc.cmd, shape.x, shape.y, 1);
+    pc.dispatch(shape.x, shape.y, 1);
 }
 
 void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups) {

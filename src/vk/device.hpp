@@ -46,6 +46,12 @@ struct Device : std::enable_shared_from_this<Device> {
     // (every world of the Context): all of vkcollide's device memory goes through them
     // (src/vk/memory.cpp), from vkAllocateMemory or from the engine's DeviceMemoryHooks.
     std::atomic<std::uint64_t> memory_in_use{0};
+    // Counts the destructions of vk::Buffer, vk::Image and vk::Pipeline objects on this
+    // device (every world of the Context). A command buffer names such objects by handle,
+    // and Vulkan invalidates it when one is destroyed, even if a new object gets the same
+    // handle value later: graph::Executor submits a recorded command buffer again only
+    // while this count is what it was when the buffer was recorded.
+    std::atomic<std::uint64_t> resource_generation{0};
 
     // What the engine lent (context.hpp). The callbacks are a copy (has_allocator says
     // whether there are any): allocator() is what every create/destroy call passes.

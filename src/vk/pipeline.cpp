@@ -195,6 +195,7 @@ void Pipeline::reset() {
     if (pipeline_) f.vkDestroyPipeline(device_->device, pipeline_, a);
     if (layout_) f.vkDestroyPipelineLayout(device_->device, layout_, a);
     if (set_layout_) f.vkDestroyDescriptorSetLayout(device_->device, set_layout_, a);
+    if (pipeline_ || layout_ || set_layout_) device_->resource_generation.fetch_add(1, std::memory_order_relaxed);
     pipeline_ = VK_NULL_HANDLE;
     layout_ = VK_NULL_HANDLE;
     set_layout_ = VK_NULL_HANDLE;

@@ -104,7 +104,10 @@ void Buffer::flush(VkDeviceSize offset, VkDeviceSize size) const {
 
 void Buffer::reset() {
     if (!device_) return;
-    if (buffer_) device_->fns.vkDestroyBuffer(device_->device, buffer_, device_->allocator());
+    if (buffer_) {
+        device_->fns.vkDestroyBuffer(device_->device, buffer_, device_->allocator());
+        device_->resource_generation.fetch_add(1, std::memory_order_relaxed);
+    }
     freeMemory(*device_, memory_);
     buffer_ = VK_NULL_HANDLE;
     address_ = 0;
@@ -198,7 +201,10 @@ void Image::reset() {
     for (VkImageView v : level_views_) f.vkDestroyImageView(device_->device, v, device_->allocator());
     level_views_.clear();
     if (view_) f.vkDestroyImageView(device_->device, view_, device_->allocator());
-    if (image_) f.vkDestroyImage(device_->device, image_, device_->allocator());
+    if (image_) {
+        f.vkDestroyImage(device_->device, image_, device_->allocator());
+        device_->resource_generation.fetch_add(1, std::memory_order_relaxed);
+    }
     freeMemory(*device_, memory_);
     view_ = VK_NULL_HANDLE;
     image_ = VK_NULL_HANDLE;

@@ -65,6 +65,8 @@ Submission& Submission::operator=(Submission&& o) noexcept {
         cmd_ = std::exchange(o.cmd_, VK_NULL_HANDLE);
         fence_ = std::exchange(o.fence_, VK_NULL_HANDLE);
         state_ = std::exchange(o.state_, State::Idle);
+        reusable_ = std::exchange(o.reusable_, false);
+        begun_reusable_ = std::exchange(o.begun_reusable_, false);
         engine_ = std::exchange(o.engine_, EngineCommandBuffer{});
     }
     return *this;
@@ -83,18 +85,20 @@ Result<void> Submission::waitBeforeRecording() {
     return {};
 }
 
-Result<VkCommandBuffer> Submission::begin() {
+Result<VkCommandBuffer> Submission::begin(Reuse reuse) {
     if (auto ok = waitBeforeRecording(); !ok) return ok.error();
     const auto& f = device_->fns;
     engine_ = EngineCommandBuffer{};
     state_ = State::Idle;
+    reusable_ = false;
     VkResult r = f.vkResetCommandPool(device_->device, pool_, 0);
     if (r != VK_SUCCESS) return lose(r, "vkResetCommandPool");
     VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    bi.flags = reuse == Reuse::Once ? VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT : 0;
     r = f.vkBeginCommandBuffer(cmd_, &bi);
     if (r != VK_SUCCESS) return lose(r, "vkBeginCommandBuffer");
     state_ = State::Recording;
+    begun_reusable_ = reuse == Reuse::Again;
     return cmd_;
 }
 
@@ -136,6 +140,20 @@ Result<void> Submission::submit(const SubmitSync& sync) {
     state_ = State::Idle;
     VkResult r = device_->fns.vkEndCommandBuffer(cmd_);
     if (r != VK_SUCCESS) return lose(r, "vkEndCommandBuffer");
+    auto queued = queue(cmd_, sync);
+    reusable_ = queued && begun_reusable_;
+    return queued;
+}
+
+Result<void> Submission::resubmit(const SubmitSync& sync) {
+    if (!canResubmit())
+        return Error(ErrorCode::InvalidArgument, state_ == State::Lost ? "resubmit after the device was lost"
+                                                                       : "resubmit without a recording begun with Reuse::Again and submitted since");
+    if (std::string p = syncProblem(sync.wait, "wait"); !p.empty()) return Error(ErrorCode::InvalidArgument, p);
+    if (std::string p = syncProblem(sync.signal, "signal"); !p.empty()) return Error(ErrorCode::InvalidArgument, p);
+    if (auto ok = waitBeforeRecording(); !ok) return ok.error();
+    engine_ = EngineCommandBuffer{};
+    state_ = State::Idle;
     return queue(cmd_, sync);
 }
 
@@ -224,6 +242,7 @@ void Submission::reset() {
     pool_ = VK_NULL_HANDLE;
     cmd_ = VK_NULL_HANDLE;
     engine_ = EngineCommandBuffer{};
+    reusable_ = begun_reusable_ = false;
     if (state_ != State::Lost) state_ = State::Idle;
 }
 

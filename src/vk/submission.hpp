@@ -10,6 +10,7 @@
 //                                   |  '--submit() refused (bad SubmitSync): still Recording
 //                                   '--submit() failed: Idle (nothing was submitted)
 //   Idle --submitSyncOnly()--> Pending (a batch of waits and signals only)
+//   Idle --resubmit()--> Pending (the last recording begun with Reuse::Again, submitted again)
 //   Pending --waitFor() NotYet / wait() timeout--> Pending (wait again, or give the device up)
 //   any --VK_ERROR_DEVICE_LOST--> Lost (every later call fails with DeviceLost)
 //
@@ -35,6 +36,9 @@ public:
     enum class State { Idle, Recording, Pending, Lost };
     // How long wait() waits by default: long enough for any detection on a CPU driver.
     static constexpr std::uint64_t kDefaultTimeoutNs = 60ull * 1000 * 1000 * 1000;
+    // Whether a recording may be submitted more than once (resubmit()). Once: recorded with
+    // VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT, which lets a driver free as it goes.
+    enum class Reuse { Once, Again };
 
     Submission() = default;
     static Result<Submission> create(Device& device);
@@ -45,8 +49,9 @@ public:
     // Starts recording into the Submission's own command buffer. Pending: waits for it
     // first (kDefaultTimeoutNs; a timeout is returned as wait()'s error and the state stays
     // Pending). Recording (a recording abandoned after an error): starts over.
-    // Errors: DeviceLost (state Lost), VulkanError / OutOfMemory.
-    Result<VkCommandBuffer> begin();
+    // Errors: DeviceLost (state Lost), VulkanError / OutOfMemory. Ends what resubmit()
+    // could submit (the pool is reset).
+    Result<VkCommandBuffer> begin(Reuse reuse = Reuse::Once);
     // Starts recording into the engine's command buffer (context.hpp, EngineCommandBuffer);
     // returns target.command_buffer. submit() then submits nothing: the work is Pending
     // until the engine's timeline reaches target.value. Pending: as begin().
@@ -69,6 +74,18 @@ public:
     // begin()); Recording is refused (submit or abandon the recording first). Errors: as
     // submit(); on success the state is Pending.
     Result<void> submitSyncOnly(const SubmitSync& sync);
+    // Submits the Submission's own command buffer again, as the last submit() after a
+    // begin(Reuse::Again) ended it, with sync's waits and signals: what a caller does when
+    // it would record exactly the same commands, all of whose objects are still alive (the
+    // caller's to know). Pending: waited for first, as begin(). Errors: InvalidArgument
+    // when nothing can be resubmitted (canResubmit() false) or as submit() for sync;
+    // otherwise as submit().
+    Result<void> resubmit(const SubmitSync& sync = {});
+    // Whether resubmit() has a recording to submit: begun with Reuse::Again, ended and
+    // queued by submit(), and not begun again (or reset) since. beginIn() keeps it.
+    bool canResubmit() const noexcept { return reusable_ && state_ != State::Lost && state_ != State::Recording; }
+    // The Submission's own command buffer (VK_NULL_HANDLE before create()), whatever state it is in.
+    VkCommandBuffer commandBuffer() const noexcept { return cmd_; }
 
     // Non-blocking: Done once the submitted work has finished (state Idle), NotYet while it
     // runs. Idle or Recording: Done. Errors: DeviceLost (state Lost); VulkanError /
@@ -98,6 +115,8 @@ private:
     VkCommandBuffer cmd_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
     State state_ = State::Idle;
+    bool reusable_ = false;       // see canResubmit()
+    bool begun_reusable_ = false; // the recording in progress was begun with Reuse::Again
     // Set by beginIn(): the recording goes into the engine's command buffer, and
     // completion is read from its timeline instead of the fence.
     EngineCommandBuffer engine_{};

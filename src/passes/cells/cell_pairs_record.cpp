@@ -17,8 +17,8 @@ using graph::Use;
 
 void bind(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress params, std::uint32_t step = 0) {
     gpu::Push push{params, 0, step, 0, 0};
-    pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
-    pc.fns().vkCmdPushConstants(pc.cmd, p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+    pc.pushConstants(p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 }
 
 std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize; }
@@ -72,13 +72,13 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
             dep.memoryBarrierCount = 1;
             dep.pMemoryBarriers = &mb;
-            pc.fns().vkCmdPipelineBarrier2(pc.cmd, &dep);
+            pc.pipelineBarrier(dep);
             // Header: flags 0, bad_triangle ~0, counters 0.
-            pc.fns().vkCmdFillBuffer(pc.cmd, header_buffer, 0, 4, 0);
-            pc.fns().vkCmdFillBuffer(pc.cmd, header_buffer, 4, 4, 0xFFFFFFFFu);
-            pc.fns().vkCmdFillBuffer(pc.cmd, header_buffer, 8, sizeof(gpu::CellsHeader) - 8, 0);
-            pc.fns().vkCmdFillBuffer(pc.cmd, counts_buffer, 0, cells * 4, 0);
-            if (marks_buffer != VK_NULL_HANDLE) pc.fns().vkCmdFillBuffer(pc.cmd, marks_buffer, 0, marks_bytes, 0);
+            pc.fillBuffer(header_buffer, 0, 4, 0);
+            pc.fillBuffer(header_buffer, 4, 4, 0xFFFFFFFFu);
+            pc.fillBuffer(header_buffer, 8, sizeof(gpu::CellsHeader) - 8, 0);
+            pc.fillBuffer(counts_buffer, 0, cells * 4, 0);
+            if (marks_buffer != VK_NULL_HANDLE) pc.fillBuffer(marks_buffer, 0, marks_bytes, 0);
         });
 
     auto setup = pass(g, "cells-setup", PassKind::Compute, Stage::Footprints);
@@ -89,7 +89,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         dispatchGroups(pc, tri_groups, max_x);
         pc.shaderBarrier();
         bind(pc, P.args, params, 0);
-        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        pc.dispatch(1, 1, 1);
     });
 
     pass(g, "cells-count-big", PassKind::Compute, Stage::Footprints)
@@ -100,7 +100,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         .readWrite(counts)
         .record([&P, params, args_buffer](PassContext& pc) {
             bind(pc, P.big, params, 0);
-            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsBig * 12);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
         });
 
     pass(g, "cells-scan", PassKind::Compute, Stage::Footprints)
@@ -115,13 +115,13 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             dispatchGroups(pc, blocks, max_x);
             pc.shaderBarrier();
             bind(pc, P.scan, params, 1);
-            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+            pc.dispatch(1, 1, 1);
             pc.shaderBarrier();
             bind(pc, P.scan, params, 2);
             dispatchGroups(pc, blocks, max_x);
             pc.shaderBarrier();
             bind(pc, P.args, params, 1);
-            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+            pc.dispatch(1, 1, 1);
         });
 
     pass(g, "cells-fill", PassKind::Compute, Stage::Footprints)
@@ -137,7 +137,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             bind(pc, P.fill, params);
             dispatchGroups(pc, tri_groups, max_x);
             bind(pc, P.big, params, 1);  // other cells than the small triangles': no barrier needed
-            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsBig * 12);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
         });
 
     pass(g, "cells-sweep", PassKind::Compute, Stage::Pairing)
@@ -151,13 +151,13 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         .write(candidates)
         .record([&P, params, args_buffer](PassContext& pc) {
             bind(pc, P.sweep, params);
-            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsSweep * 12);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsSweep * 12);
             bind(pc, P.deep, params);
-            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsDeep * 12);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsDeep * 12);
         });
     pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing).read(header).write(args).record([&P, params](PassContext& pc) {
         bind(pc, P.args, params, 2);
-        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        pc.dispatch(1, 1, 1);
     });
     pass(g, "cells-pairs", PassKind::Compute, Stage::Filtering)
         .indirect(args)
@@ -170,7 +170,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         .write(survivors)
         .record([pairs, params, args_buffer](PassContext& pc) {
             bind(pc, *pairs, params);
-            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buffer, gpu::kCellsArgsPairs * 12);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsPairs * 12);
         });
 
     pass(g, "cells-readback", PassKind::Transfer, Stage::Readback)
@@ -178,7 +178,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
         .use(header_rb, Use::TransferDst)
         .record([header_buffer, header_rb_buffer](PassContext& pc) {
             VkBufferCopy copy{0, 0, sizeof(gpu::CellsHeader)};
-            pc.fns().vkCmdCopyBuffer(pc.cmd, header_buffer, header_rb_buffer, 1, &copy);
+            pc.copyBuffer(header_buffer, header_rb_buffer, copy);
         });
 }
 

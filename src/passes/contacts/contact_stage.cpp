@@ -80,8 +80,8 @@ Result<std::vector<std::array<float, 6>>> ContactStage::measureBoxes(const Conta
     const VkBuffer bounds_buffer = buf_.bounds.handle(), rb_buffer = buf_.bounds_rb.handle();
     const VkDeviceSize half = VkDeviceSize(n) * 12;
     addPass(g, "contacts-bounds-clear", PassKind::Transfer, Stage::None).use(bounds, Use::TransferDst).record([=](PassContext& pc) {
-        pc.fns().vkCmdFillBuffer(pc.cmd, bounds_buffer, 0, half, 0xFFFFFFFFu);
-        pc.fns().vkCmdFillBuffer(pc.cmd, bounds_buffer, half, half, 0u);
+        pc.fillBuffer(bounds_buffer, 0, half, 0xFFFFFFFFu);
+        pc.fillBuffer(bounds_buffer, half, half, 0u);
     });
     const VkDeviceAddress params = buf_.params.address();
     const std::uint64_t tri_groups = groupsFor(params_.triangle_count);
@@ -95,7 +95,7 @@ Result<std::vector<std::array<float, 6>>> ContactStage::measureBoxes(const Conta
         .use(bounds_rb, Use::TransferDst)
         .record([=](PassContext& pc) {
             VkBufferCopy copy{0, 0, 2 * half};
-            pc.fns().vkCmdCopyBuffer(pc.cmd, bounds_buffer, rb_buffer, 1, &copy);
+            pc.copyBuffer(bounds_buffer, rb_buffer, copy);
         });
     auto report = executor_.run(g, in.timeout_ns);
     if (!report) return report.error();
@@ -139,10 +139,10 @@ void ContactStage::recordMain(graph::Graph& g) {
         .use(table_init, Use::TransferSrc)
         .use(table, Use::TransferDst)
         .record([=](PassContext& pc) {
-            pc.fns().vkCmdFillBuffer(pc.cmd, counts_b, 0, rays * 4, 0);
-            pc.fns().vkCmdFillBuffer(pc.cmd, header_b, 0, sizeof(gpu::ContactsHeader), 0);
+            pc.fillBuffer(counts_b, 0, rays * 4, 0);
+            pc.fillBuffer(header_b, 0, sizeof(gpu::ContactsHeader), 0);
             VkBufferCopy copy{0, 0, table_bytes};
-            pc.fns().vkCmdCopyBuffer(pc.cmd, init_b, table_b, 1, &copy);
+            pc.copyBuffer(init_b, table_b, copy);
         });
     addPass(g, "contacts-setup", PassKind::Compute, Stage::None)
         .write(tris)
@@ -156,7 +156,7 @@ void ContactStage::recordMain(graph::Graph& g) {
             dispatchGroups(pc, tri_groups, max_x);
             pc.shaderBarrier();
             bindAndPush(pc, pipes_.tiles, params, 0, 1);  // the tile pass's arguments
-            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+            pc.dispatch(1, 1, 1);
         });
     addPass(g, "contacts-tiles", PassKind::Compute, Stage::None)
         .indirect(args)
@@ -167,7 +167,7 @@ void ContactStage::recordMain(graph::Graph& g) {
         .readWrite(header)
         .record([this, params, args_b](PassContext& pc) {
             bindAndPush(pc, pipes_.tiles, params, 0, 0);
-            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_b, 0);
+            pc.dispatchIndirect(args_b, 0);
         });
     addPass(g, "contacts-walk", PassKind::Compute, Stage::None)
         .read(tris)
@@ -188,8 +188,8 @@ void ContactStage::recordMain(graph::Graph& g) {
         .use(readback, Use::TransferDst)
         .record([=](PassContext& pc) {
             VkBufferCopy copies[2] = {{0, 0, sizeof(gpu::ContactsHeader)}, {0, sizeof(gpu::ContactsHeader), table_bytes}};
-            pc.fns().vkCmdCopyBuffer(pc.cmd, header_b, rb_b, 1, &copies[0]);
-            pc.fns().vkCmdCopyBuffer(pc.cmd, table_b, rb_b, 1, &copies[1]);
+            pc.copyBuffer(header_b, rb_b, copies[0]);
+            pc.copyBuffer(table_b, rb_b, copies[1]);
         });
 }
 

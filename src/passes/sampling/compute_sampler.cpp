@@ -155,7 +155,7 @@ void ComputeSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, 
             dispatchItems(pc, total);
             pc.shaderBarrier();
             bindAndPush(pc, args_, frame, 0, 1);
-            pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+            pc.dispatch(1, 1, 1);
         });
     auto count = addPass(g, "depth-complexity", PassKind::Compute, Stage::Sampling);
     count.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters).readWrite(shared.fragments);
@@ -163,7 +163,7 @@ void ComputeSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, 
     if (list_layers_ > 0) count.write(ids.fragments);
     count.record([this, frame](PassContext& pc) {
             bindAndPush(pc, count_, frame);
-            pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
+            pc.dispatchIndirect(args_buf_.handle(), 0);
         });
 }
 
@@ -187,7 +187,7 @@ void ComputeSampler::recordPeelStep(graph::Graph& g, const RunView& run, const S
                     dispatchGroups(pc, pixel_groups);
                     pc.shaderBarrier();
                     bindAndPush(pc, gather_pipe_, frame);
-                    pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
+                    pc.dispatchIndirect(args_buf_.handle(), 0);
                 });
         }
         auto pick = addPass(g, "peel[" + std::to_string(step) + "]", PassKind::Compute, Stage::Sampling);
@@ -206,7 +206,7 @@ void ComputeSampler::recordPeelStep(graph::Graph& g, const RunView& run, const S
     if (dual) peel.readWrite(shared.back);
     peel.record([this, frame, step](PassContext& pc) {
         bindAndPush(pc, peel_, frame, 0, step);
-        pc.fns().vkCmdDispatchIndirect(pc.cmd, args_buf_.handle(), 0);
+        pc.dispatchIndirect(args_buf_.handle(), 0);
     });
 }
 

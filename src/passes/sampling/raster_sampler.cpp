@@ -37,24 +37,24 @@ void RasterSampler::drawObject(const PassContext& pc, const RunView& run, const 
     const Coverage coverage = run.settings.coverage;
     if (!count_pass && coverage != Coverage::Centre) {
         bindAndPush(pc, plain, frame, object, step, 0, gpu::kCoverageSkipThin);
-        pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+        pc.draw(vertices);
         return;
     }
     switch (coverage) {
         case Coverage::Centre:
             bindAndPush(pc, plain, frame, object, step);
-            pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+            pc.draw(vertices);
             break;
         case Coverage::Dilate:
             bindAndPush(pc, plain, frame, object, step, 0, gpu::kCoverageDilate);
-            pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+            pc.draw(vertices);
             break;
         case Coverage::Conservative:
         case Coverage::Best:  // resolved by the API before a run; never here
             bindAndPush(pc, plain, frame, object, step, 0, gpu::kCoverageSkipThin);
-            pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+            pc.draw(vertices);
             bindAndPush(pc, conservative, frame, object, step, 0, gpu::kCoverageOnlyThin);
-            pc.fns().vkCmdDraw(pc.cmd, vertices, 1, 0, 0);
+            pc.draw(vertices);
             break;
     }
 }

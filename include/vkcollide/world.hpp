@@ -318,6 +318,9 @@ struct DetectStats {
     // submit() and collect() apart it also counts the host's work in between.
     double launch_wake_ms = 0;
     std::uint32_t submissions = 0;  // queue submissions the broad phase made
+    // Of them, those whose command buffer was submitted again instead of recorded: the
+    // commands equalled the last recording's and nothing they use was destroyed since.
+    std::uint32_t reused_submissions = 0;
     unsigned narrow_threads = 0;
     // Memory: device memory held by the world, in Context::deviceMemoryInUse()'s unit (the
     // memory requirements' sizes): uploaded meshes, the broad phases' buffers, images and

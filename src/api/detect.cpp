@@ -143,6 +143,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.gpu_span_ms += b.host.gpu_span_ms;
         st.launch_wake_ms += b.host.launch_wake_ms;
         st.submissions += b.host.submissions;
+        st.reused_submissions += b.host.reused;
     }
     if (detected.hasPairs()) {
         const passes::CellPairsStats& c = broad[0].cells;

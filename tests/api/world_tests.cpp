@@ -78,6 +78,25 @@ TEST_CASE("detect() finds only exact pairs and reports the paper's statistics", 
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
+TEST_CASE("a steady scene's later detections submit their command buffer again, with the same pairs", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto scene = overlappingSpheres();
+    REQUIRE(scene);
+    addScene(*world, *scene);
+    std::vector<Result<DetectResult>> runs;
+    for (int k = 0; k < 4; ++k) runs.push_back(world->detect());  // the reliable method, automatic settings
+    for (const auto& r : runs) {
+        REQUIRE(r);
+        CHECK(r->pairs == runs[0]->pairs);
+        CHECK(r->stats.reused_submissions <= r->stats.submissions);
+    }
+    CHECK(runs[0]->stats.reused_submissions == 0u);  // nothing recorded before
+    CHECK(runs[3]->stats.reused_submissions == runs[3]->stats.submissions);
+    CHECK(comparePairs(runs[3]->pairs, referencePairs(*scene)).recall == 1.0);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
 TEST_CASE("submit()/collect() gives detect()'s pairs and guards the objects in flight", "[api][gpu]") {
     ValidatedContext ctx;
     auto world = makeWorld(ctx);

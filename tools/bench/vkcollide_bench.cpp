@@ -140,6 +140,7 @@ void writeProfile(std::ofstream& out, const std::string& prefix, const DetectSta
     const double named = st.host_settings_ms + st.host_upload_ms + st.host_declare_ms + st.host_compile_ms + st.host_record_ms +
                          st.host_submit_ms + st.host_wait_ms + st.readback_ms + st.narrow_ms;
     row("detect", "rest", st.total_ms - named);
+    row("detect", "reused", st.reused_submissions);  // a count, not ms: submissions submitted again, not recorded
     out.flush();
 }
 

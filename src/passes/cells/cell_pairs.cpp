@@ -1,6 +1,7 @@
 #include "passes/cells/cell_pairs.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -183,7 +184,12 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
 Result<void> CellPairs::ensureBuffers() {
     using vk::MemoryKind;
     const VkDeviceSize limit = std::min(device_->max_buffer_size, device_->max_allocation_size);
-    const VkDeviceSize cells = VkDeviceSize(resolution_) * resolution_;
+    // Cells rounded up to a sixteenth of their power of two: a resolution that grows by a
+    // few cells a frame re-creates the per-cell buffers only now and then (each re-creation
+    // also means a recorded command buffer cannot be submitted again).
+    const VkDeviceSize exact_cells = VkDeviceSize(resolution_) * resolution_;
+    const VkDeviceSize cell_step = std::max<VkDeviceSize>(1, (VkDeviceSize{1} << (std::bit_width(exact_cells) - 1)) / 16);
+    const VkDeviceSize cells = (exact_cells + cell_step - 1) / cell_step * cell_step;
     const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
     const VkDeviceSize objects = objects_.size();
     // Deep items: one per cell deeper than kCellsSmallCell, or ceil(k / kCellsGroupSize) for

@@ -30,7 +30,13 @@ graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage 
 
 void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
     const VkDeviceAddress params = buf_.params.address();
-    const std::uint64_t cells = std::uint64_t(resolution_) * resolution_;
+    // The count buffer is cleared and scanned over its capacity while that is within a
+    // quarter of this run's cells (the shaders stop at the params' cell and block counts):
+    // a deforming scene whose resolution moves by a few cells records the same commands,
+    // so the executor submits its command buffer again instead of recording it.
+    const std::uint64_t exact_cells = std::uint64_t(resolution_) * resolution_;
+    const std::uint64_t capacity_cells = buf_.counts.size() / 4;
+    const std::uint64_t cells = capacity_cells <= exact_cells + exact_cells / 4 ? capacity_cells : exact_cells;
     const std::uint64_t blocks = (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const std::uint64_t tri_groups = groupsFor(triangles_);
     const auto header = g.importBuffer("cells-header", buf_.header);

@@ -113,7 +113,13 @@ constexpr std::size_t kStepVertices = 1024;
 
 }  // namespace
 
-VertexScan copyAndScan(Executor& executor, std::span<const Float3> in, std::span<Float3> out, Float3* upload, UploadWrites writes) {
+namespace {
+
+// copyAndScan's loop, with `extra_items` more items of other work (extra(k)) in the same
+// parallel loop: the executor's threads are started once for both.
+template <class Extra>
+VertexScan copyScanWith(Executor& executor, std::span<const Float3> in, std::span<Float3> out, Float3* upload, UploadWrites writes,
+                        std::size_t extra_items, const Extra& extra) {
     const std::size_t n = in.size();
     const std::size_t threads = std::max(1u, executor.threadCount());
     // A few chunks per thread (chunks differ in speed: caches, other work), none smaller than
@@ -126,8 +132,9 @@ VertexScan copyAndScan(Executor& executor, std::span<const Float3> in, std::span
     const float* src = &in.data()->x;
     float* dst = &out.data()->x;
     float* up = upload ? &upload->x : nullptr;
-    executor.parallelFor(n, grain, [&](std::size_t begin, std::size_t end) {
-        Acc& acc = parts[begin / grain];
+    const auto copy_chunk = [&](std::size_t c) {
+        const std::size_t begin = c * grain, end = std::min(n, begin + grain);
+        Acc& acc = parts[c];
         if (!up) {
             copyVertices<false>(src + 3 * begin, dst + 3 * begin, nullptr, end - begin, acc);
         } else if (writes == UploadWrites::Fused) {
@@ -139,6 +146,9 @@ VertexScan copyAndScan(Executor& executor, std::span<const Float3> in, std::span
                 std::memcpy(up + 3 * b, dst + 3 * b, (e - b) * sizeof(Float3));
             }
         }
+    };
+    executor.parallelFor(chunks + extra_items, 1, [&](std::size_t first, std::size_t last) {
+        for (std::size_t k = first; k < last; ++k) k < chunks ? copy_chunk(k) : extra(k - chunks);
     });
     Acc all;
     VertexScan r;
@@ -153,6 +163,12 @@ VertexScan copyAndScan(Executor& executor, std::span<const Float3> in, std::span
     r.max_abs = all.big;
     r.finite = all.finite;
     return r;
+}
+
+}  // namespace
+
+VertexScan copyAndScan(Executor& executor, std::span<const Float3> in, std::span<Float3> out, Float3* upload, UploadWrites writes) {
+    return copyScanWith(executor, in, out, upload, writes, 0, [](std::size_t) {});
 }
 
 namespace {
@@ -200,6 +216,21 @@ ShapePartial shapeRun(const ShapeMesh& mesh, const ShapeSampling& sampling, std:
     return p;
 }
 
+// A mesh's shape from its runs' partial sums, added in run order.
+Shape finishShape(const ShapeSampling& m, std::span<const ShapePartial> parts) {
+    Shape s;
+    double sum = 0;
+    for (std::size_t r = m.first_run; r < m.first_run + (m.sampled + kShapeChunk - 1) / kShapeChunk; ++r) {
+        sum += parts[r].sum;
+        for (int k = 0; k < 6; ++k) s.area_moment[k] += parts[r].moment[k];
+    }
+    // Scaled to the whole mesh: the moment is a sum over triangles.
+    const double scale = m.sampled ? double(m.triangles) / double(m.sampled) : 0.0;
+    for (double& v : s.area_moment) v *= scale;
+    s.edge_length = m.sampled ? static_cast<float>(sum / double(3 * m.sampled)) : 0.0f;
+    return s;
+}
+
 }  // namespace
 
 Shape measureShape(Executor& executor, std::span<const Float3> positions, std::span<const std::uint32_t> indices) {
@@ -233,20 +264,23 @@ void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::s
             parts[r] = shapeRun(meshes[i], *mesh, first, std::min(first + kShapeChunk, mesh->sampled));
         }
     });
-    for (std::size_t i = 0; i < meshes.size(); ++i) {
-        const ShapeSampling& m = sampling[i];
-        Shape s;
-        double sum = 0;
-        for (std::size_t r = m.first_run; r < m.first_run + (m.sampled + kShapeChunk - 1) / kShapeChunk; ++r) {
-            sum += parts[r].sum;
-            for (int k = 0; k < 6; ++k) s.area_moment[k] += parts[r].moment[k];
-        }
-        // Scaled to the whole mesh: the moment is a sum over triangles.
-        const double scale = m.sampled ? double(m.triangles) / double(m.sampled) : 0.0;
-        for (double& v : s.area_moment) v *= scale;
-        s.edge_length = m.sampled ? static_cast<float>(sum / double(3 * m.sampled)) : 0.0f;
-        out[i] = s;
-    }
+    for (std::size_t i = 0; i < meshes.size(); ++i) out[i] = finishShape(sampling[i], parts);
+}
+
+VertexScan copyScanAndMeasure(Executor& executor, std::span<const Float3> in, std::span<Float3> out, Float3* upload,
+                              std::span<const std::uint32_t> indices, Shape& shape, UploadWrites writes) {
+    ShapeSampling sampling;
+    sampling.triangles = indices.size() / 3;
+    sampling.sampled = std::min(sampling.triangles, kShapeSampleTriangles);
+    const std::size_t runs = (sampling.sampled + kShapeChunk - 1) / kShapeChunk;
+    std::vector<ShapePartial> parts(runs);
+    const ShapeMesh mesh{in, indices};
+    const VertexScan scan = copyScanWith(executor, in, out, upload, writes, runs, [&](std::size_t r) {
+        const std::size_t first = r * kShapeChunk;
+        parts[r] = shapeRun(mesh, sampling, first, std::min(first + kShapeChunk, sampling.sampled));
+    });
+    if (scan.finite) shape = finishShape(sampling, parts);
+    return scan;
 }
 
 }  // namespace vkcollide::host_passes

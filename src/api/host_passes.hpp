@@ -63,6 +63,12 @@ struct ShapeMesh {
     std::span<const std::uint32_t> indices;
 };
 void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::span<Shape> out);
+// copyAndScan and, in the same parallel loop (the executor's threads started once), the
+// shape of the mesh with the new positions `in` and `indices`: when the scan finds every
+// vertex finite, `shape` is measureShape(out, indices) bit for bit (same runs, same sums);
+// otherwise it is left as it was.
+VertexScan copyScanAndMeasure(Executor& executor, std::span<const Float3> in, std::span<Float3> out, Float3* upload,
+                              std::span<const std::uint32_t> indices, Shape& shape, UploadWrites writes = UploadWrites::Fused);
 inline constexpr std::size_t kShapeSampleTriangles = std::size_t{1} << 12;
 inline constexpr std::size_t kShapeChunk = 512;
 inline constexpr std::size_t kShapeBlock = 32;

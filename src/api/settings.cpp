@@ -96,6 +96,8 @@ void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positi
 // threads once per detection, not once per mesh.
 void CollisionWorld::Impl::measureShapes(const DetectSettings& in) const {
     const bool all = !in.direction || !in.resolution, open = !in.open_epsilon;
+    shapes_wanted_all = all;
+    shapes_wanted_open = open;
     std::vector<const Object*> stale;
     std::vector<host_passes::ShapeMesh> meshes;
     for (const Object& o : objects) {

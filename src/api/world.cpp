@@ -216,10 +216,15 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     // spare host copy and straight into the upload buffer (no detection is in flight:
     // nothing reads it now), checked and boxed on the way. A refused update puts the upload
     // buffer back from the host copy and changes nothing. The shape (typical edge, area
-    // moment) is measured later, when automatic settings need it (measureShapes).
+    // moment) is measured in the same loop while the last settings needed it, else later,
+    // when automatic settings need it (measureShapes).
     o.spare_positions.resize(positions.size());
     auto* upload = static_cast<Float3*>(o.vertices.mapped());
-    const host_passes::VertexScan scan = host_passes::copyAndScan(*w.executor, positions, o.spare_positions, upload);
+    const bool measure = w.shapes_wanted_all || (w.shapes_wanted_open && o.options.open);
+    host_passes::Shape shape;
+    const host_passes::VertexScan scan =
+        measure ? host_passes::copyScanAndMeasure(*w.executor, positions, o.spare_positions, upload, o.host_indices, shape)
+                : host_passes::copyAndScan(*w.executor, positions, o.spare_positions, upload);
     auto refused = [&](const Error& e) {
         std::memcpy(upload, o.host_positions.data(), positions.size_bytes());
         return w.named(id, e);
@@ -231,7 +236,8 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     w.source_dirty = true;  // the narrow phase's source borrowed the other array
     o.box = scan.box;
     o.max_abs = scan.max_abs;
-    o.shape_stale = true;
+    o.shape_stale = !measure;
+    if (measure) o.edge_length = shape.edge_length, o.area_moment = shape.area_moment;
     return {};
 }
 

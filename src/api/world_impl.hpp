@@ -48,7 +48,8 @@ struct CollisionWorld::Impl {
         // meshes) and, host meshes, the sum over triangles of area * n n^T (xx, yy, zz, xy,
         // xz, yz; object space). A cache for host meshes: after their geometry changes
         // (shape_stale) they are measured by the next resolve() that needs them
-        // (measureShapes), not by addMesh or updateVertices; hence mutable.
+        // (measureShapes), not by addMesh; hence mutable. updateVertices measures them on
+        // the way (in its own parallel loop) while the last resolve() needed them.
         mutable float edge_length = 0;
         mutable std::array<double, 6> area_moment{};
         mutable bool shape_stale = false;
@@ -95,6 +96,10 @@ struct CollisionWorld::Impl {
     // The scene box the last detection measured on the GPU (engine meshes included), for
     // the automatic settings of scenes with GPU meshes.
     std::optional<std::array<float, 6>> measured_box;
+    // Whether the last resolve() needed the shapes of all host meshes (automatic direction
+    // or resolution) or of open ones (automatic open epsilon): updateVertices then measures
+    // them with its copy (the same shape, bit for bit, as a later measureShapes).
+    mutable bool shapes_wanted_all = true, shapes_wanted_open = true;
     // A batch of only the engine's waits and signals, for a submit() that failed after it
     // was given them (engine_sync.cpp); created on first use.
     vk::Submission sync_only;

@@ -148,6 +148,43 @@ TEST_CASE("updateVertices' pass names the first NaN or infinite vertex whichever
     }
 }
 
+TEST_CASE("copy, scan and shape in one loop: the copy and scan of copyAndScan, the shape of measureShape, bit for bit",
+          "[api][host]") {
+    const auto pool = executors();
+    std::vector<Float3> p;
+    std::vector<std::uint32_t> idx;
+    for (std::uint32_t n : {1u, 16u, 45u, 300u}) {  // 2 to 180,000 triangles: one run to eight, one chunk to many
+        grid(n, p, idx);
+        for (const auto& ex : pool) {
+            INFO("grid " << n << ", threads " << ex->threadCount());
+            std::vector<Float3> out(p.size()), upload(p.size()), plain_out(p.size()), plain_upload(p.size());
+            host_passes::Shape shape;
+            const auto got = host_passes::copyScanAndMeasure(*ex, p, out, upload.data(), idx, shape);
+            const auto want = host_passes::copyAndScan(*ex, p, plain_out, plain_upload.data());
+            CHECK(got.finite);
+            CHECK(got.box == want.box);
+            CHECK(got.max_abs == want.max_abs);
+            CHECK(sameBits(out, p));
+            CHECK(sameBits(upload, p));
+            const auto alone = host_passes::measureShape(*ex, out, idx);
+            CHECK(shape.edge_length == alone.edge_length);
+            CHECK(shape.area_moment == alone.area_moment);
+        }
+    }
+    // A non-finite vertex: named as copyAndScan names it, the shape left as it was.
+    grid(45, p, idx);
+    p[1000].y = std::numeric_limits<float>::quiet_NaN();
+    for (const auto& ex : pool) {
+        std::vector<Float3> out(p.size());
+        host_passes::Shape shape;
+        shape.edge_length = 7.0f;
+        const auto got = host_passes::copyScanAndMeasure(*ex, p, out, nullptr, idx, shape);
+        CHECK_FALSE(got.finite);
+        CHECK(got.first_bad == 1000u);
+        CHECK(shape.edge_length == 7.0f);
+    }
+}
+
 TEST_CASE("the shape measure is the same on every executor, and a plain loop's on small meshes", "[api][host]") {
     const auto pool = executors();
     std::vector<Float3> p;

@@ -162,3 +162,33 @@ TEST_CASE("shapes are measured when automatic settings need them, also after det
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+TEST_CASE("shapes measured with the vertex update (automatic settings last time) equal shapes measured later", "[api][gpu]") {
+    ValidatedContext ctx;
+    const Scene scene;
+    auto eager = worldOf(ctx, scene.big, scene.small, true);
+    auto lazy = worldOf(ctx, scene.big, scene.small, true);
+    REQUIRE(eager->resolveSettings());  // automatic: the next updates measure on the way
+    DetectSettings given;               // nothing automatic: the next updates leave shapes stale
+    given.direction = std::array<float, 3>{0, 0, 1};
+    given.resolution = 64;
+    given.open_epsilon = 0.001f;
+    REQUIRE(lazy->resolveSettings(given));
+    // Stretched along x and squashed along z: another typical edge and facing.
+    HostMesh big = scene.big, small = scene.small;
+    for (HostMesh* m : {&big, &small})
+        for (Float3& p : m->positions) p = {1.7f * p.x, p.y, 0.4f * p.z};
+    for (auto* w : {eager.get(), lazy.get()}) {
+        REQUIRE(w->updateVertices(0, big.positions));
+        REQUIRE(w->updateVertices(1, small.positions));
+    }
+    for (const DetectSettings& s : {DetectSettings{}, DetectSettings{.method = DetectMethod::Peeling}}) {
+        auto a = eager->detect(s), b = lazy->detect(s);
+        REQUIRE(a);
+        REQUIRE(b);
+        CHECK(a->stats.settings_note == b->stats.settings_note);
+        CHECK(a->stats.resolution == b->stats.resolution);
+        CHECK(a->pairs == b->pairs);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -1,5 +1,7 @@
 #include "narrow/exact_predicates.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 
@@ -143,11 +145,51 @@ Expansion<4> differenceOfProducts(double p, double q, double r, double s) {
     twoProduct(p, q, pq, pq_err);
     twoProduct(r, s, rs, rs_err);
     Expansion<4> e;
+    if (pq_err == 0 && rs_err == 0) {
+        // Both products exact (coordinates with few significant bits, as on a grid): one
+        // exact subtraction, as minorXY does, instead of four expansion steps.
+        double diff, err;
+        twoSum(pq, -rs, diff, err);
+        if (err != 0) e.c[e.n++] = err;
+        if (diff != 0) e.c[e.n++] = diff;
+        return e;
+    }
     e.add(pq_err);
     e.add(pq);
     e.add(-rs_err);
     e.add(-rs);
     return e;
+}
+
+// u x v on exact differences, each component an exact expansion of at most 4 terms.
+std::array<Expansion<4>, 3> exactCross(const double (&diff)[9]) {
+    const double ux = diff[0], uy = diff[1], uz = diff[2], vx = diff[3], vy = diff[4], vz = diff[5];
+    return {differenceOfProducts(uy, vz, uz, vy), differenceOfProducts(uz, vx, ux, vz), differenceOfProducts(ux, vy, uy, vx)};
+}
+
+// sign(w . n) for an exact cross product n and exact differences w. Products and their
+// errors are multiples of 2^-447 and below 2^390 (same argument as above), so this stays
+// exact; at most 24 components.
+int crossDotSign(const std::array<Expansion<4>, 3>& n, double wx, double wy, double wz) {
+    if (n[0].n <= 1 && n[1].n <= 1 && n[2].n <= 1) {
+        // Each component a single double (a coplanar contact on a grid of few bits): when
+        // the three products and two sums have no rounding error the double sum is the
+        // exact determinant; otherwise the expansions below.
+        double t[3], e[3];
+        const double w[3] = {wx, wy, wz};
+        for (int k = 0; k < 3; ++k) twoProduct(n[k].n == 0 ? 0.0 : n[k].c[0], w[k], t[k], e[k]);
+        if (e[0] == 0 && e[1] == 0 && e[2] == 0) {
+            double partial, partial_err, det, det_err;
+            twoSum(t[0], t[1], partial, partial_err);
+            twoSum(partial, t[2], det, det_err);
+            if (partial_err == 0 && det_err == 0) return signOf(det);
+        }
+    }
+    Expansion<24> det;
+    det.addScaled(n[0], wx);
+    det.addScaled(n[1], wy);
+    det.addScaled(n[2], wz);
+    return det.sign();
 }
 
 }  // namespace
@@ -156,14 +198,8 @@ int orient3dExact(const Float3& a, const Float3& b, const Float3& c, const Float
     double diff[9];
     if (exactDifferences(a, b, c, d, diff)) {
         // The usual case: det[u, v, w] = w . (u x v) on the exact differences u = b - a,
-        // v = c - a, w = d - a. Products and their errors are multiples of 2^-447 and below
-        // 2^390 (same argument as above), so this stays exact; at most 24 components.
-        const double ux = diff[0], uy = diff[1], uz = diff[2], vx = diff[3], vy = diff[4], vz = diff[5];
-        Expansion<24> det;
-        det.addScaled(differenceOfProducts(uy, vz, uz, vy), diff[6]);
-        det.addScaled(differenceOfProducts(uz, vx, ux, vz), diff[7]);
-        det.addScaled(differenceOfProducts(ux, vy, uy, vx), diff[8]);
-        return det.sign();
+        // v = c - a, w = d - a.
+        return crossDotSign(exactCross(diff), diff[6], diff[7], diff[8]);
     }
     // det[b-a, c-a, d-a] = -det4[(a,1);(b,1);(c,1);(d,1)]
     //                    = det3(b,c,d) - det3(a,c,d) + det3(a,b,d) - det3(a,b,c).
@@ -185,7 +221,15 @@ int orient2dExact(const Float2& a, const Float2& b, const Float2& c) noexcept {
     twoSum(b.y, -double(a.y), bay, e1);
     twoSum(c.x, -double(a.x), cax, e2);
     twoSum(c.y, -double(a.y), cay, e3);
-    if (e0 == 0 && e1 == 0 && e2 == 0 && e3 == 0) return differenceOfProducts(bax, cay, bay, cax).sign();
+    if (e0 == 0 && e1 == 0 && e2 == 0 && e3 == 0) {
+        // Exact differences; when both products are exact too, comparing them is the sign
+        // (the collinear vertices of a grid's shared diagonals end here).
+        double left, left_err, right, right_err;
+        twoProduct(bax, cay, left, left_err);
+        twoProduct(bay, cax, right, right_err);
+        if (left_err == 0 && right_err == 0) return (left > right) - (left < right);
+        return differenceOfProducts(bax, cay, bay, cax).sign();
+    }
     // det[b-a, c-a] = M(a,b) + M(b,c) + M(c,a).
     Expansion<8> det;
     det.add(minorXY(a.x, a.y, b.x, b.y));
@@ -234,7 +278,36 @@ int PlaneOrientation::side(const Float3& d) const noexcept {
     const double bound = kOrient3dBound * permanent;
     if (det > bound || -det > bound) return signOf(det);
     if (permanent == 0) return 0;  // every term has an exact zero factor (zeroFactors)
-    return orient3dExact(a_, b_, c_, d);
+    return sideExact(d);
+}
+
+int PlaneOrientation::sideExact(const Float3& d) const noexcept {
+    // orient3dExact's first form, with u x v kept from the first call: the same exact
+    // value, so the same sign. Its condition (all nine differences exact) is checked in
+    // two parts: u and v once, w per call.
+    double diff[9];
+    if (cross_state_ == kCrossUnknown) {
+        cross_state_ = exactDifferences(a_, b_, c_, c_, diff) ? kCrossReady : kCrossInexact;
+        if (cross_state_ == kCrossReady) {
+            const std::array<Expansion<4>, 3> n = exactCross(diff);
+            for (int k = 0; k < 3; ++k) {
+                cross_size_[k] = n[k].n;
+                std::copy(n[k].c, n[k].c + n[k].n, cross_[k]);
+            }
+        }
+    }
+    if (cross_state_ == kCrossInexact) return orient3dExact(a_, b_, c_, d);
+    double w[3], err[3];
+    twoSum(d.x, -double(a_.x), w[0], err[0]);
+    twoSum(d.y, -double(a_.y), w[1], err[1]);
+    twoSum(d.z, -double(a_.z), w[2], err[2]);
+    if (err[0] != 0 || err[1] != 0 || err[2] != 0) return orient3dExact(a_, b_, c_, d);
+    std::array<Expansion<4>, 3> n;
+    for (int k = 0; k < 3; ++k) {
+        n[k].n = cross_size_[k];
+        std::copy(cross_[k], cross_[k] + cross_size_[k], n[k].c);
+    }
+    return crossDotSign(n, w[0], w[1], w[2]);
 }
 
 bool PlaneOrientation::certainlyNotCollinear() const noexcept {

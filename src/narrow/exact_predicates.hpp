@@ -24,7 +24,10 @@ int orient3d(const Float3& a, const Float3& b, const Float3& c, const Float3& d)
 int orient2d(const Float2& a, const Float2& b, const Float2& c) noexcept;
 
 // orient3d(a, b, c, d) for many d against one plane: the filter's products for a, b, c
-// are computed once. side(d) returns exactly orient3d(a, b, c, d).
+// are computed once, and so, on the first d the filter cannot decide, is the exact cross
+// product (b - a) x (c - a) (three coplanar vertices of a tilted contact cost one cross
+// product instead of three). side(d) returns exactly orient3d(a, b, c, d). Not thread-safe
+// (side() fills the cache): one object per thread.
 class PlaneOrientation {
 public:
     PlaneOrientation(const Float3& a, const Float3& b, const Float3& c) noexcept;
@@ -34,9 +37,18 @@ public:
     bool certainlyNotCollinear() const noexcept;
 
 private:
+    int sideExact(const Float3& d) const noexcept;
+
     Float3 a_, b_, c_;
     double normal_[3];     // (b - a) x (c - a), rounded
     double magnitude_[3];  // per component, the sum of the two products' magnitudes
+    // The exact cross product: component k is the expansion cross_[k][0, cross_size_[k]),
+    // valid when cross_state_ is kCrossReady; kCrossInexact when b - a or c - a does not
+    // fit a double (then orient3dExact's general form runs).
+    enum : unsigned char { kCrossUnknown, kCrossReady, kCrossInexact };
+    mutable unsigned char cross_state_ = kCrossUnknown;
+    mutable int cross_size_[3] = {};
+    mutable double cross_[3][4] = {};
 };
 
 // The exact fallbacks alone (no filter), exposed so tests can check filter and

@@ -194,8 +194,16 @@ bool trianglesIntersect(std::span<const Float3, 3> a, std::span<const Float3, 3>
     for (int i = 0; i < 3; ++i) side_a[i] = plane_b.side(a[i]);
     if (sameStrictSign(side_a[0], side_a[1], side_a[2])) return false;
     const PlaneOrientation plane_a(a[0], a[1], a[2]);
-    for (int i = 0; i < 3; ++i) side_b[i] = plane_a.side(b[i]);
-    if (sameStrictSign(side_b[0], side_b[1], side_b[2])) return false;
+    // a in b's plane (the resting contacts' coplanar pairs): the sides of b against a's
+    // plane are not needed. They could not reject (a non-degenerate a spans b's plane, so
+    // all are 0; a degenerate a has every side 0), and the paths below for a pair with
+    // a in b's plane (degenerate or coplanar) do not read them. On a tilted contact each
+    // is an exact orient3d, so this halves the exact work of a coplanar pair.
+    const bool a_in_plane_b = side_a[0] == 0 && side_a[1] == 0 && side_a[2] == 0;
+    if (!a_in_plane_b) {
+        for (int i = 0; i < 3; ++i) side_b[i] = plane_a.side(b[i]);
+        if (sameStrictSign(side_b[0], side_b[1], side_b[2])) return false;
+    }
 
     // Degenerate triangles are segments (or points).
     if (!plane_a.certainlyNotCollinear() && collinear(a[0], a[1], a[2])) {
@@ -207,7 +215,7 @@ bool trianglesIntersect(std::span<const Float3, 3> a, std::span<const Float3, 3>
         return segmentTriangleIntersect(lo, hi, a);
     }
 
-    if (side_a[0] == 0 && side_a[1] == 0 && side_a[2] == 0) return coplanarTrianglesIntersect(a, b);
+    if (a_in_plane_b) return coplanarTrianglesIntersect(a, b);
 
     // Normalise a: rotate its apex to p1; a flip of b's winding negates side_a.
     int flip_b = 1;

@@ -262,3 +262,56 @@ TEST_CASE("Shared coordinates (axis-aligned contacts, the filters' zero shortcut
     }
     CHECK(zeros > 100000);  // the shortcut's case is most of them
 }
+
+TEST_CASE("Tilted grids (coplanar contacts off the axes, the exact-product shortcuts) agree with big-integer arithmetic",
+          "[narrow][predicates]") {
+    // Points of a grid of few bits mapped by a linear map with dyadic entries: the plane
+    // through three of them holds the fourth exactly but no difference is zero, so the
+    // filters fail and the exact paths run; the products have few bits, so the exact
+    // paths' shortcuts (exact products and sums in double) decide. Mixed with one-ulp
+    // nudges and with grids of many bits (products and sums that round), where the
+    // shortcuts must hand over to the expansions. One PlaneOrientation serves several d
+    // (its cached cross product).
+    std::mt19937 rng(13003);
+    std::uniform_int_distribution<int> cell(-64, 64), entry(-8, 8), kind(0, 3);
+    int zeros = 0, collinear = 0;
+    for (int iter = 0; iter < 20000; ++iter) {
+        const int k = kind(rng);
+        const float scale = k == 3 ? 1.0f / 3.0f : 1.0f / 64.0f;  // 1/3: many bits
+        float m[9];
+        for (float& e : m) e = float(entry(rng)) / 8.0f;
+        m[0] += 1, m[4] += 1, m[8] += 1;
+        const auto grid = [&](int u, int v, int w) {
+            const float x = float(u) * scale, y = float(v) * scale, z = float(w) * scale;
+            return Float3{m[0] * x + m[1] * y + m[2] * z, m[3] * x + m[4] * y + m[5] * z, m[6] * x + m[7] * y + m[8] * z};
+        };
+        const int plane_w = cell(rng);  // every point on the grid's plane w = plane_w
+        const Float3 a = grid(cell(rng), cell(rng), plane_w), b = grid(cell(rng), cell(rng), plane_w),
+                     c = grid(cell(rng), cell(rng), plane_w);
+        const PlaneOrientation plane(a, b, c);
+        for (int j = 0; j < 4; ++j) {
+            Float3 d = grid(cell(rng), cell(rng), j == 3 ? plane_w + 1 : plane_w);
+            if (k == 1 && j == 2) d = nudge(d, rng);
+            const int expected = bigOrient3d(a, b, c, d);
+            zeros += expected == 0;
+            INFO("iteration " << iter << " point " << j);
+            REQUIRE(orient3d(a, b, c, d) == expected);
+            REQUIRE(orient3dExact(a, b, c, d) == expected);
+            REQUIRE(plane.side(d) == expected);
+            const Float2 p{a.x, a.y}, q{b.x, b.y}, r{d.x, d.y};
+            const int expected2 = bigOrient2d(p, q, r);
+            REQUIRE(orient2d(p, q, r) == expected2);
+            REQUIRE(orient2dExact(p, q, r) == expected2);
+        }
+        // Collinear in 2D: three grid points on one line (a shared diagonal of a grid).
+        const int u = cell(rng) / 2, v = cell(rng) / 2, du = cell(rng) / 4, dv = cell(rng) / 4;
+        const Float3 s0 = grid(u, v, plane_w), s1 = grid(u + du, v + dv, plane_w), s2 = grid(u + 2 * du, v + 2 * dv, plane_w);
+        const Float2 p{s0.x, s0.z}, q{s1.x, s1.z}, r{s2.x, s2.z};
+        const int expected2 = bigOrient2d(p, q, r);
+        collinear += expected2 == 0;
+        REQUIRE(orient2d(p, q, r) == expected2);
+        REQUIRE(orient2dExact(p, q, r) == expected2);
+    }
+    CHECK(zeros > 20000);     // the coplanar case is most of them
+    CHECK(collinear > 10000);  // and the collinear one
+}

@@ -271,3 +271,39 @@ TEST_CASE("Triangle test matches the brute-force oracle on random cases", "[narr
     CHECK(positives > total / 10);
     CHECK(positives < total * 9 / 10);
 }
+
+TEST_CASE("Coplanar contacts of tilted grids give the same answers as on the axes", "[narrow][tritri]") {
+    // Triangles of two grids on the plane z = 0 (offset by a fraction of a cell, some
+    // coincident), then the same triangles through a linear map with dyadic entries,
+    // exact in float: intersection is invariant under an invertible linear map, so the
+    // answers must not change, though no tilted difference is zero (the exact paths and
+    // their shortcuts run, and the coplanar pairs skip the second plane's sides).
+    std::mt19937 rng(777);
+    std::uniform_int_distribution<int> cell(-16, 16), offset(0, 3), corner(0, 1);
+    const float m[9] = {1.0f, 0.25f, 0.125f, -0.125f, 1.0f, 0.375f, 0.375f, -0.25f, 1.0f};
+    const auto tilt = [&](const Tri& t) {
+        Tri out;
+        for (int i = 0; i < 3; ++i) {
+            const Float3& p = t[i];
+            out[i] = {m[0] * p.x + m[1] * p.y + m[2] * p.z, m[3] * p.x + m[4] * p.y + m[5] * p.z, m[6] * p.x + m[7] * p.y + m[8] * p.z};
+        }
+        return out;
+    };
+    // Half of a grid cell (u, v) of size 1/8, shifted by `shift` / 32 in x.
+    const auto half = [&](int u, int v, int shift, int which) {
+        const float x = float(u) / 8.0f + float(shift) / 32.0f, y = float(v) / 8.0f, s = 1.0f / 8.0f;
+        return which == 0 ? Tri{{{x, y, 0}, {x + s, y, 0}, {x + s, y + s, 0}}} : Tri{{{x, y, 0}, {x + s, y + s, 0}, {x, y + s, 0}}};
+    };
+    int hits = 0, misses = 0;
+    for (int iter = 0; iter < 4000; ++iter) {
+        const int u = cell(rng) / 8, v = cell(rng) / 8;
+        const Tri a = half(u, v, 0, corner(rng));
+        const Tri b = half(u + cell(rng) / 12, v + cell(rng) / 12, offset(rng), corner(rng));
+        const bool flat = intersectAllOrders(a, b);
+        INFO("iteration " << iter);
+        REQUIRE(intersectAllOrders(tilt(a), tilt(b)) == flat);
+        (flat ? hits : misses) += 1;
+    }
+    CHECK(hits > 1000);
+    CHECK(misses > 500);
+}

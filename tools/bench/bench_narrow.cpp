@@ -23,7 +23,10 @@
 // degrees (surfaces crossing all over: several tests per triangle) and `pile` its 60-mesh
 // pile (60 spheres of 9,940 triangles, fixed size), `graze` two spheres of size/2 triangles
 // meeting along one small circle (centres 1.8 radii apart: with `--pairs-sent hits`, about
-// 500 pairs for size 100,000, near the ~650 of docs/results.md's deform-pair-100K). Meshes
+// 500 pairs for size 100,000, near the ~650 of docs/results.md's deform-pair-100K),
+// `touching` and `touching-tilted` boxes resting face to face (bench_narrow_scenes.hpp;
+// with --modes all --self off --pairs-sent hits, about 150K triangles and 600K pairs for
+// size 150,000, like the GPU bench's stack-touching). Meshes
 // are in object space with a transform per object; world positions are computed as the
 // exact reference does.
 // --candidates reads a raw array of CandidateTriangle (80 bytes each, e.g. the records of a
@@ -72,6 +75,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <thread>
@@ -79,6 +83,7 @@
 #include <vector>
 
 #include "bench_narrow_probes.hpp"
+#include "bench_narrow_scenes.hpp"
 #include "passes/broad_phase.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/sweep_and_prune.hpp"
@@ -116,13 +121,9 @@ struct Options {
     bool front_probe = false;  // pair path: time the front's two forms instead of whole calls
 };
 
-// One object of a generated scene: an object-space mesh and its object -> world transform
-// (row-major 3x4). World positions are M * p in double, rounded once to float, as
-// tests/support/exact_reference.hpp's worldPositions computes them.
-struct SceneObject {
-    HostMesh mesh;
-    Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
-};
+// World positions of a SceneObject are computed as tests/support/exact_reference.hpp's
+// worldPositions does.
+using bench::SceneObject;
 
 struct Workload {
     std::string scene, mode;
@@ -254,6 +255,7 @@ bool fixedSize(const std::string& scene) { return scene == "demo" || scene == "p
 
 std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) {
     constexpr double kPi = 3.14159265358979323846;
+    if (std::optional<std::vector<SceneObject>> touching = bench::touchingScene(scene, size)) return std::move(*touching);
     std::vector<SceneObject> objects;
     if (scene == "demo") {
         objects.push_back(placed(uvSphere(1.0f, 96, 48), 0.3f, {-0.6f, 0.05f, 0.0f}));
@@ -307,7 +309,7 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
                                                          2 * kPi * hash01(7 * i + 5), t)});
         }
     } else {
-        die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, twin, graze, pile, gpu-demo, gpu-deep, gpu-pile)");
+        die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, twin, graze, pile, touching, touching-tilted, gpu-demo, gpu-deep, gpu-pile)");
     }
     return objects;
 }

@@ -49,58 +49,66 @@ void setResponse(TriangleResponse& response, const SlotData& slots, std::uint32_
     }
 }
 
-// The responses on the calling thread, by a counting sort over the slots instead of the
-// radix sort below: each slot's pairs listed in pair order (a stable scatter), so the terms
-// are summed in the same order and the result is the same to the bit. About half the
-// passes over the ends, and no parallel loop: a few thousand hits cost tens of
-// microseconds here, where the parallel form's ten loops cost more than that in hand-outs
+// The responses on the calling thread (the Serial form). As in the Grouped form below,
+// a slot's pairs in pair order are those where it is the higher end, then its run as the
+// lower end in the sorted pairs: a counting sort of the higher ends over the slots (a
+// stable scatter of pair indices) lists the first, a cursor walking the pairs alongside
+// the slots reads the second. The terms are summed in pair order, so the result is the
+// same to the bit as every other form's. No parallel loop: a few thousand hits cost tens
+// of microseconds here, where a parallel form's loops cost more than that in hand-outs
 // and cache-line traffic on 16 threads. It walks every slot, so it is used only when the
 // slots are not many more than the ends.
 void respondSerial(const Buffer<std::uint64_t>& colliding, const SlotData& slots, std::size_t slot_count,
                    NarrowWorkspace::Impl& ws, NarrowResult& out) {
     const std::size_t pairs = colliding.size();
-    Buffer<std::uint32_t>& first = ws.responder_begin;  // slot s's ends: [first[s], first[s + 1])
-    first.resize(slot_count + 1);
+    // Counted one place up, scattered through first[s + 1]: afterwards slot s's higher-end
+    // pairs are pair_of[first[s], first[s + 1]).
+    Buffer<std::uint32_t>& first = ws.responder_begin;
+    first.resize(slot_count + 2);
     std::fill(first.begin(), first.end(), 0u);
+    // Slot s's run as the lower end ends at run_end[s] (0: no run), so it is
+    // [max(previous runs' end), run_end[s]): no search.
+    Buffer<std::uint32_t>& run_end = ws.responder_of;
+    run_end.resize(slot_count);
+    std::fill(run_end.begin(), run_end.end(), 0u);
     for (std::size_t k = 0; k < pairs; ++k) {
-        ++first[(colliding[k] >> 32) + 1];
-        ++first[(colliding[k] & 0xffffffffu) + 1];
+        ++first[(colliding[k] & 0xffffffffu) + 2];
+        run_end[colliding[k] >> 32] = static_cast<std::uint32_t>(k + 1);
     }
+    for (std::size_t slot = 0; slot < slot_count; ++slot) first[slot + 2] += first[slot + 1];
+    Buffer<std::uint32_t>& pair_of = ws.responders;
+    pair_of.resize(pairs);
+    for (std::size_t k = 0; k < pairs; ++k) pair_of[first[(colliding[k] & 0xffffffffu) + 1]++] = static_cast<std::uint32_t>(k);
+    // Responders and their normals (read only for slots in a pair).
+    Buffer<Vec3d>& normal = ws.slot_normals;
+    normal.resize(slot_count);
     std::size_t responders = 0;
     for (std::size_t slot = 0; slot < slot_count; ++slot) {
-        responders += first[slot + 1] != 0 ? 1 : 0;
-        first[slot + 1] += first[slot];
-    }
-    Buffer<std::uint32_t>& next = ws.responder_of;  // scatter cursor per slot
-    next.resize(slot_count);
-    std::copy(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(slot_count), next.begin());
-    Buffer<std::uint32_t>& pair_of_end = ws.responders;  // the pairs of slot s in pair order
-    pair_of_end.resize(2 * pairs);
-    for (std::size_t k = 0; k < pairs; ++k) {
-        pair_of_end[next[colliding[k] >> 32]++] = static_cast<std::uint32_t>(k);
-        pair_of_end[next[colliding[k] & 0xffffffffu]++] = static_cast<std::uint32_t>(k);
-    }
-    Buffer<Vec3d>& normal = ws.slot_normals;  // read only for slots in a pair
-    normal.resize(slot_count);
-    for (std::size_t slot = 0; slot < slot_count; ++slot) {
-        if (first[slot + 1] != first[slot]) normal[slot] = unitNormal(slots.v[slot]);
+        if (run_end[slot] == 0 && first[slot + 1] == first[slot]) continue;
+        normal[slot] = unitNormal(slots.v[slot]);
+        ++responders;
     }
     out.responses.resize(responders);
     std::size_t r = 0;
-    for (std::size_t slot = 0; slot < slot_count; ++slot) {
-        if (first[slot + 1] == first[slot]) continue;
-        const auto self = static_cast<std::uint32_t>(slot);
+    for (std::size_t slot = 0, k = 0; slot < slot_count; ++slot) {
+        const std::size_t run_first = k;
+        k = std::max<std::size_t>(k, run_end[slot]);
+        if (k == run_first && first[slot + 1] == first[slot]) continue;
         const Vec3d& n = normal[slot];
         Vec3d sum;
         for (std::size_t e = first[slot]; e < first[slot + 1]; ++e) {
-            const std::uint64_t pair = colliding[pair_of_end[e]];
-            const auto a = static_cast<std::uint32_t>(pair >> 32), b = static_cast<std::uint32_t>(pair);
-            const Vec3d& m = normal[a == self ? b : a];
+            const Vec3d& m = normal[colliding[pair_of[e]] >> 32];
             sum.x += m.x - n.x;
             sum.y += m.y - n.y;
             sum.z += m.z - n.z;
         }
-        setResponse(out.responses[r++], slots, self, first[slot + 1] - first[slot], sum);
+        for (std::size_t q = run_first; q < k; ++q) {
+            const Vec3d& m = normal[colliding[q] & 0xffffffffu];
+            sum.x += m.x - n.x;
+            sum.y += m.y - n.y;
+            sum.z += m.z - n.z;
+        }
+        setResponse(out.responses[r++], slots, static_cast<std::uint32_t>(slot), first[slot + 1] - first[slot] + (k - run_first), sum);
     }
 }
 

@@ -18,10 +18,11 @@ constexpr std::size_t kSlotGrain = 8192;
 // cost (15 ns a pair here, against 29 for the parallel form run on one thread) and the
 // H200 host's 0.205 ms for 7.2K pairs on 16 threads: serial is estimated at ~0.15 ms there.
 constexpr std::size_t kSerialResponsesBelow = std::size_t{1} << 13;
-// The Grouped form from this many threads on: on one thread it costs about 1.5 times the
-// Serial form (5.0 against 3.4 ms for 596K pairs, touching scene), so two threads gain
-// nothing (the Sorted form it replaces cost 2-3 times the Serial one there).
-constexpr unsigned kGroupedFromThreads = 3;
+// The Grouped form from this many threads on: on one thread it costs about twice the
+// Serial form (5.1-7.7 against 2.3-2.4 ms for 596K pairs, touching scene), so two or
+// three threads would gain little or nothing (the Sorted form it replaces cost 2-3 times
+// the Serial one on two threads).
+constexpr unsigned kGroupedFromThreads = 4;
 constexpr std::size_t kSlotsPerEnd = 4;
 constexpr std::size_t kSlotsFree = 4096;
 

@@ -141,8 +141,8 @@ void requireSame(const std::vector<TriangleResponse>& got, const std::vector<Tri
 }  // namespace
 
 TEST_CASE("Responses: every form equals the definition to the bit on any thread count", "[narrow][response][threads]") {
-    // Dense slots with many pairs (Automatic: Serial on one or two threads, Grouped from
-    // three), with hub slots whose runs cross task boundaries; sparse slots with few
+    // Dense slots with many pairs (Automatic: Serial on one or two threads, Grouped on
+    // four), with hub slots whose runs cross task boundaries; sparse slots with few
     // pairs (Automatic: Sorted); few pairs; none. One workspace throughout, so buffers
     // are reused at other sizes.
     const std::vector<ResponseScene> scenes = [] {

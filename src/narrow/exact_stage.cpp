@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include <cmath>
 #include <limits>
 
+#include "narrow/responses.hpp"
 #include "narrow/triangle_intersection.hpp"
 
 namespace vkcollide {
@@ -33,148 +33,8 @@ constexpr std::size_t kMinTestGrain = 32;
 constexpr std::size_t kMaxTestGrain = 512;
 // Items per task of the linear loops that build the result.
 constexpr std::size_t kResultGrain = 2048;
-// Responses on the calling thread below this many colliding pairs (respondSerial), when
-// the slots number at most kSlotsPerEnd per end plus kSlotsFree. From the single-thread
-// cost (15 ns a pair here, against 29 for the parallel form run on one thread) and the
-// H200 host's 0.205 ms for 7.2K pairs on 16 threads: serial is estimated at ~0.15 ms there.
-constexpr std::size_t kSerialResponsesBelow = std::size_t{1} << 13;
-constexpr std::size_t kSlotsPerEnd = 4;
-constexpr std::size_t kSlotsFree = 4096;
-
-Vec3d unitNormal(const Vertex3& v) {
-    const double ux = double(v[1].x) - v[0].x, uy = double(v[1].y) - v[0].y, uz = double(v[1].z) - v[0].z;
-    const double vx = double(v[2].x) - v[0].x, vy = double(v[2].y) - v[0].y, vz = double(v[2].z) - v[0].z;
-    const Vec3d n{uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx};
-    const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
-    if (!(length > 0) || !std::isfinite(length)) return {};  // zero-area (or overflowing) triangle: no normal
-    return {n.x / length, n.y / length, n.z / length};
-}
 
 int bitsFor(std::size_t count) { return std::max(1, static_cast<int>(std::bit_width(count))); }
-
-// Fills one response: self's object and triangle, its partner count and the direction of
-// the summed terms.
-void setResponse(TriangleResponse& response, const SlotData& slots, std::uint32_t self, std::size_t partners, const Vec3d& sum) {
-    response = {};
-    response.object = slots.object[self];
-    response.triangle = slots.triangle[self];
-    response.partner_count = static_cast<std::uint32_t>(partners);
-    const double length = std::sqrt(sum.x * sum.x + sum.y * sum.y + sum.z * sum.z);
-    if (length > 0) {
-        response.direction = {static_cast<float>(sum.x / length), static_cast<float>(sum.y / length), static_cast<float>(sum.z / length)};
-    }
-}
-
-// The responses on the calling thread, by a counting sort over the slots instead of the
-// radix sort below: each slot's pairs listed in pair order (a stable scatter), so the terms
-// are summed in the same order and the result is the same to the bit. About half the
-// passes over the ends, and no parallel loop: a few thousand hits cost tens of
-// microseconds here, where the parallel form's ten loops cost more than that in hand-outs
-// and cache-line traffic on 16 threads. It walks every slot, so it is used only when the
-// slots are not many more than the ends.
-void respondSerial(const Buffer<std::uint64_t>& colliding, const SlotData& slots, std::size_t slot_count,
-                   NarrowWorkspace::Impl& ws, NarrowResult& out) {
-    const std::size_t pairs = colliding.size();
-    Buffer<std::uint32_t>& first = ws.responder_begin;  // slot s's ends: [first[s], first[s + 1])
-    first.resize(slot_count + 1);
-    std::fill(first.begin(), first.end(), 0u);
-    for (std::size_t k = 0; k < pairs; ++k) {
-        ++first[(colliding[k] >> 32) + 1];
-        ++first[(colliding[k] & 0xffffffffu) + 1];
-    }
-    std::size_t responders = 0;
-    for (std::size_t slot = 0; slot < slot_count; ++slot) {
-        responders += first[slot + 1] != 0 ? 1 : 0;
-        first[slot + 1] += first[slot];
-    }
-    Buffer<std::uint32_t>& next = ws.responder_of;  // scatter cursor per slot
-    next.resize(slot_count);
-    std::copy(first.begin(), first.begin() + static_cast<std::ptrdiff_t>(slot_count), next.begin());
-    Buffer<std::uint32_t>& pair_of_end = ws.responders;  // the pairs of slot s in pair order
-    pair_of_end.resize(2 * pairs);
-    for (std::size_t k = 0; k < pairs; ++k) {
-        pair_of_end[next[colliding[k] >> 32]++] = static_cast<std::uint32_t>(k);
-        pair_of_end[next[colliding[k] & 0xffffffffu]++] = static_cast<std::uint32_t>(k);
-    }
-    Buffer<Vec3d>& normal = ws.slot_normals;  // read only for slots in a pair
-    normal.resize(slot_count);
-    for (std::size_t slot = 0; slot < slot_count; ++slot) {
-        if (first[slot + 1] != first[slot]) normal[slot] = unitNormal(slots.v[slot]);
-    }
-    out.responses.resize(responders);
-    std::size_t r = 0;
-    for (std::size_t slot = 0; slot < slot_count; ++slot) {
-        if (first[slot + 1] == first[slot]) continue;
-        const auto self = static_cast<std::uint32_t>(slot);
-        const Vec3d& n = normal[slot];
-        Vec3d sum;
-        for (std::size_t e = first[slot]; e < first[slot + 1]; ++e) {
-            const std::uint64_t pair = colliding[pair_of_end[e]];
-            const auto a = static_cast<std::uint32_t>(pair >> 32), b = static_cast<std::uint32_t>(pair);
-            const Vec3d& m = normal[a == self ? b : a];
-            sum.x += m.x - n.x;
-            sum.y += m.y - n.y;
-            sum.z += m.z - n.z;
-        }
-        setResponse(out.responses[r++], slots, self, first[slot + 1] - first[slot], sum);
-    }
-}
-
-// Responses (see TriangleResponse): for each responder (a slot in a colliding pair, in
-// slot order), the terms n_partner - n_self summed in the order of the sorted pairs. The
-// (slot, pair index) keys of both ends of every pair, sorted, list each responder's
-// pairs in that order, so responders are summed in parallel with the serial result.
-void respond(const Buffer<std::uint64_t>& colliding, const SlotData& slots, std::size_t slot_count, Executor& ex,
-             NarrowWorkspace::Impl& ws, NarrowResult& out) {
-    const std::size_t pairs = colliding.size();
-    if ((pairs < kSerialResponsesBelow || ex.threadCount() == 1) && slot_count <= kSlotsPerEnd * 2 * pairs + kSlotsFree) {
-        respondSerial(colliding, slots, slot_count, ws, out);
-        return;
-    }
-    Buffer<std::uint64_t>& ends = ws.contributions;
-    ends.resize(2 * pairs);
-    ex.parallelFor(pairs, kResultGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) {
-            ends[2 * k] = keyOf(static_cast<std::uint32_t>(colliding[k] >> 32), static_cast<std::uint32_t>(k));
-            ends[2 * k + 1] = keyOf(static_cast<std::uint32_t>(colliding[k]), static_cast<std::uint32_t>(k));
-        }
-    });
-    parallelRadixSort(ex, ends, ws.contribution_scratch, 32 + bitsFor(slot_count), 32);  // built in pair order
-    // Responders: where the slot changes in the sorted keys.
-    Buffer<std::uint32_t>& begin_of = ws.responder_begin;
-    begin_of.resize(ends.size() + 1);
-    const std::size_t responders = compact(
-        ex, ends.size(), [&](std::size_t i) { return i == 0 || (ends[i] >> 32) != (ends[i - 1] >> 32); },
-        [&](std::size_t out_position, std::size_t i) { begin_of[out_position] = static_cast<std::uint32_t>(i); });
-    begin_of[responders] = static_cast<std::uint32_t>(ends.size());
-    Buffer<std::uint32_t>& responder_of = ws.responder_of;  // slot -> responder; read only where written this call
-    responder_of.resize(slot_count);
-    std::vector<Vec3d> normal(responders);
-    ex.parallelFor(responders, kResultGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t r = begin; r < end; ++r) {
-            const auto slot = static_cast<std::uint32_t>(ends[begin_of[r]] >> 32);
-            responder_of[slot] = static_cast<std::uint32_t>(r);
-            normal[r] = unitNormal(slots.v[slot]);
-        }
-    });
-    out.responses.resize(responders);
-    ex.parallelFor(responders, kResultGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t r = begin; r < end; ++r) {
-            const auto self = static_cast<std::uint32_t>(ends[begin_of[r]] >> 32);
-            const Vec3d& n = normal[r];
-            Vec3d sum;
-            for (std::size_t e = begin_of[r]; e < begin_of[r + 1]; ++e) {
-                const std::uint64_t pair = colliding[ends[e] & 0xffffffffu];
-                const auto a = static_cast<std::uint32_t>(pair >> 32), b = static_cast<std::uint32_t>(pair);
-                const Vec3d& m = normal[responder_of[a == self ? b : a]];
-                sum.x += m.x - n.x;
-                sum.y += m.y - n.y;
-                sum.z += m.z - n.z;
-            }
-            setResponse(out.responses[r], slots, self, begin_of[r + 1] - begin_of[r], sum);
-        }
-    });
-}
 
 }  // namespace
 
@@ -335,7 +195,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     clock.lap(timings.sort_ms);
 
     // Stage 6: responses.
-    respond(colliding, slots, slot_count, ex, ws, out);
+    respond(colliding, slots, slot_count, ResponseForm::Automatic, ex, ws, out);
     clock.lap(timings.response_ms);
     timings.total_ms = clock.totalMs();
 }

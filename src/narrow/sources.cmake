@@ -8,6 +8,7 @@ list(APPEND VKCOLLIDE_HOST_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/slots.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sweep_and_prune.cpp
   ${CMAKE_CURRENT_LIST_DIR}/exact_stage.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/responses.cpp
   ${CMAKE_CURRENT_LIST_DIR}/narrow_phase.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pair_keys.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pair_narrow_phase.cpp

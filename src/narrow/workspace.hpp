@@ -40,4 +40,5 @@ struct vkcollide::NarrowWorkspace::Impl {
     narrow::Buffer<std::uint64_t> contributions, contribution_scratch;
     narrow::Buffer<std::uint32_t> responders, responder_begin, responder_of;
     narrow::Buffer<narrow::Vec3d> slot_normals;
+    narrow::Buffer<std::uint64_t> lower_runs, higher_groups;  // per slot: (first << 32) | count (responses.cpp)
 };

@@ -160,8 +160,11 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     out.pairs.resize(hit_count);
     // Plain pointers and copies: the strided slot views read through std::byte, which may
     // alias anything, so members reached through references would be reloaded per pair.
-    const auto fill = [hit_keys = colliding.data(), pairs_out = out.pairs.data(), object = slots.object,
-                       triangle = slots.triangle](std::size_t k) {
+    // The keys' address is passed in, not captured: the radix sort swaps `colliding` with
+    // its scratch buffer once per pass, so after an odd number of passes the sorted keys
+    // live in what was the scratch.
+    const auto fill_from = [pairs_out = out.pairs.data(), object = slots.object, triangle = slots.triangle](const std::uint64_t* hit_keys,
+                                                                                                            std::size_t k) {
         const auto i = static_cast<std::uint32_t>(hit_keys[k] >> 32), j = static_cast<std::uint32_t>(hit_keys[k]);
         pairs_out[k] = {object[i], triangle[i], object[j], triangle[j]};
     };
@@ -171,12 +174,12 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
         std::vector<std::size_t>& at = ws.hit_begin;
         at.assign(hits.size() + 1, 0);
         for (std::size_t t = 0; t < hits.size(); ++t) at[t + 1] = at[t] + hits[t].size();
-        const auto place = [&, in_order = tests_in_order](std::size_t first, std::size_t last) {
+        const auto place = [&, in_order = tests_in_order, keys = colliding.data()](std::size_t first, std::size_t last) {
             for (std::size_t t = first; t < last; ++t) {
                 std::copy(hits[t].begin(), hits[t].end(), colliding.begin() + at[t]);
                 if (!in_order) continue;
                 const std::size_t end = at[t + 1];
-                for (std::size_t k = at[t]; k < end; ++k) fill(k);
+                for (std::size_t k = at[t]; k < end; ++k) fill_from(keys, k);
             }
         };
         if (hit_count < kSerialBelow) {
@@ -187,8 +190,8 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     }
     if (!tests_in_order) {
         parallelRadixSort(ex, colliding, ws.colliding_scratch, 32 + bitsFor(slot_count));
-        ex.parallelFor(hit_count, kResultGrain, [&](std::size_t begin, std::size_t end) {
-            for (std::size_t k = begin; k < end; ++k) fill(k);
+        ex.parallelFor(hit_count, kResultGrain, [&, keys = colliding.data()](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) fill_from(keys, k);
         });
     }
     stats.positive_tests = hit_count + out.pairs_left_out;

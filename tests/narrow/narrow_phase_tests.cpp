@@ -395,3 +395,35 @@ TEST_CASE("A reused workspace gives the results of fresh calls", "[narrow][phase
         }
     }
 }
+
+TEST_CASE("runNarrowPhase's pairs come out sorted whatever the number of radix passes over the hits", "[narrow][phase][order]") {
+    // The record path sorts its hits by (lower slot, higher slot) keys of 32 + bits(slots)
+    // bits, 8 per pass, the buffers swapping each pass: up to 2^16 slots take six passes,
+    // more take seven (an odd count, where the sorted keys end in the scratch buffer). Hits
+    // above and below the serial sort's threshold; far-away candidates add slots, not hits.
+    struct Case {
+        std::uint32_t crossings, loners;
+    };
+    for (const Case k : {Case{2000, 0}, Case{2000, 70000}, Case{40000, 0}}) {
+        std::vector<CandidateTriangle> c;
+        std::vector<TrianglePair> want;
+        for (std::uint32_t i = 0; i < k.crossings; ++i) {  // object 0's flat and object 1's needle at x = 4 i
+            const float x = 4.0f * float(i);
+            c.push_back(candidate(0, i, {x, 0, 0}, {x + 2, 0, 0}, {x, 2, 0}));
+            c.push_back(candidate(1, i, {x + 0.25f, 0.25f, -1}, {x + 0.25f, 0.25f, 1}, {x + 0.1f, 0.1f, 0}, {8, 9, 10}));
+            want.push_back({0, i, 1, i});
+        }
+        for (std::uint32_t i = 0; i < k.loners; ++i) {  // object 2, far above everything, apart from each other
+            const float x = 4.0f * float(i);
+            c.push_back(candidate(2, i, {x, 0, 100}, {x + 1, 0, 100}, {x, 1, 100}));
+        }
+        std::shuffle(c.begin(), c.end(), std::mt19937(k.crossings + k.loners));
+        for (unsigned threads : {1u, 4u}) {
+            INFO(k.crossings << " crossings, " << k.loners << " loners, " << threads << " threads");
+            ThreadPool pool(threads);
+            const auto r = runNarrowPhase(c, NarrowOptions{}, pool);
+            REQUIRE(r);
+            CHECK(r->pairs == want);
+        }
+    }
+}

@@ -87,21 +87,20 @@ void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positi
 // The shapes steer automatic settings only (resolution rounded to a power of two or a cell
 // count, direction the largest of three facings), so a deterministic sample of at most
 // kShapeSampleTriangles triangles (evenly spaced blocks) measures them as well as all of them
-// would (host_passes::measureShape). They are measured here, when a detection or
-// resolveSettings needs them, not in every updateVertices: a deforming mesh updated several
-// times per detection is measured once, and not at all when the settings that use the
-// shape are given. The direction and resolution use every object's; the open epsilon only
-// open objects'.
+// would (host_passes::measureShape). They are measured when a detection or resolveSettings
+// needs them: here, for meshes still stale, or already by updateVertices, in its own loop,
+// while the last settings needed them (wantsShape); not at all while the settings that use
+// the shape are given. The direction and resolution use every object's; the open epsilon
+// only open objects'.
 // All of them in one parallel loop: a scene of deforming meshes starts the executor's
 // threads once per detection, not once per mesh.
 void CollisionWorld::Impl::measureShapes(const DetectSettings& in) const {
-    const bool all = !in.direction || !in.resolution, open = !in.open_epsilon;
-    shapes_wanted_all = all;
-    shapes_wanted_open = open;
+    shapes_wanted_all = !in.direction || !in.resolution;
+    shapes_wanted_open = !in.open_epsilon;
     std::vector<const Object*> stale;
     std::vector<host_passes::ShapeMesh> meshes;
     for (const Object& o : objects) {
-        if (!o.alive || !o.host || !o.shape_stale || !(all || (open && o.options.open))) continue;
+        if (!o.alive || !o.host || !o.shape_stale || !wantsShape(o)) continue;
         stale.push_back(&o);
         meshes.push_back({o.host_positions, o.host_indices});
     }

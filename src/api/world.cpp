@@ -220,7 +220,7 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     // when automatic settings need it (measureShapes).
     o.spare_positions.resize(positions.size());
     auto* upload = static_cast<Float3*>(o.vertices.mapped());
-    const bool measure = w.shapes_wanted_all || (w.shapes_wanted_open && o.options.open);
+    const bool measure = w.wantsShape(o);
     host_passes::Shape shape;
     const host_passes::VertexScan scan =
         measure ? host_passes::copyScanAndMeasure(*w.executor, positions, o.spare_positions, upload, o.host_indices, shape)

@@ -100,6 +100,9 @@ struct CollisionWorld::Impl {
     // or resolution) or of open ones (automatic open epsilon): updateVertices then measures
     // them with its copy (the same shape, bit for bit, as a later measureShapes).
     mutable bool shapes_wanted_all = true, shapes_wanted_open = true;
+    // Whether the last resolve() needed this object's shape (measureShapes and
+    // updateVertices ask the same question).
+    bool wantsShape(const Object& o) const { return shapes_wanted_all || (shapes_wanted_open && o.options.open); }
     // A batch of only the engine's waits and signals, for a submit() that failed after it
     // was given them (engine_sync.cpp); created on first use.
     vk::Submission sync_only;

@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <limits>
-#include <mutex>
 #include <thread>
 
 #include "api/engine_copy.hpp"
+#include "support/engine_commands.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/world_fixture.hpp"
 #include "support/test_scenes.hpp"
@@ -39,44 +39,6 @@ Transform3x4 translated(float x) {
     t[3] = x;
     return t;
 }
-
-// A command buffer of the engine's, on the Context's queue family.
-struct EngineCommands {
-    vk::Device& dev;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    explicit EngineCommands(vk::Device& d) : dev(d) {
-        VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-        pi.queueFamilyIndex = dev.queue_family;
-        REQUIRE(dev.fns.vkCreateCommandPool(dev.device, &pi, nullptr, &pool) == VK_SUCCESS);
-        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-        ai.commandPool = pool;
-        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-        ai.commandBufferCount = 1;
-        REQUIRE(dev.fns.vkAllocateCommandBuffers(dev.device, &ai, &cmd) == VK_SUCCESS);
-        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-        REQUIRE(dev.fns.vkBeginCommandBuffer(cmd, &bi) == VK_SUCCESS);
-    }
-    // Ends and submits it, signalling `timeline` to `value`.
-    void submit(VkSemaphore timeline, std::uint64_t value) {
-        REQUIRE(dev.fns.vkEndCommandBuffer(cmd) == VK_SUCCESS);
-        VkCommandBufferSubmitInfo ci{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-        ci.commandBuffer = cmd;
-        VkSemaphoreSubmitInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-        si.semaphore = timeline;
-        si.value = value;
-        si.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-        submit.commandBufferInfoCount = 1;
-        submit.pCommandBufferInfos = &ci;
-        submit.signalSemaphoreInfoCount = 1;
-        submit.pSignalSemaphoreInfos = &si;
-        std::lock_guard<std::mutex> lock(dev.queue_mutex);
-        REQUIRE(dev.fns.vkQueueSubmit2(dev.queue, 1, &submit, VK_NULL_HANDLE) == VK_SUCCESS);
-    }
-    ~EngineCommands() { dev.fns.vkDestroyCommandPool(dev.device, pool, nullptr); }
-};
 
 }  // namespace
 

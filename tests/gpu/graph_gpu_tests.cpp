@@ -7,20 +7,12 @@
 #include "graph/executor.hpp"
 #include "test_shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/graph_test_push.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::graph;
-
-namespace {
-struct DrawPush {
-    float rect[4];
-    float extent[2];
-    VkDeviceAddress counter;
-};
-struct SumPush {
-    VkDeviceAddress sum;
-};
-}  // namespace
+using test::DrawPush;
+using test::SumPush;
 
 TEST_CASE("raster then compute: watertight coverage counted twice, barriers derived", "[gpu][graph]") {
     test::ValidatedContext ctx;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 
+#include "support/engine_commands.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vk/resources.hpp"
 #include "vk/semaphore.hpp"
@@ -152,21 +153,9 @@ TEST_CASE("recording into the engine's command buffer: the engine submits it, it
           "[gpu][sync]") {
     test::ValidatedContext ctx;
     vk::Device& dev = ctx.device();
-    const auto& f = dev.fns;
-    // The engine's own command pool and buffer.
-    VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pi.queueFamilyIndex = dev.queue_family;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    REQUIRE(f.vkCreateCommandPool(dev.device, &pi, nullptr, &pool) == VK_SUCCESS);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VkCommandBuffer engine_cmd = VK_NULL_HANDLE;
-    REQUIRE(f.vkAllocateCommandBuffers(dev.device, &ai, &engine_cmd) == VK_SUCCESS);
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    REQUIRE(f.vkBeginCommandBuffer(engine_cmd, &bi) == VK_SUCCESS);
     {
+        test::EngineCommands engine(dev);  // the engine's own command pool and buffer, begun
+        const VkCommandBuffer engine_cmd = engine.cmd;
         auto out = vk::Buffer::create(dev, 8, 0, vk::MemoryKind::Readback, "out");
         auto timeline = vk::Semaphore::createTimeline(dev, 0, "engine-timeline");
         auto s = vk::Submission::create(dev);
@@ -183,24 +172,11 @@ TEST_CASE("recording into the engine's command buffer: the engine submits it, it
         REQUIRE(p);
         CHECK(*p == vk::Completion::NotYet);  // the engine has not submitted yet
 
-        REQUIRE(f.vkEndCommandBuffer(engine_cmd) == VK_SUCCESS);
-        VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-        cbi.commandBuffer = engine_cmd;
-        VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-        signal.semaphore = timeline->handle();
-        signal.value = 1;
-        signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-        si.commandBufferInfoCount = 1;
-        si.pCommandBufferInfos = &cbi;
-        si.signalSemaphoreInfoCount = 1;
-        si.pSignalSemaphoreInfos = &signal;
-        REQUIRE(dev.queueSubmit(std::span(&si, 1), VK_NULL_HANDLE) == VK_SUCCESS);
+        engine.submit(timeline->handle(), 1);
 
         REQUIRE(s->wait());
         CHECK(wordAt(*out, 0) == 0xC0);
         CHECK(wordAt(*out, 1) == 0xE0);
     }
-    f.vkDestroyCommandPool(dev.device, pool, nullptr);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

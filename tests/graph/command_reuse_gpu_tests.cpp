@@ -10,23 +10,19 @@
 #include <optional>
 
 #include "graph/executor.hpp"
+#include "support/engine_commands.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/graph_test_push.hpp"
 #include "test_shaders/all.hpp"
 #include "vk/semaphore.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::graph;
+using test::DrawPush;
+using test::SumPush;
 
 namespace {
 
-struct DrawPush {
-    float rect[4];
-    float extent[2];
-    VkDeviceAddress counter;
-};
-struct SumPush {
-    VkDeviceAddress sum;
-};
 
 void poison(const vk::Buffer& b) {
     std::memset(b.mapped(), 0xFF, b.size());
@@ -244,21 +240,10 @@ TEST_CASE("work recorded into the engine's command buffer is never a resubmissio
     test::ValidatedContext ctx;
     vk::Device& dev = ctx.device();
     REQUIRE(dev.timeline_semaphore);
-    const auto& f = dev.fns;
     auto out = vk::Buffer::create(dev, 8, 0, vk::MemoryKind::Readback, "out");
     auto timeline = vk::Semaphore::createTimeline(dev, 0, "engine-timeline");
     REQUIRE(out);
     REQUIRE(timeline);
-    VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pi.queueFamilyIndex = dev.queue_family;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    REQUIRE(f.vkCreateCommandPool(dev.device, &pi, nullptr, &pool) == VK_SUCCESS);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool;
-    ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
-    ai.commandBufferCount = 1;
-    VkCommandBuffer engine_cmd = VK_NULL_HANDLE;
-    REQUIRE(f.vkAllocateCommandBuffers(dev.device, &ai, &engine_cmd) == VK_SUCCESS);
     {
         Executor exec(dev);
         std::uint64_t value = 0;
@@ -276,25 +261,11 @@ TEST_CASE("work recorded into the engine's command buffer is never a resubmissio
                 CHECK(wordAt(*out, 1) == 5u);
                 return report->host.reused == 1;
             }
-            REQUIRE(f.vkResetCommandPool(dev.device, pool, 0) == VK_SUCCESS);
-            VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-            REQUIRE(f.vkBeginCommandBuffer(engine_cmd, &bi) == VK_SUCCESS);
-            const EngineCommandBuffer target{engine_cmd, timeline->handle(), ++value};
+            test::EngineCommands engine_commands(dev);
+            const EngineCommandBuffer target{engine_commands.cmd, timeline->handle(), ++value};
             SubmitTarget into{{}, &target};
             REQUIRE(exec.submit(g, kDefaultTimeoutNs, &into));
-            REQUIRE(f.vkEndCommandBuffer(engine_cmd) == VK_SUCCESS);
-            VkCommandBufferSubmitInfo cbi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-            cbi.commandBuffer = engine_cmd;
-            VkSemaphoreSubmitInfo signal{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
-            signal.semaphore = timeline->handle();
-            signal.value = value;
-            signal.stageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-            VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-            si.commandBufferInfoCount = 1;
-            si.pCommandBufferInfos = &cbi;
-            si.signalSemaphoreInfoCount = 1;
-            si.pSignalSemaphoreInfos = &signal;
-            REQUIRE(dev.queueSubmit(std::span(&si, 1), VK_NULL_HANDLE) == VK_SUCCESS);
+            engine_commands.submit(timeline->handle(), value);
             auto report = exec.collect();
             REQUIRE(report);
             CHECK(wordAt(*out, 1) == 5u);
@@ -308,6 +279,5 @@ TEST_CASE("work recorded into the engine's command buffer is never a resubmissio
         CHECK(run(false));  // the executor's own command buffer outlived the engine's runs
         CHECK(exec.reuses() == 2u);
     }
-    f.vkDestroyCommandPool(dev.device, pool, nullptr);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -417,15 +417,16 @@ public:
     // world's executor (WorldOptions) in chunks of at least 16,384 vertices: copied into the
     // world's host copy (the narrow phase reads it) and straight into the mesh's upload
     // buffer, checked and boxed on the way. The world keeps no pointer to `positions`.
-    // The typical edge and facing that automatic settings use are measured at the next
-    // detection or resolveSettings() that needs them (not if `direction`, `resolution`
-    // and `open_epsilon` are given): at most 4,096 sampled triangles (128 evenly spaced
-    // blocks of 32 consecutive ones), on the executor.
+    // The typical edge and facing that automatic settings use are measured on at most
+    // 4,096 sampled triangles (128 evenly spaced blocks of 32 consecutive ones), on the
+    // executor: in this call's own loop while the last detection or resolveSettings()
+    // needed them, else at the next one that does (not at all while `direction`,
+    // `resolution` and `open_epsilon` are given).
     // Cost: about the time to write 12 bytes per vertex twice, once over the bus when the
     // upload buffer is device memory: 0.6-0.9 ms per million vertices on two cores with the
     // upload buffer in host memory (lavapipe); docs/api.md, "Costs", has the measurements
-    // and where the time goes. Measuring the shape costs the next detection 0.03-0.05 ms
-    // for two changed meshes of 50K-500K triangles (an H200 host, 16 threads; docs/results.md).
+    // and where the time goes. Measuring the shapes added 0-0.045 ms to a frame's updates
+    // of two deforming 50K-500K-triangle meshes (an H200 host, 16 threads; docs/results.md).
     // Errors: InvalidArgument (no such object, a GPU mesh, another vertex count, a
     // detection in flight), InvalidMesh naming the first NaN or infinite vertex,
     // LimitExceeded (the sampling range), Timeout (WorldState::Busy). A refused update

@@ -12,6 +12,8 @@
 
 namespace {
 
+// Through std::string: the literals below would otherwise reach writeSeed's span with their
+// terminating zero.
 bool writeFile(const std::string& path, const std::string& bytes) { return vkcollide::fuzz::writeSeed(path, bytes); }
 
 }  // namespace

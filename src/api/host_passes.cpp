@@ -181,6 +181,16 @@ namespace {
 struct ShapeSampling {
     std::size_t triangles = 0, sampled = 0, first_run = 0;
 
+    // A mesh of `indices`, its runs numbered from first_run.
+    static ShapeSampling of(std::span<const std::uint32_t> indices, std::size_t first_run) {
+        ShapeSampling m;
+        m.triangles = indices.size() / 3;
+        m.sampled = std::min(m.triangles, kShapeSampleTriangles);
+        m.first_run = first_run;
+        return m;
+    }
+    std::size_t runs() const { return (sampled + kShapeChunk - 1) / kShapeChunk; }
+
     std::size_t triangleOf(std::size_t k) const {
         if (sampled == triangles) return k;
         constexpr std::size_t kBlocks = kShapeSampleTriangles / kShapeBlock;
@@ -220,7 +230,7 @@ ShapePartial shapeRun(const ShapeMesh& mesh, const ShapeSampling& sampling, std:
 Shape finishShape(const ShapeSampling& m, std::span<const ShapePartial> parts) {
     Shape s;
     double sum = 0;
-    for (std::size_t r = m.first_run; r < m.first_run + (m.sampled + kShapeChunk - 1) / kShapeChunk; ++r) {
+    for (std::size_t r = m.first_run; r < m.first_run + m.runs(); ++r) {
         sum += parts[r].sum;
         for (int k = 0; k < 6; ++k) s.area_moment[k] += parts[r].moment[k];
     }
@@ -244,11 +254,8 @@ void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::s
     std::vector<ShapeSampling> sampling(meshes.size());
     std::size_t runs = 0;
     for (std::size_t i = 0; i < meshes.size(); ++i) {
-        ShapeSampling& m = sampling[i];
-        m.triangles = meshes[i].indices.size() / 3;
-        m.sampled = std::min(m.triangles, kShapeSampleTriangles);
-        m.first_run = runs;
-        runs += (m.sampled + kShapeChunk - 1) / kShapeChunk;
+        sampling[i] = ShapeSampling::of(meshes[i].indices, runs);
+        runs += sampling[i].runs();
     }
     // One item per run of kShapeChunk sampled triangles of some mesh: the same runs, so
     // the same partial sums, as measuring each mesh alone.
@@ -269,10 +276,8 @@ void measureShapes(Executor& executor, std::span<const ShapeMesh> meshes, std::s
 
 VertexScan copyScanAndMeasure(Executor& executor, std::span<const Float3> in, std::span<Float3> out, Float3* upload,
                               std::span<const std::uint32_t> indices, Shape& shape, UploadWrites writes) {
-    ShapeSampling sampling;
-    sampling.triangles = indices.size() / 3;
-    sampling.sampled = std::min(sampling.triangles, kShapeSampleTriangles);
-    const std::size_t runs = (sampling.sampled + kShapeChunk - 1) / kShapeChunk;
+    const ShapeSampling sampling = ShapeSampling::of(indices, 0);
+    const std::size_t runs = sampling.runs();
     std::vector<ShapePartial> parts(runs);
     const ShapeMesh mesh{in, indices};
     const VertexScan scan = copyScanWith(executor, in, out, upload, writes, runs, [&](std::size_t r) {

@@ -122,8 +122,11 @@ TEST_CASE("CallbackExecutor hands loops to an engine's parallel-for", "[narrow][
 
 TEST_CASE("ThreadPool wakes sleeping workers for a loop and on prepare()", "[narrow][threads]") {
     // Between loops the workers poll about 100 us and then sleep; a loop (or prepare())
-    // wakes one and each woken worker the next. Every index must still run exactly once,
-    // and over the rounds the workers must take part (each loop is ~1 ms of chunks).
+    // wakes sleepers (a tree of wakes). Every index must still run exactly once, and over
+    // the rounds the workers must take part. Each chunk takes 20 us, and until a worker has
+    // joined the round the chunks wait for one (up to half a second): on a loaded machine a
+    // woken worker may get a core only after the ~1 ms of chunks is over, so without the
+    // wait the test measured the scheduler, not the wake (it failed 2 of 5 runs at load 5).
     ThreadPool pool(4);
     pool.prepare(1);  // a no-op: one thread is the caller
     ThreadPool single(1);
@@ -134,12 +137,18 @@ TEST_CASE("ThreadPool wakes sleeping workers for a loop and on prepare()", "[nar
         std::this_thread::sleep_for(std::chrono::milliseconds(2));  // the workers fall asleep
         if (round % 2 == 1) pool.prepare(4);
         std::vector<std::atomic<int>> seen(64);
+        std::atomic<bool> joined{false};
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::milliseconds(500);
         pool.parallelFor(64, 1, [&](std::size_t begin, std::size_t end) {
+            if (std::this_thread::get_id() != caller) {
+                joined.store(true);
+                by_workers.fetch_add(1);
+            }
             const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(20);
-            while (std::chrono::steady_clock::now() < until) {
+            for (auto now = std::chrono::steady_clock::now(); now < until || (!joined.load() && now < give_up);
+                 now = std::chrono::steady_clock::now()) {
             }
             for (std::size_t i = begin; i < end; ++i) seen[i].fetch_add(1);
-            if (std::this_thread::get_id() != caller) by_workers.fetch_add(1);
         });
         for (std::size_t i = 0; i < seen.size(); ++i) REQUIRE(seen[i].load() == 1);
     }

@@ -417,6 +417,11 @@ public:
     // world's executor (WorldOptions) in chunks of at least 16,384 vertices: copied into the
     // world's host copy (the narrow phase reads it) and straight into the mesh's upload
     // buffer, checked and boxed on the way. The world keeps no pointer to `positions`.
+    // Allowed while detections are in flight (pipelining a host-deformed mesh): they read
+    // the vertices they were submitted with, on the GPU and in the narrow phase, and this
+    // call writes another copy of the host copy and the upload buffer, which the next
+    // submit() reads. Those copies are made on the first such update (up to kMaxInFlight
+    // more of each: DetectStats::gpu_memory_bytes counts them) and reused from then on.
     // The typical edge and facing that automatic settings use are measured on at most
     // 4,096 sampled triangles (128 evenly spaced blocks of 32 consecutive ones), on the
     // executor: in this call's own loop while the last detection or resolveSettings()
@@ -427,10 +432,10 @@ public:
     // upload buffer in host memory (lavapipe); docs/api.md, "Costs", has the measurements
     // and where the time goes. Measuring the shapes added 0-0.045 ms to a frame's updates
     // of two deforming 50K-500K-triangle meshes (an H200 host, 16 threads; docs/results.md).
-    // Errors: InvalidArgument (no such object, a GPU mesh, another vertex count, a
-    // detection in flight), InvalidMesh naming the first NaN or infinite vertex,
-    // LimitExceeded (the sampling range), Timeout (WorldState::Busy). A refused update
-    // changes nothing.
+    // Errors: InvalidArgument (no such object, a GPU mesh, another vertex count),
+    // InvalidMesh naming the first NaN or infinite vertex, LimitExceeded (the sampling
+    // range), OutOfMemory (a copy for pipelining), Timeout (WorldState::Busy). A refused
+    // update changes nothing.
     [[nodiscard]] Result<void> updateVertices(ObjectId id, std::span<const Float3> positions);
     // Which object pairs may collide (called with a < b); empty: every pair may. Called on
     // the thread that calls detect() or submit(). Contract: a pure function of the two ids.
@@ -465,9 +470,9 @@ public:
     // collect() of frame N, and frame N's narrow phase runs on the host while frame N+1's
     // GPU work runs (the second slot's GPU buffers are allocated on its first use, as many
     // again as the first's); collect() returns them in submission order.
-    // While a detection is in flight, setTransform and setGpuMeshBuffers work (the
-    // detection keeps what it was submitted with); addMesh, addGpuMesh, removeObject,
-    // updateVertices, setSelfCollision and setPairFilter fail with InvalidArgument naming
+    // While a detection is in flight, setTransform, setGpuMeshBuffers and updateVertices
+    // work (the detection keeps what it was submitted with); addMesh, addGpuMesh,
+    // removeObject, setSelfCollision and setPairFilter fail with InvalidArgument naming
     // the call (the in-flight work reads what they change).
     // Peeling: submit() peels as many layers as the last detection measured (one
     // submission; DetectSettings::measure_layers is ignored); when none is known (the first

@@ -38,6 +38,8 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     run.start = Clock::now();
     std::vector<passes::GpuMesh>& meshes = run.meshes;  // kept: no allocation per detection
     liveMeshes(meshes, run.ids);
+    run.positions.clear();
+    for (ObjectId id : run.ids) run.positions.push_back(objects[id].host_positions);  // GPU meshes: empty
     run.settings = resolve(settings, &run.note);
     for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, context->device())})
         if (!ok) return ok.error();
@@ -185,9 +187,15 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         // in parallel by the narrow phase), host meshes from the world's source, engine
         // meshes' triangles from the download.
         if (auto ok = syncSource(ids); !ok) return ok.error();
+        // As the objects were at start(): transforms, and the positions (updateVertices may
+        // have made another copy current since: pipelining).
         for (std::uint32_t i : detected.objects)
-            if (const Object& o = objects[run_ids[i]]; o.host && o.source_index != kNoSource)
+            if (const Object& o = objects[run_ids[i]]; o.host && o.source_index != kNoSource) {
                 if (auto ok = source.setTransform(o.source_index, run.meshes[i].transform); !ok) return named(run_ids[i], ok.error());
+                if (source.objects()[o.source_index].positions.data() != run.positions[i].data())
+                    if (auto ok = source.setHostGeometry(o.source_index, run.positions[i], o.host_indices); !ok)
+                        return named(run_ids[i], ok.error());
+            }
         source.setGpuTriangles(broad[0].gpu_triangles);
         narrow = runPairNarrowPhase(broad[0].pairs, source, options, *executor, narrow_workspace);
         source.setGpuTriangles({});  // the download is overwritten by the next run
@@ -224,7 +232,10 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     // the methods' own buffers) and the uploaded meshes, in Context::deviceMemoryInUse's unit.
     for (const Run& r : runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;
     st.gpu_memory_bytes += contact_stage ? contact_stage->memoryBytes() : 0;
-    for (const Object& o : objects) st.gpu_memory_bytes += o.vertices.memoryBytes() + o.indices.memoryBytes();
+    for (const Object& o : objects) {
+        st.gpu_memory_bytes += o.vertices.memoryBytes() + o.indices.memoryBytes();
+        for (const Object::VertexCopy& c : o.copies) st.gpu_memory_bytes += c.upload.memoryBytes();
+    }
     st.total_ms = msSince(run.start);
     st.host_start_ms = run.start_ms;
     st.host_collect_ms = run.wait_ms;

@@ -34,10 +34,36 @@ Result<void> CollisionWorld::Impl::notPending(const char* what) const {
 }
 
 Result<void> CollisionWorld::Impl::notBusy(const char* what) const {
-    if (busy())
+    if (settling())
         return Error(ErrorCode::Timeout, std::string(what) + " while the GPU work of a detection that timed out still runs " +
                                              "(state() is Busy until it ends): try again later");
     return {};
+}
+
+bool CollisionWorld::Impl::readInFlight(ObjectId id, VkDeviceAddress upload, const Float3* positions) const {
+    for (const Run& r : runs) {
+        if (!r.in_flight) continue;
+        const auto it = std::lower_bound(r.ids.begin(), r.ids.end(), id);  // ids ascend (liveMeshes)
+        if (it == r.ids.end() || *it != id) continue;
+        const auto k = static_cast<std::size_t>(it - r.ids.begin());
+        if (r.meshes[k].vertices == upload || r.positions[k].data() == positions) return true;
+    }
+    return false;
+}
+
+Result<CollisionWorld::Impl::Object::VertexCopy*> CollisionWorld::Impl::freeCopy(ObjectId id, Object& o) {
+    for (Object::VertexCopy& c : o.copies)
+        if (!readInFlight(id, c.upload.address(), c.positions.data())) return &c;
+    // At most kMaxInFlight detections read at most that many copies, one of them the
+    // current one: with kMaxInFlight copies beside it one is always free.
+    if (o.copies.size() >= CollisionWorld::kMaxInFlight)
+        return Error(ErrorCode::InvalidArgument, "updateVertices: every copy of the vertices is read by a detection in flight");
+    auto upload = vk::Buffer::create(device(), std::size_t{o.gpu.vertex_count} * sizeof(Float3), 0, vk::MemoryKind::Upload,
+                                     o.name + "-vertices-copy");
+    if (!upload) return upload.error();
+    o.copies.reserve(CollisionWorld::kMaxInFlight);  // moves keep each copy's positions where a run's span points
+    o.copies.push_back({std::move(*upload), {}});
+    return &o.copies.back();
 }
 
 Error CollisionWorld::Impl::noted(Error e) {
@@ -205,35 +231,47 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     Impl& w = *impl_;
     auto scope = w.guard.enter("CollisionWorld::updateVertices");
     if (!scope) return scope.error();
-    for (auto ok : {w.notPending("updateVertices"), w.notBusy("updateVertices")})
-        if (!ok) return ok.error();
+    if (auto ok = w.notBusy("updateVertices"); !ok) return ok.error();
     auto found = w.find(id, "updateVertices");
     if (!found) return found.error();
     Impl::Object& o = **found;
     if (!o.host) return w.named(id, Error(ErrorCode::InvalidArgument, "is a GPU mesh: write its vertex buffer instead"));
     if (positions.size() != o.gpu.vertex_count) return w.named(id, validation::checkVertices(positions, o.gpu.vertex_count).error());
-    // One pass over the caller's array, split over the executor's threads: copied into the
-    // spare host copy and straight into the upload buffer (no detection is in flight:
-    // nothing reads it now), checked and boxed on the way. A refused update puts the upload
-    // buffer back from the host copy and changes nothing. The shape (typical edge, area
-    // moment) is measured in the same loop while the last settings needed it, else later,
-    // when automatic settings need it (measureShapes).
-    o.spare_positions.resize(positions.size());
-    auto* upload = static_cast<Float3*>(o.vertices.mapped());
+    // One pass over the caller's array, split over the executor's threads: copied into a
+    // host copy and an upload buffer, checked and boxed on the way. No detection in flight
+    // reads the current vertices: into the spare host copy and straight into the current
+    // upload buffer (a refused update puts it back from the host copy). One does
+    // (pipelining): into a copy no detection reads, which then becomes the current one.
+    // Either way a refused update changes nothing. The shape (typical edge, area moment)
+    // is measured in the same loop while the last settings needed it, else later, when
+    // automatic settings need it (measureShapes).
+    Impl::Object::VertexCopy* copy = nullptr;
+    if (w.readInFlight(id, o.gpu.vertices, o.host_positions.data())) {
+        auto free = w.freeCopy(id, o);
+        if (!free) return w.named(id, free.error());
+        copy = *free;
+    }
+    std::vector<Float3>& host_copy = copy ? copy->positions : o.spare_positions;
+    vk::Buffer& upload_buffer = copy ? copy->upload : o.vertices;
+    host_copy.resize(positions.size());
+    auto* upload = static_cast<Float3*>(upload_buffer.mapped());
     const bool measure = w.wantsShape(o);
     host_passes::Shape shape;
     const host_passes::VertexScan scan =
-        measure ? host_passes::copyScanAndMeasure(*w.executor, positions, o.spare_positions, upload, o.host_indices, shape)
-                : host_passes::copyAndScan(*w.executor, positions, o.spare_positions, upload);
+        measure ? host_passes::copyScanAndMeasure(*w.executor, positions, host_copy, upload, o.host_indices, shape)
+                : host_passes::copyAndScan(*w.executor, positions, host_copy, upload);
     auto refused = [&](const Error& e) {
-        std::memcpy(upload, o.host_positions.data(), positions.size_bytes());
+        if (!copy) std::memcpy(upload, o.host_positions.data(), positions.size_bytes());
         return w.named(id, e);
     };
     if (!scan.finite) return refused(validation::nonFiniteVertex(scan.first_bad));
     if (auto ok = validation::checkWorldRange(scan.box, o.options.transform); !ok) return refused(ok.error());
-    o.vertices.flush();
-    std::swap(o.host_positions, o.spare_positions);
-    w.source_dirty = true;  // the narrow phase's source borrowed the other array
+    upload_buffer.flush();
+    std::swap(o.host_positions, host_copy);  // (detections read their own spans: Run::positions)
+    if (copy) {
+        std::swap(o.vertices, copy->upload);
+        o.gpu.vertices = o.vertices.address();
+    }
     o.box = scan.box;
     o.max_abs = scan.max_abs;
     o.shape_stale = !measure;

@@ -37,6 +37,16 @@ struct CollisionWorld::Impl {
         // updateVertices writes here, then swaps: a refused update leaves host_positions
         // as they were.
         std::vector<Float3> spare_positions;
+        // Pipelining host meshes: further copies of the vertices (upload buffer and host
+        // positions). updateVertices writes one of them, and makes it current by swapping,
+        // when a detection in flight reads the current ones; at most kMaxInFlight, made on
+        // first need (a world that never updates in flight has none), reused once no
+        // detection in flight reads them (freeCopy).
+        struct VertexCopy {
+            vk::Buffer upload;
+            std::vector<Float3> positions;
+        };
+        std::vector<VertexCopy> copies;
         std::vector<std::uint32_t> host_indices;
         passes::GpuMesh gpu;           // addresses, counts, flags (transform set per run)
         GpuMeshDesc engine_desc;       // engine meshes: as given (setGpuMeshBuffers keeps its topology)
@@ -68,6 +78,10 @@ struct CollisionWorld::Impl {
         bool in_flight = false;
         std::vector<passes::GpuMesh> meshes;
         std::vector<ObjectId> ids;  // index in the detection's meshes -> ObjectId
+        // Host meshes' positions as they were at start() (parallel to ids; empty for GPU
+        // meshes), which its narrow phase reads: updateVertices writes another copy while
+        // the run is in flight (meshes[i].vertices is the upload buffer it reads).
+        std::vector<std::span<const Float3>> positions;
         DetectSettings settings;
         std::string note;
         std::chrono::steady_clock::time_point start;
@@ -129,6 +143,12 @@ struct CollisionWorld::Impl {
             if (r.detection && r.detection->busy()) return true;
         return false;
     }
+    // GPU work runs that is no longer in flight: a detection that timed out or was abandoned.
+    bool settling() const {
+        for (const Run& r : runs)
+            if (!r.in_flight && r.detection && r.detection->busy()) return true;
+        return false;
+    }
 
     // "object 3 ('cloth')": how every error names an object, in one place.
     static std::string who(ObjectId id, const std::string& name);
@@ -137,9 +157,14 @@ struct CollisionWorld::Impl {
     }
     Error named(ObjectId id, const Error& e) const { return named(id, objects.at(id).name, e); }
     Result<Object*> find(ObjectId id, const char* what);
+    // Whether a detection in flight reads object `id`'s vertices at `upload` (its upload
+    // buffer's address) or `positions` (its host copy).
+    bool readInFlight(ObjectId id, VkDeviceAddress upload, const Float3* positions) const;
+    // A copy of `o`'s vertices that no detection in flight reads, made when there is none.
+    Result<Object::VertexCopy*> freeCopy(ObjectId id, Object& o);
     Result<void> notPending(const char* what) const;
-    // Fails with Timeout while the GPU work of a timed-out detection runs (WorldState::Busy):
-    // for calls that change or free what that work reads.
+    // Fails with Timeout while the GPU work of a timed-out detection runs (WorldState::Busy;
+    // settling()): for calls that change or free what that work reads.
     Result<void> notBusy(const char* what) const;
     // Notes a lost device in `e` (WorldState::DeviceLost) and returns it.
     Error noted(Error e);

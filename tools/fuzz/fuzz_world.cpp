@@ -307,7 +307,8 @@ private:
         for (Float3& p : positions) p = {coordinate(in_.byte()), coordinate(in_.byte()), coordinate(in_.byte())};
         auto ok = world_->updateVertices(id, positions);
         if (!ok) return requireNamed(ok.error(), Op::UpdateVertices, kEditErrors);
-        requireRefusedWhilePending("updateVertices", true);
+        // Allowed in flight: the detections in flight keep their snapshots' vertices, which
+        // checkResult compares them with.
         if (!live(id) || objects_[id].gpu) fail("updateVertices accepted an id that is not a live host mesh");
         if (positions.size() != objects_[id].mesh.positions.size()) fail("updateVertices accepted another vertex count");
         for (const Float3& p : positions)

@@ -251,13 +251,28 @@ int main(int argc, char** argv) {
                                                     .submit()
                                                     .addMesh(flatTriangle())
                                                     .remove(0)
-                                                    .updateVertices(0, 0, {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}})
+                                                    .updateVertices(0, 0, {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}})  // allowed
                                                     .setSelfCollision(0, true)
                                                     .pairFilter(PairFilterKind::Never)
                                                     .setTransform(1, 1)  // allowed in flight
                                                     .detect()  // refused in flight
                                                     .collect()
                                                     .detect());
+    // Host meshes deformed while detections are in flight: each keeps the vertices it was
+    // submitted with (checkResult compares with its snapshot), through every vertex copy.
+    seeds.emplace_back("updates_in_flight", Program()
+                                                .addMesh(tetrahedron(0))
+                                                .addMesh(tetrahedron(3))
+                                                .submit()
+                                                .updateVertices(0, 0, {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 4}})
+                                                .submit()
+                                                .updateVertices(0, 0, {{9, 9, 9}, {12, 9, 9}, {9, 12, 9}, {9, 9, 12}})
+                                                .collect()
+                                                .submit()
+                                                .updateVertices(0, 0, {{1, 1, 1}, {5, 1, 1}, {1, 5, 1}, {1, 1, 5}})
+                                                .collect()
+                                                .collect()
+                                                .detect());
     seeds.emplace_back("engine_meshes", Program()
                                             .addMesh(flatTriangle())
                                             .addGpuMesh(uprightTriangle())

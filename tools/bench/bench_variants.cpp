@@ -39,6 +39,9 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"contacts", "contacts", [](S& s) { s.contacts = true; }},
         {"contacts-256", "contacts", [](S& s) { s.contacts = true, s.contact_resolution = 256u; }},
     };
+    Variant pipelined{"pipelined", "modes", [](S&) {}, false, true};  // the default, one frame late
+    pipelined.pipelined = true;
+    v.push_back(std::move(pipelined));
     for (std::uint32_t r : resolutions)
         v.push_back({"res-" + std::to_string(r), "resolutions", paper([r](S& s) { s.resolution = r; })});
     // The reliable method at a multiple of its automatic grid: how its cost and the choice

@@ -17,6 +17,9 @@ struct Variant {
     std::function<void(DetectSettings&)> apply;
     bool open = false;   // every object added as an open surface
     bool async = false;  // submit() + collect() instead of detect()
+    // submit() of frame N, then collect() of frame N - 1 (with async): the narrow phase of
+    // N - 1 and the update of N + 1 run while N's GPU work runs.
+    bool pipelined = false;
     // > 0: the resolution the world chooses automatically for the scene, times this
     // (applied after `apply`, through CollisionWorld::resolveSettings).
     double resolution_scale = 0;

@@ -299,8 +299,16 @@ int main(int argc, char** argv) {
             }
             // The GPU's clocks drop while it idles (scene building, the reference): detect
             // until it has been busy for --warmup-ms before the frames are timed.
-            for (const auto w0 = Clock::now(); ms(w0, Clock::now()) < opt.warmup_ms;)
-                if (!(*world)->detect(settings)) break;
+            // Pipelined: two in flight, so that the second slot exists before the frames.
+            for (const auto w0 = Clock::now(); ms(w0, Clock::now()) < opt.warmup_ms;) {
+                if (!v.pipelined) {
+                    if (!(*world)->detect(settings)) break;
+                } else if (!(*world)->submit(settings) || ((*world)->inFlight() == 2 && !(*world)->collect())) {
+                    break;
+                }
+            }
+            while ((*world)->pending())
+                if (!(*world)->collect()) break;
             Summary sum{setName(scene->set), scene->name, v.name, "", 0, 0, triangles};
             // One timed frame's row: its result `r` against frame f's reference.
             auto emit = [&](int f, const DetectResult& r, double update_ms, double total_ms) {

@@ -16,6 +16,23 @@
 #include "vk/device.hpp"
 
 namespace vkcollide {
+namespace {
+
+// No exception crosses the API: host memory running out while the world copies a mesh (its
+// host copy, a vertex copy for pipelining) is OutOfMemory, and the call changed nothing.
+template <typename F>
+auto hostMemoryGuarded(const char* what, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const std::bad_alloc&) {
+        return Error(ErrorCode::OutOfMemory, std::string(what) + ": host memory ran out copying the mesh");
+    } catch (const std::length_error&) {
+        return Error(ErrorCode::OutOfMemory, std::string(what) + ": the mesh's copy would exceed an array's largest size");
+    }
+}
+
+}  // namespace
+
 std::string CollisionWorld::Impl::who(ObjectId id, const std::string& name) {
     return "object " + std::to_string(id) + " ('" + name + "')";
 }
@@ -165,6 +182,11 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
     auto scope = w.guard.enter("CollisionWorld::addMesh");
     if (!scope) return scope.error();
     if (auto ok = w.notPending("addMesh"); !ok) return ok.error();
+    return hostMemoryGuarded("addMesh", [&]() -> Result<ObjectId> { return w.addHostMesh(mesh, options); });
+}
+
+Result<ObjectId> CollisionWorld::Impl::addHostMesh(const HostMesh& mesh, const ObjectOptions& options) {
+    Impl& w = *this;
     Impl::Object o;
     const ObjectId id = w.newId(options, o);
     // Every rule before anything is uploaded.
@@ -232,6 +254,11 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
     auto scope = w.guard.enter("CollisionWorld::updateVertices");
     if (!scope) return scope.error();
     if (auto ok = w.notBusy("updateVertices"); !ok) return ok.error();
+    return hostMemoryGuarded("updateVertices", [&] { return w.updateHostVertices(id, positions); });
+}
+
+Result<void> CollisionWorld::Impl::updateHostVertices(ObjectId id, std::span<const Float3> positions) {
+    Impl& w = *this;
     auto found = w.find(id, "updateVertices");
     if (!found) return found.error();
     Impl::Object& o = **found;

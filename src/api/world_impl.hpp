@@ -162,6 +162,10 @@ struct CollisionWorld::Impl {
     bool readInFlight(ObjectId id, VkDeviceAddress upload, const Float3* positions) const;
     // A copy of `o`'s vertices that no detection in flight reads, made when there is none.
     Result<Object::VertexCopy*> freeCopy(ObjectId id, Object& o);
+    // world.cpp: addMesh and updateVertices after their guards (they may throw
+    // std::bad_alloc, which the public calls turn into OutOfMemory).
+    Result<ObjectId> addHostMesh(const HostMesh& mesh, const ObjectOptions& options);
+    Result<void> updateHostVertices(ObjectId id, std::span<const Float3> positions);
     Result<void> notPending(const char* what) const;
     // Fails with Timeout while the GPU work of a timed-out detection runs (WorldState::Busy;
     // settling()): for calls that change or free what that work reads.

@@ -8,6 +8,7 @@
 
 #include "support/fail_large_allocations.hpp"
 #include "support/pathological_scenes.hpp"
+#include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::test;
@@ -50,4 +51,57 @@ TEST_CASE("host memory running out in a detection is OutOfMemory, and the world 
         REQUIRE(again);
         CHECK((again->pairs == before->pairs));
     }
+}
+
+TEST_CASE("host memory running out copying a mesh (addMesh, updateVertices in flight) is OutOfMemory and changes nothing",
+          "[stability][gpu][failures]") {
+    auto ctx = Context::create();
+    REQUIRE(ctx);
+    // 150 x 300 segments: 44,702 vertices, a 536 KB host copy; with the guard at 256 KB,
+    // addMesh's copy fails, and so does the host half of updateVertices' first vertex copy.
+    auto sphere = uvSphere(1.0f, 300, 150);
+    auto other = uvSphere(0.8f, 24, 12);
+    REQUIRE(sphere);
+    REQUIRE(other);
+    for (Float3& p : other->positions) p.x += 1.0f;  // through the sphere's surface
+    auto world = CollisionWorld::create(**ctx, {.threads = 2});
+    REQUIRE(world);
+    {
+        FailLargeAllocations guard(256 << 10);
+        auto added = (*world)->addMesh(*sphere);
+        REQUIRE_FALSE(added);
+        CHECK(added.error().code() == ErrorCode::OutOfMemory);
+        CHECK(added.error().message().find("addMesh") != std::string::npos);
+    }
+    CHECK((*world)->objectCount() == 0);
+    auto id = (*world)->addMesh(*sphere);
+    REQUIRE(id);
+    REQUIRE((*world)->addMesh(*other));
+    auto before = (*world)->detect();
+    REQUIRE(before);
+    REQUIRE_FALSE(before->pairs.empty());
+    std::vector<Float3> moved = sphere->positions;
+    for (Float3& p : moved) p.x += 10;  // apart
+    REQUIRE((*world)->submit());
+    {
+        FailLargeAllocations guard(256 << 10);
+        auto updated = (*world)->updateVertices(*id, moved);  // in flight: needs a vertex copy
+        REQUIRE_FALSE(updated);
+        CHECK(updated.error().code() == ErrorCode::OutOfMemory);
+    }
+    auto in_flight = (*world)->collect();
+    REQUIRE(in_flight);
+    CHECK((in_flight->pairs == before->pairs));
+    auto unchanged = (*world)->detect();  // the refused update changed nothing
+    REQUIRE(unchanged);
+    CHECK((unchanged->pairs == before->pairs));
+    REQUIRE((*world)->submit());
+    REQUIRE((*world)->updateVertices(*id, moved));  // with memory, in flight
+    auto old = (*world)->collect();
+    REQUIRE(old);
+    CHECK((old->pairs == before->pairs));
+    auto apart = (*world)->detect();
+    REQUIRE(apart);
+    CHECK(apart->pairs.empty());
+    CHECK((*world)->state() == WorldState::Ready);
 }

@@ -387,6 +387,8 @@ public:
     CollisionWorld& operator=(const CollisionWorld&) = delete;
 
     // Host arrays, checked (validateMesh) and uploaded. The world keeps no pointer to `mesh`.
+    // Errors name the object and the rule; OutOfMemory when device memory for the upload or
+    // host memory for the world's copy runs out (nothing added then).
     [[nodiscard]] Result<ObjectId> addMesh(const HostMesh& mesh, const ObjectOptions& options = {});
     // Engine-owned buffers; checked against the declared sizes, formats and usage
     // (GpuMeshDesc). Index values and vertex values live only on the GPU: each detection

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "api/world_impl.hpp"
+#include "core/host_memory.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {
@@ -16,17 +17,10 @@ namespace {
 // timed-out one's).
 template <typename F>
 auto hostGuarded(passes::Detection& detection, bool& io_in_flight, F&& f) -> decltype(f()) {
-    try {
-        return f();
-    } catch (const std::bad_alloc&) {
+    return hostMemoryGuarded("the detection", std::forward<F>(f), [&] {
         detection.abandon();
         io_in_flight = false;
-        return Error(ErrorCode::OutOfMemory, "host memory ran out during the detection");
-    } catch (const std::length_error&) {
-        detection.abandon();
-        io_in_flight = false;
-        return Error(ErrorCode::OutOfMemory, "an array of the detection would exceed its largest size");
-    }
+    });
 }
 
 // Refused before anything is submitted: Vulkan would reject these, and a batch of only

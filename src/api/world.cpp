@@ -12,27 +12,11 @@
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
 #include "config.h"
+#include "core/host_memory.hpp"
 #include "passes/mesh_upload.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {
-namespace {
-
-// No exception crosses the API: host memory running out while the world copies a mesh (its
-// host copy, a vertex copy for pipelining) is OutOfMemory, and the call changed nothing.
-template <typename F>
-auto hostMemoryGuarded(const char* what, F&& f) -> decltype(f()) {
-    try {
-        return f();
-    } catch (const std::bad_alloc&) {
-        return Error(ErrorCode::OutOfMemory, std::string(what) + ": host memory ran out copying the mesh");
-    } catch (const std::length_error&) {
-        return Error(ErrorCode::OutOfMemory, std::string(what) + ": the mesh's copy would exceed an array's largest size");
-    }
-}
-
-}  // namespace
-
 std::string CollisionWorld::Impl::who(ObjectId id, const std::string& name) {
     return "object " + std::to_string(id) + " ('" + name + "')";
 }
@@ -186,25 +170,24 @@ Result<ObjectId> CollisionWorld::addMesh(const HostMesh& mesh, const ObjectOptio
 }
 
 Result<ObjectId> CollisionWorld::Impl::addHostMesh(const HostMesh& mesh, const ObjectOptions& options) {
-    Impl& w = *this;
-    Impl::Object o;
-    const ObjectId id = w.newId(options, o);
+    Object o;
+    const ObjectId id = newId(options, o);
     // Every rule before anything is uploaded.
     for (auto ok : {validation::checkTransform(options.transform), validation::checkHostMesh(mesh)})
-        if (!ok) return Impl::named(id, o.name, ok.error());
+        if (!ok) return named(id, o.name, ok.error());
     if (auto ok = validation::checkWorldRange(validation::boxOf(mesh.positions), options.transform); !ok)
-        return Impl::named(id, o.name, ok.error());
-    auto uploaded = passes::uploadMeshes(w.device(), {&mesh}, {.open = {options.open}});
-    if (!uploaded) return Impl::named(id, o.name, uploaded.error());
+        return named(id, o.name, ok.error());
+    auto uploaded = passes::uploadMeshes(device(), {&mesh}, {.open = {options.open}});
+    if (!uploaded) return named(id, o.name, uploaded.error());
     o.host = true;
     o.gpu = uploaded->meshes[0];
     o.vertices = std::move(uploaded->buffers[0]);
     o.indices = std::move(uploaded->buffers[1]);
-    Impl::measureHost(o, mesh.positions);
+    measureHost(o, mesh.positions);
     o.host_positions = mesh.positions;
     o.host_indices = mesh.indices;
-    w.objects.push_back(std::move(o));
-    w.objectsChanged();
+    objects.push_back(std::move(o));
+    objectsChanged();
     return id;
 }
 
@@ -258,12 +241,11 @@ Result<void> CollisionWorld::updateVertices(ObjectId id, std::span<const Float3>
 }
 
 Result<void> CollisionWorld::Impl::updateHostVertices(ObjectId id, std::span<const Float3> positions) {
-    Impl& w = *this;
-    auto found = w.find(id, "updateVertices");
+    auto found = find(id, "updateVertices");
     if (!found) return found.error();
-    Impl::Object& o = **found;
-    if (!o.host) return w.named(id, Error(ErrorCode::InvalidArgument, "is a GPU mesh: write its vertex buffer instead"));
-    if (positions.size() != o.gpu.vertex_count) return w.named(id, validation::checkVertices(positions, o.gpu.vertex_count).error());
+    Object& o = **found;
+    if (!o.host) return named(id, Error(ErrorCode::InvalidArgument, "is a GPU mesh: write its vertex buffer instead"));
+    if (positions.size() != o.gpu.vertex_count) return named(id, validation::checkVertices(positions, o.gpu.vertex_count).error());
     // One pass over the caller's array, split over the executor's threads: copied into a
     // host copy and an upload buffer, checked and boxed on the way. No detection in flight
     // reads the current vertices: into the spare host copy and straight into the current
@@ -272,24 +254,24 @@ Result<void> CollisionWorld::Impl::updateHostVertices(ObjectId id, std::span<con
     // Either way a refused update changes nothing. The shape (typical edge, area moment)
     // is measured in the same loop while the last settings needed it, else later, when
     // automatic settings need it (measureShapes).
-    Impl::Object::VertexCopy* copy = nullptr;
-    if (w.readInFlight(id, o.gpu.vertices, o.host_positions.data())) {
-        auto free = w.freeCopy(id, o);
-        if (!free) return w.named(id, free.error());
+    Object::VertexCopy* copy = nullptr;
+    if (readInFlight(id, o.gpu.vertices, o.host_positions.data())) {
+        auto free = freeCopy(id, o);
+        if (!free) return named(id, free.error());
         copy = *free;
     }
     std::vector<Float3>& host_copy = copy ? copy->positions : o.spare_positions;
     vk::Buffer& upload_buffer = copy ? copy->upload : o.vertices;
     host_copy.resize(positions.size());
     auto* upload = static_cast<Float3*>(upload_buffer.mapped());
-    const bool measure = w.wantsShape(o);
+    const bool measure = wantsShape(o);
     host_passes::Shape shape;
     const host_passes::VertexScan scan =
-        measure ? host_passes::copyScanAndMeasure(*w.executor, positions, host_copy, upload, o.host_indices, shape)
-                : host_passes::copyAndScan(*w.executor, positions, host_copy, upload);
+        measure ? host_passes::copyScanAndMeasure(*executor, positions, host_copy, upload, o.host_indices, shape)
+                : host_passes::copyAndScan(*executor, positions, host_copy, upload);
     auto refused = [&](const Error& e) {
         if (!copy) std::memcpy(upload, o.host_positions.data(), positions.size_bytes());
-        return w.named(id, e);
+        return named(id, e);
     };
     if (!scan.finite) return refused(validation::nonFiniteVertex(scan.first_bad));
     if (auto ok = validation::checkWorldRange(scan.box, o.options.transform); !ok) return refused(ok.error());

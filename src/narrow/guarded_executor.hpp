@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/host_memory.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/result.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -57,11 +58,7 @@ template <typename Run>
 Result<NarrowResult> guardedCall(const char* entry, Executor& executor, std::size_t max_box_pairs, Run&& run) {
     GuardedExecutor guarded(executor);
     try {
-        return run(guarded);
-    } catch (const std::bad_alloc&) {
-        return Error(ErrorCode::OutOfMemory, std::string(entry) + ": host memory ran out");
-    } catch (const std::length_error&) {
-        return Error(ErrorCode::OutOfMemory, std::string(entry) + ": an array would exceed its largest size");
+        return hostMemoryGuarded(entry, [&] { return run(guarded); });
     } catch (const BoxBudgetExceeded&) {
         return Error(ErrorCode::LimitExceeded, std::string(entry) + ": more than " + std::to_string(max_box_pairs) +
                                                    " pairs of candidates with overlapping boxes (NarrowOptions::max_box_pairs): "

@@ -34,6 +34,14 @@ DetectSettings peeling() {
     return s;
 }
 
+// The fixed direction of peeling(), with `method` at a resolution that suits it here.
+DetectSettings withMethod(DetectMethod method) {
+    DetectSettings s = peeling();
+    s.method = method;
+    s.resolution = method == DetectMethod::Reliable ? 64u : 128u;
+    return s;
+}
+
 Transform3x4 translated(float x) {
     Transform3x4 t = kIdentity3x4;
     t[3] = x;
@@ -49,9 +57,7 @@ TEST_CASE("submit() waits for and signals the engine's timeline, ready() and try
     REQUIRE(scene);
     addScene(*world, *scene);
     for (DetectMethod method : {DetectMethod::Reliable, DetectMethod::Peeling}) {
-        DetectSettings s = peeling();
-        s.method = method;
-        s.resolution = method == DetectMethod::Reliable ? 64u : 128u;
+        const DetectSettings s = withMethod(method);
         auto expected = world->detect(s);
         REQUIRE(expected);
         REQUIRE_FALSE(expected->pairs.empty());
@@ -197,9 +203,7 @@ TEST_CASE("two detections in flight: each keeps the transforms it was submitted 
     const auto ids = addScene(*world, *scene);
     const Transform3x4 start = scene->objects[0].options.transform;
     for (DetectMethod method : {DetectMethod::Reliable, DetectMethod::Peeling}) {
-        DetectSettings s = peeling();
-        s.method = method;
-        s.resolution = method == DetectMethod::Reliable ? 64u : 128u;
+        const DetectSettings s = withMethod(method);
         REQUIRE(world->setTransform(ids[0], start));
         auto touching = world->detect(s);
         REQUIRE(touching);
@@ -242,9 +246,7 @@ TEST_CASE("updateVertices in flight: each detection reads the vertices it was su
     bad[5].z = std::numeric_limits<float>::infinity();
     for (DetectMethod method : {DetectMethod::Reliable, DetectMethod::Peeling}) {
         INFO(toString(method));
-        DetectSettings s = peeling();
-        s.method = method;
-        s.resolution = method == DetectMethod::Reliable ? 64u : 128u;
+        const DetectSettings s = withMethod(method);
         REQUIRE(world->updateVertices(ids[0], near));
         auto touching = world->detect(s);
         REQUIRE(touching);
@@ -408,9 +410,7 @@ TEST_CASE("gpu_memory_bytes is every byte the world holds: the device's own coun
     for (DetectMethod method : {DetectMethod::Reliable, DetectMethod::Peeling}) {
         auto world = makeWorld(ctx);
         addScene(*world, *scene);
-        DetectSettings s = peeling();
-        s.method = method;
-        s.resolution = method == DetectMethod::Reliable ? 64u : 128u;
+        const DetectSettings s = withMethod(method);
         auto r = world->detect(s);
         REQUIRE(r);
         CHECK(r->stats.gpu_memory_bytes == ctx.context().deviceMemoryInUse());

@@ -355,8 +355,7 @@ int main(int argc, char** argv) {
             // updates and submits frame k and collects frame k - 1 (its row, timed over the
             // step); the last step submits frame 0 again, collected untimed.
             const auto frameOf = [&](int f) { return scene->motion == Motion::Rigid ? 0 : std::clamp(f, 0, timed - 1); };
-            bool broke = false;
-            for (int f = -1; f < timed + (v.pipelined ? 1 : 0) && !broke; ++f) {
+            for (int f = -1; f < timed + (v.pipelined ? 1 : 0); ++f) {
                 const int mf = v.pipelined && f == timed ? 0 : frameOf(f);
                 progress(scene->name + " [" + std::to_string(triangles) + " tris] " + v.name + ": frame " + std::to_string(f + 1) + "/" + std::to_string(timed));
                 const auto t0 = Clock::now();
@@ -376,7 +375,6 @@ int main(int argc, char** argv) {
                 const double total_ms = ms(t0, Clock::now());
                 if (!r) {
                     failed(scene->name + ", " + v.name, r.error());
-                    broke = true;
                     break;
                 }
                 const int shown = v.pipelined ? f - 1 : f;  // the frame this result belongs to

@@ -39,9 +39,13 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"contacts", "contacts", [](S& s) { s.contacts = true; }},
         {"contacts-256", "contacts", [](S& s) { s.contacts = true, s.contact_resolution = 256u; }},
     };
-    Variant pipelined{"pipelined", "modes", [](S&) {}, false, true};  // the default, one frame late
+    Variant pipelined{"pipelined", "modes", [](S&) {}, false, true};  // the default, one frame late, back to back
     pipelined.pipelined = true;
-    v.push_back(std::move(pipelined));
+    v.push_back(pipelined);
+    Variant slack = pipelined;  // the same with 5 ms of the engine's own work between steps
+    slack.name = "pipelined-slack";
+    slack.slack_ms = 5;
+    v.push_back(std::move(slack));
     for (std::uint32_t r : resolutions)
         v.push_back({"res-" + std::to_string(r), "resolutions", paper([r](S& s) { s.resolution = r; })});
     // The reliable method at a multiple of its automatic grid: how its cost and the choice

@@ -20,6 +20,10 @@ struct Variant {
     // submit() of frame N, then collect() of frame N - 1 (with async): the narrow phase of
     // N - 1 and the update of N + 1 run while N's GPU work runs.
     bool pipelined = false;
+    // > 0: untimed busy host work of this many ms before each timed frame (an engine's other
+    // work per frame): with `pipelined`, the GPU's part of a step then runs meanwhile and a
+    // step shows the detection's cost on the engine's thread alone.
+    double slack_ms = 0;
     // > 0: the resolution the world chooses automatically for the scene, times this
     // (applied after `apply`, through CollisionWorld::resolveSettings).
     double resolution_scale = 0;

@@ -127,6 +127,7 @@ Result<std::vector<HostMesh>> generatedShapes(std::uint32_t n) {
 std::vector<SceneSpec> pileScenes(const std::string& data, double scale) {
     const std::uint32_t per_shape = std::max<std::uint32_t>(200, static_cast<std::uint32_t>(10000 * scale));
     const std::uint32_t per_small = std::max<std::uint32_t>(100, static_cast<std::uint32_t>(2100 * scale));
+    const std::uint32_t per_deep = std::max<std::uint32_t>(200, static_cast<std::uint32_t>(8000 * scale));
     const std::uint32_t cgal_objects = static_cast<std::uint32_t>(std::clamp(std::lround(64 * std::sqrt(scale)), 12l, 64l));
     return {
         {"pile-shapes", Motion::Rigid, SceneSet::Tuning, 1,
@@ -151,6 +152,20 @@ std::vector<SceneSpec> pileScenes(const std::string& data, double scale) {
              o.seed = 29;
              o.units = 100.0f;
              o.turn = rotationTranslation(0.3, 1, 0.1, 0.4, {0, 0, 0});
+             return pile(*shapes, o);
+         }},
+        {"pile-deep", Motion::Rigid, SceneSet::HeldOut, 1,
+         "held-out: 64 meshes of the six shapes (~" + std::to_string(per_deep) + " triangles each) sunk halfway into each other "
+         "(issue 12's deep-overlap pile: large volumes overlapping), another seed, a 6 x 6 box, tilted",
+         [=](int) -> Result<std::vector<BenchObject>> {
+             Result<std::vector<HostMesh>> shapes = generatedShapes(per_deep);
+             if (!shapes) return shapes.error();
+             PileOptions o;
+             o.objects = 64;
+             o.box_width = 6.0;
+             o.overlap = 0.5;
+             o.seed = 17;
+             o.turn = rotationTranslation(-0.5, 0.2, 1, 0.3, {0, 0, 0});
              return pile(*shapes, o);
          }},
         {"pile-cgal", Motion::Rigid, SceneSet::HeldOut, 1,

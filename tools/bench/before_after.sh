@@ -5,7 +5,7 @@
 # VARIANT defaults to "default" on both sides. Means over frames >= 1 (tools/bench/steady.awk),
 # recalls are found / reference pairs summed over those frames (shown as 100 % only when no
 # pair was missed; "none": the reference has no crossing pair). "read back" is the CSV's `downloaded`: triangle records for the peeling
-# method, candidate pairs (two triangle ids each) for the reliable method. Stage times: GPU
+# method, the distinct triangles named by the pairs read back for the reliable method. Stage times: GPU
 # (every pass's timestamps), read back (host), narrow phase (CPU), vertex update
 # (updateVertices on deforming scenes; "–" under 0.01 ms: rigid and moving scenes do not call
 # it) and the whole frame end to end. Rows follow AFTER's order;
@@ -39,7 +39,7 @@ NR == 1 { next }
   if (!(k in tri)) tri[k] = $5 }
 function v(a, side, k) { return ((side, k) in has) ? a[side, k] : "–" }
 END {
-  print "| scene | set | triangles | crossing recall | recall, all pairs | read back (peeling: triangles; reliable: pairs) | GPU ms | read-back ms | narrow ms | vertex update ms | end to end ms (update + detect) |"
+  print "| scene | set | triangles | crossing recall | recall, all pairs | read back (peeling: triangle records; reliable: distinct triangles in the pairs) | GPU ms | read-back ms | narrow ms | vertex update ms | end to end ms (update + detect) |"
   print "|---|---|---|---|---|---|---|---|---|---|---|"
   for (i = 1; i <= n; ++i) { k = order[i]
     printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | **%s** |\n", k, set[k], commas(tri[k]),

@@ -361,9 +361,9 @@ int main(int argc, char** argv) {
             // updates and submits frame k and collects frame k - 1 (its row, timed over the
             // step); the last step submits frame 0 again, collected untimed. The frames run
             // back to back: their rows are compared and written after the loop, so no
-            // untimed host work lets the GPU catch up between pipelined steps (it did before
-            // stop 24, hiding the GPU's part of a step). `slack_ms` puts such work back on
-            // purpose: an engine's other work per frame.
+            // untimed host work lets the GPU catch up between pipelined steps (which would
+            // hide the GPU's part of a step). `slack_ms` puts such work back on purpose: an
+            // engine's other work per frame.
             struct TimedFrame {
                 int shown;
                 DetectResult result;

@@ -7,6 +7,7 @@
 
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
+#include "narrow/exact_stage.hpp"
 #include "passes/cells/reliable_method.hpp"
 #include "vk/device.hpp"
 
@@ -68,6 +69,11 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.region = s.region;
     d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
     d.broad.poll_ns = std::uint64_t{s.wait_poll_us} * 1000;
+    // While the wait polls, keep the narrow phase's workers awake as many as a detection
+    // like the last one will use: they then take its first loops at once instead of
+    // 0.1-0.2 ms later, when the kernel has woken the last of them (docs/narrow_phase.md).
+    if (const unsigned wake = narrow::threadsToWake(last_narrow_pairs, executor->threadCount()))
+        d.broad.poll_hook = [ex = executor, wake] { ex->prepare(wake); };
     d.broad.depth_aware = s.depth_aware;
     d.broad.max_candidate_pairs = s.max_candidate_pairs;  // the reliable method's GPU budget
     d.axes = s.axes;
@@ -198,6 +204,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
             }
         source.setGpuTriangles(broad[0].gpu_triangles);
         narrow = runPairNarrowPhase(broad[0].pairs, source, options, *executor, narrow_workspace);
+        last_narrow_pairs = broad[0].pairs.size();
         source.setGpuTriangles({});  // the download is overwritten by the next run
     } else {
         narrow = runNarrowPhase(detected.candidates(), options, *executor, narrow_workspace);

@@ -94,6 +94,7 @@ struct CollisionWorld::Impl {
     std::unique_ptr<ThreadPool> own_pool;  // unless WorldOptions::executor
     Executor* executor = nullptr;          // the narrow phase's: own_pool or the engine's
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
+    std::size_t last_narrow_pairs = 0;  // the last pair-path narrow phase's input: whom to wake while the next one waits
     std::function<bool(ObjectId, ObjectId)> pair_filter;
     std::vector<Object> objects;
     // The narrow phase's view of the live objects for the pair path (reliable method):

@@ -380,7 +380,12 @@ Result<void> Executor::waitForCollect(std::uint64_t timeout_ns) {
         if (*done == vk::Completion::Done) return {};
     }
     const std::uint64_t poll_from = spent();
+    std::uint64_t next_hook = poll_from;
     while (spent() - poll_from < poll_ns_ && spent() < timeout_ns) {
+        if (poll_hook_ && spent() >= next_hook) {
+            poll_hook_();
+            next_hook = spent() + kPollHookNs;
+        }
         auto done = submission_.poll();
         if (!done) return done.error();
         if (*done == vk::Completion::Done) return {};

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -110,6 +111,12 @@ public:
     // the waiting core busy for at most about poll_ns + kPollLeadNs per collect().
     void setWaitPolling(std::uint64_t poll_ns) noexcept { poll_ns_ = poll_ns; }
     static constexpr std::uint64_t kPollLeadNs = 150'000;
+    // Called on the waiting thread while collect() polls: when polling starts (the work is
+    // expected to end within kPollLeadNs) and every kPollHookNs after. The world wakes the
+    // narrow phase's workers with it, so that they are awake, not asleep in the kernel, when
+    // the results arrive. Empty: nothing is called. Must not throw.
+    void setPollHook(std::function<void()> hook) { poll_hook_ = std::move(hook); }
+    static constexpr std::uint64_t kPollHookNs = 50'000;
     // Whether submitted work is still running (polls; never waits).
     bool busy() const;
     // Done once the last submission has finished, NotYet while it runs; never waits.
@@ -168,6 +175,7 @@ private:
     VkQueryPool queries_ = VK_NULL_HANDLE;
     std::uint32_t query_capacity_ = 0;
     std::uint64_t poll_ns_ = 0;
+    std::function<void()> poll_hook_;
     std::uint64_t last_gpu_span_ns_ = 0;  // the last collected submission's, for the expected end
     // Transients cached by name; recreated when the description changes.
     struct CachedBuffer {

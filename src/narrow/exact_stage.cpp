@@ -40,6 +40,11 @@ int bitsFor(std::size_t count) { return std::max(1, static_cast<int>(std::bit_wi
 
 std::size_t testGrain(std::size_t tests, unsigned threads) { return grainFor(tests, threads, 4, kMinTestGrain, kMaxTestGrain); }
 
+unsigned threadsToWake(std::size_t input_pairs, unsigned threads) {
+    if (input_pairs < kPrepareFrom) return 0;
+    return static_cast<unsigned>(std::min<std::size_t>(threads, taskCount(input_pairs, testGrain(input_pairs, threads))));
+}
+
 void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::size_t slot_count, bool tests_in_order,
                     const NarrowOptions& options, Executor& ex, NarrowWorkspace::Impl& ws, NarrowResult& out,
                     StageClock& clock) {

@@ -47,6 +47,15 @@ private:
 // Exact tests per parallel task for `tests` tests on `threads` threads.
 std::size_t testGrain(std::size_t tests, unsigned threads);
 
+// How many threads the pair path wants awake (Executor::prepare) for `input_pairs` pairs on
+// `threads` threads: as many as its exact tests can use, none below kPrepareFrom pairs.
+// From kPrepareFrom pairs on the pair path prepares on entry, so that workers asleep since
+// the last call (the GPU's 0.3-2 ms) wake during its checks, slots and gather instead of
+// when the tests need them; below, the tests take a few microseconds and waking costs more.
+// The world also calls it with the last detection's count while it waits for the GPU.
+inline constexpr std::size_t kPrepareFrom = 256;
+unsigned threadsToWake(std::size_t input_pairs, unsigned threads);
+
 // Stages 3 to 6 on the pairs that `tasks` found (their counters already in out.stats):
 // may_collide once per distinct object pair (ascending, this thread), the exact tests in
 // parallel, the colliding pairs in canonical order (sorted unless `tests_in_order`: the

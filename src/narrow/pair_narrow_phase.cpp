@@ -33,11 +33,6 @@ using narrow::keyOf;
 constexpr std::size_t kPairUpGrain = 1024;
 // Ends are numbered in 32 bits.
 constexpr std::size_t kMaxPairs = (std::size_t{1} << 31) - 1;
-// From this many input pairs on, the executor is told on entry that the tests will use
-// several threads (Executor::prepare): a pool's workers, asleep since the last call (the
-// GPU's 0.3-2 ms), wake during the checks, slots and gather instead of when the tests
-// need them. Below, the tests take a few microseconds and waking costs more.
-constexpr std::size_t kPrepareFrom = 256;
 
 std::string pairName(std::size_t k, const CandidatePair& p) {
     return "runPairNarrowPhase: pair " + std::to_string(k) + " (" + std::to_string(p.a) + ", " + std::to_string(p.b) + ")";
@@ -62,10 +57,7 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
         return Error(ErrorCode::InvalidArgument, "runPairNarrowPhase: " + std::to_string(input) + " pairs (at most " +
                                                      std::to_string(kMaxPairs) + ")");
     }
-    if (input >= kPrepareFrom) {
-        const unsigned threads = ex.threadCount();
-        ex.prepare(static_cast<unsigned>(std::min<std::size_t>(threads, narrow::taskCount(input, narrow::testGrain(input, threads)))));
-    }
+    if (const unsigned wake = narrow::threadsToWake(input, ex.threadCount())) ex.prepare(wake);
     const std::uint32_t total = source.totalTriangles();
 
     // Stages 1 to 3 (pair_keys.hpp): checks, slots, the distinct pairs as sorted keys.

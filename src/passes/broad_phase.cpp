@@ -134,6 +134,7 @@ Result<void> BroadPhase::prepareRun(std::span<const GpuMesh> meshes, const Broad
                                              ok.error().message() + " more)", ok.error().vkResult());
     }
     executor_.setWaitPolling(s.poll_ns);
+    executor_.setPollHook(s.poll_hook);
     std::uint64_t total = 0;
     for (const GpuMesh& m : meshes) total += m.triangle_count;
     const RunShape shape{s.resolution, static_cast<std::uint32_t>(total), static_cast<std::uint32_t>(meshes.size()), s.keep_ray_image,

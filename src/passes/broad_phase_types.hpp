@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -102,6 +103,8 @@ struct BroadPhaseSettings {
     std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;
     // How collect() waits for the GPU (graph::Executor::setWaitPolling): 0 sleeps only.
     std::uint64_t poll_ns = 0;
+    // Called while collect() polls (graph::Executor::setPollHook); empty: nothing.
+    std::function<void()> poll_hook;
     // Depth-aware separation (docs/broadphase.md): collision rays carry the depth interval
     // of their near pairs, bundles are (x, y, depth) boxes, a triangle is kept only where
     // its own box meets them in all three, and records carry the kept depth range. Off:

@@ -40,10 +40,15 @@ VKC_CONST kCellsScanBlock = 1024;
 // A deep item whose chunk is this value sorts the whole cell in shared memory.
 VKC_CONST kCellsSorted = 0xFFFFFFFFu;
 
-// CellsEntry.key and CellsTriangle.key: object index in the low 31 bits, and whether the
-// object tests its own triangles against each other.
+// CellsTriangle.key: object index in the low 31 bits, and whether the object tests its own
+// triangles against each other.
 VKC_CONST kCellsKeySelf = 0x80000000u;
 VKC_CONST kCellsKeyObject = 0x7FFFFFFFu;
+// CellsEntry.key: with at most kCellsBoxedObjects objects, the object in bits 0-14, the
+// self flag in bit 15 and the triangle's box within the entry's cell in bits 16-31
+// (cellsSubBox); with more, the triangle's key and no box (entryKey in
+// cells_common.glsl.inc).
+VKC_CONST kCellsBoxedObjects = 32768u;
 // CellsParams.object_flags
 VKC_CONST kCellsObjectSelf = 1u;
 VKC_CONST kCellsObjectDownload = 2u;  // geometry only on the GPU: survivors' triangles go to gpu_triangles
@@ -122,7 +127,7 @@ struct CellsGeometry {
 // One footprint: a triangle in a cell with its depth interval there.
 struct CellsEntry {
     uint triangle;  // global triangle id
-    uint key;       // object | kCellsKeySelf
+    uint key;       // object, self flag and box (kCellsBoxedObjects)
     float zlo, zhi;
 };
 

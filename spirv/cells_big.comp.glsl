@@ -18,12 +18,13 @@ void main() {
     uvec4 r = cellsRange(tri);
     uint width = r.z - r.x + 1u, cells = width * (r.w - r.y + 1u);
     uint begin = work.y * kCellsChunkCells, end = min(begin + kCellsChunkCells, cells);
+    vec4 box = paddedBox(tri);
     for (uint c = begin + gl_LocalInvocationIndex; c < end; c += kCellsGroupSize) {
         uint i = r.x + c % width, j = r.y + c / width;
         if (pc.step == 0u) {
             if (cellsCovers(tri, i, j, P.resolution)) atomicAdd(UintsRef(P.counts).v[j * P.resolution + i], 1u);
         } else {
-            fillCell(P, tri, work.x, i, j);
+            fillCell(P, tri, box, work.x, i, j);
         }
     }
 }

@@ -39,10 +39,10 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
         if (x < k) {
             CellsEntry en = CellsEntriesRef(P.entries).e[begin + x];
             s_zlo[x] = en.zlo;
-            s_key[x] = en.key;
+            s_key[x] = triangleKeyOf(P, en.key);
             // Loaded once here, not once per pair: a self-colliding object's deep cell
             // (a pole's fan of slivers) pairs mostly neighbours.
-            if ((en.key & kCellsKeySelf) != 0u) s_index[x] = triangleIndices(P, en.triangle);
+            if ((s_key[x] & kCellsKeySelf) != 0u) s_index[x] = triangleIndices(P, en.triangle);
         } else {
             s_zlo[x] = kFloatMax;  // padding sorts last: the largest object, then index >= k
             s_key[x] = kCellsKeyObject;
@@ -96,6 +96,7 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
         for (uint p = tid; p < k; p += kCellsGroupSize) {
             uint a = s_order[p];
             CellsEntry me = CellsEntriesRef(P.entries).e[begin + a];  // its zhi and triangle: read once, not kept in shared memory
+            uint box = boxOf(P, me.key);
             uvec3 mine = (s_key[a] & kCellsKeySelf) != 0u ? s_index[a] : uvec3(~0u);
             for (uint r = 0u; r < runs; ++r) {
                 uint first = s_runs[r], end = s_runs[r + 1u];
@@ -110,6 +111,9 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
                 for (uint q = lo; q < end; ++q) {
                     uint b = s_order[q];
                     if (s_zlo[b] > me.zhi) break;
+                    // Boxes within the cell: the entry's key from global memory, only for pairs
+                    // that meet in depth.
+                    if (!subBoxesMeet(box, boxOf(P, CellsEntriesRef(P.entries).e[begin + b].key))) continue;
                     // sweepPair's rule, the indices from shared memory.
                     if (!mayCollide(P, s_key[a], s_key[b])) continue;
                     if (s_key[a] == s_key[b] && shareIndex(mine, s_index[b])) {
@@ -132,7 +136,7 @@ void chunkOfCell(CellsParams P, uint cell, uint begin, uint end, uint chunk) {
     uvec3 mine = uvec3(~0u);
     if (e < end) {
         me = CellsEntriesRef(P.entries).e[e];
-        if ((me.key & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
+        if ((triangleKeyOf(P, me.key) & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
     }
     sweepEntry(P, cell, e, me, mine, begin, e < end ? end : begin);
 }

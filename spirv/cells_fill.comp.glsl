@@ -15,6 +15,7 @@ void main() {
     CellsTriangle tri = CellsTrianglesRef(P.triangles).t[t];
     uvec4 r = cellsRange(tri);
     if ((r.z - r.x + 1u) * (r.w - r.y + 1u) > kCellsSmallBox) return;
+    vec4 box = paddedBox(tri);
     for (uint j = r.y; j <= r.w; ++j)
-        for (uint i = r.x; i <= r.z; ++i) fillCell(P, tri, t, i, j);
+        for (uint i = r.x; i <= r.z; ++i) fillCell(P, tri, box, t, i, j);
 }

@@ -164,12 +164,9 @@ void main() {
 
         // Clamped footprint box: cells [i, i+1] that meet [xmin - pad, xmax + pad]; a
         // value exactly on a cell border takes both cells.
-        precise float lx = floor(padDown(minOf3(tri.x[0], tri.x[1], tri.x[2]), pad));
-        precise float hx = floor(padUp(maxOf3(tri.x[0], tri.x[1], tri.x[2]), pad));
-        precise float ly = floor(padDown(minOf3(tri.y[0], tri.y[1], tri.y[2]), pad));
-        precise float hy = floor(padUp(maxOf3(tri.y[0], tri.y[1], tri.y[2]), pad));
+        precise vec4 cells = floor(paddedBox(tri));  // x lo, y lo, x hi, y hi
         float last = n - 1.0;
-        uvec4 range = uvec4(clamp(vec4(lx, ly, hx, hy), vec4(0.0), vec4(last)));
+        uvec4 range = uvec4(clamp(cells, vec4(0.0), vec4(last)));
         tri.cells_lo = range.x | (range.y << 16);
         tri.cells_hi = range.z | (range.w << 16);
         CellsTrianglesRef(P.triangles).t[t] = tri;

@@ -25,7 +25,7 @@ void main() {
         end = UintsRef(P.offsets).v[cell + 1u];
         if (end - begin > kCellsSmallCell) end = begin;
         me = CellsEntriesRef(P.entries).e[e];
-        if ((me.key & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
+        if ((triangleKeyOf(P, me.key) & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
     }
     sweepEntry(P, cell, e, me, mine, begin, end);
 }

@@ -238,7 +238,7 @@ struct CellStats {
     std::uint64_t max_cell = 0;         // most triangles in one cell
     std::uint64_t deep_cells = 0;       // cells swept by the deep path (more than 256 entries)
     std::uint64_t candidate_cells = 0;  // cells where the sweep found a candidate
-    std::uint64_t candidates = 0;       // pairs with overlapping depth in a cell (a pair may repeat across cells)
+    std::uint64_t candidates = 0;       // pairs with overlapping depth and boxes in a cell (a pair may repeat across cells)
     std::uint64_t duplicates = 0;       // of those, dropped: not the pair's first common cell
     std::uint64_t filtered = 0;         // of those, dropped: proved disjoint by the GPU filter
     std::uint64_t survivors = 0;        // pairs read back (8 bytes each)

@@ -44,12 +44,6 @@ HostMesh soup(std::mt19937& rng, std::uint32_t count, float lo, float hi, float 
     return m;
 }
 
-void addTriangle(HostMesh& m, Float3 a, Float3 b, Float3 c) {
-    const auto base = static_cast<std::uint32_t>(m.positions.size());
-    m.positions.insert(m.positions.end(), {a, b, c});
-    m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
-}
-
 CellScene twoSpheres() {
     CellScene s;
     s.meshes.push_back(generated(uvSphere(1.0f, 24, 12), "a"));

@@ -162,6 +162,106 @@ TEST_CASE("cells: deep cells (sorted in shared memory and in chunks) and big tri
     }
 }
 
+// Boxes within a cell: two objects' small triangles share one cell and overlap in depth
+// everywhere, but lie in different parts of it. The sweep pairs only entries whose boxes
+// within the cell meet, so of the k * k depth-overlapping pairs only the one crossing pair
+// (whose boxes meet) becomes a candidate -- on the shallow path, the sorted deep path and
+// the chunked deep path alike.
+TEST_CASE("cells: triangles apart within a shared cell are not paired", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    // Sampling = world: x, y across the grid, z the depth; N = 4, so cell (1, 1) is
+    // [0.25, 0.5]^2.
+    gpu::Projection pr{};
+    pr.row[0] = {1, 0, 0, 0};
+    pr.row[1] = {0, 1, 0, 0};
+    pr.row[2] = {0, 0, 1, 0};
+    // Standing triangles spanning depth 0.3 to 0.7, their x within [x0, x1].
+    const auto standing = [](HostMesh& m, std::uint32_t count, float x0, float x1) {
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const float x = x0 + (x1 - x0 - 0.005f) * float(k % 20) / 19.0f, y = 0.27f + 0.2f * float(k / 20) / float(count / 20 + 1);
+            addTriangle(m, {x, y, 0.3f}, {x + 0.005f, y, 0.7f}, {x, y + 0.005f, 0.5f});
+        }
+    };
+    for (std::uint32_t per_object : {100u, 300u, 700u}) {  // 200 entries (shallow), 600 (sorted), 1,400 (chunks)
+        INFO(per_object << " triangles per object");
+        CellScene scene;
+        HostMesh a, b;
+        a.name = "left";
+        b.name = "right";
+        standing(a, per_object, 0.26f, 0.32f);
+        standing(b, per_object, 0.40f, 0.48f);
+        // One crossing pair between the two groups: a flat triangle at depth 0.5 and a
+        // standing one through it.
+        addTriangle(a, {0.35f, 0.30f, 0.5f}, {0.37f, 0.30f, 0.5f}, {0.36f, 0.32f, 0.5f});
+        addTriangle(b, {0.36f, 0.29f, 0.4f}, {0.36f, 0.33f, 0.4f}, {0.36f, 0.31f, 0.6f});
+        scene.meshes = {a, b};
+        const auto reference = referencePairs(scene);
+        REQUIRE(reference.size() == 1);
+        CellRunOptions opt;
+        opt.resolution = 4;
+        opt.projection = pr;
+        const CellRun run = runCells(ctx, **stage, scene, opt);
+        requireAllFound(run, reference);
+        CHECK(run.result.stats.max_cell >= 2 * per_object);
+        if (per_object > 100) CHECK(run.result.stats.deep_cells > 0);
+        CHECK(run.result.stats.candidates == 1);
+    }
+}
+
+// Entry keys hold the box only up to kCellsBoxedObjects objects; past it they keep the
+// whole 31-bit object and the box is the whole cell. Both layouts on one scene: a soup of
+// single-triangle objects and a self-intersecting tube, once as 33,001 objects (the tube's
+// self flag and object ids past 2^15 must survive), once as two self-colliding objects.
+TEST_CASE("cells: more objects than boxed entry keys hold", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(33001);
+    const HostMesh soup_mesh = soup(rng, 33000, 0.0f, 1.0f, 0.02f, "soup");
+    const HostMesh tube = generated(twistedTube(0.4f, 0.08f, 64, 8, 1.5f), "tube");
+    const Transform centre = translation(0.5f, 0.5f, 0.5f);
+    CellScene many, few;
+    for (std::size_t t = 0; t < soup_mesh.triangleCount(); ++t) {
+        HostMesh one;
+        one.name = "soup triangle";
+        for (int k = 0; k < 3; ++k) {
+            one.positions.push_back(soup_mesh.positions[soup_mesh.indices[3 * t + k]]);
+            one.indices.push_back(static_cast<std::uint32_t>(k));
+        }
+        many.meshes.push_back(std::move(one));
+    }
+    many.meshes.push_back(tube);
+    many.transforms.assign(many.meshes.size(), kIdentityTransform);
+    many.transforms.back() = centre;
+    many.self.assign(many.meshes.size(), 0);
+    many.self.back() = 1;
+    REQUIRE(many.meshes.size() > gpu::kCellsBoxedObjects);
+    const auto reference = referencePairs(many);
+    INFO("reference " << reference.size());
+    std::size_t tube_self = 0, past_boxed = 0;
+    for (const TrianglePair& p : reference) {
+        tube_self += p.object_a == p.object_b;
+        past_boxed += p.object_b > gpu::kCellsBoxedObjects;
+    }
+    REQUIRE(tube_self > 0);
+    REQUIRE(past_boxed > 0);
+    CellRunOptions opt;
+    opt.resolution = 128;
+    opt.shared_buffers = true;
+    const CellRun run_many = runCells(ctx, **stage, many, opt);
+    requireAllFound(run_many, reference);
+    few.meshes = {soup_mesh, tube};
+    few.transforms = {kIdentityTransform, centre};
+    few.self = {1, 1};
+    const auto reference_few = referencePairs(few);
+    const CellRun run_few = runCells(ctx, **stage, few, opt);
+    requireAllFound(run_few, reference_few);
+    // The boxes prune on the two-object scene only.
+    CHECK(run_few.result.stats.candidates < run_many.result.stats.candidates);
+}
+
 TEST_CASE("cells: projection written by an earlier pass of the same graph", "[cells][gpu]") {
     ValidatedContext ctx;
     auto stage = passes::CellPairs::create(ctx.device());

@@ -22,6 +22,13 @@
 
 namespace vkcollide::test {
 
+// Appends a triangle with vertices of its own.
+inline void addTriangle(HostMesh& m, Float3 a, Float3 b, Float3 c) {
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.insert(m.positions.end(), {a, b, c});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
+}
+
 struct CellScene {
     std::vector<HostMesh> meshes;
     std::vector<Transform> transforms;  // one per mesh; missing: identity
@@ -35,6 +42,43 @@ struct UploadedScene {
     std::vector<vk::Buffer> buffers;
     std::vector<gpu::ObjectGpu> objects;
 };
+
+// Every mesh in one vertex and one index buffer (32-bit indices), each object addressing
+// its part: scenes of more objects than a device has allocations.
+inline UploadedScene uploadSharedScene(vk::Device& device, const CellScene& scene) {
+    std::size_t vertices = 0, indices = 0;
+    for (const HostMesh& m : scene.meshes) vertices += m.positions.size(), indices += m.indices.size();
+    auto vb = vk::Buffer::create(device, std::max<std::size_t>(vertices * 12, 16), 0, vk::MemoryKind::Upload, "test-vertices");
+    auto ib = vk::Buffer::create(device, std::max<std::size_t>(indices * 4, 16), 0, vk::MemoryKind::Upload, "test-indices");
+    REQUIRE(vb);
+    REQUIRE(ib);
+    UploadedScene up;
+    std::size_t v = 0, k = 0;
+    std::uint32_t base = 0;
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const HostMesh& m = scene.meshes[i];
+        std::memcpy(static_cast<char*>(vb->mapped()) + v * 12, m.positions.data(), m.positions.size() * 12);
+        std::memcpy(static_cast<char*>(ib->mapped()) + k * 4, m.indices.data(), m.indices.size() * 4);
+        gpu::ObjectGpu o{};
+        o.vertices = vb->address() + v * 12;
+        o.indices = ib->address() + k * 4;
+        o.vertex_stride = 12;
+        o.vertex_count = static_cast<std::uint32_t>(m.positions.size());
+        o.triangle_count = static_cast<std::uint32_t>(m.triangleCount());
+        o.triangle_base = base;
+        const Transform t = scene.transformOf(i);
+        for (int r = 0; r < 3; ++r) o.model[r] = {t[4 * r], t[4 * r + 1], t[4 * r + 2], t[4 * r + 3]};
+        base += o.triangle_count;
+        v += m.positions.size();
+        k += m.indices.size();
+        up.objects.push_back(o);
+    }
+    vb->flush();
+    ib->flush();
+    up.buffers.push_back(std::move(*vb));
+    up.buffers.push_back(std::move(*ib));
+    return up;
+}
 
 inline UploadedScene uploadScene(vk::Device& device, const CellScene& scene, bool index16 = false) {
     UploadedScene up;
@@ -132,11 +176,12 @@ struct CellRunOptions {
     passes::CellPairsSettings settings;
     std::function<bool(std::uint32_t, std::uint32_t)> may_collide;
     bool index16 = false;
+    bool shared_buffers = false;                // uploadSharedScene (32-bit indices)
     std::optional<gpu::Projection> projection;  // instead of fitting one along `direction`
 };
 
 inline CellRun runCells(ValidatedContext& ctx, passes::CellPairs& stage, const CellScene& scene, const CellRunOptions& opt) {
-    UploadedScene up = uploadScene(ctx.device(), scene, opt.index16);
+    UploadedScene up = opt.shared_buffers ? uploadSharedScene(ctx.device(), scene) : uploadScene(ctx.device(), scene, opt.index16);
     passes::CellPairsInput in;
     in.objects = up.objects;
     in.projection = opt.projection ? *opt.projection : fitProjection(scene, opt.direction);

@@ -255,6 +255,12 @@ Result<void> CellPairs::ensureBuffers() {
         if (!made) return made.error();
         *p.buffer = std::move(*made);
     }
+    // The shaders load and store entries as 16-byte vectors (buffer_reference_align in
+    // cells_common.glsl.inc). Buffers start at the device's storage alignment, which Vulkan
+    // does not bound from below: check.
+    if (buf_.entries.address() % 16 != 0)
+        return Error(ErrorCode::UnsupportedFeature, "cell pairs: the device placed 'cells-entries' at address " +
+                                                        std::to_string(buf_.entries.address()) + ", not a multiple of 16 bytes");
     return {};
 }
 

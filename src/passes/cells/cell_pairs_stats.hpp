@@ -17,7 +17,8 @@ struct CellPairsStats {
     std::uint64_t candidate_cells = 0;  // cells where the sweep found at least one candidate
     std::uint64_t candidates = 0;     // pairs the sweep found (with duplicates across cells)
     std::uint64_t neighbours = 0;     // left out by the sweep (not candidates): one object, shared vertex index
-    std::uint64_t duplicates = 0;     // dropped: not the pair's canonical cell
+    std::uint64_t duplicates = 0;     // dropped: not the pair's canonical cell (an earlier cell qualifies, or
+                                      // their unquantised boxes are apart in this one)
     std::uint64_t filtered = 0;       // dropped: proved disjoint by the filter
     std::uint64_t survivors = 0;
     std::uint64_t gpu_triangles = 0;  // triangles of download objects in a survivor, written with their vertices

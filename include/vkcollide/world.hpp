@@ -179,10 +179,11 @@ struct DetectSettings {
     // microseconds, then sleeps for the rest of timeout_ms. A sleeping wait alone wakes
     // the thread 0.05-0.2 ms after the GPU finishes (NVIDIA's driver on an H200,
     // docs/results.md); polling wakes it at once, and keeps one core busy for at most about
-    // wait_poll_us + 150 microseconds per detection. While it polls, the world's own
-    // thread pool (not an engine's executor) keeps as many workers awake as the last
-    // detection's narrow phase used (when it had 256 pairs or more), so they start on the
-    // pairs at once: those cores spin for the same time. 0: sleep only.
+    // wait_poll_us + 150 microseconds per detection. While it polls, the world calls its
+    // executor's prepare() (WorldOptions::executor's, or its own pool's: that one keeps as
+    // many workers awake as the last detection's narrow phase used, when it had 256 pairs
+    // or more, and those cores spin for the same time), so they start on the pairs at once.
+    // 0: sleep only.
     std::uint32_t wait_poll_us = 500;
     // Most colliding pairs a detection returns. When the exact phase finds more, the
     // result holds max_pairs of them (the same ones for the same input, not necessarily

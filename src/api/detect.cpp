@@ -208,6 +208,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         source.setGpuTriangles({});  // the download is overwritten by the next run
     } else {
         narrow = runNarrowPhase(detected.candidates(), options, *executor, narrow_workspace);
+        last_narrow_pairs = 0;  // the record path prepares no threads of its own
     }
     st.narrow_ms = msSince(t0);
     options.may_collide = {};  // it refers to this call's objects

@@ -43,6 +43,23 @@ struct UploadedScene {
     std::vector<gpu::ObjectGpu> objects;
 };
 
+// Mesh i of the scene as an object whose positions and indices are at these addresses.
+inline gpu::ObjectGpu objectOf(const CellScene& scene, std::size_t i, VkDeviceAddress vertices, VkDeviceAddress indices,
+                               std::uint32_t triangle_base, std::uint32_t flags = 0) {
+    const HostMesh& m = scene.meshes[i];
+    gpu::ObjectGpu o{};
+    o.vertices = vertices;
+    o.indices = indices;
+    o.vertex_stride = 12;
+    o.vertex_count = static_cast<std::uint32_t>(m.positions.size());
+    o.triangle_count = static_cast<std::uint32_t>(m.triangleCount());
+    o.triangle_base = triangle_base;
+    o.flags = flags;
+    const Transform t = scene.transformOf(i);
+    for (int r = 0; r < 3; ++r) o.model[r] = {t[4 * r], t[4 * r + 1], t[4 * r + 2], t[4 * r + 3]};
+    return o;
+}
+
 // Every mesh in one vertex and one index buffer (32-bit indices), each object addressing
 // its part: scenes of more objects than a device has allocations.
 inline UploadedScene uploadSharedScene(vk::Device& device, const CellScene& scene) {
@@ -59,15 +76,7 @@ inline UploadedScene uploadSharedScene(vk::Device& device, const CellScene& scen
         const HostMesh& m = scene.meshes[i];
         std::memcpy(static_cast<char*>(vb->mapped()) + v * 12, m.positions.data(), m.positions.size() * 12);
         std::memcpy(static_cast<char*>(ib->mapped()) + k * 4, m.indices.data(), m.indices.size() * 4);
-        gpu::ObjectGpu o{};
-        o.vertices = vb->address() + v * 12;
-        o.indices = ib->address() + k * 4;
-        o.vertex_stride = 12;
-        o.vertex_count = static_cast<std::uint32_t>(m.positions.size());
-        o.triangle_count = static_cast<std::uint32_t>(m.triangleCount());
-        o.triangle_base = base;
-        const Transform t = scene.transformOf(i);
-        for (int r = 0; r < 3; ++r) o.model[r] = {t[4 * r], t[4 * r + 1], t[4 * r + 2], t[4 * r + 3]};
+        const gpu::ObjectGpu o = objectOf(scene, i, vb->address() + v * 12, ib->address() + k * 4, base);
         base += o.triangle_count;
         v += m.positions.size();
         k += m.indices.size();
@@ -99,16 +108,7 @@ inline UploadedScene uploadScene(vk::Device& device, const CellScene& scene, boo
             std::memcpy(ib->mapped(), m.indices.data(), m.indices.size() * 4);
         }
         ib->flush();
-        gpu::ObjectGpu o{};
-        o.vertices = vb->address();
-        o.indices = ib->address();
-        o.vertex_stride = 12;
-        o.vertex_count = static_cast<std::uint32_t>(m.positions.size());
-        o.triangle_count = static_cast<std::uint32_t>(m.triangleCount());
-        o.triangle_base = base;
-        o.flags = index16 ? gpu::kObjectIndex16 : 0u;
-        const Transform t = scene.transformOf(i);
-        for (int r = 0; r < 3; ++r) o.model[r] = {t[4 * r], t[4 * r + 1], t[4 * r + 2], t[4 * r + 3]};
+        const gpu::ObjectGpu o = objectOf(scene, i, vb->address(), ib->address(), base, index16 ? gpu::kObjectIndex16 : 0u);
         base += o.triangle_count;
         up.objects.push_back(o);
         up.buffers.push_back(std::move(*vb));

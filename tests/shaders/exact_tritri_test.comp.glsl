@@ -1,0 +1,64 @@
+#version 460
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_scalar_block_layout : require
+#extension GL_GOOGLE_include_directive : require
+// The exact triangle-triangle test and its predicates alone, for their unit tests
+// (tests/gpu/exact_tritri_tests.cpp), one case per invocation:
+//  mode 0 (pairs, 24 words: a's 9 floats, b's 9 floats, a's 3 indices, b's 3 indices):
+//    bit 0 exactTrianglesIntersect(a, b), bit 1 exactNeighbours, bits 8.. the number of
+//    exact fallbacks the decision ran (saturated at 2^24 - 1);
+//  mode 1 (predicates, 12 words: points a, b, c, d): two bits (sign + 1) each, from bit 0:
+//    orient3d(a,b,c,d), orient3dExact(a,b,c,d), the plane (a,b,c)'s side of d,
+//    orient2d(a.xy,b.xy,c.xy), orient2dExact(same), orient2d(b.yz,c.yz,d.yz),
+//    orient2dExact(same); bit 14 the plane's certainlyNotCollinear; bits 16.. the exact
+//    fallbacks of the filtered predicates (the first, third, fourth and sixth).
+#include "exact_predicates.glsl.inc"
+#include "tritri_exact.glsl.inc"
+layout(local_size_x = 64) in;
+
+layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer ExactCasesRef { uint w[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer ExactResultsRef { uint r[]; };
+layout(push_constant, scalar) uniform ExactPush {
+    ExactCasesRef cases;
+    ExactResultsRef results;
+    uint count;
+    uint mode;
+} pc;
+
+vec3 point(uint base) {
+    return uintBitsToFloat(uvec3(pc.cases.w[base], pc.cases.w[base + 1u], pc.cases.w[base + 2u]));
+}
+
+uint signBits(int s, uint shift) { return uint(s + 1) << shift; }
+
+void main() {
+    uint id = gl_GlobalInvocationID.x;
+    if (id >= pc.count) return;
+    if (pc.mode == 0u) {
+        uint base = 24u * id;
+        vec3 a[3], b[3];
+        for (uint k = 0u; k < 3u; ++k) {
+            a[k] = point(base + 3u * k);
+            b[k] = point(base + 9u + 3u * k);
+        }
+        uvec3 index_a = uvec3(pc.cases.w[base + 18u], pc.cases.w[base + 19u], pc.cases.w[base + 20u]);
+        uvec3 index_b = uvec3(pc.cases.w[base + 21u], pc.cases.w[base + 22u], pc.cases.w[base + 23u]);
+        bool hit = exactTrianglesIntersect(a, b);
+        uint fallbacks = min(exactFallbacks, 0xffffffu);
+        pc.results.r[id] = (hit ? 1u : 0u) | (exactNeighbours(index_a, a, index_b, b) ? 2u : 0u) | (fallbacks << 8);
+        return;
+    }
+    uint base = 12u * id;
+    vec3 a = point(base), b = point(base + 3u), c = point(base + 6u), d = point(base + 9u);
+    uint r = signBits(exactOrient3d(a, b, c, d), 0u);
+    ExactPlane plane = exactPlane(exactDouble3(a), exactDouble3(b), exactDouble3(c));
+    r |= signBits(exactPlaneSide(plane, exactDouble3(d)), 4u);
+    r |= signBits(exactOrient2d(a.xy, b.xy, c.xy), 6u);
+    r |= signBits(exactOrient2d(b.yz, c.yz, d.yz), 10u);
+    uint fallbacks = min(exactFallbacks, 0xffffu);
+    r |= signBits(exactOrient3dExact(a, b, c, d), 2u);
+    r |= signBits(exactOrient2dExact(a.xy, b.xy, c.xy), 8u);
+    r |= signBits(exactOrient2dExact(b.yz, c.yz, d.yz), 12u);
+    r |= exactPlaneCertainlyNotCollinear(plane) ? (1u << 14) : 0u;
+    pc.results.r[id] = r | (fallbacks << 16);
+}

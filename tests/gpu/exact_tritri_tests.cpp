@@ -527,7 +527,14 @@ TEST_CASE("exact GPU predicates return the CPU's signs", "[gpu][exact]") {
         const LatticePlane plane = randomLatticePlane(rng);
         for (Float3& p : c.p) p = latticePoint(rng, plane, 4);
         if (uniformInt(rng, 0, 3) == 0) c.p[1] = c.p[0];  // collinear triples
-        if (uniformInt(rng, 0, 1)) c.p[3] = add(c.p[3], scaled(intVec(rng, 1), std::ldexp(1.0f, -uniformInt(rng, 20, 60))));
+        const Float3 offset = scaled(intVec(rng, 1), std::ldexp(1.0f, -uniformInt(rng, 20, 60)));
+        if (uniformInt(rng, 0, 1)) {
+            // The fourth point moved to the origin (exact on the lattice), then off by the offset:
+            // representable, and its differences to the others are not exact in double.
+            const Float3 o = c.p[3];
+            for (Float3& p : c.p) p = add(p, scaled(o, -1));
+            c.p[3] = offset;
+        }
         const ExactMap m = randomMap(rng);
         for (Float3& p : c.p) p = m(p);
     });

@@ -166,6 +166,8 @@ struct CellsHeader {
     uint64_t candidates;    // candidate pairs the sweep found (needed capacity)
     uint64_t box_cells;     // cells of the triangles' clamped footprint boxes, summed (setup)
     uint64_t comparisons;   // pairs of footprints sharing a cell, k (k - 1) / 2 summed over cells (scan)
+    uint exact_tests;  // candidates the exact test decided (CellsParams.exact)
+    uint exact_neighbours;  // of those, left out as neighbours: a bit-identical world vertex
 };
 
 // Everything the shaders need, uploaded once per run (Push.frame points here).
@@ -203,6 +205,9 @@ struct CellsParams {
     uint use_filter;                     // 1: the double-precision filter runs
     uint gpu_triangle_capacity;
     uint budget;                         // kCellsOverBudget above; at most 2^31 - 1
+    uint exact;  // 1: the pair pass decides exactly (needs use of the
+        // double-precision pipeline); survivors then intersect
+    uint pad;
 };
 
 // Unit test of the filter alone (cells_filter_test.comp): one pair per invocation.

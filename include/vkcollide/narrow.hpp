@@ -237,6 +237,11 @@ struct NarrowOptions {
     // up in one place (k copies of one triangle make k^2/2 pairs to sweep, mostly
     // neighbours): the sweep costs a few nanoseconds per pair.
     std::size_t max_box_pairs = std::numeric_limits<std::size_t>::max();
+    // runPairNarrowPhase only: the input pairs were already decided by an exact test
+    // (the reliable method's GPU pair pass): each one that passes the self-collision
+    // switch, the neighbour rule and may_collide is taken as intersecting without a test
+    // (NarrowStats::triangle_tests stays 0), and only the result and responses are built.
+    bool pairs_decided = false;
 
     bool selfCollides(std::uint32_t object) const {
         return object < self_collision.size() ? static_cast<bool>(self_collision[object]) : default_self_collision;

@@ -57,11 +57,22 @@ enum class DetectMethod {
     Peeling,   // the paper: depth peeling along rays, the kept triangles read back
 };
 
+// Where the reliable method's exact triangle-triangle decision runs (DetectSettings::exact).
+// Both give the same pairs: the GPU's test is the CPU's, predicate for predicate, in exact
+// arithmetic (docs/exact_gpu.md).
+enum class ExactDecision {
+    Auto,  // on the GPU where the device has shaderFloat64, else on the CPU
+    Gpu,  // on the GPU; a device without shaderFloat64 is refused (UnsupportedFeature)
+    Cpu,  // on the CPU: every pair the GPU filter keeps is read back and tested there
+};
+
 // Lower-case names as the command-line options spell them: "scan", "paper"; "centre",
-// "dilate", "conservative", "best"; "auto", "raster", "compute"; "reliable", "peeling".
+// "dilate", "conservative", "best"; "auto", "raster", "compute"; "reliable", "peeling";
+// "auto", "gpu", "cpu".
 const char* toString(PackingMethod method) noexcept;
 const char* toString(DetectMethod method) noexcept;
 const char* toString(Coverage coverage) noexcept;
 const char* toString(SamplingBackend backend) noexcept;
+const char* toString(ExactDecision exact) noexcept;
 
 }  // namespace vkcollide

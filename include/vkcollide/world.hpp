@@ -226,6 +226,16 @@ struct DetectSettings {
     // the volume shrinks about linearly with it (docs/contacts.md). Automatic:
     // kDefaultContactResolution (spirv/contacts.h; 128).
     std::optional<std::uint32_t> contact_resolution;
+
+    // Reliable: where the exact triangle-triangle test decides the pairs the GPU's filter
+    // keeps (docs/exact_gpu.md). Gpu (Auto where the device has shaderFloat64): the pair
+    // pass decides every candidate exactly in double-precision expansion arithmetic and
+    // applies the neighbour rule, so only intersecting pairs are read back and the CPU
+    // computes their responses alone. Cpu: the filter's survivors are read back and the
+    // CPU narrow phase tests them (the reference path, and the only one without
+    // shaderFloat64). The pairs are the same either way; DetectStats::gpu_exact_tests and
+    // ::cpu_exact_tests say which ran. Peeling decides on the CPU: Gpu is refused there.
+    ExactDecision exact = ExactDecision::Auto;
 };
 
 struct PassTime {
@@ -246,6 +256,9 @@ struct CellStats {
     std::uint64_t gpu_triangles = 0;    // engine meshes' triangles read back with their vertices (52 bytes each)
     std::uint32_t runs = 1;             // submissions (more after a buffer grew)
     bool filter_ran = false;            // the device has shaderFloat64
+    bool exact_ran = false;  // the pair pass decided exactly (DetectSettings::exact)
+    std::uint64_t exact_tests = 0;  // candidates the GPU's exact test decided (after the filter)
+    std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (a bit-identical vertex)
 };
 
 struct DetectStats {
@@ -254,13 +267,15 @@ struct DetectStats {
     //   triangles downloaded  -> distinct triangles named by the pairs read back (their ids
     //                            crossed the bus; engine meshes' vertices too)
     //   pot. coll. triangles, tri-tri tests, pos. tests -> the narrow phase's, as for peeling
-    //                            (tests: exact tests on the CPU; positive: pairs found)
+    //                            (tests: exact tests, GPU and CPU; positive: pairs found)
     std::size_t triangles = 0;                        // "# tri's"
     std::size_t collision_rays = 0;                   // "# coll. rays"
     std::size_t triangles_downloaded = 0;             // "# tri's downl."
     std::size_t potentially_colliding_triangles = 0;  // "# pot. coll. tri's"
     std::size_t triangle_tests = 0;                   // "# tri-tri tests"
     std::size_t positive_tests = 0;                   // "# pos. tests"
+    std::size_t gpu_exact_tests = 0;  // of the tests, decided on the GPU (reliable, DetectSettings::exact)
+    std::size_t cpu_exact_tests = 0;  // of the tests, decided on the CPU
     NarrowStats narrow;                               // every narrow-phase counter
     NarrowTimings narrow_timings;                     // the narrow phase's stages (host wall clock)
     CellStats cells;                                  // reliable only

@@ -76,6 +76,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
         d.broad.poll_hook = [ex = executor, wake] { ex->prepare(wake); };
     d.broad.depth_aware = s.depth_aware;
     d.broad.max_candidate_pairs = s.max_candidate_pairs;  // the reliable method's GPU budget
+    d.broad.exact_on_gpu = s.exact != ExactDecision::Cpu;  // Gpu was checked against the device
     d.axes = s.axes;
     d.bad_objects = s.bad_objects;
     run.settings_ms = msSince(run.start);
@@ -155,8 +156,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     }
     if (detected.hasPairs()) {
         const passes::CellPairsStats& c = broad[0].cells;
-        st.cells = {c.entries, c.max_cell, c.deep_cells, c.candidate_cells, c.candidates, c.duplicates, c.filtered, c.survivors,
-                    c.gpu_triangles, c.runs, c.filter_ran};
+        st.cells = {c.entries,   c.max_cell,      c.deep_cells, c.candidate_cells, c.candidates, c.duplicates,  c.filtered,
+                    c.survivors, c.gpu_triangles, c.runs,       c.filter_ran,      c.exact_ran,  c.exact_tests, c.exact_neighbours};
         st.collision_rays = c.candidate_cells;
         st.backend_reason = "none: the reliable method samples no rays";
     }
@@ -168,6 +169,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     for (std::uint32_t i : detected.objects) options.self_collision.push_back(run.meshes[i].self_collision);
     options.max_pairs = run_settings.max_pairs;
     options.max_box_pairs = run_settings.max_candidate_pairs;
+    options.pairs_decided = detected.hasPairs() && broad[0].cells.exact_ran;
     // The filter's kept answers (indices of the live objects the mask was built over), or
     // the filter itself beyond the mask's object limit. The filter must not throw
     // (world.hpp); if it does, the exception stops here, the narrow phase sees "may not
@@ -225,7 +227,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.narrow = narrow->stats;
     st.narrow_timings = narrow->timings;
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;
-    st.triangle_tests = narrow->stats.triangle_tests;
+    st.cpu_exact_tests = narrow->stats.triangle_tests;
+    st.gpu_exact_tests = detected.hasPairs() ? broad[0].cells.exact_tests : 0;
+    st.triangle_tests = st.cpu_exact_tests + st.gpu_exact_tests;
     st.positive_tests = narrow->stats.positive_tests;
     if (detected.hasPairs()) st.triangles_downloaded = narrow->stats.candidates;  // distinct triangles in the pairs
     // Run indices grow with ids, so the sorted order survives the mapping.

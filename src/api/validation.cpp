@@ -136,6 +136,13 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     if (s.method != DetectMethod::Reliable && s.method != DetectMethod::Peeling)
         return invalid("method " + std::to_string(int(s.method)) + " is not a DetectMethod");
     const bool reliable = s.method == DetectMethod::Reliable;
+    if (s.exact != ExactDecision::Auto && s.exact != ExactDecision::Gpu && s.exact != ExactDecision::Cpu)
+        return invalid("exact " + std::to_string(int(s.exact)) + " is not an ExactDecision");
+    if (s.exact == ExactDecision::Gpu && !reliable)
+        return invalid("exact decision on the GPU belongs to the reliable method (the peeling method decides on the CPU)");
+    if (s.exact == ExactDecision::Gpu && !device.shader_float64)
+        return Error(ErrorCode::UnsupportedFeature, "exact decision on the GPU needs shaderFloat64, which " + device.info.name +
+                                                        " lacks (or the adopted device did not enable): use ExactDecision::Auto or Cpu");
     if (s.axes != 1 && s.axes != 3) return invalid("axes must be 1 or 3, not " + std::to_string(s.axes));
     if (reliable && s.axes != 1) return invalid("the reliable method runs along one direction (axes 1; resolveSettings sets it)");
     const std::uint32_t n = s.resolution.value_or(0);

@@ -37,4 +37,13 @@ const char* toString(SamplingBackend backend) noexcept {
     return "?";
 }
 
+const char* toString(ExactDecision exact) noexcept {
+    switch (exact) {
+        case ExactDecision::Auto: return "auto";
+        case ExactDecision::Gpu: return "gpu";
+        case ExactDecision::Cpu: return "cpu";
+    }
+    return "?";
+}
+
 }  // namespace vkcollide

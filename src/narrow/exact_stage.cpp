@@ -88,6 +88,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     kept.assign(test_tasks, 0);
     std::atomic<std::size_t> stored{0};
     const std::size_t budget = options.max_pairs;
+    const bool decided = options.pairs_decided;
     const auto testTask = [&](std::size_t begin, std::size_t end, bool keep) {
         const std::size_t task_index = begin / test_grain;
         // Built in a local (keeping the capacity of the last call) and moved back at the
@@ -118,7 +119,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
                     }
                 }
             }
-            if (trianglesIntersect(slots.v[p.i], slots.v[p.j])) {
+            if (decided || trianglesIntersect(slots.v[p.i], slots.v[p.j])) {
                 ++hit_total;
                 if (keep) found.push_back(keyOf(p.i, p.j));
             }
@@ -155,7 +156,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     }
     for (std::size_t t = 0; t < test_tasks; ++t) hit_count += hits[t].size();
     stats.filtered_pairs += filtered_late;
-    stats.triangle_tests = total_tests - filtered_late;
+    stats.triangle_tests = decided ? 0 : total_tests - filtered_late;
     clock.lap(timings.test_ms);
 
     // Stage 5: canonical order. Slots follow (object, triangle), so sorting the

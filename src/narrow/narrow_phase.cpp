@@ -378,8 +378,18 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records,
     return runNarrowPhase(in_records, source, options, executor, workspace);
 }
 
+namespace {
+
+// The sweeps form their own pairs: none of them was decided before.
+Result<NarrowResult> notDecided() {
+    return Error(ErrorCode::InvalidArgument, "runNarrowPhase: NarrowOptions::pairs_decided applies to runPairNarrowPhase only");
+}
+
+}  // namespace
+
 Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
                                     Executor& executor, NarrowWorkspace& io_workspace) {
+    if (options.pairs_decided) return notDecided();
     return narrow::guardedCall("runNarrowPhase", executor, options.max_box_pairs, [&](Executor& guarded) {
         return triangleRecordPhase(in_candidates, options, guarded, io_workspace);
     });
@@ -387,6 +397,7 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
 
 Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
                                     const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace) {
+    if (options.pairs_decided) return notDecided();
     return narrow::guardedCall("runNarrowPhase", executor, options.max_box_pairs, [&](Executor& guarded) {
         return leanRecordPhase(in_records, source, options, guarded, io_workspace);
     });

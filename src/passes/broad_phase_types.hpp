@@ -117,6 +117,9 @@ struct BroadPhaseSettings {
     // DetectSettings::max_candidate_pairs in a detection). Past it the run fails with
     // LimitExceeded.
     std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
+    // Methods that form pairs on the GPU: decide them exactly there where the device can
+    // (CellPairsSettings::exact); BroadPhaseResult::cells.exact_ran says whether it did.
+    bool exact_on_gpu = false;
 };
 
 // A problem the GPU input check found in one object (kObjectCheckOnGpu meshes), as data:

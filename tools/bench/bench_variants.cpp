@@ -33,7 +33,10 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"open", "paper", paper([](S&) {}), true},
         {"async", "paper", paper([](S&) {}), false, true},
         {"reliable-async", "modes", [](S& s) { s.method = DetectMethod::Reliable; }, false, true},
-        {"depth-sep", "modes", paper([](S& s) { s.depth_aware = true; })},   // peeling, depth-aware separation on
+        // The reliable method with the exact decision on the CPU (the reference path): its
+        // difference to "default" is what deciding on the GPU saves (docs/exact_gpu.md).
+        {"exact-cpu", "modes", [](S& s) { s.exact = ExactDecision::Cpu; }},
+        {"depth-sep", "modes", paper([](S& s) { s.depth_aware = true; })},  // peeling, depth-aware separation on
         {"paper-sep", "modes", paper([](S& s) { s.depth_aware = false; })},  // peeling, the paper's separation (the old default)
         // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".
         {"contacts", "contacts", [](S& s) { s.contacts = true; }},

@@ -121,6 +121,8 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("potentially_colliding_triangles", st.potentially_colliding_triangles);
     count("triangle_tests", st.triangle_tests);
     count("positive_tests", st.positive_tests);
+    count("gpu_exact_tests", st.gpu_exact_tests);
+    count("cpu_exact_tests", st.cpu_exact_tests);
     count("pairs", pair_count);
     j.key("narrow");
     j.beginObject(JsonWriter::Layout::Inline);

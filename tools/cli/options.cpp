@@ -125,6 +125,10 @@ const std::vector<Option>& options() {
         {"--contact-resolution", "N", Section::Settings, "--contacts: rays across the region where closed objects' boxes overlap, 16 to 4096 (default 128)",
          "GPU time grows with N^2; the volume error shrinks about as 1/N", setting<&DetectSettings::contact_resolution>,
          "contact_resolution", show<&DetectSettings::contact_resolution>},
+        {"--exact", "WHERE", Section::Settings,
+         "reliable: where the exact triangle test decides the candidates: auto (the GPU where it has 64-bit floats), gpu or cpu (the reference path)",
+         "gpu: only intersecting pairs are read back and the CPU computes responses alone; cpu: every pair the GPU filter keeps is tested on the CPU; same pairs",
+         setting<&DetectSettings::exact>, "exact", show<&DetectSettings::exact>},
         flag("--paper-packing", Section::Settings, "the same as --packing paper", "as --packing paper",
              [](CommandLine& c, std::string_view) -> Result<void> {
                  c.settings.packing = vkcollide::PackingMethod::Paper;

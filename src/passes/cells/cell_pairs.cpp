@@ -15,9 +15,10 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 80 && sizeof(gpu::CellsParams) == 208);
+static_assert(sizeof(gpu::CellsHeader) == 88 && sizeof(gpu::CellsParams) == 216);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
-              offsetof(gpu::CellsHeader, comparisons) == 72);  // kHeaderCandidates, ... in cells_common.glsl.inc
+              offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
+              offsetof(gpu::CellsHeader, exact_neighbours) == 84);  // kHeaderCandidates, ... in cells_common.glsl.inc
 static_assert(sizeof(gpu::CellsGpuTriangle) == sizeof(GpuTriangle) && offsetof(gpu::CellsGpuTriangle, v) == offsetof(GpuTriangle, v));
 static_assert(sizeof(CandidatePair) == 8);
 static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);
@@ -119,6 +120,7 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     resolution_ = in.resolution;
     projection_address_ = in.projection_address;
     use_filter_ = settings.filter && filterSupported();
+    use_exact_ = settings.exact && filterSupported();
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
     has_pair_mask_ = !in.pair_mask.empty() || static_cast<bool>(in.may_collide);
     download_triangles_ = 0;
@@ -298,6 +300,7 @@ void CellPairs::writeParams() {
     p.block_count = (p.cell_count + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     p.max_groups_x = max_groups_x_;
     p.use_filter = use_filter_ ? 1u : 0u;
+    p.exact = use_exact_ ? 1u : 0u;
     p.budget = budget_;
     std::memcpy(buf_.params.mapped(), &p, sizeof p);
     buf_.params.flush();
@@ -391,6 +394,9 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
     s.gpu_triangles = h.gpu_triangles;
     s.runs = runs_;
     s.filter_ran = use_filter_;
+    s.exact_ran = use_exact_;
+    s.exact_tests = h.exact_tests;
+    s.exact_neighbours = h.exact_neighbours;
     survivor_count_ = h.survivors;
     gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;
     if (survivor_count_) buf_.survivors.invalidate(0, VkDeviceSize(survivor_count_) * 8);

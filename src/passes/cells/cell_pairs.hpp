@@ -87,6 +87,10 @@ struct CellPairsCapacity {
 struct CellPairsSettings {
     // Run the double-precision filter where the device has shaderFloat64 enabled.
     bool filter = true;
+    // Decide every candidate the filter keeps exactly on the GPU (where the device has
+    // shaderFloat64; docs/exact_gpu.md) and leave out neighbours (a bit-identical world
+    // vertex): the survivors are then exactly the intersecting pairs.
+    bool exact = false;
     // The budget of a run (DetectSettings::max_candidate_pairs in a detection; the stage's
     // own limit is 2^31 - 1, its buffers' 32-bit indices): the cells of the triangles'
     // clamped footprint boxes (so the footprints, 20 bytes each, and the count pass's work)
@@ -187,7 +191,7 @@ private:
     std::vector<gpu::ObjectGpu> objects_;
     std::uint32_t triangles_ = 0, resolution_ = 0;
     VkDeviceAddress projection_address_ = 0;
-    bool use_filter_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
+    bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish
     std::optional<BadInput> bad_input_;

@@ -25,6 +25,9 @@ struct CellPairsStats {
     std::uint64_t host_duplicates = 0;  // survivors kept twice (canonical scan out of budget), removed (run() only)
     std::uint32_t runs = 0;           // submissions this call took (1 without overflow)
     bool filter_ran = false;
+    bool exact_ran = false;  // the pair pass decided exactly: survivors intersect
+    std::uint64_t exact_tests = 0;  // candidates the exact test decided
+    std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (bit-identical vertex)
 };
 
 }  // namespace vkcollide::passes

@@ -35,6 +35,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     in.pair_mask = run.settings.pair_mask ? std::span<const std::uint32_t>(run.settings.pair_mask->bits) : std::span<const std::uint32_t>();
     CellPairsSettings settings;
     settings.max_candidate_pairs = run.settings.max_candidate_pairs;
+    settings.exact = run.settings.exact_on_gpu;
     return cells_->prepare(in, settings);
 }
 

@@ -1,0 +1,219 @@
+// Where the reliable method's exact decision runs (DetectSettings::exact): the GPU's pair
+// pass (exact arithmetic in double) and the CPU narrow phase give the same pairs and
+// responses on every scene, touching and coplanar contacts above all, and the statistics
+// say which one decided. Validation layer on.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+
+#include "support/exact_reference.hpp"
+#include "support/gpu_fixture.hpp"
+#include "support/stability_scenes.hpp"
+#include "support/test_scenes.hpp"
+#include "vkcollide/narrow.hpp"
+#include "vkcollide/thread_pool.hpp"
+#include "vkcollide/world.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+// Rotation by `angle` about the axis (1, 2, 3) / |..| and a translation, as floats: a
+// stack turned this way has no coplanar face pair exact in float, only nearly coplanar
+// ones, which the filter cannot settle and the exact arithmetic must.
+Transform3x4 tilted(float angle, Float3 at) {
+    const double n = std::sqrt(14.0), x = 1 / n, y = 2 / n, z = 3 / n, c = std::cos(angle), s = std::sin(angle), t = 1 - c;
+    const auto f = [](double v) { return static_cast<float>(v); };
+    return {f(t * x * x + c),     f(t * x * y - s * z), f(t * x * z + s * y), at.x,
+            f(t * x * y + s * z), f(t * y * y + c),     f(t * y * z - s * x), at.y,
+            f(t * x * z - s * y), f(t * y * z + s * x), f(t * z * z + c),     at.z};
+}
+
+// Boxes resting on each other face to face (exactly coplanar in float: every coordinate a
+// multiple of a power of two), one turned stack of two (nearly coplanar), a ball resting
+// on a pole vertex, a degenerate open strip lying in a face plane, and a self-colliding
+// folded sheet whose fold touches itself.
+TestScene restingScene() {
+    TestScene s{"resting stack", {}};
+    const auto add = [&](Result<HostMesh> m, std::string name, Transform3x4 at, bool open = false, bool self = false) {
+        REQUIRE(m);
+        s.objects.push_back({std::move(*m), {.name = std::move(name), .self_collision = self, .open = open, .transform = at}});
+    };
+    for (int k = 0; k < 4; ++k)
+        add(box({0.5f, 0.5f, 0.5f}, 3), "box" + std::to_string(k),
+            Transform3x4{1, 0, 0, float(k % 2), 0, 1, 0, 0.5f * float(k / 2), 0, 0, 1, float(k / 2)});
+    const Transform3x4 lower = tilted(0.37f, {3.0f, 0.0f, 0.0f});
+    Transform3x4 upper = lower;
+    // The upper box one unit up along the turned z axis: rounded, so its bottom face is
+    // within an ulp of the lower box's top face, on either side.
+    for (int r = 0; r < 3; ++r) upper[4 * r + 3] += lower[4 * r + 2];
+    add(box({0.5f, 0.5f, 0.5f}, 2), "turned-lower", lower);
+    add(box({0.5f, 0.5f, 0.5f}, 2), "turned-upper", upper);
+    add(uvSphere(0.25f, 16, 8), "ball", Transform3x4{1, 0, 0, 0.0f, 0, 1, 0, 0.0f, 0, 0, 1, 1.75f});
+    HostMesh strip;  // zero-area triangles (segments) lying in the top face of box 1
+    strip.positions = {{0.75f, -0.25f, 0.5f}, {1.25f, 0.25f, 0.5f}, {1.0f, 0.0f, 0.5f}, {0.75f, 0.25f, 0.5f}};
+    strip.indices = {0, 1, 2, 0, 3, 1};
+    s.objects.push_back({std::move(strip), {.name = "strip", .open = true}});
+    auto sheet = clothGrid(1.0f, 1.0f, 8, 8);
+    REQUIRE(sheet);
+    // Folded: the upper half reflected onto the lower half, so its triangles coincide with
+    // the lower half's (one object, no shared vertex index).
+    HostMesh folded = std::move(*sheet);
+    const std::size_t half = folded.positions.size();
+    for (std::size_t v = 0; v < half; ++v) folded.positions.push_back(folded.positions[v]);
+    const std::size_t tris = folded.indices.size();
+    for (std::size_t i = 0; i < tris; i += 3)
+        for (int k : {0, 2, 1}) folded.indices.push_back(folded.indices[i + k] + static_cast<std::uint32_t>(half));
+    s.objects.push_back(
+        {std::move(folded),
+         {.name = "folded", .self_collision = true, .open = true, .transform = Transform3x4{1, 0, 0, -2.0f, 0, 1, 0, 0, 0, 0, 1, 0}}});
+    return s;
+}
+
+struct Both {
+    DetectResult gpu, cpu;
+};
+
+Both detectBoth(ValidatedContext& ctx, const TestScene& scene, DetectSettings settings = {}) {
+    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
+    REQUIRE(world);
+    for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
+    settings.exact = ExactDecision::Gpu;
+    auto gpu = (*world)->detect(settings);
+    REQUIRE(gpu);
+    settings.exact = ExactDecision::Cpu;
+    auto cpu = (*world)->detect(settings);
+    REQUIRE(cpu);
+    return {std::move(*gpu), std::move(*cpu)};
+}
+
+bool sameResponses(const std::vector<TriangleResponse>& a, const std::vector<TriangleResponse>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t k = 0; k < a.size(); ++k)
+        if (a[k].object != b[k].object || a[k].triangle != b[k].triangle || a[k].partner_count != b[k].partner_count ||
+            std::memcmp(&a[k].direction, &b[k].direction, sizeof(Float3)) != 0)
+            return false;
+    return true;
+}
+
+// The two paths agree bit for bit, match the exact reference, and say which decided.
+void requireSame(const Both& r, const std::vector<TrianglePair>& reference, const std::string& what) {
+    INFO(what << ": GPU " << r.gpu.pairs.size() << " pairs, CPU " << r.cpu.pairs.size() << ", reference " << reference.size());
+    CHECK(r.gpu.pairs == r.cpu.pairs);
+    CHECK(sameResponses(r.gpu.responses, r.cpu.responses));
+    const PairComparison cmp = comparePairs(r.gpu.pairs, reference);
+    CHECK(cmp.false_negatives == 0);
+    CHECK(cmp.false_positives == 0);
+    const DetectStats &g = r.gpu.stats, &c = r.cpu.stats;
+    CHECK(g.cells.exact_ran);
+    CHECK_FALSE(c.cells.exact_ran);
+    CHECK(g.cpu_exact_tests == 0);
+    CHECK(c.gpu_exact_tests == 0);
+    CHECK(g.gpu_exact_tests == g.cells.exact_tests);
+    CHECK(g.triangle_tests == g.gpu_exact_tests);
+    CHECK(c.triangle_tests == c.cpu_exact_tests);
+    // The GPU decided what the CPU would have tested: the filter's survivors.
+    CHECK(g.gpu_exact_tests >= c.cells.survivors);
+    if (!reference.empty()) CHECK(g.gpu_exact_tests > 0);
+    // Only decided pairs crossed the bus (before the host's rare deduplication).
+    CHECK(g.cells.survivors <= c.cells.survivors);
+    CHECK(g.cells.survivors >= r.gpu.pairs.size());
+}
+
+}  // namespace
+
+TEST_CASE("exact decision: GPU and CPU give the same pairs and responses on resting, coplanar and folded contacts",
+          "[api][gpu][reliable][exact]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) {
+        WARN("the device has no shaderFloat64: the CPU decides (tested below)");
+        return;
+    }
+    const TestScene scene = restingScene();
+    auto ref = computeReferencePairs(scene.reference(), {.threads = 2});
+    REQUIRE(ref);
+    REQUIRE(ref->size() > 100);  // touching faces, the ball's pole, the strip, the fold
+    for (std::uint32_t resolution : {1u, 7u, 64u}) {
+        DetectSettings s;
+        s.resolution = resolution;
+        const Both r = detectBoth(ctx, scene, s);
+        requireSame(r, *ref, "resolution " + std::to_string(resolution));
+        // Neighbours by position only: the fold's coincident copies share positions, not indices.
+        CHECK(r.gpu.stats.cells.exact_neighbours > 0);
+    }
+}
+
+TEST_CASE("exact decision: GPU and CPU agree on the test scenes and the stability cases", "[api][gpu][reliable][exact]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) {
+        WARN("the device has no shaderFloat64");
+        return;
+    }
+    auto scenes = allTestScenes(0.5f);
+    REQUIRE(scenes);
+    for (const TestScene& scene : *scenes) {
+        auto ref = computeReferencePairs(scene.reference(), {.threads = 2});
+        REQUIRE(ref);
+        requireSame(detectBoth(ctx, scene), *ref, scene.name);
+    }
+    for (auto make : {+[] { return exactlyTouching(true); }, +[] { return exactlyTouching(false); }, +[] { return edgeEdgeTouch(); },
+                      +[] { return vertexFaceTouch(); }, +[] { return zeroAreaTriangle(); }, +[] { return needleSliver(); },
+                      +[] { return coplanarOpenQuads(false); }, +[] { return nonManifoldFin(); }, +[] { return thinWall(true); }}) {
+        auto c = make();
+        REQUIRE(c);
+        requireSame(detectBoth(ctx, c->scene), c->reference, c->name);
+    }
+    auto far = farFromOrigin(1e6f);  // its reference is of the same geometry at the origin
+    REQUIRE(far);
+    auto ref = computeReferencePairs(far->scene.reference(), {.threads = 2});
+    REQUIRE(ref);
+    requireSame(detectBoth(ctx, far->scene), *ref, far->name);
+}
+
+TEST_CASE("exact decision: Auto decides on the GPU where it can; bad settings are refused by name", "[api][gpu][reliable][exact]") {
+    ValidatedContext ctx;
+    const TestScene scene = restingScene();
+    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
+    REQUIRE(world);
+    for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
+    auto automatic = (*world)->detect();
+    REQUIRE(automatic);
+    const bool fp64 = ctx.device().shader_float64;
+    CHECK(automatic->stats.cells.exact_ran == fp64);
+    CHECK((automatic->stats.gpu_exact_tests > 0) == fp64);
+    CHECK((automatic->stats.cpu_exact_tests > 0) == !fp64);
+
+    DetectSettings peeling;
+    peeling.method = DetectMethod::Peeling;
+    peeling.exact = ExactDecision::Gpu;
+    auto refused = (*world)->detect(peeling);
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error().code() == ErrorCode::InvalidArgument);
+    CHECK_THAT(refused.error().message(), Catch::Contains("reliable method"));
+    peeling.exact = ExactDecision::Auto;  // the peeling method decides on the CPU
+    auto on_cpu = (*world)->detect(peeling);
+    REQUIRE(on_cpu);
+    CHECK(on_cpu->stats.gpu_exact_tests == 0);
+    CHECK(on_cpu->stats.cpu_exact_tests == on_cpu->stats.triangle_tests);
+
+    DetectSettings bad;
+    bad.exact = static_cast<ExactDecision>(7);
+    auto out_of_range = (*world)->detect(bad);
+    REQUIRE_FALSE(out_of_range);
+    CHECK(out_of_range.error().code() == ErrorCode::InvalidArgument);
+    CHECK_THAT(out_of_range.error().message(), Catch::Contains("ExactDecision"));
+    CHECK((*world)->detect());  // usable afterwards
+}
+
+TEST_CASE("exact decision: the record paths refuse pairs_decided", "[narrow][exact]") {
+    NarrowOptions options;
+    options.pairs_decided = true;
+    std::vector<CandidateTriangle> none;
+    ThreadPool serial(1);
+    auto r = runNarrowPhase(none, options, serial);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code() == ErrorCode::InvalidArgument);
+    CHECK_THAT(r.error().message(), Catch::Contains("pairs_decided"));
+}

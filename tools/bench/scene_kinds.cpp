@@ -217,7 +217,7 @@ std::vector<SceneSpec> mixedScenes(double scale) {
 
 
 std::vector<SceneSpec> touchingScenes(double scale) {
-    const std::uint32_t n = scaledCount(24, scale, 2, 2), seg = scaledCount(64, scale, 2, 8);
+    const std::uint32_t n = scaledCount(24, scale, 2, 2), seg = scaledCount(64, scale, 2, 8), m = scaledCount(9, scale, 2, 2);
     // Every coordinate below is a multiple of a power of two: the contacts are exact in
     // float (coplanar faces, a vertex on a face), not just close.
     const auto boxAt = [](float hx, float hy, float hz, std::uint32_t subdivisions, Float3 at, std::string name) -> Result<BenchObject> {
@@ -247,6 +247,41 @@ std::vector<SceneSpec> touchingScenes(double scale) {
              auto sunk = boxAt(0.25f, 0.25f, 0.25f, n, {2.0431f, 1.9687f, 1.6431f}, "sunk");
              if (!sunk) return sunk.error();
              out.push_back(std::move(*sunk));
+             return out;
+         }},
+        {"stack-mating", Motion::Rigid, SceneSet::Tuning, 1,
+         "6 x 6 x 6 unit boxes of " + count(12ull * m * m) + " triangles each, stacked face to face (every neighbour's faces exactly "
+         "coplanar and overlapping: a clash-detection scene where almost every pair touches)",
+         [=](int) -> Result<std::vector<BenchObject>> {
+             std::vector<BenchObject> out;
+             for (int k = 0; k < 216; ++k) {
+                 auto b = boxAt(0.5f, 0.5f, 0.5f, m, {float(k % 6), float(k / 6 % 6), float(k / 36)}, "box" + std::to_string(k));
+                 if (!b) return b.error();
+                 out.push_back(std::move(*b));
+             }
+             return out;
+         }},
+        {"cad-mating", Motion::Rigid, SceneSet::HeldOut, 1,
+         "held-out: 5 x 4 x 4 plates (1 x 0.5 x 0.25) resting face to face, the whole stack turned about (1, 2, 3) so no face is "
+         "axis-aligned and rounded world vertices leave mating faces only nearly coplanar",
+         [=](int) -> Result<std::vector<BenchObject>> {
+             const double angle = 0.41, nx = 1 / std::sqrt(14.0), ny = 2 / std::sqrt(14.0), nz = 3 / std::sqrt(14.0);
+             const double c = std::cos(angle), sn = std::sin(angle), t = 1 - c;
+             const double r[3][3] = {{t * nx * nx + c, t * nx * ny - sn * nz, t * nx * nz + sn * ny},
+                                     {t * nx * ny + sn * nz, t * ny * ny + c, t * ny * nz - sn * nx},
+                                     {t * nx * nz - sn * ny, t * ny * nz + sn * nx, t * nz * nz + c}};
+             std::vector<BenchObject> out;
+             for (int k = 0; k < 80; ++k) {
+                 Result<HostMesh> plate = box({0.5f, 0.25f, 0.125f}, m);
+                 if (!plate) return plate.error();
+                 const double at[3] = {1.0 * (k % 5), 0.5 * (k / 5 % 4), 0.25 * (k / 20)};
+                 Transform3x4 x{};
+                 for (int row = 0; row < 3; ++row) {
+                     for (int col = 0; col < 3; ++col) x[4 * row + col] = static_cast<float>(r[row][col]);
+                     x[4 * row + 3] = static_cast<float>(r[row][0] * at[0] + r[row][1] * at[1] + r[row][2] * at[2]);
+                 }
+                 out.push_back(object(std::move(*plate), "plate" + std::to_string(k), x));
+             }
              return out;
          }},
         {"wall-touching", Motion::Rigid, SceneSet::HeldOut, 1,

@@ -183,3 +183,27 @@ TEST_CASE("vkcollide detect: --edge-length steers the automatic resolution of a 
     CHECK(fine["settings"]["used"]["resolution"].number() > unknown["settings"]["used"]["resolution"].number());
     CHECK(fine["frames"][0]["stats"]["settings_note"].string().find("typical edge") != std::string::npos);
 }
+
+TEST_CASE("vkcollide detect: a closed file that is inside out or holed gets a warning, an open one none", "[cli][gpu]") {
+    Scratch s("warnings");
+    HostMesh flipped = sphere("flipped", {0, 0, 0});
+    for (std::size_t t = 0; t + 2 < flipped.indices.size(); t += 3) std::swap(flipped.indices[t + 1], flipped.indices[t + 2]);
+    HostMesh holed = sphere("holed", {1.2f, 0, 0});
+    holed.indices.resize(holed.indices.size() - 3);
+    const std::string files = writeMesh(s, "good.off", sphere("good", {0, 2.5f, 0})) + " " + writeMesh(s, "flipped.off", flipped) + " " +
+                              writeMesh(s, "holed.off", holed);
+    Run run;
+    const Json j = detectJson(s, files, run);
+    const Json& warnings = j["frames"][0]["stats"]["mesh_warnings"];
+    REQUIRE(warnings.size() == 2);
+    CHECK(warnings[0]["object"].number() == 1);
+    CHECK(warnings[0]["inside_out"].boolean());
+    CHECK(warnings[1]["object"].number() == 2);
+    CHECK(warnings[1]["boundary_edges"].number() == 3);
+    CHECK(run.err.find("vkcollide: warning: frame 0: object 1 ('flipped'): declared closed but inside out") != std::string::npos);
+    CHECK(run.err.find("vkcollide: warning: frame 0: object 2 ('holed'): declared closed but has 3 boundary edges") != std::string::npos);
+    // Declared open: no inside to get wrong.
+    const Json open = detectJson(s, files + " --open 2,3", run);
+    CHECK(open["frames"][0]["stats"]["mesh_warnings"].size() == 0);
+    CHECK(run.err.find("warning") == std::string::npos);
+}

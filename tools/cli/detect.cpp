@@ -146,6 +146,7 @@ int runDetect(const CommandLine& line) {
 
     vkcollide::Result<vkcollide::DetectResult> result = vkcollide::Error(vkcollide::ErrorCode::InvalidArgument, "no frames");
     std::size_t total_pairs = 0;
+    std::vector<std::string> warned;
     for (std::size_t f = 0; f < frames; ++f) {
         const auto read_start = Clock::now();
         if (line.sequence && f > 0) {
@@ -160,6 +161,12 @@ int runDetect(const CommandLine& line) {
         result = (*world)->detect(line.settings);
         if (!result) return fail(nameSettingOptions(line, result.error().message()));
         total_pairs += result->pairs.size();
+        // Closed objects that are inside out or holed: said once, and again when that changes.
+        std::vector<std::string> warnings;
+        for (const vkcollide::MeshWarning& w : result->stats.mesh_warnings) warnings.push_back(w.message);
+        if (warnings != warned)
+            for (const std::string& w : warnings) std::fprintf(stderr, "vkcollide: warning: frame %zu: %s\n", f, w.c_str());
+        warned = std::move(warnings);
         const bool last = f + 1 == frames;
         double png_ms = 0;
         if (picture && (line.sequence || last)) {

@@ -156,6 +156,17 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     j.member("backend", [&] { j.string(reliable ? "none" : vkcollide::toString(st.backend)); });
     j.member("backend_reason", [&] { j.string(st.backend_reason); });
     j.member("settings_note", [&] { j.string(st.settings_note); });
+    j.key("mesh_warnings");
+    j.beginArray();
+    for (const vkcollide::MeshWarning& w : st.mesh_warnings) {
+        j.beginObject(JsonWriter::Layout::Inline);
+        j.member("object", [&] { j.integer(w.object); });
+        j.member("inside_out", [&] { j.boolean(w.inside_out); });
+        j.member("boundary_edges", [&] { j.integer(w.boundary_edges); });
+        j.member("message", [&] { j.string(w.message); });
+        j.endObject();
+    }
+    j.endArray();
     // Times (GPU stages from timestamps; the rest host wall time).
     ms("sampling_ms", st.sampling_ms);
     ms("merging_ms", st.merging_ms);

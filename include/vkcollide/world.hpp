@@ -6,7 +6,7 @@
 // broad phases (DetectSettings::method): the reliable cell pair stage (default: never
 // misses a pair) and the depth peeling of Georgii, Krüger and Westermann (2006).
 //
-//   auto ctx = vkcollide::Context::create();                    // or Context::adopt(engine device)
+//   auto ctx = vkcollide::Context::adopt(engine_device);         // Context::create(): host meshes only
 //   auto world = vkcollide::CollisionWorld::create(**ctx);
 //   auto a = (*world)->addMesh(sphere, {.name = "ball"});        // host arrays, uploaded once
 //   auto b = (*world)->addGpuMesh(desc, {.name = "cloth", .self_collision = true, .open = true});
@@ -399,7 +399,9 @@ struct WorldOptions {
 
 class CollisionWorld {
 public:
-    // The Context must outlive the world.
+    // The world keeps a pointer to `context`: every call but collect() and the destructor
+    // needs the Context alive; destroying the world, or collecting a detection already
+    // submitted, after ~Context is safe (context.hpp, "Lifetime").
     [[nodiscard]] static Result<std::unique_ptr<CollisionWorld>> create(Context& context, const WorldOptions& options = {});
     ~CollisionWorld();
     CollisionWorld(const CollisionWorld&) = delete;

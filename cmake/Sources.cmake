@@ -8,6 +8,7 @@ set(VKCOLLIDE_HOST_SOURCES
   ${S}/graph/graph.cpp
   ${S}/graph/command_tape.cpp  # plain data; replayed through a dispatch table
   ${S}/api/host_passes.cpp  # the world's passes over host positions (no Vulkan)
+  ${S}/api/mesh_checks.cpp  # closed meshes: holes and inside-out (no Vulkan)
 )
 # Subsystems owned elsewhere append to VKCOLLIDE_HOST_SOURCES in their own list file.
 foreach(part narrow scene io)

@@ -4,10 +4,13 @@
 # frames, frames.csv and log) and OUT/summary.md: each run's Table 1 rows (mean and max
 # over the frames after the first) beside the paper's.
 #
-#   tools/run_samples.sh [--out DIR] [--size WxH] [--png-every N] [--pack DIR] [--only RUN] [-- ARGS...]
-#   tools/run_samples.sh --bundle DIR
+#   tools/run_samples.sh [--build DIR] [--out DIR] [--size WxH] [--png-every N] [--pack DIR] [--only RUN] [-- ARGS...]
+#   tools/run_samples.sh [--build DIR] --bundle DIR
 #
-#   --out DIR       default samples-out
+#   --build DIR     the build folder (default: build in the checkout); the CGAL meshes are
+#                   fetched into DIR/data/cgal, so a read-only checkout works with a build
+#                   folder elsewhere
+#   --out DIR       default samples-out (relative to the current folder)
 #   --size WxH      image size, default 640x400
 #   --png-every N   keep every N-th frame as PNG, default 2
 #   --only RUN      one run: deformable_bunnies, deformable_horses, creatures, rigid_bunnies,
@@ -21,17 +24,19 @@
 #                   run DIR/run_samples.sh (it uses the programs beside it).
 #
 # In the repository it installs what is missing (tools/deps.sh), fetches the CGAL meshes
-# (tools/fetch_cgal_data.sh) and builds the samples (Release, in build/).
+# (tools/fetch_cgal_data.sh, into the build folder) and builds the samples (Release, in the
+# build folder). Nothing is written into the checkout.
 set -euo pipefail
 
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 programs=(vkcollide_deformable vkcollide_creatures vkcollide_rigid_bunnies vkcollide_dragon vkcollide_cloth)
 meshes=(bunny00.off camel.off elephant.off ChineseDragon-10kv.off)
 
-out="samples-out" size="640x400" every=2 pack="" only="" bundle=""
+out="samples-out" size="640x400" every=2 pack="" only="" bundle="" build=""
 extra=()
 while [ $# -gt 0 ]; do
     case "$1" in
+        --build) build="$2"; shift 2 ;;
         --out) out="$2"; shift 2 ;;
         --size) size="$2"; shift 2 ;;
         --png-every) every="$2"; shift 2 ;;
@@ -49,12 +54,14 @@ if [ -x "$here/vkcollide_cloth" ]; then
     export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 else
     root="$(cd "$here/.." && pwd)"
-    cd "$root"
-    bash tools/deps.sh
-    bash tools/fetch_cgal_data.sh >/dev/null
-    [ -f build/build.ninja ] || cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-    cmake --build build --target vkcollide_samples
-    bin="$root/build/samples" data="$root/data/cgal"
+    build="${build:-$root/build}"
+    mkdir -p "$build"
+    build="$(cd "$build" && pwd)"
+    bash "$root/tools/deps.sh"
+    bash "$root/tools/fetch_cgal_data.sh" "$build/data/cgal" >/dev/null
+    [ -f "$build/build.ninja" ] || cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+    cmake --build "$build" --target vkcollide_samples
+    bin="$build/samples" data="$build/data/cgal"
 fi
 
 if [ -n "$bundle" ]; then
@@ -86,7 +93,8 @@ summary="$out/summary.md"
     echo
     echo "Run $(date -u +%Y-%m-%dT%H:%MZ), \`run_samples.sh --size $size --png-every $every ${extra[*]:-}\`."
     echo "Columns: # tri's, # coll. rays, # tri's downl., # pot. coll. tri's, # tri-tri tests, # pos. tests,"
-    echo "GPU (sampling + merging + separation), Reduce (packing + readback), CPU (narrow phase), Overall (ms)."
+    echo "GPU (the method's GPU stages: peeling sampling + merging + separation, reliable front + footprints +"
+    echo "pairing + filtering), Reduce (packing + readback), CPU (narrow phase), Overall (ms)."
     echo
 } >"$summary"
 width="${size%x*}" height="${size#*x}"

@@ -10,15 +10,21 @@
 #      not instrumented, tools/sanitize/ says how their leaks are told apart from ours);
 #   3. the host-only code (no Vulkan) under ASan + UBSan, every test labelled host.
 # About 15 minutes on two cores from a fresh clone (docs/stability.md, "CI coverage").
+#
+#   tools/test.sh [BUILD_ROOT]   the folder the build folders go in (or VKCOLLIDE_BUILD_ROOT;
+#                                default: the checkout), so that a read-only checkout is testable
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash tools/deps.sh
+src="$PWD"
+build_root="${1:-${VKCOLLIDE_BUILD_ROOT:-$src}}"
+mkdir -p "$build_root" && cd "$build_root"
+bash "$src/tools/deps.sh"
 jobs=$(nproc)
 start=$(date +%s)
 elapsed() { echo "($(( $(date +%s) - start )) s so far)"; }
 
 echo "== build and test (validation layer on) =="
-cmake -S . -B build-ci -G Ninja -DCMAKE_BUILD_TYPE=Release -DVKCOLLIDE_WERROR=ON >/dev/null
+cmake -S "$src" -B build-ci -G Ninja -DCMAKE_BUILD_TYPE=Release -DVKCOLLIDE_WERROR=ON >/dev/null
 cmake --build build-ci -j "$jobs"
 ctest --test-dir build-ci -j "$jobs" --output-on-failure --no-tests=error
 elapsed
@@ -30,13 +36,13 @@ san=(-G Ninja -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g" -DVKCOLL
      -DVKCOLLIDE_SANITIZE=address,undefined -DVKCOLLIDE_BUILD_SAMPLES=OFF -DVKCOLLIDE_INSTALL=OFF)
 
 echo "== library, CLI and GPU tests under AddressSanitizer + UndefinedBehaviorSanitizer (validation layer on) =="
-cmake -S . -B build-asan-gpu "${san[@]}" >/dev/null
+cmake -S "$src" -B build-asan-gpu "${san[@]}" >/dev/null
 cmake --build build-asan-gpu -j "$jobs"
 ctest --test-dir build-asan-gpu -j "$jobs" -L gpu --output-on-failure --no-tests=error
 elapsed
 
 echo "== host-only code under AddressSanitizer + UndefinedBehaviorSanitizer =="
-cmake -S . -B build-asan "${san[@]}" -DVKCOLLIDE_HOST_ONLY=ON >/dev/null
+cmake -S "$src" -B build-asan "${san[@]}" -DVKCOLLIDE_HOST_ONLY=ON >/dev/null
 cmake --build build-asan -j "$jobs"
 ctest --test-dir build-asan -j "$jobs" --output-on-failure --no-tests=error
 elapsed

@@ -9,9 +9,9 @@ namespace vkcollide {
 
 // The usage GpuMeshDesc::vertex_usage and index_usage assume when the engine does not
 // state its own: what vkcollide needs (context.hpp, "What vkcollide needs of an engine's
-// buffers").
-inline constexpr VkBufferUsageFlags kGpuMeshBufferUsage =
-    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+// buffers"), VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT only: it reads the buffers through
+// their device addresses, never as descriptors or transfer sources.
+inline constexpr VkBufferUsageFlags kGpuMeshBufferUsage = VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
 
 // Geometry that lives only in the engine's GPU buffers, on the Context's device.
 // Both buffers need VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT usage and memory bound

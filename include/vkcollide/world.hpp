@@ -6,7 +6,7 @@
 // broad phases (DetectSettings::method): the reliable cell pair stage (default: never
 // misses a pair) and the depth peeling of Georgii, Krüger and Westermann (2006).
 //
-//   auto ctx = vkcollide::Context::create();                    // or Context::adopt(engine device)
+//   auto ctx = vkcollide::Context::adopt(engine_device);         // Context::create(): host meshes only
 //   auto world = vkcollide::CollisionWorld::create(**ctx);
 //   auto a = (*world)->addMesh(sphere, {.name = "ball"});        // host arrays, uploaded once
 //   auto b = (*world)->addGpuMesh(desc, {.name = "cloth", .self_collision = true, .open = true});
@@ -261,6 +261,20 @@ struct CellStats {
     std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (a bit-identical vertex)
 };
 
+// A host mesh declared closed (ObjectOptions::open false) that is not a closed surface
+// facing outwards. Closed objects are told apart by inside and outside: an inside-out one
+// gets contact volume 0 (DetectSettings::contacts) and, under the peeling method, collision
+// rays wherever a ray crosses it; a holed one has no inside. The pairs of the reliable
+// method do not depend on it. Checked on the host when the mesh is added (holes: topology)
+// and when its vertices are updated (the sign of its volume under its transform, one pass
+// over its triangles on the world's executor); engine meshes are not checked.
+struct MeshWarning {
+    ObjectId object = 0;
+    bool inside_out = false;  // its enclosed volume is negative (mirroring transforms counted)
+    std::uint64_t boundary_edges = 0;  // edges of one triangle only (holes); inside_out is then false
+    std::string message;  // names the object, the problem and the fix
+};
+
 struct DetectStats {
     // The paper's Table 1. Peeling as in the paper. Reliable, the closest meaning:
     //   collision rays        -> cells where the sweep found a candidate pair
@@ -299,6 +313,7 @@ struct DetectStats {
     SamplingBackend backend = SamplingBackend::Raster;  // peeling: object sampling that ran (never Auto); toString names it
     std::string backend_reason;          // why (Auto's rule, or "asked for"; reliable: none sampled)
     std::string settings_note;           // how automatic settings were chosen
+    std::vector<MeshWarning> mesh_warnings;  // closed objects that are inside out or holed, by id
     // Times.
     std::vector<PassTime> gpu_passes;    // GPU timestamps of every pass, in order
     // GPU, per stage. sampling_ms includes the front (clear, GPU input checks, bounds, fit),
@@ -399,7 +414,9 @@ struct WorldOptions {
 
 class CollisionWorld {
 public:
-    // The Context must outlive the world.
+    // The world keeps a pointer to `context`: every call but collect() and the destructor
+    // needs the Context alive; destroying the world, or collecting a detection already
+    // submitted, after ~Context is safe (context.hpp, "Lifetime").
     [[nodiscard]] static Result<std::unique_ptr<CollisionWorld>> create(Context& context, const WorldOptions& options = {});
     ~CollisionWorld();
     CollisionWorld(const CollisionWorld&) = delete;
@@ -453,6 +470,8 @@ public:
     // upload buffer in host memory (lavapipe); docs/api.md, "Costs", has the measurements
     // and where the time goes. Measuring the shapes added 0-0.045 ms to a frame's updates
     // of two deforming 50K-500K-triangle meshes (an H200 host, 16 threads; docs/results.md).
+    // A closed mesh without holes is also checked for being inside out (one more pass over
+    // its triangles on the executor: DetectStats::mesh_warnings).
     // Errors: InvalidArgument (no such object, a GPU mesh, another vertex count),
     // InvalidMesh naming the first NaN or infinite vertex, LimitExceeded (the sampling
     // range), OutOfMemory (a copy for pipelining), Timeout (WorldState::Busy). A refused

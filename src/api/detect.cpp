@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
 #include "narrow/exact_stage.hpp"
@@ -117,6 +118,13 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.axes = static_cast<std::uint32_t>(broad.size());
     st.coverage = run_settings.coverage;
     st.settings_note = run.note;
+    for (std::size_t i = 0; i < run_ids.size(); ++i)
+        if (const Object& o = objects[run_ids[i]]; o.host && !o.options.open) {
+            const bool inside_out = o.boundary_edges == 0 && o.volume6 * mesh_checks::determinant(run.meshes[i].transform) < 0;
+            if (inside_out || o.boundary_edges > 0)
+                st.mesh_warnings.push_back({run_ids[i], inside_out, o.boundary_edges,
+                                            who(run_ids[i], o.name) + ": " + mesh_checks::describe(inside_out, o.boundary_edges)});
+        }
     st.backend = broad[0].backend;
     st.backend_reason = broad[0].backend_reason;
     for (std::uint32_t k = 1; k < broad.size(); ++k)

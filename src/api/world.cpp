@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "api/host_passes.hpp"
+#include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
 #include "config.h"
@@ -186,6 +187,10 @@ Result<ObjectId> CollisionWorld::Impl::addHostMesh(const HostMesh& mesh, const O
     measureHost(o, mesh.positions);
     o.host_positions = mesh.positions;
     o.host_indices = mesh.indices;
+    if (!options.open) {
+        o.boundary_edges = mesh_checks::boundaryEdges(mesh.indices);
+        o.volume6 = mesh_checks::signedVolume6(*executor, mesh.positions, mesh.indices);
+    }
     objects.push_back(std::move(o));
     objectsChanged();
     return id;
@@ -285,6 +290,7 @@ Result<void> CollisionWorld::Impl::updateHostVertices(ObjectId id, std::span<con
     o.max_abs = scan.max_abs;
     o.shape_stale = !measure;
     if (measure) o.edge_length = shape.edge_length, o.area_moment = shape.area_moment;
+    if (!o.options.open && o.boundary_edges == 0) o.volume6 = mesh_checks::signedVolume6(*executor, o.host_positions, o.host_indices);
     return {};
 }
 

@@ -54,6 +54,10 @@ struct CollisionWorld::Impl {
         // limit), measured when the geometry changes.
         std::array<float, 6> box{};
         float max_abs = 0;
+        // Closed host meshes (mesh_checks): edges of one triangle (from addMesh), and six
+        // times the object-space volume (measured when the geometry changes).
+        std::uint64_t boundary_edges = 0;
+        double volume6 = 0;
         // For the automatic settings: the typical edge length (object units; given for GPU
         // meshes) and, host meshes, the sum over triangles of area * n n^T (xx, yy, zz, xy,
         // xz, yz; object space). A cache for host meshes: after their geometry changes

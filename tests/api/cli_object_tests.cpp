@@ -58,10 +58,11 @@ TEST_CASE("vkcollide detect: --name names a file's objects", "[cli][gpu]") {
 TEST_CASE("vkcollide detect: --open marks the files' objects open", "[cli][gpu]") {
     Scratch s("open");
     const std::string files = writeMesh(s, "a.off", sphere("a", {0, 0, 0})) + " " + writeMesh(s, "b.off", sphere("b", {1.2f, 0.1f, 0}));
-    const Json closed = detectJson(s, files);
+    // (The open epsilon is the peeling method's.)
+    const Json closed = detectJson(s, files + " --method peeling");
     CHECK_FALSE(closed["objects"][1]["open"].boolean());
     CHECK(closed["settings"]["used"]["open_epsilon"].number() == 0);
-    const Json open = detectJson(s, files + " --open 2");
+    const Json open = detectJson(s, files + " --method peeling --open 2");
     CHECK_FALSE(open["objects"][0]["open"].boolean());
     CHECK(open["objects"][1]["open"].boolean());
     CHECK(open["settings"]["used"]["open_epsilon"].number() > 0);
@@ -70,7 +71,7 @@ TEST_CASE("vkcollide detect: --open marks the files' objects open", "[cli][gpu]"
     CHECK(both["objects"][1]["open"].boolean());
 }
 
-TEST_CASE("vkcollide detect: --self and --no-self-collision choose the self-colliding files", "[cli][gpu]") {
+TEST_CASE("vkcollide detect: self-collision is off unless --self lists the file, as in the API", "[cli][gpu]") {
     Scratch s("self");
     // File 1: one object made of two crossing spheres (it intersects itself); file 2: a
     // sphere that touches nothing.
@@ -83,9 +84,18 @@ TEST_CASE("vkcollide detect: --self and --no-self-collision choose the self-coll
     const std::string files = writeMesh(s, "knot.off", knot) + " " + writeMesh(s, "lone.off", lone);
     const std::vector<HostMesh> world{knot, lone};
 
-    const Json all = detectJson(s, files + " --resolution 128");
+    // The default: ObjectOptions::self_collision's (off), and the summary says so.
+    Run run;
+    const Json plain = detectJson(s, files + " --resolution 128", run);
+    CHECK_FALSE(plain["objects"][0]["self_collision"].boolean());
+    CHECK_FALSE(plain["objects"][1]["self_collision"].boolean());
+    CHECK(plain["frames"][0]["pairs"].size() == 0);
+    CHECK(run.out.find("2 objects, 960 triangles, self-collision off (--self FILES turns it on)") != std::string::npos);
+
+    const Json all = detectJson(s, files + " --resolution 128 --self all", run);
     CHECK(all["objects"][0]["self_collision"].boolean());
     CHECK(all["objects"][1]["self_collision"].boolean());
+    CHECK(run.out.find("self-collision on for every object") != std::string::npos);
     const auto self_pairs = jsonPairs(all["frames"][0]);
     REQUIRE_FALSE(self_pairs.empty());
     checkAgainst(self_pairs, referencePairs(world, {true, true}));
@@ -131,11 +141,11 @@ TEST_CASE("vkcollide detect: per-file transforms compose in order and place the 
         checkAgainst(jsonPairs(j["frames"][0]), referencePairs({unit, moved(unit, t)}, {true, true}));
     }
     SECTION("--transform takes the 12 numbers as given") {
-        const Json j = detectJson(s, files + " --transform 2:0.25,0,0,0.1,0,0.25,0,0,0,0,0.25,0");
+        const Json j = detectJson(s, files + " --method peeling --transform 2:0.25,0,0,0.1,0,0.25,0,0,0,0,0.25,0");
         CHECK(transformOf(j["objects"][1]) == std::vector<float>{0.25f, 0, 0, 0.1f, 0, 0.25f, 0, 0, 0, 0, 0.25f, 0});
         // A small sphere inside the big one: no surfaces meet.
         CHECK(j["frames"][0]["pairs"].size() == 0);
-        CHECK(j["frames"][0]["stats"]["collision_rays"].number() > 0);  // the rays see it inside
+        CHECK(j["frames"][0]["stats"]["collision_rays"].number() > 0);  // the peeling rays see it inside
     }
     SECTION("all: applies to every file") {
         const Json j = detectJson(s, files + " --translate all:0,0,5");
@@ -172,4 +182,28 @@ TEST_CASE("vkcollide detect: --edge-length steers the automatic resolution of a 
     CHECK(fine["objects"][1]["typical_edge_length"].number() == Approx(0.005));
     CHECK(fine["settings"]["used"]["resolution"].number() > unknown["settings"]["used"]["resolution"].number());
     CHECK(fine["frames"][0]["stats"]["settings_note"].string().find("typical edge") != std::string::npos);
+}
+
+TEST_CASE("vkcollide detect: a closed file that is inside out or holed gets a warning, an open one none", "[cli][gpu]") {
+    Scratch s("warnings");
+    HostMesh flipped = sphere("flipped", {0, 0, 0});
+    for (std::size_t t = 0; t + 2 < flipped.indices.size(); t += 3) std::swap(flipped.indices[t + 1], flipped.indices[t + 2]);
+    HostMesh holed = sphere("holed", {1.2f, 0, 0});
+    holed.indices.resize(holed.indices.size() - 3);
+    const std::string files = writeMesh(s, "good.off", sphere("good", {0, 2.5f, 0})) + " " + writeMesh(s, "flipped.off", flipped) + " " +
+                              writeMesh(s, "holed.off", holed);
+    Run run;
+    const Json j = detectJson(s, files, run);
+    const Json& warnings = j["frames"][0]["stats"]["mesh_warnings"];
+    REQUIRE(warnings.size() == 2);
+    CHECK(warnings[0]["object"].number() == 1);
+    CHECK(warnings[0]["inside_out"].boolean());
+    CHECK(warnings[1]["object"].number() == 2);
+    CHECK(warnings[1]["boundary_edges"].number() == 3);
+    CHECK(run.err.find("vkcollide: warning: frame 0: object 1 ('flipped'): declared closed but inside out") != std::string::npos);
+    CHECK(run.err.find("vkcollide: warning: frame 0: object 2 ('holed'): declared closed but has 3 boundary edges") != std::string::npos);
+    // Declared open: no inside to get wrong.
+    const Json open = detectJson(s, files + " --open 2,3", run);
+    CHECK(open["frames"][0]["stats"]["mesh_warnings"].size() == 0);
+    CHECK(run.err.find("warning") == std::string::npos);
 }

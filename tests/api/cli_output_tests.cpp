@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -166,6 +168,72 @@ TEST_CASE("vkcollide detect --csv with --frames: a line per detection", "[cli][g
     CHECK(j["frames"][0]["frame"].number() == 2);
 }
 
+namespace {
+
+// The CSV's header and its last line, by column name.
+std::map<std::string, std::string> lastCsvRow(const std::string& text) {
+    std::istringstream in(text);
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    REQUIRE(lines.size() >= 2);
+    const auto split = [](const std::string& line) {
+        std::vector<std::string> cells;
+        std::istringstream cells_in(line);
+        for (std::string cell; std::getline(cells_in, cell, ',');) cells.push_back(cell);
+        return cells;
+    };
+    const auto header = split(lines.front()), row = split(lines.back());
+    REQUIRE(header.size() == row.size());
+    std::map<std::string, std::string> out;
+    for (std::size_t i = 0; i < header.size(); ++i) out[header[i]] = row[i];
+    return out;
+}
+
+double column(const std::map<std::string, std::string>& row, const std::string& name) {
+    INFO(name);
+    REQUIRE(row.count(name) == 1);
+    return std::stod(row.at(name));
+}
+
+}  // namespace
+
+TEST_CASE("vkcollide detect: the GPU figure is the stages of the method that ran", "[cli][gpu]") {
+    Scene s("gpu-figure", 1.2f);
+    const std::string csv = s.scratch.path("frames.csv");
+    Run run;
+    // The reliable method (the default): the front, footprints, pairing and filtering.
+    const Json reliable = detectJson(s.scratch, s.files + " --resolution 64 --csv " + csv, run);
+    auto row = lastCsvRow(readText(csv));
+    CHECK(row.at("method") == "reliable");
+    CHECK(row.at("backend") == "none");
+    CHECK(column(row, "footprints_ms") > 0);
+    CHECK(column(row, "pairing_ms") > 0);
+    const double stages =
+        column(row, "sampling_ms") + column(row, "footprints_ms") + column(row, "pairing_ms") + column(row, "filtering_ms");
+    CHECK(column(row, "gpu_ms") == Approx(stages).margin(0.0025));
+    CHECK(column(row, "gpu_ms") > column(row, "sampling_ms"));
+    const Json& st = reliable["frames"][0]["stats"];
+    CHECK(st["backend"].string() == "none");
+    CHECK(st["backend_reason"].string().rfind("none", 0) == 0);
+    const std::size_t at = run.out.find("times (ms): GPU ");
+    REQUIRE(at != std::string::npos);
+    double gpu = 0, front = 0;
+    REQUIRE(std::sscanf(run.out.c_str() + at, "times (ms): GPU %lf = front %lf + footprints", &gpu, &front) == 2);
+    CHECK(gpu == Approx(st["sampling_ms"].number() + st["footprints_ms"].number() + st["pairing_ms"].number() + st["filtering_ms"].number())
+                     .margin(0.0015));
+    CHECK(run.out.find("sampling backend") == std::string::npos);
+
+    // Peeling: the paper's GPU column, sampling + merging + separation.
+    detectJson(s.scratch, s.files + " --method peeling --resolution 64 --csv " + csv, run);
+    row = lastCsvRow(readText(csv));
+    CHECK(row.at("method") == "peeling");
+    CHECK(row.at("backend") != "none");
+    CHECK(column(row, "footprints_ms") == 0);
+    CHECK(column(row, "gpu_ms") ==
+          Approx(column(row, "sampling_ms") + column(row, "merging_ms") + column(row, "separation_ms")).margin(0.0025));
+    CHECK(run.out.find("times (ms): GPU ") != std::string::npos);
+}
+
 TEST_CASE("vkcollide detect --device picks the device by name", "[cli][gpu]") {
     Scene s("device", 1.2f);
     const Json any = detectJson(s.scratch, s.files + " --resolution 64");
@@ -191,7 +259,7 @@ TEST_CASE("vkcollide --help: every option says what it does and what it costs", 
     CHECK(costs == static_cast<int>(options.size()));
     // Every option of the table is exercised by these tests (this list is the tests' own).
     const std::set<std::string> tested{
-        "--resolution", "--direction", "--cap", "--dual", "--packing", "--backend", "--open-epsilon", "--region",
+        "--resolution", "--direction", "--cap", "--dual", "--packing", "--backend", "--open-epsilon", "--region", "--no-depth-aware",
         "--no-measure-layers", "--axes", "--coverage", "--closed-epsilon", "--bad-objects", "--paper-packing", "--name",
         "--open", "--self", "--no-self-collision", "--transform", "--translate", "--rotate", "--scale", "--gpu-mesh",
         "--edge-length", "--sequence", "--frame-files", "--frames", "--threads", "--device", "--no-robust-access",
@@ -214,10 +282,10 @@ TEST_CASE("vkcollide detect: errors name the option and the problem", "[cli][gpu
         {a + " --resolution", 1, "--resolution needs a value (N)"},
         {a + " --resolution many", 1, "--resolution needs a number from 0 to 4294967295, got 'many'"},
         {a + " --method peeling --resolution 100", 1, "--resolution 100: resolution 100 is not a power of two"},
-        {a + " --axes 2", 1, "--axes 2: axes must be 1 or 3"},
+        {a + " --method peeling --axes 2", 1, "--axes 2: axes must be 1 or 3"},
         {a + " --direction 1,0", 1, "--direction needs 3 comma-separated numbers, got 2"},
         {a + " --direction 0,0,0", 1, "--direction 0,0,0: projection direction must be finite and non-zero"},
-        {a + " --open-epsilon -1", 1, "--open-epsilon -1: open_epsilon must be finite and >= 0"},
+        {a + " --method peeling --open-epsilon -1", 1, "--open-epsilon -1: open_epsilon must be finite and >= 0"},
         {a + " --contacts --contact-resolution 8", 1, "--contact-resolution 8: contact_resolution 8 is not in [16, 4096]"},
         {a + " --closed-epsilon nan", 1, "--closed-epsilon needs a finite number, got 'nan'"},
         {a + " --region 1,1,1,0,0,0", 1, "--region 1,1,1,0,0,0: sampling region must be finite with min <= max"},
@@ -242,7 +310,7 @@ TEST_CASE("vkcollide detect: errors name the option and the problem", "[cli][gpu
         {a + " --frames 0", 1, "--frames needs a number from 1 to"},
         {a + " --png-size 10,10", 1, "--png-size needs W,H, each from 16 to 8192"},
         {a + " --view 0,0,0", 1, "--view needs a non-zero direction"},
-        {a + " --rays", 1, "--rays draws on the --png picture: give --png FILE too"},
+        {a + " --method peeling --rays", 1, "--rays draws on the --png picture: give --png FILE too"},
         {a + " --png " + s.path("no/such/dir/x.png"), 1, "--png: cannot write " + s.path("no/such/dir/x.png")},
         {a + " --json " + s.path("no/such/dir/x.json"), 1, "--json: cannot write"},
         {a + " --pairs " + s.path("no/such/dir/x.csv"), 1, "--pairs: cannot write"},

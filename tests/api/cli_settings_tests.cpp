@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <set>
+#include <sstream>
 
 #include "api/cli_support.hpp"
 
@@ -185,22 +186,108 @@ TEST_CASE("vkcollide detect: --bad-objects is handed to the detection", "[cli][g
     }
 }
 
-TEST_CASE("vkcollide detect: the JSON's settings name every DetectSettings option of --help", "[cli]") {
-    TwoSpheres s;
-    const Json j = detectJson(s.scratch, s.files + " --resolution 64");
-    // The settings section of --help lists one option per field (and --paper-packing).
+namespace {
+
+// The options of a --help section, and of those the ones --help marks "peeling only".
+struct HelpOptions {
+    std::set<std::string> all, peeling_only;
+};
+HelpOptions helpOptions(const std::string& section, const std::string& next) {
     const Run help = runCli("detect --help");
     REQUIRE(help.status == 0);
-    const std::size_t begin = help.out.find("Detection settings"), end = help.out.find("\nObjects");
+    const std::size_t begin = help.out.find(section), end = help.out.find(next, begin);
     REQUIRE(begin != std::string::npos);
     REQUIRE(end != std::string::npos);
-    std::set<std::string> options;
+    HelpOptions out;
     std::istringstream lines(help.out.substr(begin, end - begin));
-    for (std::string line; std::getline(lines, line);)
-        if (line.rfind("  --", 0) == 0) options.insert(line.substr(2, line.find(' ', 2) - 2));
-    options.erase("--paper-packing");
-    CHECK(j["settings"]["asked"].object().size() == options.size());
-    CHECK(j["settings"]["used"].object().size() == options.size());
+    std::string option;
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("  --", 0) == 0) out.all.insert(option = line.substr(2, line.find(' ', 2) - 2));
+        // The help follows the name on its line, or on the next one for a long name.
+        if (line.find("  peeling only: ") != std::string::npos) out.peeling_only.insert(option);
+    }
+    return out;
+}
+
+std::set<std::string> keys(const Json& object) {
+    std::set<std::string> out;
+    for (const auto& [key, value] : object.object()) out.insert(key);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("vkcollide detect: the JSON's settings are those the method that ran reads, one per option of --help", "[cli]") {
+    TwoSpheres s;
+    // The settings section of --help lists one option per field (and --paper-packing).
+    HelpOptions options = helpOptions("Detection settings", "\nObjects");
+    options.all.erase("--paper-packing");
+    options.peeling_only.erase("--paper-packing");
+    const Json j = detectJson(s.scratch, s.files + " --resolution 64");
+    CHECK(j["settings"]["asked"].object().size() == options.all.size());
+    CHECK(j["settings"]["used"].object().size() == options.all.size());
+    CHECK(j["settings"]["used"].has("depth_aware"));
+    // The reliable method: the fields it reads, and none that only peeling reads.
+    const Json reliable = detectJson(s.scratch, s.plain_files + " --resolution 64");
+    CHECK(reliable["settings"]["asked"].object().size() == options.all.size() - options.peeling_only.size());
+    CHECK(keys(reliable["settings"]["used"]) == keys(reliable["settings"]["asked"]));
+    for (const char* read : {"method", "resolution", "direction", "region", "bad_objects", "max_candidate_pairs", "contacts"})
+        CHECK(reliable["settings"]["used"].has(read));
+    for (const char* unread : {"layer_cap", "dual", "packing", "backend", "open_epsilon", "measure_layers", "axes", "coverage",
+                               "closed_epsilon", "depth_aware"}) {
+        INFO(unread);
+        CHECK_FALSE(reliable["settings"]["used"].has(unread));
+        CHECK(j["settings"]["used"].has(unread));
+    }
+}
+
+TEST_CASE("vkcollide detect: an option of the peeling method is refused under the reliable method, by name", "[cli]") {
+    TwoSpheres s;
+    const std::string png = s.scratch.path("x.png");
+    const std::vector<std::string> peeling_only{"--cap 2",
+                                                "--dual",
+                                                "--packing paper",
+                                                "--paper-packing",
+                                                "--backend raster",
+                                                "--open-epsilon 0.1",
+                                                "--no-measure-layers",
+                                                "--axes 3",
+                                                "--axes 1",
+                                                "--coverage dilate",
+                                                "--closed-epsilon 0.01",
+                                                "--no-depth-aware",
+                                                "--rays --png " + png};
+    std::set<std::string> refused;
+    for (const std::string& option : peeling_only) {
+        const std::string name = option.substr(0, option.find(' '));
+        refused.insert(name);
+        for (const char* method : {"", " --method reliable"}) {
+            INFO(option << method);
+            const Run run = runCli("detect " + s.plain_files + method + " " + option);
+            CHECK(run.status == 1);
+            CHECK(run.err.find(name + " belongs to the peeling method (--method peeling); the reliable method") != std::string::npos);
+        }
+    }
+    // --help marks exactly those (its settings and its output sections).
+    std::set<std::string> marked = helpOptions("Detection settings", "\nObjects").peeling_only;
+    marked.merge(helpOptions("\nOutput", "-h, --help").peeling_only);
+    CHECK(marked == refused);
+    // Under the peeling method they run (each one's effect: the tests above).
+    const Json j = detectJson(s.scratch, s.plain_files + " --method peeling --resolution 64 --dual --axes 1 --no-depth-aware");
+    CHECK(j["settings"]["used"]["dual"].boolean());
+}
+
+TEST_CASE("vkcollide detect: --no-depth-aware runs the paper's separation", "[cli][gpu]") {
+    TwoSpheres s;
+    const Json aware = detectJson(s.scratch, s.files + " --resolution 64 --direction 1,0,0");
+    CHECK(aware["settings"]["asked"]["depth_aware"].boolean());
+    const Json paper = detectJson(s.scratch, s.files + " --resolution 64 --direction 1,0,0 --no-depth-aware");
+    CHECK_FALSE(paper["settings"]["asked"]["depth_aware"].boolean());
+    CHECK_FALSE(paper["settings"]["used"]["depth_aware"].boolean());
+    // The same collision rays; every triangle under them is downloaded, whatever its depth.
+    CHECK(stats(paper)["collision_rays"].number() == stats(aware)["collision_rays"].number());
+    CHECK(stats(paper)["triangles_downloaded"].number() > stats(aware)["triangles_downloaded"].number());
+    CHECK(jsonPairs(paper["frames"][0]) == jsonPairs(aware["frames"][0]));
 }
 
 TEST_CASE("vkcollide detect: --method chooses the broad phase, reliable by default, with the same pairs here", "[cli][gpu]") {

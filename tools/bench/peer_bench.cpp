@@ -5,7 +5,7 @@
 //
 //   vkcollide_peer_bench [--scenes a,b,...] [--peers a,b,...] [--modes self,between]
 //                        [--frames K] [--threads N] [--budget-s S] [--data DIR]
-//                        [--csv FILE] [--list]
+//                        [--csv FILE] [--list] [--help]
 //                        [--scene a.obj,b.off ... [--sequence [--frame-files K]]] [--resolution N]
 //
 // --scene: the user's own scene from mesh files (world space; each OBJ group or OFF/PLY
@@ -14,8 +14,8 @@
 // only those scenes run (unless --scenes names built-in ones too) and the peers default
 // to every peer, vkcollide included.
 //
-// Writes one CSV row per (scene, peer, mode, frame) and prints a summary table; a
-// progress line goes to stderr. Modes: "self" = pairs within objects too (FCL cannot:
+// Prints a summary table (a progress line on stderr) and, with --csv FILE, writes one CSV
+// row per (scene, peer, mode, frame); it writes no file unless asked. Modes: "self" = pairs within objects too (FCL cannot:
 // skipped), "between" = pairs between objects only; each scene is rigid (every frame
 // builds and queries from scratch) or deforming (frame 0 builds, later frames move every
 // vertex and the peer refits or rebuilds). See docs/peers.md.
@@ -169,8 +169,8 @@ struct Options {
     unsigned threads = 0;
     double budget_s = 30;  // per (scene, peer, mode): stop adding frames past this
     std::string data = "data/cgal";
-    std::string csv = "peer_bench.csv";
-    bool list = false;
+    std::string csv;  // empty: no CSV
+    bool list = false, help = false;
     // The user's own scenes (--scene), each a list of files; with --sequence each list is
     // the frames of one scene, frame_files files per frame.
     std::vector<std::vector<std::string>> user_scenes;
@@ -187,6 +187,33 @@ std::vector<std::string> splitList(const std::string& s) {
         if (!item.empty()) out.push_back(item);
     }
     return out;
+}
+
+void printUsage(std::ostream& out) {
+    out << "usage: vkcollide_peer_bench [--scenes a,b] [--peers a,b] [--modes self,between] [--frames K]\n"
+        << "                            [--threads N] [--budget-s S] [--data DIR] [--csv FILE] [--list] [--help]\n"
+        << "                            [--scene a.obj,b.off ... [--sequence [--frame-files K]]] [--resolution N]\n";
+}
+
+void printHelp() {
+    printUsage(std::cout);
+    std::cout << "\nTimes FCL, Embree, CGAL and vkcollide on scenes and measures their pairs against the exact\n"
+                 "reference (docs/peers.md, docs/cli.md). Prints a summary table; writes no file unless --csv.\n\n"
+                 "  --scenes a,b       built-in scenes (--list names them); default spheres-8x10K,bunnies-2x75K,deform-pair-100K\n"
+                 "  --scene f1,f2,...  your own scene from mesh files (world space; each OBJ group or OFF/PLY file an\n"
+                 "                     object); repeatable; alone, only these scenes run, with every peer\n"
+                 "  --sequence         each --scene's files are the frames of one deforming scene\n"
+                 "  --frame-files K    --sequence: K files per frame (default 1)\n"
+                 "  --peers a,b        which peers (--list names them)\n"
+                 "  --modes self,between  pairs within objects too, or between objects only (default both)\n"
+                 "  --frames K         frames per scene (default 5)\n"
+                 "  --threads N        the peers' threads (default: every hardware thread)\n"
+                 "  --budget-s S       stop adding frames to a (scene, peer, mode) past S seconds (default 30)\n"
+                 "  --data DIR         the CGAL meshes of the built-in scenes (tools/fetch_cgal_data.sh; default data/cgal)\n"
+                 "  --resolution N     the vkcollide peer's resolution (default automatic)\n"
+                 "  --csv FILE         one row per scene, peer, mode and frame\n"
+                 "  --list             list the scenes and peers and exit\n"
+                 "  -h, --help         this help\n";
 }
 
 std::optional<Options> parseOptions(int argc, char** argv) {
@@ -245,6 +272,8 @@ std::optional<Options> parseOptions(int argc, char** argv) {
             if (ok) o.csv = *v;
         } else if (arg == "--list") {
             o.list = true;
+        } else if (arg == "--help" || arg == "-h") {
+            o.help = true;
         } else {
             ok = known = false;
         }
@@ -253,9 +282,7 @@ std::optional<Options> parseOptions(int argc, char** argv) {
             if (!known) std::cerr << "vkcollide_peer_bench: unknown option " << arg << '\n';
             else if (taken) std::cerr << "vkcollide_peer_bench: " << arg << ": bad value '" << *taken << "'\n";
             else std::cerr << "vkcollide_peer_bench: " << arg << " needs a value\n";
-            std::cerr << "usage: vkcollide_peer_bench [--scenes a,b] [--peers a,b] [--modes self,between] [--frames K]\n"
-                << "                            [--threads N] [--budget-s S] [--data DIR] [--csv FILE] [--list]\n"
-                << "                            [--scene a.obj,b.off ... [--sequence [--frame-files K]]] [--resolution N]\n";
+            printUsage(std::cerr);
             return std::nullopt;
         }
     }
@@ -418,6 +445,10 @@ int main(int argc, char** argv) {
     const std::optional<Options> parsed = parseOptions(argc, argv);
     if (!parsed) return 2;
     const Options& opt = *parsed;
+    if (opt.help) {
+        printHelp();
+        return 0;
+    }
     const std::vector<SceneSpec> scenes = allScenes(opt.data);
     const std::vector<PeerSpec> peers = allPeers(opt.resolution);
     std::vector<SceneSpec> user_scenes;
@@ -449,10 +480,13 @@ int main(int argc, char** argv) {
         chosen_peers.push_back(&*it);
     }
 
-    std::ofstream csv(opt.csv);
-    if (!csv) {
-        std::cerr << "vkcollide_peer_bench: cannot write " << opt.csv << '\n';
-        return 1;
+    std::ofstream csv;  // written only with --csv
+    if (!opt.csv.empty()) {
+        csv.open(opt.csv);
+        if (!csv) {
+            std::cerr << "vkcollide_peer_bench: --csv: cannot write " << opt.csv << '\n';
+            return 1;
+        }
     }
     const std::string host =
         cpuModel() + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
@@ -588,6 +622,15 @@ int main(int argc, char** argv) {
         const bool deforming = g.front()->mode.rfind("deforming", 0) == 0;
         std::vector<double> build, query, total;
         double min_recall = 1, min_precision = 1;
+        // Pair counts are counts, not timings: the frames' own, as a range when they differ.
+        std::size_t pairs_lo = g.front()->pairs, pairs_hi = pairs_lo, ref_lo = g.front()->reference_pairs, ref_hi = ref_lo;
+        for (const Row* r : g) {
+            pairs_lo = std::min(pairs_lo, r->pairs), pairs_hi = std::max(pairs_hi, r->pairs);
+            ref_lo = std::min(ref_lo, r->reference_pairs), ref_hi = std::max(ref_hi, r->reference_pairs);
+        }
+        const auto range = [](std::size_t lo, std::size_t hi) {
+            return lo == hi ? std::to_string(lo) : std::to_string(lo) + "-" + std::to_string(hi);
+        };
         for (const Row* r : g) {
             min_recall = std::min(min_recall, r->recall);
             min_precision = std::min(min_precision, r->precision);
@@ -597,14 +640,15 @@ int main(int argc, char** argv) {
             total.push_back(r->timings.total_ms);
         }
         char line[512];
-        std::snprintf(line, sizeof line, "%-18s %-9zu %-13s %-18s %6zu %10.2f %9.2f %9.2f %9.2f %9zu %11zu  %.6f  %.6f",
-                      g.front()->scene.c_str(), g.front()->triangles, g.front()->peer.c_str(), g.front()->mode.c_str(),
-                      g.size(), g.front()->timings.build_ms, median(build), median(query), median(total),
-                      g.back()->pairs, g.back()->reference_pairs, min_recall, min_precision);
+        std::snprintf(line, sizeof line, "%-18s %-9zu %-13s %-18s %6zu %10.2f %9.2f %9.2f %9.2f %9s %11s  %.6f  %.6f",
+                      g.front()->scene.c_str(), g.front()->triangles, g.front()->peer.c_str(), g.front()->mode.c_str(), g.size(),
+                      g.front()->timings.build_ms, median(build), median(query), median(total), range(pairs_lo, pairs_hi).c_str(),
+                      range(ref_lo, ref_hi).c_str(), min_recall, min_precision);
         std::cout << line << '\n';
     }
-    std::cout << "\nmedians; deforming: over frames >= 1 (build0 = the first frame's build); recall and precision:\n"
-                 "the lowest over the frames. CSV: "
-              << opt.csv << '\n';
+    std::cout << "\ntimes: medians; deforming: over frames >= 1 (build0 = the first frame's build); pairs and ref_pairs:\n"
+                 "the count found and the exact count (lowest-highest over the frames where they differ); recall and\n"
+                 "precision: the lowest over the frames."
+              << (opt.csv.empty() ? std::string() : " CSV: " + opt.csv) << '\n';
     return failures ? 1 : 0;
 }

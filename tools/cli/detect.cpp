@@ -25,17 +25,32 @@ int fail(const std::string& what) {
     return 1;
 }
 
+// "1 object", "2 objects".
+std::string counted(std::size_t n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
+
+// Which objects test their own triangles (ObjectOptions::self_collision; off unless --self).
+std::string selfCollision(const Scene& scene) {
+    std::size_t on = 0;
+    for (const SceneObject& o : scene.objects) on += o.options.self_collision ? 1 : 0;
+    if (on == 0) return "self-collision off (--self FILES turns it on)";
+    if (on == scene.objects.size()) return "self-collision on for every object";
+    return "self-collision on for " + counted(on, "object", "objects");
+}
+
 void printSummary(const std::string& device, const Scene& scene, const vkcollide::DetectResult& r) {
     const vkcollide::DetectStats& st = r.stats;
     std::printf("device: %s\n", device.c_str());
+    const std::string objects = counted(scene.objects.size(), "object", "objects") + ", " + counted(st.triangles, "triangle", "triangles") +
+                                ", " + selfCollision(scene);
     if (st.method == vkcollide::DetectMethod::Reliable) {
-        std::printf("scene: %zu objects, %zu triangles; method reliable, %u cells per side, %llu footprints, %llu candidate pairs, %llu read back\n",
-                    scene.objects.size(), st.triangles, st.resolution, static_cast<unsigned long long>(st.cells.entries),
-                    static_cast<unsigned long long>(st.cells.candidates), static_cast<unsigned long long>(st.cells.survivors));
+        std::printf("scene: %s; method reliable, %u cells per side, %s, %s, %llu read back\n", objects.c_str(), st.resolution,
+                    counted(st.cells.entries, "footprint", "footprints").c_str(),
+                    counted(st.cells.candidates, "candidate pair", "candidate pairs").c_str(),
+                    static_cast<unsigned long long>(st.cells.survivors));
         if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
     } else {
-        std::printf("scene: %zu objects, %zu triangles; method peeling, resolution %u, depth complexity %u, %u layers in %u passes%s%s\n",
-                    scene.objects.size(), st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes,
+        std::printf("scene: %s; method peeling, resolution %u, depth complexity %u, %s in %s%s%s\n", objects.c_str(), st.resolution,
+                    st.depth_complexity, counted(st.layers, "layer", "layers").c_str(), counted(st.peel_passes, "pass", "passes").c_str(),
                     st.dual ? " (dual)" : "", st.axes > 1 ? ", 3 directions" : "");
         if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
         std::printf("sampling backend: %s (%s), coverage %s\n", vkcollide::toString(st.backend), st.backend_reason.c_str(),
@@ -55,13 +70,20 @@ void printSummary(const std::string& device, const Scene& scene, const vkcollide
     if (st.deep_rays) std::printf("deep rays (more surfaces than the peeling range, collision rays without peeling): %u\n", st.deep_rays);
     if (r.incomplete) std::printf("incomplete: %s\n", r.incomplete->message().c_str());
     for (const vkcollide::ExcludedObject& e : r.excluded) std::printf("excluded: %s\n", e.error.message().c_str());
+    // The GPU figure is the method's own stages (render::gpuMs, as in the lines and --csv).
+    const std::string threads = counted(st.narrow_threads, "thread", "threads");
     if (st.method == vkcollide::DetectMethod::Reliable)
-        std::printf("times (ms): footprints %.3f, pairing %.3f, filtering %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
-                    st.footprints_ms, st.pairing_ms, st.filtering_ms, st.readback_ms, st.narrow_ms, st.narrow_threads, st.total_ms);
+        std::printf(
+            "times (ms): GPU %.3f = front %.3f + footprints %.3f + pairing %.3f + filtering %.3f; readback %.3f, narrow phase %.3f (%s), "
+            "total %.3f\n",
+            render::gpuMs(st), st.sampling_ms, st.footprints_ms, st.pairing_ms, st.filtering_ms, st.readback_ms, st.narrow_ms,
+            threads.c_str(), st.total_ms);
     else
-        std::printf("times (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase %.3f (%u threads), total %.3f\n",
-                    st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
-                    st.total_ms);
+        std::printf(
+            "times (ms): GPU %.3f = sampling %.3f + merging %.3f + separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase "
+            "%.3f (%s), total %.3f\n",
+            render::gpuMs(st), st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms,
+            threads.c_str(), st.total_ms);
     std::printf("GPU memory: %.1f MiB\n", static_cast<double>(st.gpu_memory_bytes) / (1024.0 * 1024.0));
 }
 
@@ -117,11 +139,14 @@ int runDetect(const CommandLine& line) {
     if (line.sequence || !line.csv_path.empty())
         log.emplace(line.csv_path, std::vector<std::string>{}, static_cast<int>(frames), line.quiet,
                     render::HostTimeColumns{"read_ms", "png_ms"});
-    if (line.sequence) std::printf("device: %s\nsequence: %zu frames of %zu objects, %llu triangles\n", device.c_str(), frames,
-                                   scene->objects.size(), static_cast<unsigned long long>(scene->triangles));
+    if (line.sequence)
+        std::printf("device: %s\nsequence: %s of %s, %s, %s\n", device.c_str(), counted(frames, "frame", "frames").c_str(),
+                    counted(scene->objects.size(), "object", "objects").c_str(), counted(scene->triangles, "triangle", "triangles").c_str(),
+                    selfCollision(*scene).c_str());
 
     vkcollide::Result<vkcollide::DetectResult> result = vkcollide::Error(vkcollide::ErrorCode::InvalidArgument, "no frames");
     std::size_t total_pairs = 0;
+    std::vector<std::string> warned;
     for (std::size_t f = 0; f < frames; ++f) {
         const auto read_start = Clock::now();
         if (line.sequence && f > 0) {
@@ -136,6 +161,12 @@ int runDetect(const CommandLine& line) {
         result = (*world)->detect(line.settings);
         if (!result) return fail(nameSettingOptions(line, result.error().message()));
         total_pairs += result->pairs.size();
+        // Closed objects that are inside out or holed: said once, and again when that changes.
+        std::vector<std::string> warnings;
+        for (const vkcollide::MeshWarning& w : result->stats.mesh_warnings) warnings.push_back(w.message);
+        if (warnings != warned)
+            for (const std::string& w : warnings) std::fprintf(stderr, "vkcollide: warning: frame %zu: %s\n", f, w.c_str());
+        warned = std::move(warnings);
         const bool last = f + 1 == frames;
         double png_ms = 0;
         if (picture && (line.sequence || last)) {
@@ -153,7 +184,7 @@ int runDetect(const CommandLine& line) {
             png_ms = render::msSince(png_start);
             if (!line.sequence)
                 std::printf("png: %s%s\n", path.c_str(),
-                            rays ? (" (" + std::to_string(rays->segments.size()) + " collision rays drawn)").c_str() : "");
+                            rays ? (" (" + counted(rays->segments.size(), "collision ray", "collision rays") + " drawn)").c_str() : "");
         }
         if (log) log->record(static_cast<int>(f), *result, {}, read_ms, png_ms);
         if (line.sequence || last) (*report)->frame(f, *scene, *result);
@@ -164,7 +195,8 @@ int runDetect(const CommandLine& line) {
 
     if (line.sequence) {
         log->finish("sequence");
-        std::printf("colliding triangle pairs: %zu over %zu frames, %zu in the last\n", total_pairs, frames, result->pairs.size());
+        std::printf("colliding triangle pairs: %zu over %s, %zu in the last\n", total_pairs, counted(frames, "frame", "frames").c_str(),
+                    result->pairs.size());
         if (picture)
             std::printf("png: %s ... %s\n", Picture::framePath(line.png_path, 0).c_str(), Picture::framePath(line.png_path, frames - 1).c_str());
     } else {
@@ -172,8 +204,8 @@ int runDetect(const CommandLine& line) {
         printSummary(device, *scene, *result);
     }
     if (line.validation && devices->messages() > 0) {
-        std::fprintf(stderr, "vkcollide: %llu validation or library messages (see above)\n",
-                     static_cast<unsigned long long>(devices->messages()));
+        std::fprintf(stderr, "vkcollide: %s (see above)\n",
+                     counted(devices->messages(), "validation or library message", "validation or library messages").c_str());
         return 3;
     }
     return 0;

@@ -152,10 +152,23 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("peel_passes", st.peel_passes);
     j.member("dual", [&] { j.boolean(st.dual); });
     j.member("layers_short", [&] { j.boolean(st.layers_short); });
-    j.member("coverage", [&] { j.string(vkcollide::toString(st.coverage)); });
-    j.member("backend", [&] { j.string(vkcollide::toString(st.backend)); });
+    // The reliable method samples no rays: no coverage, no backend.
+    const bool reliable = st.method == vkcollide::DetectMethod::Reliable;
+    j.member("coverage", [&] { j.string(reliable ? "none" : vkcollide::toString(st.coverage)); });
+    j.member("backend", [&] { j.string(reliable ? "none" : vkcollide::toString(st.backend)); });
     j.member("backend_reason", [&] { j.string(st.backend_reason); });
     j.member("settings_note", [&] { j.string(st.settings_note); });
+    j.key("mesh_warnings");
+    j.beginArray();
+    for (const vkcollide::MeshWarning& w : st.mesh_warnings) {
+        j.beginObject(JsonWriter::Layout::Inline);
+        j.member("object", [&] { j.integer(w.object); });
+        j.member("inside_out", [&] { j.boolean(w.inside_out); });
+        j.member("boundary_edges", [&] { j.integer(w.boundary_edges); });
+        j.member("message", [&] { j.string(w.message); });
+        j.endObject();
+    }
+    j.endArray();
     // Times (GPU stages from timestamps; the rest host wall time).
     ms("sampling_ms", st.sampling_ms);
     ms("merging_ms", st.merging_ms);

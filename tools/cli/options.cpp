@@ -43,7 +43,21 @@ struct Option {
     Shower show = nullptr;         // that field as JSON
     SlotSetter set_slot = nullptr; // Takes::Files or FileValue: applied to each file named
     Takes takes = Takes::Value;
+    // Read by the peeling method only (world.hpp says which fields): refused under the
+    // reliable method, left out of the JSON's settings then.
+    bool peeling_only = false;
+    bool reliable_only = false;  // likewise for the reliable method
 };
+
+Option peeling(Option o) {
+    o.peeling_only = true;
+    return o;
+}
+
+Option reliable(Option o) {
+    o.reliable_only = true;
+    return o;
+}
 
 Option flag(const char* name, Section section, const char* help, const char* cost, Setter set, const char* field = nullptr,
             Shower show = nullptr) {
@@ -73,38 +87,44 @@ const std::vector<Option>& options() {
         {"--direction", "x,y,z", Section::Settings, "projection direction (default: chosen from the scene)",
          "free; a direction along which the scene is deep peels more layers", setting<&DetectSettings::direction>, "direction",
          show<&DetectSettings::direction>},
-        {"--cap", "L", Section::Settings, "peel at most L layers; deeper rays count as collision rays (0: as many as the scene needs)",
+        peeling({"--cap", "L", Section::Settings, "peel at most L layers; deeper rays count as collision rays (0: as many as the scene needs)",
          "saves peeling passes on deep scenes; rays past the cap send all their triangles to the CPU",
-         setting<&DetectSettings::layer_cap>, "layer_cap", show<&DetectSettings::layer_cap>},
-        flag("--dual", Section::Settings, "peel from the front and the back at once", "half the peeling passes, a second key buffer",
-             settingFlag<&DetectSettings::dual, true>, "dual", show<&DetectSettings::dual>),
-        {"--packing", "M", Section::Settings, "compaction before the readback: scan, or the paper's count/shift/move (same records)",
+         setting<&DetectSettings::layer_cap>, "layer_cap", show<&DetectSettings::layer_cap>}),
+        peeling(flag("--dual", Section::Settings, "peel from the front and the back at once", "half the peeling passes, a second key buffer",
+             settingFlag<&DetectSettings::dual, true>, "dual", show<&DetectSettings::dual>)),
+        peeling({"--packing", "M", Section::Settings, "compaction before the readback: scan, or the paper's count/shift/move (same records)",
          "paper: more passes and a packing texture; for comparison only", setting<&DetectSettings::packing>, "packing",
-         show<&DetectSettings::packing>},
-        {"--backend", "B", Section::Settings, "object sampling: auto, raster or compute (default: chosen per device and scene)",
+         show<&DetectSettings::packing>}),
+        peeling({"--backend", "B", Section::Settings, "object sampling: auto, raster or compute (default: chosen per device and scene)",
          "same rays and records; only the speed differs by device", setting<&DetectSettings::backend>, "backend",
-         show<&DetectSettings::backend>},
-        {"--open-epsilon", "E", Section::Settings, "open surfaces: hits closer than E along a ray may collide (world units; default: half their typical edge)",
+         show<&DetectSettings::backend>}),
+        peeling({"--open-epsilon", "E", Section::Settings, "open surfaces: hits closer than E along a ray may collide (world units; default: half their typical edge)",
          "a larger E downloads more triangles near open surfaces; a smaller one may miss grazing contacts",
-         setting<&DetectSettings::open_epsilon>, "open_epsilon", show<&DetectSettings::open_epsilon>},
-        {"--region", "x0,y0,z0,x1,y1,z1", Section::Settings, "sample only this world box (default: fitted to the scene)",
-         "the same rays on a smaller box see finer detail; contacts outside the box are not found",
+         setting<&DetectSettings::open_epsilon>, "open_epsilon", show<&DetectSettings::open_epsilon>}),
+        {"--region", "x0,y0,z0,x1,y1,z1", Section::Settings,
+         "the world box the image covers (default: fitted to the scene); reliable: the grid's square spans it, what lies outside "
+         "falls into the border cells and is still found; peeling: only this box is sampled",
+         "reliable: the same cells on a smaller box see finer detail, the border cells cost time; peeling: contacts outside the box are not found",
          setting<&DetectSettings::region>, "region", show<&DetectSettings::region>},
-        flag("--no-measure-layers", Section::Settings, "peel as many layers as the last detection measured instead of measuring first",
+        peeling(flag("--no-measure-layers", Section::Settings, "peel as many layers as the last detection measured instead of measuring first",
              "saves one host wait per frame (--frames, --sequence); rays that need more layers become collision rays",
-             settingFlag<&DetectSettings::measure_layers, false>, "measure_layers", show<&DetectSettings::measure_layers>),
-        {"--axes", "1|3", Section::Settings, "sampling directions: 1 (the paper) or 3 (also the two perpendicular ones, candidates united)",
+             settingFlag<&DetectSettings::measure_layers, false>, "measure_layers", show<&DetectSettings::measure_layers>)),
+        peeling({"--axes", "1|3", Section::Settings, "sampling directions: 1 (the paper) or 3 (also the two perpendicular ones, candidates united)",
          "3: about 3x the GPU time; finds contacts one direction sees edge-on", setting<&DetectSettings::axes>, "axes",
-         show<&DetectSettings::axes>},
-        {"--coverage", "C", Section::Settings, "thin triangles: centre (the paper), dilate, conservative or best (conservative where the device has it, else dilate)",
+         show<&DetectSettings::axes>}),
+        peeling({"--coverage", "C", Section::Settings, "thin triangles: centre (the paper), dilate, conservative or best (conservative where the device has it, else dilate)",
          "dilate/conservative: more collision rays and downloads, no missed slivers; need the raster backend",
-         setting<&DetectSettings::coverage>, "coverage", show<&DetectSettings::coverage>},
-        {"--closed-epsilon", "E", Section::Settings, "closed surfaces this close along a ray (world units) count as touching (default 0: exact ties only)",
+         setting<&DetectSettings::coverage>, "coverage", show<&DetectSettings::coverage>}),
+        peeling({"--closed-epsilon", "E", Section::Settings, "closed surfaces this close along a ray (world units) count as touching (default 0: exact ties only)",
          "a larger E finds near-contacts as candidates and downloads more triangles", setting<&DetectSettings::closed_epsilon>,
-         "closed_epsilon", show<&DetectSettings::closed_epsilon>},
+         "closed_epsilon", show<&DetectSettings::closed_epsilon>}),
         {"--bad-objects", "P", Section::Settings, "a --gpu-mesh that fails the GPU check: exclude (detect the rest, name it) or fail",
          "exclude: one more GPU run per bad object that frame", setting<&DetectSettings::bad_objects>, "bad_objects",
          show<&DetectSettings::bad_objects>},
+        peeling(flag("--no-depth-aware", Section::Settings,
+                     "the paper's separation: keep every triangle under a collision ray whatever its depth (default: depth-aware)",
+                     "downloads 2-30x more triangles where meshes overlap deeply; saves 48 bytes per triangle and 19 per ray of GPU memory",
+                     settingFlag<&DetectSettings::depth_aware, false>, "depth_aware", show<&DetectSettings::depth_aware>)),
         {"--timeout", "MS", Section::Settings, "longest wait for one GPU submission, milliseconds (default 60000); beyond it the detection fails",
          "free; a detection past it fails with Timeout and its GPU work goes on", setting<&DetectSettings::timeout_ms>, "timeout_ms",
          show<&DetectSettings::timeout_ms>},
@@ -125,24 +145,24 @@ const std::vector<Option>& options() {
         {"--contact-resolution", "N", Section::Settings, "--contacts: rays across the region where closed objects' boxes overlap, 16 to 4096 (default 128)",
          "GPU time grows with N^2; the volume error shrinks about as 1/N", setting<&DetectSettings::contact_resolution>,
          "contact_resolution", show<&DetectSettings::contact_resolution>},
-        {"--exact", "WHERE", Section::Settings,
-         "reliable: where the exact triangle test decides the candidates: auto (the GPU where it has 64-bit floats), gpu or cpu (the reference path)",
-         "gpu: only intersecting pairs are read back and the CPU computes responses alone; cpu: every pair the GPU filter keeps is tested on the CPU; same pairs",
-         setting<&DetectSettings::exact>, "exact", show<&DetectSettings::exact>},
-        flag("--paper-packing", Section::Settings, "the same as --packing paper", "as --packing paper",
+        reliable({"--exact", "WHERE", Section::Settings,
+                  "where the exact triangle test decides the candidates: auto (the GPU where it has 64-bit floats), gpu or cpu (the reference path)",
+                  "gpu: only intersecting pairs are read back and the CPU computes responses alone; cpu: every pair the GPU filter keeps is tested on the CPU; same pairs",
+                  setting<&DetectSettings::exact>, "exact", show<&DetectSettings::exact>}),
+        peeling(flag("--paper-packing", Section::Settings, "the same as --packing paper", "as --packing paper",
              [](CommandLine& c, std::string_view) -> Result<void> {
                  c.settings.packing = vkcollide::PackingMethod::Paper;
                  return {};
-             }),
+             })),
 
         perFile("--name", "FILES:NAME", "names the objects of those files (an OBJ with several groups: NAME/group)", "free",
                 slotName, Takes::FileValue),
         perFile("--open", "FILES", "open surfaces (cloth, terrain): tested by depth proximity, not inside/outside", "more candidates near each other than closed objects give",
                 slotOpen, Takes::Files),
-        perFile("--self", "FILES", "only these files' objects test their own triangles (default: every object does)",
+        perFile("--self", "FILES", "these files' objects also test their own triangles (default: none do, as in the API)",
                 "self-collision tests an object's triangles against each other: more candidate pairs", slotSelf, Takes::Files),
-        // Read where --self lists are (parseDetect): given at all, only the listed files self-collide.
-        flag("--no-self-collision", Section::Objects, "the same as --self none", "as --self none",
+        // Kept for scripts written when self-collision was on by default.
+        flag("--no-self-collision", Section::Objects, "the same as --self none (the default)", "free",
              [](CommandLine&, std::string_view) -> Result<void> { return {}; }),
         perFile("--transform", "FILES:m00,...,m23", "object -> world, 12 numbers, row-major 3x4 [R|t], applied after the transforms before it", "free",
                 slotTransform, Takes::FileValue),
@@ -230,11 +250,11 @@ const std::vector<Option>& options() {
              c.view = *d;
              return {};
          }},
-        flag("--rays", Section::Output, "--png: draw the collision rays (of every sampling direction) as thin yellow sticks",
+        peeling(flag("--rays", Section::Output, "--png: draw the collision rays (of every sampling direction) as thin yellow sticks",
              "one more broad-phase run per frame, reading back N^2 flags", [](CommandLine& c, std::string_view) -> Result<void> {
                  c.rays = true;
                  return {};
-             }),
+             })),
     };
     return table;
 }
@@ -288,8 +308,9 @@ void printHelp(std::FILE* out) {
         for (const Option& o : options()) {
             if (o.section != s) continue;
             const std::string head = std::string(o.name) + (*o.arg ? " " : "") + o.arg;
-            if (head.size() <= 26) std::fprintf(out, "  %-26s %s\n", head.c_str(), o.help);
-            else std::fprintf(out, "  %s\n  %-26s %s\n", head.c_str(), "", o.help);
+            const std::string help = std::string(o.peeling_only ? "peeling only: " : o.reliable_only ? "reliable only: " : "") + o.help;
+            if (head.size() <= 26) std::fprintf(out, "  %-26s %s\n", head.c_str(), help.c_str());
+            else std::fprintf(out, "  %s\n  %-26s %s\n", head.c_str(), "", help.c_str());
             std::fprintf(out, "  %-26s cost: %s\n", "", o.cost);
         }
     }
@@ -353,8 +374,6 @@ Parsed parseDetect(std::span<const char* const> args) {
     // Options naming files, now that the files are known, in command-line order.
     const std::size_t count = c.sequence ? c.files_per_frame : c.files.size();
     c.slots.assign(count, FileSlot{});
-    bool self_restricted = false;
-    for (const auto& given : c.given) self_restricted = self_restricted || given.first == "--self" || given.first == "--no-self-collision";
     for (const Deferred& d : deferred) {
         Result<FileValue> fv = d.option->takes == Takes::Files ? Result<FileValue>(FileValue{{}, {}}) : parseFileValue(d.value, count, slotsText(c, count));
         if (fv && d.option->takes == Takes::Files) {
@@ -371,11 +390,23 @@ Parsed parseDetect(std::span<const char* const> args) {
     }
     for (std::size_t f = 0; f < count; ++f) {
         FileSlot& s = c.slots[f];
-        s.options.self_collision = self_restricted ? s.self_listed : true;
+        s.options.self_collision = s.self_listed;  // off unless listed, as ObjectOptions' default
         if (s.options.typical_edge_length > 0 && !s.gpu_mesh)
             return error(Parsed::Kind::Error, "--edge-length: file " + std::to_string(f + 1) +
                                                   " is not a --gpu-mesh (the edges of host meshes are measured)");
     }
+    // Options the method that runs does not read are refused, not ignored.
+    if (c.settings.method != vkcollide::DetectMethod::Peeling)
+        for (const auto& given : c.given)
+            if (const Option* o = find(given.first); o && o->peeling_only)
+                return error(Parsed::Kind::Error, given.first + " belongs to the peeling method (--method peeling); the " +
+                                                      vkcollide::toString(c.settings.method) +
+                                                      (given.first == "--rays" ? " method casts no rays" : " method does not read it"));
+    if (c.settings.method != vkcollide::DetectMethod::Reliable)
+        for (const auto& given : c.given)
+            if (const Option* o = find(given.first); o && o->reliable_only)
+                return error(Parsed::Kind::Error, given.first + " belongs to the reliable method (--method reliable, the default); the " +
+                                                      vkcollide::toString(c.settings.method) + " method does not read it");
     if (c.rays && c.png_path.empty()) return error(Parsed::Kind::Error, "--rays draws on the --png picture: give --png FILE too");
     bool any_gpu = false;
     for (const FileSlot& s : c.slots) any_gpu = any_gpu || s.gpu_mesh;
@@ -402,7 +433,9 @@ std::string nameSettingOptions(const CommandLine& line, const std::string& messa
 std::vector<std::pair<std::string, std::string>> settingsJson(const DetectSettings& settings) {
     std::vector<std::pair<std::string, std::string>> out;
     for (const Option& o : options())
-        if (o.field && o.show) out.emplace_back(o.field, o.show(settings));
+        if (o.field && o.show && (!o.peeling_only || settings.method == vkcollide::DetectMethod::Peeling) &&
+            (!o.reliable_only || settings.method == vkcollide::DetectMethod::Reliable))
+            out.emplace_back(o.field, o.show(settings));
     return out;
 }
 

@@ -19,12 +19,21 @@ std::string count(double v) {
     return buf;
 }
 
-// Table 1's timing columns: GPU = object sampling + ray merging + primitive separation,
-// Reduce = packing (texture reduction) + readback, CPU = the narrow phase.
-double gpuMs(const vkcollide::DetectStats& s) { return s.sampling_ms + s.merging_ms + s.separation_ms; }
+}  // namespace
+
+// Table 1's timing columns. Peeling: GPU = object sampling + ray merging + primitive
+// separation, Reduce = packing (texture reduction) + readback. Reliable: GPU = the front
+// (sampling_ms) + footprints + pairing + filtering, Reduce = the readback of the pairs.
+// CPU = the narrow phase.
+double gpuMs(const vkcollide::DetectStats& s) {
+    if (s.method == vkcollide::DetectMethod::Reliable) return s.sampling_ms + s.footprints_ms + s.pairing_ms + s.filtering_ms;
+    return s.sampling_ms + s.merging_ms + s.separation_ms;
+}
 double reduceMs(const vkcollide::DetectStats& s) { return s.packing_ms + s.readback_ms; }
 
-}  // namespace
+const char* backendName(const vkcollide::DetectStats& s) {
+    return s.method == vkcollide::DetectMethod::Reliable ? "none" : vkcollide::toString(s.backend);
+}
 
 bool writePng(const std::string& path, std::uint32_t width, std::uint32_t height, const std::vector<std::uint8_t>& rgba) {
     png_image image{};
@@ -61,7 +70,8 @@ FrameLog::FrameLog(const std::string& csv_path, std::vector<std::string> scene_c
     std::fprintf(csv_,
                  "frame,triangles,collision_rays,triangles_downloaded,potentially_colliding_triangles,triangle_tests,"
                  "positive_tests,pairs,gpu_ms,reduce_ms,cpu_ms,total_ms,sampling_ms,merging_ms,separation_ms,packing_ms,"
-                 "readback_ms,narrow_ms,resolution,depth_complexity,layers,peel_passes,layers_short,backend,%s,%s",
+                 "readback_ms,narrow_ms,resolution,depth_complexity,layers,peel_passes,layers_short,backend,method,footprints_ms,"
+                 "pairing_ms,filtering_ms,%s,%s",
                  host_columns.first.c_str(), host_columns.second.c_str());
     for (const std::string& c : scene_columns_) std::fprintf(csv_, ",%s", c.c_str());
     std::fprintf(csv_, "\n");
@@ -76,11 +86,14 @@ void FrameLog::record(int frame, const vkcollide::DetectResult& r, std::span<con
     const vkcollide::DetectStats& s = r.stats;
     if (frame == 0) std::printf("settings: %s\n", s.settings_note.c_str());
     if (csv_) {
-        std::fprintf(csv_, "%d,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%d,%s,%.3f,%.3f",
+        std::fprintf(csv_,
+                     "%d,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%d,%s,%s,%.3f,%.3f,"
+                     "%.3f,%.3f,%.3f",
                      frame, s.triangles, s.collision_rays, s.triangles_downloaded, s.potentially_colliding_triangles, s.triangle_tests,
                      s.positive_tests, r.pairs.size(), gpuMs(s), reduceMs(s), s.narrow_ms, s.total_ms, s.sampling_ms, s.merging_ms,
-                     s.separation_ms, s.packing_ms, s.readback_ms, s.narrow_ms, s.resolution, s.depth_complexity, s.layers,
-                     s.peel_passes, s.layers_short ? 1 : 0, vkcollide::toString(s.backend), first_ms, second_ms);
+                     s.separation_ms, s.packing_ms, s.readback_ms, s.narrow_ms, s.resolution, s.depth_complexity, s.layers, s.peel_passes,
+                     s.layers_short ? 1 : 0, backendName(s), vkcollide::toString(s.method), s.footprints_ms, s.pairing_ms, s.filtering_ms,
+                     first_ms, second_ms);
         for (double v : scene_values) std::fprintf(csv_, ",%g", v);
         std::fprintf(csv_, "\n");
         std::fflush(csv_);

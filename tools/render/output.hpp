@@ -60,6 +60,14 @@ private:
     int last_percent_ = -1;
 };
 
+// The GPU figure of the lines, the CSV's gpu_ms and the summary: the GPU stages of the
+// method that ran (peeling: sampling + merging + separation, the paper's Table 1 column;
+// reliable: the front + footprints + pairing + filtering). Reduce: packing + readback.
+double gpuMs(const vkcollide::DetectStats& stats);
+double reduceMs(const vkcollide::DetectStats& stats);
+// The sampling backend that ran, "none" for the reliable method (it samples no rays).
+const char* backendName(const vkcollide::DetectStats& stats);
+
 // Milliseconds since `start`.
 double msSince(std::chrono::steady_clock::time_point start);
 

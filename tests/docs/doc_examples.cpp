@@ -1,0 +1,47 @@
+// The C++ examples of README.md and docs/api.md, compiled: each region between a
+// "doc example" line and "end of doc example" is, character for character, a ```cpp block of
+// those pages (doc_examples_tests.cpp checks it), so an example that stops compiling fails
+// the build. Compiled only, never run: the engine around it is declared, not made.
+#include "vkcollide/world.hpp"  // first: the example's own #include is then a no-op
+
+#include <cstdio>
+#include <string>
+
+namespace doc_examples {
+
+// What the engine around the examples has.
+int log(const std::string& message) {
+    std::fprintf(stderr, "%s\n", message.c_str());
+    return 1;
+}
+
+int readmeUsingIt([[maybe_unused]] const vkcollide::AdoptedDevice& engine_device, [[maybe_unused]] const vkcollide::HostMesh& ball_mesh,
+                  [[maybe_unused]] const vkcollide::GpuMeshDesc& cloth_buffers,
+                  [[maybe_unused]] const vkcollide::Transform3x4& model_matrix_3x4) {
+    // clang-format off
+// doc example: README.md
+#include <vkcollide/world.hpp>
+
+// Every call returns a [[nodiscard]] Result: test it, read error().message() when it fails.
+// The engine's buffers (addGpuMesh) live on the engine's device: vkcollide adopts it
+// (context.hpp: AdoptedDevice). With host meshes only, Context::create() makes its own.
+auto ctx = vkcollide::Context::adopt(engine_device);
+if (!ctx) return log(ctx.error().message());
+auto world = vkcollide::CollisionWorld::create(**ctx);
+if (!world) return log(world.error().message());
+auto ball = (*world)->addMesh(ball_mesh, {.name = "ball"});           // host arrays, uploaded once
+auto cloth = (*world)->addGpuMesh(cloth_buffers,                       // the engine's VkBuffers
+                                  {.name = "cloth", .self_collision = true, .open = true});
+if (!ball || !cloth) return log((ball ? cloth : ball).error().message());
+// every frame
+if (auto moved = (*world)->setTransform(*ball, model_matrix_3x4); !moved) log(moved.error().message());
+auto hits = (*world)->detect();       // or submit() now, collect() later
+if (hits)
+    for (const vkcollide::TrianglePair& p : hits->pairs)  // (object, triangle) x (object, triangle)
+        log("object " + std::to_string(p.object_a) + " hits object " + std::to_string(p.object_b));
+// end of doc example
+    // clang-format on
+    return 0;
+}
+
+}  // namespace doc_examples

@@ -265,9 +265,10 @@ struct CellStats {
 // facing outwards. Closed objects are told apart by inside and outside: an inside-out one
 // gets contact volume 0 (DetectSettings::contacts) and, under the peeling method, collision
 // rays wherever a ray crosses it; a holed one has no inside. The pairs of the reliable
-// method do not depend on it. Checked on the host when the mesh is added (holes: topology)
-// and when its vertices are updated (the sign of its volume under its transform, one pass
-// over its triangles on the world's executor); engine meshes are not checked.
+// method do not depend on it. Checked on the host when the mesh is added (holes: its
+// topology; inside out: the sign of its volume, one pass over its triangles on the world's
+// executor, then counted under each detection's transform); updateVertices does not
+// re-check, and engine meshes are not checked.
 struct MeshWarning {
     ObjectId object = 0;
     bool inside_out = false;  // its enclosed volume is negative (mirroring transforms counted)
@@ -470,8 +471,9 @@ public:
     // upload buffer in host memory (lavapipe); docs/api.md, "Costs", has the measurements
     // and where the time goes. Measuring the shapes added 0-0.045 ms to a frame's updates
     // of two deforming 50K-500K-triangle meshes (an H200 host, 16 threads; docs/results.md).
-    // A closed mesh without holes is also checked for being inside out (one more pass over
-    // its triangles on the executor: DetectStats::mesh_warnings).
+    // The inside-out check of DetectStats::mesh_warnings is made by addMesh, not here: a
+    // deformation rarely turns a mesh inside out, and a pass over its triangles per frame
+    // would cost a deforming mesh about as much as this call's own copy.
     // Errors: InvalidArgument (no such object, a GPU mesh, another vertex count),
     // InvalidMesh naming the first NaN or infinite vertex, LimitExceeded (the sampling
     // range), OutOfMemory (a copy for pipelining), Timeout (WorldState::Busy). A refused

@@ -290,7 +290,6 @@ Result<void> CollisionWorld::Impl::updateHostVertices(ObjectId id, std::span<con
     o.max_abs = scan.max_abs;
     o.shape_stale = !measure;
     if (measure) o.edge_length = shape.edge_length, o.area_moment = shape.area_moment;
-    if (!o.options.open && o.boundary_edges == 0) o.volume6 = mesh_checks::signedVolume6(*executor, o.host_positions, o.host_indices);
     return {};
 }
 

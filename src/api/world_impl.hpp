@@ -55,7 +55,7 @@ struct CollisionWorld::Impl {
         std::array<float, 6> box{};
         float max_abs = 0;
         // Closed host meshes (mesh_checks): edges of one triangle (from addMesh), and six
-        // times the object-space volume (measured when the geometry changes).
+        // times the object-space volume (both measured by addMesh; updateVertices leaves them).
         std::uint64_t boundary_edges = 0;
         double volume6 = 0;
         // For the automatic settings: the typical edge length (object units; given for GPU

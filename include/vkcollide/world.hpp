@@ -384,7 +384,8 @@ struct WorldOptions {
 
 class CollisionWorld {
 public:
-    // The Context must outlive the world.
+    // The world keeps the Context's device alive: it may outlive the Context, and every
+    // call works as before after the Context is destroyed (context.hpp, "Lifetime").
     [[nodiscard]] static Result<std::unique_ptr<CollisionWorld>> create(Context& context, const WorldOptions& options = {});
     ~CollisionWorld();
     CollisionWorld(const CollisionWorld&) = delete;

@@ -42,7 +42,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     run.positions.clear();
     for (ObjectId id : run.ids) run.positions.push_back(objects[id].host_positions);  // GPU meshes: empty
     run.settings = resolve(settings, &run.note);
-    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, context->device())})
+    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, device())})
         if (!ok) return ok.error();
     const DetectSettings& s = run.settings;
     if (s.method == DetectMethod::Reliable)

@@ -24,6 +24,10 @@
 namespace vkcollide {
 
 struct CollisionWorld::Impl {
+    // The device, kept alive by the world (declared first: destroyed last, after every
+    // buffer and detection below), so that a world outlives its Context safely: the
+    // Context holds nothing else a world uses.
+    vk::DeviceRef device_ref;
     struct Object {
         bool alive = false;
         std::string name;
@@ -90,7 +94,6 @@ struct CollisionWorld::Impl {
     };
 
     UseGuard guard{"CollisionWorld"};
-    Context* context = nullptr;
     std::unique_ptr<ThreadPool> own_pool;  // unless WorldOptions::executor
     Executor* executor = nullptr;          // the narrow phase's: own_pool or the engine's
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
@@ -136,7 +139,7 @@ struct CollisionWorld::Impl {
     std::vector<ObjectId> finish_ids;  // the broad phase's objects (bad ones left out) -> ObjectId
     NarrowOptions narrow_options;
 
-    vk::Device& device() { return context->device(); }
+    vk::Device& device() const { return *device_ref; }
     std::uint32_t inFlight() const { return std::uint32_t(runs[0].in_flight) + std::uint32_t(runs[1].in_flight); }
     bool pending() const { return inFlight() > 0; }
     bool busy() const {

@@ -169,9 +169,15 @@ struct DetectSettings {
     bool depth_aware = true;
 
     // Limits (docs/stability.md, "Limits"):
-    // Longest wait for the GPU work of one submission, in milliseconds. Beyond it the
-    // detection fails with ErrorCode::Timeout; its GPU work goes on and the world is
-    // WorldState::Busy until it ends (CollisionWorld::state()).
+    // Longest wait for all of the detection's GPU work together, in milliseconds: every
+    // submission, the reliable method's reruns after a buffer grew, each direction, the
+    // runs without bad engine meshes and the contacts' submissions share it, and nothing
+    // new is submitted after it ran out. detect() counts from its call; submit() and
+    // record() count their own waits (measuring, an earlier timed-out detection's work)
+    // from the call and start the clock again at collect(). Beyond it the detection fails
+    // with ErrorCode::Timeout naming this setting; the GPU work already submitted goes on
+    // and the world is WorldState::Busy until it ends (CollisionWorld::state()). The
+    // world's destructor waits for that work without a limit (docs/stability.md, "Time").
     std::uint32_t timeout_ms = 60000;
     // How the thread that collects a detection waits for its GPU work: it sleeps until
     // shortly (0.15 ms) before the work's expected end (the submission time plus the last

@@ -89,6 +89,9 @@ struct CollisionWorld::Impl {
         DetectSettings settings;
         std::string note;
         std::chrono::steady_clock::time_point start;
+        // When every wait of its GPU work ends (DetectSettings::timeout_ms): start + the
+        // timeout for detect(); submit() and record() restart it at collect().
+        std::chrono::steady_clock::time_point deadline;
         double start_ms = 0, wait_ms = 0;  // host: start() (settings, record, submit); collect's wait and readback
         double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host_settings_ms)
     };
@@ -211,7 +214,9 @@ struct CollisionWorld::Impl {
     static passes::MethodFactory methodFactory(DetectMethod method);
     // Starts a detection in `run` (target: the engine's semaphores or command buffer).
     Result<void> start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
-    Result<DetectResult> collect(Run& run);
+    // restart_clock: the timeout counts from now (submit() and record(): the caller chose
+    // when to collect); detect() counts from its start.
+    Result<DetectResult> collect(Run& run, bool restart_clock);
     Error describeFailure(const Run& run, const Error& e) const;
     Result<DetectResult> finish(Run& run, passes::DetectionResult detected);
 

@@ -86,8 +86,8 @@ std::uint64_t waitNs(const BroadPhaseSettings& s) {
 Error timeoutOfRun(const BroadPhaseSettings& s, Error e) {
     if (e.code() != ErrorCode::Timeout || !s.deadline) return e;
     return Error(ErrorCode::Timeout,
-                 "the detection's GPU work did not finish within its timeout of " + std::to_string(s.timeout_ns / 1000000) +
-                     " ms (DetectSettings::timeout_ms, for every submission and rerun together)",
+                 "the detection's GPU work did not finish within " + std::to_string(s.timeout_ns / 1000000) +
+                     " ms (its timeout, DetectSettings::timeout_ms, for every submission and rerun together)",
                  e.vkResult());
 }
 

@@ -98,9 +98,9 @@
 // device alive, and the device (with the instance, for Context::create) is destroyed with
 // the last of them. Everything the engine lends (adopt()'s handles, the hooks, allocation
 // callbacks, pipeline cache and on_message) must stay valid until then, not only until
-// ~Context. Destroying the last of them waits for vkcollide's GPU work. A world's other
-// calls need its Context alive (world.hpp, CollisionWorld::create): only its destruction,
-// and collect() of a detection already submitted, may follow ~Context.
+// ~Context. Destroying the last of them waits for vkcollide's GPU work. A world holds the
+// device too: every call of a world whose Context is gone works as before (detections,
+// objects added, collect(), destruction).
 //
 // Thread safety: a Context itself is not changed after creation; the objects made from it
 // (worlds) may be used from different threads, each object from one thread at a time.

@@ -169,9 +169,15 @@ struct DetectSettings {
     bool depth_aware = true;
 
     // Limits (docs/stability.md, "Limits"):
-    // Longest wait for the GPU work of one submission, in milliseconds. Beyond it the
-    // detection fails with ErrorCode::Timeout; its GPU work goes on and the world is
-    // WorldState::Busy until it ends (CollisionWorld::state()).
+    // Longest wait for all of the detection's GPU work together, in milliseconds: every
+    // submission, the reliable method's reruns after a buffer grew, each direction, the
+    // runs without bad engine meshes and the contacts' submissions share it, and nothing
+    // new is submitted after it ran out. detect() counts from its call; submit() and
+    // record() count their own waits (measuring, an earlier timed-out detection's work)
+    // from the call and start the clock again at collect(). Beyond it the detection fails
+    // with ErrorCode::Timeout naming this setting; the GPU work already submitted goes on
+    // and the world is WorldState::Busy until it ends (CollisionWorld::state()). The
+    // world's destructor waits for that work without a limit (docs/stability.md, "Time").
     std::uint32_t timeout_ms = 60000;
     // How the thread that collects a detection waits for its GPU work: it sleeps until
     // shortly (0.15 ms) before the work's expected end (the submission time plus the last
@@ -415,9 +421,8 @@ struct WorldOptions {
 
 class CollisionWorld {
 public:
-    // The world keeps a pointer to `context`: every call but collect() and the destructor
-    // needs the Context alive; destroying the world, or collecting a detection already
-    // submitted, after ~Context is safe (context.hpp, "Lifetime").
+    // The world keeps the Context's device alive: it may outlive the Context, and every
+    // call works as before after the Context is destroyed (context.hpp, "Lifetime").
     [[nodiscard]] static Result<std::unique_ptr<CollisionWorld>> create(Context& context, const WorldOptions& options = {});
     ~CollisionWorld();
     CollisionWorld(const CollisionWorld&) = delete;

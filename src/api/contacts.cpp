@@ -32,6 +32,7 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
     in.direction = detected.directions[0];
     in.resolution = *run.settings.contact_resolution;
     in.timeout_ns = std::uint64_t{run.settings.timeout_ms} * 1000000;
+    in.deadline = run.deadline;  // what is left of the detection's timeout
     // The filter's answers, as the narrow phase had them (detect.cpp): the kept mask, or
     // the filter itself beyond the mask's object limit.
     std::optional<Error> filter_threw;

@@ -43,7 +43,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     run.positions.clear();
     for (ObjectId id : run.ids) run.positions.push_back(objects[id].host_positions);  // GPU meshes: empty
     run.settings = resolve(settings, &run.note);
-    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, context->device())})
+    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, device())})
         if (!ok) return ok.error();
     const DetectSettings& s = run.settings;
     if (s.method == DetectMethod::Reliable)
@@ -68,7 +68,10 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     // break the broad phase's precondition.
     d.broad.coverage = s.method == DetectMethod::Reliable ? Coverage::Centre : s.coverage;
     d.broad.region = s.region;
+    // One clock for the whole detection: every submission, rerun and wait ends by it.
     d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
+    run.deadline = run.start + std::chrono::milliseconds(s.timeout_ms);
+    d.broad.deadline = run.deadline;
     d.broad.poll_ns = std::uint64_t{s.wait_poll_us} * 1000;
     // While the wait polls, keep the narrow phase's workers awake as many as a detection
     // like the last one will use: they then take its first loops at once instead of
@@ -87,9 +90,13 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     return {};
 }
 
-Result<DetectResult> CollisionWorld::Impl::collect(Run& run) {
+Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock) {
     run.in_flight = false;
     const auto t0 = Clock::now();
+    if (restart_clock) {
+        run.deadline = t0 + std::chrono::milliseconds(run.settings.timeout_ms);
+        run.detection->setDeadline(run.deadline);
+    }
     auto r = run.detection->collect();
     run.wait_ms = msSince(t0);
     if (!r) return noted(describeFailure(run, r.error()));

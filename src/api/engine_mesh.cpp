@@ -12,13 +12,12 @@ Result<passes::GpuMesh> CollisionWorld::Impl::describeEngineMesh(ObjectId id, co
                                                                  bool open) const {
     if (auto ok = validation::checkGpuMeshDesc(d); !ok) return named(id, name, ok.error());
     const std::string prefix = who(id, name) + ": ";
-    auto vertices = vk::checkEngineBuffer(context->device(),
-                                          {d.vertex_buffer, d.vertex_usage, d.vertex_buffer_size, d.vertex_offset, validation::vertexBytes(d)},
-                                          prefix + "vertex buffer");
+    auto vertices = vk::checkEngineBuffer(
+        device(), {d.vertex_buffer, d.vertex_usage, d.vertex_buffer_size, d.vertex_offset, validation::vertexBytes(d)},
+        prefix + "vertex buffer");
     if (!vertices) return vertices.error();
-    auto indices = vk::checkEngineBuffer(context->device(),
-                                         {d.index_buffer, d.index_usage, d.index_buffer_size, d.index_offset, validation::indexBytes(d)},
-                                         prefix + "index buffer");
+    auto indices = vk::checkEngineBuffer(
+        device(), {d.index_buffer, d.index_usage, d.index_buffer_size, d.index_offset, validation::indexBytes(d)}, prefix + "index buffer");
     if (!indices) return indices.error();
     return passes::describeEngineMesh(d, *vertices, *indices, open);
 }

@@ -78,7 +78,7 @@ Result<DetectResult> CollisionWorld::detect(const DetectSettings& settings) {
     if (w.pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
     if (auto ok = w.begin(settings, settings.measure_layers, nullptr); !ok) return ok.error();
     Impl::Run& run = w.runs[w.oldest];
-    return hostGuarded(*run.detection, run.in_flight, [&] { return w.collect(run); });
+    return hostGuarded(*run.detection, run.in_flight, [&] { return w.collect(run, false); });
 }
 
 Result<void> CollisionWorld::submit(const DetectSettings& settings, const SubmitSync& sync) {
@@ -117,7 +117,7 @@ Result<DetectResult> CollisionWorld::collect() {
     if (!w.pending()) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
     Impl::Run& run = w.runs[w.oldest];
     w.oldest = 1 - w.oldest;  // the other slot, in flight or not, is the oldest now
-    return hostGuarded(*run.detection, run.in_flight, [&] { return w.collect(run); });
+    return hostGuarded(*run.detection, run.in_flight, [&] { return w.collect(run, true); });
 }
 
 Result<bool> CollisionWorld::ready() {

@@ -260,7 +260,7 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         if (open_triangles > 0 && !reliable) append(why, "open epsilon half the open objects' typical edge");
     }
     if (s.coverage == Coverage::Best) {
-        s.coverage = context->device().conservative_rasterization ? Coverage::Conservative : Coverage::Dilate;
+        s.coverage = device().conservative_rasterization ? Coverage::Conservative : Coverage::Dilate;
         if (!reliable)
             append(why, s.coverage == Coverage::Conservative ? "coverage conservative (the device rasterises conservatively)"
                                                              : "coverage dilate (no conservative rasterisation on this device)");

@@ -133,8 +133,22 @@ VkDeviceSize indexBytes(const GpuMeshDesc& d) {
 }
 
 Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
+    // Every enum first, whatever the method uses: a value outside the enum would select no
+    // branch below it (Coverage 77 sampled nothing and returned no pairs).
+    const auto outside = [](const char* field, int value, const char* type, const char* values) {
+        return invalid(std::string(field) + " " + std::to_string(value) + " is not a " + type + " (" + values + ")");
+    };
     if (s.method != DetectMethod::Reliable && s.method != DetectMethod::Peeling)
-        return invalid("method " + std::to_string(int(s.method)) + " is not a DetectMethod");
+        return outside("method", int(s.method), "DetectMethod", "Reliable or Peeling");
+    if (s.packing != PackingMethod::Scan && s.packing != PackingMethod::Paper)
+        return outside("packing", int(s.packing), "PackingMethod", "Scan or Paper");
+    if (s.backend != SamplingBackend::Auto && s.backend != SamplingBackend::Raster && s.backend != SamplingBackend::Compute)
+        return outside("backend", int(s.backend), "SamplingBackend", "Auto, Raster or Compute");
+    if (s.coverage != Coverage::Centre && s.coverage != Coverage::Dilate && s.coverage != Coverage::Conservative &&
+        s.coverage != Coverage::Best)
+        return outside("coverage", int(s.coverage), "Coverage", "Centre, Dilate, Conservative or Best");
+    if (s.bad_objects != BadObjectPolicy::Exclude && s.bad_objects != BadObjectPolicy::Fail)
+        return outside("bad_objects", int(s.bad_objects), "BadObjectPolicy", "Exclude or Fail");
     const bool reliable = s.method == DetectMethod::Reliable;
     if (s.exact != ExactDecision::Auto && s.exact != ExactDecision::Gpu && s.exact != ExactDecision::Cpu)
         return invalid("exact " + std::to_string(int(s.exact)) + " is not an ExactDecision");

@@ -148,7 +148,7 @@ CollisionWorld::~CollisionWorld() {
 
 Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context, const WorldOptions& options) {
     auto impl = std::make_unique<Impl>();
-    impl->context = &context;
+    impl->device_ref = context.deviceRef();
     // The default method's pipelines now; the other's when a detection first asks for it.
     auto detection = passes::Detection::create(context.device(), Impl::methodFactory(DetectSettings{}.method));
     if (!detection) return detection.error();
@@ -320,7 +320,7 @@ Result<DetectSettings> CollisionWorld::resolveSettings(const DetectSettings& set
     impl_->liveMeshes(meshes, ids);
     std::string note;
     const DetectSettings s = impl_->resolve(settings, &note);
-    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(s, impl_->context->device())})
+    for (auto ok : {validation::checkScene(meshes), validation::checkSettings(s, impl_->device())})
         if (!ok) return ok.error();
     return s;
 }

@@ -24,6 +24,10 @@
 namespace vkcollide {
 
 struct CollisionWorld::Impl {
+    // The device, kept alive by the world (declared first: destroyed last, after every
+    // buffer and detection below), so that a world outlives its Context safely: the
+    // Context holds nothing else a world uses.
+    vk::DeviceRef device_ref;
     struct Object {
         bool alive = false;
         std::string name;
@@ -89,12 +93,14 @@ struct CollisionWorld::Impl {
         DetectSettings settings;
         std::string note;
         std::chrono::steady_clock::time_point start;
+        // When every wait of its GPU work ends (DetectSettings::timeout_ms): start + the
+        // timeout for detect(); submit() and record() restart it at collect().
+        std::chrono::steady_clock::time_point deadline;
         double start_ms = 0, wait_ms = 0;  // host: start() (settings, record, submit); collect's wait and readback
         double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host_settings_ms)
     };
 
     UseGuard guard{"CollisionWorld"};
-    Context* context = nullptr;
     std::unique_ptr<ThreadPool> own_pool;  // unless WorldOptions::executor
     Executor* executor = nullptr;          // the narrow phase's: own_pool or the engine's
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
@@ -140,7 +146,7 @@ struct CollisionWorld::Impl {
     std::vector<ObjectId> finish_ids;  // the broad phase's objects (bad ones left out) -> ObjectId
     NarrowOptions narrow_options;
 
-    vk::Device& device() { return context->device(); }
+    vk::Device& device() const { return *device_ref; }
     std::uint32_t inFlight() const { return std::uint32_t(runs[0].in_flight) + std::uint32_t(runs[1].in_flight); }
     bool pending() const { return inFlight() > 0; }
     bool busy() const {
@@ -212,7 +218,9 @@ struct CollisionWorld::Impl {
     static passes::MethodFactory methodFactory(DetectMethod method);
     // Starts a detection in `run` (target: the engine's semaphores or command buffer).
     Result<void> start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
-    Result<DetectResult> collect(Run& run);
+    // restart_clock: the timeout counts from now (submit() and record(): the caller chose
+    // when to collect); detect() counts from its start.
+    Result<DetectResult> collect(Run& run, bool restart_clock);
     Error describeFailure(const Run& run, const Error& e) const;
     Result<DetectResult> finish(Run& run, passes::DetectionResult detected);
 

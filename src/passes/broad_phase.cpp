@@ -77,6 +77,20 @@ double msSince(Clock::time_point t0) { return std::chrono::duration<double, std:
 
 }  // namespace
 
+std::uint64_t waitNs(const BroadPhaseSettings& s) {
+    if (!s.deadline) return s.timeout_ns;
+    const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(*s.deadline - std::chrono::steady_clock::now()).count();
+    return left > 0 ? static_cast<std::uint64_t>(left) : 0;
+}
+
+Error timeoutOfRun(const BroadPhaseSettings& s, Error e) {
+    if (e.code() != ErrorCode::Timeout || !s.deadline) return e;
+    return Error(ErrorCode::Timeout,
+                 "the detection's GPU work did not finish within " + std::to_string(s.timeout_ns / 1000000) +
+                     " ms (its timeout, DetectSettings::timeout_ms, for every submission and rerun together)",
+                 e.vkResult());
+}
+
 std::string describe(const ObjectFault& f) {
     const std::string affected = " (" + std::to_string(f.triangles_affected) + " triangles affected)";
     switch (f.kind) {
@@ -117,6 +131,14 @@ BroadPhase::~BroadPhase() {
     (void)executor_.settle(~std::uint64_t(0));
 }
 
+Result<void> BroadPhase::settle(std::uint64_t timeout_ns) {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (auto ok = executor_.settle(timeout_ns); !ok) return ok;
+    const auto spent =
+        static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
+    return method_->settle(spent < timeout_ns ? timeout_ns - spent : 0);
+}
+
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     const Clock::time_point t0 = Clock::now();
     auto ok = prepareRun(meshes, s);
@@ -128,7 +150,7 @@ Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPha
 Result<void> BroadPhase::prepareRun(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     assert(meetsPreconditions(meshes, s, device_->conservative_rasterization, method_->traits()));
     // Work an earlier run gave up on (Timeout) may still read these buffers.
-    if (auto ok = executor_.settle(s.timeout_ns); !ok) {
+    if (auto ok = settle(waitNs(s)); !ok) {
         if (ok.error().code() != ErrorCode::Timeout) return ok.error();
         return Error(ErrorCode::Timeout, "the GPU work of an earlier detection that timed out is still running (" +
                                              ok.error().message() + " more)", ok.error().vkResult());
@@ -288,9 +310,9 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     // Submission 1: front and measurement; the method reads the header.
     graph::Graph g1;
     record(g1, true, false);
-    if (auto ok = executor_.submit(g1, s.timeout_ns, target, false); !ok) return ok.error();
-    auto report1 = executor_.collect(s.timeout_ns);
-    if (!report1) return report1.error();
+    if (auto ok = executor_.submit(g1, waitNs(s), target, false); !ok) return timeoutOfRun(s, ok.error());
+    auto report1 = executor_.collect(waitNs(s));
+    if (!report1) return timeoutOfRun(s, report1.error());
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
     if (auto ok = checkExtent(h1); !ok) return ok.error();
@@ -301,7 +323,8 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     // Submission 2: the method's main passes.
     graph::Graph g2;
     record(g2, false, true);
-    if (auto ok = executor_.submit(g2, s.timeout_ns, target, signal); !ok) return ok.error();
+    if (s.deadline && waitNs(s) == 0) return timeoutOfRun(s, Error(ErrorCode::Timeout, "deadline passed"));
+    if (auto ok = executor_.submit(g2, waitNs(s), target, signal); !ok) return timeoutOfRun(s, ok.error());
     pending_ = true;
     return collect();
 }
@@ -315,7 +338,7 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     run_.host.upload_ms += msSince(t_predict);
     graph::Graph g;
     record(g, true, true);
-    if (auto ok = executor_.submit(g, s.timeout_ns, target, signal); !ok) return ok.error();
+    if (auto ok = executor_.submit(g, waitNs(s), target, signal); !ok) return timeoutOfRun(s, ok.error());
     pending_ = true;
     return {};
 }
@@ -323,8 +346,8 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
 Result<BroadPhaseResult> BroadPhase::collect() {
     if (!pending_) return Error(ErrorCode::InvalidArgument, "no broad phase in flight: submit() first");
     pending_ = false;
-    auto report = executor_.collect(run_.settings.timeout_ns);
-    if (!report) return report.error();
+    auto report = executor_.collect(waitNs(run_.settings));
+    if (!report) return timeoutOfRun(run_.settings, report.error());
 
     const auto t0 = std::chrono::steady_clock::now();
     const gpu::Header h = readHeader();
@@ -348,7 +371,7 @@ Result<BroadPhaseResult> BroadPhase::collect() {
                 faults_.push_back(*f);
                 return Error(ErrorCode::InvalidMesh, "object " + std::to_string(f->object) + ": " + describe(*f));
             }
-        return ok.error();
+        return timeoutOfRun(run_.settings, ok.error());
     }
     result.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return result;

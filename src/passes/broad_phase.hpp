@@ -65,13 +65,17 @@ public:
     // After a run or collect() failed with ErrorCode::Timeout its GPU work goes on: busy()
     // polls it, settle() waits for it. The next run() or submit() settles first (with its
     // own timeout) and fails with Timeout while that work still runs.
-    bool busy() const { return executor_.busy(); }
+    // The method's own submissions (the reliable method's reruns) count too.
+    bool busy() const { return executor_.busy() || method_->busy(); }
     // Done when the submission in flight has finished (collect() will not wait); never waits.
     [[nodiscard]] Result<vk::Completion> poll() { return executor_.poll(); }
     // Forgets the run in flight without waiting for it (after host memory ran out while
     // collecting it): its GPU work is settled like a timed-out one.
     void abandon() noexcept { pending_ = false; }
-    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
+    // Moves the run's deadline (BroadPhaseSettings::deadline): the waits of collect() and
+    // of the method's reruns end by then.
+    void setDeadline(std::chrono::steady_clock::time_point deadline) { run_.settings.deadline = deadline; }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns);
     MethodTraits traits() const noexcept { return method_->traits(); }
     // After an InvalidMesh error from the GPU input check: what it found, per object (run
     // indices); at most one per kind of problem, so other objects may be bad too.

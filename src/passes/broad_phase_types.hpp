@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -101,6 +102,11 @@ struct BroadPhaseSettings {
     // Longest wait for one submission (ns); beyond it the run fails with ErrorCode::Timeout
     // and its GPU work is left to finish on its own (BroadPhase::busy()).
     std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;
+    // When set, one clock for the whole run instead: every wait (an earlier timed-out run's
+    // work, each submission, a method's reruns) ends by then, and no new submission starts
+    // after it; timeout_ns is then the length it stands for, named in the error. A
+    // detection sets it so that all of its GPU work shares DetectSettings::timeout_ms.
+    std::optional<std::chrono::steady_clock::time_point> deadline;
     // How collect() waits for the GPU (graph::Executor::setWaitPolling): 0 sleeps only.
     std::uint64_t poll_ns = 0;
     // Called while collect() polls (graph::Executor::setPollHook); empty: nothing.
@@ -121,6 +127,13 @@ struct BroadPhaseSettings {
     // (CellPairsSettings::exact); BroadPhaseResult::cells.exact_ran says whether it did.
     bool exact_on_gpu = false;
 };
+
+// How long the run's next wait may take (ns): what is left before the deadline (0 once it
+// passed: a wait then only polls), or timeout_ns without one.
+std::uint64_t waitNs(const BroadPhaseSettings& s);
+// `e` as the run's error: a Timeout under a deadline names the whole timeout (a wait's own
+// message names only what was left of it).
+Error timeoutOfRun(const BroadPhaseSettings& s, Error e);
 
 // A problem the GPU input check found in one object (kObjectCheckOnGpu meshes), as data:
 // the API names the object and formats the message (describe()).

@@ -232,6 +232,12 @@ Result<void> Detection::start(std::span<const GpuMesh> meshes, const DetectionSe
     return {};
 }
 
+void Detection::setDeadline(std::chrono::steady_clock::time_point deadline) {
+    settings_.broad.deadline = deadline;
+    for (std::uint32_t k = 0; k < broads_.size(); ++k)
+        if (axis_pending_[k] && broads_[k]) broads_[k]->setDeadline(deadline);
+}
+
 Result<DetectionResult> Detection::collect() {
     if (!pending_) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
     failure_ = {};

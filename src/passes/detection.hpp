@@ -66,6 +66,9 @@ public:
                                      graph::SubmitTarget* target = nullptr);
     // Waits for every direction, leaving out bad engine meshes and running again as needed.
     [[nodiscard]] Result<DetectionResult> collect();
+    // Moves the deadline of the detection in flight (BroadPhaseSettings::deadline): its
+    // collect(), reruns and runs without bad objects all end by then.
+    void setDeadline(std::chrono::steady_clock::time_point deadline);
     bool pending() const noexcept { return pending_; }
     // Whether collect() would find the GPU work done (it may still run GPU work again: a
     // buffer that overflowed, an engine mesh to leave out). Never waits. Not pending: true.

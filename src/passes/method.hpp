@@ -68,6 +68,10 @@ public:
     // After collect() failed with InvalidMesh: the object (run index) the method's own
     // input checks blamed, if any (the broad phase adds it to its ObjectFaults).
     virtual std::optional<ObjectFault> fault() const { return std::nullopt; }
+    // Submissions of its own (outside the broad phase's executor) whose GPU work goes on
+    // after a Timeout: busy() polls them, settle() waits up to timeout_ns for them.
+    virtual bool busy() const { return false; }
+    [[nodiscard]] virtual Result<void> settle(std::uint64_t /*timeout_ns*/) { return {}; }
     // Bytes of GPU memory the method holds outside the table.
     virtual std::uint64_t memoryBytes() const noexcept { return 0; }
 };

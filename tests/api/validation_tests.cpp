@@ -126,6 +126,62 @@ TEST_CASE("detection settings are refused at the API, naming the rule", "[api][g
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
+// Issue 30 item 5: a value outside an enum of the settings selected no branch: Coverage(77)
+// made the paper's method sample nothing and return no pairs, without an error. Every enum
+// of DetectSettings is checked by the gate, under either method (the reliable method
+// ignores coverage, backend and packing, but a value outside them is still a caller's bug).
+TEST_CASE("enum values out of range are refused at the API, naming the field", "[api][gpu][validation]") {
+    ValidatedContext ctx;
+    auto world = CollisionWorld::create(ctx.context(), {.threads = 1});
+    REQUIRE(world);
+    auto sphere = uvSphere(1.0f, 12, 6);
+    REQUIRE(sphere);
+    REQUIRE((*world)->addMesh(*sphere));
+    struct Bad {
+        const char* says;
+        void (*spoil)(DetectSettings&, int);
+    };
+    const Bad bad[] = {
+        {"method", [](DetectSettings& s, int v) { s.method = static_cast<DetectMethod>(v); }},
+        {"coverage", [](DetectSettings& s, int v) { s.coverage = static_cast<Coverage>(v); }},
+        {"backend", [](DetectSettings& s, int v) { s.backend = static_cast<SamplingBackend>(v); }},
+        {"packing", [](DetectSettings& s, int v) { s.packing = static_cast<PackingMethod>(v); }},
+        {"bad_objects", [](DetectSettings& s, int v) { s.bad_objects = static_cast<BadObjectPolicy>(v); }},
+    };
+    const char* types[] = {"DetectMethod", "Coverage", "SamplingBackend", "PackingMethod", "BadObjectPolicy"};
+    for (DetectMethod method : {DetectMethod::Peeling, DetectMethod::Reliable})
+        for (int value : {77, -1})
+            for (std::size_t k = 0; k < std::size(bad); ++k) {
+                INFO(bad[k].says << " = " << value << ", method " << toString(method));
+                DetectSettings s;
+                s.method = method;
+                bad[k].spoil(s, value);
+                auto r = (*world)->detect(s);
+                REQUIRE_FALSE(r);
+                CHECK(r.error().code() == ErrorCode::InvalidArgument);
+                CHECK(r.error().message().rfind(std::string(bad[k].says) + " " + std::to_string(value) + " is not a " + types[k], 0) == 0);
+                auto resolved = (*world)->resolveSettings(s);
+                REQUIRE_FALSE(resolved);
+                CHECK(resolved.error().message() == r.error().message());
+                CHECK_FALSE((*world)->submit(s));
+                CHECK_FALSE((*world)->pending());
+            }
+    // The last value of each enum is still accepted (the paper's method reads them all).
+    DetectSettings last;
+    last.method = DetectMethod::Peeling;
+    last.coverage = Coverage::Best;
+    last.packing = PackingMethod::Paper;
+    last.bad_objects = BadObjectPolicy::Fail;
+    last.backend = SamplingBackend::Raster;
+    auto r = (*world)->detect(last);
+    REQUIRE(r);
+    last.backend = SamplingBackend::Compute;
+    last.coverage = Coverage::Centre;
+    CHECK((*world)->detect(last));
+    CHECK((*world)->detect());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
 TEST_CASE("engine mesh layouts are checked without a device", "[api][validation]") {
     GpuMeshDesc d;
     d.vertex_buffer = reinterpret_cast<VkBuffer>(std::uintptr_t{1});

@@ -376,3 +376,58 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     CHECK(r->stats.settings_note.find("resolution 256") != std::string::npos);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+// Issue 30 item 4: the world held a raw Context pointer, so every call that asked the
+// Context for its device (detect's settings check, Coverage::Best, addGpuMesh's buffer
+// check, resolveSettings) read freed memory once the Context was gone (ASan: heap
+// use-after-free in detect.cpp and world.cpp). The world now holds the device itself.
+TEST_CASE("a world used after its Context is destroyed: every call works as before", "[api][gpu][lifetime]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto scene = overlappingSpheres();
+    REQUIRE(scene);
+    addScene(*world, *scene);
+    // An engine mesh made before the Context goes (its buffers keep the device alive too).
+    EngineMesh engine = engineCopy(ctx.device(), scene->objects[0].mesh);
+    DetectSettings peeling = fixedSettings(128);
+    peeling.coverage = Coverage::Best;  // resolved from the device's features
+    const auto reliable_before = world->detect({});
+    REQUIRE(reliable_before);
+    const auto peeling_before = world->detect(peeling);
+    REQUIRE(peeling_before);
+    CHECK(!reliable_before->pairs.empty());
+
+    ctx.destroyContext();
+    auto resolved = world->resolveSettings(peeling);
+    REQUIRE(resolved);
+    CHECK(resolved->coverage != Coverage::Best);
+    auto reliable_after = world->detect({});
+    REQUIRE(reliable_after);
+    CHECK(reliable_after->pairs == reliable_before->pairs);
+    auto peeling_after = world->detect(peeling);
+    REQUIRE(peeling_after);
+    CHECK(peeling_after->pairs == peeling_before->pairs);
+    REQUIRE(world->submit({}));
+    auto collected = world->collect();
+    REQUIRE(collected);
+    CHECK(collected->pairs == reliable_before->pairs);
+    // Objects still come and go; an engine mesh's buffers are still checked on the device.
+    auto shifted = scene->objects[1].options;
+    shifted.transform[3] += 10.0f;
+    auto added = world->addMesh(scene->objects[1].mesh, shifted);
+    REQUIRE(added);
+    auto gpu = world->addGpuMesh(engine.desc, {.name = "engine"});
+    REQUIRE(gpu);
+    GpuMeshDesc bad = engine.desc;
+    bad.vertex_buffer_size *= 4;  // more than the buffer holds: found by asking the device
+    auto refused = world->addGpuMesh(bad, {.name = "short"});
+    REQUIRE(!refused);
+    CHECK(refused.error().code() == ErrorCode::BufferTooSmall);
+    REQUIRE(world->removeObject(*gpu));
+    REQUIRE(world->removeObject(*added));
+    auto again = world->detect({});
+    REQUIRE(again);
+    CHECK(again->pairs == reliable_before->pairs);
+    world.reset();  // the last owner of the device but the engine buffers
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

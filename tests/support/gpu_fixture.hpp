@@ -19,6 +19,9 @@ public:
     ValidatedContext();
     Context& context() { return *context_; }
     vk::Device& device() { return context_->device(); }
+    // Destroys the Context (its messages stay readable); context() and device() are then
+    // invalid: for the tests of what outlives a Context.
+    void destroyContext() { context_.reset(); }
     // Validation warnings/errors seen so far, joined for a failure message.
     std::vector<std::string> messages() const;
 

@@ -429,11 +429,11 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
     return Outcome::Complete;
 }
 
-Result<graph::ExecutionReport> CellPairs::runAgain(vk::Buffer* projection) {
+Result<graph::ExecutionReport> CellPairs::runAgain(vk::Buffer* projection, std::uint64_t timeout_ns) {
     survivor_count_ = gpu_triangle_count_ = 0;
     graph::Graph g;
     record(g, projection ? g.importBuffer("projection", *projection) : graph::ResourceId{});
-    return executor_.run(g);
+    return executor_.run(g, timeout_ns);
 }
 
 Result<CellPairsResult> CellPairs::run(const CellPairsInput& input, const CellPairsSettings& settings) {

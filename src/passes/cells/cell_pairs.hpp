@@ -151,9 +151,14 @@ public:
     std::span<const CandidatePair> survivors() const noexcept;
     std::span<const GpuTriangle> gpuTriangles() const noexcept;
     // After finish() returned Rerun: records the stage alone and runs it on the stage's
-    // own executor (waits). `projection`: the buffer holding the projection when the input
-    // gave projection_address (its contents are kept from the first run).
-    [[nodiscard]] Result<graph::ExecutionReport> runAgain(vk::Buffer* projection);
+    // own executor (waits up to timeout_ns; a Timeout leaves the work running, and the
+    // next prepare() must not come before it ends: busy()). `projection`: the buffer holding
+    // the projection when the input gave projection_address (its contents are kept from
+    // the first run).
+    [[nodiscard]] Result<graph::ExecutionReport> runAgain(vk::Buffer* projection, std::uint64_t timeout_ns = graph::kDefaultTimeoutNs);
+    // Whether a rerun that timed out still runs on the GPU; settle() waits up to timeout_ns.
+    bool busy() const { return executor_.busy(); }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
     // After finish() failed on bad input found on the GPU: the flags (gpu::kCellsBad*),
     // the object (index in the input) and its triangle.
     struct BadInput {

@@ -62,8 +62,12 @@ Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, Bro
             return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(runs) + " runs (entries " +
                                                      std::to_string(cells_->capacity().entries) + ", candidates " +
                                                      std::to_string(cells_->capacity().candidates) + ")");
-        // An overflow: the stage alone again, its buffers grown; the projection stays.
-        auto report = cells_->runAgain(&table_->buffer(core_.projection));
+        // An overflow: the stage alone again, its buffers grown; the projection stays. The
+        // run's clock goes on (BroadPhaseSettings::deadline): nothing starts after it ends.
+        const std::uint64_t wait_ns = waitNs(run.settings);
+        if (run.settings.deadline && wait_ns == 0)
+            return timeoutOfRun(run.settings, Error(ErrorCode::Timeout, "deadline passed before a rerun"));
+        auto report = cells_->runAgain(&table_->buffer(core_.projection), wait_ns);
         if (!report) return report.error();
         for (const graph::PassTiming& p : report->passes) {
             addStageTime(result, p);

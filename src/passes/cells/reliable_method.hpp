@@ -40,6 +40,8 @@ public:
     Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
     std::optional<ObjectFault> fault() const override { return fault_; }
     std::uint64_t memoryBytes() const noexcept override { return cells_->memoryBytes(); }
+    bool busy() const override { return cells_->busy(); }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) override { return cells_->settle(timeout_ns); }
 
 private:
     ReliableMethod(BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellPairs> cells)

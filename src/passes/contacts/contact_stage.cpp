@@ -97,7 +97,7 @@ Result<std::vector<std::array<float, 6>>> ContactStage::measureBoxes(const Conta
             VkBufferCopy copy{0, 0, 2 * half};
             pc.copyBuffer(bounds_buffer, rb_buffer, copy);
         });
-    auto report = executor_.run(g, in.timeout_ns);
+    auto report = executor_.run(g, in.waitNs());
     if (!report) return report.error();
     last_gpu_ms_ = report->total_gpu_ms;
     buf_.bounds_rb.invalidate(0, 2 * half);
@@ -302,7 +302,7 @@ Result<ContactStageResult> ContactStage::run(const ContactInput& in) {
         buf_.params.flush();
         graph::Graph g;
         recordMain(g);
-        auto report = executor_.run(g, in.timeout_ns);
+        auto report = executor_.run(g, in.waitNs());
         if (!report) return report.error();
         out.gpu_ms += report->total_gpu_ms;
         ++out.runs;

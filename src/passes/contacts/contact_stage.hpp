@@ -27,9 +27,11 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -46,7 +48,14 @@ struct ContactInput {
     std::uint32_t resolution = gpu::kDefaultContactResolution;  // rays across the region's longer side
     // Whether objects a < b (indices in meshes) may collide; empty: all may.
     std::function<bool(std::uint32_t a, std::uint32_t b)> may_collide;
-    std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;
+    std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;  // each submission's longest wait
+    // When set, every submission's wait ends by then instead (a detection's timeout_ms).
+    std::optional<std::chrono::steady_clock::time_point> deadline;
+    std::uint64_t waitNs() const {
+        if (!deadline) return timeout_ns;
+        const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(*deadline - std::chrono::steady_clock::now()).count();
+        return left > 0 ? static_cast<std::uint64_t>(left) : 0;
+    }
 };
 
 // One candidate pair's sums, in world units.

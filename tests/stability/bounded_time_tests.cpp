@@ -1,0 +1,55 @@
+// Issue 30, "Bounded in time": one timeout covers a whole detection (every submission and
+// rerun), and a detection that times out leaves the world usable. docs/stability.md,
+// "Limits", lists the bounds.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include "stability_support.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+}  // namespace
+
+// Item 1: the reliable method's reruns after a buffer overflowed ran with a hard-coded 60 s
+// each (up to 8 of them), whatever DetectSettings::timeout_ms said. 600 crossing
+// triangles in a fresh world take four runs (the buffers grow three times), 9 s on
+// lavapipe, the last two about 4 s each: with a timeout of 3 s the detection used to
+// succeed after 9 s; now it fails with Timeout at 3 s, and the world, once the work in
+// flight ended, detects the exact pairs.
+TEST_CASE("reliable: one timeout covers every rerun of a detection, and the world detects again after it",
+          "[stability][gpu][limits][reliable][time]") {
+    ValidatedContext ctx;
+    auto c = crossingTriangles(600);
+    REQUIRE(c);
+    auto world = worldOf(ctx, *c);
+    DetectSettings s;  // the reliable method
+    s.timeout_ms = 3000;
+    const auto t0 = Clock::now();
+    auto r = world->detect(s);
+    const double took = secondsSince(t0);
+    INFO("detect took " << took << " s");
+    REQUIRE_FALSE(r);
+    INFO(r.error().message());
+    CHECK(r.error().code() == ErrorCode::Timeout);
+    CHECK(mentions(r.error(), "3000 ms"));
+    CHECK(mentions(r.error(), "timeout_ms"));
+    CHECK(took < 3.0 + 1.0);
+    // The rerun in flight goes on; the world says so, and refuses what would change its input.
+    const auto t1 = Clock::now();
+    while (world->state() == WorldState::Busy && secondsSince(t1) < 60) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    CHECK(world->state() == WorldState::Ready);
+    // Its buffers have grown: one run, the exact pairs.
+    auto again = world->detect({});
+    REQUIRE(again);
+    checkExact(again->pairs, *c->reference);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -172,7 +172,7 @@ TEST_CASE("exact decision: GPU and CPU agree on the test scenes and the stabilit
     requireSame(detectBoth(ctx, far->scene), *ref, far->name);
 }
 
-TEST_CASE("exact decision: Auto decides on the GPU where it can; bad settings are refused by name", "[api][gpu][reliable][exact]") {
+TEST_CASE("exact decision: Auto decides on the GPU where it can, and bad settings are refused by name", "[api][gpu][reliable][exact]") {
     ValidatedContext ctx;
     const TestScene scene = restingScene();
     auto world = CollisionWorld::create(ctx.context(), {.threads = 2});

@@ -188,9 +188,10 @@ TEST_CASE("vkcollide detect: --bad-objects is handed to the detection", "[cli][g
 
 namespace {
 
-// The options of a --help section, and of those the ones --help marks "peeling only".
+// The options of a --help section, and of those the ones --help marks "peeling only" and
+// "reliable only".
 struct HelpOptions {
-    std::set<std::string> all, peeling_only;
+    std::set<std::string> all, peeling_only, reliable_only;
 };
 HelpOptions helpOptions(const std::string& section, const std::string& next) {
     const Run help = runCli("detect --help");
@@ -205,6 +206,7 @@ HelpOptions helpOptions(const std::string& section, const std::string& next) {
         if (line.rfind("  --", 0) == 0) out.all.insert(option = line.substr(2, line.find(' ', 2) - 2));
         // The help follows the name on its line, or on the next one for a long name.
         if (line.find("  peeling only: ") != std::string::npos) out.peeling_only.insert(option);
+        if (line.find("  reliable only: ") != std::string::npos) out.reliable_only.insert(option);
     }
     return out;
 }
@@ -224,14 +226,16 @@ TEST_CASE("vkcollide detect: the JSON's settings are those the method that ran r
     options.all.erase("--paper-packing");
     options.peeling_only.erase("--paper-packing");
     const Json j = detectJson(s.scratch, s.files + " --resolution 64");
-    CHECK(j["settings"]["asked"].object().size() == options.all.size());
-    CHECK(j["settings"]["used"].object().size() == options.all.size());
+    CHECK(j["settings"]["asked"].object().size() == options.all.size() - options.reliable_only.size());
+    CHECK(j["settings"]["used"].object().size() == options.all.size() - options.reliable_only.size());
+    CHECK(options.reliable_only == std::set<std::string>{"--exact"});
+    CHECK_FALSE(j["settings"]["used"].has("exact"));
     CHECK(j["settings"]["used"].has("depth_aware"));
     // The reliable method: the fields it reads, and none that only peeling reads.
     const Json reliable = detectJson(s.scratch, s.plain_files + " --resolution 64");
     CHECK(reliable["settings"]["asked"].object().size() == options.all.size() - options.peeling_only.size());
     CHECK(keys(reliable["settings"]["used"]) == keys(reliable["settings"]["asked"]));
-    for (const char* read : {"method", "resolution", "direction", "region", "bad_objects", "max_candidate_pairs", "contacts"})
+    for (const char* read : {"method", "resolution", "direction", "region", "bad_objects", "max_candidate_pairs", "contacts", "exact"})
         CHECK(reliable["settings"]["used"].has(read));
     for (const char* unread : {"layer_cap", "dual", "packing", "backend", "open_epsilon", "measure_layers", "axes", "coverage",
                                "closed_epsilon", "depth_aware"}) {
@@ -325,4 +329,24 @@ TEST_CASE("vkcollide detect: --max-pairs keeps that many and says the rest were 
     const Run few_peeling = runCli("detect " + s.plain_files + " --method peeling --max-candidate-pairs 1");
     CHECK(few_peeling.status != 0);
     CHECK(few_peeling.err.find("max_box_pairs") != std::string::npos);
+}
+
+TEST_CASE("vkcollide detect: --exact chooses where the reliable method's exact test runs", "[cli][gpu]") {
+    TwoSpheres s(1.0f);
+    const Json gpu = detectJson(s.scratch, s.plain_files + " --exact gpu");
+    const Json cpu = detectJson(s.scratch, s.plain_files + " --exact cpu");
+    CHECK(gpu["settings"]["asked"]["exact"].string() == "gpu");
+    CHECK(cpu["settings"]["used"]["exact"].string() == "cpu");
+    REQUIRE(stats(gpu)["pairs"].number() > 0);
+    CHECK(stats(gpu)["gpu_exact_tests"].number() > 0);
+    CHECK(stats(gpu)["cpu_exact_tests"].number() == 0);
+    CHECK(stats(cpu)["gpu_exact_tests"].number() == 0);
+    CHECK(stats(cpu)["cpu_exact_tests"].number() > 0);
+    // The same pairs either way, and the exact ones.
+    CHECK(jsonPairs(gpu["frames"][0]) == jsonPairs(cpu["frames"][0]));
+    CHECK(jsonPairs(gpu["frames"][0]) == referencePairs(s.world, {false, false}));
+    // An option of the reliable method: refused under the peeling method, by name.
+    const Run run = runCli("detect " + s.files + " --exact cpu");
+    CHECK(run.status == 1);
+    CHECK(run.err.find("--exact belongs to the reliable method") != std::string::npos);
 }

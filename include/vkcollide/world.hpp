@@ -614,8 +614,9 @@ public:
     // With DetectSettings::device_pairs: the buffers the detection started last (detect(),
     // submit(), record()) writes its pairs into, known as soon as it started, so that the
     // engine can record its reads before collect() (layout, synchronisation and lifetime:
-    // "Results on the GPU" above). Errors: InvalidArgument when no detection was started or
-    // the last one started (or failed to start) without device_pairs.
+    // "Results on the GPU" above); after its collect() they are DetectResult::device (the
+    // repeated run of a collect() may have grown them). Errors: InvalidArgument when no
+    // detection was started or the last one started (or failed to start) without device_pairs.
     [[nodiscard]] Result<DevicePairs> devicePairs() const;
     // A detection is in flight (submitted or recorded, not yet collected).
     bool pending() const noexcept;

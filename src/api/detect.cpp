@@ -245,7 +245,11 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (broad[0].scene_box) measured_box = broad[0].scene_box;
     if (run.settings.contacts)
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
-    if (auto view = run.detection->devicePairs()) out.device = devicePairsOf(*view, run);
+    if (auto view = run.detection->devicePairs()) {
+        out.device = devicePairsOf(*view, run);
+        // collect() may have grown the buffers (a repeated run): devicePairs() names them now.
+        if (last_device_pairs && last_device_pairs->slot == out.device->slot) last_device_pairs = out.device;
+    }
     // Everything the world holds: both slots' broad phases (with their cached transients and
     // the methods' own buffers) and the uploaded meshes, in Context::deviceMemoryInUse's unit.
     for (const Run& r : runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;

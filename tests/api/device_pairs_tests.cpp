@@ -223,6 +223,9 @@ TEST_CASE("device pairs: pair filter, the final run after an overflow, pipelined
         CHECK(r->stats.cells.runs > 1);
         CHECK(r->pairs.size() > 4096);
         requireSame(ctx.device(), *r, "coincident grids");
+        auto now = world->devicePairs();
+        REQUIRE(now);
+        CHECK(now->pairs == r->device->pairs);
     }
     {
         // Two in flight: slot 0 keeps frame 0's pairs while frame 1 writes slot 1.

@@ -210,6 +210,46 @@ struct CellsParams {
     uint pad;
 };
 
+// ---- Device pairs (DetectSettings::device_pairs; src/passes/cells/device_pairs.cpp) -------
+// The survivors of an exact run, sorted on the GPU into the host result's order: bucketed
+// by the lower triangle id (count, scan, scatter), each bucket sorted by the higher id with
+// repeats dropped, a second scan, then written as DevicePair records.
+// DevicePairsHeader.flags (vkcollide::kDevicePairs* in world.hpp, the same values):
+VKC_CONST kDevicePairsOverflow = 1u;    // needed > capacity: the first `capacity` pairs written
+VKC_CONST kDevicePairsIncomplete = 2u;  // the run must be repeated (a buffer overflowed, a mesh
+                                        // failed the GPU check): count 0; collect() repeats it
+
+// The public layout (vkcollide::DevicePairsHeader, TrianglePair).
+struct DevicePairsHeader {
+    uint count;     // pairs written: min(needed, capacity)
+    uint needed;    // distinct intersecting pairs found
+    uint flags;     // kDevicePairs*
+    uint capacity;  // pairs the buffer holds
+};
+struct DevicePair {
+    uint object_a, triangle_a, object_b, triangle_b;
+};
+
+struct DevicePairsParams {
+    VKC_ADDRESS(uint64_t) cells;         // CellsParams of the run (survivors, triangles, objects)
+    VKC_ADDRESS(uint64_t) fault_header;  // the broad phase's Header (GPU input checks), or 0
+    VKC_ADDRESS(uint64_t) object_ids;    // uint[object_count]: the id each object has in the result
+    VKC_ADDRESS(uint64_t) counts;        // uint[triangle_count]: survivors per lower id, then the cursor, then distinct partners
+    VKC_ADDRESS(uint64_t) offsets;       // uint[triangle_count + 1]: each lower id's first slot in partners
+    VKC_ADDRESS(uint64_t) out_offsets;   // uint[triangle_count + 1]: its first output pair
+    VKC_ADDRESS(uint64_t) block_sums;    // uint[block_count]
+    VKC_ADDRESS(uint64_t) partners;      // uint[survivor capacity]: higher ids, bucketed by the lower
+    VKC_ADDRESS(uint64_t) args;          // VkDispatchIndirectCommand: one invocation per survivor
+    VKC_ADDRESS(uint64_t) header;        // DevicePairsHeader
+    VKC_ADDRESS(uint64_t) pairs;         // DevicePair[capacity]
+    uint triangle_count;
+    uint block_count;                    // ceil(triangle_count / kCellsScanBlock)
+    uint capacity;
+    uint max_groups_x;
+};
+// Buckets up to this size are sorted by insertion, larger ones by heap sort (in place).
+VKC_CONST kDevicePairsInsertionSort = 16u;
+
 // Unit test of the filter alone (cells_filter_test.comp): one pair per invocation.
 struct CellsFilterCase {
     float a[9];

@@ -242,7 +242,25 @@ struct DetectSettings {
     // shaderFloat64). The pairs are the same either way; DetectStats::gpu_exact_tests and
     // ::cpu_exact_tests say which ran. Peeling decides on the CPU: Gpu is refused there.
     ExactDecision exact = ExactDecision::Auto;
+
+    // Reliable, with the exact decision on the GPU (exact Auto or Gpu, a device with
+    // shaderFloat64): the detection also leaves its pairs on the GPU, in buffers the world
+    // owns, sorted as DetectResult::pairs, for the engine's next command buffer (DevicePairs
+    // below; docs/api.md, "Results on the GPU"). Refused by name with the peeling method,
+    // with exact Cpu, without shaderFloat64 (UnsupportedFeature), and with a pair filter
+    // the world applies on the host only (more than kMaxFilterMaskObjects live objects).
+    // The host result is unchanged. Costs GPU passes over the survivors and the triangles
+    // (DetectStats::sorting_ms) and 16 bytes per pair of capacity plus 12 per triangle and
+    // 4 per survivor of capacity of device memory.
+    bool device_pairs = false;
+    // Pairs the device buffer holds. 0: automatic, the reliable method's survivor capacity
+    // (it grows with the scene and holds every pair of a complete run: no overflow). A
+    // smaller one: the first `device_pair_capacity` pairs in order are written and the
+    // header says kDevicePairsOverflow with the count needed (never a silent drop); at most
+    // kMaxDevicePairCapacity.
+    std::uint32_t device_pair_capacity = 0;
 };
+inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
 
 struct PassTime {
     std::string name;
@@ -327,6 +345,7 @@ struct DetectStats {
     // which is all of it for the reliable method.
     double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0;  // peeling
     double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;                 // reliable
+    double sorting_ms = 0;               // reliable, device_pairs: the GPU's sort of the pairs
     double readback_ms = 0;              // host: reading the header and the records or pairs
     double narrow_ms = 0;                // host: the CPU narrow phase
     // Contacts (DetectSettings::contacts): the stage's host wall time (both submissions,
@@ -378,8 +397,58 @@ struct ExcludedObject {
     Error error{ErrorCode::InvalidMesh, {}};  // names the object, a bad triangle and the problem
 };
 
+// ---- Results on the GPU (DetectSettings::device_pairs; docs/api.md) ---------------------
+//
+// Layout. `pairs`: TrianglePair records (four uint32: object_a, triangle_a, object_b,
+// triangle_b; 16 bytes, tightly packed) at offset 0, `capacity` of them; the first
+// `count` are the detection's pairs in DetectResult::pairs' order (object ids as the API
+// returns them, triangles within the object). `header`: one DevicePairsHeader at offset 0.
+// Both are storage buffers with device addresses in device-local memory (usage STORAGE,
+// SHADER_DEVICE_ADDRESS, TRANSFER_SRC, TRANSFER_DST; EXCLUSIVE on the Context's queue
+// family), written by compute shaders; the engine reads them, never writes them.
+//
+// Synchronisation: the writes are complete and visible at the world's signal. submit():
+// wait for sync.signal with the stage mask of your reads (e.g. COMPUTE_SHADER); record():
+// after the recorded commands in your command buffer, a memory (or buffer memory) barrier
+// from COMPUTE_SHADER / SHADER_WRITE to your stage and access; detect() and collect(): the
+// work is finished (on another queue, order after the world's work as for submit()).
+// Before collect() returns, check the header: kDevicePairsIncomplete means this GPU run must
+// be repeated (a reliable-method buffer overflowed, DetectStats::cells.runs > 1, or an
+// engine mesh failed the GPU input check) and count is 0; collect() repeats it, after which
+// the buffers hold the final pairs (as DetectResult::pairs) for reads ordered after collect().
+//
+// Lifetime: each of the world's two detection slots (kMaxInFlight) has its own buffers
+// (DevicePairs::slot). A detection's pairs stay there until the GPU work of the next
+// detection in the same slot: the next detect()/submit()/record() when none is in flight
+// when it starts (slot 0), else the other slot (pipelining: frame N + 1 writes slot 1 while
+// frame N's pairs stay in slot 0). Your GPU reads must be ordered before that detection's
+// GPU work: on the Context's queue, submitted before its submit() (each detection begins
+// with a full memory barrier); on another queue, by a semaphore in its SubmitSync::wait.
+// The buffers may be re-created (larger) for a later detection: take DevicePairs afresh
+// for every detection (devicePairs() or DetectResult::device). Replaced buffers stay
+// alive until the start of the second detection after in that slot, so reads ordered as
+// above never meet a freed buffer. All of them are freed with the world.
+struct DevicePairsHeader {
+    std::uint32_t count = 0;     // pairs written: min(needed, capacity)
+    std::uint32_t needed = 0;    // distinct intersecting pairs the detection found
+    std::uint32_t flags = 0;     // kDevicePairs* below
+    std::uint32_t capacity = 0;  // pairs the buffer holds
+};
+inline constexpr std::uint32_t kDevicePairsOverflow = 1;    // needed > capacity: the first `capacity` pairs written
+inline constexpr std::uint32_t kDevicePairsIncomplete = 2;  // repeated by collect(): count 0 until then
+struct DevicePairs {
+    VkBuffer pairs = VK_NULL_HANDLE;   // TrianglePair[capacity] at offset 0
+    VkDeviceAddress pairs_address = 0;
+    VkBuffer header = VK_NULL_HANDLE;  // DevicePairsHeader at offset 0
+    VkDeviceAddress header_address = 0;
+    std::uint32_t capacity = 0;        // pairs (the header says it too)
+    std::uint32_t slot = 0;            // the detection slot (0 or 1) whose buffers these are
+};
+
 struct DetectResult {
     std::vector<TrianglePair> pairs;
+    // With DetectSettings::device_pairs: where the same pairs are on the GPU (above).
+    std::optional<DevicePairs> device;
     std::vector<TriangleResponse> responses;  // one per colliding triangle, world space
     std::vector<ExcludedObject> excluded;     // engine meshes that failed the GPU check this time
     // With DetectSettings::contacts: one per pair of closed objects whose volumes overlap
@@ -568,6 +637,13 @@ public:
     [[nodiscard]] Result<bool> ready();
     // collect() if ready(), else std::nullopt at once (nothing changed: still in flight).
     [[nodiscard]] Result<std::optional<DetectResult>> tryCollect();
+    // With DetectSettings::device_pairs: the buffers the detection started last (detect(),
+    // submit(), record()) writes its pairs into, known as soon as it started, so that the
+    // engine can record its reads before collect() (layout, synchronisation and lifetime:
+    // "Results on the GPU" above); after its collect() they are DetectResult::device (the
+    // repeated run of a collect() may have grown them). Errors: InvalidArgument when no
+    // detection was started or the last one started (or failed to start) without device_pairs.
+    [[nodiscard]] Result<DevicePairs> devicePairs() const;
     // A detection is in flight (submitted or recorded, not yet collected).
     bool pending() const noexcept;
     // How many detections are in flight (0, 1 or kMaxInFlight).

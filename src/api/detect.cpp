@@ -54,6 +54,10 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     auto mask = pairMask(run.ids);
     if (!mask) return mask.error();
     d.broad.pair_mask = *mask;
+    if (auto ok = validation::checkDevicePairsFilter(s.device_pairs, pair_filter && !*mask, run.ids.size()); !ok) return ok.error();
+    d.broad.device_pairs = s.device_pairs;
+    d.broad.device_pair_capacity = s.device_pair_capacity;
+    for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     d.broad.resolution = *s.resolution;
     d.broad.direction = *s.direction;
     d.broad.layer_cap = s.layer_cap;
@@ -157,6 +161,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.footprints_ms += b.footprints_ms;
         st.pairing_ms += b.pairing_ms;
         st.filtering_ms += b.filtering_ms;
+        st.sorting_ms += b.sorting_ms;
         st.readback_ms += b.readback_ms;
         st.host_upload_ms += b.host.upload_ms;
         st.host_declare_ms += b.host.declare_ms;
@@ -255,6 +260,11 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (broad[0].scene_box) measured_box = broad[0].scene_box;
     if (run.settings.contacts)
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
+    if (auto view = run.detection->devicePairs()) {
+        out.device = devicePairsOf(*view, run);
+        // collect() may have grown the buffers (a repeated run): devicePairs() names them now.
+        if (last_device_pairs && last_device_pairs->slot == out.device->slot) last_device_pairs = out.device;
+    }
     // Everything the world holds: both slots' broad phases (with their cached transients and
     // the methods' own buffers) and the uploaded meshes, in Context::deviceMemoryInUse's unit.
     for (const Run& r : runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;

@@ -66,9 +66,13 @@ Result<CollisionWorld::Impl::Run*> CollisionWorld::Impl::freeRun() {
 Result<void> CollisionWorld::Impl::begin(const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
     if (device_lost)
         return Error(ErrorCode::DeviceLost, "the device was lost in an earlier detection: destroy the world and create a new Context");
+    last_device_pairs.reset();
     auto run = freeRun();
     if (!run) return run.error();
-    return hostGuarded(*(*run)->detection, (*run)->in_flight, [&] { return start(**run, settings, measure, target); });
+    auto started = hostGuarded(*(*run)->detection, (*run)->in_flight, [&] { return start(**run, settings, measure, target); });
+    if (started)
+        if (auto view = (*run)->detection->devicePairs()) last_device_pairs = devicePairsOf(*view, **run);
+    return started;
 }
 
 Result<DetectResult> CollisionWorld::detect(const DetectSettings& settings) {
@@ -137,6 +141,13 @@ Result<std::optional<DetectResult>> CollisionWorld::tryCollect() {
     auto r = collect();
     if (!r) return r.error();
     return std::optional<DetectResult>(std::move(*r));
+}
+
+Result<DevicePairs> CollisionWorld::devicePairs() const {
+    if (!impl_->last_device_pairs)
+        return Error(ErrorCode::InvalidArgument,
+                     "devicePairs: the detection started last did not ask for them (DetectSettings::device_pairs), or none started");
+    return *impl_->last_device_pairs;
 }
 
 bool CollisionWorld::pending() const noexcept { return impl_->pending(); }

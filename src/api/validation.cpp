@@ -132,6 +132,30 @@ VkDeviceSize indexBytes(const GpuMeshDesc& d) {
     return d.index_type == VK_INDEX_TYPE_UINT16 ? (VkDeviceSize(d.index_count) * 2 + 3) / 4 * 4 : VkDeviceSize(d.index_count) * 4;
 }
 
+Result<void> checkDevicePairs(const DetectSettings& s, const vk::Device& device) {
+    if (!s.device_pairs) return {};
+    if (s.method != DetectMethod::Reliable)
+        return invalid("device_pairs belongs to the reliable method (the peeling method forms its pairs on the host)");
+    if (s.exact == ExactDecision::Cpu)
+        return invalid(
+            "device_pairs needs the exact decision on the GPU (exact Auto or Gpu, not Cpu: the CPU decides its pairs on the host)");
+    if (!device.shader_float64)
+        return Error(ErrorCode::UnsupportedFeature, "device_pairs needs the exact decision on the GPU, so shaderFloat64, which " +
+                                                        device.info.name + " lacks (or the adopted device did not enable)");
+    if (s.device_pair_capacity > kMaxDevicePairCapacity)
+        return invalid("device_pairs: device_pair_capacity " + std::to_string(s.device_pair_capacity) +
+                       " is more than kMaxDevicePairCapacity (" + std::to_string(kMaxDevicePairCapacity) + ")");
+    return {};
+}
+
+Result<void> checkDevicePairsFilter(bool device_pairs, bool filter_on_host_only, std::size_t live_objects) {
+    if (device_pairs && filter_on_host_only)
+        return invalid("device_pairs with a pair filter over " + std::to_string(live_objects) +
+                       " live objects (more than kMaxFilterMaskObjects, " + std::to_string(gpu::kMaxFilterMaskObjects) +
+                       "): the world applies that filter on the host only, so the GPU's pairs would differ");
+    return {};
+}
+
 Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     // Every enum first, whatever the method uses: a value outside the enum would select no
     // branch below it (Coverage 77 sampled nothing and returned no pairs).
@@ -157,6 +181,7 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     if (s.exact == ExactDecision::Gpu && !device.shader_float64)
         return Error(ErrorCode::UnsupportedFeature, "exact decision on the GPU needs shaderFloat64, which " + device.info.name +
                                                         " lacks (or the adopted device did not enable): use ExactDecision::Auto or Cpu");
+    if (auto ok = checkDevicePairs(s, device); !ok) return ok;
     if (s.axes != 1 && s.axes != 3) return invalid("axes must be 1 or 3, not " + std::to_string(s.axes));
     if (reliable && s.axes != 1) return invalid("the reliable method runs along one direction (axes 1; resolveSettings sets it)");
     const std::uint32_t n = s.resolution.value_or(0);

@@ -50,6 +50,11 @@ VkDeviceSize indexBytes(const GpuMeshDesc& desc);
 // (per method), direction, epsilons, region, and (peeling) coverage and backend against
 // each other and the device.
 Result<void> checkSettings(const DetectSettings& resolved, const vk::Device& device);
+// DetectSettings::device_pairs: the reliable method, the exact decision on the GPU
+// (shaderFloat64), a capacity within kMaxDevicePairCapacity (checkSettings calls it).
+Result<void> checkDevicePairs(const DetectSettings& resolved, const vk::Device& device);
+// device_pairs with a pair filter the world applies only on the host (no mask kept).
+Result<void> checkDevicePairsFilter(bool device_pairs, bool filter_on_host_only, std::size_t live_objects);
 // The reliable method's limit on an object (host meshes' largest |coordinate| is measured
 // when their geometry changes; GPU meshes pass 0 and are checked on the GPU).
 Result<void> checkReliableObject(const Transform3x4& transform, float max_abs_position);

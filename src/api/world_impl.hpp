@@ -135,6 +135,12 @@ struct CollisionWorld::Impl {
     // before their buffers are freed. runs[oldest] is collected next.
     std::array<Run, 2> runs;
     std::uint32_t oldest = 0;
+    // The device pairs of the detection started last (CollisionWorld::devicePairs()); reset
+    // by every start, set when it asked for them.
+    std::optional<DevicePairs> last_device_pairs;
+    DevicePairs devicePairsOf(const passes::DevicePairsView& v, const Run& run) const {
+        return {v.pairs, v.pairs_address, v.header, v.header_address, v.capacity, static_cast<std::uint32_t>(&run - runs.data())};
+    }
     // Object-level contacts (DetectSettings::contacts), created at the first detection
     // that asks for them; used by collect(), one at a time.
     std::unique_ptr<passes::ContactStage> contact_stage;

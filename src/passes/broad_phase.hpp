@@ -82,6 +82,8 @@ public:
     const std::vector<ObjectFault>& faults() const noexcept { return faults_; }
     // Bytes of the GPU buffers the broad phase holds (its own, not the meshes').
     std::uint64_t memoryBytes() const noexcept { return table_.bytes() + method_->memoryBytes() + executor_.memoryBytes(); }
+    // The method's device pairs (BroadPhaseSettings::device_pairs) of the run started last.
+    std::optional<DevicePairsView> devicePairs() const { return method_->devicePairs(); }
     // The projection the last run sampled with, as the GPU holds it (the fit's output, or
     // the caller's region as uploaded). For tests: BroadPhaseResult::projection is the host's.
     gpu::Projection gpuProjection() const;

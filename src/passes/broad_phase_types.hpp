@@ -51,6 +51,9 @@ struct GpuMesh {
     // pair of two of them when off, methods that form pairs on the GPU form none (the
     // paper's method leaves that to the narrow phase). true is conservative.
     bool self_collision = true;
+    // The caller's name for the object: methods that write pairs on the GPU
+    // (BroadPhaseSettings::device_pairs) write it as the pair's object.
+    std::uint32_t tag = 0;
 };
 
 // Which pairs of different objects may collide, over a run's objects 0..n-1: bit
@@ -126,6 +129,18 @@ struct BroadPhaseSettings {
     // Methods that form pairs on the GPU: decide them exactly there where the device can
     // (CellPairsSettings::exact); BroadPhaseResult::cells.exact_ran says whether it did.
     bool exact_on_gpu = false;
+    // Methods that decide pairs exactly on the GPU: also sort them there into device
+    // buffers (DevicePairsView; objects named by GpuMesh::tag). Capacity in pairs, 0: automatic.
+    bool device_pairs = false;
+    std::uint32_t device_pair_capacity = 0;
+};
+
+// Where a run writes its sorted pairs on the GPU (BroadPhaseSettings::device_pairs):
+// vkcollide::DevicePairs without the slot.
+struct DevicePairsView {
+    VkBuffer pairs = VK_NULL_HANDLE, header = VK_NULL_HANDLE;
+    VkDeviceAddress pairs_address = 0, header_address = 0;
+    std::uint32_t capacity = 0;
 };
 
 // How long the run's next wait may take (ns): what is left before the deadline (0 once it
@@ -191,6 +206,7 @@ struct BroadPhaseResult {
     double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
     // The cell pair stage (Stage::Footprints, Pairing, Filtering).
     double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;
+    double sorting_ms = 0;  // device pairs (Stage::Sorting)
     // The scene's world box as the bounds pass measured it (min x, y, z, max x, y, z):
     // every object, engine meshes included; empty with a caller's region.
     std::optional<std::array<float, 6>> scene_box;

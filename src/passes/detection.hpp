@@ -91,6 +91,9 @@ public:
     }
     // Bytes of the broad phases' GPU buffers.
     std::uint64_t memoryBytes() const noexcept;
+    // The first direction's device pairs (BroadPhaseSettings::device_pairs) of the detection
+    // started last; nullopt without.
+    std::optional<DevicePairsView> devicePairs() const { return broads_[0] ? broads_[0]->devicePairs() : std::nullopt; }
 
     // After start() or collect() failed with InvalidMesh: the GPU check's findings (objects
     // as indices in start()'s meshes), and whether every object had been left out. Empty

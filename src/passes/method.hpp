@@ -74,6 +74,9 @@ public:
     [[nodiscard]] virtual Result<void> settle(std::uint64_t /*timeout_ns*/) { return {}; }
     // Bytes of GPU memory the method holds outside the table.
     virtual std::uint64_t memoryBytes() const noexcept { return 0; }
+    // With BroadPhaseSettings::device_pairs: where the run started last writes its sorted
+    // pairs on the GPU (valid from predict() on); nullopt when it writes none.
+    virtual std::optional<DevicePairsView> devicePairs() const { return std::nullopt; }
 };
 
 // Creates a method on `device`, adding its rows to `io_table` (after the core rows).

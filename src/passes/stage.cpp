@@ -17,6 +17,7 @@ const char* toString(Stage stage) noexcept {
         case Stage::Footprints: return "footprints";
         case Stage::Pairing: return "pairing";
         case Stage::Filtering: return "filtering";
+        case Stage::Sorting: return "sorting";
     }
     return "?";
 }
@@ -31,6 +32,7 @@ void addStageTime(BroadPhaseResult& r, const graph::PassTiming& pass) {
         case Stage::Footprints: r.footprints_ms += pass.gpu_ms; break;
         case Stage::Pairing: r.pairing_ms += pass.gpu_ms; break;
         case Stage::Filtering: r.filtering_ms += pass.gpu_ms; break;
+        case Stage::Sorting: r.sorting_ms += pass.gpu_ms; break;
         case Stage::None:
         case Stage::Readback: break;
     }

@@ -9,13 +9,18 @@
 //    f; the detection waits for it) and `detected` (the detection signals f + 1; the engine
 //    waits for it before it overwrites that frame's buffers two frames later);
 //  * detect(), then submit()/collect(), then a pipelined loop (frame f submitted before
-//    frame f - 1 is collected).
+//    frame f - 1 is collected);
+//  * the pairs on the GPU (DetectSettings::device_pairs): after each submit() the engine
+//    submits its own compute pass (tests/shaders/engine_pairs_check.comp.glsl) that waits
+//    for the world's signal and reads the pairs through their device addresses, before it
+//    collects anything; what it wrote agrees with the host result of that frame.
 // Every frame's pairs are those of the same geometry added as host meshes, pairs exist
 // where the spheres overlap and none where they are apart.
 #include <catch2/catch.hpp>
 
 #include <array>
 #include <cstring>
+#include <span>
 #include <vector>
 
 #include "support/gpu_fixture.hpp"
@@ -29,6 +34,18 @@ using namespace vkcollide;
 namespace {
 
 constexpr int kFrames = 6;
+constexpr int kChecks = 2 * kFrames;  // frames with semaphores: the engine reads the device pairs of each
+constexpr std::uint32_t kCheckWords = 8;  // engine_pairs_check.comp.glsl's output per frame
+
+// The check shader's mix(), on the host.
+std::uint32_t mix(std::uint32_t i, const TrianglePair& p) {
+    std::uint32_t h = i * 0x9E3779B1u;
+    h ^= p.object_a * 0x85EBCA6Bu;
+    h ^= p.triangle_a * 0xC2B2AE35u;
+    h ^= p.object_b * 0x27D4EB2Fu;
+    h ^= p.triangle_b * 0x165667B1u;
+    return h ^ (h >> 15);
+}
 
 // Frame f: sphere 0 scaled and moved along x, sphere 1 moved the other way.
 struct Pose {
@@ -59,6 +76,9 @@ public:
         v12_.pNext = &v13_;
         enableRequiredFeatures(features_, v12_, v13_);
         v12_.timelineSemaphore = VK_TRUE;
+        // Optional for vkcollide; this engine wants the pairs on the GPU (device_pairs),
+        // which need the exact decision there (vkcollide's own device enables it where it can).
+        features_.features.shaderFloat64 = host_.shader_float64 ? VK_TRUE : VK_FALSE;
         const float priority = 1.0f;
         VkDeviceQueueCreateInfo queue{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
         queue.queueFamilyIndex = host_.queue_family;
@@ -85,22 +105,13 @@ public:
         deformed_ = timeline();
         detected_ = timeline();
 
-        const auto spirv = shaders::engine_deform_comp;
-        VkShaderModuleCreateInfo si{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-        si.codeSize = spirv.size_bytes();
-        si.pCode = spirv.data();
-        VkShaderModule module = VK_NULL_HANDLE;
-        REQUIRE(f_.vkCreateShaderModule(device_, &si, nullptr, &module) == VK_SUCCESS);
-        const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(Push)};
-        VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-        li.pushConstantRangeCount = 1;
-        li.pPushConstantRanges = &range;
-        REQUIRE(f_.vkCreatePipelineLayout(device_, &li, nullptr, &layout_) == VK_SUCCESS);
-        VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-        pci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
-        pci.layout = layout_;
-        REQUIRE(f_.vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pci, nullptr, &pipeline_) == VK_SUCCESS);
-        f_.vkDestroyShaderModule(device_, module, nullptr);
+        pipeline(shaders::engine_deform_comp, sizeof(Push), layout_, pipeline_);
+        pipeline(shaders::engine_pairs_check_comp, sizeof(CheckPush), check_layout_, check_pipeline_);
+        ai.commandBufferCount = kChecks;
+        REQUIRE(f_.vkAllocateCommandBuffers(device_, &ai, check_cmds_.data()) == VK_SUCCESS);
+        checks_ = buffer(VkDeviceSize(kChecks) * kCheckWords * 4, nullptr);
+        REQUIRE(f_.vkMapMemory(device_, checks_.memory, 0, VK_WHOLE_SIZE, 0, &checks_mapped_) == VK_SUCCESS);
+        std::memset(checks_mapped_, 0, std::size_t{kChecks} * kCheckWords * 4);
     }
     ~Engine() {
         f_.vkDeviceWaitIdle(device_);
@@ -109,9 +120,11 @@ public:
                 f_.vkDestroyBuffer(device_, b->buffer, nullptr);
                 f_.vkFreeMemory(device_, b->memory, nullptr);
             }
+        f_.vkDestroyBuffer(device_, checks_.buffer, nullptr);
+        f_.vkFreeMemory(device_, checks_.memory, nullptr);
         for (VkSemaphore s : {deformed_, detected_}) f_.vkDestroySemaphore(device_, s, nullptr);
-        f_.vkDestroyPipeline(device_, pipeline_, nullptr);
-        f_.vkDestroyPipelineLayout(device_, layout_, nullptr);
+        for (VkPipeline p : {pipeline_, check_pipeline_}) f_.vkDestroyPipeline(device_, p, nullptr);
+        for (VkPipelineLayout l : {layout_, check_layout_}) f_.vkDestroyPipelineLayout(device_, l, nullptr);
         f_.vkDestroyCommandPool(device_, pool_, nullptr);
         f_.vkDestroyDevice(device_, nullptr);
     }
@@ -192,6 +205,39 @@ public:
     std::array<SemaphoreSubmit, 1> signalDetected(int frame) const { return {{{detected_, std::uint64_t(frame + 1)}}}; }
     void idle() { REQUIRE(f_.vkDeviceWaitIdle(device_) == VK_SUCCESS); }
 
+    // The engine's next command buffer after frame `frame`'s detection: it waits for the
+    // world's signal (detected = frame + 1) at the compute stage, which makes the world's
+    // writes visible to it, and reads the device pairs through their addresses into
+    // check slot `slot`. Submitted before the next detection that reuses those buffers (the
+    // lifetime rule: same queue, earlier in submission order).
+    void check(int slot, int frame, const DevicePairs& pairs) {
+        VkCommandBuffer cmd = check_cmds_[slot];
+        VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        REQUIRE(f_.vkBeginCommandBuffer(cmd, &bi) == VK_SUCCESS);
+        f_.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, check_pipeline_);
+        const CheckPush push{pairs.pairs_address, pairs.header_address, address(checks_) + VkDeviceAddress(slot) * kCheckWords * 4};
+        f_.vkCmdPushConstants(cmd, check_layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+        f_.vkCmdDispatch(cmd, 4, 1, 1);
+        REQUIRE(f_.vkEndCommandBuffer(cmd) == VK_SUCCESS);
+        VkCommandBufferSubmitInfo ci{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+        ci.commandBuffer = cmd;
+        const VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO, nullptr, detected_, std::uint64_t(frame + 1),
+                                         VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT};
+        VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+        submit.commandBufferInfoCount = 1;
+        submit.pCommandBufferInfos = &ci;
+        submit.waitSemaphoreInfoCount = 1;
+        submit.pWaitSemaphoreInfos = &wait;
+        REQUIRE(f_.vkQueueSubmit2(queue_, 1, &submit, VK_NULL_HANDLE) == VK_SUCCESS);
+    }
+    // What check `slot` wrote (after idle()).
+    std::array<std::uint32_t, kCheckWords> checked(int slot) const {
+        std::array<std::uint32_t, kCheckWords> out{};
+        std::memcpy(out.data(), static_cast<const std::uint32_t*>(checks_mapped_) + std::size_t(slot) * kCheckWords, sizeof out);
+        return out;
+    }
+
 private:
     static constexpr VkBufferUsageFlags kUsage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     struct Buffer {
@@ -211,6 +257,27 @@ private:
         std::uint32_t count;
         std::uint32_t pad;
     };
+    struct CheckPush {
+        VkDeviceAddress pairs, header, out;
+    };
+
+    void pipeline(std::span<const std::uint32_t> spirv, std::uint32_t push_bytes, VkPipelineLayout& out_layout, VkPipeline& out_pipeline) {
+        VkShaderModuleCreateInfo si{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        si.codeSize = spirv.size_bytes();
+        si.pCode = spirv.data();
+        VkShaderModule module = VK_NULL_HANDLE;
+        REQUIRE(f_.vkCreateShaderModule(device_, &si, nullptr, &module) == VK_SUCCESS);
+        const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes};
+        VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+        li.pushConstantRangeCount = 1;
+        li.pPushConstantRanges = &range;
+        REQUIRE(f_.vkCreatePipelineLayout(device_, &li, nullptr, &out_layout) == VK_SUCCESS);
+        VkComputePipelineCreateInfo pci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        pci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO, nullptr, 0, VK_SHADER_STAGE_COMPUTE_BIT, module, "main", nullptr};
+        pci.layout = out_layout;
+        REQUIRE(f_.vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pci, nullptr, &out_pipeline) == VK_SUCCESS);
+        f_.vkDestroyShaderModule(device_, module, nullptr);
+    }
 
     // A host-visible buffer with device-address memory (what vkcollide asks of engine
     // buffers), filled from `data` when given.
@@ -268,8 +335,11 @@ private:
     VkQueue queue_ = VK_NULL_HANDLE;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     std::array<VkCommandBuffer, 2> cmds_{};
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE, check_layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE, check_pipeline_ = VK_NULL_HANDLE;
+    std::array<VkCommandBuffer, kChecks> check_cmds_{};
+    Buffer checks_;
+    void* checks_mapped_ = nullptr;
     VkSemaphore deformed_ = VK_NULL_HANDLE, detected_ = VK_NULL_HANDLE;
     std::vector<Mesh> meshes_;
 };
@@ -325,29 +395,70 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
         engine.idle();
         // 2. submit()/collect(), synchronised by the timelines only (the engine never waits
         // on the CPU); 3. pipelined: frame g submitted before frame g - 1 is collected.
+        // Each detection also leaves its pairs on the GPU, which the engine reads at once.
+        DetectSettings on_gpu;
+        on_gpu.device_pairs = (*context)->deviceInfo().shader_float64;
+        if (!on_gpu.device_pairs) WARN("no shaderFloat64: the engine reads no pairs on the GPU");
+        std::vector<DetectResult> results(kChecks);  // by g, kept for the comparison below
         int g = 0;  // frames with semaphores, over both loops
         for (bool pipelined : {false, true}) {
             INFO("pipelined " << pipelined);
+            const int first_g = g;
             for (int f = 0; f < kFrames; ++f, ++g) {
                 engine.deform(g, f, true);
                 repoint(g);
                 const auto wait = engine.waitDeformed(g);
                 const auto signal = engine.signalDetected(g);
-                REQUIRE(w.submit({}, {.wait = wait, .signal = signal}));
+                auto submitted = w.submit(on_gpu, {.wait = wait, .signal = signal});
+                INFO((submitted ? std::string() : submitted.error().message()));
+                REQUIRE(submitted);
+                if (on_gpu.device_pairs) {
+                    auto pairs = w.devicePairs();
+                    REQUIRE(pairs);
+                    engine.check(g, g, *pairs);
+                }
                 if (pipelined && f == 0) continue;
                 auto r = w.collect();
                 REQUIRE(r);
                 const int collected = pipelined ? f - 1 : f;
                 INFO("frame " << collected);
                 CHECK(r->pairs == expected[collected]);
+                results[first_g + collected] = std::move(*r);
             }
             if (pipelined) {
                 auto last = w.collect();
                 REQUIRE(last);
                 CHECK(last->pairs == expected[kFrames - 1]);
+                results[first_g + kFrames - 1] = std::move(*last);
             }
         }
         engine.idle();
+        // What the engine's pass read at the signal is the host result of that frame.
+        int compared = 0;
+        for (int k = 0; k < kChecks && on_gpu.device_pairs; ++k) {
+            INFO("check " << k);
+            const DetectResult& r = results[k];
+            const auto seen = engine.checked(k);
+            if (r.stats.cells.runs > 1) {  // repeated by collect(): the signal's pairs said so
+                CHECK(seen[1] == kDevicePairsIncomplete);
+                CHECK(seen[0] == 0);
+                continue;
+            }
+            std::uint32_t sum = 0, cross = 0;
+            for (std::size_t i = 0; i < r.pairs.size(); ++i) {
+                sum += mix(static_cast<std::uint32_t>(i), r.pairs[i]);
+                cross += r.pairs[i].object_a != r.pairs[i].object_b ? 1u : 0u;
+            }
+            CHECK(seen[0] == r.pairs.size());
+            CHECK(seen[1] == 0);
+            CHECK(seen[2] == r.pairs.size());
+            CHECK(seen[3] == sum);
+            CHECK(seen[4] == cross);
+            CHECK(cross == r.pairs.size());  // two spheres, no self-collision
+            ++compared;
+        }
+        // Reruns happen only while the buffers grow (the second slot's first frames).
+        if (on_gpu.device_pairs) CHECK(compared >= kChecks - 2);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(validated);
 }

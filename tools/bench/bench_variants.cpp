@@ -36,6 +36,9 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // The reliable method with the exact decision on the CPU (the reference path): its
         // difference to "default" is what deciding on the GPU saves (docs/exact_gpu.md).
         {"exact-cpu", "modes", [](S& s) { s.exact = ExactDecision::Cpu; }},
+        // The pairs also sorted on the GPU (DetectSettings::device_pairs): its cost is
+        // sorting_ms, the difference to "default".
+        {"device-pairs", "modes", [](S& s) { s.device_pairs = true; }},
         {"depth-sep", "modes", paper([](S& s) { s.depth_aware = true; })},  // peeling, depth-aware separation on
         {"paper-sep", "modes", paper([](S& s) { s.depth_aware = false; })},  // peeling, the paper's separation (the old default)
         // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".

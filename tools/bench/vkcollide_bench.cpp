@@ -240,7 +240,8 @@ int main(int argc, char** argv) {
            "collision_rays,downloaded,pot_colliding,tests,positive_tests,pairs,reference_pairs,reference_crossing,"
            "found_crossing,recall,recall_crossing,precision,gpu_mib,host_peak_mib,narrow_threads,reference_s,reference_cached,"
            "method,footprints_ms,pairing_ms,filtering_ms,cell_candidates,cell_survivors,settings_note,"
-           "cell_entries,cell_duplicates,cell_filtered,cell_deep_cells,cell_max_cell,gpu_exact_tests,cpu_exact_tests,gpu_span_ms\n";
+           "cell_entries,cell_duplicates,cell_filtered,cell_deep_cells,cell_max_cell,gpu_exact_tests,cpu_exact_tests,gpu_span_ms,"
+           "sorting_ms\n";
     std::vector<Summary> summaries;
     std::printf("%-9s %-24s %-14s %-8s %5s %9s %9s %9s %9s %8s %8s %8s\n", "set", "scene", "variant", "backend", "res", "gpu ms", "narrow ms",
                 "total ms", "downl.", "recall", "crossing", "prec.");
@@ -349,10 +350,10 @@ int main(int argc, char** argv) {
                 // The cell stage's own counts (docs/reliable.md), after the note so that the
                 // earlier columns keep their places.
                 char counts[256];
-                std::snprintf(counts, sizeof counts, ",%llu,%llu,%llu,%llu,%llu,%zu,%zu,%.4f", (unsigned long long)st.cells.entries,
+                std::snprintf(counts, sizeof counts, ",%llu,%llu,%llu,%llu,%llu,%zu,%zu,%.4f,%.4f", (unsigned long long)st.cells.entries,
                               (unsigned long long)st.cells.duplicates, (unsigned long long)st.cells.filtered,
                               (unsigned long long)st.cells.deep_cells, (unsigned long long)st.cells.max_cell, st.gpu_exact_tests,
-                              st.cpu_exact_tests, st.gpu_span_ms);
+                              st.cpu_exact_tests, st.gpu_span_ms, st.sorting_ms);
                 csv << row << cells << csvField(st.settings_note) << counts << '\n';
                 csv.flush();
                 if (profile.is_open()) writeProfile(profile, device + ',' + scene->name + ',' + v.name + ',' + std::to_string(f), st, update_ms, total_ms);

@@ -131,8 +131,22 @@ public:
     [[nodiscard]] Result<void> prepare(const CellPairsInput& input, const CellPairsSettings& settings = {});
     // Adds the stage's passes (names start with "cells-") to `graph`, after prepare().
     // `projection` is the buffer an earlier pass wrote the projection into, when the
-    // input gave projection_address. The header readback is the last pass.
-    void record(graph::Graph& graph, graph::ResourceId projection = {});
+    // input gave projection_address. The header readback is the last pass. Returns the
+    // buffers later GPU stages of the same graph read (device_pairs.hpp).
+    struct Resources {
+        graph::ResourceId header, survivors, triangles;
+    };
+    Resources record(graph::Graph& graph, graph::ResourceId projection = {});
+    // Those buffers imported into a graph of their own (a later stage run alone).
+    Resources importOutputs(graph::Graph& g) {
+        return {g.importBuffer("cells-header", buf_.header), g.importBuffer("cells-survivors", buf_.survivors, true),
+                g.importBuffer("cells-triangles", buf_.triangles)};
+    }
+    // The prepared run as later GPU stages see it: the parameters' address (CellsParams),
+    // its triangles and the dispatch row limit.
+    VkDeviceAddress paramsAddress() const noexcept { return buf_.params.address(); }
+    std::uint32_t triangleCount() const noexcept { return triangles_; }
+    std::uint32_t maxGroupsX() const noexcept { return max_groups_x_; }
     // After the recorded graph ran: reads the header. Complete: `out` holds the pairs
     // and statistics. Rerun: a buffer overflowed; it has been grown (and the parameters
     // re-uploaded), so record and run the stage again. Errors: InvalidMesh or

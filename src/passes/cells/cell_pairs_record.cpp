@@ -28,7 +28,7 @@ graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage 
 
 }  // namespace
 
-void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
+CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
     const VkDeviceAddress params = buf_.params.address();
     // The count buffer is cleared and scanned over its capacity while that is within a
     // quarter of this run's cells (the shaders stop at the params' cell and block counts):
@@ -186,6 +186,7 @@ void CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
             VkBufferCopy copy{0, 0, sizeof(gpu::CellsHeader)};
             pc.copyBuffer(header_buffer, header_rb_buffer, copy);
         });
+    return {header, survivors, tris};
 }
 
 }  // namespace vkcollide::passes

@@ -8,7 +8,7 @@ namespace vkcollide::passes {
 Result<std::unique_ptr<BroadPhaseMethod>> ReliableMethod::create(vk::Device& device, BufferTable& table, const CoreBuffers& core) {
     auto cells = CellPairs::create(device);
     if (!cells) return cells.error();
-    return std::unique_ptr<BroadPhaseMethod>(new ReliableMethod(table, core, std::move(*cells)));
+    return std::unique_ptr<BroadPhaseMethod>(new ReliableMethod(device, table, core, std::move(*cells)));
 }
 
 // The stage's input from the run: the objects as uploaded, the projection the front's fit
@@ -36,11 +36,26 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     CellPairsSettings settings;
     settings.max_candidate_pairs = run.settings.max_candidate_pairs;
     settings.exact = run.settings.exact_on_gpu;
-    return cells_->prepare(in, settings);
+    if (auto ok = cells_->prepare(in, settings); !ok) return ok;
+    // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
+    device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
+    if (!device_pairs_on_) return {};
+    if (!device_pairs_) {
+        auto made = DevicePairStage::create(*device_);
+        if (!made) return made.error();
+        device_pairs_ = std::move(*made);
+    }
+    device_pairs_->retire();
+    object_tags_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) object_tags_[i] = run.meshes[i].tag;
+    device_pair_capacity_ = run.settings.device_pair_capacity;
+    fault_header_ = run.any_gpu_check ? table_->buffer(core_.header).address() : 0;
+    return device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_);
 }
 
 void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
-    cells_->record(g, buffers[core_.projection]);
+    const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
+    if (device_pairs_on_) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
 }
 
 Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, BroadPhaseResult& result) {
@@ -68,6 +83,20 @@ Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, Bro
         if (run.settings.deadline && wait_ns == 0)
             return timeoutOfRun(run.settings, Error(ErrorCode::Timeout, "deadline passed before a rerun"));
         auto report = cells_->runAgain(&table_->buffer(core_.projection), wait_ns);
+        if (!report) return report.error();
+        for (const graph::PassTiming& p : report->passes) {
+            addStageTime(result, p);
+            result.passes.push_back(p);
+        }
+    }
+    if (device_pairs_on_ && result.cells.runs > 1) {
+        // The device pairs of the first run say Incomplete: sort the final run's survivors
+        // (the stage's buffers may have grown, so size for them first).
+        if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_); !ok) return ok.error();
+        const std::uint64_t wait_ns = waitNs(run.settings);
+        if (run.settings.deadline && wait_ns == 0)
+            return timeoutOfRun(run.settings, Error(ErrorCode::Timeout, "deadline passed before sorting the device pairs"));
+        auto report = device_pairs_->runAlone(*cells_, wait_ns);
         if (!report) return report.error();
         for (const graph::PassTiming& p : report->passes) {
             addStageTime(result, p);

@@ -5,10 +5,12 @@
 //   main      cells-clear ... cells-pairs                 CellPairs::record, reading the
 //                                                         projection the fit wrote
 //   readback  the broad phase's header                    common_stages.hpp
+//   (device pairs, BroadPhaseSettings::device_pairs: pairs-clear/args/bucket/sort after
+//             the stage's passes, device_pairs.hpp)
 //   collect   the stage's header; after an overflow the stage alone again (its buffers
-//             already grown), until complete; the survivors and the engine meshes'
-//             triangles as views of host-visible memory (BroadPhaseResult::pairs,
-//             gpu_triangles), nothing sorted or copied on the host.
+//             already grown), until complete, then the device pairs alone; the survivors
+//             and the engine meshes' triangles as views of host-visible memory
+//             (BroadPhaseResult::pairs, gpu_triangles), nothing sorted or copied on the host.
 //
 // No measuring passes (traits().measures is false), any resolution in [1, 16384] (cells
 // per side). The run's objects as the broad phase uploaded them; per object its
@@ -22,6 +24,7 @@
 #include <vector>
 
 #include "passes/cells/cell_pairs.hpp"
+#include "passes/cells/device_pairs.hpp"
 #include "passes/method.hpp"
 
 namespace vkcollide::passes {
@@ -39,15 +42,26 @@ public:
     void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
     Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
     std::optional<ObjectFault> fault() const override { return fault_; }
-    std::uint64_t memoryBytes() const noexcept override { return cells_->memoryBytes(); }
-    bool busy() const override { return cells_->busy(); }
-    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) override { return cells_->settle(timeout_ns); }
+    std::uint64_t memoryBytes() const noexcept override {
+        return cells_->memoryBytes() + (device_pairs_ ? device_pairs_->memoryBytes() : 0);
+    }
+    std::optional<DevicePairsView> devicePairs() const override {
+        if (!device_pairs_on_) return std::nullopt;
+        return device_pairs_->view();
+    }
+    // A rerun of the stage or a sort of its pairs that timed out (each has its executor).
+    bool busy() const override { return cells_->busy() || (device_pairs_ && device_pairs_->busy()); }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) override {
+        if (auto ok = cells_->settle(timeout_ns); !ok) return ok;
+        return device_pairs_ ? device_pairs_->settle(timeout_ns) : Result<void>{};
+    }
 
 private:
-    ReliableMethod(BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellPairs> cells)
-        : table_(&table), core_(core), cells_(std::move(cells)) {}
+    ReliableMethod(vk::Device& device, BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellPairs> cells)
+        : device_(&device), table_(&table), core_(core), cells_(std::move(cells)) {}
     Result<void> prepareStage(const RunView& run);
 
+    vk::Device* device_;
     BufferTable* table_;
     CoreBuffers core_;
     std::unique_ptr<CellPairs> cells_;
@@ -55,6 +69,12 @@ private:
     CellPairsInput input_;
     std::vector<std::uint8_t> download_;
     std::optional<ObjectFault> fault_;
+    // Device pairs (BroadPhaseSettings::device_pairs): made on first use.
+    std::unique_ptr<DevicePairStage> device_pairs_;
+    bool device_pairs_on_ = false;
+    std::uint32_t device_pair_capacity_ = 0;
+    std::vector<std::uint32_t> object_tags_;
+    VkDeviceAddress fault_header_ = 0;
 };
 
 }  // namespace vkcollide::passes

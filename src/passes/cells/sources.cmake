@@ -4,7 +4,8 @@ list(APPEND VKCOLLIDE_GPU_SOURCES
   ${S}/passes/cells/cell_pairs.cpp
   ${S}/passes/cells/cell_pairs_record.cpp
   ${S}/passes/cells/reliable_method.cpp
+  ${S}/passes/cells/device_pairs.cpp
 )
 list(APPEND VKCOLLIDE_SHADERS
   cells_setup.comp cells_big.comp cells_scan.comp cells_fill.comp cells_sweep.comp cells_deep.comp cells_args.comp
-  cells_pairs.comp cells_pairs_nofp64.comp cells_filter_test.comp)
+  cells_pairs.comp cells_pairs_nofp64.comp cells_filter_test.comp device_pairs.comp)

@@ -1,0 +1,312 @@
+// Results on the GPU (DetectSettings::device_pairs, docs/api.md): the pairs the detection
+// leaves in device buffers, copied back here as an engine would read them, equal
+// DetectResult::pairs exactly (content and order) on the test scenes, the stability cases,
+// a resting stack, many objects, self-collision, a pair filter, a run whose survivors
+// overflowed (Incomplete at the signal, final after collect) and pipelined slots; a short
+// capacity says so; bad settings are refused by name. Validation layer on.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <string>
+
+#include "support/gpu_fixture.hpp"
+#include "support/stability_scenes.hpp"
+#include "support/test_scenes.hpp"
+#include "vk/device.hpp"
+#include "vk/resources.hpp"
+#include "vkcollide/scene.hpp"
+#include "vkcollide/world.hpp"
+
+using namespace vkcollide;
+using namespace vkcollide::test;
+
+namespace {
+
+struct DeviceCopy {
+    DevicePairsHeader header;
+    std::vector<TrianglePair> pairs;  // the first header.count records
+};
+
+// Copies the header and the pairs into host memory: one command buffer on the Context's
+// queue after the detection finished, ordered after its shader writes by the barrier the
+// docs ask for.
+DeviceCopy readBack(vk::Device& dev, const DevicePairs& d) {
+    const VkDeviceSize pair_bytes = VkDeviceSize(d.capacity) * sizeof(TrianglePair);
+    auto header = vk::Buffer::create(dev, sizeof(DevicePairsHeader), 0, vk::MemoryKind::Readback, "test-header");
+    auto pairs = vk::Buffer::create(dev, std::max<VkDeviceSize>(pair_bytes, 16), 0, vk::MemoryKind::Readback, "test-pairs");
+    REQUIRE(header);
+    REQUIRE(pairs);
+    const vk::DeviceFunctions& f = dev.fns;
+    VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pi.queueFamilyIndex = dev.queue_family;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    REQUIRE(f.vkCreateCommandPool(dev.device, &pi, nullptr, &pool) == VK_SUCCESS);
+    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    ai.commandPool = pool;
+    ai.commandBufferCount = 1;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    REQUIRE(f.vkAllocateCommandBuffers(dev.device, &ai, &cmd) == VK_SUCCESS);
+    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    REQUIRE(f.vkBeginCommandBuffer(cmd, &bi) == VK_SUCCESS);
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT;
+    mb.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &mb;
+    f.vkCmdPipelineBarrier2(cmd, &dep);
+    const VkBufferCopy hc{0, 0, sizeof(DevicePairsHeader)};
+    f.vkCmdCopyBuffer(cmd, d.header, header->handle(), 1, &hc);
+    if (pair_bytes) {
+        const VkBufferCopy pc{0, 0, pair_bytes};
+        f.vkCmdCopyBuffer(cmd, d.pairs, pairs->handle(), 1, &pc);
+    }
+    VkMemoryBarrier2 hb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    hb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+    hb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+    hb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+    hb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+    dep.pMemoryBarriers = &hb;
+    f.vkCmdPipelineBarrier2(cmd, &dep);
+    REQUIRE(f.vkEndCommandBuffer(cmd) == VK_SUCCESS);
+    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VkFence fence = VK_NULL_HANDLE;
+    REQUIRE(f.vkCreateFence(dev.device, &fi, nullptr, &fence) == VK_SUCCESS);
+    VkCommandBufferSubmitInfo ci{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    ci.commandBuffer = cmd;
+    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    si.commandBufferInfoCount = 1;
+    si.pCommandBufferInfos = &ci;
+    REQUIRE(dev.queueSubmit({&si, 1}, fence) == VK_SUCCESS);
+    REQUIRE(f.vkWaitForFences(dev.device, 1, &fence, VK_TRUE, ~0ull) == VK_SUCCESS);
+    f.vkDestroyFence(dev.device, fence, nullptr);
+    f.vkDestroyCommandPool(dev.device, pool, nullptr);
+    header->invalidate();
+    pairs->invalidate();
+    DeviceCopy out;
+    std::memcpy(&out.header, header->mapped(), sizeof out.header);
+    const std::uint32_t n = std::min(out.header.count, d.capacity);
+    out.pairs.resize(n);
+    if (n) std::memcpy(out.pairs.data(), pairs->mapped(), std::size_t{n} * sizeof(TrianglePair));
+    return out;
+}
+
+// The device's pairs are the host's, in order, complete.
+void requireSame(vk::Device& dev, const DetectResult& r, const std::string& what) {
+    INFO(what << ": " << r.pairs.size() << " pairs on the host");
+    REQUIRE(r.device);
+    const DeviceCopy d = readBack(dev, *r.device);
+    CHECK(d.header.flags == 0);
+    CHECK(d.header.capacity == r.device->capacity);
+    CHECK(d.header.needed == r.pairs.size());
+    CHECK(d.header.count == r.pairs.size());
+    CHECK(d.pairs == r.pairs);
+}
+
+// Boxes resting face to face (coplanar, exact in float) in a 3 x 2 x 3 stack: touching
+// contacts only.
+TestScene restingStack() {
+    TestScene s{"resting stack", {}};
+    for (int k = 0; k < 18; ++k) {
+        auto b = box({0.5f, 0.5f, 0.5f}, 2);
+        REQUIRE(b);
+        const Transform3x4 at{1, 0, 0, float(k % 3), 0, 1, 0, float((k / 3) % 2), 0, 0, 1, float(k / 6)};
+        s.objects.push_back({std::move(*b), {.name = "box" + std::to_string(k), .transform = at}});
+    }
+    return s;
+}
+
+// 64 small spheres on a jittered grid, neighbours overlapping.
+TestScene manySpheres() {
+    TestScene s{"many objects", {}};
+    for (int k = 0; k < 64; ++k) {
+        auto m = uvSphere(0.3f + 0.01f * float(k % 5), 10, 6);
+        REQUIRE(m);
+        const float x = 0.5f * float(k % 8) + 0.03f * float(k % 3), y = 0.5f * float(k / 8), z = 0.05f * float(k % 4);
+        s.objects.push_back({std::move(*m), {.name = "s" + std::to_string(k), .transform = {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z}}});
+    }
+    return s;
+}
+
+// Three copies of one fine grid in one plane: every triangle touches about a dozen of the
+// other copies', far more pairs than the first run's survivor capacity (triangles / 2, at
+// least 4096), so the cell stage reruns after the signal.
+TestScene coincidentGrids() {
+    TestScene s{"coincident grids", {}};
+    for (int k = 0; k < 3; ++k) {
+        auto g = clothGrid(1.0f, 1.0f, 40, 40);
+        REQUIRE(g);
+        s.objects.push_back({std::move(*g), {.name = "grid" + std::to_string(k), .open = true}});
+    }
+    return s;
+}
+
+std::unique_ptr<CollisionWorld> worldOf(ValidatedContext& ctx, const TestScene& scene) {
+    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
+    REQUIRE(world);
+    for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
+    return std::move(*world);
+}
+
+}  // namespace
+
+TEST_CASE("device pairs: the GPU's sorted pairs equal DetectResult::pairs on every scene", "[api][gpu][reliable][device_pairs]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) {
+        WARN("the device has no shaderFloat64: device_pairs is refused (tested below)");
+        return;
+    }
+    DetectSettings on;
+    on.device_pairs = true;
+    std::vector<TestScene> scenes;
+    auto all = allTestScenes();
+    REQUIRE(all);
+    for (TestScene& s : *all) scenes.push_back(std::move(s));
+    scenes.push_back(restingStack());
+    scenes.push_back(manySpheres());
+    for (const TestScene& scene : scenes) {
+        auto world = worldOf(ctx, scene);
+        auto r = world->detect(on);
+        REQUIRE(r);
+        CHECK(r->pairs.size() > 0);
+        requireSame(ctx.device(), *r, scene.name);
+        auto last = world->devicePairs();
+        REQUIRE(last);
+        CHECK(last->pairs == r->device->pairs);
+        CHECK(r->stats.sorting_ms >= 0);
+        // Ids as the API returns them: remove the first object, so ids no longer equal indices.
+        if (scene.objects.size() < 3) continue;
+        REQUIRE(world->removeObject(0));
+        auto again = world->detect(on);
+        REQUIRE(again);
+        requireSame(ctx.device(), *again, scene.name + " without object 0");
+    }
+    auto cases = allStabilityCases();
+    REQUIRE(cases);
+    for (const StabilityCase& c : *cases) {
+        auto world = worldOf(ctx, c.scene);
+        DetectSettings s = on;
+        s.region = c.settings.region;
+        auto r = world->detect(s);
+        REQUIRE(r);
+        requireSame(ctx.device(), *r, c.name);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("device pairs: pair filter, the final run after an overflow, pipelined slots", "[api][gpu][reliable][device_pairs]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) return;
+    DetectSettings on;
+    on.device_pairs = true;
+    {
+        const TestScene scene = manySpheres();
+        auto world = worldOf(ctx, scene);
+        REQUIRE(world->setPairFilter([](ObjectId a, ObjectId b) { return (a + b) % 3 != 0; }));
+        auto r = world->detect(on);
+        REQUIRE(r);
+        requireSame(ctx.device(), *r, "many objects, filtered");
+    }
+    {
+        // The first run's survivors overflow: at the signal the header says Incomplete;
+        // collect() reruns the stage and sorts again, so the buffers hold the final pairs.
+        const TestScene scene = coincidentGrids();
+        auto world = worldOf(ctx, scene);
+        REQUIRE(world->submit(on));
+        auto early = world->devicePairs();
+        REQUIRE(early);
+        auto r = world->collect();
+        REQUIRE(r);
+        CHECK(r->stats.cells.runs > 1);
+        CHECK(r->pairs.size() > 4096);
+        requireSame(ctx.device(), *r, "coincident grids");
+        auto now = world->devicePairs();
+        REQUIRE(now);
+        CHECK(now->pairs == r->device->pairs);
+    }
+    {
+        // Two in flight: slot 0 keeps frame 0's pairs while frame 1 writes slot 1.
+        const TestScene scene = manySpheres();
+        auto world = worldOf(ctx, scene);
+        REQUIRE(world->submit(on));
+        REQUIRE(world->submit(on));
+        auto first = world->collect();
+        REQUIRE(first);
+        REQUIRE(world->setTransform(1, {1, 0, 0, 50, 0, 1, 0, 0, 0, 0, 1, 0}));  // moved away for frame 2 (slot 0)
+        auto second = world->collect();
+        REQUIRE(second);
+        REQUIRE(first->device);
+        REQUIRE(second->device);
+        CHECK(first->device->slot == 0);
+        CHECK(second->device->slot == 1);
+        CHECK(first->device->pairs != second->device->pairs);
+        requireSame(ctx.device(), *first, "pipelined frame 0");
+        requireSame(ctx.device(), *second, "pipelined frame 1");
+        auto third = world->detect(on);
+        REQUIRE(third);
+        CHECK(third->device->slot == 0);
+        CHECK(third->pairs.size() < first->pairs.size());
+        requireSame(ctx.device(), *third, "frame 2, object 1 moved away");
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("device pairs: a short capacity says overflow and the count needed", "[api][gpu][reliable][device_pairs]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) return;
+    auto all = allTestScenes();
+    REQUIRE(all);
+    auto world = worldOf(ctx, all->front());
+    DetectSettings s;
+    s.device_pairs = true;
+    s.device_pair_capacity = 5;
+    auto r = world->detect(s);
+    REQUIRE(r);
+    REQUIRE(r->pairs.size() > 5);
+    REQUIRE(r->device);
+    CHECK(r->device->capacity == 5);
+    const DeviceCopy d = readBack(ctx.device(), *r->device);
+    CHECK(d.header.flags == kDevicePairsOverflow);
+    CHECK(d.header.needed == r->pairs.size());
+    CHECK(d.header.count == 5);
+    CHECK(d.header.capacity == 5);
+    CHECK(d.pairs == std::vector<TrianglePair>(r->pairs.begin(), r->pairs.begin() + 5));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("device pairs: refused by name without the GPU's exact decision", "[api][gpu][reliable][device_pairs]") {
+    ValidatedContext ctx;
+    auto all = allTestScenes();
+    REQUIRE(all);
+    auto world = worldOf(ctx, all->front());
+    const auto refused = [&](DetectSettings s, ErrorCode code, const char* words) {
+        s.device_pairs = true;
+        auto r = world->detect(s);
+        REQUIRE_FALSE(r);
+        CHECK(r.error().code() == code);
+        CHECK_THAT(r.error().message(), Catch::Contains("device_pairs") && Catch::Contains(words));
+        CHECK_FALSE(world->resolveSettings(s));
+        CHECK_FALSE(world->devicePairs());
+    };
+    CHECK_FALSE(world->devicePairs());  // none started yet
+    if (!ctx.device().shader_float64) {
+        refused({}, ErrorCode::UnsupportedFeature, "shaderFloat64");
+        return;
+    }
+    refused({.method = DetectMethod::Peeling}, ErrorCode::InvalidArgument, "reliable method");
+    DetectSettings cpu;
+    cpu.exact = ExactDecision::Cpu;
+    refused(cpu, ErrorCode::InvalidArgument, "exact decision on the GPU");
+    DetectSettings big;
+    big.device_pair_capacity = kMaxDevicePairCapacity + 1;
+    refused(big, ErrorCode::InvalidArgument, "kMaxDevicePairCapacity");
+    // Without the setting a detection has none, and devicePairs() says so.
+    auto plain = world->detect();
+    REQUIRE(plain);
+    CHECK_FALSE(plain->device);
+    CHECK_FALSE(world->devicePairs());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -217,7 +217,7 @@ std::vector<SceneSpec> mixedScenes(double scale) {
 
 
 std::vector<SceneSpec> touchingScenes(double scale) {
-    const std::uint32_t n = scaledCount(24, scale, 2, 2), seg = scaledCount(64, scale, 2, 8), m = scaledCount(9, scale, 2, 2);
+    const std::uint32_t n = scaledCount(24, scale, 2, 2), seg = scaledCount(64, scale, 2, 8), mating = scaledCount(9, scale, 2, 2);
     // Every coordinate below is a multiple of a power of two: the contacts are exact in
     // float (coplanar faces, a vertex on a face), not just close.
     const auto boxAt = [](float hx, float hy, float hz, std::uint32_t subdivisions, Float3 at, std::string name) -> Result<BenchObject> {
@@ -250,12 +250,12 @@ std::vector<SceneSpec> touchingScenes(double scale) {
              return out;
          }},
         {"stack-mating", Motion::Rigid, SceneSet::Tuning, 1,
-         "6 x 6 x 6 unit boxes of " + count(12ull * m * m) + " triangles each, stacked face to face (every neighbour's faces exactly "
+         "6 x 6 x 6 unit boxes of " + count(12ull * mating * mating) + " triangles each, stacked face to face (every neighbour's faces exactly "
          "coplanar and overlapping: a clash-detection scene where almost every pair touches)",
          [=](int) -> Result<std::vector<BenchObject>> {
              std::vector<BenchObject> out;
              for (int k = 0; k < 216; ++k) {
-                 auto b = boxAt(0.5f, 0.5f, 0.5f, m, {float(k % 6), float(k / 6 % 6), float(k / 36)}, "box" + std::to_string(k));
+                 auto b = boxAt(0.5f, 0.5f, 0.5f, mating, {float(k % 6), float(k / 6 % 6), float(k / 36)}, "box" + std::to_string(k));
                  if (!b) return b.error();
                  out.push_back(std::move(*b));
              }
@@ -272,7 +272,7 @@ std::vector<SceneSpec> touchingScenes(double scale) {
                                      {t * nx * nz - sn * ny, t * ny * nz + sn * nx, t * nz * nz + c}};
              std::vector<BenchObject> out;
              for (int k = 0; k < 80; ++k) {
-                 Result<HostMesh> plate = box({0.5f, 0.25f, 0.125f}, m);
+                 Result<HostMesh> plate = box({0.5f, 0.25f, 0.125f}, mating);
                  if (!plate) return plate.error();
                  const double at[3] = {1.0 * (k % 5), 0.5 * (k / 5 % 4), 0.25 * (k / 20)};
                  Transform3x4 x{};

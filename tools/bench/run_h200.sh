@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The issue-12 sweep on the GPU machine, in one go: exact references of every scene (cached),
+# The bench-set sweep on the GPU machine, in one go: exact references of every scene (cached),
 # the tuning set with the defaults, the mitigations, both backends and a resolution sweep, the
 # held-out set with the defaults and the strongest mitigations, then a short table.
 #

@@ -8,7 +8,7 @@
 #   bash tools/narrow_gpu_host.sh [path/to/vkcollide_bench_narrow] [output folder]
 #
 # The gpu-* rows need the Vulkan device (on the H200 host set VK_DRIVER_FILES as
-# docs/results.md says); pass SKIP_GPU=1 to leave them out. About 5 minutes on 16 cores.
+# results/h200_2026-11-29/README.md says); pass SKIP_GPU=1 to leave them out. About 5 minutes on 16 cores.
 set -euo pipefail
 bench=${1:-build/tools/vkcollide_bench_narrow}
 out=${2:-narrow_gpu_host}

@@ -23,7 +23,7 @@
 // degrees (surfaces crossing all over: several tests per triangle) and `pile` its 60-mesh
 // pile (60 spheres of 9,940 triangles, fixed size), `graze` two spheres of size/2 triangles
 // meeting along one small circle (centres 1.8 radii apart: with `--pairs-sent hits`, about
-// 500 pairs for size 100,000, near the ~650 of docs/results.md's deform-pair-100K),
+// 500 pairs for size 100,000, near the ~650 the reliable method reads back on deform-pair-100K),
 // `touching` and `touching-tilted` boxes resting face to face (bench_narrow_scenes.hpp;
 // with --modes all --self off --pairs-sent hits, about 150K triangles and 600K pairs for
 // size 150,000, like the GPU bench's stack-touching). Meshes
@@ -43,7 +43,7 @@
 // self-collision switch allows and that shares no vertex index, as global ids, a fraction
 // (--pair-repeats) sent twice reversed, shuffled. `--pairs-sent hits` sends only the pairs
 // whose triangles intersect (what the GPU pair stage sends after its conservative triangle
-// test, less its few near misses: the pair counts of docs/results.md's read-back column),
+// test, less its few near misses: the pair counts the reliable method reads back),
 // repeats and shuffle as before. Every path and thread count must give
 // the same pairs (a gpu-* workload only warns between paths: the GPU computes its records'
 // vertices itself).

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# docs/results.md's speed-accuracy chart and before/after table, from the committed H200 CSVs:
+# docs/results.md's speed-accuracy chart and the before/after table of the reliable method, from
+# the H200 CSVs in results/:
 #   tools/bench/results_chart.sh [OUT.png]     (default docs/frontier.png; the table goes to stdout)
 # Series: the 2026-11-25 afternoon run (h200_2026-11-25b: tuning.csv, held-out.csv, warm clocks; default = the reliable method, peeling,
 # paper-sep), the defaults before the reliable method (before_old_defaults.csv, measured with the earlier

@@ -15,7 +15,8 @@
 #      how their leaks are told apart from ours.
 #   3. VKCOLLIDE_HOST_ONLY configured (not built): the host-only build, which needs no shader
 #      tools, stays configurable; its code and tests are the host part of build 2.
-# About 11 minutes on two cores from a fresh clone (docs/stability.md, "CI coverage").
+# 84 minutes from a fresh clone on two cores shared with two other builds (load 4-13), 54 minutes of CPU
+# (docs/stability.md, "CI coverage").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/deps.sh

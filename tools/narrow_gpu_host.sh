@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Narrow-phase benchmark for the 16-core GPU host (issue 13 item 3; docs/narrow_phase.md).
+# Narrow-phase benchmark for the 16-core GPU host (docs/narrow_phase.md).
 # Runs every workload of tools/bench/bench_narrow.cpp that the issue names, on the three
 # entries (80-byte records, 32-byte records with a TriangleSource, candidate pairs), with
 # self-collision off (vkcollide's default) and on (the peers' benchmarks), on 1, 4, 8 and
@@ -8,7 +8,7 @@
 #   bash tools/narrow_gpu_host.sh [path/to/vkcollide_bench_narrow] [output folder]
 #
 # The gpu-* rows need the Vulkan device (on the H200 host set VK_DRIVER_FILES as
-# docs/results.md says); pass SKIP_GPU=1 to leave them out. About 5 minutes on 16 cores.
+# results/h200_2026-11-29/README.md says); pass SKIP_GPU=1 to leave them out. About 5 minutes on 16 cores.
 set -euo pipefail
 bench=${1:-build/tools/vkcollide_bench_narrow}
 out=${2:-narrow_gpu_host}
@@ -16,7 +16,7 @@ mkdir -p "$out"
 echo "host: $(nproc) threads, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//')"
 all="--paths records,lean,pairs --self off,on --repeat 9"
 
-echo "== 1M candidates: issue 13's deep overlap (two spheres of 600K triangles, 85 % overlap) =="
+echo "== 1M candidates: the deep overlap (two spheres of 600K triangles, 85 % overlap) =="
 "$bench" --scenes deep --sizes 1200000 --modes near,all --threads 1,4,8,16 $all --csv "$out/deep.csv"
 echo "== the 60-mesh pile (596K triangles) =="
 "$bench" --scenes pile --modes near,all --threads 1,4,8,16 $all --csv "$out/pile.csv"

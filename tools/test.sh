@@ -1,15 +1,22 @@
 #!/usr/bin/env bash
-# Quick start 2: install what is missing, build everything warning-free (-Werror) and run
-# the whole suite, in three jobs:
-#   1. Release: every Catch2 test through CTest on the Vulkan device found (lavapipe in CI)
-#      with the Khronos validation layer on (any message fails a test), the fuzz targets'
-#      seeds replayed, the samples and the installed package;
-#   2. the library, the command-line tool, the GPU tests and the world's fuzz target under
-#      AddressSanitizer + UndefinedBehaviorSanitizer, run the same way (every test labelled
-#      gpu: all of them, ~3 minutes of the run's time; the Vulkan driver and the layer are
-#      not instrumented, tools/sanitize/ says how their leaks are told apart from ours);
-#   3. the host-only code (no Vulkan) under ASan + UBSan, every test labelled host.
-# About 15 minutes on two cores from a fresh clone (docs/stability.md, "CI coverage").
+# Quick start 2: install what is missing, build warning-free (-Werror) and run the whole
+# suite. Each check runs once, in the one build that can make it:
+#   1. Release: the library, the command-line tool and the samples built at -O3, then the
+#      tests labelled `release`: the samples' smoke tests (validation layer on) and the
+#      installed package (an engine-like consumer against the static install and against a
+#      shared libvkcollide built from scratch). The package's consumer cannot link a
+#      sanitized library, and the samples are what a user runs, so they are tested as shipped.
+#   2. Everything else under AddressSanitizer + UndefinedBehaviorSanitizer (Debug, -O1, so
+#      that assertions are on and the host's share of the GPU tests stays fast): the library,
+#      the command-line tool, the benchmarks (built, not run), every test, host and GPU, on
+#      the Vulkan device found (lavapipe in CI) with the Khronos validation layer and
+#      synchronization validation on (any message fails a test), and the fuzz targets' seeds
+#      replayed. The Vulkan driver and the layer are not instrumented; tools/sanitize/ says
+#      how their leaks are told apart from ours.
+#   3. VKCOLLIDE_HOST_ONLY configured (not built): the host-only build, which needs no shader
+#      tools, stays configurable; its code and tests are the host part of build 2.
+# 84 minutes from a fresh clone on two cores shared with two other builds (load 4-13), 54 minutes of CPU
+# (docs/stability.md, "CI coverage").
 #
 #   tools/test.sh [BUILD_ROOT]   the folder the build folders go in (or VKCOLLIDE_BUILD_ROOT;
 #                                default: the checkout), so that a read-only checkout is testable
@@ -23,26 +30,18 @@ jobs=$(nproc)
 start=$(date +%s)
 elapsed() { echo "($(( $(date +%s) - start )) s so far)"; }
 
-echo "== build and test (validation layer on) =="
+echo "== Release: library, CLI, samples; samples' smoke tests and the installed package =="
 cmake -S "$src" -B build-ci -G Ninja -DCMAKE_BUILD_TYPE=Release -DVKCOLLIDE_WERROR=ON >/dev/null
-cmake --build build-ci -j "$jobs"
-ctest --test-dir build-ci -j "$jobs" --output-on-failure --no-tests=error
+cmake --build build-ci -j "$jobs" --target vkcollide vkcollide_cli vkcollide_samples vkcollide_sample_tests
+ctest --test-dir build-ci -j "$jobs" -L release --output-on-failure --no-tests=error
 elapsed
 
-# Sanitizer builds: Debug (assertions on) at -O1, so that the host's share of the GPU
-# tests stays fast; no samples and no package tests (their consumers are not sanitized).
-# cmake/Sanitizers.cmake compiles the sanitizers' options into every executable.
-san=(-G Ninja -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g" -DVKCOLLIDE_WERROR=ON
-     -DVKCOLLIDE_SANITIZE=address,undefined -DVKCOLLIDE_BUILD_SAMPLES=OFF -DVKCOLLIDE_INSTALL=OFF)
-
-echo "== library, CLI and GPU tests under AddressSanitizer + UndefinedBehaviorSanitizer (validation layer on) =="
-cmake -S "$src" -B build-asan-gpu "${san[@]}" >/dev/null
-cmake --build build-asan-gpu -j "$jobs"
-ctest --test-dir build-asan-gpu -j "$jobs" -L gpu --output-on-failure --no-tests=error
-elapsed
-
-echo "== host-only code under AddressSanitizer + UndefinedBehaviorSanitizer =="
-cmake -S "$src" -B build-asan "${san[@]}" -DVKCOLLIDE_HOST_ONLY=ON >/dev/null
+# cmake/Sanitizers.cmake compiles the sanitizers' options into every executable. No
+# samples and no install (the package test's consumer is not sanitized): build 1 has them.
+echo "== everything else under AddressSanitizer + UndefinedBehaviorSanitizer (validation layer on) =="
+cmake -S "$src" -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g" -DVKCOLLIDE_WERROR=ON \
+  -DVKCOLLIDE_SANITIZE=address,undefined -DVKCOLLIDE_BUILD_SAMPLES=OFF -DVKCOLLIDE_INSTALL=OFF >/dev/null
+cmake -S "$src" -B build-host-only -G Ninja -DVKCOLLIDE_HOST_ONLY=ON -DVKCOLLIDE_WERROR=ON >/dev/null
 cmake --build build-asan -j "$jobs"
 ctest --test-dir build-asan -j "$jobs" --output-on-failure --no-tests=error
 elapsed

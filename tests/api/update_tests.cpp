@@ -1,4 +1,4 @@
-// updateVertices through the world, split over several threads (issue 13 item 4): a mesh
+// updateVertices through the world, split over several threads: a mesh
 // of several chunks gives what a world built from the same positions gives (pairs read by
 // the GPU from the upload buffer and by the narrow phase from the host copy; automatic
 // settings measured lazily), a bad vertex in the last chunk is named, and a refused update

@@ -1,4 +1,4 @@
-// The cell pair stage's budget (CellPairsSettings::max_candidate_pairs, issue 17): the
+// The cell pair stage's budget (CellPairsSettings::max_candidate_pairs): the
 // cells of the footprint boxes, the pairs of footprints sharing a cell (what the sweep
 // compares) and the candidate pairs are each checked against it; past one the run fails
 // with LimitExceeded naming the count, no buffer grows beyond the budget, and the stage

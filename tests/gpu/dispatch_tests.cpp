@@ -1,4 +1,4 @@
-// Every dispatch is split against the device's maxComputeWorkGroupCount (issue 17 item 4):
+// Every dispatch is split against the device's maxComputeWorkGroupCount:
 // the row layout itself, the same results when the limit is forced down to a few
 // workgroups (every per-pixel, per-triangle, per-row and per-block dispatch then spans
 // rows with an overhang), and a detection at the largest resolution this device can hold,

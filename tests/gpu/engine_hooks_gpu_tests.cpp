@@ -371,7 +371,7 @@ TEST_CASE("a Context destroyed while a detection is in flight: collect() and the
     // The first detection measures the depth complexity; the second is one submission in flight.
     REQUIRE((*world)->detect(fixedSettings()));
     REQUIRE((*world)->submit(fixedSettings()));
-    ctx->reset();  // was a heap use-after-free in Buffer::reset (issue 17 item 5)
+    ctx->reset();  // the Context goes first: the world's Buffer::reset must not reach into it later
     auto r = (*world)->collect();
     REQUIRE(r);
     CHECK(r->pairs == expected);

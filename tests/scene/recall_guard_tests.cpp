@@ -1,4 +1,4 @@
-// The recall guard on issue 12's scene kinds: detect() with default (automatic) settings on
+// The recall guard on the bench set's scene kinds: detect() with default (automatic) settings on
 // reduced versions of the generated bench scenes (tools/bench/bench_scenes.hpp, scale
 // kGuardScale, every frame of the moving and deforming ones), against the exact reference.
 // Precision must be 100 %. Recall of crossing pairs (of all pairs where a scene has only
@@ -44,7 +44,7 @@ const std::map<std::string, double> kFloor = {
 
 }  // namespace
 
-TEST_CASE("default settings find every pair and the paper's method keeps its floors on reduced issue-12 scenes, with 100 % precision",
+TEST_CASE("default settings find every pair and the paper's method keeps its floors on reduced bench scenes, with 100 % precision",
           "[scene][gpu][recall-guard]") {
     test::ValidatedContext ctx;
     const std::vector<SceneSpec> all = allScenes("", kGuardScale);

@@ -1,4 +1,4 @@
-// Where image-space detection fails (issue 6): one test per edge case, each measured
+// Where image-space detection fails: one test per edge case, each measured
 // against the exact CPU reference under the paper's method and under the mitigation that
 // fixes it. The expected numbers are the ones measured on lavapipe (docs/stability.md
 // lists them with costs); most are exact (0 or 1) because the scenes put features on

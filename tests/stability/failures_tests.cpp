@@ -1,4 +1,4 @@
-// Failed detections leave a working world (issue 17 item 2): a detection that runs out of
+// Failed detections leave a working world: a detection that runs out of
 // time, meets a lost device or runs out of device memory fails with its own ErrorCode, the
 // world reports a state the engine can act on (CollisionWorld::state()), can be destroyed
 // at once, and detects again when the cause is gone. Faults are forced by a tiny timeout

@@ -1,4 +1,4 @@
-// Bad input and faults (issue 6): engine meshes that fail the GPU check are left out and
+// Bad input and faults: engine meshes that fail the GPU check are left out and
 // named while the others keep their pairs; bad descriptions are refused naming the object
 // and the problem without disturbing the other objects; a scene too large for the device
 // is OutOfMemory, after which the world and a new Context work; Vulkan's device-loss and

@@ -1,4 +1,4 @@
-// Pathological scenes (issue 17) under the peeling method: each ends in the exact pairs or
+// Pathological scenes under the peeling method: each ends in the exact pairs or
 // a named error, on both sampling backends, with the validation layer quiet (no access
 // outside a buffer that it could see) and in bounded time. The sizes are the smallest that
 // reach each limit. The same scenes under the reliable method (the default):

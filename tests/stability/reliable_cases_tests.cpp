@@ -1,4 +1,4 @@
-// The edge cases of image-space detection (issue 6, tests/support/stability_scenes.hpp)
+// The edge cases of image-space detection (tests/support/stability_scenes.hpp)
 // under the reliable method: sub-pixel, sliver, zero-area and edge-on triangles, coplanar
 // and touching contacts, deep stacks, nesting, inverted and open meshes, non-manifold
 // fins, far coordinates, thin walls, far objects -- every pair found, touching included,

@@ -1,4 +1,4 @@
-// Pathological scenes (issue 17) under the reliable method, the default: each ends in the
+// Pathological scenes under the reliable method, the default: each ends in the
 // exact pairs or a named error (LimitExceeded naming the count and
 // DetectSettings::max_candidate_pairs, or the extent), in bounded time, with the validation
 // layer quiet, and the world goes on after the error. The same scenes under the peeling

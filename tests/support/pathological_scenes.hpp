@@ -1,4 +1,4 @@
-// Scenes an adversary would feed the GPU passes (issue 17): one triangle repeated past the
+// Scenes an adversary would feed the GPU passes: one triangle repeated past the
 // deepest peeled ray, a face of many repeated corners, a contact under thousands of thin
 // slabs, many mutually crossing triangles, many objects, coordinates at the ends of the
 // float range. Shared by tests/stability/pathological_tests.cpp (small sizes, CI) and

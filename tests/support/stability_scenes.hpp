@@ -1,5 +1,5 @@
 // The scenes where image-space detection or floating-point triangle tests are known to
-// fail (issue 6), each small enough for lavapipe, and the runner that measures a
+// fail, each small enough for lavapipe, and the runner that measures a
 // detection against the exact CPU reference. Shared by tests/stability and
 // tools/stability/stability_report (which prints the numbers docs/stability.md quotes).
 #pragma once

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# docs/results.md's before/after table: per scene, crossing recall, recall of all pairs, what
+# A before/after table (CHANGELOG.md sums up the one of the reliable method): per scene, crossing recall, recall of all pairs, what
 # was read back and the time of every stage, before -> after, from vkcollide_bench CSVs.
 #   tools/bench/before_after.sh BEFORE.csv[,MORE.csv][@VARIANT] AFTER.csv[,MORE.csv][@VARIANT]
 # VARIANT defaults to "default" on both sides. Means over frames >= 1 (tools/bench/steady.awk),

@@ -1,5 +1,5 @@
 // vkcollide_bench_cells: the cell pair stage (src/passes/cells) alone on generated scenes
-// of the kinds issue 12 and 13 name. Not a test: a program that prints one table.
+// of the bench set's kinds. Not a test: a program that prints one table.
 //
 //   vkcollide_bench_cells [--scenes a,b,...] [--scale S] [--factors 0.5,1,2] [--repeat K]
 //                         [--frames F] [--no-reference] [--list]

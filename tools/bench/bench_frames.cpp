@@ -1,4 +1,4 @@
-// Frame loops as an engine runs them (issue 13 items 4 and 5), one CSV row per case:
+// Frame loops as an engine runs them, one CSV row per case:
 //  * update: CollisionWorld::updateVertices on a host mesh of about --vertices vertices
 //    (a UV sphere), milliseconds per call and per million vertices (median of --frames),
 //    on a world of --threads threads; then where that time goes, one row each (update_ms):

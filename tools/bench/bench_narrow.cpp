@@ -17,13 +17,13 @@
 //            keeps in a light contact: the triangles along the intersection curves).
 // Scenes: `demo` is samples/vkcollide_demo.cpp's five objects (31,520 triangles, sizes do
 // not apply); `spheres` (two overlapping UV spheres) and `torus-box` (a torus threaded on a
-// subdivided box) are generated with about `size` triangles in all; `deep` is issue 13's
+// subdivided box) are generated with about `size` triangles in all; `deep` is the
 // deep overlap (two spheres of size/2 triangles overlapping by 85 % of their size: with
 // `near`, about 1M candidates for size 1,200,000), `twin` a sphere and a copy turned by 3
 // degrees (surfaces crossing all over: several tests per triangle) and `pile` its 60-mesh
 // pile (60 spheres of 9,940 triangles, fixed size), `graze` two spheres of size/2 triangles
 // meeting along one small circle (centres 1.8 radii apart: with `--pairs-sent hits`, about
-// 500 pairs for size 100,000, near the ~650 of docs/results.md's deform-pair-100K),
+// 500 pairs for size 100,000, near the ~650 the reliable method reads back on deform-pair-100K),
 // `touching` and `touching-tilted` boxes resting face to face (bench_narrow_scenes.hpp;
 // with --modes all --self off --pairs-sent hits, about 150K triangles and 600K pairs for
 // size 150,000, like the GPU bench's stack-touching). Meshes
@@ -43,7 +43,7 @@
 // self-collision switch allows and that shares no vertex index, as global ids, a fraction
 // (--pair-repeats) sent twice reversed, shuffled. `--pairs-sent hits` sends only the pairs
 // whose triangles intersect (what the GPU pair stage sends after its conservative triangle
-// test, less its few near misses: the pair counts of docs/results.md's read-back column),
+// test, less its few near misses: the pair counts the reliable method reads back),
 // repeats and shuffle as before. Every path and thread count must give
 // the same pairs (a gpu-* workload only warns between paths: the GPU computes its records'
 // vertices itself).
@@ -275,7 +275,7 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
         objects.push_back(placed(torus(0.9f, 0.25f, a, std::max(3u, a / 4)), 0.2f, {0.0f, 0.0f, 0.0f}));
         objects.push_back(placed(box({0.3f, 0.3f, 1.4f}, k), 0.1f, {0.9f, 0.0f, 0.0f}));
     } else if (scene == "deep") {
-        // Issue 13's deep overlap: two meshes of size/2 triangles each overlapping by 85 %
+        // The deep overlap: two meshes of size/2 triangles each overlapping by 85 %
         // of their size (unit spheres 0.3 apart, mostly across the view): seen along z, the
         // rays through both discs meet the surfaces interleaved, so the GPU keeps most
         // triangles of both (mode `near` keeps those whose box meets the other's box).
@@ -298,7 +298,7 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
         objects.push_back({sphere, rotationTranslation(0.2, 1, 0.1, 0.5, {-0.9f, 0.0f, 0.0f})});
         objects.push_back({sphere, rotationTranslation(1, 0.3, 0.2, 1.3, {0.9f, 0.05f, 0.02f})});
     } else if (scene == "pile") {
-        // Issue 13's pile: 60 unit spheres of 9,940 triangles (596,400 in all) on a grid
+        // The pile: 60 unit spheres of 9,940 triangles (596,400 in all) on a grid
         // 1.8 apart, each turned its own way (tools/bench/bench_scenes.cpp's sphereGrid,
         // the `spheres-60x10K` scene).
         const HostMesh base = generated(uvSphere(1.0f, 70, 72));

@@ -1,5 +1,5 @@
 // Scenes of bench_narrow kept apart from bench_narrow.cpp: resting contact between
-// finely tessellated boxes (issue 13 item 3).
+// finely tessellated boxes.
 #pragma once
 
 #include <cstddef>

@@ -189,7 +189,7 @@ Result<std::vector<BenchObject>> asObjects(Result<std::vector<HostMesh>> meshes)
     return out;
 }
 
-// The scenes of issue 7 (all in the tuning set: the defaults were chosen on them). The
+// The first sweep's scenes (all in the tuning set: the defaults were chosen on them). The
 // names give the triangle counts at scale 1.
 std::vector<SceneSpec> issue7Scenes(const std::string& data, double scale) {
     const auto n = [scale](std::uint32_t count) { return scaledCount(count, scale, 2); };

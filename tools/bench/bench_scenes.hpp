@@ -6,7 +6,7 @@
 // Two sets. "tuning" scenes may be looked at to choose defaults and settings; "held-out"
 // scenes must not be: they differ in kind or parameters (other meshes, scales, seeds,
 // orientations, motions) and only measure how well choices made on the tuning set carry
-// over. Each scene kind of issue 12 has at least one scene in each set.
+// over. Each scene kind has at least one scene in each set.
 #pragma once
 
 #include <cstdint>
@@ -72,7 +72,7 @@ std::uint32_t scaledCount(std::uint32_t n, double scale, int dims, std::uint32_t
 // A packaged mesh centred on the origin with its largest extent `size`.
 Result<HostMesh> loadMesh(const std::string& data, const std::string& file, float size);
 
-// The scene kinds of issue 12 (scene_kinds.cpp, scene_piles.cpp); each returns the specs
+// The scene kinds (scene_kinds.cpp, scene_piles.cpp); each returns the specs
 // of its tuning and held-out scenes.
 std::vector<SceneSpec> drapeScenes(double scale);
 std::vector<SceneSpec> twistedScenes(double scale);

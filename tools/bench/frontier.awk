@@ -6,7 +6,7 @@
 # FROM point to its TO point and puts the scene's name at FROM (without it: at the slowest).
 # Scene names are placed greedily so that no two overlap (in an estimate of the panel's pixels).
 
-# Scene kinds: issue 12 item 4's, then the issue-7 grids; "other" catches scenes added later.
+# Scene kinds: the bench set's, then the grids of the 2026-11-22 sweep; "other" catches scenes added later.
 function kind(s) {
   if (s ~ /^(drape-flap|ball-cloth)/) return 1
   if (s ~ /^twisted-/) return 2
@@ -34,7 +34,7 @@ function overlaps(k, x0, x1, y0, y1,   i) {
 BEGIN {
   ktitle[1] = "cloth: draped with folds, a ball through it"; ktitle[2] = "one mesh twisted into itself"
   ktitle[3] = "piles of 60-240 rigid meshes";  ktitle[4] = "deep overlaps (1.3M-2.6M triangles), twin meshes"
-  ktitle[5] = "deforming pairs (mean of the frames)";  ktitle[6] = "grids of spheres and bunnies (issue 7)"
+  ktitle[5] = "deforming pairs (mean of the frames)";  ktitle[6] = "grids of spheres and bunnies"
   ktitle[7] = "host and engine GPU meshes";  ktitle[8] = "face-to-face contacts: recall of ALL pairs"
   ktitle[9] = "other scenes"
   # Known variants (tools/bench/bench_variants.cpp): legend and style; other series take the palette.

@@ -10,9 +10,9 @@
 # scenes, which have next to no crossing pairs, recall of all pairs (touching included).
 # Series: a CSV's variants by name (default = the reliable method, peeling, paper-sep, ...), or
 # with @NAME every row of that CSV is series NAME (a CSV of another build, e.g. the defaults
-# before), and @REGEX keeps only the variants it matches (issue-7 CSVs: VARIANT-BACKEND, e.g.
+# before), and @REGEX keeps only the variants it matches (CSVs of the 2026-11-22 sweep: VARIANT-BACKEND, e.g.
 # ^single-compute$). --legend gives a series its legend text. Resolution sweeps (res-N and
-# cells-N variants; issue-7 CSVs over --resolutions) are dashed lines, one per scene. --link
+# cells-N variants; the 2026-11-22 sweep's CSVs over --resolutions) are dashed lines, one per scene. --link
 # draws a grey line per scene from series FROM's point to TO's and names the scene at FROM
 # (otherwise at its slowest point). Filled markers: tuning scenes; open markers and italic
 # names: held-out scenes (never used to choose anything). Panels: frontier.awk's kind().

@@ -19,7 +19,7 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 IFS=, read -r -a files <<< "$csvs"
 for f in "${files[@]}"; do grep -v '^#' "$f"; done | awk -F, -v OFS=' ' '
   /^device,/ { delete c; for (i = 1; i <= NF; ++i) c[$i] = i; next }
-  { v = $c["variant"]; if (!("found_crossing" in c) && !("set" in c)) v = v "-" $c["backend"]  # issue-7 CSVs
+  { v = $c["variant"]; if (!("found_crossing" in c) && !("set" in c)) v = v "-" $c["backend"]  # CSVs of the 2026-11-22 sweep
     k = $c["scene"] SUBSEP v; n[k]++; tri[k] = $c["triangles"]; lay[k] += $c["layers"]; res[k] = $c["resolution"]
     s[k] += $c["sampling_ms"]; m[k] += $c["merging_ms"] + $c["separation_ms"]; p[k] += $c["packing_ms"]
     r[k] += $c["readback_ms"]; nw[k] += $c["narrow_ms"]; g[k] += $c["gpu_ms"]; t[k] += $c["total_ms"] }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# docs/results.md's "where the time goes" table: one row per scene from the text that
+# A "where the time goes" table with the cell stage's passes: one row per scene from the text that
 # tools/bench/profile_table.sh prints for the reliable method (variant default).
 #   tools/bench/profile_summary.sh TABLE.txt...
 # Columns (ms, means over frames >= 1): GPU = the sum of the passes' timestamps; the cell

@@ -5,7 +5,7 @@
 # For each scene: vkcollide's mean total time per frame for the chosen variant (default:
 # "default", the automatic settings; RESOLUTION, if given, also filters on the resolution that
 # ran) and its crossing recall, then each peer's median total time per frame (self-collision
-# mode, every peer that ran it) and the ratio peer / vkcollide. Issue-7 CSVs (variant
+# mode, every peer that ran it) and the ratio peer / vkcollide. The 2026-11-22 sweep's CSVs (variant
 # "single", a backend column) still work: pass VARIANT single and RESOLUTION 1024.
 set -euo pipefail
 ours="$1"; peers="$2"; variant="${3:-default}"; res="${4:-}"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 13 items 4 and 5 on the GPU machine, in one go (about a minute): updateVertices per
+# The engine loop on the GPU machine, in one go (about a minute): updateVertices per
 # million vertices and its parts, and detect() against submit()/collect() against the pipelined loop, for
 # a deforming 100K and 1M pair, both methods. One CSV; the columns are explained at the top
 # of tools/bench/bench_frames.cpp.

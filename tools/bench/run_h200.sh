@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The issue-12 sweep on the GPU machine, in one go: exact references of every scene (cached),
+# The bench-set sweep on the GPU machine, in one go: exact references of every scene (cached),
 # the tuning set with the defaults, the mitigations, both backends and a resolution sweep, the
 # held-out set with the defaults and the strongest mitigations, then a short table.
 #
@@ -17,7 +17,7 @@
 # separate commands:  run_h200.sh "$OUT" references tuning;  run_h200.sh "$OUT" held-out
 #
 # Needs on the GPU machine: the bench binary built here (Release), data/cgal from
-# tools/fetch_cgal_data.sh, and a Vulkan driver (VK_DRIVER_FILES as docs/results.md says).
+# tools/fetch_cgal_data.sh, and a Vulkan driver (VK_DRIVER_FILES as results/h200_2026-11-29/README.md says).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out="${1:-${OUT:-bench-out}}"; shift || true

@@ -1,4 +1,4 @@
-// Scene kinds of issue 12, part 1: a draped cloth with a flap folded through itself, a bar
+// Bench scene kinds, part 1: a draped cloth with a flap folded through itself, a bar
 // bent and twisted into itself, README's ball pushed through a cloth, and mixed engine/host
 // meshes. Each kind has a tuning scene and a held-out one that differs in kind or
 // parameters (other shapes, scales, orientations, motions).

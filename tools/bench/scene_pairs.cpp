@@ -1,4 +1,4 @@
-// Scene kinds of issue 12, part 2: two big subdivided meshes overlapping deeply (a large
+// Bench scene kinds, part 2: two big subdivided meshes overlapping deeply (a large
 // shared volume), and a deforming pair that approaches, penetrates and separates.
 #include <algorithm>
 #include <cmath>

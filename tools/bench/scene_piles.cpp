@@ -156,7 +156,7 @@ std::vector<SceneSpec> pileScenes(const std::string& data, double scale) {
          }},
         {"pile-deep", Motion::Rigid, SceneSet::HeldOut, 1,
          "held-out: 64 meshes of the six shapes (~" + std::to_string(per_deep) + " triangles each) sunk halfway into each other "
-         "(issue 12's deep-overlap pile: large volumes overlapping), another seed, a 6 x 6 box, tilted",
+         "(the deep-overlap pile: large volumes overlapping), another seed, a 6 x 6 box, tilted",
          [=](int) -> Result<std::vector<BenchObject>> {
              Result<std::vector<HostMesh>> shapes = generatedShapes(per_deep);
              if (!shapes) return shapes.error();

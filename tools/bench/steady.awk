@@ -1,18 +1,18 @@
 # Steady-state means of vkcollide_bench CSVs, one tab-separated line per (label, variant, scene,
-# and resolution for the issue-7 sweeps), shared by frontier.sh and before_after.sh:
+# and resolution for the resolution sweeps of 2026-11-22), shared by frontier.sh and before_after.sh:
 #   awk -f tools/bench/steady.awk [label=NAME] [pick=REGEX] A.csv [label=OTHER] B.csv ...
 # Frames >= 1 only (frame 0 allocates; tools/bench/steady_table.sh does the same). Times and
 # counts are means over those frames; recalls are found / total pairs summed over them, so a
 # deforming scene weighs its frames by their pairs. Columns are found by name, so every CSV
-# generation mixes: issue-7 CSVs (no `set`, no `found_crossing`; variants single/dual per
+# generation mixes: the 2026-11-22 sweep's CSVs (no `set`, no `found_crossing`; variants single/dual per
 # backend over --resolutions) get variant VARIANT-BACKEND and one line per resolution, and
 # their crossing pairs found are recall_crossing x reference_crossing. `label` names the file's
 # series (empty: the variant alone) and `pick`, a regular expression, keeps only the variants
-# (VARIANT-BACKEND in issue-7 CSVs) it matches; both stay set for the files after them.
+# (VARIANT-BACKEND in the 2026-11-22 CSVs) it matches; both stay set for the files after them.
 # Output columns (a header line first):
 #   label variant scene set triangles resolution frames total_ms gpu_ms readback_ms narrow_ms
 #   update_ms downloaded crossing_recall recall reference_crossing reference_pairs method
-# resolution is "-" unless the row is a point of an issue-7 sweep; recalls are fractions, 1
+# resolution is "-" unless the row is a point of a resolution sweep; recalls are fractions, 1
 # where the reference has no such pair; set is "-" in CSVs without one; method likewise.
 BEGIN { FS = ","; OFS = "\t"
         print "label", "variant", "scene", "set", "triangles", "resolution", "frames", "total_ms", "gpu_ms", "readback_ms",

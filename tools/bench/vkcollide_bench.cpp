@@ -1,4 +1,4 @@
-// vkcollide_bench: the speed-against-accuracy sweep (issues 7 and 12). Not a test: a program.
+// vkcollide_bench: the speed-against-accuracy sweep. Not a test: a program.
 //
 //   vkcollide_bench [--set tuning|held-out|all] [--scenes a,b,...] [--variants default,mitigations,...]
 //                   [--resolutions 512,1024,...] [--scale S] [--frames K] [--threads N]

@@ -1,5 +1,5 @@
 // vkcollide bench: the libraries users pick instead of vkcollide ("peers"), behind one
-// interface, so that the benchmark times them on the same scenes and frames (issue 7).
+// interface, so that the benchmark times them on the same scenes and frames.
 //
 // Each peer takes the scene as world-space meshes (object id = index in the span) and
 // returns every intersecting triangle pair in vkcollide's convention: TrianglePair

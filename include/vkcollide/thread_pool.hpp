@@ -4,7 +4,7 @@
 // parallelFor, that runs a loop's chunks on some threads and returns when they are done.
 // Two implementations:
 //   ThreadPool        vkcollide's own worker threads (the default of CollisionWorld);
-//   CallbackExecutor  an engine's job system behind one callback (issue 16), in the spirit
+//   CallbackExecutor  an engine's job system behind one callback, in the spirit
 //                     of PhysX's CpuDispatcher or Jolt's JobSystem: the engine runs task
 //                     indices [0, n) on its workers and returns when all have run.
 // An engine may also derive from Executor directly.

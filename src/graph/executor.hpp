@@ -63,7 +63,7 @@ struct ExecutionReport {
 };
 
 // Where one submission's work goes and what it waits for and signals (the API's submit()
-// and record(), issue 16): the engine's semaphores in the queue submission, or the
+// and record()): the engine's semaphores in the queue submission, or the
 // engine's command buffer instead of a submission of our own. A detection may take several
 // queue submissions: the engine's waits go into the first one made (waits_submitted says
 // whether that happened), its signals into the one its caller marks as the last.

@@ -15,7 +15,7 @@
 //    poll see the new epoch, sleeping ones are woken through the futex behind
 //    std::atomic::wait. Then everyone, the caller included, takes chunks with one
 //    fetch_add on `next` each: no lock, so 16 threads handing out thousands of chunks do
-//    not queue on a mutex (the old pool took one per chunk).
+//    not queue on a mutex (a mutex per chunk serialised them).
 //  - Waking is a tree: the caller wakes one sleeper and leaves in `wakes` how many more
 //    the loop can use (chunks beyond the threads already awake); every worker that returns
 //    from its sleep passes up to kWakeFanOut of them on. A futex wake costs the waker

@@ -173,9 +173,9 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         return outside("coverage", int(s.coverage), "Coverage", "Centre, Dilate, Conservative or Best");
     if (s.bad_objects != BadObjectPolicy::Exclude && s.bad_objects != BadObjectPolicy::Fail)
         return outside("bad_objects", int(s.bad_objects), "BadObjectPolicy", "Exclude or Fail");
-    const bool reliable = s.method == DetectMethod::Reliable;
     if (s.exact != ExactDecision::Auto && s.exact != ExactDecision::Gpu && s.exact != ExactDecision::Cpu)
-        return invalid("exact " + std::to_string(int(s.exact)) + " is not an ExactDecision");
+        return outside("exact", int(s.exact), "ExactDecision", "Auto, Gpu or Cpu");
+    const bool reliable = s.method == DetectMethod::Reliable;
     if (s.exact == ExactDecision::Gpu && !reliable)
         return invalid("exact decision on the GPU belongs to the reliable method (the peeling method decides on the CPU)");
     if (s.exact == ExactDecision::Gpu && !device.shader_float64)

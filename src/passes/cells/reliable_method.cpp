@@ -58,6 +58,23 @@ void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuff
     if (device_pairs_on_) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
 }
 
+// One submission after the run's own (a rerun, a sort), within what is left of the run's
+// deadline (BroadPhaseSettings::deadline: nothing starts after it ends); its passes join the
+// run's times.
+template <typename Submit>
+Result<void> ReliableMethod::runAlone(const RunView& run, const char* what, BroadPhaseResult& io_result, Submit&& submit) {
+    const std::uint64_t wait_ns = waitNs(run.settings);
+    if (run.settings.deadline && wait_ns == 0)
+        return timeoutOfRun(run.settings, Error(ErrorCode::Timeout, std::string("deadline passed before ") + what));
+    Result<graph::ExecutionReport> report = submit(wait_ns);
+    if (!report) return report.error();
+    for (const graph::PassTiming& p : report->passes) {
+        addStageTime(io_result, p);
+        io_result.passes.push_back(p);
+    }
+    return {};
+}
+
 Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, BroadPhaseResult& result) {
     const CellPairsSettings limits;
     for (std::uint32_t runs = 1;; ++runs) {
@@ -77,31 +94,21 @@ Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, Bro
             return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(runs) + " runs (entries " +
                                                      std::to_string(cells_->capacity().entries) + ", candidates " +
                                                      std::to_string(cells_->capacity().candidates) + ")");
-        // An overflow: the stage alone again, its buffers grown; the projection stays. The
-        // run's clock goes on (BroadPhaseSettings::deadline): nothing starts after it ends.
-        const std::uint64_t wait_ns = waitNs(run.settings);
-        if (run.settings.deadline && wait_ns == 0)
-            return timeoutOfRun(run.settings, Error(ErrorCode::Timeout, "deadline passed before a rerun"));
-        auto report = cells_->runAgain(&table_->buffer(core_.projection), wait_ns);
-        if (!report) return report.error();
-        for (const graph::PassTiming& p : report->passes) {
-            addStageTime(result, p);
-            result.passes.push_back(p);
-        }
+        // An overflow: the stage alone again, its buffers grown; the projection stays.
+        if (auto ok = runAlone(run, "a rerun", result, [&](std::uint64_t wait_ns) {
+                return cells_->runAgain(&table_->buffer(core_.projection), wait_ns);
+            });
+            !ok)
+            return ok;
     }
     if (device_pairs_on_ && result.cells.runs > 1) {
         // The device pairs of the first run say Incomplete: sort the final run's survivors
         // (the stage's buffers may have grown, so size for them first).
         if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_); !ok) return ok.error();
-        const std::uint64_t wait_ns = waitNs(run.settings);
-        if (run.settings.deadline && wait_ns == 0)
-            return timeoutOfRun(run.settings, Error(ErrorCode::Timeout, "deadline passed before sorting the device pairs"));
-        auto report = device_pairs_->runAlone(*cells_, wait_ns);
-        if (!report) return report.error();
-        for (const graph::PassTiming& p : report->passes) {
-            addStageTime(result, p);
-            result.passes.push_back(p);
-        }
+        if (auto ok = runAlone(run, "sorting the device pairs", result,
+                               [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
+            !ok)
+            return ok;
     }
     result.has_pairs = true;
     result.pairs = cells_->survivors();

@@ -60,6 +60,8 @@ private:
     ReliableMethod(vk::Device& device, BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellPairs> cells)
         : device_(&device), table_(&table), core_(core), cells_(std::move(cells)) {}
     Result<void> prepareStage(const RunView& run);
+    template <typename Submit>
+    Result<void> runAlone(const RunView& run, const char* what, BroadPhaseResult& io_result, Submit&& submit);
 
     vk::Device* device_;
     BufferTable* table_;

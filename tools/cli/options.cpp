@@ -1,6 +1,7 @@
 #include "cli/options.hpp"
 
 #include <algorithm>
+#include <optional>
 
 #include "cli/fields.hpp"
 #include "cli/file_options.hpp"
@@ -45,17 +46,16 @@ struct Option {
     Takes takes = Takes::Value;
     // Read by the peeling method only (world.hpp says which fields): refused under the
     // reliable method, left out of the JSON's settings then.
-    bool peeling_only = false;
-    bool reliable_only = false;  // likewise for the reliable method
+    std::optional<vkcollide::DetectMethod> only;
 };
 
 Option peeling(Option o) {
-    o.peeling_only = true;
+    o.only = vkcollide::DetectMethod::Peeling;
     return o;
 }
 
 Option reliable(Option o) {
-    o.reliable_only = true;
+    o.only = vkcollide::DetectMethod::Reliable;
     return o;
 }
 
@@ -308,7 +308,7 @@ void printHelp(std::FILE* out) {
         for (const Option& o : options()) {
             if (o.section != s) continue;
             const std::string head = std::string(o.name) + (*o.arg ? " " : "") + o.arg;
-            const std::string help = std::string(o.peeling_only ? "peeling only: " : o.reliable_only ? "reliable only: " : "") + o.help;
+            const std::string help = (o.only ? std::string(vkcollide::toString(*o.only)) + " only: " : std::string()) + o.help;
             if (head.size() <= 26) std::fprintf(out, "  %-26s %s\n", head.c_str(), help.c_str());
             else std::fprintf(out, "  %s\n  %-26s %s\n", head.c_str(), "", help.c_str());
             std::fprintf(out, "  %-26s cost: %s\n", "", o.cost);
@@ -396,17 +396,14 @@ Parsed parseDetect(std::span<const char* const> args) {
                                                   " is not a --gpu-mesh (the edges of host meshes are measured)");
     }
     // Options the method that runs does not read are refused, not ignored.
-    if (c.settings.method != vkcollide::DetectMethod::Peeling)
-        for (const auto& given : c.given)
-            if (const Option* o = find(given.first); o && o->peeling_only)
-                return error(Parsed::Kind::Error, given.first + " belongs to the peeling method (--method peeling); the " +
-                                                      vkcollide::toString(c.settings.method) +
-                                                      (given.first == "--rays" ? " method casts no rays" : " method does not read it"));
-    if (c.settings.method != vkcollide::DetectMethod::Reliable)
-        for (const auto& given : c.given)
-            if (const Option* o = find(given.first); o && o->reliable_only)
-                return error(Parsed::Kind::Error, given.first + " belongs to the reliable method (--method reliable, the default); the " +
-                                                      vkcollide::toString(c.settings.method) + " method does not read it");
+    for (const auto& given : c.given)
+        if (const Option* o = find(given.first); o && o->only && *o->only != c.settings.method) {
+            const bool peeling = *o->only == vkcollide::DetectMethod::Peeling;
+            return error(Parsed::Kind::Error, given.first + " belongs to the " + vkcollide::toString(*o->only) + " method (--method " +
+                                                  vkcollide::toString(*o->only) + (peeling ? "" : ", the default") + "); the " +
+                                                  vkcollide::toString(c.settings.method) +
+                                                  (given.first == "--rays" ? " method casts no rays" : " method does not read it"));
+        }
     if (c.rays && c.png_path.empty()) return error(Parsed::Kind::Error, "--rays draws on the --png picture: give --png FILE too");
     bool any_gpu = false;
     for (const FileSlot& s : c.slots) any_gpu = any_gpu || s.gpu_mesh;
@@ -433,8 +430,7 @@ std::string nameSettingOptions(const CommandLine& line, const std::string& messa
 std::vector<std::pair<std::string, std::string>> settingsJson(const DetectSettings& settings) {
     std::vector<std::pair<std::string, std::string>> out;
     for (const Option& o : options())
-        if (o.field && o.show && (!o.peeling_only || settings.method == vkcollide::DetectMethod::Peeling) &&
-            (!o.reliable_only || settings.method == vkcollide::DetectMethod::Reliable))
+        if (o.field && o.show && (!o.only || *o.only == settings.method))
             out.emplace_back(o.field, o.show(settings));
     return out;
 }

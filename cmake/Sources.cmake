@@ -51,3 +51,5 @@ file(GLOB VKCOLLIDE_ROOM_LISTS CONFIGURE_DEPENDS ${S}/passes/*/sources.cmake)
 foreach(room_list ${VKCOLLIDE_ROOM_LISTS})
   include(${room_list})
 endforeach()
+# Proximity (src/proximity/): a host part and a GPU part, after both lists exist.
+include(${S}/proximity/sources.cmake)

@@ -207,6 +207,13 @@ struct CellsParams {
     uint budget;                         // kCellsOverBudget above; at most 2^31 - 1
     uint exact;  // 1: the pair pass decides exactly (needs use of the
         // double-precision pipeline); survivors then intersect
+    // Proximity (src/proximity/): 1: the sweep keeps pairs of one object that share a vertex
+    // index (their other primitives may be near) and the pair pass leaves them out of the
+    // survivors instead.
+    uint keep_neighbours;
+    // Proximity: every triangle grown by this many world units along each axis (half the
+    // distance, rounded up), so two triangles closer than the distance share a point.
+    float proximity_pad;
     uint pad;
 };
 

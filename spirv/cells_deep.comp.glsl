@@ -116,7 +116,7 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
                     if (!subBoxesMeet(box, boxOf(P, CellsEntriesRef(P.entries).e[begin + b].key))) continue;
                     // sweepPair's rule, the indices from shared memory.
                     if (!mayCollide(P, s_key[a], s_key[b])) continue;
-                    if (s_key[a] == s_key[b] && shareIndex(mine, s_index[b])) {
+                    if (s_key[a] == s_key[b] && P.keep_neighbours == 0u && shareIndex(mine, s_index[b])) {
                         if (pass == 0u) ++neighbours;
                         continue;
                     }

@@ -116,10 +116,13 @@ void main() {
         // bound on its distance from the exact image of the CPU's world position.
         float n = float(P.resolution);
         float pad = 0.0, ez = 0.0;
+        // Proximity grows every triangle by proximity_pad world units along each axis: an
+        // uncertainty of the world vertices like eps (docs/proximity.md).
+        precise float eps_s = P.proximity_pad > 0.0 ? (eps + P.proximity_pad) * (1.0 + 2.0 * kU) : eps;
         bool far = false;
         for (uint k = 0u; k < 3u; ++k) {
             precise float sx = affineRow(pr.row[0], w[k]), sy = affineRow(pr.row[1], w[k]), sz = affineRow(pr.row[2], w[k]);
-            float ex = affineError(pr.row[0], w[k], eps), ey = affineError(pr.row[1], w[k], eps);
+            float ex = affineError(pr.row[0], w[k], eps_s), ey = affineError(pr.row[1], w[k], eps_s);
             precise float cx = clamp(sx, -kClampSampling, kClampSampling) * n;
             precise float cy = clamp(sy, -kClampSampling, kClampSampling) * n;
             precise float px = (ex * n) * (1.0 + 8.0 * kU) + 2.0 * kU * abs(cx) + kTiny;
@@ -128,7 +131,7 @@ void main() {
             tri.y[k] = cy;
             tri.z[k] = sz;
             pad = max(pad, max(px, py));
-            ez = max(ez, affineError(pr.row[2], w[k], eps));
+            ez = max(ez, affineError(pr.row[2], w[k], eps_s));
             far = far || !(abs(cx) <= kFar && abs(cy) <= kFar && abs(sz) <= kFar);
         }
         tri.pad = pad;

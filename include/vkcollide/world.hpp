@@ -50,6 +50,7 @@
 #include <vulkan/vulkan_core.h>
 
 #include "vkcollide/contacts.hpp"
+#include "vkcollide/proximity.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/gpu_mesh.hpp"
 #include "vkcollide/mesh.hpp"
@@ -259,6 +260,12 @@ struct DetectSettings {
     // header says kDevicePairsOverflow with the count needed (never a silent drop); at most
     // kMaxDevicePairCapacity.
     std::uint32_t device_pair_capacity = 0;
+
+    // Reliable: also every vertex-triangle and edge-edge pair within a distance, with its
+    // distance, closest points and normal, in DetectResult::proximity (vkcollide/
+    // proximity.hpp, docs/proximity.md). Off (distance 0) by default. Host meshes only (their
+    // indices say which primitives neighbour each other); needs shaderFloat64.
+    ProximitySettings proximity;
 };
 inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
 
@@ -353,6 +360,7 @@ struct DetectStats {
     // ray, the candidate object pairs (closed, allowed, boxes overlapping), rays inside
     // more than 16 objects at once (those extra objects ignored there) and submissions.
     double contacts_ms = 0, contacts_gpu_ms = 0;
+    ProximityStats proximity;  // DetectSettings::proximity
     std::uint32_t contact_rays_x = 0, contact_rays_y = 0, contact_layers = 0;
     std::uint32_t contact_candidate_pairs = 0, contact_nested_rays = 0, contact_runs = 0;
     double total_ms = 0;                 // host wall time from submit to result
@@ -455,6 +463,9 @@ struct DetectResult {
     // or whose triangles intersect (filtered pairs and excluded objects have none), sorted
     // by (object_a, object_b). Empty otherwise.
     std::vector<ObjectContact> contacts;
+    // With DetectSettings::proximity: every vertex-triangle and edge-edge pair within the
+    // distance, each once, sorted (ProximityPair). Empty otherwise.
+    std::vector<ProximityPair> proximity;
     DetectStats stats;
     // DetectSettings::max_pairs was reached: the intersecting pairs found beyond it (not in
     // `pairs`, not in `responses`), and an error (LimitExceeded) that says so. Empty and 0

@@ -9,6 +9,8 @@
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
 #include "narrow/exact_stage.hpp"
+#include "proximity/ownership.hpp"
+#include "proximity/proximity_results.hpp"
 #include "passes/cells/reliable_method.hpp"
 #include "vk/device.hpp"
 
@@ -36,6 +38,26 @@ passes::MethodFactory CollisionWorld::Impl::methodFactory(DetectMethod method) {
     return method == DetectMethod::Reliable ? passes::ReliableMethod::create : passes::PeelingMethod::create;
 }
 
+// Proximity: each live object's owned primitives (computed once per host mesh), named
+// refusals for objects without host indices.
+Result<void> CollisionWorld::Impl::prepareProximity(Run& run) {
+    const bool on = run.settings.proximity.distance > 0;
+    for (std::size_t i = 0; i < run.meshes.size(); ++i) {
+        run.meshes[i].proximity_owned = {};
+        if (!on) continue;
+        const ObjectId id = run.ids[i];
+        Object& o = objects[id];
+        if (!o.host)
+            return named(id, Error(ErrorCode::UnsupportedFeature,
+                                   "proximity needs the object's indices on the host to tell neighbouring primitives apart; "
+                                   "engine meshes (addGpuMesh) are not supported yet"));
+        if (o.proximity_owned.size() != o.host_indices.size() / 3)
+            o.proximity_owned = proximity::ownedPrimitives(o.host_indices, static_cast<std::uint32_t>(o.host_positions.size()));
+        run.meshes[i].proximity_owned = o.proximity_owned;
+    }
+    return {};
+}
+
 Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
     run.start = Clock::now();
     std::vector<passes::GpuMesh>& meshes = run.meshes;  // kept: no allocation per detection
@@ -58,6 +80,13 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.device_pairs = s.device_pairs;
     d.broad.device_pair_capacity = s.device_pair_capacity;
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
+    if (auto ok = prepareProximity(run); !ok) return ok.error();
+    if (s.proximity.distance > 0 && pair_filter && !*mask)
+        return Error(ErrorCode::InvalidArgument, "proximity with a pair filter over " + std::to_string(run.ids.size()) +
+                                                     " objects: the filter is applied on the host only beyond " +
+                                                     std::to_string(gpu::kMaxFilterMaskObjects) + " objects, the proximity pass needs it on the GPU");
+    d.broad.proximity_distance = s.proximity.distance;
+    d.broad.proximity_capacity = s.proximity.capacity;
     d.broad.resolution = *s.resolution;
     d.broad.direction = *s.direction;
     d.broad.layer_cap = s.layer_cap;
@@ -260,6 +289,15 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (broad[0].scene_box) measured_box = broad[0].scene_box;
     if (run.settings.contacts)
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
+    if (detected.hasPairs() && broad[0].has_proximity) {
+        const auto p0 = Clock::now();
+        proximity::sortedPairs(broad[0].proximity, broad[0].proximity_header, out.proximity, st.proximity);
+        st.proximity.ran = true;
+        st.proximity.distance = run_settings.proximity.distance;
+        st.proximity.runs = broad[0].proximity_runs;
+        st.proximity.gpu_ms = broad[0].proximity_ms;
+        st.proximity.host_ms = msSince(p0);
+    }
     if (auto view = run.detection->devicePairs()) {
         out.device = devicePairsOf(*view, run);
         // collect() may have grown the buffers (a repeated run): devicePairs() names them now.

@@ -148,6 +148,23 @@ Result<void> checkDevicePairs(const DetectSettings& s, const vk::Device& device)
     return {};
 }
 
+Result<void> checkProximity(const DetectSettings& s, const vk::Device& device) {
+    const ProximitySettings& p = s.proximity;
+    if (!(p.distance >= 0) || !(p.distance <= 0x1p60))
+        return invalid("proximity.distance " + std::to_string(p.distance) + " must be finite, at least 0 and at most 2^60 (world units)");
+    if (p.distance == 0) return {};
+    if (s.method != DetectMethod::Reliable)
+        return invalid("proximity belongs to the reliable method (--method reliable): the peeling method samples no distances");
+    if (!device.shader_float64)
+        return Error(ErrorCode::UnsupportedFeature,
+                     "proximity computes distances in double on the GPU and needs shaderFloat64, which " + device.info.name +
+                         " lacks (or the adopted device did not enable)");
+    if (p.capacity > kMaxProximityCapacity)
+        return invalid("proximity.capacity " + std::to_string(p.capacity) + " is more than kMaxProximityCapacity (" +
+                       std::to_string(kMaxProximityCapacity) + ")");
+    return {};
+}
+
 Result<void> checkDevicePairsFilter(bool device_pairs, bool filter_on_host_only, std::size_t live_objects) {
     if (device_pairs && filter_on_host_only)
         return invalid("device_pairs with a pair filter over " + std::to_string(live_objects) +
@@ -182,6 +199,7 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         return Error(ErrorCode::UnsupportedFeature, "exact decision on the GPU needs shaderFloat64, which " + device.info.name +
                                                         " lacks (or the adopted device did not enable): use ExactDecision::Auto or Cpu");
     if (auto ok = checkDevicePairs(s, device); !ok) return ok;
+    if (auto ok = checkProximity(s, device); !ok) return ok;
     if (s.axes != 1 && s.axes != 3) return invalid("axes must be 1 or 3, not " + std::to_string(s.axes));
     if (reliable && s.axes != 1) return invalid("the reliable method runs along one direction (axes 1; resolveSettings sets it)");
     const std::uint32_t n = s.resolution.value_or(0);

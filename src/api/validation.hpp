@@ -53,6 +53,9 @@ Result<void> checkSettings(const DetectSettings& resolved, const vk::Device& dev
 // DetectSettings::device_pairs: the reliable method, the exact decision on the GPU
 // (shaderFloat64), a capacity within kMaxDevicePairCapacity (checkSettings calls it).
 Result<void> checkDevicePairs(const DetectSettings& resolved, const vk::Device& device);
+// DetectSettings::proximity: the reliable method, shaderFloat64, a finite distance in
+// [0, 2^60], a capacity within kMaxProximityCapacity (checkSettings calls it).
+Result<void> checkProximity(const DetectSettings& resolved, const vk::Device& device);
 // device_pairs with a pair filter the world applies only on the host (no mask kept).
 Result<void> checkDevicePairsFilter(bool device_pairs, bool filter_on_host_only, std::size_t live_objects);
 // The reliable method's limit on an object (host meshes' largest |coordinate| is measured

@@ -71,6 +71,9 @@ struct CollisionWorld::Impl {
         mutable float edge_length = 0;
         mutable std::array<double, 6> area_moment{};
         mutable bool shape_stale = false;
+        // Proximity: the vertices and edges each triangle owns (host meshes, computed by the
+        // first detection that asks; the indices never change).
+        std::vector<std::uint8_t> proximity_owned;
         // Index of the object in `source` (kNoSource: not in it).
         std::uint32_t source_index = 0xFFFFFFFFu;
     };
@@ -224,6 +227,7 @@ struct CollisionWorld::Impl {
     static passes::MethodFactory methodFactory(DetectMethod method);
     // Starts a detection in `run` (target: the engine's semaphores or command buffer).
     Result<void> start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
+    Result<void> prepareProximity(Run& run);
     // restart_clock: the timeout counts from now (submit() and record(): the caller chose
     // when to collect); detect() counts from its start.
     Result<DetectResult> collect(Run& run, bool restart_clock);

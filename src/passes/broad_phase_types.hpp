@@ -19,6 +19,7 @@
 #include <vulkan/vulkan_core.h>
 
 #include "broadphase.h"
+#include "proximity.h"
 #include "graph/executor.hpp"
 #include "passes/cells/cell_pairs_stats.hpp"
 #include "passes/sampling/sampling_types.hpp"
@@ -54,6 +55,9 @@ struct GpuMesh {
     // The caller's name for the object: methods that write pairs on the GPU
     // (BroadPhaseSettings::device_pairs) write it as the pair's object.
     std::uint32_t tag = 0;
+    // Proximity (BroadPhaseSettings::proximity_distance): per triangle, the vertices and
+    // edges it owns (src/proximity/ownership.hpp). Must outlive the run.
+    std::span<const std::uint8_t> proximity_owned;
 };
 
 // Which pairs of different objects may collide, over a run's objects 0..n-1: bit
@@ -133,6 +137,11 @@ struct BroadPhaseSettings {
     // buffers (DevicePairsView; objects named by GpuMesh::tag). Capacity in pairs, 0: automatic.
     bool device_pairs = false;
     std::uint32_t device_pair_capacity = 0;
+    // Methods that form pairs on the GPU with the exact decision there: also every
+    // vertex-triangle and edge-edge pair within this distance (world units; 0: off), each
+    // mesh with its GpuMesh::proximity_owned. Capacity in records, 0: automatic.
+    double proximity_distance = 0;
+    std::uint32_t proximity_capacity = 0;
 };
 
 // Where a run writes its sorted pairs on the GPU (BroadPhaseSettings::device_pairs):
@@ -180,6 +189,13 @@ struct BroadPhaseResult {
     std::span<const CandidatePair> pairs;
     std::span<const GpuTriangle> gpu_triangles;
     CellPairsStats cells;                    // the cell pair stage's counters (has_pairs)
+    // Proximity (BroadPhaseSettings::proximity_distance > 0): the records as the GPU wrote
+    // them (unordered, a rare one twice; host-visible memory, valid until the next run),
+    // the pass's header and how many times it ran.
+    bool has_proximity = false;
+    std::span<const gpu::ProximityRecord> proximity;
+    gpu::ProximityHeader proximity_header{};
+    std::uint32_t proximity_runs = 0;
     std::vector<std::uint8_t> ray_image;     // N*N, row-major, 1 = collision ray (if kept)
     // With depth_aware and keep_ray_image: each ray's depth interval (lo, hi) as its bundle
     // got it, row-major (lo > hi: none; +-3.4e38: every depth).
@@ -207,6 +223,7 @@ struct BroadPhaseResult {
     // The cell pair stage (Stage::Footprints, Pairing, Filtering).
     double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;
     double sorting_ms = 0;  // device pairs (Stage::Sorting)
+    double proximity_ms = 0;  // the proximity pass (Stage::Proximity)
     // The scene's world box as the bounds pass measured it (min x, y, z, max x, y, z):
     // every object, engine meshes included; empty with a caller's region.
     std::optional<std::array<float, 6>> scene_box;

@@ -18,6 +18,7 @@ const char* toString(Stage stage) noexcept {
         case Stage::Pairing: return "pairing";
         case Stage::Filtering: return "filtering";
         case Stage::Sorting: return "sorting";
+        case Stage::Proximity: return "proximity";
     }
     return "?";
 }
@@ -33,6 +34,7 @@ void addStageTime(BroadPhaseResult& r, const graph::PassTiming& pass) {
         case Stage::Pairing: r.pairing_ms += pass.gpu_ms; break;
         case Stage::Filtering: r.filtering_ms += pass.gpu_ms; break;
         case Stage::Sorting: r.sorting_ms += pass.gpu_ms; break;
+        case Stage::Proximity: r.proximity_ms += pass.gpu_ms; break;
         case Stage::None:
         case Stage::Readback: break;
     }

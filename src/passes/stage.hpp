@@ -31,6 +31,7 @@ enum class Stage : graph::StageTag {
     Pairing,     // the sweep of every cell: candidate pairs
     Filtering,   // canonical-cell dedupe, the double-precision filter, engine triangles' vertices
     Sorting,     // device pairs: the survivors sorted on the GPU (cells/device_pairs.hpp)
+    Proximity,   // the proximity pass (src/proximity/)
 };
 const char* toString(Stage stage) noexcept;
 // Adds one pass's GPU time to its stage's field of `io_result`.

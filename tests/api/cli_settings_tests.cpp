@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <set>
+#include <fstream>
 #include <sstream>
 
 #include "api/cli_support.hpp"
@@ -228,7 +229,7 @@ TEST_CASE("vkcollide detect: the JSON's settings are those the method that ran r
     const Json j = detectJson(s.scratch, s.files + " --resolution 64");
     CHECK(j["settings"]["asked"].object().size() == options.all.size() - options.reliable_only.size());
     CHECK(j["settings"]["used"].object().size() == options.all.size() - options.reliable_only.size());
-    CHECK(options.reliable_only == std::set<std::string>{"--exact"});
+    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--proximity", "--proximity-capacity"});
     CHECK_FALSE(j["settings"]["used"].has("exact"));
     CHECK(j["settings"]["used"].has("depth_aware"));
     // The reliable method: the fields it reads, and none that only peeling reads.
@@ -329,6 +330,31 @@ TEST_CASE("vkcollide detect: --max-pairs keeps that many and says the rest were 
     const Run few_peeling = runCli("detect " + s.plain_files + " --method peeling --max-candidate-pairs 1");
     CHECK(few_peeling.status != 0);
     CHECK(few_peeling.err.find("max_box_pairs") != std::string::npos);
+}
+
+TEST_CASE("vkcollide detect: --proximity writes the pairs within a distance to the JSON and a CSV", "[cli][gpu]") {
+    TwoSpheres s(1.0f);
+    const std::string csv = s.scratch.path("near.csv");
+    const Json j = detectJson(s.scratch, s.plain_files + " --proximity 0.05 --proximity-pairs " + csv);
+    CHECK(j["settings"]["used"]["proximity"].number() == Approx(0.05));
+    const Json& near = j["frames"][0]["proximity"];
+    REQUIRE(near.size() > 0);
+    CHECK(stats(j)["proximity"]["pairs"].number() == double(near.size()));
+    for (std::size_t i = 0; i < near.size(); ++i) CHECK(near[i]["distance"].number() <= 0.05 * (1 + 1e-6));
+    std::ifstream in(csv);
+    std::size_t lines = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++lines;
+        CHECK((line.rfind("vertex-triangle,", 0) == 0 || line.rfind("edge-edge,", 0) == 0));
+    }
+    CHECK(lines == near.size());
+    // Without it: no pairs, no statistics; under the peeling method: refused by name.
+    const Json plain = detectJson(s.scratch, s.plain_files);
+    CHECK(plain["frames"][0]["proximity"].size() == 0);
+    CHECK_FALSE(stats(plain).has("proximity"));
+    const Run run = runCli("detect " + s.files + " --proximity 0.05");
+    CHECK(run.status == 1);
+    CHECK(run.err.find("--proximity belongs to the reliable method") != std::string::npos);
 }
 
 TEST_CASE("vkcollide detect: --exact chooses where the reliable method's exact test runs", "[cli][gpu]") {

@@ -124,6 +124,23 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("gpu_exact_tests", st.gpu_exact_tests);
     count("cpu_exact_tests", st.cpu_exact_tests);
     count("pairs", pair_count);
+    if (st.proximity.ran) {
+        const vkcollide::ProximityStats& p = st.proximity;
+        j.key("proximity");
+        j.beginObject(JsonWriter::Layout::Inline);
+        j.member("distance", [&] { j.number(p.distance); });
+        count("pairs", p.pairs);
+        count("vertex_triangle", p.vertex_triangle);
+        count("edge_edge", p.edge_edge);
+        count("in_band", p.in_band);
+        count("triangle_pairs", p.triangle_pairs);
+        count("distances", p.distances);
+        count("neighbours", p.neighbours);
+        count("runs", p.runs);
+        ms("gpu_ms", p.gpu_ms);
+        ms("host_ms", p.host_ms);
+        j.endObject();
+    }
     j.key("narrow");
     j.beginObject(JsonWriter::Layout::Inline);
     count("candidates", st.narrow.candidates);

@@ -149,6 +149,27 @@ const std::vector<Option>& options() {
                   "where the exact triangle test decides the candidates: auto (the GPU where it has 64-bit floats), gpu or cpu (the reference path)",
                   "gpu: only intersecting pairs are read back and the CPU computes responses alone; cpu: every pair the GPU filter keeps is tested on the CPU; same pairs",
                   setting<&DetectSettings::exact>, "exact", show<&DetectSettings::exact>}),
+        reliable({"--proximity", "D", Section::Settings,
+                  "also every vertex-triangle and edge-edge pair within distance D (world units) with its distance, closest points "
+                  "and normal (docs/proximity.md; host meshes, 64-bit floats on the GPU)",
+                  "a GPU pass over the candidates of triangles grown by D/2: more candidates, 64 bytes per pair found",
+                  [](CommandLine& c, std::string_view v) -> Result<void> {
+                      auto d = parseFloat(v);
+                      if (!d) return d.error();
+                      c.settings.proximity.distance = *d;
+                      return {};
+                  },
+                  "proximity", [](const DetectSettings& s) { return fields::jsonNumber(s.proximity.distance); }}),
+        reliable({"--proximity-capacity", "N", Section::Settings,
+                  "--proximity: pairs the GPU buffer holds; a detection finding more fails naming the count (default 0: grows as needed)",
+                  "64 bytes per pair of device-visible host memory",
+                  [](CommandLine& c, std::string_view v) -> Result<void> {
+                      auto n = parseUint(v);
+                      if (!n) return n.error();
+                      c.settings.proximity.capacity = *n;
+                      return {};
+                  },
+                  "proximity_capacity", [](const DetectSettings& s) { return fields::jsonOf(s.proximity.capacity); }}),
         peeling(flag("--paper-packing", Section::Settings, "the same as --packing paper", "as --packing paper",
              [](CommandLine& c, std::string_view) -> Result<void> {
                  c.settings.packing = vkcollide::PackingMethod::Paper;
@@ -224,6 +245,10 @@ const std::vector<Option>& options() {
 
         {"--pairs", "FILE", Section::Output, "colliding pairs as CSV lines a,b (global triangle numbers, a < b); --sequence: frame,a,b",
          "a line per pair", path<&CommandLine::pairs_path>},
+        {"--proximity-pairs", "FILE", Section::Output,
+         "--proximity: its pairs as CSV (kind,object_a,a0,a1,object_b,b0,b1,distance,weight_a,wb0,wb1,wb2,nx,ny,nz,in_band); "
+         "--sequence: frame first",
+         "a line per pair", path<&CommandLine::proximity_path>},
         {"--json", "FILE", Section::Output, "everything as JSON: objects, settings asked and used, per frame pairs, responses, excluded objects, statistics (docs/cli.md)",
          "a few lines per pair", path<&CommandLine::json_path>},
         {"--stats", "FILE", Section::Output, "the last frame's statistics as JSON (the paper's Table 1, settings, stage times)", "free",

@@ -42,7 +42,7 @@ struct CommandLine {
     bool robust_access = true;
     bool validation = false;
     bool quiet = false;
-    std::string pairs_path, stats_path, json_path, csv_path, png_path;
+    std::string pairs_path, stats_path, json_path, csv_path, png_path, proximity_path;
     std::uint32_t png_width = 800, png_height = 600;
     std::optional<std::array<float, 3>> view;  // from the scene's centre towards the eye
     bool rays = false;

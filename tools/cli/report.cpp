@@ -37,6 +37,11 @@ vkcollide::Result<std::unique_ptr<Report>> Report::open(const CommandLine& line,
         if (!f) return f.error();
         r->pairs_ = *f;
     }
+    if (!line.proximity_path.empty()) {
+        auto f = create("--proximity-pairs", line.proximity_path);
+        if (!f) return f.error();
+        r->proximity_ = *f;
+    }
     if (line.json_path.empty()) return r;
     auto f = create("--json", line.json_path);
     if (!f) return f.error();
@@ -98,6 +103,7 @@ vkcollide::Result<std::unique_ptr<Report>> Report::open(const CommandLine& line,
 
 Report::~Report() {
     if (pairs_) std::fclose(pairs_);
+    if (proximity_) std::fclose(proximity_);
     if (json_file_) std::fclose(json_file_);
 }
 
@@ -111,6 +117,15 @@ void Report::frame(std::size_t frame, const Scene& scene, const vkcollide::Detec
             else std::fprintf(pairs_, "%llu,%llu\n", a, b);
         }
     }
+    if (proximity_)
+        for (const vkcollide::ProximityPair& p : result.proximity) {
+            if (line_.sequence) std::fprintf(proximity_, "%zu,", frame);
+            std::fprintf(proximity_, "%s,%u,%u,%d,%u,%u,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%d\n",
+                         p.kind == vkcollide::ProximityKind::EdgeEdge ? "edge-edge" : "vertex-triangle", p.object_a, p.a0,
+                         p.a1 == vkcollide::kNoPrimitive ? -1 : int(p.a1), p.object_b, p.b0, p.b1 == vkcollide::kNoPrimitive ? -1 : int(p.b1),
+                         p.distance, p.weight_a, p.weights_b[0], p.weights_b[1], p.weights_b[2], p.normal[0], p.normal[1], p.normal[2],
+                         (p.flags & vkcollide::kProximityInBand) ? 1 : 0);
+        }
     if (!json_) return;
     JsonWriter& j = *json_;
     j.beginObject();
@@ -161,6 +176,38 @@ void Report::frame(std::size_t frame, const Scene& scene, const vkcollide::Detec
         j.endObject();
     }
     j.endArray();
+    // Proximity pairs (--proximity; empty without it): docs/proximity.md.
+    j.key("proximity");
+    j.beginArray();
+    for (const vkcollide::ProximityPair& p : result.proximity) {
+        j.beginObject(Layout::Inline);
+        j.member("kind", [&] { j.string(p.kind == vkcollide::ProximityKind::EdgeEdge ? "edge-edge" : "vertex-triangle"); });
+        j.member("object_a", [&] { j.integer(p.object_a); });
+        j.key("a");
+        j.beginArray(Layout::Inline);
+        j.integer(p.a0);
+        if (p.a1 != vkcollide::kNoPrimitive) j.integer(p.a1);
+        j.endArray();
+        j.member("object_b", [&] { j.integer(p.object_b); });
+        j.key("b");
+        j.beginArray(Layout::Inline);
+        j.integer(p.b0);
+        if (p.b1 != vkcollide::kNoPrimitive) j.integer(p.b1);
+        j.endArray();
+        j.member("distance", [&] { j.number(p.distance); });
+        j.member("weight_a", [&] { j.number(p.weight_a); });
+        j.key("weights_b");
+        j.beginArray(Layout::Inline);
+        for (float w : p.weights_b) j.number(w);
+        j.endArray();
+        j.key("normal");
+        j.beginArray(Layout::Inline);
+        for (float w : p.normal) j.number(w);
+        j.endArray();
+        j.member("in_band", [&] { j.boolean((p.flags & vkcollide::kProximityInBand) != 0); });
+        j.endObject();
+    }
+    j.endArray();
     j.key("excluded");
     j.beginArray();
     for (const vkcollide::ExcludedObject& e : result.excluded) {
@@ -183,6 +230,8 @@ vkcollide::Result<void> Report::close() {
         json_->finish();
     }
     auto pairs = closeFile(pairs_, "--pairs", line_.pairs_path);
+    auto near = closeFile(proximity_, "--proximity-pairs", line_.proximity_path);
+    if (!near) return near;
     auto json = closeFile(json_file_, "--json", line_.json_path);
     if (!pairs) return pairs;
     return json;

@@ -32,6 +32,7 @@ private:
     explicit Report(const CommandLine& line) : line_(line) {}
     const CommandLine& line_;
     std::FILE* pairs_ = nullptr;
+    std::FILE* proximity_ = nullptr;
     std::FILE* json_file_ = nullptr;
     std::unique_ptr<JsonWriter> json_;
 };

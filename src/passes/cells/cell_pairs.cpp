@@ -15,7 +15,7 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 88 && sizeof(gpu::CellsParams) == 216);
+static_assert(sizeof(gpu::CellsHeader) == 88 && sizeof(gpu::CellsParams) == 224);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
               offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
               offsetof(gpu::CellsHeader, exact_neighbours) == 84);  // kHeaderCandidates, ... in cells_common.glsl.inc
@@ -114,6 +114,8 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
         total += o.triangle_count;
     }
     if (total >= gpu::kMaxTriangles) return Error(ErrorCode::InvalidArgument, "cell pairs: more than 2^30 triangles");
+    if (!(settings.proximity_pad >= 0) || !moderate(settings.proximity_pad))
+        return Error(ErrorCode::InvalidArgument, "cell pairs: proximity_pad must be finite, at least 0 and below 2^62");
 
     objects_.assign(in.objects.begin(), in.objects.end());
     triangles_ = static_cast<std::uint32_t>(total);
@@ -121,6 +123,7 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     projection_address_ = in.projection_address;
     use_filter_ = settings.filter && filterSupported();
     use_exact_ = settings.exact && filterSupported();
+    proximity_pad_ = settings.proximity_pad;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
     has_pair_mask_ = !in.pair_mask.empty() || static_cast<bool>(in.may_collide);
     download_triangles_ = 0;
@@ -302,6 +305,8 @@ void CellPairs::writeParams() {
     p.use_filter = use_filter_ ? 1u : 0u;
     p.exact = use_exact_ ? 1u : 0u;
     p.budget = budget_;
+    p.keep_neighbours = proximity_pad_ > 0 ? 1u : 0u;
+    p.proximity_pad = proximity_pad_;
     std::memcpy(buf_.params.mapped(), &p, sizeof p);
     buf_.params.flush();
 }

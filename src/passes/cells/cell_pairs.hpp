@@ -104,6 +104,11 @@ struct CellPairsSettings {
     CellPairsCapacity initial;
     // Runs allowed per call (the first plus reruns after overflows).
     std::uint32_t max_runs = 8;
+    // Proximity (src/proximity/): half the distance, in world units (0: off). Every triangle
+    // is grown by it along each axis, so triangles closer than the distance become
+    // candidates, and the sweep keeps one object's pairs that share a vertex index (the pair
+    // pass leaves them out of the survivors instead).
+    float proximity_pad = 0;
     // Dispatches are split into rows of at most this many workgroups (0: the device's
     // maxComputeWorkGroupCount[0]); tests set it small to exercise the split.
     std::uint32_t max_workgroups_x = 0;
@@ -134,14 +139,18 @@ public:
     // input gave projection_address. The header readback is the last pass. Returns the
     // buffers later GPU stages of the same graph read (device_pairs.hpp).
     struct Resources {
-        graph::ResourceId header, survivors, triangles;
+        graph::ResourceId header, survivors, triangles, candidates, geometry, args;
     };
     Resources record(graph::Graph& graph, graph::ResourceId projection = {});
     // Those buffers imported into a graph of their own (a later stage run alone).
     Resources importOutputs(graph::Graph& g) {
-        return {g.importBuffer("cells-header", buf_.header), g.importBuffer("cells-survivors", buf_.survivors, true),
-                g.importBuffer("cells-triangles", buf_.triangles)};
+        return {g.importBuffer("cells-header", buf_.header),         g.importBuffer("cells-survivors", buf_.survivors, true),
+                g.importBuffer("cells-triangles", buf_.triangles),   g.importBuffer("cells-candidates", buf_.candidates),
+                g.importBuffer("cells-geometry", buf_.geometry),     g.importBuffer("cells-args", buf_.args)};
     }
+    // The indirect dispatches the stage writes (kCellsArgs* slots of 12 bytes): the pair
+    // pass's serves any later pass over the candidates.
+    VkBuffer argsBuffer() const noexcept { return buf_.args.handle(); }
     // The prepared run as later GPU stages see it: the parameters' address (CellsParams),
     // its triangles and the dispatch row limit.
     VkDeviceAddress paramsAddress() const noexcept { return buf_.params.address(); }
@@ -210,6 +219,7 @@ private:
     std::vector<gpu::ObjectGpu> objects_;
     std::uint32_t triangles_ = 0, resolution_ = 0;
     VkDeviceAddress projection_address_ = 0;
+    float proximity_pad_ = 0;
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish

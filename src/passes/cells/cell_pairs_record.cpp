@@ -186,7 +186,7 @@ CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projec
             VkBufferCopy copy{0, 0, sizeof(gpu::CellsHeader)};
             pc.copyBuffer(header_buffer, header_rb_buffer, copy);
         });
-    return {header, survivors, tris};
+    return {header, survivors, tris, candidates, geometry, args};
 }
 
 }  // namespace vkcollide::passes

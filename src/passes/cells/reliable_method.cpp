@@ -1,6 +1,7 @@
 #include "passes/cells/reliable_method.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace vkcollide::passes {
@@ -36,7 +37,24 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     CellPairsSettings settings;
     settings.max_candidate_pairs = run.settings.max_candidate_pairs;
     settings.exact = run.settings.exact_on_gpu;
+    // Proximity: every triangle grown by half the distance (rounded up to a float).
+    proximity_on_ = run.settings.proximity_distance > 0;
+    if (proximity_on_) {
+        const double half = run.settings.proximity_distance * 0.5;
+        float pad = static_cast<float>(half);
+        if (double(pad) < half) pad = std::nextafter(pad, 3.0e38f);
+        settings.proximity_pad = pad;
+    }
     if (auto ok = cells_->prepare(in, settings); !ok) return ok;
+    if (proximity_on_) {
+        if (!proximity_) {
+            auto made = proximity::ProximityStage::create(*device_);
+            if (!made) return made.error();
+            proximity_ = std::move(*made);
+        }
+        if (auto ok = proximity_->prepare(*cells_, run.meshes, run.settings.proximity_distance, run.settings.proximity_capacity); !ok)
+            return ok;
+    }
     // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
     device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
     if (!device_pairs_on_) return {};
@@ -55,6 +73,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
 
 void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
     const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
+    if (proximity_on_) proximity_->record(g, cells);
     if (device_pairs_on_) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
 }
 
@@ -109,6 +128,27 @@ Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, Bro
                                [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
             !ok)
             return ok;
+    }
+    if (proximity_on_) {
+        // The pass of the first run saw it fail when the stage ran again: once more after it.
+        bool again = result.cells.runs > 1;
+        for (std::uint32_t runs = 0;; ++runs) {
+            if (again)
+                if (auto ok = runAlone(run, "the proximity pass", result,
+                                       [&](std::uint64_t wait_ns) { return proximity_->runAlone(*cells_, wait_ns); });
+                    !ok)
+                    return ok;
+            auto outcome = proximity_->finish();
+            if (!outcome) return outcome.error();
+            if (*outcome == proximity::ProximityStage::Outcome::Complete) break;
+            if (runs + 1 >= limits.max_runs)
+                return Error(ErrorCode::OutOfMemory, "proximity: the record buffer still overflowed after " + std::to_string(runs + 1) + " runs");
+            again = true;
+        }
+        result.has_proximity = true;
+        result.proximity = proximity_->records();
+        result.proximity_header = proximity_->header();
+        result.proximity_runs = proximity_->runs();
     }
     result.has_pairs = true;
     result.pairs = cells_->survivors();

@@ -26,6 +26,7 @@
 #include "passes/cells/cell_pairs.hpp"
 #include "passes/cells/device_pairs.hpp"
 #include "passes/method.hpp"
+#include "proximity/proximity_stage.hpp"
 
 namespace vkcollide::passes {
 
@@ -43,16 +44,20 @@ public:
     Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
     std::optional<ObjectFault> fault() const override { return fault_; }
     std::uint64_t memoryBytes() const noexcept override {
-        return cells_->memoryBytes() + (device_pairs_ ? device_pairs_->memoryBytes() : 0);
+        return cells_->memoryBytes() + (device_pairs_ ? device_pairs_->memoryBytes() : 0) + (proximity_ ? proximity_->memoryBytes() : 0);
     }
     std::optional<DevicePairsView> devicePairs() const override {
         if (!device_pairs_on_) return std::nullopt;
         return device_pairs_->view();
     }
     // A rerun of the stage or a sort of its pairs that timed out (each has its executor).
-    bool busy() const override { return cells_->busy() || (device_pairs_ && device_pairs_->busy()); }
+    bool busy() const override {
+        return cells_->busy() || (device_pairs_ && device_pairs_->busy()) || (proximity_ && proximity_->busy());
+    }
     [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) override {
         if (auto ok = cells_->settle(timeout_ns); !ok) return ok;
+        if (proximity_)
+            if (auto ok = proximity_->settle(timeout_ns); !ok) return ok;
         return device_pairs_ ? device_pairs_->settle(timeout_ns) : Result<void>{};
     }
 
@@ -77,6 +82,9 @@ private:
     std::uint32_t device_pair_capacity_ = 0;
     std::vector<std::uint32_t> object_tags_;
     VkDeviceAddress fault_header_ = 0;
+    // Proximity (BroadPhaseSettings::proximity_distance): made on first use.
+    std::unique_ptr<proximity::ProximityStage> proximity_;
+    bool proximity_on_ = false;
 };
 
 }  // namespace vkcollide::passes

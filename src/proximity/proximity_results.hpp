@@ -1,0 +1,19 @@
+// The proximity pass's records as DetectResult::proximity: sorted by (kind, object_a, a0,
+// a1, object_b, b0, b1), each pair once (the GPU writes them unordered, and a pair whose
+// triangles' canonical-cell scan ran out of budget twice).
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "proximity.h"
+#include "vkcollide/proximity.hpp"
+
+namespace vkcollide::proximity {
+
+// Fills `out` and the counts of `stats` that the records tell (pairs, kinds, in_band,
+// duplicates) plus those of the header (triangle pairs, distances, neighbours, capacity).
+void sortedPairs(std::span<const gpu::ProximityRecord> records, const gpu::ProximityHeader& header, std::vector<ProximityPair>& out,
+                 ProximityStats& stats);
+
+}  // namespace vkcollide::proximity

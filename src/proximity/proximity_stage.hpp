@@ -1,0 +1,81 @@
+// The proximity pass (DetectSettings::proximity, docs/proximity.md): after the cell stage
+// ran with every triangle grown by half the distance (CellPairsSettings::proximity_pad),
+// one invocation per candidate triangle pair computes, in double on the CPU's world
+// vertices, the distances of the vertices and edges the two triangles own
+// (ownership.hpp) and writes every vertex-triangle and edge-edge pair within the distance
+// (spirv/proximity_pairs.comp.glsl).
+//
+//   proximity-clear    the header
+//   proximity-pairs    per candidate (the pair pass's indirect dispatch), then the header's
+//                      count and flags
+//   proximity-readback the header for the host
+//
+// Capacity: the caller's (a detection that finds more fails with LimitExceeded naming the
+// count), or automatic: first about 8 records per triangle, then what a run needed; an
+// automatic capacity that overflows is grown and the pass alone run again (the candidates
+// stay in the cell stage's buffers). Records live in host-visible memory the GPU writes.
+//
+// Not thread-safe; one per cell stage (ReliableMethod).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "passes/broad_phase_types.hpp"
+#include "passes/cells/cell_pairs.hpp"
+#include "proximity.h"
+
+namespace vkcollide::proximity {
+
+class ProximityStage {
+public:
+    // Needs shaderFloat64 (UnsupportedFeature otherwise, naming the device).
+    static Result<std::unique_ptr<ProximityStage>> create(vk::Device& device);
+
+    // After CellPairs::prepare(): the run's meshes (each with its owned primitives, one per
+    // triangle: InvalidArgument naming the mesh otherwise), the distance (world units) and
+    // the capacity (0: automatic).
+    [[nodiscard]] Result<void> prepare(const passes::CellPairs& cells, std::span<const passes::GpuMesh> meshes, double distance,
+                                       std::uint32_t capacity);
+    // The passes, after the cell stage's (`cells`: its resources in this graph).
+    void record(graph::Graph& g, const passes::CellPairs::Resources& cells);
+    // After the graph ran (and the cell stage completed): Complete, or Rerun when an
+    // automatic capacity overflowed (grown: run the pass again, runAlone()). Errors:
+    // LimitExceeded past a fixed capacity; VulkanError when the cell stage's run failed
+    // (the caller must rerun both).
+    enum class Outcome { Complete, Rerun };
+    [[nodiscard]] Result<Outcome> finish();
+    // The passes alone on the stage's own executor, waiting at most timeout_ns.
+    [[nodiscard]] Result<graph::ExecutionReport> runAlone(passes::CellPairs& cells, std::uint64_t timeout_ns);
+    bool busy() const { return executor_.busy(); }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
+
+    // After a Complete finish(): the records as the GPU wrote them (unordered, a rare pair
+    // twice), the header, and the passes run so far for this detection.
+    std::span<const gpu::ProximityRecord> records() const noexcept;
+    const gpu::ProximityHeader& header() const noexcept { return header_; }
+    std::uint32_t runs() const noexcept { return runs_; }
+    std::uint32_t capacity() const noexcept { return capacity_; }
+    std::uint64_t memoryBytes() const noexcept;
+
+private:
+    explicit ProximityStage(vk::Device& device) : device_(&device), executor_(device) {}
+    Result<void> grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name);
+    void writeParams(const passes::CellPairs& cells);
+
+    vk::Device* device_;
+    vk::Pipeline pipeline_;
+    struct Buffers {
+        vk::Buffer params, owned, object_ids, header, header_rb, records;
+    } buf_;
+    double distance_ = 0;
+    std::uint32_t capacity_ = 0, triangles_ = 0, max_groups_x_ = 0;
+    bool fixed_capacity_ = false;
+    std::uint32_t runs_ = 0, count_ = 0;
+    VkBuffer cells_args_ = VK_NULL_HANDLE;  // the cell stage's indirect dispatches
+    gpu::ProximityHeader header_{};
+    graph::Executor executor_;  // declared last: waits for its work before the buffers go
+};
+
+}  // namespace vkcollide::proximity

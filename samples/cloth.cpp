@@ -1,6 +1,12 @@
 // Cloth (paper section 8.2, Figure 11): an open cloth patch of 2K triangles falls onto a
 // sphere standing on the floor, drapes and folds onto itself.
 //
+// With --proximity the cloth is driven by proximity pairs instead (DetectSettings::proximity,
+// docs/proximity.md): every cloth vertex and edge closer than twice the cloth's thickness
+// to an obstacle or to another part of the cloth becomes a contact plane the next steps
+// enforce, so surfaces are held apart before they meet; the sample counts the intersecting
+// pairs vkcollide finds in the same detections and says whether any frame had one.
+//
 // What it shows: an open surface (ObjectOptions::open: collision rays come from two hits
 // close in depth, not from inside/outside), self-collision, new vertices every frame
 // (updateVertices), and a response built from the pairs themselves. The response vectors
@@ -8,7 +14,7 @@
 // cloth is kept in front of the obstacle triangles it touches, and pushed back from a
 // cloth triangle it touches to the side it came from.
 //
-//   vkcollide_cloth [--frames 400] [--cells 32] [--drop 0.2] [--out cloth] (--help for all)
+//   vkcollide_cloth [--frames 400] [--cells 32] [--drop 0.2] [--proximity] [--out cloth] (--help for all)
 #include "render/vk.hpp"  // first: the samples call Vulkan themselves
 
 #include <cmath>
@@ -47,6 +53,7 @@ int main(int argc, char** argv) {
     std::uint32_t substeps = 4;
     float fold = 1.6f;         // radians: the cloth starts folded over, one half above the other
     float dt = 0.005f;  // small: the cloth moves a fraction of an edge between detections
+    bool proximity = false;
     Args args("vkcollide_cloth", "an open cloth falls onto a sphere (paper section 8.2)");
     args.option("cells", cells, "cloth quads per side (2 triangles each)");
     args.option("drop", drop, "start height of the cloth above the sphere");
@@ -54,6 +61,7 @@ int main(int argc, char** argv) {
     args.option("substeps", substeps, "cloth simulation steps per frame");
     args.option("fold", fold, "how far one half of the cloth is turned over the other at the start, radians");
     args.option("dt", dt, "simulated seconds per frame (one detection per frame)");
+    args.flag("proximity", proximity, "drive the cloth by proximity pairs (within twice its thickness), not by intersecting pairs");
     addCommonOptions(args, common);
     args.parse(argc, argv);
     finishCommonOptions(common, "cloth");
@@ -107,11 +115,14 @@ int main(int argc, char** argv) {
     const DrawId cloth_draw = renderer.addMesh(*grid, objectColour(3), /*dynamic=*/true);
     const Camera camera{.eye = {2.2f, 1.9f, 3.2f}, .target = {0, -0.1f, 0}};
 
-    const DetectSettings settings = common.detectSettings();
-    FrameLog log(common.out + "/frames.csv", {"cloth_sphere_pairs", "cloth_floor_pairs", "cloth_self_pairs", "max_penetration"},
-                 common.frames, common.quiet);
+    DetectSettings settings = common.detectSettings();
+    FrameLog log(common.out + "/frames.csv",
+                 {"cloth_sphere_pairs", "cloth_floor_pairs", "cloth_self_pairs", "max_penetration", "proximity_pairs"}, common.frames,
+                 common.quiet);
     const float edge = size / static_cast<float>(cells);
     const float thickness = 0.25f * edge;
+    if (proximity) settings.proximity.distance = 2 * thickness;
+    int frames_intersecting = 0;
     const Vec3 gravity(0, -9.81f, 0);
     const std::vector<std::uint32_t>& cloth_indices = grid->indices;
 
@@ -181,6 +192,31 @@ int main(int argc, char** argv) {
             }
             ++(&o == &obstacles[0] ? sphere_pairs : floor_pairs);
         }
+        if (proximity) {
+            // Every pair within the distance: the cloth's side keeps `thickness` in front of
+            // the other primitive's closest point, along the pair's normal (from b towards a,
+            // so a stays on its side; the cloth as b takes the opposite normal).
+            // The intersection response above stays as a fallback should a pair ever intersect.
+            if (!hits->pairs.empty()) ++frames_intersecting;
+            const ObjectId cid = *cloth_id;
+            for (const ProximityPair& q : hits->proximity) {
+                const Vec3 n(q.normal[0], q.normal[1], q.normal[2]);
+                const auto& pa = q.object_a == cid ? now : obstacles[q.object_a == obstacles[0].id ? 0 : 1].mesh.positions;
+                const auto& pb = q.object_b == cid ? now : obstacles[q.object_b == obstacles[0].id ? 0 : 1].mesh.positions;
+                const auto& ib = q.object_b == cid ? cloth_indices : obstacles[q.object_b == obstacles[0].id ? 0 : 1].mesh.indices;
+                Vec3 on_a = toVec(pa[q.a0]), on_b = Vec3::Zero();
+                std::uint32_t a_vertices[2] = {q.a0, q.a1}, b_vertices[3] = {q.b0, q.b1, q.b1};
+                if (q.kind == ProximityKind::EdgeEdge) on_a = (1 - q.weight_a) * on_a + q.weight_a * toVec(pa[q.a1]);
+                else b_vertices[0] = ib[3 * q.b0], b_vertices[1] = ib[3 * q.b0 + 1], b_vertices[2] = ib[3 * q.b0 + 2];
+                for (int k = 0; k < 3; ++k) on_b += q.weights_b[k] * toVec(pb[b_vertices[k]]);
+                const int a_count = q.kind == ProximityKind::EdgeEdge ? 2 : 1, b_count = q.kind == ProximityKind::EdgeEdge ? 2 : 3;
+                if (q.object_a == cid)
+                    for (int k = 0; k < a_count; ++k) contacts.push_back({a_vertices[k], on_b, n, thickness, 2 * edge});
+                if (q.object_b == cid)
+                    for (int k = 0; k < b_count; ++k) contacts.push_back({b_vertices[k], on_a, -n, thickness, 2 * edge});
+                if (q.kind == ProximityKind::VertexTriangle && q.object_b == cid) renderer.highlight(cloth_draw, q.b0);
+            }
+        }
         cloth.setContacts(std::move(contacts));
         for (std::size_t v = 0; v < now.size(); ++v)
             if (pushes[v]) cloth.push(static_cast<std::uint32_t>(v), push[v] / static_cast<float>(pushes[v]));
@@ -198,9 +234,17 @@ int main(int argc, char** argv) {
             if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
                 die("cannot write " + framePath(common.out, frame));
         }
-        const double values[] = {double(sphere_pairs), double(floor_pairs), double(self_pairs), double(max_penetration)};
+        const double values[] = {double(sphere_pairs), double(floor_pairs), double(self_pairs), double(max_penetration),
+                                 double(hits->proximity.size())};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));
     }
     log.finish("cloth");
+    if (proximity) {
+        if (frames_intersecting == 0)
+            std::printf("proximity: no intersecting pair in any of the %d frames (checked by vkcollide's intersection detection)\n",
+                        common.frames);
+        else
+            std::printf("proximity: %d of the %d frames had intersecting pairs\n", frames_intersecting, common.frames);
+    }
     return exitStatus(*engine);
 }

@@ -56,15 +56,29 @@ struct ProximityHeader {
 };
 
 struct ProximityParams {
-    VKC_ADDRESS(uint64_t) cells;       // CellsParams of the run (candidates, triangles, geometry, objects)
-    VKC_ADDRESS(uint64_t) owned;       // uint8[triangle_count] packed in uints (kProximityOwned*)
-    VKC_ADDRESS(uint64_t) object_ids;  // uint[object_count]: the id each object has in the result
-    VKC_ADDRESS(uint64_t) header;      // ProximityHeader
-    VKC_ADDRESS(uint64_t) records;     // ProximityRecord[capacity]
-    double distance;                   // d, world units
+    VKC_ADDRESS(uint64_t) cells;        // CellsParams of the run (candidates, triangles, geometry, objects)
+    VKC_ADDRESS(uint64_t) owned;        // uint8[triangle_count] packed in uints (kProximityOwned*)
+    VKC_ADDRESS(uint64_t) object_ids;   // uint[object_count]: the id each object has in the result (ascending)
+    VKC_ADDRESS(uint64_t) vertex_base;  // uint[object_count]: the vertices of the objects before it
+    VKC_ADDRESS(uint64_t) header;       // ProximityHeader
+    VKC_ADDRESS(uint64_t) records;      // ProximityRecord[capacity], as the pass found them
+    VKC_ADDRESS(uint64_t) sorted;       // ProximityRecord[capacity], in the result's order
+    VKC_ADDRESS(uint64_t) order;        // uint[capacity]: record indices, bucketed, then sorted
+    VKC_ADDRESS(uint64_t) counts;       // uint[bucket_count]: records per bucket, then the cursor
+    VKC_ADDRESS(uint64_t) offsets;      // uint[bucket_count + 1]: each bucket's first slot
+    VKC_ADDRESS(uint64_t) block_sums;   // uint[block_count]
+    double distance;                    // d, world units
     uint capacity;
+    uint object_count;
+    uint bucket_count;  // 2 x the run's vertices: (kind, object_a, a0)
+    uint block_count;   // ceil(bucket_count / kCellsScanBlock)
+    uint max_groups_x;
     uint pad;
 };
+// The sort (proximity_sort.comp): records bucketed by (kind, object_a, a0) -- one bucket per
+// kind and vertex of the run -- then each bucket sorted by (a1, object_b, b0, b1), insertion
+// sort up to this size, heap sort beyond.
+VKC_CONST kProximityInsertionSort = 16u;
 
 #ifdef __cplusplus
 }  // namespace vkcollide::gpu

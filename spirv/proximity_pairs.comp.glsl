@@ -1,5 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // Proximity pass (src/proximity/proximity_stage.cpp, docs/proximity.md): after the cell
 // stage ran with every triangle grown by half the distance d (CellsParams.proximity_pad)
 // and the sweep keeping neighbours (keep_neighbours), every candidate triangle pair in its
@@ -145,6 +146,19 @@ Nearest edgeEdge(EdgePair e) {
     return n;
 }
 
+// Whether two boxes (of points held exactly in double) are farther apart than d along some
+// axis, with room for rounding: no pair of their points is then within d (the pass skips
+// them before any distance). The margin covers the differences' rounding at the magnitudes.
+bool boxesApart(dvec3 lo_a, dvec3 hi_a, dvec3 lo_b, dvec3 hi_b, double d) {
+    dvec3 gap = max(lo_b - hi_a, lo_a - hi_b);
+    double scale = max(maxAbs(lo_a), max(maxAbs(hi_a), max(maxAbs(lo_b), maxAbs(hi_b))));
+    return max(gap.x, max(gap.y, gap.z)) > d + kProximityErrorUnits * kProximityU * scale;
+}
+void boxOf(Side s, out dvec3 lo, out dvec3 hi) {
+    lo = dvec3(min(s.w[0], min(s.w[1], s.w[2])));
+    hi = dvec3(max(s.w[0], max(s.w[1], s.w[2])));
+}
+
 // Header fields (ProximityHeader, 4-byte words) for the subgroup helpers.
 const uint kProxNeeded = 1u, kProxPairsTested = 4u, kProxDistances = 5u, kProxNeighbours = 6u, kProxInBand = 7u;
 uint64_t qfield(ProximityParams Q, uint word) { return Q.header + uint64_t(word) * 4ul; }
@@ -186,7 +200,20 @@ void main() {
         a = sideOf(Q, P, c.a, tris.t[c.a].key);
         b = sideOf(Q, P, c.b, tris.t[c.b].key);
         same = a.object == b.object;
-        for (uint k = 0u; k < 3u; ++k) {
+        dvec3 lo_a, hi_a, lo_b, hi_b;
+        boxOf(a, lo_a, hi_a);
+        boxOf(b, lo_b, hi_b);
+        // Triangles farther apart than d (their cells were near only in projection).
+        if (boxesApart(lo_a, hi_a, lo_b, hi_b, Q.distance)) {
+            a.owned = 0u;
+            b.owned = 0u;
+        }
+        // Owned primitives far from the other triangle's box need no distance either.
+        [[unroll]] for (uint k = 0u; k < 3u; ++k) {
+            if (boxesApart(dvec3(a.w[k]), dvec3(a.w[k]), lo_b, hi_b, Q.distance)) a.owned &= ~(1u << k);
+            if (boxesApart(dvec3(b.w[k]), dvec3(b.w[k]), lo_a, hi_a, Q.distance)) b.owned &= ~(1u << k);
+        }
+        [[unroll]] for (uint k = 0u; k < 3u; ++k) {
             if ((a.owned & (1u << k)) != 0u) {
                 if (same && vertexNeighbours(a, k, b)) {
                     ++neighbours;
@@ -208,10 +235,15 @@ void main() {
                 }
             }
         }
-        for (uint i = 0u; i < 3u; ++i) {
+        [[unroll]] for (uint i = 0u; i < 3u; ++i) {
             if ((a.owned & (8u << i)) == 0u) continue;
-            for (uint j = 0u; j < 3u; ++j) {
+            uint i1 = i == 2u ? 0u : i + 1u;
+            dvec3 lo_e = dvec3(min(a.w[i], a.w[i1])), hi_e = dvec3(max(a.w[i], a.w[i1]));
+            if (boxesApart(lo_e, hi_e, lo_b, hi_b, Q.distance)) continue;
+            [[unroll]] for (uint j = 0u; j < 3u; ++j) {
                 if ((b.owned & (8u << j)) == 0u) continue;
+                uint j1 = j == 2u ? 0u : j + 1u;
+                if (boxesApart(lo_e, hi_e, dvec3(min(b.w[j], b.w[j1])), dvec3(max(b.w[j], b.w[j1])), Q.distance)) continue;
                 EdgePair e = edgePair(a, i, b, j);
                 if (same && edgeNeighbours(e)) {
                     ++neighbours;
@@ -231,12 +263,12 @@ void main() {
     uint slot = subgroupAppend(qfield(Q, kProxNeeded), bitCount(within_mask));
     if (within_mask == 0u) return;
     // The records, recomputed for the few primitive pairs within d.
-    for (uint k = 0u; k < 3u; ++k) {
+    [[unroll]] for (uint k = 0u; k < 3u; ++k) {
         if ((within_mask & (1u << k)) != 0u) store(Q, slot++, vertexRecord(Q, a, k, b));
         if ((within_mask & (8u << k)) != 0u) store(Q, slot++, vertexRecord(Q, b, k, a));
     }
-    for (uint i = 0u; i < 3u; ++i)
-        for (uint j = 0u; j < 3u; ++j)
+    [[unroll]] for (uint i = 0u; i < 3u; ++i)
+        [[unroll]] for (uint j = 0u; j < 3u; ++j)
             if ((within_mask & (64u << (3u * i + j))) != 0u) {
                 EdgePair e = edgePair(a, i, b, j);
                 store(Q, slot++, recordOf(Q, kProximityEdgeEdge, e.id_a, e.a, e.id_b, e.b, edgeEdge(e)));

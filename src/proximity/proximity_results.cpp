@@ -16,7 +16,7 @@ void sortedPairs(std::span<const gpu::ProximityRecord> records, const gpu::Proxi
     static_assert(sizeof(gpu::ProximityRecord) == sizeof(ProximityPair));
     out.resize(records.size());
     if (!records.empty()) std::memcpy(static_cast<void*>(out.data()), records.data(), records.size_bytes());
-    std::sort(out.begin(), out.end(), [](const ProximityPair& x, const ProximityPair& y) { return key(x) < key(y); });
+    // The GPU sorted them (proximity_sort.comp); a pair found twice lies beside its twin.
     const auto last = std::unique(out.begin(), out.end(), [](const ProximityPair& x, const ProximityPair& y) { return key(x) == key(y); });
     stats.duplicates = static_cast<std::uint64_t>(out.end() - last);
     out.erase(last, out.end());

@@ -1,6 +1,6 @@
-// The proximity pass's records as DetectResult::proximity: sorted by (kind, object_a, a0,
-// a1, object_b, b0, b1), each pair once (the GPU writes them unordered, and a pair whose
-// triangles' canonical-cell scan ran out of budget twice).
+// The proximity pass's records, sorted on the GPU by (kind, object_a, a0, a1, object_b, b0,
+// b1), as DetectResult::proximity: each pair once (a pair whose triangles' canonical-cell
+// scan ran out of budget comes twice, side by side).
 #pragma once
 
 #include <span>

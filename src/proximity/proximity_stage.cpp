@@ -21,7 +21,7 @@ static_assert(offsetof(gpu::ProximityRecord, object_a) == offsetof(ProximityPair
               offsetof(gpu::ProximityRecord, weights_b) == offsetof(ProximityPair, weights_b) &&
               offsetof(gpu::ProximityRecord, normal) == offsetof(ProximityPair, normal));
 static_assert(gpu::kProximityInBand == kProximityInBand && gpu::kProximityEdgeEdge == std::uint32_t(ProximityKind::EdgeEdge));
-static_assert(sizeof(gpu::ProximityHeader) == 32 && sizeof(gpu::ProximityParams) == 56);
+static_assert(sizeof(gpu::ProximityHeader) == 32 && sizeof(gpu::ProximityParams) == 120);
 
 }  // namespace
 
@@ -33,6 +33,9 @@ Result<std::unique_ptr<ProximityStage>> ProximityStage::create(vk::Device& devic
     auto p = vk::Pipeline::createCompute(device, shaders::proximity_pairs_comp, {}, sizeof(gpu::Push), "proximity-pairs");
     if (!p) return p.error();
     stage->pipeline_ = std::move(*p);
+    auto sort = vk::Pipeline::createCompute(device, shaders::proximity_sort_comp, {}, sizeof(gpu::Push), "proximity-sort");
+    if (!sort) return sort.error();
+    stage->sort_pipeline_ = std::move(*sort);
     return stage;
 }
 
@@ -59,16 +62,28 @@ Result<void> ProximityStage::prepare(const passes::CellPairs& cells, std::span<c
     capacity_ = fixed_capacity_ ? capacity : std::max(capacity_, static_cast<std::uint32_t>(automatic));
     cells_args_ = cells.argsBuffer();
     const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
+    std::uint64_t vertices = 0;
+    for (const passes::GpuMesh& m : meshes) vertices += m.vertex_count;
+    if (2 * vertices + 1 >= 0x7FFFFFFFull)
+        return Error(ErrorCode::InvalidArgument, "proximity: " + std::to_string(vertices) + " vertices, more than 2^30 - 1");
+    objects_ = static_cast<std::uint32_t>(meshes.size());
+    buckets_ = static_cast<std::uint32_t>(2 * vertices);
+    const VkDeviceSize blocks = (VkDeviceSize(buckets_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     for (auto ok : {grow(buf_.params, sizeof(gpu::ProximityParams), MemoryKind::Upload, "proximity-params"),
                     grow(buf_.owned, (tris + 3) / 4 * 4, MemoryKind::Upload, "proximity-owned"),
                     grow(buf_.object_ids, meshes.size() * 4, MemoryKind::Upload, "proximity-object-ids"),
+                    grow(buf_.vertex_base, meshes.size() * 4, MemoryKind::Upload, "proximity-vertex-base"),
                     grow(buf_.header, sizeof(gpu::ProximityHeader), MemoryKind::DeviceLocal, "proximity-header"),
                     grow(buf_.header_rb, sizeof(gpu::ProximityHeader), MemoryKind::Readback, "proximity-header-readback"),
-                    grow(buf_.records, VkDeviceSize(capacity_) * sizeof(gpu::ProximityRecord), MemoryKind::Readback, "proximity-records")})
+                    grow(buf_.counts, VkDeviceSize(buckets_) * 4, MemoryKind::DeviceLocal, "proximity-counts"),
+                    grow(buf_.offsets, (VkDeviceSize(buckets_) + 1) * 4, MemoryKind::DeviceLocal, "proximity-offsets"),
+                    grow(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal, "proximity-block-sums")})
         if (!ok) return ok.error();
+    if (auto ok = growRecords(); !ok) return ok.error();
     auto* owned = static_cast<std::uint8_t*>(buf_.owned.mapped());
     auto* ids = static_cast<std::uint32_t*>(buf_.object_ids.mapped());
-    std::uint64_t at = 0;
+    auto* bases = static_cast<std::uint32_t*>(buf_.vertex_base.mapped());
+    std::uint64_t at = 0, vertex_at = 0;
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const passes::GpuMesh& m = meshes[i];
         if (m.proximity_owned.size() != m.triangle_count)
@@ -77,8 +92,13 @@ Result<void> ProximityStage::prepare(const passes::CellPairs& cells, std::span<c
                                                          std::to_string(m.triangle_count) + " triangles");
         if (!m.proximity_owned.empty()) std::memcpy(owned + at, m.proximity_owned.data(), m.proximity_owned.size());
         at += m.triangle_count;
+        if (i > 0 && m.tag <= ids[i - 1])
+            return Error(ErrorCode::InvalidArgument, "proximity: the meshes' ids (GpuMesh::tag) must ascend");
         ids[i] = m.tag;
+        bases[i] = static_cast<std::uint32_t>(vertex_at);
+        vertex_at += m.vertex_count;
     }
+    buf_.vertex_base.flush();
     if (at != triangles_) return Error(ErrorCode::InvalidArgument, "proximity: the meshes' triangles are not the cell stage's");
     buf_.owned.flush();
     buf_.object_ids.flush();
@@ -91,10 +111,20 @@ void ProximityStage::writeParams(const passes::CellPairs& cells) {
     p.cells = cells.paramsAddress();
     p.owned = buf_.owned.address();
     p.object_ids = buf_.object_ids.address();
+    p.vertex_base = buf_.vertex_base.address();
     p.header = buf_.header.address();
     p.records = buf_.records.address();
+    p.sorted = buf_.sorted.address();
+    p.order = buf_.order.address();
+    p.counts = buf_.counts.address();
+    p.offsets = buf_.offsets.address();
+    p.block_sums = buf_.block_sums.address();
     p.distance = distance_;
     p.capacity = capacity_;
+    p.object_count = objects_;
+    p.bucket_count = buckets_;
+    p.block_count = static_cast<std::uint32_t>((std::uint64_t(buckets_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock);
+    p.max_groups_x = max_groups_x_;
     std::memcpy(buf_.params.mapped(), &p, sizeof p);
     buf_.params.flush();
 }
@@ -102,14 +132,25 @@ void ProximityStage::writeParams(const passes::CellPairs& cells) {
 void ProximityStage::record(graph::Graph& g, const passes::CellPairs::Resources& cells) {
     const auto header = g.importBuffer("proximity-header", buf_.header);
     const auto header_rb = g.importBuffer("proximity-header-readback", buf_.header_rb, true);
-    const auto records = g.importBuffer("proximity-records", buf_.records, true);
+    const auto records = g.importBuffer("proximity-records", buf_.records);
+    const auto sorted = g.importBuffer("proximity-sorted", buf_.sorted, true);
+    const auto order = g.importBuffer("proximity-order", buf_.order);
+    const auto counts = g.importBuffer("proximity-counts", buf_.counts);
+    const auto offsets = g.importBuffer("proximity-offsets", buf_.offsets);
+    const auto sums = g.importBuffer("proximity-block-sums", buf_.block_sums);
     const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
+    const VkBuffer counts_buffer = buf_.counts.handle();
+    const VkDeviceSize count_bytes = VkDeviceSize(std::max<std::uint32_t>(buckets_, 1)) * 4;
     const VkBuffer args_buffer = cells_args_;
     const VkDeviceAddress params = buf_.params.address();
     const vk::Pipeline* pipe = &pipeline_;
     passes::addPass(g, "proximity-clear", graph::PassKind::Transfer, passes::Stage::Proximity)
         .use(header, graph::Use::TransferDst)
-        .record([header_buffer](graph::PassContext& pc) { pc.fillBuffer(header_buffer, 0, sizeof(gpu::ProximityHeader), 0); });
+        .use(counts, graph::Use::TransferDst)
+        .record([header_buffer, counts_buffer, count_bytes](graph::PassContext& pc) {
+            pc.fillBuffer(header_buffer, 0, sizeof(gpu::ProximityHeader), 0);
+            pc.fillBuffer(counts_buffer, 0, count_bytes, 0);
+        });
     passes::addPass(g, "proximity-pairs", graph::PassKind::Compute, passes::Stage::Proximity)
         .indirect(cells.args)
         .read(cells.header)
@@ -127,6 +168,37 @@ void ProximityStage::record(graph::Graph& g, const passes::CellPairs::Resources&
             push.step = 1;
             pc.pushConstants(pipe->layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
             pc.dispatch(1, 1, 1);
+        });
+    // The sort: per record (steps 0, 4, 6, over the capacity: the count is on the GPU), the
+    // scan over the buckets (1-3), per bucket (5).
+    const vk::Pipeline* sort = &sort_pipeline_;
+    const std::uint64_t record_groups = (std::uint64_t(capacity_) + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize;
+    const std::uint64_t bucket_groups = (std::uint64_t(buckets_) + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize;
+    const std::uint64_t blocks = (std::uint64_t(buckets_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
+    const std::uint32_t max_x = max_groups_x_;
+    passes::addPass(g, "proximity-sort", graph::PassKind::Compute, passes::Stage::Proximity)
+        .read(header)
+        .read(records)
+        .readWrite(counts)
+        .readWrite(offsets)
+        .readWrite(sums)
+        .readWrite(order)
+        .write(sorted)
+        .record([sort, params, record_groups, bucket_groups, blocks, max_x](graph::PassContext& pc) {
+            auto step = [&](std::uint32_t s, std::uint64_t groups) {
+                gpu::Push push{params, 0, s, 0, 0};
+                pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, sort->handle());
+                pc.pushConstants(sort->layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+                passes::dispatchGroups(pc, groups, max_x);
+                pc.shaderBarrier();
+            };
+            step(0, record_groups);
+            step(1, blocks);
+            step(2, 1);
+            step(3, blocks);
+            step(4, record_groups);
+            step(5, bucket_groups);
+            step(6, record_groups);
         });
     passes::addPass(g, "proximity-readback", graph::PassKind::Transfer, passes::Stage::Readback)
         .use(header, graph::Use::TransferSrc)
@@ -155,15 +227,21 @@ Result<ProximityStage::Outcome> ProximityStage::finish() {
                                                        std::to_string(kMaxProximityCapacity) + "): lower the distance");
         const std::uint64_t grown = std::uint64_t(header_.needed) + header_.needed / 4 + 1024;
         capacity_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(grown, kMaxProximityCapacity));
-        if (auto ok = grow(buf_.records, VkDeviceSize(capacity_) * sizeof(gpu::ProximityRecord), vk::MemoryKind::Readback,
-                           "proximity-records");
-            !ok)
-            return ok.error();
+        if (auto ok = growRecords(); !ok) return ok.error();
         return Outcome::Rerun;
     }
     count_ = header_.count;
-    if (count_) buf_.records.invalidate(0, VkDeviceSize(count_) * sizeof(gpu::ProximityRecord));
+    if (count_) buf_.sorted.invalidate(0, VkDeviceSize(count_) * sizeof(gpu::ProximityRecord));
     return Outcome::Complete;
+}
+
+Result<void> ProximityStage::growRecords() {
+    const VkDeviceSize n = std::max<std::uint32_t>(capacity_, 1);
+    for (auto ok : {grow(buf_.records, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::DeviceLocal, "proximity-records"),
+                    grow(buf_.sorted, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::Readback, "proximity-sorted"),
+                    grow(buf_.order, n * 4, vk::MemoryKind::DeviceLocal, "proximity-order")})
+        if (!ok) return ok.error();
+    return {};
 }
 
 Result<graph::ExecutionReport> ProximityStage::runAlone(passes::CellPairs& cells, std::uint64_t timeout_ns) {
@@ -176,12 +254,13 @@ Result<graph::ExecutionReport> ProximityStage::runAlone(passes::CellPairs& cells
 
 std::span<const gpu::ProximityRecord> ProximityStage::records() const noexcept {
     if (!count_) return {};
-    return {static_cast<const gpu::ProximityRecord*>(buf_.records.mapped()), count_};
+    return {static_cast<const gpu::ProximityRecord*>(buf_.sorted.mapped()), count_};
 }
 
 std::uint64_t ProximityStage::memoryBytes() const noexcept {
     std::uint64_t total = executor_.memoryBytes();
-    for (const vk::Buffer* b : {&buf_.params, &buf_.owned, &buf_.object_ids, &buf_.header, &buf_.header_rb, &buf_.records})
+    for (const vk::Buffer* b : {&buf_.params, &buf_.owned, &buf_.object_ids, &buf_.vertex_base, &buf_.header, &buf_.header_rb,
+                                &buf_.records, &buf_.sorted, &buf_.order, &buf_.counts, &buf_.offsets, &buf_.block_sums})
         total += b->memoryBytes();
     return total;
 }

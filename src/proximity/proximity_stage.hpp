@@ -5,15 +5,18 @@
 // (ownership.hpp) and writes every vertex-triangle and edge-edge pair within the distance
 // (spirv/proximity_pairs.comp.glsl).
 //
-//   proximity-clear    the header
+//   proximity-clear    the header and the sort's bucket counts
 //   proximity-pairs    per candidate (the pair pass's indirect dispatch), then the header's
 //                      count and flags
+//   proximity-sort     the records into the result's order (spirv/proximity_sort.comp.glsl):
+//                      bucketed by (kind, object_a, a0), each bucket sorted
 //   proximity-readback the header for the host
 //
 // Capacity: the caller's (a detection that finds more fails with LimitExceeded naming the
 // count), or automatic: first about 8 records per triangle, then what a run needed; an
 // automatic capacity that overflows is grown and the pass alone run again (the candidates
-// stay in the cell stage's buffers). Records live in host-visible memory the GPU writes.
+// stay in the cell stage's buffers). The sorted records live in host-visible memory the GPU
+// writes (the host reads them in place; a GPU reads them by address).
 //
 // Not thread-safe; one per cell stage (ReliableMethod).
 #pragma once
@@ -51,8 +54,8 @@ public:
     bool busy() const { return executor_.busy(); }
     [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
 
-    // After a Complete finish(): the records as the GPU wrote them (unordered, a rare pair
-    // twice), the header, and the passes run so far for this detection.
+    // After a Complete finish(): the records in the result's order (a rare pair twice, side
+    // by side), the header, and the passes run so far for this detection.
     std::span<const gpu::ProximityRecord> records() const noexcept;
     const gpu::ProximityHeader& header() const noexcept { return header_; }
     std::uint32_t runs() const noexcept { return runs_; }
@@ -62,13 +65,15 @@ public:
 private:
     explicit ProximityStage(vk::Device& device) : device_(&device), executor_(device) {}
     Result<void> grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name);
+    Result<void> growRecords();  // records, sorted and order for capacity_
     void writeParams(const passes::CellPairs& cells);
 
     vk::Device* device_;
-    vk::Pipeline pipeline_;
+    vk::Pipeline pipeline_, sort_pipeline_;
     struct Buffers {
-        vk::Buffer params, owned, object_ids, header, header_rb, records;
+        vk::Buffer params, owned, object_ids, vertex_base, header, header_rb, records, sorted, order, counts, offsets, block_sums;
     } buf_;
+    std::uint32_t objects_ = 0, buckets_ = 0;
     double distance_ = 0;
     std::uint32_t capacity_ = 0, triangles_ = 0, max_groups_x_ = 0;
     bool fixed_capacity_ = false;

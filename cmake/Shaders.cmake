@@ -44,8 +44,8 @@ function(vkcollide_embed_shaders target)
   add_custom_target(${target} DEPENDS ${embedded_headers})
 endfunction()
 
-# The library's programs: spirv/shaders.cmake lists them, and the rooms of src/passes/
-# append theirs in their sources.cmake (cmake/Sources.cmake, read before this file).
+# The library's programs: spirv/shaders.cmake lists them, and the rooms (src/broad/<method>/,
+# src/contacts/) append theirs in their sources.cmake (cmake/Sources.cmake, read before this file).
 # Test-only programs live in tests/shaders/ and are embedded by tests/CMakeLists.txt.
 include(${PROJECT_SOURCE_DIR}/spirv/shaders.cmake)
 set(VKCOLLIDE_SHADER_INCLUDE_DIR ${PROJECT_BINARY_DIR}/generated)

@@ -166,7 +166,7 @@ struct Push {
     uint coverage;  // kCoverage* (sampling passes only)
 };
 
-// ---- Compute sampling backend (src/passes/compute_sampling.hpp) -----------------------
+// ---- Compute sampling backend (src/broad/peeling/sampling/compute_sampler.hpp) -----------------------
 // Object sampling without the graphics pipeline: edge-function rasterization in compute
 // with the rasterizer's coverage rule. Triangles whose pixel box is small are drawn by one
 // invocation each; bigger ones are cut into kCsTile x kCsTile pixel tiles, one workgroup

@@ -1,5 +1,5 @@
 // Data shared by the cell pair stage's shaders (GLSL) and its host side (C++,
-// src/passes/cells/): buffer layouts, limits and flags. docs/reliable.md explains the
+// src/broad/cells/): buffer layouts, limits and flags. docs/reliable.md explains the
 // method and why it cannot miss an intersecting pair.
 //
 // A grid of N x N cells covers the sampling image; cell (i, j) is the closed square
@@ -210,7 +210,7 @@ struct CellsParams {
     uint pad;
 };
 
-// ---- Device pairs (DetectSettings::device_pairs; src/passes/cells/device_pairs.cpp) -------
+// ---- Device pairs (DetectSettings::device_pairs; src/broad/cells/device_pairs.cpp) -------
 // The survivors of an exact run, sorted on the GPU into the host result's order: bucketed
 // by the lower triangle id (count, scan, scatter), each bucket sorted by the higher id with
 // repeats dropped, a second scan, then written as DevicePair records.

@@ -139,7 +139,7 @@ inline constexpr float kFitMargin = 1.0f / 64.0f;
 // padded by this fraction of the image width against rounding.
 inline constexpr double kKeptBoxPad = 1e-4;
 
-// Sampling backend Auto (passes/sampling/backend_choice.hpp has the rule): compute below
+// Sampling backend Auto (broad/peeling/sampling/backend_choice.hpp has the rule): compute below
 // this many covered pixels per triangle on a GPU with raster hardware (quad-based
 // rasterizers waste most of their work on tiny triangles: an inference, not measured) and
 // on a CPU implementation (lavapipe on 2 cores: compute 3-4x faster at 7 px per triangle,

@@ -1,5 +1,5 @@
 // Data shared by the contact stage's shaders (GLSL) and its host side (C++,
-// src/passes/contacts/): buffer layouts, limits and flags. docs/contacts.md has the method.
+// src/contacts/): buffer layouts, limits and flags. docs/contacts.md has the method.
 //
 // Grid space: x, y, z = (dot(axis, world) - origin) / h for the axes u, v, d of the sampling
 // basis (orthonormal, d the ray direction) and h the pixel side in world units, so the

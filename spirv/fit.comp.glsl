@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Auto fit, step 2: the orthographic projection that maps the scene's extent to the
 // square image (with a margin) and its depth range to [kDepthNear, kDepthNear + kDepthSpan].
-// The host repeats it (passes/projection.cpp, fitProjection); tests check they agree.
+// The host repeats it (broad/projection.cpp, fitProjection); tests check they agree.
 #include "common.glsl.inc"
 layout(local_size_x = 1) in;
 

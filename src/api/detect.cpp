@@ -8,8 +8,8 @@
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
+#include "broad/cells/reliable_method.hpp"
 #include "narrow/exact_stage.hpp"
-#include "passes/cells/reliable_method.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {

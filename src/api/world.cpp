@@ -14,7 +14,7 @@
 #include "api/world_impl.hpp"
 #include "config.h"
 #include "core/host_memory.hpp"
-#include "passes/mesh_upload.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {

@@ -8,12 +8,12 @@
 #include <iterator>
 #include <sstream>
 
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
+#include "broad/broad_phase.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "support/broadphase_reference.hpp"
 #include "support/gpu_fixture.hpp"
-#include "vkcollide/thread_pool.hpp"
 #include "vkcollide/scene.hpp"
+#include "vkcollide/thread_pool.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::passes;

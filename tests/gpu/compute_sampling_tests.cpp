@@ -10,8 +10,8 @@
 #include <cstring>
 #include <sstream>
 
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
+#include "broad/broad_phase.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vkcollide/scene.hpp"
 

@@ -1,4 +1,4 @@
-// The typed projection module (src/passes/projection.hpp): the basis, the region's and the
+// The typed projection module (src/broad/projection.hpp): the basis, the region's and the
 // fit's projections, the inverse used by the multi-axis union, and, on the device, that the
 // host's repetition of the fit equals what fit.comp.glsl computed.
 #include <catch2/catch.hpp>
@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
-#include "passes/projection.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/projection.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vkcollide/scene.hpp"
 

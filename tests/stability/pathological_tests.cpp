@@ -7,9 +7,9 @@
 
 #include <cstring>
 
+#include "broad/broad_phase.hpp"
 #include "broadphase.h"
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "stability_support.hpp"
 #include "vkcollide/io.hpp"
 

@@ -84,11 +84,11 @@
 
 #include "bench_narrow_probes.hpp"
 #include "bench_narrow_scenes.hpp"
-#include "passes/broad_phase.hpp"
+#include "broad/broad_phase.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/sweep_and_prune.hpp"
 #include "narrow/triangle_intersection.hpp"
-#include "passes/mesh_upload.hpp"
 #include "support/exact_reference.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/narrow.hpp"

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
+#include "broad/broad_phase.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/io.hpp"
 #include "vkcollide/scene.hpp"

@@ -1,0 +1,11 @@
+# The peeling method (the paper's passes 1-4; docs/broadphase.md): object sampling
+# (sampling/, its own list), ray merging, primitive separation, packing, and the method
+# that composes them.
+list(APPEND VKCOLLIDE_GPU_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/merging.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/packing.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/peeling_method.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/separation.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/triangle_bounds.cpp
+)
+include(${CMAKE_CURRENT_LIST_DIR}/sampling/sources.cmake)

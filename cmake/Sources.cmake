@@ -41,7 +41,7 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/api/world.cpp
 )
 # Rooms list their own sources and programs in a sources.cmake of their own: append to
-# VKCOLLIDE_GPU_SOURCES and VKCOLLIDE_SHADERS (spirv/<name>.<stage>.glsl). Each method
+# VKCOLLIDE_GPU_SOURCES and VKCOLLIDE_SHADERS (spirv/<room>/<name>.<stage>.glsl). Each method
 # of the broad phase is a room under src/broad/ (peeling/, cells/: a new one needs no edit
 # here); the GPU concerns beside the broad phase (contacts/) are named here.
 file(GLOB VKCOLLIDE_ROOM_LISTS CONFIGURE_DEPENDS ${S}/broad/*/sources.cmake)

@@ -12,7 +12,7 @@
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
-#include "config.h"
+#include "common/config.h"
 #include "core/host_memory.hpp"
 #include "mesh/mesh_upload.hpp"
 #include "vk/device.hpp"

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "broad/projection.hpp"
-#include "broadphase.h"
+#include "common/broadphase.h"
 
 namespace vkcollide::passes {
 namespace {

@@ -20,7 +20,7 @@
 
 #include "broad/cells/cell_pairs_stats.hpp"
 #include "broad/peeling/sampling/sampling_types.hpp"
-#include "broadphase.h"
+#include "common/broadphase.h"
 #include "graph/executor.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/types.hpp"

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "broad/stage.hpp"
-#include "broadphase.h"
+#include "common/broadphase.h"
 #include "vk/resources.hpp"
 
 namespace vkcollide::passes {

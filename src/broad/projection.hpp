@@ -11,7 +11,7 @@
 
 #include <array>
 
-#include "broadphase.h"
+#include "common/broadphase.h"
 
 namespace vkcollide::passes {
 

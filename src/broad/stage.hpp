@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "broad/broad_phase_types.hpp"
-#include "broadphase.h"
+#include "common/broadphase.h"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
 
@@ -73,7 +73,7 @@ std::uint32_t groups(std::uint64_t items, std::uint32_t size = gpu::kGroupSize);
 // that no dimension exceeds the device's maxComputeWorkGroupCount (a 1D dispatch of 65536
 // groups is already past the guaranteed minimum: resolution 4096 per pixel, 16.7M
 // triangles per triangle). The shader reads its indices with globalIndex() and
-// groupIndex() (spirv/dispatch.glsl.inc) and ignores those past its count: the last row
+// groupIndex() (spirv/common/dispatch.glsl.inc) and ignores those past its count: the last row
 // may be partly beyond it.
 void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups);
 // The same in rows of at most `max_x` workgroups (at most the device's limit): for stages

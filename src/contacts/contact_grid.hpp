@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "broad/projection.hpp"
-#include "contacts.h"
 #include "contacts/contact_stage.hpp"
+#include "contacts/contacts.h"
 
 namespace vkcollide::passes {
 

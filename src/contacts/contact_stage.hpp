@@ -36,7 +36,7 @@
 #include <vector>
 
 #include "broad/broad_phase_types.hpp"
-#include "contacts.h"
+#include "contacts/contacts.h"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
 

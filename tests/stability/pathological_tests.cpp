@@ -8,7 +8,7 @@
 #include <cstring>
 
 #include "broad/broad_phase.hpp"
-#include "broadphase.h"
+#include "common/broadphase.h"
 #include "mesh/mesh_upload.hpp"
 #include "stability_support.hpp"
 #include "vkcollide/io.hpp"

@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "broad/cells/cell_pairs_stats.hpp"
-#include "cells.h"
+#include "cells/cells.h"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/narrow.hpp"

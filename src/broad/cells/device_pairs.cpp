@@ -12,7 +12,7 @@
 namespace vkcollide::passes {
 namespace {
 
-// The public layout is the shaders' (spirv/cells.h).
+// The public layout is the shaders' (spirv/cells/cells.h).
 static_assert(sizeof(gpu::DevicePair) == sizeof(TrianglePair) && offsetof(gpu::DevicePair, object_b) == offsetof(TrianglePair, object_b) &&
               offsetof(gpu::DevicePair, triangle_a) == offsetof(TrianglePair, triangle_a) &&
               offsetof(gpu::DevicePair, triangle_b) == offsetof(TrianglePair, triangle_b));

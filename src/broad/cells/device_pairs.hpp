@@ -1,6 +1,6 @@
 // Device pairs (DetectSettings::device_pairs, docs/api.md "Results on the GPU"): the cell
 // stage's exact survivors sorted on the GPU into the host result's order and written as
-// TrianglePair records (spirv/device_pairs.comp.glsl has the passes), in buffers the stage
+// TrianglePair records (spirv/cells/device_pairs.comp.glsl has the passes), in buffers the stage
 // owns, so that an engine's next command buffer can read them after the world's signal.
 //
 //   pairs-args     the header (capacity; Incomplete when the run failed or a mesh failed

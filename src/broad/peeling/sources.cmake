@@ -9,3 +9,8 @@ list(APPEND VKCOLLIDE_GPU_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/triangle_bounds.cpp
 )
 include(${CMAKE_CURRENT_LIST_DIR}/sampling/sources.cmake)
+# Its programs (spirv/peeling/; object sampling's are listed in sampling/sources.cmake).
+list(APPEND VKCOLLIDE_SHADERS
+  peeling/merge.comp peeling/separate.comp peeling/tri_bounds.comp
+  peeling/pack_rowcount.comp peeling/scan_counts.comp peeling/pack_shift.comp peeling/pack_move.comp
+  peeling/scan_blocksum.comp peeling/scan_scatter.comp)

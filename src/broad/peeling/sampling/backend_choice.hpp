@@ -27,7 +27,7 @@ namespace vkcollide::passes {
 // `fragments_per_triangle` is the scene's mean number of covered pixels per triangle:
 // measured by the previous run on the same triangle count (the depth-complexity counts
 // summed), or < 0 when unknown; then estimated as resolution^2 * 2 / triangles (a fitted
-// scene covering about half the image four layers deep). Thresholds: spirv/config.h.
+// scene covering about half the image four layers deep). Thresholds: spirv/common/config.h.
 // A device without subgroup ballot and arithmetic in compute shaders gets raster (and an
 // error if Compute is requested).
 BackendChoice chooseSamplingBackend(const VkPhysicalDeviceProperties& device, bool compute_supported,

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "broad/peeling/sampling/backend_choice.hpp"
-#include "broadphase.h"
+#include "common/broadphase.h"
 #include "shaders/all.hpp"
 
 namespace vkcollide::passes {

@@ -4,14 +4,14 @@
 #include <cstdint>
 #include <string>
 
-#include "config.h"
+#include "common/config.h"
 #include "vkcollide/types.hpp"
 
 namespace vkcollide::passes {
 
 using vkcollide::SamplingBackend;
 
-// Knobs of the compute backend (sampling/compute_sampler.hpp); defaults in spirv/config.h.
+// Knobs of the compute backend (sampling/compute_sampler.hpp); defaults in spirv/common/config.h.
 struct ComputeSamplingTuning {
     // Most pixels in the pixel box of a triangle drawn by one invocation; bigger boxes are
     // drawn in tiles. 0 draws every triangle in tiles.

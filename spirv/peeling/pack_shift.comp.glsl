@@ -4,9 +4,9 @@
 // texel the column of the preceding non-empty texel (a next-pointer list, gather form);
 // then sweep right to left for M steps, following the pointers, so the row's non-empty
 // texels end up packed against its right end, in order.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 layout(local_size_x = 64) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 const uint kNone = 0xFFFFFFFFu;
 

@@ -14,7 +14,7 @@
 // sweep does.
 #include "cells_common.glsl.inc"
 #include "cells_sweep.glsl.inc"
-#include "workgroup.glsl.inc"
+#include "common/workgroup.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 shared float s_zlo[kCellsDeepShared];

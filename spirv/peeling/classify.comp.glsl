@@ -15,10 +15,10 @@
 // is tested: a near pair (nearHull) grows the ray's interval in bundle_depth level 0
 // (kRayNear says it holds one). finalize keeps the intervals of collision rays and of the
 // rays next to them.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 #include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 float keyDepth(uint64_t k) { return uintBitsToFloat(uint(k >> 32)); }
 bool keyOpen(uint64_t k) { return (uint(k) & kKeyOpen) != 0u; }

@@ -5,7 +5,7 @@
 // key above the last one peeled from the front wins an atomicMin, and with dual peeling
 // the farthest key below the last one peeled from the back wins an atomicMax. Rays that a
 // thin triangle touches were marked colliding by peel_init (docs/stability.md, coverage).
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 layout(location = 0) flat in uint v_key_low;
 layout(location = 1) flat in uint v_thin;  // never set here: peeling passes skip thin triangles
 

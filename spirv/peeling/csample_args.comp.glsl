@@ -7,7 +7,7 @@
 // passes (x at most kCsMaxGroupsX, rows in y) and copies the list sizes to the header.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

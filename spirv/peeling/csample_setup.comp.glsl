@@ -6,7 +6,7 @@
 // one-invocation list, big ones to the tiled list.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 // List sizes of this workgroup, then its first entries in the global lists.
 shared uint s_small, s_big, s_tiles;

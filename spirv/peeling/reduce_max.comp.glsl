@@ -6,10 +6,10 @@
 // kCountThin (a collision ray without peeling). Then a log-step reduce-max of the other
 // rays' counts within each workgroup and one atomicMax per workgroup (the depth complexity
 // the peeling needs, at most kMaxRayFragments); the fragment sum and the deep rays likewise.
-#include "common.glsl.inc"
-#include "workgroup.glsl.inc"
+#include "common/common.glsl.inc"
+#include "common/workgroup.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

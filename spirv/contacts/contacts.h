@@ -9,7 +9,7 @@
 #ifndef VKCOLLIDE_CONTACTS_H
 #define VKCOLLIDE_CONTACTS_H
 
-#include "broadphase.h"  // VKC_ADDRESS, VKC_CONST, ObjectGpu
+#include "common/broadphase.h"  // VKC_ADDRESS, VKC_CONST, ObjectGpu
 
 #ifdef __cplusplus
 namespace vkcollide::gpu {

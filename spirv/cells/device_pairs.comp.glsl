@@ -17,7 +17,7 @@
 //   7  per triangle: its pairs written at out_offsets[a] (those below the capacity).
 // Passes 1 and 5 are proportional to the survivors, the others to the triangles.
 #include "cells_common.glsl.inc"
-#include "workgroup.glsl.inc"
+#include "common/workgroup.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer DevicePairsParamsRef { DevicePairsParams p; };

@@ -9,10 +9,10 @@
 // cover no pixel centre, and steeper than kEdgeOnSlope: its surface too may be invisible
 // to every ray, a box's side seen along it) leaves its depth range at every ray within
 // kNearReachPx of it (edge_depth), which finalize adds to the ray's interval.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 #include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 // Every ray whose sample lies within d pixels of the segment a-b (pixel coordinates), and a
 // few more, gets [zlo, zhi]: per row of rays, the x range of the part of the segment

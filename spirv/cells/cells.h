@@ -10,7 +10,7 @@
 #ifndef VKCOLLIDE_CELLS_H
 #define VKCOLLIDE_CELLS_H
 
-#include "broadphase.h"  // VKC_ADDRESS, VKC_CONST, ObjectGpu, Projection
+#include "common/broadphase.h"  // VKC_ADDRESS, VKC_CONST, ObjectGpu, Projection
 
 #ifdef __cplusplus
 namespace vkcollide::gpu {

@@ -13,10 +13,10 @@
 // while the crossing triangles may be sampled only on the other. A ray with neither gets
 // the empty box: it holds no pair for separation to find (collision rays are counted all
 // the same, as the paper does). The grown box is the window's reach.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 #include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 bool collides(PixelState st) { return (st.flags & kRayCollision) != 0u || (st.flags & kRayDone) == 0u; }
 

@@ -5,7 +5,7 @@
 // capacity: sum(ceil(T_i / g)) <= sum(T_i) / g + big_count <= item_capacity.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

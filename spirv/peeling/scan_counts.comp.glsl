@@ -4,8 +4,8 @@
 // by one workgroup: each invocation sums a contiguous chunk, the chunk sums are scanned
 // in shared memory, then each chunk is written out. Also records the total (the number
 // of records) and the largest input (the paper's M, the longest packed row).
-#include "common.glsl.inc"
-#include "workgroup.glsl.inc"
+#include "common/common.glsl.inc"
+#include "common/workgroup.glsl.inc"
 layout(local_size_x = kGroupSize) in;
 
 void main() {

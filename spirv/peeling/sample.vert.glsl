@@ -8,7 +8,7 @@
 // kCoverageDilate it is replaced by a triangle that contains every pixel it touches and
 // flagged (v_thin): the fragment shaders make those rays collision rays. The two
 // kCoverage*Thin modes split the draw for a conservatively rasterising pipeline.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 layout(location = 0) flat out uint v_key_low;
 layout(location = 1) flat out uint v_thin;
 

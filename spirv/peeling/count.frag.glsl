@@ -4,7 +4,7 @@
 // (kFragments* in broadphase.h: no count can overflow). A fragment of a thin triangle
 // (sample.vert) is not counted: it flags its ray, which peel_init marks colliding, so the
 // ray needs no peeling.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 layout(location = 0) flat in uint v_key_low;
 layout(location = 1) flat in uint v_thin;
 

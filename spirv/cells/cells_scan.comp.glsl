@@ -10,7 +10,7 @@
 //   2: one workgroup per block: each cell's offset, its count reset to 0 (the fill's
 //      cursor), and work items for cells deeper than kCellsSmallCell.
 #include "cells_common.glsl.inc"
-#include "workgroup.glsl.inc"
+#include "common/workgroup.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 const uint kPerInvocation = kCellsScanBlock / kCellsGroupSize;

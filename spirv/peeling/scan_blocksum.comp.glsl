@@ -1,10 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Scan compaction, step 1: surviving triangles per block of kGroupSize (log-step add).
-#include "common.glsl.inc"
-#include "workgroup.glsl.inc"
+#include "common/common.glsl.inc"
+#include "common/workgroup.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

@@ -4,9 +4,9 @@
 // rays marked kCountThin by reduce_max (a thin triangle touches them, or they are deeper
 // than kMaxRayFragments): those collide. Step 1: the keys were written by a count pass that
 // did peeling step 0; leave them.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

@@ -2,11 +2,11 @@
 #extension GL_GOOGLE_include_directive : require
 // Scan compaction, step 3: each block scans its survivors in shared memory and writes
 // them at its offset (from scan_counts), keeping triangle order.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 #include "record.glsl.inc"
-#include "workgroup.glsl.inc"
+#include "common/workgroup.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

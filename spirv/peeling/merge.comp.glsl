@@ -2,10 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 // Ray merging: texel (x, y) of level l is the union of its four children at level l-1
 // (with depth-aware separation also their depth intervals: (x, y, depth) boxes).
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 #include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

@@ -7,7 +7,7 @@
 // many layers); the bound on list_capacity only keeps a broken invariant inside the buffer.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

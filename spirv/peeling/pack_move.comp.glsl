@@ -1,10 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Paper packing, moving: each row's packed run goes to its offset in the dense list.
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 #include "record.glsl.inc"
 layout(local_size_x = kPackRowWidth) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

@@ -3,10 +3,10 @@
 // Paper packing, counting: the sparse result seen as a texture of kPackRowWidth columns
 // (one workgroup per row; kPackRowWidth == kGroupSize); non-empty texels per row by a
 // log-step reduce-add. scratch[0 .. rows) = row counts.
-#include "common.glsl.inc"
-#include "workgroup.glsl.inc"
+#include "common/common.glsl.inc"
+#include "common/workgroup.glsl.inc"
 layout(local_size_x = kPackRowWidth) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

@@ -10,10 +10,10 @@
 // kSeparationRefine levels finer is tested on its own, and the triangle is kept where its
 // own box meets one in all three axes: the kept box is the union of those, intersected
 // with its own; the kept depth range goes to sparse_depth (the record's depth extent).
-#include "common.glsl.inc"
+#include "common/common.glsl.inc"
 #include "depth.glsl.inc"
 layout(local_size_x = kGroupSize) in;
-#include "dispatch.glsl.inc"
+#include "common/dispatch.glsl.inc"
 
 void main() {
     Frame f = frame();

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <string>
 
+#include "broad/peeling/peeling_method.hpp"  // broadPhaseMemory plans its rows
 #include "broad/projection.hpp"
 #include "common/broadphase.h"
 

@@ -25,8 +25,6 @@
 #include "broad/buffer_table.hpp"
 #include "broad/common_stages.hpp"
 #include "broad/method.hpp"
-#include "broad/peeling/peeling_method.hpp"
-#include "broad/peeling/sampling/backend_choice.hpp"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
 
@@ -39,7 +37,9 @@ VkDeviceSize broadPhaseMemory(std::uint32_t resolution, std::uint32_t triangles,
 
 class BroadPhase {
 public:
-    static Result<std::unique_ptr<BroadPhase>> create(vk::Device& device, MethodFactory method = PeelingMethod::create);
+    // `method` makes the method that runs (PeelingMethod::create, ReliableMethod::create):
+    // no default, so that every caller names the one it runs.
+    static Result<std::unique_ptr<BroadPhase>> create(vk::Device& device, MethodFactory method);
     // Waits for GPU work still in flight (also work a timed-out run left behind) before
     // any buffer is freed.
     ~BroadPhase();

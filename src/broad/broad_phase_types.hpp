@@ -18,8 +18,8 @@
 
 #include <vulkan/vulkan_core.h>
 
-#include "broad/cells/cell_pairs_stats.hpp"
-#include "broad/peeling/sampling/sampling_types.hpp"
+#include "broad/cell_pairs_stats.hpp"
+#include "broad/sampling_types.hpp"
 #include "common/broadphase.h"
 #include "graph/executor.hpp"
 #include "vkcollide/narrow.hpp"

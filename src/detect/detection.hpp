@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
 
 namespace vkcollide::passes {
 

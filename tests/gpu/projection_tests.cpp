@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
 #include "broad/projection.hpp"
 #include "mesh/mesh_upload.hpp"
 #include "support/gpu_fixture.hpp"
@@ -96,7 +97,7 @@ TEST_CASE("the host's fit equals the fit the GPU computed", "[gpu][projection]")
     REQUIRE(transformMesh(*cube, Transform3x4{1, 0, 0, 0.6f, 0, 0, -1, -0.11f, 0, 1, 0, 0.29f}));
     auto up = uploadMeshes(ctx.device(), {&*sphere, &*cube});
     REQUIRE(up);
-    auto bp = BroadPhase::create(ctx.device());
+    auto bp = BroadPhase::create(ctx.device(), PeelingMethod::create);
     REQUIRE(bp);
     std::int64_t worst = 0;
     for (const std::array<float, 3>& dir : {std::array<float, 3>{0, 0, 1}, {0.2f, -0.3f, 1.0f}, {1, 0.5f, 0.25f}}) {

@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
 #include "common/broadphase.h"
 #include "mesh/mesh_upload.hpp"
 #include "stability_support.hpp"
@@ -67,7 +68,7 @@ TEST_CASE("fragment counts do not wrap: 70,000 copies of one triangle count 70,0
     auto many = repeatedTriangle(70000);
     REQUIRE(one);
     REQUIRE(many);
-    auto bp = passes::BroadPhase::create(ctx.device());
+    auto bp = passes::BroadPhase::create(ctx.device(), passes::PeelingMethod::create);
     REQUIRE(bp);
     passes::BroadPhaseSettings s;
     s.resolution = 16;

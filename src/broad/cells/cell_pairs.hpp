@@ -38,7 +38,7 @@
 #include <span>
 #include <vector>
 
-#include "broad/cells/cell_pairs_stats.hpp"
+#include "broad/cell_pairs_stats.hpp"
 #include "cells/cells.h"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"

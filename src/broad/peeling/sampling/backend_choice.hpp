@@ -3,16 +3,23 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include <vulkan/vulkan_core.h>
 
-#include "broad/peeling/sampling/sampling_types.hpp"
+#include "broad/sampling_types.hpp"
 
 namespace vkcollide::vk {
 struct Device;
 }
 
 namespace vkcollide::passes {
+
+// The backend that runs and a one-line reason.
+struct BackendChoice {
+    SamplingBackend backend = SamplingBackend::Raster;
+    std::string reason;
+};
 
 // What Auto picks (Raster and Compute are returned as asked):
 //  1. A GPU whose graphics pipeline runs on a small part of the chip -- NVIDIA GH100 parts

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "broad/peeling/sampling/backend_choice.hpp"
 #include "broad/peeling/sampling/compute_sampler.hpp"
 #include "broad/peeling/sampling/raster_sampler.hpp"
 #include "broad/peeling/sampling/sampler.hpp"

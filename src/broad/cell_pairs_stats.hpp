@@ -1,5 +1,6 @@
-// The cell pair stage's counters (docs/reliable.md), apart from the stage so that the broad
-// phase's result can carry them without the stage's Vulkan types.
+// The cell pair stage's counters (docs/reliable.md; the stage is src/broad/cells/): in the
+// seam, so that the broad phase's result (BroadPhaseResult::cells) carries them without the
+// stage's Vulkan types and the contract (broad_phase_types.hpp) includes no method's room.
 #pragma once
 
 #include <cstdint>

@@ -1,8 +1,9 @@
-// Small types of object sampling (paper §4, pass 1) that settings and results carry.
+// The peeling method's object-sampling knobs (paper §4, pass 1) that BroadPhaseSettings
+// carries (BroadPhaseSettings::compute): in the seam, so that the contract
+// (broad_phase_types.hpp) includes no method's room.
 #pragma once
 
 #include <cstdint>
-#include <string>
 
 #include "common/config.h"
 #include "vkcollide/types.hpp"
@@ -11,7 +12,7 @@ namespace vkcollide::passes {
 
 using vkcollide::SamplingBackend;
 
-// Knobs of the compute backend (sampling/compute_sampler.hpp); defaults in spirv/common/config.h.
+// Knobs of the compute backend (peeling/sampling/compute_sampler.hpp); defaults in spirv/common/config.h.
 struct ComputeSamplingTuning {
     // Most pixels in the pixel box of a triangle drawn by one invocation; bigger boxes are
     // drawn in tiles. 0 draws every triangle in tiles.
@@ -29,12 +30,6 @@ struct ComputeSamplingTuning {
     // The depth plane: through the snapped vertices (hardware rasterizers) or the unsnapped
     // ones (llvmpipe's setup); Device picks by vendor (Mesa: unsnapped).
     enum class DepthPlane { Device, Snapped, Unsnapped } depth_plane = DepthPlane::Device;
-};
-
-// The backend that runs and a one-line reason.
-struct BackendChoice {
-    SamplingBackend backend = SamplingBackend::Raster;
-    std::string reason;
 };
 
 }  // namespace vkcollide::passes

@@ -8,7 +8,8 @@ set(VKCOLLIDE_HOST_SOURCES
   ${S}/graph/graph.cpp  # declaring a render graph
   ${S}/graph/use_info.cpp  # what each use of a resource means (stages, access, layout)
   ${S}/graph/compile.cpp  # the plan: order, culling, barriers
-  ${S}/graph/command_tape.cpp  # plain data; replayed through a dispatch table
+  ${S}/graph/command_tape.cpp  # plain data: recording a tape
+  ${S}/graph/command_tape_replay.cpp  # replayed through a dispatch table
   ${S}/api/host_passes.cpp  # the world's passes over host positions (no Vulkan)
   ${S}/api/mesh_checks.cpp  # closed meshes: holes and inside-out (no Vulkan)
 )

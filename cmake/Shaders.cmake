@@ -1,4 +1,4 @@
-# GLSL in <dir>/<name>.<stage>.glsl -> glslangValidator (Vulkan 1.3) -> spirv-val ->
+# GLSL in <dir>/[<room>/]<name>.<stage>.glsl -> glslangValidator (Vulkan 1.3) -> spirv-val ->
 # spirv-opt -> a generated header with one typed constant per program
 # (vkcollide::shaders::<name>_<stage>), embedded in the binary that includes it: nothing is
 # read from disk at run time. A compile error fails the build with glslang's file:line message.
@@ -6,22 +6,30 @@ find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 find_program(SPIRV_VAL spirv-val REQUIRED)
 find_program(SPIRV_OPT spirv-opt REQUIRED)
 
-# vkcollide_embed_shaders(<target> SOURCE_DIR <dir> HEADER_DIR <name> SHADERS <name.stage>...)
-#   Adds the custom target <target> that compiles every program and writes
-#   ${PROJECT_BINARY_DIR}/generated/<name>/<program>.hpp and <name>/all.hpp (every program).
-#   Programs may include the headers of <dir> and of spirv/ (the shared layouts); a change
-#   to any of them recompiles the set.
+# vkcollide_embed_shaders(<target> SOURCE_DIR <dir> HEADER_DIR <name> SHADERS [<room>/]<name.stage>...)
+#   Adds the custom target <target> that compiles every program (<dir>/[<room>/]<name.stage>.glsl)
+#   and writes ${PROJECT_BINARY_DIR}/generated/<name>/<program>.hpp and <name>/all.hpp (every
+#   program); a program is named by its file alone, so names are unique across rooms.
+#   Programs include the headers of their own folder by name, and those of <dir> and of
+#   spirv/ by path ("common/broadphase.h", "cells/cells.h"); a change to any of them
+#   recompiles the set.
 function(vkcollide_embed_shaders target)
   cmake_parse_arguments(ARG "" "SOURCE_DIR;HEADER_DIR" "SHADERS" ${ARGN})
-  file(GLOB headers CONFIGURE_DEPENDS ${ARG_SOURCE_DIR}/*.h ${ARG_SOURCE_DIR}/*.glsl.inc
+  file(GLOB_RECURSE headers CONFIGURE_DEPENDS ${ARG_SOURCE_DIR}/*.h ${ARG_SOURCE_DIR}/*.glsl.inc
        ${PROJECT_SOURCE_DIR}/spirv/*.h ${PROJECT_SOURCE_DIR}/spirv/*.glsl.inc)
   set(out_dir ${PROJECT_BINARY_DIR}/generated/${ARG_HEADER_DIR})
   file(MAKE_DIRECTORY ${out_dir})
   set(embedded_headers)
   set(program_includes "")
+  set(idents)
   foreach(shader ${ARG_SHADERS})
-    string(REGEX MATCH "[^.]+$" stage ${shader})
-    string(REPLACE "." "_" ident ${shader})
+    get_filename_component(program ${shader} NAME)
+    string(REGEX MATCH "[^.]+$" stage ${program})
+    string(REPLACE "." "_" ident ${program})
+    if(ident IN_LIST idents)
+      message(FATAL_ERROR "${ARG_HEADER_DIR}: two programs named ${program} (${shader})")
+    endif()
+    list(APPEND idents ${ident})
     set(src ${ARG_SOURCE_DIR}/${shader}.glsl)
     set(spv ${out_dir}/${ident}.spv)
     set(hdr ${out_dir}/${ident}.hpp)
@@ -44,8 +52,8 @@ function(vkcollide_embed_shaders target)
   add_custom_target(${target} DEPENDS ${embedded_headers})
 endfunction()
 
-# The library's programs: spirv/shaders.cmake lists them, and the rooms of src/passes/
-# append theirs in their sources.cmake (cmake/Sources.cmake, read before this file).
+# The library's programs: spirv/shaders.cmake lists them, and the rooms (src/broad/<method>/,
+# src/contacts/) append theirs in their sources.cmake (cmake/Sources.cmake, read before this file).
 # Test-only programs live in tests/shaders/ and are embedded by tests/CMakeLists.txt.
 include(${PROJECT_SOURCE_DIR}/spirv/shaders.cmake)
 set(VKCOLLIDE_SHADER_INCLUDE_DIR ${PROJECT_BINARY_DIR}/generated)

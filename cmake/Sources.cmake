@@ -5,8 +5,11 @@ set(VKCOLLIDE_HOST_SOURCES
   ${S}/core/result.cpp
   ${S}/core/mesh.cpp
   ${S}/core/types.cpp
-  ${S}/graph/graph.cpp
-  ${S}/graph/command_tape.cpp  # plain data; replayed through a dispatch table
+  ${S}/graph/graph.cpp  # declaring a render graph
+  ${S}/graph/use_info.cpp  # what each use of a resource means (stages, access, layout)
+  ${S}/graph/compile.cpp  # the plan: order, culling, barriers
+  ${S}/graph/command_tape.cpp  # plain data: recording a tape
+  ${S}/graph/command_tape_replay.cpp  # replayed through a dispatch table
   ${S}/api/host_passes.cpp  # the world's passes over host positions (no Vulkan)
   ${S}/api/mesh_checks.cpp  # closed meshes: holes and inside-out (no Vulkan)
 )
@@ -22,20 +25,16 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/vk/device.cpp
   ${S}/vk/resources.cpp
   ${S}/graph/executor.cpp
-  ${S}/passes/axis_union.cpp
-  ${S}/passes/broad_phase.cpp
-  ${S}/passes/buffer_table.cpp
-  ${S}/passes/common_stages.cpp
-  ${S}/passes/detection.cpp
-  ${S}/passes/engine_mesh.cpp
-  ${S}/passes/merging.cpp
-  ${S}/passes/mesh_upload.cpp
-  ${S}/passes/packing.cpp
-  ${S}/passes/peeling_method.cpp
-  ${S}/passes/projection.cpp
-  ${S}/passes/separation.cpp
-  ${S}/passes/stage.cpp
-  ${S}/passes/triangle_bounds.cpp
+  # The broad phase's seam (src/broad/): the run, the method interface, buffers, stages, projection.
+  ${S}/broad/broad_phase.cpp
+  ${S}/broad/buffer_table.cpp
+  ${S}/broad/common_stages.cpp
+  ${S}/broad/projection.cpp
+  ${S}/broad/stage.cpp
+  ${S}/detect/axis_union.cpp  # one or three directions (src/detect/)
+  ${S}/detect/detection.cpp
+  ${S}/mesh/engine_mesh.cpp  # mesh intake (src/mesh/)
+  ${S}/mesh/mesh_upload.cpp
   ${S}/api/contacts.cpp
   ${S}/api/detect.cpp
   ${S}/api/engine_mesh.cpp
@@ -44,11 +43,12 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/api/validation.cpp
   ${S}/api/world.cpp
 )
-# Rooms of the broad phase (src/passes/<room>/, e.g. sampling/, cells/) list their own
-# sources and programs in a sources.cmake of their own: append to VKCOLLIDE_GPU_SOURCES and
-# VKCOLLIDE_SHADERS (spirv/<name>.<stage>.glsl). A new room needs no edit here.
-file(GLOB VKCOLLIDE_ROOM_LISTS CONFIGURE_DEPENDS ${S}/passes/*/sources.cmake)
-foreach(room_list ${VKCOLLIDE_ROOM_LISTS})
+# Rooms list their own sources and programs in a sources.cmake of their own: append to
+# VKCOLLIDE_GPU_SOURCES and VKCOLLIDE_SHADERS (spirv/<room>/<name>.<stage>.glsl). Each method
+# of the broad phase is a room under src/broad/ (peeling/, cells/: a new one needs no edit
+# here); the GPU concerns beside the broad phase (contacts/) are named here.
+file(GLOB VKCOLLIDE_ROOM_LISTS CONFIGURE_DEPENDS ${S}/broad/*/sources.cmake)
+foreach(room_list ${VKCOLLIDE_ROOM_LISTS} ${S}/contacts/sources.cmake)
   include(${room_list})
 endforeach()
 # Proximity (src/proximity/): a host part and a GPU part, after both lists exist.

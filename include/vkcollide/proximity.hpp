@@ -10,6 +10,8 @@
 
 #include <cstdint>
 
+#include <vulkan/vulkan_core.h>
+
 namespace vkcollide {
 
 enum class ProximityKind : std::uint32_t {
@@ -41,6 +43,34 @@ struct ProximityPair {
     // Unit vector from b's closest point towards a's (distance 0: the triangle's normal,
     // or the two edges' common normal).
     float normal[3] = {0, 0, 1};
+};
+
+// Where DetectResult::proximity also lies on the GPU (DetectResult::device_proximity), for a
+// GPU solver's next command buffer. `pairs`: ProximityPair records (64 bytes, the layout
+// above) at offset 0, `capacity` of them; the first `count` are the result's pairs in its
+// order, except that a pair the host dropped as found twice is there twice, side by side
+// (rare: a triangle pair whose canonical-cell scan ran out of budget, docs/reliable.md).
+// The buffer is host-visible memory the GPU wrote (read it by address or as a storage
+// buffer). `header`: one DeviceProximityHeader at offset 0 (device-local). Both have usage
+// STORAGE, SHADER_DEVICE_ADDRESS, TRANSFER_SRC and TRANSFER_DST on the Context's queue
+// family; the engine reads them, never writes them.
+// Synchronisation as for DevicePairs (world.hpp): complete and visible at the world's
+// signal (submit) or after the recorded commands (record), finished when detect()/collect()
+// return. Lifetime: until the next detection in the same slot starts (DevicePairs::slot's
+// rule); a detection that needs more capacity re-creates them: take them afresh from each
+// DetectResult.
+struct DeviceProximityHeader {
+    std::uint32_t count = 0, needed = 0, flags = 0, capacity = 0;  // flags: kDeviceProximity*
+    std::uint32_t triangle_pairs = 0, distances = 0, neighbours = 0, in_band = 0;
+};
+inline constexpr std::uint32_t kDeviceProximityOverflow = 1;    // needed > capacity (collect() grew it and ran again)
+inline constexpr std::uint32_t kDeviceProximityIncomplete = 2;  // the cell stage ran again: count 0 until collect() repeats it
+struct DeviceProximity {
+    VkBuffer pairs = VK_NULL_HANDLE;
+    VkDeviceAddress pairs_address = 0;
+    VkBuffer header = VK_NULL_HANDLE;
+    VkDeviceAddress header_address = 0;
+    std::uint32_t capacity = 0;
 };
 
 struct ProximitySettings {

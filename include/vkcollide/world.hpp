@@ -112,7 +112,7 @@ struct ObjectOptions {
 struct DetectSettings {
     DetectMethod method = DetectMethod::Reliable;
     // Reliable: cells per side, any integer in [1, 16384]. Automatic: about
-    // kCellsPerEdge (spirv/config.h; 2) cells per typical projected triangle edge across
+    // kCellsPerEdge (spirv/common/config.h; 2) cells per typical projected triangle edge across
     // the scene's extent, within [kMinAutoCells, kMaxAutoCells] and at most
     // kMaxCellsPerTriangle cells per triangle.
     // Peeling: rays per image side, a power of two in [4, 16384]. Automatic: about four
@@ -231,7 +231,7 @@ struct DetectSettings {
     // Rays across the longer side of the region where closed objects' boxes overlap, an
     // integer in [kMinContactResolution, kMaxContactResolution] (16 .. 4096). The error of
     // the volume shrinks about linearly with it (docs/contacts.md). Automatic:
-    // kDefaultContactResolution (spirv/contacts.h; 128).
+    // kDefaultContactResolution (spirv/contacts/contacts.h; 128).
     std::optional<std::uint32_t> contact_resolution;
 
     // Reliable: where the exact triangle-triangle test decides the pairs the GPU's filter
@@ -466,6 +466,8 @@ struct DetectResult {
     // With DetectSettings::proximity: every vertex-triangle and edge-edge pair within the
     // distance, each once, sorted (ProximityPair). Empty otherwise.
     std::vector<ProximityPair> proximity;
+    // With DetectSettings::proximity: the same pairs on the GPU (vkcollide/proximity.hpp).
+    std::optional<DeviceProximity> device_proximity;
     DetectStats stats;
     // DetectSettings::max_pairs was reached: the intersecting pairs found beyond it (not in
     // `pairs`, not in `responses`), and an error (LimitExceeded) that says so. Empty and 0
@@ -572,7 +574,7 @@ public:
     // of filtered objects: no GPU work for them) and the narrow phase applies. Call
     // setPairFilter again when its answers change. Fails (InvalidArgument, nothing changed)
     // while a detection is in flight: its narrow phase still uses the filter. Above kMaxFilterMaskObjects
-    // (spirv/config.h) live objects no mask is kept: the filter is then called in every
+    // (spirv/common/config.h) live objects no mask is kept: the filter is then called in every
     // detection (on the thread that calls detect() or collect()), once per object pair
     // that has candidates. It must not throw: if it does, the world catches the exception,
     // stops calling the filter and fails that detection with InvalidArgument naming the

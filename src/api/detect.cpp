@@ -8,10 +8,10 @@
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
+#include "broad/cells/reliable_method.hpp"
 #include "narrow/exact_stage.hpp"
 #include "proximity/ownership.hpp"
 #include "proximity/proximity_results.hpp"
-#include "passes/cells/reliable_method.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {
@@ -291,7 +291,13 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
     if (detected.hasPairs() && broad[0].has_proximity) {
         const auto p0 = Clock::now();
-        proximity::sortedPairs(broad[0].proximity, broad[0].proximity_header, out.proximity, st.proximity);
+        proximity::sortedPairs(broad[0].proximity, out.proximity, st.proximity);
+        const auto& counts = broad[0].proximity_counts;
+        st.proximity.triangle_pairs = counts.triangle_pairs;
+        st.proximity.distances = counts.distances;
+        st.proximity.neighbours = counts.neighbours;
+        st.proximity.capacity = counts.capacity;
+        out.device_proximity = broad[0].proximity_device;
         st.proximity.ran = true;
         st.proximity.distance = run_settings.proximity.distance;
         st.proximity.runs = broad[0].proximity_runs;

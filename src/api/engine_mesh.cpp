@@ -3,7 +3,7 @@
 // which also gives its device address).
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
-#include "passes/engine_mesh.hpp"
+#include "mesh/engine_mesh.hpp"
 #include "vk/engine_buffer.hpp"
 
 namespace vkcollide {

@@ -2,15 +2,15 @@
 // typical edge lengths and area-weighted normals of host meshes, the typical edge lengths
 // engines give for GPU meshes, and the scene box the last detection measured on the GPU)
 // turned into a direction, a resolution, an open epsilon and a coverage, with a note saying
-// how each was chosen. The tunables are in spirv/config.h.
+// how each was chosen. The tunables are in spirv/common/config.h.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "api/host_passes.hpp"
 #include "api/world_impl.hpp"
-#include "contacts.h"
-#include "broadphase.h"
+#include "common/broadphase.h"
+#include "contacts/contacts.h"
 #include "vk/device.hpp"
 
 namespace vkcollide {

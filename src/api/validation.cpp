@@ -6,9 +6,9 @@
 #include <string>
 #include <tuple>
 
-#include "broadphase.h"
-#include "cells.h"
-#include "contacts.h"
+#include "cells/cells.h"
+#include "common/broadphase.h"
+#include "contacts/contacts.h"
 #include "core/mesh_rules.hpp"
 #include "vk/device.hpp"
 

@@ -1,5 +1,5 @@
 // The one validation gate: every rule the API's input must meet, checked here once, before
-// anything is uploaded or recorded. The layers below (src/passes/) assert these rules
+// anything is uploaded or recorded. The layers below (src/broad/, src/detect/) assert these rules
 // instead of checking them again.
 //
 // Each check returns the broken rule as an Error whose message does not name the object;
@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <span>
 
-#include "passes/broad_phase_types.hpp"
+#include "broad/broad_phase_types.hpp"
 #include "vkcollide/world.hpp"
 
 namespace vkcollide::vk {

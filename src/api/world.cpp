@@ -12,9 +12,9 @@
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
-#include "config.h"
+#include "common/config.h"
 #include "core/host_memory.hpp"
-#include "passes/mesh_upload.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {

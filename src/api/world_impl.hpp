@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "contacts/contact_stage.hpp"
 #include "core/use_guard.hpp"
-#include "passes/contacts/contact_stage.hpp"
-#include "passes/detection.hpp"
+#include "detect/detection.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/thread_pool.hpp"
 #include "vkcollide/world.hpp"

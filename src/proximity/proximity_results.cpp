@@ -11,11 +11,8 @@ auto key(const ProximityPair& p) { return std::tie(p.kind, p.object_a, p.a0, p.a
 
 }  // namespace
 
-void sortedPairs(std::span<const gpu::ProximityRecord> records, const gpu::ProximityHeader& header, std::vector<ProximityPair>& out,
-                 ProximityStats& stats) {
-    static_assert(sizeof(gpu::ProximityRecord) == sizeof(ProximityPair));
-    out.resize(records.size());
-    if (!records.empty()) std::memcpy(static_cast<void*>(out.data()), records.data(), records.size_bytes());
+void sortedPairs(std::span<const ProximityPair> sorted, std::vector<ProximityPair>& out, ProximityStats& stats) {
+    out.assign(sorted.begin(), sorted.end());
     // The GPU sorted them (proximity_sort.comp); a pair found twice lies beside its twin.
     const auto last = std::unique(out.begin(), out.end(), [](const ProximityPair& x, const ProximityPair& y) { return key(x) == key(y); });
     stats.duplicates = static_cast<std::uint64_t>(out.end() - last);
@@ -26,10 +23,6 @@ void sortedPairs(std::span<const gpu::ProximityRecord> records, const gpu::Proxi
         (p.kind == ProximityKind::VertexTriangle ? stats.vertex_triangle : stats.edge_edge) += 1;
         stats.in_band += (p.flags & kProximityInBand) ? 1 : 0;
     }
-    stats.triangle_pairs = header.pairs_tested;
-    stats.distances = header.distances;
-    stats.neighbours = header.neighbours;
-    stats.capacity = header.capacity;
 }
 
 }  // namespace vkcollide::proximity

@@ -6,14 +6,12 @@
 #include <span>
 #include <vector>
 
-#include "proximity.h"
 #include "vkcollide/proximity.hpp"
 
 namespace vkcollide::proximity {
 
-// Fills `out` and the counts of `stats` that the records tell (pairs, kinds, in_band,
-// duplicates) plus those of the header (triangle pairs, distances, neighbours, capacity).
-void sortedPairs(std::span<const gpu::ProximityRecord> records, const gpu::ProximityHeader& header, std::vector<ProximityPair>& out,
-                 ProximityStats& stats);
+// Fills `out` and the counts of `stats` that the pairs tell (pairs, kinds, in_band,
+// duplicates).
+void sortedPairs(std::span<const ProximityPair> sorted, std::vector<ProximityPair>& out, ProximityStats& stats);
 
 }  // namespace vkcollide::proximity

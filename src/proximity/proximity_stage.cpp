@@ -5,7 +5,7 @@
 #include <cstring>
 #include <string>
 
-#include "passes/stage.hpp"
+#include "broad/stage.hpp"
 #include "shaders/all.hpp"
 #include "vkcollide/proximity.hpp"
 
@@ -22,6 +22,9 @@ static_assert(offsetof(gpu::ProximityRecord, object_a) == offsetof(ProximityPair
               offsetof(gpu::ProximityRecord, normal) == offsetof(ProximityPair, normal));
 static_assert(gpu::kProximityInBand == kProximityInBand && gpu::kProximityEdgeEdge == std::uint32_t(ProximityKind::EdgeEdge));
 static_assert(sizeof(gpu::ProximityHeader) == 32 && sizeof(gpu::ProximityParams) == 120);
+static_assert(sizeof(DeviceProximityHeader) == sizeof(gpu::ProximityHeader) && offsetof(gpu::ProximityHeader, in_band) == 28 &&
+              offsetof(gpu::ProximityHeader, pairs_tested) == offsetof(DeviceProximityHeader, triangle_pairs));
+static_assert(gpu::kProximityOverflow == kDeviceProximityOverflow && gpu::kProximityIncomplete == kDeviceProximityIncomplete);
 
 }  // namespace
 
@@ -255,6 +258,10 @@ Result<graph::ExecutionReport> ProximityStage::runAlone(passes::CellPairs& cells
 std::span<const gpu::ProximityRecord> ProximityStage::records() const noexcept {
     if (!count_) return {};
     return {static_cast<const gpu::ProximityRecord*>(buf_.sorted.mapped()), count_};
+}
+
+DeviceProximity ProximityStage::view() const noexcept {
+    return {buf_.sorted.handle(), buf_.sorted.address(), buf_.header.handle(), buf_.header.address(), capacity_};
 }
 
 std::uint64_t ProximityStage::memoryBytes() const noexcept {

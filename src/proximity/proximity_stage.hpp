@@ -25,9 +25,9 @@
 #include <memory>
 #include <span>
 
-#include "passes/broad_phase_types.hpp"
-#include "passes/cells/cell_pairs.hpp"
-#include "proximity.h"
+#include "broad/broad_phase_types.hpp"
+#include "broad/cells/cell_pairs.hpp"
+#include "proximity/proximity.h"
 
 namespace vkcollide::proximity {
 
@@ -60,6 +60,7 @@ public:
     const gpu::ProximityHeader& header() const noexcept { return header_; }
     std::uint32_t runs() const noexcept { return runs_; }
     std::uint32_t capacity() const noexcept { return capacity_; }
+    DeviceProximity view() const noexcept;
     std::uint64_t memoryBytes() const noexcept;
 
 private:

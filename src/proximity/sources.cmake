@@ -7,4 +7,4 @@ list(APPEND VKCOLLIDE_GPU_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/proximity_stage.cpp
   ${CMAKE_CURRENT_LIST_DIR}/proximity_results.cpp
 )
-list(APPEND VKCOLLIDE_SHADERS proximity_pairs.comp proximity_sort.comp)
+list(APPEND VKCOLLIDE_SHADERS proximity/proximity_pairs.comp proximity/proximity_sort.comp)

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "support/device_copy.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/stability_scenes.hpp"
 #include "support/test_scenes.hpp"
@@ -27,70 +28,15 @@ struct DeviceCopy {
     std::vector<TrianglePair> pairs;  // the first header.count records
 };
 
-// Copies the header and the pairs into host memory: one command buffer on the Context's
-// queue after the detection finished, ordered after its shader writes by the barrier the
-// docs ask for.
+// The header and the pairs as the engine would read them.
 DeviceCopy readBack(vk::Device& dev, const DevicePairs& d) {
-    const VkDeviceSize pair_bytes = VkDeviceSize(d.capacity) * sizeof(TrianglePair);
-    auto header = vk::Buffer::create(dev, sizeof(DevicePairsHeader), 0, vk::MemoryKind::Readback, "test-header");
-    auto pairs = vk::Buffer::create(dev, std::max<VkDeviceSize>(pair_bytes, 16), 0, vk::MemoryKind::Readback, "test-pairs");
-    REQUIRE(header);
-    REQUIRE(pairs);
-    const vk::DeviceFunctions& f = dev.fns;
-    VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
-    pi.queueFamilyIndex = dev.queue_family;
-    VkCommandPool pool = VK_NULL_HANDLE;
-    REQUIRE(f.vkCreateCommandPool(dev.device, &pi, nullptr, &pool) == VK_SUCCESS);
-    VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
-    ai.commandPool = pool;
-    ai.commandBufferCount = 1;
-    VkCommandBuffer cmd = VK_NULL_HANDLE;
-    REQUIRE(f.vkAllocateCommandBuffers(dev.device, &ai, &cmd) == VK_SUCCESS);
-    VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    REQUIRE(f.vkBeginCommandBuffer(cmd, &bi) == VK_SUCCESS);
-    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    mb.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-    mb.srcAccessMask = VK_ACCESS_2_SHADER_WRITE_BIT;
-    mb.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &mb;
-    f.vkCmdPipelineBarrier2(cmd, &dep);
-    const VkBufferCopy hc{0, 0, sizeof(DevicePairsHeader)};
-    f.vkCmdCopyBuffer(cmd, d.header, header->handle(), 1, &hc);
-    if (pair_bytes) {
-        const VkBufferCopy pc{0, 0, pair_bytes};
-        f.vkCmdCopyBuffer(cmd, d.pairs, pairs->handle(), 1, &pc);
-    }
-    VkMemoryBarrier2 hb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    hb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    hb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    hb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    hb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    dep.pMemoryBarriers = &hb;
-    f.vkCmdPipelineBarrier2(cmd, &dep);
-    REQUIRE(f.vkEndCommandBuffer(cmd) == VK_SUCCESS);
-    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
-    VkFence fence = VK_NULL_HANDLE;
-    REQUIRE(f.vkCreateFence(dev.device, &fi, nullptr, &fence) == VK_SUCCESS);
-    VkCommandBufferSubmitInfo ci{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
-    ci.commandBuffer = cmd;
-    VkSubmitInfo2 si{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
-    si.commandBufferInfoCount = 1;
-    si.pCommandBufferInfos = &ci;
-    REQUIRE(dev.queueSubmit({&si, 1}, fence) == VK_SUCCESS);
-    REQUIRE(f.vkWaitForFences(dev.device, 1, &fence, VK_TRUE, ~0ull) == VK_SUCCESS);
-    f.vkDestroyFence(dev.device, fence, nullptr);
-    f.vkDestroyCommandPool(dev.device, pool, nullptr);
-    header->invalidate();
-    pairs->invalidate();
+    const BufferRead reads[] = {{d.header, sizeof(DevicePairsHeader)}, {d.pairs, VkDeviceSize(d.capacity) * sizeof(TrianglePair)}};
+    const auto bytes = copyToHost(dev, reads);
     DeviceCopy out;
-    std::memcpy(&out.header, header->mapped(), sizeof out.header);
+    std::memcpy(&out.header, bytes[0].data(), sizeof out.header);
     const std::uint32_t n = std::min(out.header.count, d.capacity);
     out.pairs.resize(n);
-    if (n) std::memcpy(out.pairs.data(), pairs->mapped(), std::size_t{n} * sizeof(TrianglePair));
+    if (n) std::memcpy(out.pairs.data(), bytes[1].data(), std::size_t{n} * sizeof(TrianglePair));
     return out;
 }
 

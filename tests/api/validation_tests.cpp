@@ -6,7 +6,7 @@
 #include <string>
 
 #include "api/validation.hpp"
-#include "passes/broad_phase_types.hpp"
+#include "broad/broad_phase_types.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"

@@ -8,12 +8,13 @@
 #include <iterator>
 #include <sstream>
 
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "support/broadphase_reference.hpp"
 #include "support/gpu_fixture.hpp"
-#include "vkcollide/thread_pool.hpp"
 #include "vkcollide/scene.hpp"
+#include "vkcollide/thread_pool.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::passes;
@@ -140,7 +141,7 @@ void requireIdenticalRecords(const std::vector<CandidateTriangle>& a, const std:
 }
 
 std::unique_ptr<BroadPhase> makeBroadPhase(test::ValidatedContext& ctx) {
-    auto created = BroadPhase::create(ctx.device());
+    auto created = BroadPhase::create(ctx.device(), PeelingMethod::create);
     REQUIRE(created);
     return std::move(*created);
 }

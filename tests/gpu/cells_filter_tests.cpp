@@ -1,4 +1,4 @@
-// The GPU triangle-triangle filter (spirv/tritri_filter.glsl.inc) alone, against the exact
+// The GPU triangle-triangle filter (spirv/cells/tritri_filter.glsl.inc) alone, against the exact
 // test of the narrow phase (src/narrow/triangle_intersection.hpp): it must never reject an
 // intersecting pair -- touching, coplanar, degenerate, near-coplanar, slivers, 1e6
 // coordinates, and inputs an ulp or more away from the exact ones with that distance as
@@ -9,7 +9,7 @@
 #include <cstring>
 #include <random>
 
-#include "cells.h"
+#include "cells/cells.h"
 #include "graph/executor.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "shaders/all.hpp"

@@ -14,9 +14,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "broad/cells/cell_pairs.hpp"
 #include "graph/executor.hpp"
 #include "graph/graph.hpp"
-#include "passes/cells/cell_pairs.hpp"
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
 

@@ -10,8 +10,10 @@
 #include <cstring>
 #include <sstream>
 
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
+#include "broad/peeling/sampling/backend_choice.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vkcollide/scene.hpp"
 
@@ -95,7 +97,7 @@ Compared compareBackends(test::ValidatedContext& ctx, BroadPhase& bp, const Scen
 }
 
 std::unique_ptr<BroadPhase> makeBroadPhase(test::ValidatedContext& ctx) {
-    auto created = BroadPhase::create(ctx.device());
+    auto created = BroadPhase::create(ctx.device(), PeelingMethod::create);
     REQUIRE(created);
     return std::move(*created);
 }

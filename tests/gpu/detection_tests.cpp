@@ -7,9 +7,9 @@
 #include <cmath>
 #include <limits>
 
-#include "passes/detection.hpp"
-#include "passes/mesh_upload.hpp"
-#include "passes/projection.hpp"
+#include "broad/projection.hpp"
+#include "detect/detection.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/thread_pool.hpp"

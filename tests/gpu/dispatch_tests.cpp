@@ -7,8 +7,8 @@
 
 #include <algorithm>
 
-#include "passes/broad_phase.hpp"
-#include "passes/stage.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/stage.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/pathological_scenes.hpp"
 #include "support/test_scenes.hpp"

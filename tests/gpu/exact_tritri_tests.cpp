@@ -1,5 +1,5 @@
-// The GPU's exact triangle-triangle decision (spirv/tritri_exact.glsl.inc on
-// spirv/exact_predicates.glsl.inc, through tests/shaders/exact_tritri_test.comp.glsl)
+// The GPU's exact triangle-triangle decision (spirv/cells/tritri_exact.glsl.inc on
+// spirv/cells/exact_predicates.glsl.inc, through tests/shaders/exact_tritri_test.comp.glsl)
 // against the CPU's (src/narrow/triangle_intersection.cpp, exact_predicates.cpp,
 // neighbours.hpp): the same answer on every case, millions of them, random and adversarial
 // (coplanar, touching, shared vertices and edges, offsets of 2^-20 .. 2^-60, coordinates

@@ -1,4 +1,4 @@
-// The typed projection module (src/passes/projection.hpp): the basis, the region's and the
+// The typed projection module (src/broad/projection.hpp): the basis, the region's and the
 // fit's projections, the inverse used by the multi-axis union, and, on the device, that the
 // host's repetition of the fit equals what fit.comp.glsl computed.
 #include <catch2/catch.hpp>
@@ -8,9 +8,10 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
-#include "passes/projection.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
+#include "broad/projection.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vkcollide/scene.hpp"
 
@@ -96,7 +97,7 @@ TEST_CASE("the host's fit equals the fit the GPU computed", "[gpu][projection]")
     REQUIRE(transformMesh(*cube, Transform3x4{1, 0, 0, 0.6f, 0, 0, -1, -0.11f, 0, 1, 0, 0.29f}));
     auto up = uploadMeshes(ctx.device(), {&*sphere, &*cube});
     REQUIRE(up);
-    auto bp = BroadPhase::create(ctx.device());
+    auto bp = BroadPhase::create(ctx.device(), PeelingMethod::create);
     REQUIRE(bp);
     std::int64_t worst = 0;
     for (const std::array<float, 3>& dir : {std::array<float, 3>{0, 0, 1}, {0.2f, -0.3f, 1.0f}, {1, 0.5f, 0.25f}}) {

@@ -2,8 +2,8 @@
 // by name when the pipeline is made (not through a validation message at a dispatch).
 #include <catch2/catch.hpp>
 
-#include "broadphase.h"
-#include "cells.h"
+#include "cells/cells.h"
+#include "common/broadphase.h"
 #include "shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vk/pipeline.hpp"

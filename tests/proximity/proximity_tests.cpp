@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 #include <string>
 #include <tuple>
 
 #include "proximity/proximity_reference.hpp"
+#include "support/device_copy.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/world_fixture.hpp"
 #include "vkcollide/scene.hpp"
@@ -120,6 +122,22 @@ Checked detectAndCheck(ValidatedContext& ctx, const std::vector<Object>& objects
     CHECK(bad_distance == 0);
     CHECK(bad_points == 0);
     CHECK(bad_normal == 0);
+    // The same pairs on the GPU, in order (DetectResult::device_proximity), as an engine reads them.
+    REQUIRE(out.result.device_proximity);
+    const DeviceProximity& dp = *out.result.device_proximity;
+    const BufferRead reads[] = {{dp.header, sizeof(DeviceProximityHeader)}, {dp.pairs, VkDeviceSize(dp.capacity) * sizeof(ProximityPair)}};
+    const auto bytes = copyToHost(ctx.device(), reads);
+    DeviceProximityHeader dh;
+    std::memcpy(&dh, bytes[0].data(), sizeof dh);
+    CHECK(dh.flags == 0);
+    CHECK(dh.capacity == dp.capacity);
+    REQUIRE(dh.count == got.size() + out.result.stats.proximity.duplicates);
+    std::vector<ProximityPair> on_device(dh.count);
+    if (dh.count) std::memcpy(static_cast<void*>(on_device.data()), bytes[1].data(), std::size_t{dh.count} * sizeof(ProximityPair));
+    on_device.erase(std::unique(on_device.begin(), on_device.end(), [](const ProximityPair& a, const ProximityPair& b) { return keyOf(a) == keyOf(b); }),
+                    on_device.end());
+    REQUIRE(on_device.size() == got.size());
+    CHECK(std::memcmp(on_device.data(), got.data(), got.size() * sizeof(ProximityPair)) == 0);
     const ProximityStats& st = out.result.stats.proximity;
     CHECK(st.ran);
     CHECK(st.pairs == got.size());

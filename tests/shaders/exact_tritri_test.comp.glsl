@@ -12,8 +12,8 @@
 //    orient2d(a.xy,b.xy,c.xy), orient2dExact(same), orient2d(b.yz,c.yz,d.yz),
 //    orient2dExact(same); bit 14 the plane's certainlyNotCollinear; bits 16.. the exact
 //    fallbacks of the filtered predicates (the first, third, fourth and sixth).
-#include "exact_predicates.glsl.inc"
-#include "tritri_exact.glsl.inc"
+#include "cells/exact_predicates.glsl.inc"
+#include "cells/tritri_exact.glsl.inc"
 layout(local_size_x = 64) in;
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer ExactCasesRef { uint w[]; };

@@ -9,7 +9,7 @@
 #include <cstring>
 #include <limits>
 
-#include "passes/broad_phase.hpp"
+#include "broad/broad_phase.hpp"
 #include "stability_support.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/test_scenes.hpp"

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "passes/broad_phase.hpp"
-#include "passes/projection.hpp"
-#include "support/stability_scenes.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/projection.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/stability_scenes.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::test;

@@ -7,9 +7,10 @@
 
 #include <cstring>
 
-#include "broadphase.h"
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
+#include "common/broadphase.h"
+#include "mesh/mesh_upload.hpp"
 #include "stability_support.hpp"
 #include "vkcollide/io.hpp"
 
@@ -67,7 +68,7 @@ TEST_CASE("fragment counts do not wrap: 70,000 copies of one triangle count 70,0
     auto many = repeatedTriangle(70000);
     REQUIRE(one);
     REQUIRE(many);
-    auto bp = passes::BroadPhase::create(ctx.device());
+    auto bp = passes::BroadPhase::create(ctx.device(), passes::PeelingMethod::create);
     REQUIRE(bp);
     passes::BroadPhaseSettings s;
     s.resolution = 16;

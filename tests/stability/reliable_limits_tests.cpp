@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "cells.h"
+#include "cells/cells.h"
 #include "stability_support.hpp"
 
 using namespace vkcollide;

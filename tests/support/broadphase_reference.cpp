@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "passes/projection.hpp"
+#include "broad/projection.hpp"
 
 namespace vkcollide::test {
 namespace {

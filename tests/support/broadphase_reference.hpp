@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "passes/broad_phase.hpp"
+#include "broad/broad_phase.hpp"
 #include "vkcollide/mesh.hpp"
 #include "vkcollide/narrow.hpp"
 

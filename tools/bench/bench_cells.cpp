@@ -1,4 +1,4 @@
-// vkcollide_bench_cells: the cell pair stage (src/passes/cells) alone on generated scenes
+// vkcollide_bench_cells: the cell pair stage (src/broad/cells) alone on generated scenes
 // of the bench set's kinds. Not a test: a program that prints one table.
 //
 //   vkcollide_bench_cells [--scenes a,b,...] [--scale S] [--factors 0.5,1,2] [--repeat K]
@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "passes/cells/cell_pairs.hpp"
+#include "broad/cells/cell_pairs.hpp"
 #include "support/exact_reference.hpp"
 #include "vk/device.hpp"
 #include "vkcollide/context.hpp"

@@ -84,11 +84,12 @@
 
 #include "bench_narrow_probes.hpp"
 #include "bench_narrow_scenes.hpp"
-#include "passes/broad_phase.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/sweep_and_prune.hpp"
 #include "narrow/triangle_intersection.hpp"
-#include "passes/mesh_upload.hpp"
 #include "support/exact_reference.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/narrow.hpp"
@@ -435,7 +436,7 @@ Workload gpuWorkload(const std::string& scene, std::size_t size, std::uint32_t r
     auto ctx = take(Context::create(), "Vulkan context");
     vk::Device& dev = ctx->device();
     const auto uploaded = take(passes::uploadMeshes(dev, mesh_ptrs), "mesh upload");
-    auto broad_phase = take(passes::BroadPhase::create(dev), "broad phase");
+    auto broad_phase = take(passes::BroadPhase::create(dev, passes::PeelingMethod::create), "broad phase");
     passes::BroadPhaseSettings settings;
     settings.resolution = resolution;
     settings.direction = {0.15f, -0.2f, 1.0f};

@@ -20,8 +20,10 @@
 #include <string>
 #include <vector>
 
-#include "passes/broad_phase.hpp"
-#include "passes/mesh_upload.hpp"
+#include "broad/broad_phase.hpp"
+#include "broad/peeling/peeling_method.hpp"
+#include "broad/peeling/sampling/backend_choice.hpp"
+#include "mesh/mesh_upload.hpp"
 #include "vkcollide/context.hpp"
 #include "vkcollide/io.hpp"
 #include "vkcollide/scene.hpp"
@@ -256,7 +258,7 @@ int main(int argc, char** argv) {
         scenes.push_back(gridScene(stem + "-4x4", base, 4, 1, 2.1f, 2.5f, true, 1024));
     }
 
-    auto bp = passes::BroadPhase::create(dev);
+    auto bp = passes::BroadPhase::create(dev, passes::PeelingMethod::create);
     if (!bp) return fail(bp.error().message());
     std::vector<std::string> details;
     std::printf("| scene | triangles | N | px/tri | depth cx | mode | backend | setup ms | count ms | gather ms | peel ms | classify ms | sampling ms | per pass: count, peel[i] (ms) | run wall ms | same rays + records |\n");

@@ -1,8 +1,8 @@
 #include "cli/rays.hpp"
 
-#include "passes/detection.hpp"
-#include "passes/mesh_upload.hpp"
-#include "passes/projection.hpp"
+#include "broad/projection.hpp"
+#include "detect/detection.hpp"
+#include "mesh/mesh_upload.hpp"
 
 namespace cli {
 

@@ -1,0 +1,276 @@
+// Data shared by the cell pair stage's shaders (GLSL) and its host side (C++,
+// src/broad/cells/): buffer layouts, limits and flags. docs/reliable.md explains the
+// method and why it cannot miss an intersecting pair.
+//
+// A grid of N x N cells covers the sampling image; cell (i, j) is the closed square
+// [i, i+1] x [j, j+1] in cell units (sampling x, y times N), and the outermost cells
+// reach to infinity, so every point of the plane lies in at least one cell. Each
+// triangle is listed in every cell its padded projection may touch, with a depth
+// interval that contains the depth of every point of it over that cell.
+#ifndef VKCOLLIDE_CELLS_H
+#define VKCOLLIDE_CELLS_H
+
+#include "common/broadphase.h"  // VKC_ADDRESS, VKC_CONST, ObjectGpu, Projection
+
+#ifdef __cplusplus
+namespace vkcollide::gpu {
+#endif
+
+// Workgroup size of every cell-stage shader.
+VKC_CONST kCellsGroupSize = 256;
+// Cells per side: 1 .. kCellsMaxResolution (cell coordinates are packed in 16 bits).
+VKC_CONST kCellsMaxResolution = 16384;
+// A triangle whose clamped footprint box has at most this many cells is handled by one
+// invocation; bigger ones are cut into work items of kCellsChunkCells box cells, one
+// workgroup each (so a triangle spanning the grid does not serialise on one invocation).
+VKC_CONST kCellsSmallBox = 64;
+VKC_CONST kCellsChunkCells = 4096;
+// Cells with at most kCellsSmallCell entries are swept by one invocation per entry,
+// unsorted (no barriers, every lane busy: cheaper than sorting up to about this depth);
+// deeper cells by a workgroup that sorts them in shared memory (up to kCellsDeepShared
+// entries), or, deeper still, by workgroups of kCellsGroupSize entries that each scan the
+// whole cell.
+VKC_CONST kCellsSmallCell = 256;
+VKC_CONST kCellsDeepShared = 1024;
+// The pair pass's canonical-cell check scans at most this many earlier cells of a pair;
+// a pair whose scan runs out is kept (a duplicate the host removes), never dropped.
+VKC_CONST kCellsDedupeBudget = 512;
+// Cells per workgroup of the scan (4 per invocation).
+VKC_CONST kCellsScanBlock = 1024;
+// A deep item whose chunk is this value sorts the whole cell in shared memory.
+VKC_CONST kCellsSorted = 0xFFFFFFFFu;
+
+// CellsTriangle.key: object index in the low 31 bits, and whether the object tests its own
+// triangles against each other.
+VKC_CONST kCellsKeySelf = 0x80000000u;
+VKC_CONST kCellsKeyObject = 0x7FFFFFFFu;
+// CellsEntry.key: with at most kCellsBoxedObjects objects, the object in bits 0-14, the
+// self flag in bit 15 and the triangle's box within the entry's cell in bits 16-31
+// (cellsSubBox); with more, the triangle's key and no box (entryKey in
+// cells_common.glsl.inc).
+VKC_CONST kCellsBoxedObjects = 32768u;
+// CellsParams.object_flags
+VKC_CONST kCellsObjectSelf = 1u;
+VKC_CONST kCellsObjectDownload = 2u;  // geometry only on the GPU: survivors' triangles go to gpu_triangles
+
+// CellsTriangle.mode
+VKC_CONST kCellsEdges = 1u;  // coordinates are moderate: the per-cell edge tests apply
+VKC_CONST kCellsPlane = 2u;  // the projection is not degenerate: per-cell depth from the plane
+
+// CellsHeader.flags: what went wrong. The overflow flags ask the host to grow a buffer to
+// the size the header reports and run again; the others are errors.
+VKC_CONST kCellsOverflowEntries = 1u;
+VKC_CONST kCellsOverflowItems = 2u;
+VKC_CONST kCellsOverflowCandidates = 4u;
+VKC_CONST kCellsOverflowSurvivors = 8u;
+VKC_CONST kCellsBadIndex = 16u;        // an index >= the object's vertex count
+VKC_CONST kCellsBadPosition = 32u;     // a position or transform entry not finite or >= 2^62
+// (64 is free: projections are made usable by the setup, cells_setup.comp's stageRow)
+VKC_CONST kCellsBadWorld = 128u;       // a world coordinate >= 2^62
+VKC_CONST kCellsInconsistent = 256u;   // the fill found more footprints than the count (a bug)
+VKC_CONST kCellsOverflowTriangles = 512u;  // gpu_triangles
+VKC_CONST kCellsOverflowMask = 527u;       // the four overflows above and kCellsOverflowTriangles
+// Past the budget (CellsParams.budget): the footprint boxes span more cells than the budget
+// (setup), or more pairs of footprints share a cell than kCellsComparisonsPerBudget times
+// it (scan). Later passes do nothing; the host reports LimitExceeded, never grows a buffer
+// for it. (Candidates beyond the budget are found by the host from the header's count.)
+VKC_CONST kCellsOverBudget = 1024u;
+
+// The budget bounds the stage's memory and time: footprint box cells (so footprints) and
+// candidate pairs at most CellsParams.budget each, and the pairs of footprints that share a
+// cell -- what the sweep compares, k (k - 1) / 2 in a cell of k -- at most this many times
+// the budget (a comparison costs far less than a candidate, which is written, deduplicated
+// and filtered).
+VKC_CONST kCellsComparisonsPerBudget = 64u;
+
+// Per-cell counts after the fill (CellsParams.counts): the sweep sets this bit in a cell's
+// count when it finds a candidate there, and the invocation that sets it counts the cell.
+VKC_CONST kCellsCandidateBit = 0x80000000u;
+
+// Inputs are refused at or above this magnitude (2^62): with them every intermediate of
+// the setup stays finite in float (docs/reliable.md, "Assumptions").
+VKC_CONST kCellsMaxExponentBits = 189u;  // biased exponent of 2^62
+
+// Slots of CellsParams.args (VkDispatchIndirectCommand each).
+VKC_CONST kCellsArgsBig = 0u;    // big-triangle work items (count and fill)
+VKC_CONST kCellsArgsSweep = 1u;  // one invocation per entry
+VKC_CONST kCellsArgsDeep = 2u;   // deep-cell work items
+VKC_CONST kCellsArgsPairs = 3u;  // one invocation per candidate
+VKC_CONST kCellsArgsCount = 4u;
+
+// One triangle after setup (80 bytes + 4), written once, read by the count, fill and pair
+// passes, so all of them see the same footprint and depth bounds bit for bit.
+struct CellsTriangle {
+    float x[3];       // vertices in cell units (sampling x times N)
+    float y[3];
+    float z[3];       // sampling depth
+    float pad;        // footprint padding in cell units: covers the GPU's rounding of world
+                      // and sampling coordinates against the CPU's world positions
+    float zmin, zmax; // depth range of the triangle, padded outward by ez
+    float ez;         // depth padding (the same error bound along z)
+    float gx, gy;     // depth plane: dz per cell along x and y (mode kCellsPlane)
+    float egx, egy;   // bounds on the error of gx and gy
+    uint cells_lo;    // first cell of the clamped footprint box: i | j << 16
+    uint cells_hi;    // last cell (inclusive)
+    uint key;         // object | kCellsKeySelf
+    uint mode;        // kCellsEdges | kCellsPlane
+};
+
+// What the pair pass needs of a triangle: world vertices as the GPU computed them, the
+// bound on their difference from the CPU's (per coordinate) and the vertex indices.
+struct CellsGeometry {
+    float v[9];
+    float eps;
+    uint index[3];
+};
+
+// One footprint: a triangle in a cell with its depth interval there.
+struct CellsEntry {
+    uint triangle;  // global triangle id
+    uint key;       // object, self flag and box (kCellsBoxedObjects)
+    float zlo, zhi;
+};
+
+// A pair of triangles whose intervals overlap in `cell` (a < b, global ids).
+struct CellsCandidate {
+    uint a, b, cell;
+};
+
+// A survivor's triangle of a download object, for the narrow phase (vkcollide::GpuTriangle,
+// 52 bytes): global id, vertex indices within its object, world vertices computed as the
+// CPU computes M * p (in double, rounded once) where the device has shaderFloat64, else the
+// setup's float world vertices (within CellsGeometry::eps of the CPU's).
+struct CellsGpuTriangle {
+    uint id;
+    uint vertex_index[3];
+    float v[9];
+};
+
+// Small results; the host reads them after each run. The 64-bit counters count without
+// wrapping whatever the scene: the host reads from them what a run needed.
+struct CellsHeader {
+    uint flags;             // kCells* above
+    uint bad_triangle;      // smallest global triangle id with bad input (~0u: none)
+    uint entries;           // footprints (needed entry capacity; at most box_cells when the scan ran)
+    uint items;             // big-triangle work items (needed item capacity)
+    uint survivors;         // pairs that passed (needed capacity)
+    uint big_triangles;     // triangles handled in work items
+    uint deep_cells;        // cells swept by the deep path
+    uint deep_items;
+    uint max_cell;          // most entries in one cell
+    uint neighbours;        // overlapping pairs the sweep left out: one object, a shared vertex index
+    uint duplicates;        // candidates dropped: not their canonical cell
+    uint filtered;          // candidates the filter proved disjoint
+    uint gpu_triangles;     // survivors' triangles of download objects (needed capacity)
+    uint candidate_cells;   // cells where the sweep found at least one candidate
+    uint64_t candidates;    // candidate pairs the sweep found (needed capacity)
+    uint64_t box_cells;     // cells of the triangles' clamped footprint boxes, summed (setup)
+    uint64_t comparisons;   // pairs of footprints sharing a cell, k (k - 1) / 2 summed over cells (scan)
+    uint exact_tests;  // candidates the exact test decided (CellsParams.exact)
+    uint exact_neighbours;  // of those, left out as neighbours: a bit-identical world vertex
+};
+
+// Everything the shaders need, uploaded once per run (Push.frame points here).
+struct CellsParams {
+    VKC_ADDRESS(uint64_t) objects;       // ObjectGpu[object_count], sorted by triangle_base
+    VKC_ADDRESS(uint64_t) object_flags;  // uint[object_count] (kCellsObjectSelf), or 0: none
+    VKC_ADDRESS(uint64_t) pair_mask;     // bits [a * object_count + b], a < b: may collide; 0: all
+    VKC_ADDRESS(uint64_t) projection;    // Projection
+    VKC_ADDRESS(uint64_t) header;        // CellsHeader
+    VKC_ADDRESS(uint64_t) triangles;     // CellsTriangle[triangle_count]
+    VKC_ADDRESS(uint64_t) geometry;      // CellsGeometry[triangle_count]
+    VKC_ADDRESS(uint64_t) counts;        // uint[cell_count]: footprints, then the fill cursor
+    VKC_ADDRESS(uint64_t) offsets;       // uint[cell_count + 1]: first entry of each cell
+    VKC_ADDRESS(uint64_t) block_sums;    // uint[block_count]
+    VKC_ADDRESS(uint64_t) entries;       // CellsEntry[entry_capacity]
+    VKC_ADDRESS(uint64_t) entry_cells;   // uint[entry_capacity]: the cell of each entry
+    VKC_ADDRESS(uint64_t) big_items;     // uvec2[item_capacity]: (triangle, chunk)
+    VKC_ADDRESS(uint64_t) deep_items;    // uvec2[deep_capacity]: (cell, chunk or kCellsSorted)
+    VKC_ADDRESS(uint64_t) candidates;    // CellsCandidate[candidate_capacity]
+    VKC_ADDRESS(uint64_t) survivors;     // uvec2[survivor_capacity]: (a, b), a < b
+    VKC_ADDRESS(uint64_t) args;          // uint[3 * kCellsArgsCount]
+    VKC_ADDRESS(uint64_t) gpu_triangles; // CellsGpuTriangle[gpu_triangle_capacity] (host-visible), or 0: none
+    VKC_ADDRESS(uint64_t) marks;         // uint[ceil(triangle_count / 32)]: downloaded already (cleared per run)
+    uint resolution;                     // N
+    uint cell_count;                     // N * N
+    uint object_count;
+    uint triangle_count;
+    uint entry_capacity;
+    uint item_capacity;
+    uint deep_capacity;
+    uint candidate_capacity;
+    uint survivor_capacity;
+    uint block_count;                    // ceil(cell_count / kCellsScanBlock)
+    uint max_groups_x;                   // maxComputeWorkGroupCount[0]
+    uint use_filter;                     // 1: the double-precision filter runs
+    uint gpu_triangle_capacity;
+    uint budget;                         // kCellsOverBudget above; at most 2^31 - 1
+    uint exact;  // 1: the pair pass decides exactly (needs use of the
+        // double-precision pipeline); survivors then intersect
+    // Proximity (src/proximity/): 1: the sweep keeps pairs of one object that share a vertex
+    // index (their other primitives may be near) and the pair pass leaves them out of the
+    // survivors instead.
+    uint keep_neighbours;
+    // Proximity: every triangle grown by this many world units along each axis (half the
+    // distance, rounded up), so two triangles closer than the distance share a point.
+    float proximity_pad;
+    uint pad;
+};
+
+// ---- Device pairs (DetectSettings::device_pairs; src/broad/cells/device_pairs.cpp) -------
+// The survivors of an exact run, sorted on the GPU into the host result's order: bucketed
+// by the lower triangle id (count, scan, scatter), each bucket sorted by the higher id with
+// repeats dropped, a second scan, then written as DevicePair records.
+// DevicePairsHeader.flags (vkcollide::kDevicePairs* in world.hpp, the same values):
+VKC_CONST kDevicePairsOverflow = 1u;    // needed > capacity: the first `capacity` pairs written
+VKC_CONST kDevicePairsIncomplete = 2u;  // the run must be repeated (a buffer overflowed, a mesh
+                                        // failed the GPU check): count 0; collect() repeats it
+
+// The public layout (vkcollide::DevicePairsHeader, TrianglePair).
+struct DevicePairsHeader {
+    uint count;     // pairs written: min(needed, capacity)
+    uint needed;    // distinct intersecting pairs found
+    uint flags;     // kDevicePairs*
+    uint capacity;  // pairs the buffer holds
+};
+struct DevicePair {
+    uint object_a, triangle_a, object_b, triangle_b;
+};
+
+struct DevicePairsParams {
+    VKC_ADDRESS(uint64_t) cells;         // CellsParams of the run (survivors, triangles, objects)
+    VKC_ADDRESS(uint64_t) fault_header;  // the broad phase's Header (GPU input checks), or 0
+    VKC_ADDRESS(uint64_t) object_ids;    // uint[object_count]: the id each object has in the result
+    VKC_ADDRESS(uint64_t) counts;        // uint[triangle_count]: survivors per lower id, then the cursor, then distinct partners
+    VKC_ADDRESS(uint64_t) offsets;       // uint[triangle_count + 1]: each lower id's first slot in partners
+    VKC_ADDRESS(uint64_t) out_offsets;   // uint[triangle_count + 1]: its first output pair
+    VKC_ADDRESS(uint64_t) block_sums;    // uint[block_count]
+    VKC_ADDRESS(uint64_t) partners;      // uint[survivor capacity]: higher ids, bucketed by the lower
+    VKC_ADDRESS(uint64_t) args;          // VkDispatchIndirectCommand: one invocation per survivor
+    VKC_ADDRESS(uint64_t) header;        // DevicePairsHeader
+    VKC_ADDRESS(uint64_t) pairs;         // DevicePair[capacity]
+    uint triangle_count;
+    uint block_count;                    // ceil(triangle_count / kCellsScanBlock)
+    uint capacity;
+    uint max_groups_x;
+};
+// Buckets up to this size are sorted by insertion, larger ones by heap sort (in place).
+VKC_CONST kDevicePairsInsertionSort = 16u;
+
+// Unit test of the filter alone (cells_filter_test.comp): one pair per invocation.
+struct CellsFilterCase {
+    float a[9];
+    float b[9];
+    float eps_a, eps_b;
+};
+struct CellsFilterParams {
+    VKC_ADDRESS(uint64_t) cases;    // CellsFilterCase[count]
+    VKC_ADDRESS(uint64_t) verdict;  // uint[count]: 1 rejected (proved disjoint), 0 kept
+    uint count;
+    uint pad;
+};
+
+#ifdef __cplusplus
+}  // namespace vkcollide::gpu
+#endif
+#endif

@@ -1,0 +1,184 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Device pairs (DetectSettings::device_pairs): the exact run's survivors (global ids a < b,
+// unsorted, a rare pair twice) sorted on the GPU into the host result's order, as
+// DevicePair records (object ids as the API returns them, triangles within the object).
+// Global ids grow with (object, triangle) and run objects with their ids, so that order is
+// the order of (a, b). The order comes from the data alone, never from atomics: the
+// atomics only place a pair in its lower id's bucket, and each bucket is then sorted.
+// Steps (Push.step), each after a barrier:
+//   0  one invocation: the header (capacity, flags: Incomplete when the run failed or a
+//      mesh failed the GPU input check) and the indirect dispatch over the survivors;
+//   1  per survivor: counts[a] += 1;
+//   2-4  exclusive scan of counts over triangles (Push.level 0: into offsets, counts reset
+//      to 0 as the scatter's cursor; level 1: into out_offsets, the total is `needed`);
+//   5  per survivor: partners[offsets[a] + cursor] = b;
+//   6  per triangle: its bucket sorted by b, repeats dropped; counts[a] = distinct partners;
+//   7  per triangle: its pairs written at out_offsets[a] (those below the capacity).
+// Passes 1 and 5 are proportional to the survivors, the others to the triangles.
+#include "cells_common.glsl.inc"
+#include "common/workgroup.glsl.inc"
+layout(local_size_x = kCellsGroupSize) in;
+
+layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer DevicePairsParamsRef { DevicePairsParams p; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer DevicePairsHeaderRef { DevicePairsHeader h; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer DevicePairsRef { DevicePair p[]; };
+
+const uint kPerInvocation = kCellsScanBlock / kCellsGroupSize;
+
+DevicePairsParams dparams() { return DevicePairsParamsRef(pc.frame).p; }
+DevicePairsHeaderRef pairsHeader(DevicePairsParams D) { return DevicePairsHeaderRef(D.header); }
+bool incomplete(DevicePairsParams D) { return (pairsHeader(D).h.flags & kDevicePairsIncomplete) != 0u; }
+uint survivorCount(CellsParams P) { return min(cellsHeader(P).h.survivors, P.survivor_capacity); }
+
+void writeArgs(DevicePairsParams D, uint survivors) {
+    uint groups = (survivors + kCellsGroupSize - 1u) / kCellsGroupSize;
+    uint x = min(groups, D.max_groups_x);
+    UintsRef args = UintsRef(D.args);
+    args.v[0] = x;
+    args.v[1] = x == 0u ? 1u : (groups + x - 1u) / x;
+    args.v[2] = 1u;
+}
+
+// Heap sort of partners[base, base + n) (n > kDevicePairsInsertionSort): O(n log n) on one
+// invocation, no extra memory.
+void siftDown(UintsRef p, uint base, uint root, uint n) {
+    uint v = p.v[base + root];
+    for (;;) {
+        uint child = 2u * root + 1u;
+        if (child >= n) break;
+        if (child + 1u < n && p.v[base + child + 1u] > p.v[base + child]) ++child;
+        uint c = p.v[base + child];
+        if (c <= v) break;
+        p.v[base + root] = c;
+        root = child;
+    }
+    p.v[base + root] = v;
+}
+void sortBucket(UintsRef p, uint base, uint n) {
+    if (n <= kDevicePairsInsertionSort) {
+        for (uint i = 1u; i < n; ++i) {
+            uint v = p.v[base + i], j = i;
+            for (; j > 0u && p.v[base + j - 1u] > v; --j) p.v[base + j] = p.v[base + j - 1u];
+            p.v[base + j] = v;
+        }
+        return;
+    }
+    for (uint i = n / 2u; i-- > 0u;) siftDown(p, base, i, n);
+    for (uint end = n - 1u; end > 0u; --end) {
+        uint top = p.v[base];
+        p.v[base] = p.v[base + end];
+        p.v[base + end] = top;
+        siftDown(p, base, 0u, end);
+    }
+}
+
+// The scan's three steps over counts[0, triangle_count) (see the header comment).
+void scan(DevicePairsParams D, uint step) {
+    if (incomplete(D)) return;  // uniform: written by step 0 in an earlier pass
+    UintsRef counts = UintsRef(D.counts), sums = UintsRef(D.block_sums);
+    UintsRef dst = UintsRef(pc.level == 0u ? D.offsets : D.out_offsets);
+    const uint n = D.triangle_count;
+    if (step == 3u) {
+        uint carry = 0u;
+        for (uint base = 0u; base < D.block_count; base += kCellsGroupSize) {
+            uint b = base + gl_LocalInvocationIndex;
+            uint v = b < D.block_count ? sums.v[b] : 0u;
+            uint inclusive = groupInclusiveScan(v);
+            if (b < D.block_count) sums.v[b] = carry + inclusive - v;
+            carry += groupReduceAdd(v);
+        }
+        if (gl_LocalInvocationIndex == 0u) {
+            dst.v[n] = carry;
+            if (pc.level == 1u) {
+                pairsHeader(D).h.needed = carry;
+                pairsHeader(D).h.count = min(carry, D.capacity);
+                if (carry > D.capacity) atomicOr(pairsHeader(D).h.flags, kDevicePairsOverflow);
+            }
+        }
+        return;
+    }
+    uint block = groupIndex();
+    if (block >= D.block_count) return;  // whole workgroup: the barriers below stay uniform
+    uint first = block * kCellsScanBlock + gl_LocalInvocationIndex * kPerInvocation;
+    uint v[kPerInvocation];
+    uint sum = 0u;
+    for (uint k = 0u; k < kPerInvocation; ++k) {
+        v[k] = first + k < n ? counts.v[first + k] : 0u;
+        sum += v[k];
+    }
+    if (step == 2u) {
+        uint total = groupReduceAdd(sum);
+        if (gl_LocalInvocationIndex == 0u) sums.v[block] = total;
+        return;
+    }
+    uint running = sums.v[block] + groupInclusiveScan(sum) - sum;
+    for (uint k = 0u; k < kPerInvocation; ++k) {
+        if (first + k >= n) break;
+        dst.v[first + k] = running;
+        if (pc.level == 0u) counts.v[first + k] = 0u;
+        running += v[k];
+    }
+}
+
+void main() {
+    DevicePairsParams D = dparams();
+    CellsParams P = CellsParamsRef(D.cells).p;
+    if (pc.step == 0u) {
+        if (gl_LocalInvocationIndex != 0u) return;
+        bool failed = cellsHeader(P).h.flags != 0u;
+        if (D.fault_header != 0ul) {
+            Header f = HeaderRef(D.fault_header).h;
+            failed = failed || f.bad_index_count != 0u || f.bad_vertex_count != 0u;
+        }
+        pairsHeader(D).h = DevicePairsHeader(0u, 0u, failed ? kDevicePairsIncomplete : 0u, D.capacity);
+        writeArgs(D, failed ? 0u : survivorCount(P));
+        return;
+    }
+    if (pc.step >= 2u && pc.step <= 4u) {
+        scan(D, pc.step);
+        return;
+    }
+    UintsRef counts = UintsRef(D.counts), offsets = UintsRef(D.offsets), partners = UintsRef(D.partners);
+    uint id = globalIndex();
+    if (pc.step == 1u || pc.step == 5u) {  // indirect: no invocations once incomplete
+        if (id >= survivorCount(P)) return;
+        uvec2 s = Uvec2sRef(P.survivors).v[id];
+        if (s.x >= s.y || s.y >= P.triangle_count) {  // the pair pass writes a < b below the count
+            atomicOr(pairsHeader(D).h.flags, kDevicePairsIncomplete);
+            return;
+        }
+        if (pc.step == 1u) atomicAdd(counts.v[s.x], 1u);
+        else partners.v[offsets.v[s.x] + atomicAdd(counts.v[s.x], 1u)] = s.y;
+        return;
+    }
+    if (id >= D.triangle_count || incomplete(D)) return;
+    uint n = counts.v[id];
+    if (n == 0u) return;
+    uint base = offsets.v[id];
+    if (pc.step == 6u) {
+        sortBucket(partners, base, n);
+        uint distinct = 1u;
+        for (uint i = 1u; i < n; ++i) {
+            uint b = partners.v[base + i];
+            if (b != partners.v[base + distinct - 1u]) partners.v[base + distinct++] = b;
+        }
+        counts.v[id] = distinct;
+        return;
+    }
+    // Step 7: the lower triangle's pairs, in order, where they fit.
+    uint out_first = UintsRef(D.out_offsets).v[id];
+    if (out_first >= D.capacity) return;
+    CellsTrianglesRef tris = CellsTrianglesRef(P.triangles);
+    ObjectsRef objects = ObjectsRef(P.objects);
+    UintsRef ids = UintsRef(D.object_ids);
+    uint oa = tris.t[id].key & kCellsKeyObject;
+    uint ida = ids.v[oa], ta = id - objects.o[oa].triangle_base;
+    DevicePairsRef out_pairs = DevicePairsRef(D.pairs);
+    uint last = min(n, D.capacity - out_first);
+    for (uint j = 0u; j < last; ++j) {
+        uint b = partners.v[base + j];
+        uint ob = tris.t[b].key & kCellsKeyObject;
+        out_pairs.p[out_first + j] = DevicePair(ida, ta, ids.v[ob], b - objects.o[ob].triangle_base);
+    }
+}

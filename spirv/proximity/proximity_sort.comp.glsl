@@ -1,0 +1,153 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Proximity records into the result's order on the GPU (src/proximity/proximity_stage.cpp):
+// (kind, object_a, a0, a1, object_b, b0, b1), so that the device buffer and the host result
+// agree and a GPU solver reads them in a deterministic order. The order comes from the data
+// alone: atomics only place a record in its bucket (kind, object_a, a0: one per kind and
+// vertex of the run), and each bucket is then sorted by (a1, object_b, b0, b1).
+// Steps (Push.step), each after a barrier:
+//   0  per record: counts[bucket] += 1
+//   1-3  exclusive scan of counts over the buckets into offsets (counts reset to 0)
+//   4  per record: order[offsets[bucket] + cursor] = record
+//   5  per bucket: its records sorted
+//   6  per slot: sorted[slot] = records[order[slot]]
+// Nothing runs when the pass failed or overflowed (the host grows and runs it again).
+#include "cells/cells_common.glsl.inc"
+#include "proximity.h"
+#include "common/workgroup.glsl.inc"
+layout(local_size_x = kCellsGroupSize) in;
+
+layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer ProximityParamsRef { ProximityParams p; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ProximityHeaderRef { ProximityHeader h; };
+layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ProximityRecordsRef { ProximityRecord r[]; };
+
+const uint kPerInvocation = kCellsScanBlock / kCellsGroupSize;
+
+ProximityParams qparams() { return ProximityParamsRef(pc.frame).p; }
+
+bool usable(ProximityParams Q) { return ProximityHeaderRef(Q.header).h.flags == 0u; }
+uint recordCount(ProximityParams Q) { return ProximityHeaderRef(Q.header).h.count; }
+
+// The run object whose id is `id` (ids ascend with the run's objects).
+uint objectOfId(ProximityParams Q, uint id) {
+    UintsRef ids = UintsRef(Q.object_ids);
+    uint lo = 0u, hi = Q.object_count - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi) / 2u;
+        if (ids.v[mid] < id) lo = mid + 1u; else hi = mid;
+    }
+    return lo;
+}
+
+uint bucketOf(ProximityParams Q, ProximityRecord r) {
+    uint base = UintsRef(Q.vertex_base).v[objectOfId(Q, r.object_a)];
+    return (r.kind == kProximityEdgeEdge ? Q.bucket_count / 2u : 0u) + base + r.a0;
+}
+
+// Whether record x comes after record y within one bucket.
+bool after(ProximityRecordsRef R, uint x, uint y) {
+    uvec4 kx = uvec4(R.r[x].a1, R.r[x].object_b, R.r[x].b0, R.r[x].b1);
+    uvec4 ky = uvec4(R.r[y].a1, R.r[y].object_b, R.r[y].b0, R.r[y].b1);
+    for (uint k = 0u; k < 4u; ++k)
+        if (kx[k] != ky[k]) return kx[k] > ky[k];
+    return false;
+}
+
+void siftDown(ProximityRecordsRef R, UintsRef o, uint base, uint root, uint n) {
+    uint v = o.v[base + root];
+    for (;;) {
+        uint child = 2u * root + 1u;
+        if (child >= n) break;
+        if (child + 1u < n && after(R, o.v[base + child + 1u], o.v[base + child])) ++child;
+        uint c = o.v[base + child];
+        if (!after(R, c, v)) break;
+        o.v[base + root] = c;
+        root = child;
+    }
+    o.v[base + root] = v;
+}
+
+void sortBucket(ProximityRecordsRef R, UintsRef o, uint base, uint n) {
+    if (n <= kProximityInsertionSort) {
+        for (uint i = 1u; i < n; ++i) {
+            uint v = o.v[base + i], j = i;
+            for (; j > 0u && after(R, o.v[base + j - 1u], v); --j) o.v[base + j] = o.v[base + j - 1u];
+            o.v[base + j] = v;
+        }
+        return;
+    }
+    for (uint i = n / 2u; i-- > 0u;) siftDown(R, o, base, i, n);
+    for (uint end = n - 1u; end > 0u; --end) {
+        uint top = o.v[base];
+        o.v[base] = o.v[base + end];
+        o.v[base + end] = top;
+        siftDown(R, o, base, 0u, end);
+    }
+}
+
+// The scan's three steps over counts[0, bucket_count).
+void scan(ProximityParams Q, uint step) {
+    if (!usable(Q)) return;  // uniform: written by an earlier pass
+    UintsRef counts = UintsRef(Q.counts), sums = UintsRef(Q.block_sums), dst = UintsRef(Q.offsets);
+    const uint n = Q.bucket_count;
+    if (step == 2u) {
+        uint carry = 0u;
+        for (uint base = 0u; base < Q.block_count; base += kCellsGroupSize) {
+            uint b = base + gl_LocalInvocationIndex;
+            uint v = b < Q.block_count ? sums.v[b] : 0u;
+            uint inclusive = groupInclusiveScan(v);
+            if (b < Q.block_count) sums.v[b] = carry + inclusive - v;
+            carry += groupReduceAdd(v);
+        }
+        if (gl_LocalInvocationIndex == 0u) dst.v[n] = carry;
+        return;
+    }
+    uint block = groupIndex();
+    if (block >= Q.block_count) return;  // whole workgroup: the barriers below stay uniform
+    uint first = block * kCellsScanBlock + gl_LocalInvocationIndex * kPerInvocation;
+    uint v[kPerInvocation];
+    uint sum = 0u;
+    for (uint k = 0u; k < kPerInvocation; ++k) {
+        v[k] = first + k < n ? counts.v[first + k] : 0u;
+        sum += v[k];
+    }
+    if (step == 1u) {
+        uint total = groupReduceAdd(sum);
+        if (gl_LocalInvocationIndex == 0u) sums.v[block] = total;
+        return;
+    }
+    uint running = sums.v[block] + groupInclusiveScan(sum) - sum;
+    for (uint k = 0u; k < kPerInvocation; ++k) {
+        if (first + k >= n) break;
+        dst.v[first + k] = running;
+        counts.v[first + k] = 0u;
+        running += v[k];
+    }
+}
+
+void main() {
+    ProximityParams Q = qparams();
+    if (pc.step >= 1u && pc.step <= 3u) {
+        scan(Q, pc.step);
+        return;
+    }
+    if (!usable(Q)) return;
+    ProximityRecordsRef R = ProximityRecordsRef(Q.records);
+    UintsRef counts = UintsRef(Q.counts), offsets = UintsRef(Q.offsets), order = UintsRef(Q.order);
+    uint id = globalIndex();
+    if (pc.step == 5u) {
+        if (id >= Q.bucket_count) return;
+        uint base = offsets.v[id], n = offsets.v[id + 1u] - base;
+        if (n > 1u) sortBucket(R, order, base, n);
+        return;
+    }
+    if (id >= recordCount(Q)) return;
+    if (pc.step == 0u) {
+        atomicAdd(counts.v[bucketOf(Q, R.r[id])], 1u);
+    } else if (pc.step == 4u) {
+        uint b = bucketOf(Q, R.r[id]);
+        order.v[offsets.v[b] + atomicAdd(counts.v[b], 1u)] = id;
+    } else {
+        ProximityRecordsRef(Q.sorted).r[id] = R.r[order.v[id]];
+    }
+}

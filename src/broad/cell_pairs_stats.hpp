@@ -1,0 +1,34 @@
+// The cell pair stage's counters (docs/reliable.md; the stage is src/broad/cells/): in the
+// seam, so that the broad phase's result (BroadPhaseResult::cells) carries them without the
+// stage's Vulkan types and the contract (broad_phase_types.hpp) includes no method's room.
+#pragma once
+
+#include <cstdint>
+
+namespace vkcollide::passes {
+
+struct CellPairsStats {
+    std::uint64_t entries = 0;        // footprints: (triangle, cell) pairs
+    std::uint64_t box_cells = 0;      // cells of the footprint boxes (>= entries; the budget's first count)
+    std::uint64_t comparisons = 0;    // pairs of footprints sharing a cell (the budget's second count)
+    std::uint64_t big_triangles = 0;  // triangles counted and filled in work items
+    std::uint64_t items = 0;
+    std::uint64_t deep_cells = 0;     // cells with more than kCellsSmallCell entries
+    std::uint64_t max_cell = 0;       // most entries in one cell
+    std::uint64_t candidate_cells = 0;  // cells where the sweep found at least one candidate
+    std::uint64_t candidates = 0;     // pairs the sweep found (with duplicates across cells)
+    std::uint64_t neighbours = 0;     // left out by the sweep (not candidates): one object, shared vertex index
+    std::uint64_t duplicates = 0;     // dropped: not the pair's canonical cell (an earlier cell qualifies, or
+                                      // their unquantised boxes are apart in this one)
+    std::uint64_t filtered = 0;       // dropped: proved disjoint by the filter
+    std::uint64_t survivors = 0;
+    std::uint64_t gpu_triangles = 0;  // triangles of download objects in a survivor, written with their vertices
+    std::uint64_t host_duplicates = 0;  // survivors kept twice (canonical scan out of budget), removed (run() only)
+    std::uint32_t runs = 0;           // submissions this call took (1 without overflow)
+    bool filter_ran = false;
+    bool exact_ran = false;  // the pair pass decided exactly: survivors intersect
+    std::uint64_t exact_tests = 0;  // candidates the exact test decided
+    std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (bit-identical vertex)
+};
+
+}  // namespace vkcollide::passes

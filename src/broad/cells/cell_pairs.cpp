@@ -1,0 +1,477 @@
+#include "broad/cells/cell_pairs.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <string>
+
+#include "shaders/all.hpp"
+
+namespace vkcollide::passes {
+namespace {
+
+static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
+static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
+static_assert(sizeof(gpu::CellsHeader) == 88 && sizeof(gpu::CellsParams) == 224);
+static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
+              offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
+              offsetof(gpu::CellsHeader, exact_neighbours) == 84);  // kHeaderCandidates, ... in cells_common.glsl.inc
+static_assert(sizeof(gpu::CellsGpuTriangle) == sizeof(GpuTriangle) && offsetof(gpu::CellsGpuTriangle, v) == offsetof(GpuTriangle, v));
+static_assert(sizeof(CandidatePair) == 8);
+static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);
+
+// Element counts beyond which a buffer index would not fit the shaders' 32-bit signed
+// access chains.
+constexpr std::uint64_t kMaxElements = 0x7FFFFFFFull;
+
+// 1.25x what a run needed, within the budget (which holds what was needed).
+std::uint32_t grown(std::uint64_t needed, std::uint32_t budget) {
+    return static_cast<std::uint32_t>(std::max<std::uint64_t>(needed, std::min<std::uint64_t>(budget, needed + needed / 4 + 1024)));
+}
+
+bool moderate(float x) { return std::isfinite(x) && std::fabs(x) < 4.611686018427388e18f; }
+
+std::string gibText(VkDeviceSize bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f GiB", double(bytes) / double(1ull << 30));
+    return text;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<CellPairs>> CellPairs::create(vk::Device& device) {
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &subgroup;
+    device.instance_fns.vkGetPhysicalDeviceProperties2(device.physical, &props);
+    const VkSubgroupFeatureFlags needed =
+        VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+    if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || (subgroup.supportedOperations & needed) != needed)
+        return Error(ErrorCode::UnsupportedFeature,
+                     "the cell pair stage needs subgroup basic, ballot and arithmetic operations in compute shaders, which " +
+                         device.info.name + " lacks");
+    std::unique_ptr<CellPairs> cp(new CellPairs(device));
+    const std::span<const vk::Pipeline::Binding> none;
+    auto compute = [&](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) -> Result<void> {
+        auto p = vk::Pipeline::createCompute(device, code, none, sizeof(gpu::Push), name);
+        if (!p) return p.error();
+        out = std::move(*p);
+        return {};
+    };
+    auto& P = cp->pipes_;
+    for (auto r : {compute(P.setup, shaders::cells_setup_comp, "cells-setup"), compute(P.big, shaders::cells_big_comp, "cells-big"),
+                   compute(P.scan, shaders::cells_scan_comp, "cells-scan"), compute(P.fill, shaders::cells_fill_comp, "cells-fill"),
+                   compute(P.sweep, shaders::cells_sweep_comp, "cells-sweep"), compute(P.deep, shaders::cells_deep_comp, "cells-deep"),
+                   compute(P.args, shaders::cells_args_comp, "cells-args"),
+                   compute(P.pairs, shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64")})
+        if (!r) return r.error();
+    if (device.shader_float64)
+        if (auto r = compute(cp->filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs"); !r) return r.error();
+    return cp;
+}
+
+Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSettings& settings) {
+    if (in.objects.empty()) return Error(ErrorCode::InvalidArgument, "cell pairs: no objects");
+    if (in.resolution < 1 || in.resolution > gpu::kCellsMaxResolution)
+        return Error(ErrorCode::InvalidArgument, "cell pairs: resolution " + std::to_string(in.resolution) + " is not in [1, " +
+                                                     std::to_string(gpu::kCellsMaxResolution) + "]");
+    if (in.projection.has_value() == (in.projection_address != 0))
+        return Error(ErrorCode::InvalidArgument, "cell pairs: give either a host projection or a projection address, not both or neither");
+    if (in.projection) {  // rows of 2^62 or more are scaled on the GPU (cells_setup.comp)
+        for (const gpu::vec4& row : in.projection->row)
+            if (!std::isfinite(row.x) || !std::isfinite(row.y) || !std::isfinite(row.z) || !std::isfinite(row.w))
+                return Error(ErrorCode::InvalidArgument, "cell pairs: projection entries must be finite");
+    }
+    if (!in.self_collision.empty() && in.self_collision.size() != in.objects.size())
+        return Error(ErrorCode::InvalidArgument, "cell pairs: self_collision has " + std::to_string(in.self_collision.size()) +
+                                                     " entries for " + std::to_string(in.objects.size()) + " objects");
+    if (!in.download.empty() && in.download.size() != in.objects.size())
+        return Error(ErrorCode::InvalidArgument, "cell pairs: download has " + std::to_string(in.download.size()) + " entries for " +
+                                                     std::to_string(in.objects.size()) + " objects");
+    const std::uint64_t mask_words = (std::uint64_t(in.objects.size()) * in.objects.size() + 31) / 32;
+    if (!in.pair_mask.empty() && in.pair_mask.size() != mask_words)
+        return Error(ErrorCode::InvalidArgument, "cell pairs: pair_mask has " + std::to_string(in.pair_mask.size()) + " words for " +
+                                                     std::to_string(in.objects.size()) + " objects (" + std::to_string(mask_words) + " needed)");
+    std::uint64_t total = 0;
+    for (std::size_t i = 0; i < in.objects.size(); ++i) {
+        const gpu::ObjectGpu& o = in.objects[i];
+        const std::string who = "cell pairs: object " + std::to_string(i) + " ";
+        if (o.triangle_base != total)
+            return Error(ErrorCode::InvalidArgument, who + "has triangle_base " + std::to_string(o.triangle_base) +
+                                                         ", not the sum of the counts before it (" + std::to_string(total) + ")");
+        if (o.triangle_count > 0) {
+            if (o.vertex_count == 0) return Error(ErrorCode::InvalidMesh, who + "has triangles but no vertices");
+            if (!o.vertices || !o.indices) return Error(ErrorCode::InvalidArgument, who + "has a null vertex or index address");
+            if (o.vertex_stride < 12 || o.vertex_stride % 4 != 0 || o.vertices % 4 != 0 || o.indices % 4 != 0)
+                return Error(ErrorCode::InvalidArgument, who + "needs 4-byte aligned positions and indices and a stride of at least 12");
+        }
+        for (const gpu::vec4& row : o.model)
+            if (!moderate(row.x) || !moderate(row.y) || !moderate(row.z) || !moderate(row.w))
+                return Error(ErrorCode::InvalidArgument, who + "has a transform entry that is not finite or not below 2^62");
+        total += o.triangle_count;
+    }
+    if (total >= gpu::kMaxTriangles) return Error(ErrorCode::InvalidArgument, "cell pairs: more than 2^30 triangles");
+    if (!(settings.proximity_pad >= 0) || !moderate(settings.proximity_pad))
+        return Error(ErrorCode::InvalidArgument, "cell pairs: proximity_pad must be finite, at least 0 and below 2^62");
+
+    objects_.assign(in.objects.begin(), in.objects.end());
+    triangles_ = static_cast<std::uint32_t>(total);
+    resolution_ = in.resolution;
+    projection_address_ = in.projection_address;
+    use_filter_ = settings.filter && filterSupported();
+    use_exact_ = settings.exact && filterSupported();
+    proximity_pad_ = settings.proximity_pad;
+    has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
+    has_pair_mask_ = !in.pair_mask.empty() || static_cast<bool>(in.may_collide);
+    download_triangles_ = 0;
+    for (std::size_t i = 0; i < in.download.size(); ++i)
+        if (in.download[i]) download_triangles_ += in.objects[i].triangle_count;
+    has_download_ = download_triangles_ > 0;
+    runs_ = 0;
+    bad_input_.reset();
+    asked_budget_ = settings.max_candidate_pairs;
+    budget_ = static_cast<std::uint32_t>(std::min(settings.max_candidate_pairs, kMaxElements));
+    const std::uint32_t device_limit = device_->properties.limits.maxComputeWorkGroupCount[0];
+    max_groups_x_ = settings.max_workgroups_x ? std::min(settings.max_workgroups_x, device_limit) : device_limit;
+
+    // Capacities: the caller's, else what earlier runs needed, else an estimate; a new
+    // buffer never holds more elements than the budget (what earlier runs with a larger
+    // budget allocated is kept: it costs nothing more).
+    const std::uint64_t tris = std::max<std::uint64_t>(triangles_, 1);
+    const std::uint64_t most = std::max<std::uint32_t>(budget_, 1);
+    auto pick = [most](std::uint32_t asked, std::uint32_t current, std::uint64_t estimate) {
+        if (asked) return static_cast<std::uint32_t>(std::min<std::uint64_t>(asked, most));
+        if (current) return current;
+        return static_cast<std::uint32_t>(std::min(most, estimate));
+    };
+    capacity_.entries = pick(settings.initial.entries, capacity_.entries, std::max<std::uint64_t>(8 * tris, 4096));
+    capacity_.items = pick(settings.initial.items, capacity_.items, std::max<std::uint64_t>(tris / 32, 1024));
+    capacity_.candidates = pick(settings.initial.candidates, capacity_.candidates, std::max<std::uint64_t>(2 * tris, 4096));
+    capacity_.survivors = pick(settings.initial.survivors, capacity_.survivors, std::max<std::uint64_t>(tris / 2, 4096));
+    if (has_download_)  // never more than the download objects' triangles
+        capacity_.gpu_triangles = pick(settings.initial.gpu_triangles, capacity_.gpu_triangles,
+                                       std::min<std::uint64_t>(download_triangles_, std::max<std::uint64_t>(capacity_.survivors, 4096)));
+    if (auto ok = ensureBuffers(); !ok) return ok.error();
+
+    // Per-run uploads: objects, object flags, the pair mask and the projection.
+    std::memcpy(buf_.objects.mapped(), objects_.data(), objects_.size() * sizeof(gpu::ObjectGpu));
+    buf_.objects.flush();
+    if (has_self_ || has_download_) {
+        auto* flags = static_cast<std::uint32_t*>(buf_.object_flags.mapped());
+        for (std::size_t i = 0; i < objects_.size(); ++i)
+            flags[i] = (has_self_ && in.self_collision[i] ? gpu::kCellsObjectSelf : 0u) |
+                       (has_download_ && in.download[i] ? gpu::kCellsObjectDownload : 0u);
+        buf_.object_flags.flush();
+    }
+    if (!in.pair_mask.empty()) {
+        std::memcpy(buf_.pair_mask.mapped(), in.pair_mask.data(), in.pair_mask.size_bytes());
+        buf_.pair_mask.flush();
+    } else if (has_pair_mask_) {
+        const std::uint64_t n = objects_.size();
+        auto* bits = static_cast<std::uint32_t*>(buf_.pair_mask.mapped());
+        std::memset(bits, 0, (n * n + 31) / 32 * 4);
+        for (std::uint32_t a = 0; a < n; ++a)
+            for (std::uint32_t b = a + 1; b < n; ++b)
+                if (in.may_collide(a, b)) bits[(a * n + b) >> 5] |= 1u << ((a * n + b) & 31);
+        buf_.pair_mask.flush();
+    }
+    if (in.projection) {
+        std::memcpy(buf_.projection.mapped(), &*in.projection, sizeof(gpu::Projection));
+        buf_.projection.flush();
+    }
+    writeParams();
+    return {};
+}
+
+Result<void> CellPairs::ensureBuffers() {
+    using vk::MemoryKind;
+    const VkDeviceSize limit = std::min(device_->max_buffer_size, device_->max_allocation_size);
+    // Cells rounded up to a sixteenth of their power of two: a resolution that grows by a
+    // few cells a frame re-creates the per-cell buffers only now and then (each re-creation
+    // also means a recorded command buffer cannot be submitted again).
+    const VkDeviceSize exact_cells = VkDeviceSize(resolution_) * resolution_;
+    const VkDeviceSize cell_step = std::max<VkDeviceSize>(1, (VkDeviceSize{1} << (std::bit_width(exact_cells) - 1)) / 16);
+    const VkDeviceSize cells = (exact_cells + cell_step - 1) / cell_step * cell_step;
+    const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
+    const VkDeviceSize objects = objects_.size();
+    // Deep items: one per cell deeper than kCellsSmallCell, or ceil(k / kCellsGroupSize) for
+    // cells of k > kCellsDeepShared entries; either way at most 2 k / kCellsSmallCell.
+    static_assert(gpu::kCellsDeepShared >= 4 * gpu::kCellsGroupSize && gpu::kCellsSmallCell >= gpu::kCellsGroupSize);
+    const VkDeviceSize deep = 2 * VkDeviceSize(capacity_.entries) / gpu::kCellsSmallCell + 1;
+    struct Plan {
+        vk::Buffer* buffer;
+        VkDeviceSize size;
+        MemoryKind kind;
+        VkBufferUsageFlags usage;
+        const char* name;
+    };
+    const Plan plan[] = {
+        {&buf_.params, sizeof(gpu::CellsParams), MemoryKind::Upload, 0, "cells-params"},
+        {&buf_.objects, objects * sizeof(gpu::ObjectGpu), MemoryKind::Upload, 0, "cells-objects"},
+        {&buf_.object_flags, objects * 4, MemoryKind::Upload, 0, "cells-object-flags"},
+        {&buf_.pair_mask, (objects * objects + 31) / 32 * 4, MemoryKind::Upload, 0, "cells-pair-mask"},
+        {&buf_.projection, sizeof(gpu::Projection), MemoryKind::Upload, 0, "cells-projection"},
+        {&buf_.header, sizeof(gpu::CellsHeader), MemoryKind::DeviceLocal, 0, "cells-header"},
+        {&buf_.header_rb, sizeof(gpu::CellsHeader), MemoryKind::Readback, 0, "cells-header-readback"},
+        {&buf_.triangles, tris * sizeof(gpu::CellsTriangle), MemoryKind::DeviceLocal, 0, "cells-triangles"},
+        {&buf_.geometry, tris * sizeof(gpu::CellsGeometry), MemoryKind::DeviceLocal, 0, "cells-geometry"},
+        {&buf_.counts, cells * 4, MemoryKind::DeviceLocal, 0, "cells-counts"},
+        {&buf_.offsets, (cells + 1) * 4, MemoryKind::DeviceLocal, 0, "cells-offsets"},
+        {&buf_.block_sums, (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock * 4, MemoryKind::DeviceLocal, 0, "cells-block-sums"},
+        {&buf_.entries, VkDeviceSize(capacity_.entries) * sizeof(gpu::CellsEntry), MemoryKind::DeviceLocal, 0, "cells-entries"},
+        {&buf_.entry_cells, VkDeviceSize(capacity_.entries) * 4, MemoryKind::DeviceLocal, 0, "cells-entry-cells"},
+        {&buf_.big_items, VkDeviceSize(capacity_.items) * 8, MemoryKind::DeviceLocal, 0, "cells-big-items"},
+        {&buf_.deep_items, deep * 8, MemoryKind::DeviceLocal, 0, "cells-deep-items"},
+        {&buf_.candidates, VkDeviceSize(capacity_.candidates) * sizeof(gpu::CellsCandidate), MemoryKind::DeviceLocal, 0, "cells-candidates"},
+        {&buf_.survivors, VkDeviceSize(capacity_.survivors) * 8, MemoryKind::Readback, 0, "cells-survivors"},
+        {&buf_.args, gpu::kCellsArgsCount * 12, MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, "cells-args"},
+        {&buf_.gpu_triangles, has_download_ ? VkDeviceSize(capacity_.gpu_triangles) * sizeof(GpuTriangle) : 0, MemoryKind::Readback, 0,
+         "cells-gpu-triangles"},
+        {&buf_.marks, has_download_ ? (tris + 31) / 32 * 4 : 0, MemoryKind::DeviceLocal, 0, "cells-marks"},
+    };
+    // Refuse what the device cannot hold before allocating anything (as the broad phase's
+    // table does): the heap sizes bound what fits, the engine's allocations live there too.
+    std::array<VkDeviceSize, VK_MAX_MEMORY_HEAPS> per_heap{};
+    VkDeviceSize total = 0;
+    for (const Plan& p : plan) {
+        const VkMemoryPropertyFlags required =
+            p.kind == MemoryKind::DeviceLocal ? VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT : VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT;
+        if (auto type = device_->findMemoryType(~0u, required)) per_heap[device_->memory.memoryTypes[*type].heapIndex] += p.size;
+        total += p.size;
+    }
+    for (std::uint32_t h = 0; h < device_->memory.memoryHeapCount; ++h)
+        if (per_heap[h] > device_->memory.memoryHeaps[h].size)
+            return Error(ErrorCode::OutOfMemory, "cell pairs: resolution " + std::to_string(resolution_) + " with " +
+                                                     std::to_string(triangles_) + " triangles needs " + gibText(total) +
+                                                     " of device memory, more than the " + gibText(device_->memory.memoryHeaps[h].size) +
+                                                     " memory heap holds: lower the resolution or split the scene");
+    for (const Plan& p : plan) {
+        const VkDeviceSize size = std::max<VkDeviceSize>(p.size, 16);
+        if (size > limit)
+            return Error(ErrorCode::OutOfMemory, std::string("cell pairs: the '") + p.name + "' buffer would need " + gibText(size) +
+                                                     ", more than the device's largest buffer (" + gibText(limit) +
+                                                     "): lower the resolution or split the scene");
+        if (p.buffer->valid() && p.buffer->size() >= size) continue;
+        p.buffer->reset();  // free the smaller one first
+        auto made = vk::Buffer::create(*device_, size, p.usage, p.kind, p.name);
+        if (!made) return made.error();
+        *p.buffer = std::move(*made);
+    }
+    // The shaders load and store entries as 16-byte vectors (buffer_reference_align in
+    // cells_common.glsl.inc). Buffers start at the device's storage alignment, which Vulkan
+    // does not bound from below: check.
+    if (buf_.entries.address() % 16 != 0)
+        return Error(ErrorCode::UnsupportedFeature, "cell pairs: the device placed 'cells-entries' at address " +
+                                                        std::to_string(buf_.entries.address()) + ", not a multiple of 16 bytes");
+    return {};
+}
+
+void CellPairs::writeParams() {
+    gpu::CellsParams p{};
+    p.objects = buf_.objects.address();
+    p.object_flags = has_self_ || has_download_ ? buf_.object_flags.address() : 0;
+    p.pair_mask = has_pair_mask_ ? buf_.pair_mask.address() : 0;
+    p.projection = projection_address_ ? projection_address_ : buf_.projection.address();
+    p.header = buf_.header.address();
+    p.triangles = buf_.triangles.address();
+    p.geometry = buf_.geometry.address();
+    p.counts = buf_.counts.address();
+    p.offsets = buf_.offsets.address();
+    p.block_sums = buf_.block_sums.address();
+    p.entries = buf_.entries.address();
+    p.entry_cells = buf_.entry_cells.address();
+    p.big_items = buf_.big_items.address();
+    p.deep_items = buf_.deep_items.address();
+    p.candidates = buf_.candidates.address();
+    p.survivors = buf_.survivors.address();
+    p.args = buf_.args.address();
+    p.gpu_triangles = has_download_ ? buf_.gpu_triangles.address() : 0;
+    p.marks = has_download_ ? buf_.marks.address() : 0;
+    p.gpu_triangle_capacity = has_download_ ? capacity_.gpu_triangles : 0;
+    p.resolution = resolution_;
+    p.cell_count = resolution_ * resolution_;
+    p.object_count = static_cast<std::uint32_t>(objects_.size());
+    p.triangle_count = triangles_;
+    p.entry_capacity = capacity_.entries;
+    p.item_capacity = capacity_.items;
+    p.deep_capacity = static_cast<std::uint32_t>(buf_.deep_items.size() / 8);
+    p.candidate_capacity = capacity_.candidates;
+    p.survivor_capacity = capacity_.survivors;
+    p.block_count = (p.cell_count + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
+    p.max_groups_x = max_groups_x_;
+    p.use_filter = use_filter_ ? 1u : 0u;
+    p.exact = use_exact_ ? 1u : 0u;
+    p.budget = budget_;
+    p.keep_neighbours = proximity_pad_ > 0 ? 1u : 0u;
+    p.proximity_pad = proximity_pad_;
+    std::memcpy(buf_.params.mapped(), &p, sizeof p);
+    buf_.params.flush();
+}
+
+Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) {
+    const std::uint32_t errors = h.flags & ~(gpu::kCellsOverflowMask | gpu::kCellsOverBudget);
+    if (!errors) return {};
+    if (errors & gpu::kCellsInconsistent)
+        return Error(ErrorCode::VulkanError, "cell pairs: the fill found more footprints than the count (internal error)");
+    std::string where = "triangle " + std::to_string(h.bad_triangle);
+    for (std::size_t i = objects_.size(); i-- > 0;) {
+        if (objects_[i].triangle_base <= h.bad_triangle && objects_[i].triangle_count > 0) {
+            const std::uint32_t local = h.bad_triangle - objects_[i].triangle_base;
+            where = "object " + std::to_string(i) + ", triangle " + std::to_string(local);
+            bad_input_ = BadInput{errors, static_cast<std::uint32_t>(i), local};
+            break;
+        }
+    }
+    if (errors & gpu::kCellsBadIndex) return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has an index beyond its vertices");
+    if (errors & gpu::kCellsBadPosition)
+        return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has a position or transform entry that is not finite or not below 2^62");
+    return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has a world coordinate not below 2^62");
+}
+
+// Past the budget: the count the run needed, the budget, and what to change. The counts
+// are complete where they are checked: the setup sums every triangle's box, the scan every
+// cell's pairs, and candidates are only counted by a sweep that ran in full.
+Result<void> CellPairs::checkBudget(const gpu::CellsHeader& h) const {
+    const std::string budget = asked_budget_ > budget_ ? "the stage's limit of " + std::to_string(budget_) + " (32-bit buffer indices)"
+                                                       : "max_candidate_pairs (" + std::to_string(budget_) + ")";
+    const std::string where = " at resolution " + std::to_string(resolution_) + " (" + std::to_string(triangles_) + " triangles)";
+    if (h.box_cells > budget_)
+        return Error(ErrorCode::LimitExceeded, "cell pairs: the triangles' footprint boxes span " + std::to_string(h.box_cells) +
+                                                   " cells" + where + ", more than " + budget +
+                                                   ": lower the resolution or raise max_candidate_pairs");
+    const std::uint64_t comparisons = std::uint64_t{budget_} * gpu::kCellsComparisonsPerBudget;
+    if (h.comparisons > comparisons)
+        return Error(ErrorCode::LimitExceeded,
+                     "cell pairs: " + std::to_string(h.comparisons) + " pairs of footprints share a cell" + where + " (up to " +
+                         std::to_string(h.max_cell) + " footprints in one cell), more than " +
+                         std::to_string(gpu::kCellsComparisonsPerBudget) + " x " + budget + " = " + std::to_string(comparisons) +
+                         " the sweep may compare: stacked or repeated triangles? Lower the resolution or raise max_candidate_pairs");
+    if (h.candidates > budget_)
+        return Error(ErrorCode::LimitExceeded, "cell pairs: " + std::to_string(h.candidates) + " candidate pairs" + where +
+                                                   " (triangles that may collide, with overlapping depth in a cell), more than " +
+                                                   budget + ": stacked or repeated triangles?");
+    if (h.flags & gpu::kCellsOverBudget)  // never without one of the counts above
+        return Error(ErrorCode::VulkanError, "cell pairs: the budget flag is set but no count exceeds it (internal error)");
+    return {};
+}
+
+Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
+    ++runs_;
+    survivor_count_ = gpu_triangle_count_ = 0;
+    buf_.header_rb.invalidate();
+    gpu::CellsHeader h;
+    std::memcpy(&h, buf_.header_rb.mapped(), sizeof h);
+    if (auto ok = checkFailure(h); !ok) return ok.error();
+    if (auto ok = checkBudget(h); !ok) return ok.error();
+    if (h.flags & gpu::kCellsOverflowMask) {
+        // Only the first overflow's count is reliable (later passes did nothing): grow it,
+        // and the rerun reports the next one if any. Within the budget every need is at
+        // most the budget: entries <= box cells, items <= box cells / 64 (a big triangle's
+        // box has more than 64 cells, an item covers up to 4096), survivors <= candidates.
+        if (h.flags & gpu::kCellsOverflowItems) capacity_.items = std::max(capacity_.items, grown(h.items, budget_));
+        if (h.flags & gpu::kCellsOverflowEntries) capacity_.entries = std::max(capacity_.entries, grown(h.entries, budget_));
+        if (h.flags & gpu::kCellsOverflowCandidates) capacity_.candidates = std::max(capacity_.candidates, grown(h.candidates, budget_));
+        if (h.flags & gpu::kCellsOverflowSurvivors) capacity_.survivors = std::max(capacity_.survivors, grown(h.survivors, budget_));
+        if (h.flags & gpu::kCellsOverflowTriangles)
+            capacity_.gpu_triangles =
+                std::max(capacity_.gpu_triangles, std::min(grown(h.gpu_triangles, static_cast<std::uint32_t>(kMaxElements)), std::max(download_triangles_, 1u)));
+        if (auto ok = ensureBuffers(); !ok) return ok.error();
+        writeParams();
+        return Outcome::Rerun;
+    }
+    s = CellPairsStats{};
+    s.entries = h.entries;
+    s.box_cells = h.box_cells;
+    s.comparisons = h.comparisons;
+    s.big_triangles = h.big_triangles;
+    s.items = h.items;
+    s.deep_cells = h.deep_cells;
+    s.max_cell = h.max_cell;
+    s.candidate_cells = h.candidate_cells;
+    s.candidates = h.candidates;
+    s.neighbours = h.neighbours;
+    s.duplicates = h.duplicates;
+    s.filtered = h.filtered;
+    s.survivors = h.survivors;
+    s.gpu_triangles = h.gpu_triangles;
+    s.runs = runs_;
+    s.filter_ran = use_filter_;
+    s.exact_ran = use_exact_;
+    s.exact_tests = h.exact_tests;
+    s.exact_neighbours = h.exact_neighbours;
+    survivor_count_ = h.survivors;
+    gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;
+    if (survivor_count_) buf_.survivors.invalidate(0, VkDeviceSize(survivor_count_) * 8);
+    if (gpu_triangle_count_) buf_.gpu_triangles.invalidate(0, VkDeviceSize(gpu_triangle_count_) * sizeof(GpuTriangle));
+    return Outcome::Complete;
+}
+
+std::span<const CandidatePair> CellPairs::survivors() const noexcept {
+    if (!survivor_count_) return {};
+    return {static_cast<const CandidatePair*>(buf_.survivors.mapped()), survivor_count_};
+}
+
+std::span<const GpuTriangle> CellPairs::gpuTriangles() const noexcept {
+    if (!gpu_triangle_count_) return {};
+    return {static_cast<const GpuTriangle*>(buf_.gpu_triangles.mapped()), gpu_triangle_count_};
+}
+
+Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
+    auto outcome = finish(out.stats);
+    if (!outcome || *outcome == Outcome::Rerun) return outcome;
+    const std::span<const CandidatePair> raw = survivors();
+    std::vector<std::uint64_t> keys(raw.size());
+    for (std::size_t i = 0; i < raw.size(); ++i) keys[i] = (std::uint64_t(raw[i].a) << 32) | raw[i].b;
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    out.stats.host_duplicates = raw.size() - keys.size();
+    out.pairs.resize(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i)
+        out.pairs[i] = {static_cast<std::uint32_t>(keys[i] >> 32), static_cast<std::uint32_t>(keys[i] & 0xFFFFFFFFu)};
+    return Outcome::Complete;
+}
+
+Result<graph::ExecutionReport> CellPairs::runAgain(vk::Buffer* projection, std::uint64_t timeout_ns) {
+    survivor_count_ = gpu_triangle_count_ = 0;
+    graph::Graph g;
+    record(g, projection ? g.importBuffer("projection", *projection) : graph::ResourceId{});
+    return executor_.run(g, timeout_ns);
+}
+
+Result<CellPairsResult> CellPairs::run(const CellPairsInput& input, const CellPairsSettings& settings) {
+    if (input.projection_address != 0)
+        return Error(ErrorCode::InvalidArgument, "cell pairs: run() needs a host projection (record() takes a projection address)");
+    if (auto ok = prepare(input, settings); !ok) return ok.error();
+    CellPairsResult out;
+    for (std::uint32_t attempt = 0; attempt < std::max(settings.max_runs, 1u); ++attempt) {
+        graph::Graph g;
+        record(g);
+        auto report = executor_.run(g);
+        if (!report) return report.error();
+        auto outcome = finish(out);
+        if (!outcome) return outcome.error();
+        if (*outcome == Outcome::Complete) {
+            out.passes = std::move(report->passes);
+            out.gpu_ms = report->total_gpu_ms;
+            return out;
+        }
+    }
+    return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(settings.max_runs) +
+                                             " runs (entries " + std::to_string(capacity_.entries) + ", candidates " +
+                                             std::to_string(capacity_.candidates) + ")");
+}
+
+std::uint64_t CellPairs::memoryBytes() const noexcept {
+    std::uint64_t total = 0;
+    for (const vk::Buffer* b : {&buf_.params, &buf_.objects, &buf_.object_flags, &buf_.pair_mask, &buf_.projection, &buf_.header,
+                                &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,
+                                &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.candidates,
+                                &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks})
+        total += b->memoryBytes();
+    return total + executor_.memoryBytes();
+}
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,236 @@
+// The cell pair stage: every pair of triangles that may intersect, formed and filtered on
+// the GPU, compute only (docs/reliable.md has the method and the proof that it misses no
+// intersecting pair, touching included, at any resolution).
+//
+//   setup     per triangle: input checks, world and sampling coordinates with error
+//             bounds, the footprint box, and the count of footprints per cell
+//   count-big big triangles' footprints, one workgroup per chunk of cells
+//   scan      counts -> entry offsets; total checked against the entry capacity
+//   fill      per footprint: (triangle, object, depth interval over the cell)
+//   sweep     per cell: pairs whose depth intervals overlap and whose objects may collide
+//   pairs     per candidate: neighbour rule, canonical cell, double-precision filter;
+//             survivors appended as (a, b) global triangle ids, a < b
+//             (download objects: survivors' triangles with their world vertices too)
+// One submission, no host round trip inside a run. Every capacity is checked on the GPU:
+// an overflow sets a flag with the size needed, and run() grows that buffer and runs
+// again, so no pair is lost and nothing is accessed out of bounds. A budget
+// (CellPairsSettings::max_candidate_pairs) bounds what the scene may ask for: the setup
+// sums the footprint boxes and the scan the pairs of footprints sharing a cell before
+// anything grows or the sweep runs, the sweep counts candidates in 64 bits; past it the
+// run fails with LimitExceeded, so pathological scenes (stacks of identical triangles)
+// cost bounded time and memory.
+//
+// Two ways to use it: run() (prepare, record, run and finish on its own executor, pairs
+// sorted and unique), or as part of a larger graph (ReliableMethod): prepare(), record()
+// after the passes that write the projection, and after that graph ran finish(stats), the
+// survivors read in place (survivors(), gpuTriangles()), with runAgain() after an overflow.
+//
+// Not thread-safe; one instance per user (it owns its buffers and executor). Buffers are
+// kept between runs and only grow, so a steady scene allocates nothing per run.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "broad/cell_pairs_stats.hpp"
+#include "cells/cells.h"
+#include "graph/executor.hpp"
+#include "vk/resources.hpp"
+#include "vkcollide/narrow.hpp"
+
+namespace vkcollide::passes {
+
+// The scene of one run. Objects are gpu::ObjectGpu as the broad phase lays them out:
+// vertex and index addresses (buffers with SHADER_DEVICE_ADDRESS usage, alive until the
+// run is collected), triangle_base = the sum of the triangle counts before it, model rows
+// of the 3x4 object-to-world transform. Positions and transform entries must be finite
+// with magnitudes below 2^62, and so must world coordinates; a run that meets one that is
+// not fails with InvalidMesh naming the object and triangle (docs/reliable.md).
+struct CellPairsInput {
+    std::span<const gpu::ObjectGpu> objects;
+    // World -> sampling space: x, y in [0, 1] across the grid, z the depth (any affine map
+    // with finite rows; points outside [0, 1]^2 fall into the border cells; rows of 2^62
+    // or more are scaled by a power of two, and a written projection's non-finite rows
+    // become 0, both on the GPU: slower, never a pair lost).
+    // Either given here, or written by an earlier pass of the same graph at
+    // `projection_address` (then record() needs that buffer's ResourceId).
+    std::optional<gpu::Projection> projection;
+    VkDeviceAddress projection_address = 0;
+    std::uint32_t resolution = 256;          // cells per side, 1 .. gpu::kCellsMaxResolution
+    std::vector<std::uint8_t> self_collision;  // per object (non-zero: test its own pairs); empty: none
+    // Whether two different objects a < b may collide, as bits a * n + b over the n
+    // objects ((n^2 + 31) / 32 words, uploaded as they are), or as a function called for
+    // every a < b in prepare(); neither: every pair may.
+    std::span<const std::uint32_t> pair_mask;
+    std::function<bool(std::uint32_t a, std::uint32_t b)> may_collide;
+    // Per object (non-zero: its geometry is only on the GPU): every survivor's triangle of
+    // such an object is written, once, to gpuTriangles(). Empty: none.
+    std::span<const std::uint8_t> download;
+};
+
+// Element counts of the buffers whose size is only known on the GPU. 0: estimate from
+// the scene (or keep what an earlier run needed).
+struct CellPairsCapacity {
+    std::uint32_t entries = 0;     // footprints (16 + 4 bytes each)
+    std::uint32_t items = 0;       // big-triangle work items (8 bytes)
+    std::uint32_t candidates = 0;  // candidate pairs (12 bytes)
+    std::uint32_t survivors = 0;   // surviving pairs (8 bytes, host-visible memory)
+    std::uint32_t gpu_triangles = 0;  // survivors' triangles of download objects (52 bytes, host-visible)
+};
+
+struct CellPairsSettings {
+    // Run the double-precision filter where the device has shaderFloat64 enabled.
+    bool filter = true;
+    // Decide every candidate the filter keeps exactly on the GPU (where the device has
+    // shaderFloat64; docs/exact_gpu.md) and leave out neighbours (a bit-identical world
+    // vertex): the survivors are then exactly the intersecting pairs.
+    bool exact = false;
+    // The budget of a run (DetectSettings::max_candidate_pairs in a detection; the stage's
+    // own limit is 2^31 - 1, its buffers' 32-bit indices): the cells of the triangles'
+    // clamped footprint boxes (so the footprints, 20 bytes each, and the count pass's work)
+    // and the candidate pairs (12 bytes each) at most this many each, and the pairs of
+    // footprints sharing a cell (the sweep's comparisons) at most
+    // gpu::kCellsComparisonsPerBudget times it. Past one of them finish() fails with
+    // LimitExceeded naming the count; no buffer ever grows beyond the budget's elements.
+    std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
+    // Capacities of the first run (at most the budget); they grow (to 1.25x what was
+    // needed, at most the budget) on overflow.
+    CellPairsCapacity initial;
+    // Runs allowed per call (the first plus reruns after overflows).
+    std::uint32_t max_runs = 8;
+    // Proximity (src/proximity/): half the distance, in world units (0: off). Every triangle
+    // is grown by it along each axis, so triangles closer than the distance become
+    // candidates, and the sweep keeps one object's pairs that share a vertex index (the pair
+    // pass leaves them out of the survivors instead).
+    float proximity_pad = 0;
+    // Dispatches are split into rows of at most this many workgroups (0: the device's
+    // maxComputeWorkGroupCount[0]); tests set it small to exercise the split.
+    std::uint32_t max_workgroups_x = 0;
+};
+
+struct CellPairsResult {
+    // Global triangle ids (object's triangle_base + triangle), a < b, sorted, unique.
+    std::vector<std::array<std::uint32_t, 2>> pairs;
+    CellPairsStats stats;
+    std::vector<graph::PassTiming> passes;  // the last run's passes, in order
+    double gpu_ms = 0;                      // the last run, first pass start to last pass end
+};
+
+class CellPairs {
+public:
+    // Needs subgroup basic, ballot and arithmetic operations in compute shaders.
+    static Result<std::unique_ptr<CellPairs>> create(vk::Device& device);
+
+    // Whether the double-precision filter can run (shaderFloat64 enabled on the device).
+    bool filterSupported() const noexcept { return filter_pipeline_.handle() != VK_NULL_HANDLE; }
+
+    // Checks the input, sizes the buffers and uploads the run's parameters. Errors:
+    // InvalidArgument (resolution, projection, object layout), OutOfMemory (a buffer
+    // larger than the device allows).
+    [[nodiscard]] Result<void> prepare(const CellPairsInput& input, const CellPairsSettings& settings = {});
+    // Adds the stage's passes (names start with "cells-") to `graph`, after prepare().
+    // `projection` is the buffer an earlier pass wrote the projection into, when the
+    // input gave projection_address. The header readback is the last pass. Returns the
+    // buffers later GPU stages of the same graph read (device_pairs.hpp).
+    struct Resources {
+        graph::ResourceId header, survivors, triangles, candidates, geometry, args;
+    };
+    Resources record(graph::Graph& graph, graph::ResourceId projection = {});
+    // Those buffers imported into a graph of their own (a later stage run alone).
+    Resources importOutputs(graph::Graph& g) {
+        return {g.importBuffer("cells-header", buf_.header),         g.importBuffer("cells-survivors", buf_.survivors, true),
+                g.importBuffer("cells-triangles", buf_.triangles),   g.importBuffer("cells-candidates", buf_.candidates),
+                g.importBuffer("cells-geometry", buf_.geometry),     g.importBuffer("cells-args", buf_.args)};
+    }
+    // The indirect dispatches the stage writes (kCellsArgs* slots of 12 bytes): the pair
+    // pass's serves any later pass over the candidates.
+    VkBuffer argsBuffer() const noexcept { return buf_.args.handle(); }
+    // The prepared run as later GPU stages see it: the parameters' address (CellsParams),
+    // its triangles and the dispatch row limit.
+    VkDeviceAddress paramsAddress() const noexcept { return buf_.params.address(); }
+    std::uint32_t triangleCount() const noexcept { return triangles_; }
+    std::uint32_t maxGroupsX() const noexcept { return max_groups_x_; }
+    // After the recorded graph ran: reads the header. Complete: `out` holds the pairs
+    // and statistics. Rerun: a buffer overflowed; it has been grown (and the parameters
+    // re-uploaded), so record and run the stage again. Errors: InvalidMesh or
+    // InvalidArgument for bad input found on the GPU (naming object and triangle);
+    // LimitExceeded past the budget (CellPairsSettings::max_candidate_pairs), naming the
+    // count the run needed. After any error the stage is ready for the next prepare().
+    enum class Outcome { Complete, Rerun };
+    [[nodiscard]] Result<Outcome> finish(CellPairsResult& out);
+    // The same without host work beyond the header: Complete fills `out_stats` (not
+    // host_duplicates) and makes survivors() and gpuTriangles() valid.
+    [[nodiscard]] Result<Outcome> finish(CellPairsStats& out_stats);
+    // After a Complete finish, until the next prepare(), record() or runAgain(): the
+    // survivors as the GPU wrote them (global ids, a < b, unsorted, a rare pair twice)
+    // and the download objects' triangles, read in place from host-visible (cached where
+    // the device has it) memory.
+    std::span<const CandidatePair> survivors() const noexcept;
+    std::span<const GpuTriangle> gpuTriangles() const noexcept;
+    // After finish() returned Rerun: records the stage alone and runs it on the stage's
+    // own executor (waits up to timeout_ns; a Timeout leaves the work running, and the
+    // next prepare() must not come before it ends: busy()). `projection`: the buffer holding
+    // the projection when the input gave projection_address (its contents are kept from
+    // the first run).
+    [[nodiscard]] Result<graph::ExecutionReport> runAgain(vk::Buffer* projection, std::uint64_t timeout_ns = graph::kDefaultTimeoutNs);
+    // Whether a rerun that timed out still runs on the GPU; settle() waits up to timeout_ns.
+    bool busy() const { return executor_.busy(); }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
+    // After finish() failed on bad input found on the GPU: the flags (gpu::kCellsBad*),
+    // the object (index in the input) and its triangle.
+    struct BadInput {
+        std::uint32_t flags = 0, object = 0, triangle = 0;
+    };
+    const std::optional<BadInput>& badInput() const noexcept { return bad_input_; }
+
+    // prepare(), then record, run and finish with its own executor until complete (at
+    // most settings.max_runs runs; then OutOfMemory).
+    [[nodiscard]] Result<CellPairsResult> run(const CellPairsInput& input, const CellPairsSettings& settings = {});
+
+    // The capacities the next run uses.
+    const CellPairsCapacity& capacity() const noexcept { return capacity_; }
+    // Bytes of device and host-visible memory the stage holds.
+    std::uint64_t memoryBytes() const noexcept;
+
+private:
+    explicit CellPairs(vk::Device& device) : device_(&device), executor_(device) {}
+    Result<void> ensureBuffers();
+    void writeParams();
+    Result<void> checkFailure(const gpu::CellsHeader& header);
+    Result<void> checkBudget(const gpu::CellsHeader& header) const;
+
+    vk::Device* device_;
+    struct Pipelines {
+        vk::Pipeline setup, big, scan, fill, sweep, deep, args, pairs;
+    } pipes_;
+    vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
+    struct Buffers {
+        vk::Buffer params, objects, object_flags, pair_mask, projection, header, header_rb;
+        vk::Buffer triangles, geometry, counts, offsets, block_sums, entries, entry_cells;
+        vk::Buffer big_items, deep_items, candidates, survivors, args, gpu_triangles, marks;
+    } buf_;
+    // The prepared run.
+    std::vector<gpu::ObjectGpu> objects_;
+    std::uint32_t triangles_ = 0, resolution_ = 0;
+    VkDeviceAddress projection_address_ = 0;
+    float proximity_pad_ = 0;
+    bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
+    std::uint32_t download_triangles_ = 0;
+    std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish
+    std::optional<BadInput> bad_input_;
+    std::uint32_t max_groups_x_ = 0;
+    std::uint32_t budget_ = 0;             // the run's budget, at most kMaxElements
+    std::uint64_t asked_budget_ = 0;       // as the settings gave it (for the messages)
+    CellPairsCapacity capacity_;
+    std::uint32_t runs_ = 0;
+    // Declared last, destroyed first: it waits for work in flight before the buffers go.
+    graph::Executor executor_;
+};
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,192 @@
+// CellPairs::record: the stage's passes on the render graph. Every shader reaches its
+// buffers through device addresses, so each pass declares the buffers it touches and the
+// graph derives the barriers between passes; inside a pass, dependent dispatches are
+// separated by shader barriers. Indirect arguments are always written one pass before
+// the pass that dispatches from them (indirect reads need the graph's barrier).
+#include <algorithm>
+
+#include "broad/cells/cell_pairs.hpp"
+#include "broad/stage.hpp"
+
+namespace vkcollide::passes {
+namespace {
+
+using graph::PassContext;
+using graph::PassKind;
+using graph::Use;
+
+void bind(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress params, std::uint32_t step = 0) {
+    gpu::Push push{params, 0, step, 0, 0};
+    pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+    pc.pushConstants(p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+}
+
+std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize; }
+
+// Each pass declares its stage, so a broad phase sums its GPU time (stage.hpp).
+graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage stage) { return addPass(g, name, kind, stage); }
+
+}  // namespace
+
+CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
+    const VkDeviceAddress params = buf_.params.address();
+    // The count buffer is cleared and scanned over its capacity while that is within a
+    // quarter of this run's cells (the shaders stop at the params' cell and block counts):
+    // a deforming scene whose resolution moves by a few cells records the same commands,
+    // so the executor submits its command buffer again instead of recording it.
+    const std::uint64_t exact_cells = std::uint64_t(resolution_) * resolution_;
+    const std::uint64_t capacity_cells = buf_.counts.size() / 4;
+    const std::uint64_t cells = capacity_cells <= exact_cells + exact_cells / 4 ? capacity_cells : exact_cells;
+    const std::uint64_t blocks = (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
+    const std::uint64_t tri_groups = groupsFor(triangles_);
+    const auto header = g.importBuffer("cells-header", buf_.header);
+    const auto header_rb = g.importBuffer("cells-header-readback", buf_.header_rb, true);
+    const auto tris = g.importBuffer("cells-triangles", buf_.triangles);
+    const auto geometry = g.importBuffer("cells-geometry", buf_.geometry);
+    const auto counts = g.importBuffer("cells-counts", buf_.counts);
+    const auto offsets = g.importBuffer("cells-offsets", buf_.offsets);
+    const auto sums = g.importBuffer("cells-block-sums", buf_.block_sums);
+    const auto entries = g.importBuffer("cells-entries", buf_.entries);
+    const auto entry_cells = g.importBuffer("cells-entry-cells", buf_.entry_cells);
+    const auto big = g.importBuffer("cells-big-items", buf_.big_items);
+    const auto deep = g.importBuffer("cells-deep-items", buf_.deep_items);
+    const auto candidates = g.importBuffer("cells-candidates", buf_.candidates);
+    const auto survivors = g.importBuffer("cells-survivors", buf_.survivors, true);
+    const auto args = g.importBuffer("cells-args", buf_.args);
+    const auto gpu_triangles = g.importBuffer("cells-gpu-triangles", buf_.gpu_triangles, true);
+    const auto marks = g.importBuffer("cells-marks", buf_.marks);
+    const VkBuffer marks_buffer = has_download_ ? buf_.marks.handle() : VK_NULL_HANDLE;
+    const VkDeviceSize marks_bytes = (VkDeviceSize(std::max(triangles_, 1u)) + 31) / 32 * 4;
+    const VkBuffer args_buffer = buf_.args.handle();
+    const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
+    const VkBuffer counts_buffer = buf_.counts.handle();
+    const auto& P = pipes_;
+    const std::uint32_t max_x = max_groups_x_;
+    // The double-precision variant wherever the device has it (P.use_filter switches the
+    // filter): it also computes download objects' world vertices as the CPU does.
+    const vk::Pipeline* pairs = filterSupported() ? &filter_pipeline_ : &P.pairs;
+
+    pass(g, "cells-clear", PassKind::Transfer, Stage::Footprints).use(header, Use::TransferDst).use(counts, Use::TransferDst)
+        .use(marks, Use::TransferDst).record(
+        [header_buffer, counts_buffer, cells, marks_buffer, marks_bytes](PassContext& pc) {
+            // Writes the engine submitted earlier (vertex buffers it skinned or simulated)
+            // become visible to everything this run does.
+            VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+            mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+            mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+            mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.memoryBarrierCount = 1;
+            dep.pMemoryBarriers = &mb;
+            pc.pipelineBarrier(dep);
+            // Header: flags 0, bad_triangle ~0, counters 0.
+            pc.fillBuffer(header_buffer, 0, 4, 0);
+            pc.fillBuffer(header_buffer, 4, 4, 0xFFFFFFFFu);
+            pc.fillBuffer(header_buffer, 8, sizeof(gpu::CellsHeader) - 8, 0);
+            pc.fillBuffer(counts_buffer, 0, cells * 4, 0);
+            if (marks_buffer != VK_NULL_HANDLE) pc.fillBuffer(marks_buffer, 0, marks_bytes, 0);
+        });
+
+    auto setup = pass(g, "cells-setup", PassKind::Compute, Stage::Footprints);
+    setup.readWrite(header).write(tris).write(geometry).readWrite(counts).write(big).write(args);
+    if (projection.valid()) setup.read(projection);
+    setup.record([&P, params, tri_groups, max_x](PassContext& pc) {
+        bind(pc, P.setup, params);
+        dispatchGroups(pc, tri_groups, max_x);
+        pc.shaderBarrier();
+        bind(pc, P.args, params, 0);
+        pc.dispatch(1, 1, 1);
+    });
+
+    pass(g, "cells-count-big", PassKind::Compute, Stage::Footprints)
+        .indirect(args)
+        .read(tris)
+        .read(big)
+        .read(header)
+        .readWrite(counts)
+        .record([&P, params, args_buffer](PassContext& pc) {
+            bind(pc, P.big, params, 0);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
+        });
+
+    pass(g, "cells-scan", PassKind::Compute, Stage::Footprints)
+        .readWrite(counts)
+        .readWrite(offsets)
+        .readWrite(sums)
+        .readWrite(header)
+        .write(deep)
+        .write(args)
+        .record([&P, params, blocks, max_x](PassContext& pc) {
+            bind(pc, P.scan, params, 0);
+            dispatchGroups(pc, blocks, max_x);
+            pc.shaderBarrier();
+            bind(pc, P.scan, params, 1);
+            pc.dispatch(1, 1, 1);
+            pc.shaderBarrier();
+            bind(pc, P.scan, params, 2);
+            dispatchGroups(pc, blocks, max_x);
+            pc.shaderBarrier();
+            bind(pc, P.args, params, 1);
+            pc.dispatch(1, 1, 1);
+        });
+
+    pass(g, "cells-fill", PassKind::Compute, Stage::Footprints)
+        .indirect(args)
+        .read(tris)
+        .read(big)
+        .read(offsets)
+        .read(header)
+        .readWrite(counts)
+        .write(entries)
+        .write(entry_cells)
+        .record([&P, params, tri_groups, args_buffer, max_x](PassContext& pc) {
+            bind(pc, P.fill, params);
+            dispatchGroups(pc, tri_groups, max_x);
+            bind(pc, P.big, params, 1);  // other cells than the small triangles': no barrier needed
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
+        });
+
+    pass(g, "cells-sweep", PassKind::Compute, Stage::Pairing)
+        .indirect(args)
+        .read(entries)
+        .read(entry_cells)
+        .read(offsets)
+        .readWrite(counts)  // kCellsCandidateBit: cells with a candidate
+        .read(deep)
+        .readWrite(header)
+        .write(candidates)
+        .record([&P, params, args_buffer](PassContext& pc) {
+            bind(pc, P.sweep, params);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsSweep * 12);
+            bind(pc, P.deep, params);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsDeep * 12);
+        });
+    pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing).read(header).write(args).record([&P, params](PassContext& pc) {
+        bind(pc, P.args, params, 2);
+        pc.dispatch(1, 1, 1);
+    });
+    pass(g, "cells-pairs", PassKind::Compute, Stage::Filtering)
+        .indirect(args)
+        .read(candidates)
+        .read(tris)
+        .read(geometry)
+        .readWrite(header)
+        .readWrite(marks)
+        .write(gpu_triangles)
+        .write(survivors)
+        .record([pairs, params, args_buffer](PassContext& pc) {
+            bind(pc, *pairs, params);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsPairs * 12);
+        });
+
+    pass(g, "cells-readback", PassKind::Transfer, Stage::Readback)
+        .use(header, Use::TransferSrc)
+        .use(header_rb, Use::TransferDst)
+        .record([header_buffer, header_rb_buffer](PassContext& pc) {
+            VkBufferCopy copy{0, 0, sizeof(gpu::CellsHeader)};
+            pc.copyBuffer(header_buffer, header_rb_buffer, copy);
+        });
+    return {header, survivors, tris, candidates, geometry, args};
+}
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,200 @@
+#include "broad/cells/device_pairs.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+#include <string>
+
+#include "broad/stage.hpp"
+#include "shaders/all.hpp"
+#include "vkcollide/world.hpp"
+
+namespace vkcollide::passes {
+namespace {
+
+// The public layout is the shaders' (spirv/cells/cells.h).
+static_assert(sizeof(gpu::DevicePair) == sizeof(TrianglePair) && offsetof(gpu::DevicePair, object_b) == offsetof(TrianglePair, object_b) &&
+              offsetof(gpu::DevicePair, triangle_a) == offsetof(TrianglePair, triangle_a) &&
+              offsetof(gpu::DevicePair, triangle_b) == offsetof(TrianglePair, triangle_b));
+static_assert(sizeof(gpu::DevicePairsHeader) == sizeof(DevicePairsHeader) && offsetof(gpu::DevicePairsHeader, needed) == 4 &&
+              offsetof(gpu::DevicePairsHeader, flags) == 8 && offsetof(gpu::DevicePairsHeader, capacity) == 12);
+static_assert(gpu::kDevicePairsOverflow == kDevicePairsOverflow && gpu::kDevicePairsIncomplete == kDevicePairsIncomplete);
+static_assert(sizeof(gpu::DevicePairsParams) == 11 * 8 + 4 * 4);
+
+void bind(const graph::PassContext& pc, const vk::Pipeline& p, VkDeviceAddress params, std::uint32_t step, std::uint32_t level = 0) {
+    gpu::Push push{params, 0, step, level, 0};
+    pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
+    pc.pushConstants(p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+}
+
+}  // namespace
+
+Result<std::unique_ptr<DevicePairStage>> DevicePairStage::create(vk::Device& device) {
+    std::unique_ptr<DevicePairStage> stage(new DevicePairStage(device));
+    auto p = vk::Pipeline::createCompute(device, shaders::device_pairs_comp, {}, sizeof(gpu::Push), "device-pairs");
+    if (!p) return p.error();
+    stage->pipeline_ = std::move(*p);
+    return stage;
+}
+
+void DevicePairStage::retire() {
+    retired_old_ = std::move(retired_new_);
+    retired_new_.clear();
+}
+
+Result<void> DevicePairStage::grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name, bool keep_old) {
+    size = std::max<VkDeviceSize>(size, 16);
+    if (buffer.valid() && buffer.size() >= size) return {};
+    if (keep_old && buffer.valid()) retired_new_.push_back(std::move(buffer));
+    buffer.reset();
+    // Usage beyond what every buffer has (storage, device address, transfer): the args.
+    const VkBufferUsageFlags usage = &buffer == &buf_.args ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0;
+    auto made = vk::Buffer::create(*device_, size, usage, kind, name);
+    if (!made) return made.error();
+    buffer = std::move(*made);
+    return {};
+}
+
+Result<void> DevicePairStage::prepare(const CellPairs& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
+                                      VkDeviceAddress fault_header) {
+    using vk::MemoryKind;
+    triangles_ = cells.triangleCount();
+    max_groups_x_ = cells.maxGroupsX();
+    const std::uint32_t survivors = cells.capacity().survivors;
+    // Automatic: the survivor capacity, which holds every distinct pair of a complete run.
+    capacity_ = capacity ? capacity : survivors;
+    const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
+    const VkDeviceSize blocks = (tris + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
+    for (auto ok : {grow(buf_.params, sizeof(gpu::DevicePairsParams), MemoryKind::Upload, "device-pairs-params", false),
+                    grow(buf_.object_ids, object_ids.size_bytes(), MemoryKind::Upload, "device-pairs-object-ids", false),
+                    grow(buf_.counts, tris * 4, MemoryKind::DeviceLocal, "device-pairs-counts", false),
+                    grow(buf_.offsets, (tris + 1) * 4, MemoryKind::DeviceLocal, "device-pairs-offsets", false),
+                    grow(buf_.out_offsets, (tris + 1) * 4, MemoryKind::DeviceLocal, "device-pairs-out-offsets", false),
+                    grow(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal, "device-pairs-block-sums", false),
+                    grow(buf_.partners, VkDeviceSize(survivors) * 4, MemoryKind::DeviceLocal, "device-pairs-partners", false),
+                    grow(buf_.args, 12, MemoryKind::DeviceLocal, "device-pairs-args", false),
+                    grow(buf_.header, sizeof(gpu::DevicePairsHeader), MemoryKind::DeviceLocal, "device-pairs-header", true),
+                    grow(buf_.pairs, VkDeviceSize(capacity_) * sizeof(gpu::DevicePair), MemoryKind::DeviceLocal, "device-pairs", true)})
+        if (!ok) return ok.error();
+    if (!object_ids.empty()) {
+        std::memcpy(buf_.object_ids.mapped(), object_ids.data(), object_ids.size_bytes());
+        buf_.object_ids.flush();
+    }
+    gpu::DevicePairsParams p{};
+    p.cells = cells.paramsAddress();
+    p.fault_header = fault_header;
+    p.object_ids = buf_.object_ids.address();
+    p.counts = buf_.counts.address();
+    p.offsets = buf_.offsets.address();
+    p.out_offsets = buf_.out_offsets.address();
+    p.block_sums = buf_.block_sums.address();
+    p.partners = buf_.partners.address();
+    p.args = buf_.args.address();
+    p.header = buf_.header.address();
+    p.pairs = buf_.pairs.address();
+    p.triangle_count = triangles_;
+    p.block_count = static_cast<std::uint32_t>((VkDeviceSize(triangles_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock);
+    p.capacity = capacity_;
+    p.max_groups_x = max_groups_x_;
+    std::memcpy(buf_.params.mapped(), &p, sizeof p);
+    buf_.params.flush();
+    return {};
+}
+
+void DevicePairStage::record(graph::Graph& g, const CellPairs::Resources& cells, graph::ResourceId fault_header) {
+    Buffers& b = buf_;
+    const auto header = g.importBuffer("device-pairs-header", b.header);
+    const auto pairs = g.importBuffer("device-pairs", b.pairs);
+    const auto counts = g.importBuffer("device-pairs-counts", b.counts);
+    const auto offsets = g.importBuffer("device-pairs-offsets", b.offsets);
+    const auto out_offsets = g.importBuffer("device-pairs-out-offsets", b.out_offsets);
+    const auto sums = g.importBuffer("device-pairs-block-sums", b.block_sums);
+    const auto partners = g.importBuffer("device-pairs-partners", b.partners);
+    const auto args = g.importBuffer("device-pairs-args", b.args);
+    const VkDeviceAddress params = buf_.params.address();
+    const VkBuffer counts_buffer = buf_.counts.handle(), args_buffer = buf_.args.handle();
+    const VkDeviceSize count_bytes = VkDeviceSize(std::max<std::uint32_t>(triangles_, 1)) * 4;
+    // Per-triangle passes are sized by the run's triangles; per-survivor ones dispatch
+    // indirectly from the count the pair pass left.
+    const std::uint64_t tri_groups = (std::uint64_t(triangles_) + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize;
+    const std::uint64_t blocks = (std::uint64_t(triangles_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
+    const std::uint32_t max_x = max_groups_x_;
+    const vk::Pipeline* pipe = &pipeline_;
+
+    addPass(g, "pairs-clear", graph::PassKind::Transfer, Stage::Sorting)
+        .use(counts, graph::Use::TransferDst)
+        .record([counts_buffer, count_bytes](graph::PassContext& pc) { pc.fillBuffer(counts_buffer, 0, count_bytes, 0); });
+    auto first = addPass(g, "pairs-args", graph::PassKind::Compute, Stage::Sorting);
+    first.read(cells.header).write(header).write(args);
+    if (fault_header.valid()) first.read(fault_header);
+    first.record([pipe, params](graph::PassContext& pc) {
+        bind(pc, *pipe, params, 0);
+        pc.dispatch(1, 1, 1);
+    });
+    auto scan = [pipe, params, blocks, max_x](graph::PassContext& pc, std::uint32_t level) {
+        bind(pc, *pipe, params, 2, level);
+        dispatchGroups(pc, blocks, max_x);
+        pc.shaderBarrier();
+        bind(pc, *pipe, params, 3, level);
+        pc.dispatch(1, 1, 1);
+        pc.shaderBarrier();
+        bind(pc, *pipe, params, 4, level);
+        dispatchGroups(pc, blocks, max_x);
+        pc.shaderBarrier();
+    };
+    addPass(g, "pairs-bucket", graph::PassKind::Compute, Stage::Sorting)
+        .indirect(args)
+        .read(cells.survivors)
+        .readWrite(header)
+        .readWrite(counts)
+        .write(offsets)
+        .readWrite(sums)
+        .write(partners)
+        .record([pipe, params, args_buffer, scan](graph::PassContext& pc) {
+            bind(pc, *pipe, params, 1);
+            pc.dispatchIndirect(args_buffer, 0);
+            pc.shaderBarrier();
+            scan(pc, 0);
+            bind(pc, *pipe, params, 5);
+            pc.dispatchIndirect(args_buffer, 0);
+        });
+    addPass(g, "pairs-sort", graph::PassKind::Compute, Stage::Sorting)
+        .read(cells.triangles)
+        .read(offsets)
+        .readWrite(header)
+        .readWrite(counts)
+        .readWrite(partners)
+        .readWrite(sums)
+        .write(out_offsets)
+        .write(pairs)
+        .record([pipe, params, tri_groups, max_x, scan](graph::PassContext& pc) {
+            bind(pc, *pipe, params, 6);
+            dispatchGroups(pc, tri_groups, max_x);
+            pc.shaderBarrier();
+            scan(pc, 1);
+            bind(pc, *pipe, params, 7);
+            dispatchGroups(pc, tri_groups, max_x);
+        });
+}
+
+Result<graph::ExecutionReport> DevicePairStage::runAlone(CellPairs& cells, std::uint64_t timeout_ns) {
+    graph::Graph g;
+    record(g, cells.importOutputs(g));
+    return executor_.run(g, timeout_ns);
+}
+
+DevicePairsView DevicePairStage::view() const noexcept {
+    return {buf_.pairs.handle(), buf_.header.handle(), buf_.pairs.address(), buf_.header.address(), capacity_};
+}
+
+std::uint64_t DevicePairStage::memoryBytes() const noexcept {
+    std::uint64_t total = executor_.memoryBytes();
+    for (const vk::Buffer* b : {&buf_.params, &buf_.object_ids, &buf_.counts, &buf_.offsets, &buf_.out_offsets, &buf_.block_sums,
+                                &buf_.partners, &buf_.args, &buf_.header, &buf_.pairs})
+        total += b->memoryBytes();
+    for (const auto* list : {&retired_new_, &retired_old_})
+        for (const vk::Buffer& b : *list) total += b.memoryBytes();
+    return total;
+}
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,74 @@
+// Device pairs (DetectSettings::device_pairs, docs/api.md "Results on the GPU"): the cell
+// stage's exact survivors sorted on the GPU into the host result's order and written as
+// TrianglePair records (spirv/cells/device_pairs.comp.glsl has the passes), in buffers the stage
+// owns, so that an engine's next command buffer can read them after the world's signal.
+//
+//   pairs-args     the header (capacity; Incomplete when the run failed or a mesh failed
+//                  the GPU input check) and the dispatch over the survivors
+//   pairs-bucket   survivors counted per lower triangle id, scanned, scattered
+//   pairs-sort     each bucket sorted by the higher id, repeats dropped, scanned, written
+//
+// Capacity: the caller's, or (0) the cell stage's survivor capacity, which bounds the
+// distinct pairs of a complete run, so an automatic capacity never overflows. A caller's
+// smaller capacity overflows with kDevicePairsOverflow and the needed count (the first
+// `capacity` pairs in order are written), never silently.
+//
+// The output buffers are re-created when they grow; the old ones are kept until the start
+// of the second detection after (retire()), so reads the engine ordered before the next
+// detection of this stage never meet a freed buffer.
+//
+// Not thread-safe; one per cell stage (ReliableMethod).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "broad/broad_phase_types.hpp"
+#include "broad/cells/cell_pairs.hpp"
+
+namespace vkcollide::passes {
+
+class DevicePairStage {
+public:
+    static Result<std::unique_ptr<DevicePairStage>> create(vk::Device& device);
+
+    // After CellPairs::prepare() (and again after it grew its buffers): sizes the buffers for
+    // its survivors and triangles and uploads the parameters. `object_ids`: per object of the
+    // run, the id its pairs carry. `fault_header`: the broad phase's header whose GPU input
+    // check counts mark the run incomplete (0: none). `capacity`: pairs, 0: automatic.
+    [[nodiscard]] Result<void> prepare(const CellPairs& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
+                                       VkDeviceAddress fault_header);
+    // The passes, after the cell stage's (`cells`: its resources in this graph); `fault_header`
+    // the broad phase header's resource (invalid: not in this graph).
+    void record(graph::Graph& g, const CellPairs::Resources& cells, graph::ResourceId fault_header = {});
+    // The passes alone on the stage's own executor (waits): after the cell stage ran again
+    // on its own (an overflow), so that the buffers hold the final run's pairs.
+    // Whether a sort that timed out still runs on the GPU; settle() waits up to timeout_ns.
+    bool busy() const { return executor_.busy(); }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
+    // Waits at most timeout_ns (what is left of the detection's time) for the GPU.
+    [[nodiscard]] Result<graph::ExecutionReport> runAlone(CellPairs& cells, std::uint64_t timeout_ns);
+    // Called at each detection's start: frees what was retired two starts ago.
+    void retire();
+
+    DevicePairsView view() const noexcept;
+    std::uint64_t memoryBytes() const noexcept;
+
+private:
+    explicit DevicePairStage(vk::Device& device) : device_(&device), executor_(device) {}
+    Result<void> grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name, bool keep_old);
+
+    vk::Device* device_;
+    vk::Pipeline pipeline_;
+    struct Buffers {
+        vk::Buffer params, object_ids, counts, offsets, out_offsets, block_sums, partners, args, header, pairs;
+    } buf_;
+    std::uint32_t triangles_ = 0, capacity_ = 0, max_groups_x_ = 0;
+    // Output buffers replaced since the last start, and at the start before it.
+    std::vector<vk::Buffer> retired_new_, retired_old_;
+    graph::Executor executor_;  // declared last: waits for its work before the buffers go
+};
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,163 @@
+#include "broad/cells/reliable_method.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace vkcollide::passes {
+
+Result<std::unique_ptr<BroadPhaseMethod>> ReliableMethod::create(vk::Device& device, BufferTable& table, const CoreBuffers& core) {
+    auto cells = CellPairs::create(device);
+    if (!cells) return cells.error();
+    return std::unique_ptr<BroadPhaseMethod>(new ReliableMethod(device, table, core, std::move(*cells)));
+}
+
+// The stage's input from the run: the objects as uploaded, the projection the front's fit
+// writes (or the caller's region, uploaded there), per-object flags and the pair mask.
+Result<void> ReliableMethod::prepareStage(const RunView& run) {
+    fault_.reset();
+    const std::size_t n = run.meshes.size();
+    CellPairsInput& in = input_;
+    in.objects = run.objects;
+    in.projection.reset();
+    in.projection_address = table_->buffer(core_.projection).address();
+    in.resolution = run.settings.resolution;
+    in.self_collision.resize(n);
+    download_.resize(n);
+    bool any_self = false, any_download = false;
+    for (std::size_t i = 0; i < n; ++i) {
+        in.self_collision[i] = run.meshes[i].self_collision ? 1 : 0;
+        download_[i] = run.meshes[i].check_on_gpu ? 1 : 0;
+        any_self = any_self || run.meshes[i].self_collision;
+        any_download = any_download || run.meshes[i].check_on_gpu;
+    }
+    if (!any_self) in.self_collision.clear();  // keeps its capacity
+    in.download = any_download ? std::span<const std::uint8_t>(download_) : std::span<const std::uint8_t>();
+    in.pair_mask = run.settings.pair_mask ? std::span<const std::uint32_t>(run.settings.pair_mask->bits) : std::span<const std::uint32_t>();
+    CellPairsSettings settings;
+    settings.max_candidate_pairs = run.settings.max_candidate_pairs;
+    settings.exact = run.settings.exact_on_gpu;
+    // Proximity: every triangle grown by half the distance (rounded up to a float).
+    proximity_on_ = run.settings.proximity_distance > 0;
+    if (proximity_on_) {
+        const double half = run.settings.proximity_distance * 0.5;
+        float pad = static_cast<float>(half);
+        if (double(pad) < half) pad = std::nextafter(pad, 3.0e38f);
+        settings.proximity_pad = pad;
+    }
+    if (auto ok = cells_->prepare(in, settings); !ok) return ok;
+    if (proximity_on_) {
+        if (!proximity_) {
+            auto made = proximity::ProximityStage::create(*device_);
+            if (!made) return made.error();
+            proximity_ = std::move(*made);
+        }
+        if (auto ok = proximity_->prepare(*cells_, run.meshes, run.settings.proximity_distance, run.settings.proximity_capacity); !ok)
+            return ok;
+    }
+    // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
+    device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
+    if (!device_pairs_on_) return {};
+    if (!device_pairs_) {
+        auto made = DevicePairStage::create(*device_);
+        if (!made) return made.error();
+        device_pairs_ = std::move(*made);
+    }
+    device_pairs_->retire();
+    object_tags_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) object_tags_[i] = run.meshes[i].tag;
+    device_pair_capacity_ = run.settings.device_pair_capacity;
+    fault_header_ = run.any_gpu_check ? table_->buffer(core_.header).address() : 0;
+    return device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_);
+}
+
+void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
+    const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
+    if (proximity_on_) proximity_->record(g, cells);
+    if (device_pairs_on_) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
+}
+
+// One submission after the run's own (a rerun, a sort), within what is left of the run's
+// deadline (BroadPhaseSettings::deadline: nothing starts after it ends); its passes join the
+// run's times.
+template <typename Submit>
+Result<void> ReliableMethod::runAlone(const RunView& run, const char* what, BroadPhaseResult& io_result, Submit&& submit) {
+    const std::uint64_t wait_ns = waitNs(run.settings);
+    if (run.settings.deadline && wait_ns == 0)
+        return timeoutOfRun(run.settings, Error(ErrorCode::Timeout, std::string("deadline passed before ") + what));
+    Result<graph::ExecutionReport> report = submit(wait_ns);
+    if (!report) return report.error();
+    for (const graph::PassTiming& p : report->passes) {
+        addStageTime(io_result, p);
+        io_result.passes.push_back(p);
+    }
+    return {};
+}
+
+Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, BroadPhaseResult& result) {
+    const CellPairsSettings limits;
+    for (std::uint32_t runs = 1;; ++runs) {
+        auto outcome = cells_->finish(result.cells);
+        if (!outcome) {
+            // Bad input only this stage checks (magnitudes of 2^62 and more): named as a
+            // fault of the object, so the detection's BadObjectPolicy applies to it.
+            if (const auto& bad = cells_->badInput(); bad && bad->object < run.meshes.size()) {
+                const bool index = (bad->flags & gpu::kCellsBadIndex) != 0;
+                fault_ = ObjectFault{bad->object, index ? ObjectFault::Kind::IndexOutOfRange : ObjectFault::Kind::OutOfRange,
+                                     bad->triangle, 1, run.meshes[bad->object].vertex_count};
+            }
+            return outcome.error();
+        }
+        if (*outcome == CellPairs::Outcome::Complete) break;
+        if (runs >= limits.max_runs)
+            return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(runs) + " runs (entries " +
+                                                     std::to_string(cells_->capacity().entries) + ", candidates " +
+                                                     std::to_string(cells_->capacity().candidates) + ")");
+        // An overflow: the stage alone again, its buffers grown; the projection stays.
+        if (auto ok = runAlone(run, "a rerun", result, [&](std::uint64_t wait_ns) {
+                return cells_->runAgain(&table_->buffer(core_.projection), wait_ns);
+            });
+            !ok)
+            return ok;
+    }
+    if (device_pairs_on_ && result.cells.runs > 1) {
+        // The device pairs of the first run say Incomplete: sort the final run's survivors
+        // (the stage's buffers may have grown, so size for them first).
+        if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_); !ok) return ok.error();
+        if (auto ok = runAlone(run, "sorting the device pairs", result,
+                               [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
+            !ok)
+            return ok;
+    }
+    if (proximity_on_) {
+        // The pass of the first run saw it fail when the stage ran again: once more after it.
+        bool again = result.cells.runs > 1;
+        for (std::uint32_t runs = 0;; ++runs) {
+            if (again)
+                if (auto ok = runAlone(run, "the proximity pass", result,
+                                       [&](std::uint64_t wait_ns) { return proximity_->runAlone(*cells_, wait_ns); });
+                    !ok)
+                    return ok;
+            auto outcome = proximity_->finish();
+            if (!outcome) return outcome.error();
+            if (*outcome == proximity::ProximityStage::Outcome::Complete) break;
+            if (runs + 1 >= limits.max_runs)
+                return Error(ErrorCode::OutOfMemory, "proximity: the record buffer still overflowed after " + std::to_string(runs + 1) + " runs");
+            again = true;
+        }
+        result.has_proximity = true;
+        const std::span<const gpu::ProximityRecord> records = proximity_->records();
+        // The public record is the GPU's (static_asserts in proximity_stage.cpp).
+        result.proximity = {reinterpret_cast<const ProximityPair*>(records.data()), records.size()};
+        const gpu::ProximityHeader& h = proximity_->header();
+        result.proximity_counts = {h.pairs_tested, h.distances, h.neighbours, h.capacity};
+        result.proximity_runs = proximity_->runs();
+        result.proximity_device = proximity_->view();
+    }
+    result.has_pairs = true;
+    result.pairs = cells_->survivors();
+    result.gpu_triangles = cells_->gpuTriangles();
+    return {};
+}
+
+}  // namespace vkcollide::passes

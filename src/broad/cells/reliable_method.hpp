@@ -1,0 +1,90 @@
+// The reliable method on the broad phase's seam (method.hpp): the cell pair stage
+// (cell_pairs.hpp, docs/reliable.md) after the front's fit, in one submission.
+//
+//   front     clear, GPU input checks, bounds, fit       common_stages.hpp (the projection)
+//   main      cells-clear ... cells-pairs                 CellPairs::record, reading the
+//                                                         projection the fit wrote
+//   readback  the broad phase's header                    common_stages.hpp
+//   (device pairs, BroadPhaseSettings::device_pairs: pairs-clear/args/bucket/sort after
+//             the stage's passes, device_pairs.hpp)
+//   collect   the stage's header; after an overflow the stage alone again (its buffers
+//             already grown), until complete, then the device pairs alone; the survivors
+//             and the engine meshes' triangles as views of host-visible memory
+//             (BroadPhaseResult::pairs, gpu_triangles), nothing sorted or copied on the host.
+//
+// No measuring passes (traits().measures is false), any resolution in [1, 16384] (cells
+// per side). The run's objects as the broad phase uploaded them; per object its
+// self-collision flag and whether its geometry is only on the GPU (check_on_gpu: its
+// survivors' triangles are downloaded with their world vertices); which object pairs may
+// collide from BroadPhaseSettings::pair_mask. Settings of the paper's method (layers,
+// coverage, dual, packing, backend, epsilons) do not apply.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/device_pairs.hpp"
+#include "broad/method.hpp"
+#include "proximity/proximity_stage.hpp"
+
+namespace vkcollide::passes {
+
+class ReliableMethod final : public BroadPhaseMethod {
+public:
+    static Result<std::unique_ptr<BroadPhaseMethod>> create(vk::Device& device, BufferTable& io_table, const CoreBuffers& core);
+
+    MethodTraits traits() const noexcept override { return {false, false, true}; }
+    Result<void> prepare(const BroadPhaseSettings&, const RunShape&, gpu::Frame&) override { return {}; }
+    void import(graph::Graph&) override {}
+    void recordMeasure(graph::Graph&, const RunView&, const GraphBuffers&) const override {}
+    Result<void> afterMeasure(const RunView& run, const gpu::Header&) override { return prepareStage(run); }
+    Result<void> predict(const RunView& run, std::uint32_t) override { return prepareStage(run); }
+    void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
+    Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
+    std::optional<ObjectFault> fault() const override { return fault_; }
+    std::uint64_t memoryBytes() const noexcept override {
+        return cells_->memoryBytes() + (device_pairs_ ? device_pairs_->memoryBytes() : 0) + (proximity_ ? proximity_->memoryBytes() : 0);
+    }
+    std::optional<DevicePairsView> devicePairs() const override {
+        if (!device_pairs_on_) return std::nullopt;
+        return device_pairs_->view();
+    }
+    // A rerun of the stage or a sort of its pairs that timed out (each has its executor).
+    bool busy() const override {
+        return cells_->busy() || (device_pairs_ && device_pairs_->busy()) || (proximity_ && proximity_->busy());
+    }
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) override {
+        if (auto ok = cells_->settle(timeout_ns); !ok) return ok;
+        if (proximity_)
+            if (auto ok = proximity_->settle(timeout_ns); !ok) return ok;
+        return device_pairs_ ? device_pairs_->settle(timeout_ns) : Result<void>{};
+    }
+
+private:
+    ReliableMethod(vk::Device& device, BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellPairs> cells)
+        : device_(&device), table_(&table), core_(core), cells_(std::move(cells)) {}
+    Result<void> prepareStage(const RunView& run);
+    template <typename Submit>
+    Result<void> runAlone(const RunView& run, const char* what, BroadPhaseResult& io_result, Submit&& submit);
+
+    vk::Device* device_;
+    BufferTable* table_;
+    CoreBuffers core_;
+    std::unique_ptr<CellPairs> cells_;
+    // Per run, kept between runs (no allocation in a steady scene).
+    CellPairsInput input_;
+    std::vector<std::uint8_t> download_;
+    std::optional<ObjectFault> fault_;
+    // Device pairs (BroadPhaseSettings::device_pairs): made on first use.
+    std::unique_ptr<DevicePairStage> device_pairs_;
+    bool device_pairs_on_ = false;
+    std::uint32_t device_pair_capacity_ = 0;
+    std::vector<std::uint32_t> object_tags_;
+    VkDeviceAddress fault_header_ = 0;
+    // Proximity (BroadPhaseSettings::proximity_distance): made on first use.
+    std::unique_ptr<proximity::ProximityStage> proximity_;
+    bool proximity_on_ = false;
+};
+
+}  // namespace vkcollide::passes

@@ -1,0 +1,12 @@
+# The cell pair stage (reliable mode, GPU pair stage; docs/reliable.md): host side here,
+# programs in spirv/cells/ (cells*.glsl, tritri_filter.glsl.inc, the exact decision, cells.h).
+list(APPEND VKCOLLIDE_GPU_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/cell_pairs.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/cell_pairs_record.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/reliable_method.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/device_pairs.cpp
+)
+list(APPEND VKCOLLIDE_SHADERS
+  cells/cells_setup.comp cells/cells_big.comp cells/cells_scan.comp cells/cells_fill.comp cells/cells_sweep.comp
+  cells/cells_deep.comp cells/cells_args.comp cells/cells_pairs.comp cells/cells_pairs_nofp64.comp
+  cells/cells_filter_test.comp cells/device_pairs.comp)

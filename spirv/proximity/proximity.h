@@ -63,7 +63,8 @@ struct ProximityParams {
     VKC_ADDRESS(uint64_t) header;       // ProximityHeader
     VKC_ADDRESS(uint64_t) records;      // ProximityRecord[capacity], as the pass found them
     VKC_ADDRESS(uint64_t) sorted;       // ProximityRecord[capacity], in the result's order
-    VKC_ADDRESS(uint64_t) order;        // uint[capacity]: record indices, bucketed, then sorted
+    VKC_ADDRESS(uint64_t) order;        // uvec4[capacity]: (sort key, record index), bucketed, then sorted
+    VKC_ADDRESS(uint64_t) args;         // VkDispatchIndirectCommand: one invocation per record found
     VKC_ADDRESS(uint64_t) counts;       // uint[bucket_count]: records per bucket, then the cursor
     VKC_ADDRESS(uint64_t) offsets;      // uint[bucket_count + 1]: each bucket's first slot
     VKC_ADDRESS(uint64_t) block_sums;   // uint[block_count]
@@ -76,8 +77,9 @@ struct ProximityParams {
     uint pad;
 };
 // The sort (proximity_sort.comp): records bucketed by (kind, object_a, a0) -- one bucket per
-// kind and vertex of the run -- then each bucket sorted by (a1, object_b, b0, b1), insertion
-// sort up to this size, heap sort beyond.
+// kind and vertex of the run -- then each bucket sorted by (a1, object_b, b0, b1) as the key
+// (a1, run vertex of b0, run vertex of b1) held beside the record index, insertion sort up to
+// this size, heap sort beyond.
 VKC_CONST kProximityInsertionSort = 16u;
 
 #ifdef __cplusplus

@@ -176,6 +176,13 @@ void main() {
             H.h.flags = H.h.needed > Q.capacity ? kProximityOverflow : 0u;
             H.h.count = min(H.h.needed, Q.capacity);
         }
+        // The sort's per-record dispatches: none unless the records are complete.
+        uint groups = H.h.flags == 0u ? (H.h.count + kCellsGroupSize - 1u) / kCellsGroupSize : 0u;
+        uint x = min(groups, Q.max_groups_x);
+        UintsRef args = UintsRef(Q.args);
+        args.v[0] = x;
+        args.v[1] = x == 0u ? 1u : (groups + x - 1u) / x;
+        args.v[2] = 1u;
         return;
     }
     // A failed run (an overflow, bad input) is repeated or reported by the host.

@@ -20,6 +20,7 @@ layout(local_size_x = kCellsGroupSize) in;
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer ProximityParamsRef { ProximityParams p; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ProximityHeaderRef { ProximityHeader h; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ProximityRecordsRef { ProximityRecord r[]; };
+layout(buffer_reference, scalar, buffer_reference_align = 16) buffer Uvec4sRef { uvec4 v[]; };
 
 const uint kPerInvocation = kCellsScanBlock / kCellsGroupSize;
 
@@ -44,44 +45,54 @@ uint bucketOf(ProximityParams Q, ProximityRecord r) {
     return (r.kind == kProximityEdgeEdge ? Q.bucket_count / 2u : 0u) + base + r.a0;
 }
 
-// Whether record x comes after record y within one bucket.
-bool after(ProximityRecordsRef R, uint x, uint y) {
-    uvec4 kx = uvec4(R.r[x].a1, R.r[x].object_b, R.r[x].b0, R.r[x].b1);
-    uvec4 ky = uvec4(R.r[y].a1, R.r[y].object_b, R.r[y].b0, R.r[y].b1);
-    for (uint k = 0u; k < 4u; ++k)
-        if (kx[k] != ky[k]) return kx[k] > ky[k];
-    return false;
+// The order within a bucket: (a1, object_b, b0, b1) as (a1, run vertex of b0, run vertex
+// of b1) -- run vertices grow with (object, vertex) -- with the record's index.
+// Vertex-triangle: (object_b, b0) as the run triangle of b0.
+uvec4 sortKey(ProximityParams Q, ProximityRecord r, uint index) {
+    uint run = objectOfId(Q, r.object_b);
+    if (r.kind == kProximityVertexTriangle) {
+        uint first = ObjectsRef(CellsParamsRef(Q.cells).p.objects).o[run].triangle_base;
+        return uvec4(0u, first + r.b0, 0u, index);
+    }
+    uint base = UintsRef(Q.vertex_base).v[run];
+    return uvec4(r.a1, base + r.b0, base + r.b1, index);
+}
+bool after(uvec4 x, uvec4 y) {
+    if (x.x != y.x) return x.x > y.x;
+    if (x.y != y.y) return x.y > y.y;
+    return x.z > y.z;
 }
 
-void siftDown(ProximityRecordsRef R, UintsRef o, uint base, uint root, uint n) {
-    uint v = o.v[base + root];
+void siftDown(Uvec4sRef o, uint base, uint root, uint n) {
+    uvec4 v = o.v[base + root];
     for (;;) {
         uint child = 2u * root + 1u;
         if (child >= n) break;
-        if (child + 1u < n && after(R, o.v[base + child + 1u], o.v[base + child])) ++child;
-        uint c = o.v[base + child];
-        if (!after(R, c, v)) break;
+        if (child + 1u < n && after(o.v[base + child + 1u], o.v[base + child])) ++child;
+        uvec4 c = o.v[base + child];
+        if (!after(c, v)) break;
         o.v[base + root] = c;
         root = child;
     }
     o.v[base + root] = v;
 }
 
-void sortBucket(ProximityRecordsRef R, UintsRef o, uint base, uint n) {
+void sortBucket(Uvec4sRef o, uint base, uint n) {
     if (n <= kProximityInsertionSort) {
         for (uint i = 1u; i < n; ++i) {
-            uint v = o.v[base + i], j = i;
-            for (; j > 0u && after(R, o.v[base + j - 1u], v); --j) o.v[base + j] = o.v[base + j - 1u];
+            uvec4 v = o.v[base + i];
+            uint j = i;
+            for (; j > 0u && after(o.v[base + j - 1u], v); --j) o.v[base + j] = o.v[base + j - 1u];
             o.v[base + j] = v;
         }
         return;
     }
-    for (uint i = n / 2u; i-- > 0u;) siftDown(R, o, base, i, n);
+    for (uint i = n / 2u; i-- > 0u;) siftDown(o, base, i, n);
     for (uint end = n - 1u; end > 0u; --end) {
-        uint top = o.v[base];
+        uvec4 top = o.v[base];
         o.v[base] = o.v[base + end];
         o.v[base + end] = top;
-        siftDown(R, o, base, 0u, end);
+        siftDown(o, base, 0u, end);
     }
 }
 
@@ -133,21 +144,23 @@ void main() {
     }
     if (!usable(Q)) return;
     ProximityRecordsRef R = ProximityRecordsRef(Q.records);
-    UintsRef counts = UintsRef(Q.counts), offsets = UintsRef(Q.offsets), order = UintsRef(Q.order);
+    UintsRef counts = UintsRef(Q.counts), offsets = UintsRef(Q.offsets);
+    Uvec4sRef order = Uvec4sRef(Q.order);
     uint id = globalIndex();
     if (pc.step == 5u) {
         if (id >= Q.bucket_count) return;
         uint base = offsets.v[id], n = offsets.v[id + 1u] - base;
-        if (n > 1u) sortBucket(R, order, base, n);
+        if (n > 1u) sortBucket(order, base, n);
         return;
     }
     if (id >= recordCount(Q)) return;
     if (pc.step == 0u) {
         atomicAdd(counts.v[bucketOf(Q, R.r[id])], 1u);
     } else if (pc.step == 4u) {
-        uint b = bucketOf(Q, R.r[id]);
-        order.v[offsets.v[b] + atomicAdd(counts.v[b], 1u)] = id;
+        ProximityRecord r = R.r[id];
+        uint b = bucketOf(Q, r);
+        order.v[offsets.v[b] + atomicAdd(counts.v[b], 1u)] = sortKey(Q, r, id);
     } else {
-        ProximityRecordsRef(Q.sorted).r[id] = R.r[order.v[id]];
+        ProximityRecordsRef(Q.sorted).r[id] = R.r[order.v[id].w];
     }
 }

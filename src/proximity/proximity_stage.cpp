@@ -21,7 +21,7 @@ static_assert(offsetof(gpu::ProximityRecord, object_a) == offsetof(ProximityPair
               offsetof(gpu::ProximityRecord, weights_b) == offsetof(ProximityPair, weights_b) &&
               offsetof(gpu::ProximityRecord, normal) == offsetof(ProximityPair, normal));
 static_assert(gpu::kProximityInBand == kProximityInBand && gpu::kProximityEdgeEdge == std::uint32_t(ProximityKind::EdgeEdge));
-static_assert(sizeof(gpu::ProximityHeader) == 32 && sizeof(gpu::ProximityParams) == 120);
+static_assert(sizeof(gpu::ProximityHeader) == 32 && sizeof(gpu::ProximityParams) == 128);
 static_assert(sizeof(DeviceProximityHeader) == sizeof(gpu::ProximityHeader) && offsetof(gpu::ProximityHeader, in_band) == 28 &&
               offsetof(gpu::ProximityHeader, pairs_tested) == offsetof(DeviceProximityHeader, triangle_pairs));
 static_assert(gpu::kProximityOverflow == kDeviceProximityOverflow && gpu::kProximityIncomplete == kDeviceProximityIncomplete);
@@ -46,7 +46,8 @@ Result<void> ProximityStage::grow(vk::Buffer& buffer, VkDeviceSize size, vk::Mem
     size = std::max<VkDeviceSize>(size, 16);
     if (buffer.valid() && buffer.size() >= size) return {};
     buffer.reset();
-    auto made = vk::Buffer::create(*device_, size, 0, kind, name);
+    const VkBufferUsageFlags usage = &buffer == &buf_.args ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0;
+    auto made = vk::Buffer::create(*device_, size, usage, kind, name);
     if (!made) return made.error();
     buffer = std::move(*made);
     return {};
@@ -80,7 +81,8 @@ Result<void> ProximityStage::prepare(const passes::CellPairs& cells, std::span<c
                     grow(buf_.header_rb, sizeof(gpu::ProximityHeader), MemoryKind::Readback, "proximity-header-readback"),
                     grow(buf_.counts, VkDeviceSize(buckets_) * 4, MemoryKind::DeviceLocal, "proximity-counts"),
                     grow(buf_.offsets, (VkDeviceSize(buckets_) + 1) * 4, MemoryKind::DeviceLocal, "proximity-offsets"),
-                    grow(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal, "proximity-block-sums")})
+                    grow(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal, "proximity-block-sums"),
+                    grow(buf_.args, 12, MemoryKind::DeviceLocal, "proximity-args")})
         if (!ok) return ok.error();
     if (auto ok = growRecords(); !ok) return ok.error();
     auto* owned = static_cast<std::uint8_t*>(buf_.owned.mapped());
@@ -122,6 +124,7 @@ void ProximityStage::writeParams(const passes::CellPairs& cells) {
     p.counts = buf_.counts.address();
     p.offsets = buf_.offsets.address();
     p.block_sums = buf_.block_sums.address();
+    p.args = buf_.args.address();
     p.distance = distance_;
     p.capacity = capacity_;
     p.object_count = objects_;
@@ -142,7 +145,8 @@ void ProximityStage::record(graph::Graph& g, const passes::CellPairs::Resources&
     const auto offsets = g.importBuffer("proximity-offsets", buf_.offsets);
     const auto sums = g.importBuffer("proximity-block-sums", buf_.block_sums);
     const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
-    const VkBuffer counts_buffer = buf_.counts.handle();
+    const VkBuffer counts_buffer = buf_.counts.handle(), sort_args = buf_.args.handle();
+    const auto args = g.importBuffer("proximity-args", buf_.args);
     const VkDeviceSize count_bytes = VkDeviceSize(std::max<std::uint32_t>(buckets_, 1)) * 4;
     const VkBuffer args_buffer = cells_args_;
     const VkDeviceAddress params = buf_.params.address();
@@ -162,6 +166,7 @@ void ProximityStage::record(graph::Graph& g, const passes::CellPairs::Resources&
         .read(cells.geometry)
         .readWrite(header)
         .write(records)
+        .write(args)
         .record([pipe, params, args_buffer](graph::PassContext& pc) {
             gpu::Push push{params, 0, 0, 0, 0};
             pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, pipe->handle());
@@ -172,14 +177,14 @@ void ProximityStage::record(graph::Graph& g, const passes::CellPairs::Resources&
             pc.pushConstants(pipe->layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
             pc.dispatch(1, 1, 1);
         });
-    // The sort: per record (steps 0, 4, 6, over the capacity: the count is on the GPU), the
+    // The sort: per record (steps 0, 4, 6: indirect, from the count the pass found), the
     // scan over the buckets (1-3), per bucket (5).
     const vk::Pipeline* sort = &sort_pipeline_;
-    const std::uint64_t record_groups = (std::uint64_t(capacity_) + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize;
     const std::uint64_t bucket_groups = (std::uint64_t(buckets_) + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize;
     const std::uint64_t blocks = (std::uint64_t(buckets_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const std::uint32_t max_x = max_groups_x_;
     passes::addPass(g, "proximity-sort", graph::PassKind::Compute, passes::Stage::Proximity)
+        .indirect(args)
         .read(header)
         .read(records)
         .readWrite(counts)
@@ -187,21 +192,22 @@ void ProximityStage::record(graph::Graph& g, const passes::CellPairs::Resources&
         .readWrite(sums)
         .readWrite(order)
         .write(sorted)
-        .record([sort, params, record_groups, bucket_groups, blocks, max_x](graph::PassContext& pc) {
-            auto step = [&](std::uint32_t s, std::uint64_t groups) {
+        .record([sort, params, sort_args, bucket_groups, blocks, max_x](graph::PassContext& pc) {
+            auto step = [&](std::uint32_t s, std::uint64_t groups) {  // groups 0: one per record (indirect)
                 gpu::Push push{params, 0, s, 0, 0};
                 pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, sort->handle());
                 pc.pushConstants(sort->layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-                passes::dispatchGroups(pc, groups, max_x);
+                if (groups) passes::dispatchGroups(pc, groups, max_x);
+                else pc.dispatchIndirect(sort_args, 0);
                 pc.shaderBarrier();
             };
-            step(0, record_groups);
+            step(0, 0);
             step(1, blocks);
             step(2, 1);
             step(3, blocks);
-            step(4, record_groups);
+            step(4, 0);
             step(5, bucket_groups);
-            step(6, record_groups);
+            step(6, 0);
         });
     passes::addPass(g, "proximity-readback", graph::PassKind::Transfer, passes::Stage::Readback)
         .use(header, graph::Use::TransferSrc)
@@ -242,8 +248,12 @@ Result<void> ProximityStage::growRecords() {
     const VkDeviceSize n = std::max<std::uint32_t>(capacity_, 1);
     for (auto ok : {grow(buf_.records, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::DeviceLocal, "proximity-records"),
                     grow(buf_.sorted, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::Readback, "proximity-sorted"),
-                    grow(buf_.order, n * 4, vk::MemoryKind::DeviceLocal, "proximity-order")})
+                    grow(buf_.order, n * 16, vk::MemoryKind::DeviceLocal, "proximity-order")})
         if (!ok) return ok.error();
+    // The sort loads and stores its keys as 16-byte vectors (proximity_sort.comp).
+    if (buf_.order.address() % 16 != 0)
+        return Error(ErrorCode::UnsupportedFeature, "proximity: the device placed 'proximity-order' at address " +
+                                                        std::to_string(buf_.order.address()) + ", not a multiple of 16 bytes");
     return {};
 }
 
@@ -267,7 +277,7 @@ DeviceProximity ProximityStage::view() const noexcept {
 std::uint64_t ProximityStage::memoryBytes() const noexcept {
     std::uint64_t total = executor_.memoryBytes();
     for (const vk::Buffer* b : {&buf_.params, &buf_.owned, &buf_.object_ids, &buf_.vertex_base, &buf_.header, &buf_.header_rb,
-                                &buf_.records, &buf_.sorted, &buf_.order, &buf_.counts, &buf_.offsets, &buf_.block_sums})
+                                &buf_.records, &buf_.sorted, &buf_.order, &buf_.counts, &buf_.offsets, &buf_.block_sums, &buf_.args})
         total += b->memoryBytes();
     return total;
 }

@@ -72,7 +72,7 @@ private:
     vk::Device* device_;
     vk::Pipeline pipeline_, sort_pipeline_;
     struct Buffers {
-        vk::Buffer params, owned, object_ids, vertex_base, header, header_rb, records, sorted, order, counts, offsets, block_sums;
+        vk::Buffer params, owned, object_ids, vertex_base, header, header_rb, records, sorted, order, counts, offsets, block_sums, args;
     } buf_;
     std::uint32_t objects_ = 0, buckets_ = 0;
     double distance_ = 0;

@@ -291,10 +291,10 @@ int main(int argc, char** argv) {
     if (!ctx) return std::fprintf(stderr, "vkcollide_bench_proximity: %s\n", ctx.error().message().c_str()), 1;
     std::ofstream csv(csv_path);
     csv << "device,scene,triangles,edges,d_over_edge,d,frames,detect_ms,gpu_span_ms,footprints_ms,pairing_ms,filtering_ms,proximity_ms,"
-           "host_sort_ms,pairs,vertex_triangle,edge_edge,in_band,triangle_pairs,distances,intersecting_pairs,baseline_detect_ms,"
+           "host_sort_ms,proximity_pairs_pass_ms,proximity_sort_pass_ms,pairs,vertex_triangle,edge_edge,in_band,triangle_pairs,distances,intersecting_pairs,baseline_detect_ms,"
            "baseline_gpu_span_ms,cpu_reference_ms,reference_pairs,missing,added_unflagged\n";
-    std::printf("%-11s %8s %5s %9s %9s %9s %9s %9s %9s %10s %8s %9s %8s %8s\n", "scene", "tris", "d/e", "detect", "span", "footpr.",
-                "pairing", "filter", "prox", "pairs", "in band", "base det.", "cpu ref", "missing");
+    std::printf("%-11s %8s %5s %9s %9s %9s %9s %9s %9s %9s %9s %10s %8s %9s %8s %8s\n", "scene", "tris", "d/e", "detect", "span", "footpr.",
+                "pairing", "filter", "prox", "pass", "sort", "pairs", "in band", "base det.", "cpu ref", "missing");
     for (const std::string& name : split(scenes)) {
         Scene scene = name == "cloth-391k" ? foldedCloth("cloth-391k", 361)
                       : name == "cloth-524k" ? foldedCloth("cloth-524k", 512)
@@ -327,7 +327,7 @@ int main(int argc, char** argv) {
             for (const auto t0 = Clock::now(); msSince(t0) < warmup_ms;) {
                 if (!(*world)->detect(near)) break;
             }
-            std::vector<double> det, span, fp, pr, fi, px, hs, base_det, base_span;
+            std::vector<double> det, span, fp, pr, fi, px, hs, base_det, base_span, pass_pairs, pass_sort;
             DetectResult last;
             for (int k = 0; k < frames; ++k) {
                 step(k);
@@ -344,6 +344,13 @@ int main(int argc, char** argv) {
                 fi.push_back(r->stats.filtering_ms);
                 px.push_back(r->stats.proximity.gpu_ms);
                 hs.push_back(r->stats.proximity.host_ms);
+                double pairs_ms = 0, sort_ms = 0;
+                for (const PassTime& t : r->stats.gpu_passes) {
+                    if (t.name == "proximity-pairs") pairs_ms += t.gpu_ms;
+                    if (t.name == "proximity-sort") sort_ms += t.gpu_ms;
+                }
+                pass_pairs.push_back(pairs_ms);
+                pass_sort.push_back(sort_ms);
                 last = std::move(*r);
             }
             double ref_ms = 0;
@@ -367,12 +374,13 @@ int main(int argc, char** argv) {
                 }
             }
             const ProximityStats& ps = last.stats.proximity;
-            std::printf("%-11s %8zu %5s %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %10llu %8llu %9.3f %8.1f %8zu\n", name.c_str(), triangles, f.c_str(),
-                        median(det), median(span), median(fp), median(pr), median(fi), median(px), (unsigned long long)ps.pairs,
+            std::printf("%-11s %8zu %5s %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %10llu %8llu %9.3f %8.1f %8zu\n", name.c_str(), triangles,
+                        f.c_str(), median(det), median(span), median(fp), median(pr), median(fi), median(px), median(pass_pairs), median(pass_sort),
+                        (unsigned long long)ps.pairs,
                         (unsigned long long)ps.in_band, median(base_det), ref_ms, missing);
             csv << (*ctx)->deviceInfo().name << "," << name << "," << triangles << "," << edge_count << "," << f << "," << d << "," << frames << ","
                 << median(det) << "," << median(span) << "," << median(fp) << "," << median(pr) << "," << median(fi) << "," << median(px)
-                << "," << median(hs) << "," << ps.pairs << "," << ps.vertex_triangle << "," << ps.edge_edge << "," << ps.in_band << ","
+                << "," << median(hs) << "," << median(pass_pairs) << "," << median(pass_sort) << "," << ps.pairs << "," << ps.vertex_triangle << "," << ps.edge_edge << "," << ps.in_band << ","
                 << ps.triangle_pairs << "," << ps.distances << "," << last.pairs.size() << "," << median(base_det) << ","
                 << median(base_span) << "," << ref_ms << "," << ref_pairs << "," << missing << "," << added << "\n";
             std::fflush(stdout);

@@ -224,7 +224,7 @@ void main() {
             if ((a.owned & (1u << k)) != 0u) {
                 if (same && vertexNeighbours(a, k, b)) {
                     ++neighbours;
-                } else {
+                } else if (!screenedPointTriangle(a.w[k], b.w[0], b.w[1], b.w[2], Q.distance)) {
                     ++distances;
                     Nearest n = vertexTriangle(a, k, b);
                     if (within(Q, n)) within_mask |= 1u << k;
@@ -234,7 +234,7 @@ void main() {
             if ((b.owned & (1u << k)) != 0u) {
                 if (same && vertexNeighbours(b, k, a)) {
                     ++neighbours;
-                } else {
+                } else if (!screenedPointTriangle(b.w[k], a.w[0], a.w[1], a.w[2], Q.distance)) {
                     ++distances;
                     Nearest n = vertexTriangle(b, k, a);
                     if (within(Q, n)) within_mask |= 8u << k;
@@ -256,6 +256,7 @@ void main() {
                     ++neighbours;
                     continue;
                 }
+                if (screenedSegmentSegment(e.pa, e.qa, e.pb, e.qb, Q.distance)) continue;
                 ++distances;
                 Nearest n = edgeEdge(e);
                 if (within(Q, n)) within_mask |= 64u << (3u * i + j);

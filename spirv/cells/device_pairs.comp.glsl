@@ -18,13 +18,12 @@
 // Passes 1 and 5 are proportional to the survivors, the others to the triangles.
 #include "cells_common.glsl.inc"
 #include "common/workgroup.glsl.inc"
+#include "block_scan.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer DevicePairsParamsRef { DevicePairsParams p; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer DevicePairsHeaderRef { DevicePairsHeader h; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer DevicePairsRef { DevicePair p[]; };
-
-const uint kPerInvocation = kCellsScanBlock / kCellsGroupSize;
 
 DevicePairsParams dparams() { return DevicePairsParamsRef(pc.frame).p; }
 DevicePairsHeaderRef pairsHeader(DevicePairsParams D) { return DevicePairsHeaderRef(D.header); }
@@ -76,48 +75,12 @@ void sortBucket(UintsRef p, uint base, uint n) {
 // The scan's three steps over counts[0, triangle_count) (see the header comment).
 void scan(DevicePairsParams D, uint step) {
     if (incomplete(D)) return;  // uniform: written by step 0 in an earlier pass
-    UintsRef counts = UintsRef(D.counts), sums = UintsRef(D.block_sums);
     UintsRef dst = UintsRef(pc.level == 0u ? D.offsets : D.out_offsets);
-    const uint n = D.triangle_count;
-    if (step == 3u) {
-        uint carry = 0u;
-        for (uint base = 0u; base < D.block_count; base += kCellsGroupSize) {
-            uint b = base + gl_LocalInvocationIndex;
-            uint v = b < D.block_count ? sums.v[b] : 0u;
-            uint inclusive = groupInclusiveScan(v);
-            if (b < D.block_count) sums.v[b] = carry + inclusive - v;
-            carry += groupReduceAdd(v);
-        }
-        if (gl_LocalInvocationIndex == 0u) {
-            dst.v[n] = carry;
-            if (pc.level == 1u) {
-                pairsHeader(D).h.needed = carry;
-                pairsHeader(D).h.count = min(carry, D.capacity);
-                if (carry > D.capacity) atomicOr(pairsHeader(D).h.flags, kDevicePairsOverflow);
-            }
-        }
-        return;
-    }
-    uint block = groupIndex();
-    if (block >= D.block_count) return;  // whole workgroup: the barriers below stay uniform
-    uint first = block * kCellsScanBlock + gl_LocalInvocationIndex * kPerInvocation;
-    uint v[kPerInvocation];
-    uint sum = 0u;
-    for (uint k = 0u; k < kPerInvocation; ++k) {
-        v[k] = first + k < n ? counts.v[first + k] : 0u;
-        sum += v[k];
-    }
-    if (step == 2u) {
-        uint total = groupReduceAdd(sum);
-        if (gl_LocalInvocationIndex == 0u) sums.v[block] = total;
-        return;
-    }
-    uint running = sums.v[block] + groupInclusiveScan(sum) - sum;
-    for (uint k = 0u; k < kPerInvocation; ++k) {
-        if (first + k >= n) break;
-        dst.v[first + k] = running;
-        if (pc.level == 0u) counts.v[first + k] = 0u;
-        running += v[k];
+    uint total = blockScan(step - 2u, UintsRef(D.counts), UintsRef(D.block_sums), dst, D.triangle_count, D.block_count, pc.level == 0u);
+    if (step == 3u && gl_LocalInvocationIndex == 0u && pc.level == 1u) {
+        pairsHeader(D).h.needed = total;
+        pairsHeader(D).h.count = min(total, D.capacity);
+        if (total > D.capacity) atomicOr(pairsHeader(D).h.flags, kDevicePairsOverflow);
     }
 }
 

@@ -15,14 +15,13 @@
 #include "cells/cells_common.glsl.inc"
 #include "proximity.h"
 #include "common/workgroup.glsl.inc"
+#include "cells/block_scan.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer ProximityParamsRef { ProximityParams p; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ProximityHeaderRef { ProximityHeader h; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ProximityRecordsRef { ProximityRecord r[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 16) buffer Uvec4sRef { uvec4 v[]; };
-
-const uint kPerInvocation = kCellsScanBlock / kCellsGroupSize;
 
 ProximityParams qparams() { return ProximityParamsRef(pc.frame).p; }
 
@@ -99,41 +98,7 @@ void sortBucket(Uvec4sRef o, uint base, uint n) {
 // The scan's three steps over counts[0, bucket_count).
 void scan(ProximityParams Q, uint step) {
     if (!usable(Q)) return;  // uniform: written by an earlier pass
-    UintsRef counts = UintsRef(Q.counts), sums = UintsRef(Q.block_sums), dst = UintsRef(Q.offsets);
-    const uint n = Q.bucket_count;
-    if (step == 2u) {
-        uint carry = 0u;
-        for (uint base = 0u; base < Q.block_count; base += kCellsGroupSize) {
-            uint b = base + gl_LocalInvocationIndex;
-            uint v = b < Q.block_count ? sums.v[b] : 0u;
-            uint inclusive = groupInclusiveScan(v);
-            if (b < Q.block_count) sums.v[b] = carry + inclusive - v;
-            carry += groupReduceAdd(v);
-        }
-        if (gl_LocalInvocationIndex == 0u) dst.v[n] = carry;
-        return;
-    }
-    uint block = groupIndex();
-    if (block >= Q.block_count) return;  // whole workgroup: the barriers below stay uniform
-    uint first = block * kCellsScanBlock + gl_LocalInvocationIndex * kPerInvocation;
-    uint v[kPerInvocation];
-    uint sum = 0u;
-    for (uint k = 0u; k < kPerInvocation; ++k) {
-        v[k] = first + k < n ? counts.v[first + k] : 0u;
-        sum += v[k];
-    }
-    if (step == 1u) {
-        uint total = groupReduceAdd(sum);
-        if (gl_LocalInvocationIndex == 0u) sums.v[block] = total;
-        return;
-    }
-    uint running = sums.v[block] + groupInclusiveScan(sum) - sum;
-    for (uint k = 0u; k < kPerInvocation; ++k) {
-        if (first + k >= n) break;
-        dst.v[first + k] = running;
-        counts.v[first + k] = 0u;
-        running += v[k];
-    }
+    blockScan(step - 1u, UintsRef(Q.counts), UintsRef(Q.block_sums), UintsRef(Q.offsets), Q.bucket_count, Q.block_count, true);
 }
 
 void main() {

@@ -5,7 +5,9 @@
 #include "vkcollide/world.hpp"  // first: the example's own #include is then a no-op
 
 #include <cstdio>
+#include <span>
 #include <string>
+#include <vector>
 
 namespace doc_examples {
 
@@ -39,6 +41,33 @@ auto hits = (*world)->detect();       // or submit() now, collect() later
 if (hits)
     for (const vkcollide::TrianglePair& p : hits->pairs)  // (object, triangle) x (object, triangle)
         log("object " + std::to_string(p.object_a) + " hits object " + std::to_string(p.object_b));
+// end of doc example
+    // clang-format on
+    return 0;
+}
+
+// A cloth solver, as docs/api.md's proximity loop uses it.
+struct Solver {
+    std::vector<vkcollide::Float3> points;
+    void step() {}
+    std::span<const vkcollide::Float3> positions() const { return points; }
+    void addContact(const vkcollide::ProximityPair&, float) {}
+};
+
+int apiProximityLoop(vkcollide::CollisionWorld& world, vkcollide::ObjectId cloth, Solver& solver, float thickness, int frames) {
+    // clang-format off
+// doc example: docs/api.md
+vkcollide::DetectSettings s;
+s.proximity.distance = 2 * thickness;                                // world units
+for (int frame = 0; frame < frames; ++frame) {
+    solver.step();                                                   // positions move
+    if (auto ok = world.updateVertices(cloth, solver.positions()); !ok) return log(ok.error().message());
+    auto r = world.detect(s);
+    if (!r) return log(r.error().message());
+    for (const vkcollide::ProximityPair& p : r->proximity)           // or on the GPU: r->device_proximity
+        solver.addContact(p, thickness);
+    // r->pairs (intersecting) stays empty while the contacts hold
+}
 // end of doc example
     // clang-format on
     return 0;

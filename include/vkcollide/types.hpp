@@ -66,13 +66,22 @@ enum class ExactDecision {
     Cpu,  // on the CPU: every pair the GPU filter keeps is read back and tested there
 };
 
+// Where the host result's pairs are put in order (DetectSettings::pair_sort) when the exact
+// decision ran on the GPU. Both give the same pairs and responses to the bit.
+enum class PairSort {
+    Auto,  // on the GPU when the world's last detection had at least kGpuPairSortFrom pairs
+    Gpu,   // on the GPU: the pairs come back sorted and the CPU only computes the responses
+    Cpu,   // on the CPU: the GPU's unsorted pairs are read back, sorted and deduplicated there
+};
+
 // Lower-case names as the command-line options spell them: "scan", "paper"; "centre",
 // "dilate", "conservative", "best"; "auto", "raster", "compute"; "reliable", "peeling";
-// "auto", "gpu", "cpu".
+// "auto", "gpu", "cpu" (twice).
 const char* toString(PackingMethod method) noexcept;
 const char* toString(DetectMethod method) noexcept;
 const char* toString(Coverage coverage) noexcept;
 const char* toString(SamplingBackend backend) noexcept;
 const char* toString(ExactDecision exact) noexcept;
+const char* toString(PairSort sort) noexcept;
 
 }  // namespace vkcollide

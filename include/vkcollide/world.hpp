@@ -243,6 +243,14 @@ struct DetectSettings {
     // shaderFloat64). The pairs are the same either way; DetectStats::gpu_exact_tests and
     // ::cpu_exact_tests say which ran. Peeling decides on the CPU: Gpu is refused there.
     ExactDecision exact = ExactDecision::Auto;
+    // Reliable, exact decision on the GPU, no device_pairs: where the host result's pairs are
+    // put in order (PairSort; docs/exact_gpu.md). Gpu: sorted on the GPU and read back in
+    // order, so the CPU only computes the responses; Cpu: the narrow phase sorts them (the
+    // reference path). Same pairs and responses either way; DetectStats::pairs_sorted_on_gpu
+    // says which ran. Gpu is refused where device_pairs would be (peeling, exact Cpu, no
+    // shaderFloat64, a pair filter the world applies on the host only); Auto then sorts on
+    // the CPU. With engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
+    PairSort pair_sort = PairSort::Auto;
 
     // Reliable, with the exact decision on the GPU (exact Auto or Gpu, a device with
     // shaderFloat64): the detection also leaves its pairs on the GPU, in buffers the world
@@ -260,6 +268,12 @@ struct DetectSettings {
     // header says kDevicePairsOverflow with the count needed (never a silent drop); at most
     // kMaxDevicePairCapacity.
     std::uint32_t device_pair_capacity = 0;
+    // With device_pairs: false leaves the pairs on the GPU only, for an engine that reads
+    // them there. Nothing is read back and no host narrow phase runs: DetectResult::pairs
+    // and ::responses stay empty, DetectStats::device_pairs_found says how many pairs the
+    // buffers hold, and the survivors stay in device-local memory. Refused without
+    // device_pairs and with contacts (they are built from the host's pairs).
+    bool host_pairs = true;
 
     // Reliable: also every vertex-triangle and edge-edge pair within a distance, with its
     // distance, closest points and normal, in DetectResult::proximity (vkcollide/
@@ -268,6 +282,9 @@ struct DetectSettings {
     ProximitySettings proximity;
 };
 inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
+// PairSort::Auto sorts on the GPU from this many pairs in the world's last detection: below
+// it the host's sort costs less than the GPU's passes (docs/results.md, "Sorted on the GPU").
+inline constexpr std::size_t kGpuPairSortFrom = 4096;
 
 struct PassTime {
     std::string name;
@@ -322,6 +339,10 @@ struct DetectStats {
     std::size_t positive_tests = 0;                   // "# pos. tests"
     std::size_t gpu_exact_tests = 0;  // of the tests, decided on the GPU (reliable, DetectSettings::exact)
     std::size_t cpu_exact_tests = 0;  // of the tests, decided on the CPU
+    // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
+    // as DetectResult::pairs would have held) and `count` (those the buffer holds).
+    std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
+    bool pairs_sorted_on_gpu = false;  // DetectSettings::pair_sort: the GPU ordered the host result's pairs
     NarrowStats narrow;                               // every narrow-phase counter
     NarrowTimings narrow_timings;                     // the narrow phase's stages (host wall clock)
     CellStats cells;                                  // reliable only
@@ -592,6 +613,13 @@ public:
     // device has (nothing is allocated then; the world stays usable), DeviceLost (create a
     // new Context), InvalidMesh for a bad engine mesh under BadObjectPolicy::Fail.
     [[nodiscard]] Result<DetectResult> detect(const DetectSettings& settings = {});
+    // detect() into a result the caller keeps from frame to frame: the memory of its pairs
+    // and responses is reused, so a loop that passes the same DetectResult every frame asks
+    // the system for fresh pages only when they outgrow it (1.7M pairs: filling a fresh
+    // 27 MB vector costs more than sorting it; docs/results.md). Every field is overwritten
+    // with what detect() would return; on failure io_result holds no result (its pairs and
+    // responses may be empty) and the error is returned. collectInto() is collect()'s form.
+    [[nodiscard]] Result<void> detectInto(DetectResult& io_result, const DetectSettings& settings = {});
     // ---- Detections in flight (docs/api.md, "Engines: synchronisation and latency") ------
     //
     // Records and submits the GPU work and returns; collect() waits for it and runs the
@@ -644,6 +672,7 @@ public:
     // Waits for the oldest detection in flight and runs its narrow phase.
     // Errors: InvalidArgument when none is in flight, and detect()'s.
     [[nodiscard]] Result<DetectResult> collect();
+    [[nodiscard]] Result<void> collectInto(DetectResult& io_result);
     // Whether collect() would find the oldest detection's GPU work finished (it may still
     // run GPU work again: see the caveat above). Never waits. Errors: InvalidArgument when
     // none is in flight, DeviceLost.

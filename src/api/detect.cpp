@@ -10,6 +10,7 @@
 #include "api/world_impl.hpp"
 #include "broad/cells/reliable_method.hpp"
 #include "narrow/exact_stage.hpp"
+#include "narrow/sorted_pairs.hpp"
 #include "proximity/ownership.hpp"
 #include "proximity/proximity_results.hpp"
 #include "vk/device.hpp"
@@ -79,6 +80,13 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     if (auto ok = validation::checkDevicePairsFilter(s.device_pairs, pair_filter && !*mask, run.ids.size()); !ok) return ok.error();
     d.broad.device_pairs = s.device_pairs;
     d.broad.device_pair_capacity = s.device_pair_capacity;
+    d.broad.host_pairs = s.host_pairs;
+    const bool filter_on_host_only = pair_filter && !*mask;
+    if (s.pair_sort == PairSort::Gpu && filter_on_host_only)
+        return Error(ErrorCode::InvalidArgument, "pair_sort Gpu with a pair filter over " + std::to_string(run.ids.size()) +
+                                                     " live objects (more than kMaxFilterMaskObjects): the world applies that filter on the host only");
+    d.broad.sort_on_gpu = !filter_on_host_only && (s.pair_sort == PairSort::Gpu || (s.pair_sort == PairSort::Auto && last_narrow_pairs >= kGpuPairSortFrom));
+    d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();
     if (s.proximity.distance > 0 && pair_filter && !*mask)
@@ -145,6 +153,15 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     ids.clear();
     for (std::uint32_t i : detected.objects) ids.push_back(run_ids[i]);
     DetectResult out;
+    // The caller's memory for the largest arrays (detectInto): sizes kept, so that what is
+    // overwritten in place needs neither fresh pages nor zeroing.
+    std::vector<TrianglePair> pair_memory;
+    std::vector<TriangleResponse> response_memory;
+    if (reuse) {
+        pair_memory = std::move(reuse->pairs);
+        response_memory = std::move(reuse->responses);
+        reuse = nullptr;
+    }
     for (const passes::ObjectFault& f : detected.excluded) {
         const ObjectId id = run_ids[f.object];
         out.excluded.push_back({id, named(id, Error(ErrorCode::InvalidMesh, passes::describe(f)))});
@@ -239,8 +256,14 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     }
     const auto t0 = Clock::now();
     Result<NarrowResult> narrow = Error(ErrorCode::InvalidArgument, "no narrow phase ran");
-    if (detected.hasPairs()) {
-        // Reliable: the survivors straight from the GPU's memory (deduplicated and sorted
+    if (detected.hasPairs() && broad[0].device_header) {
+        // The pairs stay on the GPU (host_pairs off): nothing to read, test or respond to.
+        narrow = NarrowResult{};
+        st.device_pairs_found = broad[0].device_header->needed;
+        st.device_pairs_written = broad[0].device_header->count;
+        last_narrow_pairs = 0;
+    } else if (detected.hasPairs()) {
+        // Reliable: the pairs sorted on the GPU (runSortedPairs), or the survivors straight from the GPU's memory (deduplicated and sorted
         // in parallel by the narrow phase), host meshes from the world's source, engine
         // meshes' triangles from the download.
         if (auto ok = syncSource(ids); !ok) return ok.error();
@@ -254,8 +277,15 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
                         return named(run_ids[i], ok.error());
             }
         source.setGpuTriangles(broad[0].gpu_triangles);
-        narrow = runPairNarrowPhase(broad[0].pairs, source, options, *executor, narrow_workspace);
-        last_narrow_pairs = broad[0].pairs.size();
+        if (broad[0].has_sorted_pairs) {
+            narrow = narrow::runSortedPairs(broad[0].sorted_pairs, source, options, *executor, narrow_workspace, std::move(pair_memory),
+                                            std::move(response_memory));
+            last_narrow_pairs = broad[0].sorted_pairs.size();
+            st.pairs_sorted_on_gpu = true;
+        } else {
+            narrow = runPairNarrowPhase(broad[0].pairs, source, options, *executor, narrow_workspace);
+            last_narrow_pairs = broad[0].pairs.size();
+        }
         source.setGpuTriangles({});  // the download is overwritten by the next run
     } else {
         narrow = runNarrowPhase(detected.candidates(), options, *executor, narrow_workspace);

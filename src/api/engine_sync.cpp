@@ -75,14 +75,32 @@ Result<void> CollisionWorld::Impl::begin(const DetectSettings& settings, bool me
     return started;
 }
 
-Result<DetectResult> CollisionWorld::detect(const DetectSettings& settings) {
-    Impl& w = *impl_;
-    auto scope = w.guard.enter("CollisionWorld::detect");
+Result<DetectResult> CollisionWorld::detect(const DetectSettings& settings) { return impl_->detectCall(settings, nullptr); }
+
+Result<DetectResult> CollisionWorld::Impl::detectCall(const DetectSettings& settings, DetectResult* reuse_memory) {
+    auto scope = guard.enter("CollisionWorld::detect");
     if (!scope) return scope.error();
-    if (w.pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
-    if (auto ok = w.begin(settings, settings.measure_layers, nullptr); !ok) return ok.error();
-    Impl::Run& run = w.runs[w.oldest];
-    return hostGuarded(*run.detection, run.in_flight, [&] { return w.collect(run, false); });
+    if (pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
+    if (auto ok = begin(settings, settings.measure_layers, nullptr); !ok) return ok.error();
+    Run& run = runs[oldest];
+    reuse = reuse_memory;
+    auto r = hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, false); });
+    reuse = nullptr;
+    return r;
+}
+
+Result<void> CollisionWorld::detectInto(DetectResult& io_result, const DetectSettings& settings) {
+    auto r = impl_->detectCall(settings, &io_result);
+    if (!r) return r.error();
+    io_result = std::move(*r);
+    return {};
+}
+
+Result<void> CollisionWorld::collectInto(DetectResult& io_result) {
+    auto r = impl_->collectCall(&io_result);
+    if (!r) return r.error();
+    io_result = std::move(*r);
+    return {};
 }
 
 Result<void> CollisionWorld::submit(const DetectSettings& settings, const SubmitSync& sync) {
@@ -114,14 +132,18 @@ Result<void> CollisionWorld::record(const EngineCommandBuffer& target, const Det
     return w.begin(settings, false, &into);
 }
 
-Result<DetectResult> CollisionWorld::collect() {
-    Impl& w = *impl_;
-    auto scope = w.guard.enter("CollisionWorld::collect");
+Result<DetectResult> CollisionWorld::collect() { return impl_->collectCall(nullptr); }
+
+Result<DetectResult> CollisionWorld::Impl::collectCall(DetectResult* reuse_memory) {
+    auto scope = guard.enter("CollisionWorld::collect");
     if (!scope) return scope.error();
-    if (!w.pending()) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
-    Impl::Run& run = w.runs[w.oldest];
-    w.oldest = 1 - w.oldest;  // the other slot, in flight or not, is the oldest now
-    return hostGuarded(*run.detection, run.in_flight, [&] { return w.collect(run, true); });
+    if (!pending()) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
+    Run& run = runs[oldest];
+    oldest = 1 - oldest;  // the other slot, in flight or not, is the oldest now
+    reuse = reuse_memory;
+    auto r = hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, true); });
+    reuse = nullptr;
+    return r;
 }
 
 Result<bool> CollisionWorld::ready() {

@@ -133,6 +133,10 @@ VkDeviceSize indexBytes(const GpuMeshDesc& d) {
 }
 
 Result<void> checkDevicePairs(const DetectSettings& s, const vk::Device& device) {
+    if (!s.host_pairs && !s.device_pairs)
+        return invalid("host_pairs = false needs device_pairs = true: the pairs would be kept nowhere");
+    if (!s.host_pairs && s.contacts)
+        return invalid("host_pairs = false with contacts: object contacts are built from the host's pairs");
     if (!s.device_pairs) return {};
     if (s.method != DetectMethod::Reliable)
         return invalid("device_pairs belongs to the reliable method (the peeling method forms its pairs on the host)");
@@ -192,7 +196,16 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         return outside("bad_objects", int(s.bad_objects), "BadObjectPolicy", "Exclude or Fail");
     if (s.exact != ExactDecision::Auto && s.exact != ExactDecision::Gpu && s.exact != ExactDecision::Cpu)
         return outside("exact", int(s.exact), "ExactDecision", "Auto, Gpu or Cpu");
+    if (s.pair_sort != PairSort::Auto && s.pair_sort != PairSort::Gpu && s.pair_sort != PairSort::Cpu)
+        return outside("pair_sort", int(s.pair_sort), "PairSort", "Auto, Gpu or Cpu");
     const bool reliable = s.method == DetectMethod::Reliable;
+    if (s.pair_sort == PairSort::Gpu) {
+        if (!reliable) return invalid("pair_sort Gpu belongs to the reliable method (the peeling method forms its pairs on the host)");
+        if (s.exact == ExactDecision::Cpu) return invalid("pair_sort Gpu needs the exact decision on the GPU (exact Auto or Gpu, not Cpu)");
+        if (!device.shader_float64)
+            return Error(ErrorCode::UnsupportedFeature, "pair_sort Gpu needs the exact decision on the GPU, so shaderFloat64, which " +
+                                                            device.info.name + " lacks (or the adopted device did not enable)");
+    }
     if (s.exact == ExactDecision::Gpu && !reliable)
         return invalid("exact decision on the GPU belongs to the reliable method (the peeling method decides on the CPU)");
     if (s.exact == ExactDecision::Gpu && !device.shader_float64)

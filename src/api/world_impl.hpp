@@ -153,6 +153,9 @@ struct CollisionWorld::Impl {
 
     // finish()'s scratch (vectors kept between detections).
     std::vector<ObjectId> finish_ids;  // the broad phase's objects (bad ones left out) -> ObjectId
+    // detectInto/collectInto: the caller's result, whose pairs' and responses' memory the
+    // next finish() reuses (null: fresh vectors).
+    DetectResult* reuse = nullptr;
     NarrowOptions narrow_options;
 
     vk::Device& device() const { return *device_ref; }
@@ -231,6 +234,9 @@ struct CollisionWorld::Impl {
     // restart_clock: the timeout counts from now (submit() and record(): the caller chose
     // when to collect); detect() counts from its start.
     Result<DetectResult> collect(Run& run, bool restart_clock);
+    // CollisionWorld::detect/collect and their *Into forms (reuse_memory: the caller's result).
+    Result<DetectResult> detectCall(const DetectSettings& settings, DetectResult* reuse_memory);
+    Result<DetectResult> collectCall(DetectResult* reuse_memory);
     Error describeFailure(const Run& run, const Error& e) const;
     Result<DetectResult> finish(Run& run, passes::DetectionResult detected);
 

@@ -137,6 +137,16 @@ struct BroadPhaseSettings {
     // buffers (DevicePairsView; objects named by GpuMesh::tag). Capacity in pairs, 0: automatic.
     bool device_pairs = false;
     std::uint32_t device_pair_capacity = 0;
+    // With device_pairs: false leaves the pairs on the GPU only (no survivors read back:
+    // BroadPhaseResult::pairs empty, device_header set).
+    bool host_pairs = true;
+    // Methods that decide pairs exactly on the GPU, without device_pairs: sort the pairs there
+    // and read them back in order (BroadPhaseResult::sorted_pairs). Not with meshes checked
+    // on the GPU.
+    bool sort_on_gpu = false;
+    // sort_on_gpu: the pairs expected (the last detection's): what the host's copy holds
+    // first. More sort and copy once more.
+    std::uint32_t sorted_pairs_expected = 0;
     // Methods that form pairs on the GPU with the exact decision there: also every
     // vertex-triangle and edge-edge pair within this distance (world units; 0: off), each
     // mesh with its GpuMesh::proximity_owned. Capacity in records, 0: automatic.
@@ -189,6 +199,16 @@ struct BroadPhaseResult {
     std::span<const CandidatePair> pairs;
     std::span<const GpuTriangle> gpu_triangles;
     CellPairsStats cells;                    // the cell pair stage's counters (has_pairs)
+    // BroadPhaseSettings::sort_on_gpu where it ran: the pairs final and in order, objects as
+    // run indices (host-visible memory, valid until the next run); `pairs` is then empty.
+    bool has_sorted_pairs = false;
+    std::span<const TrianglePair> sorted_pairs;
+    // BroadPhaseSettings::host_pairs off: the device pairs' header as the GPU left it (the
+    // pairs are only there).
+    struct DeviceHeader {
+        std::uint32_t count = 0, needed = 0, flags = 0, capacity = 0;  // vkcollide::DevicePairsHeader
+    };
+    std::optional<DeviceHeader> device_header;
     // Proximity (BroadPhaseSettings::proximity_distance > 0): the pairs in the result's
     // order as the GPU wrote them (a rare one twice, side by side; host-visible memory, valid
     // until the next run), what the pass counted and how many times it ran.

@@ -46,4 +46,13 @@ const char* toString(ExactDecision exact) noexcept {
     return "?";
 }
 
+const char* toString(PairSort sort) noexcept {
+    switch (sort) {
+        case PairSort::Auto: return "auto";
+        case PairSort::Gpu: return "gpu";
+        case PairSort::Cpu: return "cpu";
+    }
+    return "?";
+}
+
 }  // namespace vkcollide

@@ -12,5 +12,6 @@ list(APPEND VKCOLLIDE_HOST_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/narrow_phase.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pair_keys.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pair_narrow_phase.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sorted_pairs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/thread_pool.cpp
 )

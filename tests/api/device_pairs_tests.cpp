@@ -256,3 +256,95 @@ TEST_CASE("device pairs: refused by name without the GPU's exact decision", "[ap
     CHECK_FALSE(world->devicePairs());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+// host_pairs = false: the same device buffers as with the host result, nothing on the host,
+// the count in the stats; after an overflow rerun and pipelined too.
+TEST_CASE("device pairs without a host result hold the host result's pairs", "[api][gpu][reliable][device_pairs]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) return;
+    DetectSettings with_host;
+    with_host.device_pairs = true;
+    DetectSettings gpu_only = with_host;
+    gpu_only.host_pairs = false;
+    // The pairs of a host run, then the device-only run's buffers against them.
+    const auto same = [&](CollisionWorld& world, const std::string& what) {
+        INFO(what);
+        auto host = world.detect(with_host);
+        REQUIRE(host);
+        REQUIRE(host->pairs.size() > 0);
+        auto only = world.detect(gpu_only);
+        REQUIRE(only);
+        CHECK(only->pairs.empty());
+        CHECK(only->responses.empty());
+        CHECK(only->stats.cpu_exact_tests == 0);
+        CHECK(only->stats.device_pairs_found == host->pairs.size());
+        CHECK(only->stats.device_pairs_written == host->pairs.size());
+        REQUIRE(only->device);
+        const DeviceCopy d = readBack(ctx.device(), *only->device);
+        CHECK(d.header.flags == 0);
+        CHECK(d.header.needed == host->pairs.size());
+        CHECK(d.pairs == host->pairs);
+        return host->pairs;
+    };
+    std::vector<TestScene> scenes;
+    auto all = allTestScenes();
+    REQUIRE(all);
+    for (TestScene& s : *all) scenes.push_back(std::move(s));
+    scenes.push_back(restingStack());
+    for (const TestScene& scene : scenes) {
+        auto world = worldOf(ctx, scene);
+        same(*world, scene.name);
+    }
+    {
+        // Overflow: the first run's survivors (on the device now) do not fit; collect()
+        // reruns and the buffers hold the final pairs.
+        auto world = worldOf(ctx, coincidentGrids());
+        auto only = world->detect(gpu_only);
+        REQUIRE(only);
+        CHECK(only->stats.cells.runs > 1);
+        CHECK(only->stats.device_pairs_found > 4096);
+        REQUIRE(only->device);
+        const DeviceCopy d = readBack(ctx.device(), *only->device);
+        CHECK(d.header.needed == only->stats.device_pairs_found);
+        const auto host_pairs = same(*world, "coincident grids");
+        CHECK(d.pairs == host_pairs);
+    }
+    {
+        // Pipelined, switching between the two forms: each slot's buffers are right.
+        auto world = worldOf(ctx, manySpheres());
+        REQUIRE(world->submit(gpu_only));
+        REQUIRE(world->submit(with_host));
+        auto first = world->collect();
+        auto second = world->collect();
+        REQUIRE(first);
+        REQUIRE(second);
+        REQUIRE(first->device);
+        CHECK(first->pairs.empty());
+        const DeviceCopy d = readBack(ctx.device(), *first->device);
+        CHECK(d.pairs == second->pairs);
+        requireSame(ctx.device(), *second, "pipelined, with the host result");
+    }
+    // A short capacity: the count needed and the count written.
+    {
+        auto world = worldOf(ctx, restingStack());
+        DetectSettings shorter = gpu_only;
+        shorter.device_pair_capacity = 7;
+        auto r = world->detect(shorter);
+        REQUIRE(r);
+        CHECK(r->stats.device_pairs_written == 7);
+        CHECK(r->stats.device_pairs_found > 7);
+    }
+    // Refused by name: nowhere to keep the pairs, or contacts that need them on the host.
+    auto world = worldOf(ctx, restingStack());
+    DetectSettings nowhere;
+    nowhere.host_pairs = false;
+    auto r = world->detect(nowhere);
+    REQUIRE_FALSE(r);
+    CHECK_THAT(r.error().message(), Catch::Contains("host_pairs") && Catch::Contains("device_pairs"));
+    DetectSettings contacts = gpu_only;
+    contacts.contacts = true;
+    r = world->detect(contacts);
+    REQUIRE_FALSE(r);
+    CHECK_THAT(r.error().message(), Catch::Contains("host_pairs") && Catch::Contains("contacts"));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -4,6 +4,7 @@
 // say which one decided. Validation layer on.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -216,4 +217,174 @@ TEST_CASE("exact decision: the record paths refuse pairs_decided", "[narrow][exa
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::InvalidArgument);
     CHECK_THAT(r.error().message(), Catch::Contains("pairs_decided"));
+}
+
+namespace {
+
+// One world, the same settings twice: pairs sorted on the GPU, then on the CPU.
+Both sortedBoth(CollisionWorld& world, DetectSettings settings = {}) {
+    settings.pair_sort = PairSort::Gpu;
+    auto gpu = world.detect(settings);
+    REQUIRE(gpu);
+    settings.pair_sort = PairSort::Cpu;
+    auto cpu = world.detect(settings);
+    REQUIRE(cpu);
+    return {std::move(*gpu), std::move(*cpu)};
+}
+
+void requireSameSorted(const Both& r, const std::string& what) {
+    INFO(what << ": GPU-sorted " << r.gpu.pairs.size() << " pairs, CPU-sorted " << r.cpu.pairs.size());
+    CHECK(r.gpu.stats.pairs_sorted_on_gpu);
+    CHECK_FALSE(r.cpu.stats.pairs_sorted_on_gpu);
+    CHECK(r.gpu.pairs == r.cpu.pairs);
+    CHECK(sameResponses(r.gpu.responses, r.cpu.responses));
+    CHECK(r.gpu.pairs_left_out == r.cpu.pairs_left_out);
+    CHECK(r.gpu.incomplete.has_value() == r.cpu.incomplete.has_value());
+    CHECK(r.gpu.stats.triangles_downloaded == r.cpu.stats.triangles_downloaded);
+    CHECK(r.gpu.stats.positive_tests == r.cpu.stats.positive_tests);
+    CHECK(r.gpu.stats.gpu_exact_tests == r.cpu.stats.gpu_exact_tests);
+    CHECK(r.gpu.stats.cpu_exact_tests == 0);
+}
+
+std::unique_ptr<CollisionWorld> sceneWorld(ValidatedContext& ctx, const TestScene& scene) {
+    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
+    REQUIRE(world);
+    for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
+    return std::move(*world);
+}
+
+}  // namespace
+
+TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the bit", "[api][gpu][reliable][exact]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) return;  // refusal below
+    const TestScene resting = restingScene();
+    auto resting_world = sceneWorld(ctx, resting);
+    for (std::uint32_t resolution : {1u, 7u, 64u}) {
+        DetectSettings s;
+        s.resolution = resolution;
+        requireSameSorted(sortedBoth(*resting_world, s), "resting scene, resolution " + std::to_string(resolution));
+    }
+    auto scenes = allTestScenes(0.5f);
+    REQUIRE(scenes);
+    for (const TestScene& scene : *scenes) requireSameSorted(sortedBoth(*sceneWorld(ctx, scene)), scene.name);
+    for (auto make : {+[] { return exactlyTouching(true); }, +[] { return zeroAreaTriangle(); }, +[] { return coplanarOpenQuads(false); },
+                      +[] { return nonManifoldFin(); }}) {
+        auto c = make();
+        REQUIRE(c);
+        requireSameSorted(sortedBoth(*sceneWorld(ctx, c->scene)), c->name);
+    }
+    // max_pairs: both keep the first pairs in order and count the rest.
+    DetectSettings few;
+    few.max_pairs = 37;
+    const Both cut = sortedBoth(*resting_world, few);
+    CHECK(cut.gpu.pairs.size() == 37);
+    CHECK(cut.gpu.pairs_left_out > 0);
+    requireSameSorted(cut, "resting scene, max_pairs 37");
+    // An overflow: three coincident grids need more survivors than the first run holds;
+    // the GPU sorts the final run's.
+    TestScene grids{"coincident grids", {}};
+    for (int k = 0; k < 3; ++k) {
+        auto g = clothGrid(1.0f, 1.0f, 40, 40);
+        REQUIRE(g);
+        grids.objects.push_back({std::move(*g), {.name = "grid" + std::to_string(k), .open = true}});
+    }
+    auto grid_world = sceneWorld(ctx, grids);
+    const Both rerun = sortedBoth(*grid_world);
+    CHECK(rerun.gpu.stats.cells.runs > 1);
+    // Nothing known before the first detection: the host's copy held fewer pairs than found,
+    // so the GPU sorted (and copied) once more.
+    CHECK(std::count_if(rerun.gpu.stats.gpu_passes.begin(), rerun.gpu.stats.gpu_passes.end(),
+                        [](const PassTime& p) { return p.name == "pairs-sort"; }) >= 2);
+    requireSameSorted(rerun, "coincident grids");
+    // A pair filter (the GPU's mask) and pipelined detections in both slots.
+    REQUIRE(resting_world->setPairFilter([](ObjectId a, ObjectId b) { return (a + b) % 2 == 0; }));
+    requireSameSorted(sortedBoth(*resting_world), "resting scene, filtered");
+    DetectSettings gpu_sort;
+    gpu_sort.pair_sort = PairSort::Gpu;
+    REQUIRE(grid_world->submit(gpu_sort));
+    REQUIRE(grid_world->submit(gpu_sort));
+    auto first = grid_world->collect();
+    auto second = grid_world->collect();
+    REQUIRE(first);
+    REQUIRE(second);
+    CHECK(first->pairs == rerun.cpu.pairs);
+    CHECK(second->pairs == rerun.cpu.pairs);
+    CHECK(sameResponses(second->responses, rerun.cpu.responses));
+    // Auto: the GPU sorts once the world's last detection had kGpuPairSortFrom pairs or more.
+    auto automatic = sceneWorld(ctx, grids);
+    auto a1 = automatic->detect();
+    REQUIRE(a1);
+    REQUIRE(a1->pairs.size() >= kGpuPairSortFrom);
+    CHECK_FALSE(a1->stats.pairs_sorted_on_gpu);  // nothing known before the first
+    auto a2 = automatic->detect();
+    REQUIRE(a2);
+    CHECK(a2->stats.pairs_sorted_on_gpu);
+    CHECK(a2->pairs == a1->pairs);
+    auto small = sceneWorld(ctx, resting);
+    for (int k = 0; k < 2; ++k) {
+        auto r = small->detect();
+        REQUIRE(r);
+        REQUIRE(r->pairs.size() < kGpuPairSortFrom);
+        CHECK_FALSE(r->stats.pairs_sorted_on_gpu);
+    }
+    // Refused by name where the GPU cannot sort.
+    const auto refused = [&](DetectSettings s, const char* words) {
+        auto r = small->detect(s);
+        REQUIRE_FALSE(r);
+        CHECK_THAT(r.error().message(), Catch::Contains("pair_sort") && Catch::Contains(words));
+    };
+    refused({.method = DetectMethod::Peeling, .pair_sort = PairSort::Gpu}, "reliable method");
+    refused({.exact = ExactDecision::Cpu, .pair_sort = PairSort::Gpu}, "exact decision on the GPU");
+    refused({.pair_sort = PairSort(9)}, "PairSort");
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("detectInto and collectInto give detect()'s result in the caller's memory", "[api][gpu][reliable]") {
+    ValidatedContext ctx;
+    TestScene grids{"coincident grids", {}};
+    for (int k = 0; k < 3; ++k) {
+        auto g = clothGrid(1.0f, 1.0f, 24, 24);
+        REQUIRE(g);
+        grids.objects.push_back({std::move(*g), {.name = "grid" + std::to_string(k), .open = true}});
+    }
+    auto world = sceneWorld(ctx, grids);
+    auto fresh = world->detect();
+    REQUIRE(fresh);
+    REQUIRE(fresh->pairs.size() > 100);
+    // The same result three frames running, the pairs' memory kept after the first; then a
+    // frame with fewer pairs (one grid moved away) and one with more again.
+    DetectResult kept;
+    const TrianglePair* memory = nullptr;
+    DetectSettings gpu_sort;
+    if (ctx.device().shader_float64) gpu_sort.pair_sort = PairSort::Gpu;
+    for (int frame = 0; frame < 3; ++frame) {
+        REQUIRE(world->detectInto(kept, gpu_sort));
+        CHECK(kept.pairs == fresh->pairs);
+        CHECK(sameResponses(kept.responses, fresh->responses));
+        CHECK(kept.stats.positive_tests == fresh->stats.positive_tests);
+        if (frame > 0 && ctx.device().shader_float64) CHECK(kept.pairs.data() == memory);  // sorted on the GPU: reused
+        memory = kept.pairs.data();
+    }
+    REQUIRE(world->setTransform(2, {1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 1, 0}));
+    auto fewer = world->detect();
+    REQUIRE(fewer);
+    REQUIRE(world->detectInto(kept));
+    CHECK(kept.pairs == fewer->pairs);
+    CHECK(sameResponses(kept.responses, fewer->responses));
+    REQUIRE(world->setTransform(2, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}));
+    REQUIRE(world->submit());
+    REQUIRE(world->submit());
+    REQUIRE(world->collectInto(kept));
+    CHECK(kept.pairs == fresh->pairs);
+    DetectResult second;
+    REQUIRE(world->collectInto(second));
+    CHECK(second.pairs == fresh->pairs);
+    CHECK(sameResponses(second.responses, fresh->responses));
+    // Errors leave the caller's result, not a half-written one, and are returned.
+    CHECK_FALSE(world->collectInto(kept));
+    DetectSettings bad;
+    bad.resolution = 0u;
+    CHECK_FALSE(world->detectInto(kept, bad));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

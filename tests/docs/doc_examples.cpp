@@ -5,6 +5,7 @@
 #include "vkcollide/world.hpp"  // first: the example's own #include is then a no-op
 
 #include <cstdio>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -44,6 +45,20 @@ if (hits)
 // end of doc example
     // clang-format on
     return 0;
+}
+
+vkcollide::Result<void> apiDetectInto(std::unique_ptr<vkcollide::CollisionWorld>& world, std::size_t& total_pairs) {
+    // clang-format off
+// doc example: docs/api.md
+// One result kept across frames: no fresh pages once it has grown to the scene.
+vkcollide::DetectResult frame_result;
+for (int frame = 0; frame < 3; ++frame) {
+    if (auto ok = world->detectInto(frame_result); !ok) return ok.error();
+    total_pairs += frame_result.pairs.size();
+}
+// end of doc example
+    // clang-format on
+    return {};
 }
 
 // A cloth solver, as docs/api.md's proximity loop uses it.

@@ -36,15 +36,26 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // The reliable method with the exact decision on the CPU (the reference path): its
         // difference to "default" is what deciding on the GPU saves (docs/exact_gpu.md).
         {"exact-cpu", "modes", [](S& s) { s.exact = ExactDecision::Cpu; }},
+        // The host result's pairs sorted on the GPU always, or on the CPU always (the default,
+        // PairSort::Auto, sorts on the GPU from kGpuPairSortFrom pairs).
+        {"sort-gpu", "modes", [](S& s) { s.pair_sort = PairSort::Gpu; }},
+        {"sort-cpu", "modes", [](S& s) { s.pair_sort = PairSort::Cpu; }},
         // The pairs also sorted on the GPU (DetectSettings::device_pairs): its cost is
         // sorting_ms, the difference to "default".
         {"device-pairs", "modes", [](S& s) { s.device_pairs = true; }},
+        // The pairs left on the GPU only (host_pairs off): a frame as a GPU solver sees it,
+        // nothing read back, no host narrow phase. Its recall is the pairs' count against
+        // the reference's (tests/api/device_pairs_tests.cpp compares the content).
+        {"device-only", "modes", [](S& s) { s.device_pairs = true, s.host_pairs = false; }},
         {"depth-sep", "modes", paper([](S& s) { s.depth_aware = true; })},  // peeling, depth-aware separation on
         {"paper-sep", "modes", paper([](S& s) { s.depth_aware = false; })},  // peeling, the paper's separation (the old default)
         // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".
         {"contacts", "contacts", [](S& s) { s.contacts = true; }},
         {"contacts-256", "contacts", [](S& s) { s.contacts = true, s.contact_resolution = 256u; }},
     };
+    Variant into{"into", "modes", [](S&) {}};  // the default through detectInto(), one result kept
+    into.into = true;
+    v.push_back(std::move(into));
     Variant pipelined{"pipelined", "modes", [](S&) {}, false, true};  // the default, one frame late, back to back
     pipelined.pipelined = true;
     v.push_back(pipelined);

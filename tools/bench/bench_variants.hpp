@@ -20,6 +20,8 @@ struct Variant {
     // submit() of frame N, then collect() of frame N - 1 (with async): the narrow phase of
     // N - 1 and the update of N + 1 run while N's GPU work runs.
     bool pipelined = false;
+    // detectInto() with one DetectResult kept across frames (its memory reused).
+    bool into = false;
     // > 0: untimed busy host work of this many ms before each timed frame (an engine's other
     // work per frame): with `pipelined`, the GPU's part of a step then runs meanwhile and a
     // step shows the detection's cost on the engine's thread alone.

@@ -323,11 +323,20 @@ int main(int argc, char** argv) {
                 const int mf = scene->motion == Motion::Rigid ? 0 : f;
                 const DetectStats& st = r.stats;
                 const FrameReference& ref = refs[mf];
-                const auto cmp = test::comparePairs(r.pairs, ref.pairs);
+                auto cmp = test::comparePairs(r.pairs, ref.pairs);
                 std::size_t found_crossing = 0;
                 for (std::size_t k = 0; k < ref.pairs.size(); ++k)
                     if (ref.crossing[k]) found_crossing += std::binary_search(r.pairs.begin(), r.pairs.end(), ref.pairs[k]);
                 const std::size_t crossing = ref.crossingCount();
+                std::size_t found_pairs = r.pairs.size();
+                if (!settings.host_pairs) {
+                    // The pairs stayed on the GPU: their count against the reference's.
+                    const double n = st.device_pairs_found, m = double(ref.pairs.size());
+                    found_pairs = st.device_pairs_found;
+                    cmp.recall = m > 0 ? std::min(n, m) / m : 1.0;
+                    cmp.precision = n > 0 ? std::min(n, m) / n : 1.0;
+                    found_crossing = found_pairs == ref.pairs.size() ? crossing : 0;
+                }
                 const double recall_crossing = crossing ? double(found_crossing) / double(crossing) : 1.0;
                 double gpu_ms = 0;
                 for (const auto& pass : st.gpu_passes) gpu_ms += pass.gpu_ms;
@@ -341,7 +350,7 @@ int main(int argc, char** argv) {
                               st.axes, toString(st.coverage), st.dual ? 1 : 0, settings.layer_cap, settings.packing == PackingMethod::Paper ? "paper" : "scan",
                               v.open ? 1 : 0, v.pipelined ? 2 : v.async ? 1 : 0, st.depth_complexity, st.layers, st.peel_passes, st.sampling_ms, st.merging_ms,
                               st.separation_ms, st.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms, update_ms, total_ms, st.collision_rays,
-                              st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, st.positive_tests, r.pairs.size(),
+                              st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, st.positive_tests, found_pairs,
                               ref.pairs.size(), crossing, found_crossing, cmp.recall, recall_crossing, cmp.precision,
                               double(st.gpu_memory_bytes) / (1024.0 * 1024.0), peakHostMiB(), st.narrow_threads, ref.seconds, ref.from_cache ? 1 : 0);
                 char cells[256];
@@ -360,7 +369,7 @@ int main(int argc, char** argv) {
                 sum.backend = st.method == DetectMethod::Reliable ? "cells" : toString(st.backend);
                 sum.resolution = st.resolution;
                 ++sum.frames;
-                sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += cmp.true_positives, sum.reference += ref.pairs.size();
+                sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += settings.host_pairs ? cmp.true_positives : std::min(found_pairs, ref.pairs.size()), sum.reference += ref.pairs.size();
                 sum.downloaded += st.triangles_downloaded;
                 sum.total_ms += total_ms, sum.gpu_ms += gpu_ms, sum.narrow_ms += st.narrow_ms;
                 sum.precision_min = std::min(sum.precision_min, cmp.precision);
@@ -379,6 +388,7 @@ int main(int argc, char** argv) {
                 double update_ms, total_ms;
             };
             std::vector<TimedFrame> timed_frames;
+            DetectResult kept;  // v.into: the result detectInto() fills frame after frame
             const auto frameOf = [&](int f) { return scene->motion == Motion::Rigid ? 0 : std::clamp(f, 0, timed - 1); };
             for (int f = -1; f < timed + (v.pipelined ? 1 : 0); ++f) {
                 if (v.slack_ms > 0 && f >= 0) spinFor(v.slack_ms);
@@ -391,14 +401,18 @@ int main(int argc, char** argv) {
                 }
                 const double update_ms = ms(t0, Clock::now());
                 Result<DetectResult> r = Error(ErrorCode::InvalidArgument, "");
+                Result<void> into_ok;
                 if (v.async) {
                     if (auto ok = (*world)->submit(settings); !ok) r = ok.error();
                     else if (v.pipelined && f == -1) continue;  // nothing to collect yet
                     else r = (*world)->collect();
+                } else if (v.into) {
+                    into_ok = (*world)->detectInto(kept, settings);
                 } else {
                     r = (*world)->detect(settings);
                 }
                 const double total_ms = ms(t0, Clock::now());
+                if (v.into) r = into_ok ? Result<DetectResult>(kept) : Result<DetectResult>(into_ok.error());  // copied untimed
                 if (!r) {
                     failed(scene->name + ", " + v.name, r.error());
                     break;

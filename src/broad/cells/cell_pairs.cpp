@@ -118,6 +118,7 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     use_filter_ = settings.filter && filterSupported();
     use_exact_ = settings.exact && filterSupported();
     proximity_pad_ = settings.proximity_pad;
+    survivors_on_device_ = settings.survivors_on_device;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
     has_pair_mask_ = !in.pair_mask.empty() || static_cast<bool>(in.may_collide);
     download_triangles_ = 0;
@@ -315,13 +316,13 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
     s.exact_neighbours = h.exact_neighbours;
     survivor_count_ = h.survivors;
     gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;
-    if (survivor_count_) buf_.survivors.invalidate(0, VkDeviceSize(survivor_count_) * 8);
+    if (survivor_count_ && !survivors_on_device_) buf_.survivors.invalidate(0, VkDeviceSize(survivor_count_) * 8);
     if (gpu_triangle_count_) buf_.gpu_triangles.invalidate(0, VkDeviceSize(gpu_triangle_count_) * sizeof(GpuTriangle));
     return Outcome::Complete;
 }
 
 std::span<const CandidatePair> CellPairs::survivors() const noexcept {
-    if (!survivor_count_) return {};
+    if (!survivor_count_ || survivors_on_device_) return {};
     return {static_cast<const CandidatePair*>(buf_.survivors.mapped()), survivor_count_};
 }
 

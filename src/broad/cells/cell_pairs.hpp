@@ -109,6 +109,10 @@ struct CellPairsSettings {
     // candidates, and the sweep keeps one object's pairs that share a vertex index (the pair
     // pass leaves them out of the survivors instead).
     float proximity_pad = 0;
+    // The survivors stay in device-local memory, for GPU stages only (device pairs with no
+    // host result): survivors() is then empty, and the GPU's writes and the sort's reads
+    // stay off the host bus.
+    bool survivors_on_device = false;
     // Dispatches are split into rows of at most this many workgroups (0: the device's
     // maxComputeWorkGroupCount[0]); tests set it small to exercise the split.
     std::uint32_t max_workgroups_x = 0;
@@ -144,7 +148,7 @@ public:
     Resources record(graph::Graph& graph, graph::ResourceId projection = {});
     // Those buffers imported into a graph of their own (a later stage run alone).
     Resources importOutputs(graph::Graph& g) {
-        return {g.importBuffer("cells-header", buf_.header),         g.importBuffer("cells-survivors", buf_.survivors, true),
+        return {g.importBuffer("cells-header", buf_.header),         g.importBuffer("cells-survivors", buf_.survivors, !survivors_on_device_),
                 g.importBuffer("cells-triangles", buf_.triangles),   g.importBuffer("cells-candidates", buf_.candidates),
                 g.importBuffer("cells-geometry", buf_.geometry),     g.importBuffer("cells-args", buf_.args)};
     }
@@ -220,6 +224,8 @@ private:
     std::uint32_t triangles_ = 0, resolution_ = 0;
     VkDeviceAddress projection_address_ = 0;
     float proximity_pad_ = 0;
+    bool survivors_on_device_ = false;
+    vk::MemoryKind survivors_in_ = vk::MemoryKind::Readback;  // where buf_.survivors lives
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish

@@ -34,6 +34,10 @@ Result<void> CellPairs::ensureBuffers() {
     // cells of k > kCellsDeepShared entries; either way at most 2 k / kCellsSmallCell.
     static_assert(gpu::kCellsDeepShared >= 4 * gpu::kCellsGroupSize && gpu::kCellsSmallCell >= gpu::kCellsGroupSize);
     const VkDeviceSize deep = 2 * VkDeviceSize(capacity_.entries) / gpu::kCellsSmallCell + 1;
+    const MemoryKind survivors_kind = survivors_on_device_ ? MemoryKind::DeviceLocal : MemoryKind::Readback;
+    // A survivor buffer in the other kind of memory is made again.
+    if (buf_.survivors.valid() && survivors_in_ != survivors_kind) buf_.survivors.reset();
+    survivors_in_ = survivors_kind;
     struct Plan {
         vk::Buffer* buffer;
         VkDeviceSize size;
@@ -59,7 +63,7 @@ Result<void> CellPairs::ensureBuffers() {
         {&buf_.big_items, VkDeviceSize(capacity_.items) * 8, MemoryKind::DeviceLocal, 0, "cells-big-items"},
         {&buf_.deep_items, deep * 8, MemoryKind::DeviceLocal, 0, "cells-deep-items"},
         {&buf_.candidates, VkDeviceSize(capacity_.candidates) * sizeof(gpu::CellsCandidate), MemoryKind::DeviceLocal, 0, "cells-candidates"},
-        {&buf_.survivors, VkDeviceSize(capacity_.survivors) * 8, MemoryKind::Readback, 0, "cells-survivors"},
+        {&buf_.survivors, VkDeviceSize(capacity_.survivors) * 8, survivors_kind, 0, "cells-survivors"},
         {&buf_.args, gpu::kCellsArgsCount * 12, MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, "cells-args"},
         {&buf_.gpu_triangles, has_download_ ? VkDeviceSize(capacity_.gpu_triangles) * sizeof(GpuTriangle) : 0, MemoryKind::Readback, 0,
          "cells-gpu-triangles"},

@@ -51,7 +51,7 @@ CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projec
     const auto big = g.importBuffer("cells-big-items", buf_.big_items);
     const auto deep = g.importBuffer("cells-deep-items", buf_.deep_items);
     const auto candidates = g.importBuffer("cells-candidates", buf_.candidates);
-    const auto survivors = g.importBuffer("cells-survivors", buf_.survivors, true);
+    const auto survivors = g.importBuffer("cells-survivors", buf_.survivors, !survivors_on_device_);
     const auto args = g.importBuffer("cells-args", buf_.args);
     const auto gpu_triangles = g.importBuffer("cells-gpu-triangles", buf_.gpu_triangles, true);
     const auto marks = g.importBuffer("cells-marks", buf_.marks);

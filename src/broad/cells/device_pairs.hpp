@@ -7,6 +7,8 @@
 //                  the GPU input check) and the dispatch over the survivors
 //   pairs-bucket   survivors counted per lower triangle id, scanned, scattered
 //   pairs-sort     each bucket sorted by the higher id, repeats dropped, scanned, written
+//   pairs-to-host  (for the host's result) the pairs copied to host memory, coalesced
+//   pairs-header-readback  (with a host copy of the header) the header copied to host memory
 //
 // Capacity: the caller's, or (0) the cell stage's survivor capacity, which bounds the
 // distinct pairs of a complete run, so an automatic capacity never overflows. A caller's
@@ -38,8 +40,11 @@ public:
     // its survivors and triangles and uploads the parameters. `object_ids`: per object of the
     // run, the id its pairs carry. `fault_header`: the broad phase's header whose GPU input
     // check counts mark the run incomplete (0: none). `capacity`: pairs, 0: automatic.
+    // `header_to_host`: the passes end by copying the header to host memory (header()).
+    // `for_host`: the pairs are written to host-visible memory for the host's result
+    // (hostPairs()) instead of device-local memory for the engine.
     [[nodiscard]] Result<void> prepare(const CellPairs& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
-                                       VkDeviceAddress fault_header);
+                                       VkDeviceAddress fault_header, bool header_to_host = false, bool for_host = false);
     // The passes, after the cell stage's (`cells`: its resources in this graph); `fault_header`
     // the broad phase header's resource (invalid: not in this graph).
     void record(graph::Graph& g, const CellPairs::Resources& cells, graph::ResourceId fault_header = {});
@@ -54,6 +59,10 @@ public:
     void retire();
 
     DevicePairsView view() const noexcept;
+    // After the GPU work of a run prepared with header_to_host: its header.
+    gpu::DevicePairsHeader header() const;
+    // After the GPU work of a run prepared for_host: the first `count` pairs.
+    std::span<const TrianglePair> hostPairs(std::uint32_t count) const;
     std::uint64_t memoryBytes() const noexcept;
 
 private:
@@ -63,9 +72,10 @@ private:
     vk::Device* device_;
     vk::Pipeline pipeline_;
     struct Buffers {
-        vk::Buffer params, object_ids, counts, offsets, out_offsets, block_sums, partners, args, header, pairs;
+        vk::Buffer params, object_ids, counts, offsets, out_offsets, block_sums, partners, args, header, pairs, header_rb, host_pairs;
     } buf_;
     std::uint32_t triangles_ = 0, capacity_ = 0, max_groups_x_ = 0;
+    bool header_to_host_ = false, for_host_ = false;
     // Output buffers replaced since the last start, and at the start before it.
     std::vector<vk::Buffer> retired_new_, retired_old_;
     graph::Executor executor_;  // declared last: waits for its work before the buffers go

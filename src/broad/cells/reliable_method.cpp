@@ -37,6 +37,14 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     CellPairsSettings settings;
     settings.max_candidate_pairs = run.settings.max_candidate_pairs;
     settings.exact = run.settings.exact_on_gpu;
+    // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
+    device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
+    pairs_on_device_only_ = device_pairs_on_ && !run.settings.host_pairs;
+    // The host result sorted on the GPU: not with device pairs (their buffers are the
+    // engine's), nor with meshes checked on the GPU (their faults mark the sort incomplete).
+    sorted_for_host_ = !device_pairs_on_ && run.settings.sort_on_gpu && run.settings.exact_on_gpu && cells_->filterSupported() &&
+                       !run.any_gpu_check;
+    settings.survivors_on_device = pairs_on_device_only_ || sorted_for_host_;
     // Proximity: every triangle grown by half the distance (rounded up to a float).
     proximity_on_ = run.settings.proximity_distance > 0;
     if (proximity_on_) {
@@ -55,9 +63,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
         if (auto ok = proximity_->prepare(*cells_, run.meshes, run.settings.proximity_distance, run.settings.proximity_capacity); !ok)
             return ok;
     }
-    // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
-    device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
-    if (!device_pairs_on_) return {};
+    if (!device_pairs_on_ && !sorted_for_host_) return {};
     if (!device_pairs_) {
         auto made = DevicePairStage::create(*device_);
         if (!made) return made.error();
@@ -65,16 +71,19 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     }
     device_pairs_->retire();
     object_tags_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) object_tags_[i] = run.meshes[i].tag;
+    // Objects as the API names them for the engine, as run indices for the host's result.
+    for (std::size_t i = 0; i < n; ++i) object_tags_[i] = sorted_for_host_ ? static_cast<std::uint32_t>(i) : run.meshes[i].tag;
     device_pair_capacity_ = run.settings.device_pair_capacity;
+    if (sorted_for_host_) device_pair_capacity_ = hostSortCapacity(run.settings.sorted_pairs_expected);
     fault_header_ = run.any_gpu_check ? table_->buffer(core_.header).address() : 0;
-    return device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_);
+    return device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_, pairs_on_device_only_ || sorted_for_host_,
+                                  sorted_for_host_);
 }
 
 void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
     const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
     if (proximity_on_) proximity_->record(g, cells);
-    if (device_pairs_on_) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
+    if (device_pairs_on_ || sorted_for_host_) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
 }
 
 // One submission after the run's own (a rerun, a sort), within what is left of the run's
@@ -92,6 +101,13 @@ Result<void> ReliableMethod::runAlone(const RunView& run, const char* what, Broa
         io_result.passes.push_back(p);
     }
     return {};
+}
+
+// The host copy's capacity for `expected` pairs: a quarter more, at least 4096, at most the
+// survivor capacity (which holds every distinct pair of a complete run).
+std::uint32_t ReliableMethod::hostSortCapacity(std::uint64_t expected) const {
+    const std::uint64_t wanted = std::max<std::uint64_t>(expected + expected / 4, 4096);
+    return static_cast<std::uint32_t>(std::min<std::uint64_t>(wanted, std::max(cells_->capacity().survivors, 1u)));
 }
 
 Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, BroadPhaseResult& result) {
@@ -120,10 +136,13 @@ Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, Bro
             !ok)
             return ok;
     }
-    if (device_pairs_on_ && result.cells.runs > 1) {
+    if ((device_pairs_on_ || sorted_for_host_) && result.cells.runs > 1) {
         // The device pairs of the first run say Incomplete: sort the final run's survivors
         // (the stage's buffers may have grown, so size for them first).
-        if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_); !ok) return ok.error();
+        if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_,
+                                             pairs_on_device_only_ || sorted_for_host_, sorted_for_host_);
+            !ok)
+            return ok.error();
         if (auto ok = runAlone(run, "sorting the device pairs", result,
                                [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
             !ok)
@@ -155,6 +174,32 @@ Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, Bro
         result.proximity_device = proximity_->view();
     }
     result.has_pairs = true;
+    if (sorted_for_host_) {
+        gpu::DevicePairsHeader h = device_pairs_->header();
+        if (h.flags == gpu::kDevicePairsOverflow) {
+            // More pairs than expected: sort again into a copy that holds them all.
+            device_pair_capacity_ = hostSortCapacity(h.needed);
+            if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_, true, true); !ok)
+                return ok.error();
+            if (auto ok = runAlone(run, "sorting the pairs again", result,
+                                   [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
+                !ok)
+                return ok;
+            h = device_pairs_->header();
+        }
+        if (h.flags != 0 || h.count != h.needed)
+            return Error(ErrorCode::VulkanError, "sorted pairs: the GPU's sort ended with flags " + std::to_string(h.flags) + ", " +
+                                                     std::to_string(h.count) + " of " + std::to_string(h.needed) + " pairs (internal error)");
+        result.has_sorted_pairs = true;
+        result.sorted_pairs = device_pairs_->hostPairs(h.count);
+        result.gpu_triangles = cells_->gpuTriangles();
+        return {};
+    }
+    if (pairs_on_device_only_) {
+        const gpu::DevicePairsHeader h = device_pairs_->header();
+        result.device_header = BroadPhaseResult::DeviceHeader{h.count, h.needed, h.flags, h.capacity};
+        return {};
+    }
     result.pairs = cells_->survivors();
     result.gpu_triangles = cells_->gpuTriangles();
     return {};

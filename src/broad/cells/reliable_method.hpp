@@ -47,7 +47,7 @@ public:
         return cells_->memoryBytes() + (device_pairs_ ? device_pairs_->memoryBytes() : 0) + (proximity_ ? proximity_->memoryBytes() : 0);
     }
     std::optional<DevicePairsView> devicePairs() const override {
-        if (!device_pairs_on_) return std::nullopt;
+        if (!device_pairs_on_) return std::nullopt;  // sorted_for_host_'s buffers are the host's
         return device_pairs_->view();
     }
     // A rerun of the stage or a sort of its pairs that timed out (each has its executor).
@@ -79,6 +79,9 @@ private:
     // Device pairs (BroadPhaseSettings::device_pairs): made on first use.
     std::unique_ptr<DevicePairStage> device_pairs_;
     bool device_pairs_on_ = false;
+    bool pairs_on_device_only_ = false;  // device pairs without a host result
+    bool sorted_for_host_ = false;       // the host result's pairs sorted on the GPU (sort_on_gpu)
+    std::uint32_t hostSortCapacity(std::uint64_t expected) const;
     std::uint32_t device_pair_capacity_ = 0;
     std::vector<std::uint32_t> object_tags_;
     VkDeviceAddress fault_header_ = 0;

@@ -1,0 +1,154 @@
+#include "narrow/sorted_pairs.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <string>
+
+#include "narrow/exact_stage.hpp"
+#include "narrow/guarded_executor.hpp"
+#include "narrow/pair_keys.hpp"
+#include "narrow/responses.hpp"
+#include "narrow/workspace.hpp"
+
+namespace vkcollide::narrow {
+namespace {
+
+constexpr std::size_t kPairGrain = 8192;
+constexpr std::size_t kMarkBlock = std::size_t{1} << 16;  // triangles per block of the slot numbering
+
+Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
+                                 Executor& ex, NarrowWorkspace::Impl& ws, std::vector<TrianglePair>& pair_memory,
+                                 std::vector<TriangleResponse>& response_memory) {
+    StageClock clock;
+    NarrowResult result;
+    result.pairs = std::move(pair_memory);
+    result.responses = std::move(response_memory);
+    const std::size_t found = sorted.size();
+    const std::size_t kept = std::min<std::size_t>(found, options.max_pairs);
+    const std::uint32_t total = source.totalTriangles();
+    const std::uint32_t objects = source.objectCount();
+    if (const unsigned wake = threadsToWake(kept, ex.threadCount())) ex.prepare(wake);
+
+    // Checks, global ids, and a mark on each end's triangle (relaxed byte stores: every
+    // writer writes 1). Over every pair, kept or not: the slots are the distinct triangles
+    // of all the pairs found, as the pair path counts them (NarrowStats::candidates).
+    Buffer<std::uint8_t>& marks = ws.in_pair;
+    marks.resize(total);
+    std::fill(marks.begin(), marks.end(), std::uint8_t{0});
+    Buffer<std::uint64_t>& ends = ws.ends;  // (global a << 32) | global b, per pair
+    ends.resize(found);
+    std::atomic<std::size_t> bad{found};
+    ex.parallelFor(found, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        std::uint64_t previous = 0;
+        for (std::size_t k = begin; k < end; ++k) {
+            const TrianglePair& p = sorted[k];
+            if (p.object_a >= objects || p.object_b >= objects || p.triangle_a >= source.triangleCount(p.object_a) ||
+                p.triangle_b >= source.triangleCount(p.object_b)) {
+                std::size_t expected = bad.load();
+                while (k < expected && !bad.compare_exchange_weak(expected, k)) {}
+                return;
+            }
+            const std::uint32_t a = source.triangleBase(p.object_a) + p.triangle_a, b = source.triangleBase(p.object_b) + p.triangle_b;
+            const std::uint64_t key = keyOf(a, b);
+            if (a >= b || (k > begin && key <= previous)) {
+                std::size_t expected = bad.load();
+                while (k < expected && !bad.compare_exchange_weak(expected, k)) {}
+                return;
+            }
+            previous = key;
+            ends[k] = key;
+            std::atomic_ref<std::uint8_t>(marks[a]).store(1, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(marks[b]).store(1, std::memory_order_relaxed);
+        }
+    });
+    // Order across task borders.
+    for (std::size_t k = kPairGrain; k < found && bad.load() == found; k += kPairGrain)
+        if (ends[k - 1] >= ends[k]) bad = k;
+    if (const std::size_t k = bad.load(); k < found) {
+        const TrianglePair& p = sorted[k];
+        return Error(ErrorCode::VulkanError, "sorted pairs: pair " + std::to_string(k) + " (object " + std::to_string(p.object_a) +
+                                                 " triangle " + std::to_string(p.triangle_a) + ", object " + std::to_string(p.object_b) +
+                                                 " triangle " + std::to_string(p.triangle_b) +
+                                                 ") is out of range or out of order (internal error)");
+    }
+    clock.lap(result.timings.validate_ms);
+
+    // Slots: the marked triangles in id order, numbered in blocks (count, scan, assign).
+    const std::size_t blocks = (std::size_t{total} + kMarkBlock - 1) / kMarkBlock;
+    std::vector<std::size_t>& block_first = ws.hit_begin;
+    block_first.assign(blocks + 1, 0);
+    ex.parallelFor(blocks, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t blk = begin; blk < end; ++blk) {
+            const std::size_t from = blk * kMarkBlock, to = std::min<std::size_t>(total, from + kMarkBlock);
+            std::size_t n = 0;
+            for (std::size_t t = from; t < to; ++t) n += marks[t];
+            block_first[blk + 1] = n;
+        }
+    });
+    for (std::size_t blk = 0; blk < blocks; ++blk) block_first[blk + 1] += block_first[blk];
+    const std::size_t slot_count = block_first[blocks];
+    Buffer<std::uint32_t>& slot_of = ws.pair_slots;  // per triangle id: its slot (marked ones)
+    slot_of.resize(total);
+    Buffer<std::uint32_t>& slot_ids = ws.slot_ids;
+    slot_ids.resize(slot_count);
+    ex.parallelFor(blocks, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t blk = begin; blk < end; ++blk) {
+            const std::size_t from = blk * kMarkBlock, to = std::min<std::size_t>(total, from + kMarkBlock);
+            auto slot = static_cast<std::uint32_t>(block_first[blk]);
+            for (std::size_t t = from; t < to; ++t)
+                if (marks[t]) {
+                    slot_of[t] = slot;
+                    slot_ids[slot++] = static_cast<std::uint32_t>(t);
+                }
+        }
+    });
+    // The colliding pairs as slot keys: slots follow the ids, so they stay sorted.
+    Buffer<std::uint64_t>& colliding = ws.colliding;
+    colliding.resize(kept);
+    ex.parallelFor(kept, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k)
+            colliding[k] = keyOf(slot_of[ends[k] >> 32], slot_of[ends[k] & 0xffffffffu]);
+    });
+    NarrowStats& st = result.stats;
+    st.input_pairs = found;
+    st.candidates = slot_count;
+    st.potentially_colliding_triangles = slot_count;
+    st.sap_pairs = found;
+    st.positive_tests = found;
+    result.pairs_left_out = found - kept;
+    clock.lap(result.timings.sweep_ms);
+
+    if (std::optional<Error> e = gatherSlots(source, slot_ids, ex, ws.tags, ws.vertices, ws.table_keys, ws.table_scratch, ws.world))
+        return Error(e->code(), "sorted pairs: " + e->message());
+    const SlotData slots = slotView(ws.tags, ws.vertices);
+    clock.lap(result.timings.gather_ms);
+
+    if (result.pairs.capacity() >= kept) {
+        // Reused memory: resize() zeroes only what grows; the copy runs in parallel.
+        result.pairs.resize(kept);
+        ex.parallelFor(kept, kPairGrain, [&](std::size_t begin, std::size_t end) {
+            std::copy(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
+                      result.pairs.begin() + static_cast<std::ptrdiff_t>(begin));
+        });
+    } else {
+        // Fresh memory: one pass (resize() would first zero it, page by page, on one thread).
+        result.pairs.assign(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(kept));
+    }
+    clock.lap(result.timings.sort_ms);
+    respond(colliding, slots, slot_count, ResponseForm::Automatic, ex, ws, result);
+    clock.lap(result.timings.response_ms);
+    result.timings.total_ms = clock.totalMs();
+    return result;
+}
+
+}  // namespace
+
+Result<NarrowResult> runSortedPairs(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
+                                    Executor& executor, NarrowWorkspace& workspace, std::vector<TrianglePair> pair_memory,
+                                    std::vector<TriangleResponse> response_memory) {
+    return guardedCall("runSortedPairs", executor, options.max_box_pairs, [&](Executor& guarded) {
+        return sortedPhase(sorted, source, options, guarded, workspace.impl(), pair_memory, response_memory);
+    });
+}
+
+}  // namespace vkcollide::narrow

@@ -1,0 +1,24 @@
+// The host result from pairs the GPU decided exactly and sorted (DetectSettings::pair_sort):
+// they are already final — distinct, in DetectResult::pairs' order, neighbours and the
+// object-pair filter applied — so the host neither sorts nor tests. It keeps the first
+// max_pairs, numbers the distinct triangles (slots), gathers their world vertices and
+// computes the responses as the pair path does (responses.hpp), so responses are the same
+// to the bit as runPairNarrowPhase's over the same pairs.
+#pragma once
+
+#include <span>
+
+#include "vkcollide/narrow.hpp"
+#include "vkcollide/thread_pool.hpp"
+
+namespace vkcollide::narrow {
+
+// `sorted`: objects as indices into `source`, triangles within the object, strictly
+// ascending. A pair that is not (out of range, out of order) fails naming it.
+// `pair_memory`, `response_memory`: vectors whose memory the result's pairs and responses
+// reuse (their content is overwritten).
+Result<NarrowResult> runSortedPairs(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
+                                    Executor& executor, NarrowWorkspace& workspace, std::vector<TrianglePair> pair_memory = {},
+                                    std::vector<TriangleResponse> response_memory = {});
+
+}  // namespace vkcollide::narrow

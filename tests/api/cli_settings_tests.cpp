@@ -229,14 +229,14 @@ TEST_CASE("vkcollide detect: the JSON's settings are those the method that ran r
     const Json j = detectJson(s.scratch, s.files + " --resolution 64");
     CHECK(j["settings"]["asked"].object().size() == options.all.size() - options.reliable_only.size());
     CHECK(j["settings"]["used"].object().size() == options.all.size() - options.reliable_only.size());
-    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--proximity", "--proximity-capacity"});
+    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--pair-sort", "--proximity", "--proximity-capacity"});
     CHECK_FALSE(j["settings"]["used"].has("exact"));
     CHECK(j["settings"]["used"].has("depth_aware"));
     // The reliable method: the fields it reads, and none that only peeling reads.
     const Json reliable = detectJson(s.scratch, s.plain_files + " --resolution 64");
     CHECK(reliable["settings"]["asked"].object().size() == options.all.size() - options.peeling_only.size());
     CHECK(keys(reliable["settings"]["used"]) == keys(reliable["settings"]["asked"]));
-    for (const char* read : {"method", "resolution", "direction", "region", "bad_objects", "max_candidate_pairs", "contacts", "exact"})
+    for (const char* read : {"method", "resolution", "direction", "region", "bad_objects", "max_candidate_pairs", "contacts", "exact", "pair_sort"})
         CHECK(reliable["settings"]["used"].has(read));
     for (const char* unread : {"layer_cap", "dual", "packing", "backend", "open_epsilon", "measure_layers", "axes", "coverage",
                                "closed_epsilon", "depth_aware"}) {
@@ -375,4 +375,26 @@ TEST_CASE("vkcollide detect: --exact chooses where the reliable method's exact t
     const Run run = runCli("detect " + s.files + " --exact cpu");
     CHECK(run.status == 1);
     CHECK(run.err.find("--exact belongs to the reliable method") != std::string::npos);
+}
+
+TEST_CASE("vkcollide detect: --pair-sort chooses where the pairs are put in order", "[cli][gpu]") {
+    TwoSpheres s(1.0f);
+    const Json gpu = detectJson(s.scratch, s.plain_files + " --pair-sort gpu");
+    const Json cpu = detectJson(s.scratch, s.plain_files + " --pair-sort cpu");
+    CHECK(gpu["settings"]["asked"]["pair_sort"].string() == "gpu");
+    CHECK(cpu["settings"]["used"]["pair_sort"].string() == "cpu");
+    REQUIRE(stats(gpu)["pairs"].number() > 0);
+    CHECK(stats(gpu)["pairs_sorted_on_gpu"].boolean() == (stats(gpu)["gpu_exact_tests"].number() > 0));
+    CHECK_FALSE(stats(cpu)["pairs_sorted_on_gpu"].boolean());
+    CHECK(jsonPairs(gpu["frames"][0]) == jsonPairs(cpu["frames"][0]));
+    const Json &rg = gpu["frames"][0]["responses"], &rc = cpu["frames"][0]["responses"];
+    REQUIRE(rg.size() == rc.size());
+    for (std::size_t k = 0; k < rg.size(); ++k) {
+        CHECK(rg[k]["triangle"].number() == rc[k]["triangle"].number());
+        CHECK(rg[k]["partners"].number() == rc[k]["partners"].number());
+        for (std::size_t c = 0; c < 3; ++c) CHECK(rg[k]["direction"][c].number() == rc[k]["direction"][c].number());
+    }
+    const Run run = runCli("detect " + s.files + " --pair-sort gpu");
+    CHECK(run.status == 1);
+    CHECK(run.err.find("--pair-sort belongs to the reliable method") != std::string::npos);
 }

@@ -149,6 +149,11 @@ const std::vector<Option>& options() {
                   "where the exact triangle test decides the candidates: auto (the GPU where it has 64-bit floats), gpu or cpu (the reference path)",
                   "gpu: only intersecting pairs are read back and the CPU computes responses alone; cpu: every pair the GPU filter keeps is tested on the CPU; same pairs",
                   setting<&DetectSettings::exact>, "exact", show<&DetectSettings::exact>}),
+        reliable({"--pair-sort", "WHERE", Section::Settings,
+                  "where the exact decision's pairs are put in order: auto (the GPU from 4096 pairs in the last detection), gpu or cpu "
+                  "(the narrow phase; docs/exact_gpu.md)",
+                  "gpu: two GPU passes and one copy, the host only computes responses; cpu: the host sorts; same pairs and responses",
+                  setting<&DetectSettings::pair_sort>, "pair_sort", show<&DetectSettings::pair_sort>}),
         reliable({"--proximity", "D", Section::Settings,
                   "also every vertex-triangle and edge-edge pair within distance D (world units) with its distance, closest points "
                   "and normal (docs/proximity.md; host meshes, 64-bit floats on the GPU)",

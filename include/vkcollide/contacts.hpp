@@ -43,4 +43,34 @@ struct ObjectContact {
     bool contained = false;
 };
 
+// Where two intersecting triangles meet (DetectSettings::contact_geometry): one per
+// DetectResult::pairs entry, at the same index. World units. Open surfaces included.
+enum class ContactShape : std::uint8_t {
+    Segment,   // the triangles cross (or touch along an edge): start..end is the intersection
+    Point,     // they meet in one point (a vertex on a face, two edges crossing): start == end
+    Coplanar,  // both lie in one plane and overlap: `area`, start..end the overlap's diameter
+};
+struct PairContact {
+    // The intersection's end points. Computed in double from the triangles' float world
+    // vertices (the exact test's orientation signs decide which edges cross the other plane,
+    // so the shape is the exact one; the points are rounded from double to float), within
+    // a few units in the last place of the largest coordinate involved.
+    Float3 start, end;
+    // Unit normal(b) - normal(a), as TriangleResponse sums it: the direction that pushes
+    // triangle a out of triangle b. Zero where the two normals are equal (coplanar and
+    // facing the same way) or both triangles have zero area.
+    Float3 normal;
+    float area = 0;  // Coplanar: the overlap polygon's area; 0 otherwise
+    ContactShape shape = ContactShape::Point;
+};
+// Per pair of objects with intersecting triangles, the sum of their pairs' contacts, sorted
+// by (object_a, object_b); object_a == object_b for a self-colliding object.
+struct ObjectPairContact {
+    std::uint32_t object_a = 0, object_b = 0;  // ObjectIds, a <= b
+    std::uint32_t pairs = 0;                    // triangle pairs (DetectResult::pairs) between them
+    float length = 0;                           // total length of the Segment contacts: the intersection curve
+    float area = 0;                             // total area of the Coplanar contacts
+    Float3 normal;                              // unit sum of the pairs' normals, each pair once (zero when they sum to 0)
+};
+
 }  // namespace vkcollide

@@ -228,6 +228,13 @@ struct DetectSettings {
     // triangle and 4 + 8 x (most hits on one ray) bytes per ray of GPU memory
     // (docs/contacts.md measures it: on lavapipe it adds 3-60 % to a detection).
     bool contacts = false;
+    // Contact geometry of the intersecting pairs (vkcollide/contacts.hpp, docs/contacts.md):
+    // where each pair meets (a segment, a point or a coplanar overlap, open surfaces
+    // included) and a normal, in DetectResult::pair_contacts, and per pair of objects the
+    // total length, area and normal in ::pair_contact_totals. Either method; host meshes only
+    // (their vertices are on the host; engine meshes are refused by name). Off by default:
+    // computed on the host after the narrow phase (DetectStats::contact_geometry_ms).
+    bool contact_geometry = false;
     // Rays across the longer side of the region where closed objects' boxes overlap, an
     // integer in [kMinContactResolution, kMaxContactResolution] (16 .. 4096). The error of
     // the volume shrinks about linearly with it (docs/contacts.md). Automatic:
@@ -343,6 +350,7 @@ struct DetectStats {
     // as DetectResult::pairs would have held) and `count` (those the buffer holds).
     std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
     bool pairs_sorted_on_gpu = false;  // DetectSettings::pair_sort: the GPU ordered the host result's pairs
+    double contact_geometry_ms = 0;    // DetectSettings::contact_geometry: host wall time
     NarrowStats narrow;                               // every narrow-phase counter
     NarrowTimings narrow_timings;                     // the narrow phase's stages (host wall clock)
     CellStats cells;                                  // reliable only
@@ -484,6 +492,10 @@ struct DetectResult {
     // or whose triangles intersect (filtered pairs and excluded objects have none), sorted
     // by (object_a, object_b). Empty otherwise.
     std::vector<ObjectContact> contacts;
+    // With DetectSettings::contact_geometry: one per `pairs` entry, same index; and per pair
+    // of objects with intersecting triangles, their sums, sorted by (object_a, object_b).
+    std::vector<PairContact> pair_contacts;
+    std::vector<ObjectPairContact> pair_contact_totals;
     // With DetectSettings::proximity: every vertex-triangle and edge-edge pair within the
     // distance, each once, sorted (ProximityPair). Empty otherwise.
     std::vector<ProximityPair> proximity;
@@ -613,8 +625,8 @@ public:
     // device has (nothing is allocated then; the world stays usable), DeviceLost (create a
     // new Context), InvalidMesh for a bad engine mesh under BadObjectPolicy::Fail.
     [[nodiscard]] Result<DetectResult> detect(const DetectSettings& settings = {});
-    // detect() into a result the caller keeps from frame to frame: the memory of its pairs
-    // and responses is reused, so a loop that passes the same DetectResult every frame asks
+    // detect() into a result the caller keeps from frame to frame: the memory of its pairs,
+    // responses and pair contacts is reused, so a loop that passes the same DetectResult every frame asks
     // the system for fresh pages only when they outgrow it (1.7M pairs: filling a fresh
     // 27 MB vector costs more than sorting it; docs/results.md). Every field is overwritten
     // with what detect() would return; on failure io_result holds no result (its pairs and

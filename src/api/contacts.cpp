@@ -6,6 +6,8 @@
 #include <chrono>
 
 #include "api/world_impl.hpp"
+#include "contacts/pair_contacts.hpp"
+#include "narrow/slots.hpp"
 
 namespace vkcollide {
 namespace {
@@ -15,6 +17,26 @@ Float3 toFloat3(const std::array<double, 3>& v) {
 }
 
 }  // namespace
+
+Result<void> CollisionWorld::Impl::addPairContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,
+                                                   DetectResult& out) {
+    const auto t0 = std::chrono::steady_clock::now();
+    // ids[i] is the detection's object i, run mesh detected.objects[i]: run meshes by id.
+    std::vector<std::uint32_t> mesh_of(ids.empty() ? 0 : *std::max_element(ids.begin(), ids.end()) + 1, 0);
+    for (std::size_t i = 0; i < ids.size(); ++i) mesh_of[ids[i]] = detected.objects[i];
+    const auto lookup = [&](std::uint32_t id, std::uint32_t triangle) {
+        const std::uint32_t k = mesh_of[id];
+        const std::span<const Float3> positions = run.positions[k];
+        const std::vector<std::uint32_t>& indices = objects[id].host_indices;
+        const Transform3x4& m = run.meshes[k].transform;
+        std::array<Float3, 3> v;
+        for (int c = 0; c < 3; ++c) v[c] = narrow::toWorld(m, positions[indices[3 * std::size_t{triangle} + c]]);
+        return v;
+    };
+    contacts::pairContacts(out.pairs, lookup, *executor, out.pair_contacts, out.pair_contact_totals);
+    out.stats.contact_geometry_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return {};
+}
 
 Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,
                                                DetectResult& out) {

@@ -89,6 +89,11 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();
+    if (s.contact_geometry)
+        for (ObjectId id : run.ids)
+            if (!objects[id].host)
+                return named(id, Error(ErrorCode::UnsupportedFeature, "contact_geometry reads the triangles' vertices on the host; "
+                                                                      "engine meshes (addGpuMesh) are not supported"));
     if (s.proximity.distance > 0 && pair_filter && !*mask)
         return Error(ErrorCode::InvalidArgument, "proximity with a pair filter over " + std::to_string(run.ids.size()) +
                                                      " objects: the filter is applied on the host only beyond " +
@@ -160,6 +165,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (reuse) {
         pair_memory = std::move(reuse->pairs);
         response_memory = std::move(reuse->responses);
+        out.pair_contacts = std::move(reuse->pair_contacts);  // overwritten (or cleared) below
         reuse = nullptr;
     }
     for (const passes::ObjectFault& f : detected.excluded) {
@@ -319,6 +325,11 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (broad[0].scene_box) measured_box = broad[0].scene_box;
     if (run.settings.contacts)
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
+    if (run.settings.contact_geometry) {
+        if (auto ok = addPairContacts(run, detected, ids, out); !ok) return ok.error();
+    } else {
+        out.pair_contacts.clear();
+    }
     if (detected.hasPairs() && broad[0].has_proximity) {
         const auto p0 = Clock::now();
         proximity::sortedPairs(broad[0].proximity, out.proximity, st.proximity);

@@ -246,6 +246,9 @@ struct CollisionWorld::Impl {
     Result<void> begin(const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
     // contacts.cpp: DetectResult::contacts and their statistics, after the narrow phase
     // (`out.pairs` mapped to ObjectIds); `ids`: the detection's objects.
+    // pair_contacts.cpp's geometry for out.pairs (ObjectIds), from the run's host meshes.
+    Result<void> addPairContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,
+                                 DetectResult& out);
     Result<void> addContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,
                              DetectResult& io_out);
 };

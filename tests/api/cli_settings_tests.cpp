@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <fstream>
 #include <sstream>
@@ -397,4 +398,30 @@ TEST_CASE("vkcollide detect: --pair-sort chooses where the pairs are put in orde
     const Run run = runCli("detect " + s.files + " --pair-sort gpu");
     CHECK(run.status == 1);
     CHECK(run.err.find("--pair-sort belongs to the reliable method") != std::string::npos);
+}
+
+TEST_CASE("vkcollide detect: --contact-geometry writes where each pair meets and the totals", "[cli][gpu]") {
+    TwoSpheres s(1.0f);
+    const Json plain = detectJson(s.scratch, s.plain_files);
+    const Json on = detectJson(s.scratch, s.plain_files + " --contact-geometry");
+    const Json& frame = on["frames"][0];
+    REQUIRE(frame["pairs"].size() > 0);
+    CHECK(jsonPairs(frame) == jsonPairs(plain["frames"][0]));
+    CHECK(plain["frames"][0]["pair_contacts"].size() == 0);
+    REQUIRE(frame["pair_contacts"].size() == frame["pairs"].size());
+    double length = 0;
+    for (const Json& c : frame["pair_contacts"].array()) {
+        const std::string shape = c["shape"].string();
+        CHECK((shape == "segment" || shape == "point" || shape == "coplanar"));
+        if (shape == "segment") {
+            double d2 = 0;
+            for (std::size_t k = 0; k < 3; ++k) d2 += std::pow(c["end"][k].number() - c["start"][k].number(), 2);
+            length += std::sqrt(d2);
+        }
+    }
+    REQUIRE(frame["pair_contact_totals"].size() == 1);  // the two spheres
+    const Json& total = frame["pair_contact_totals"][0];
+    CHECK(total["pairs"].number() == double(frame["pairs"].size()));
+    CHECK(total["length"].number() == Approx(length).epsilon(1e-4));
+    CHECK(on["settings"]["used"]["contact_geometry"].boolean());
 }

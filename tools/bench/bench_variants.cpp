@@ -52,10 +52,16 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".
         {"contacts", "contacts", [](S& s) { s.contacts = true; }},
         {"contacts-256", "contacts", [](S& s) { s.contacts = true, s.contact_resolution = 256u; }},
+        // Contact geometry of the intersecting pairs (DetectSettings::contact_geometry): its
+        // cost is the difference to "default" (DetectStats::contact_geometry_ms).
+        {"contact-geometry", "contacts", [](S& s) { s.contact_geometry = true; }},
     };
     Variant into{"into", "modes", [](S&) {}};  // the default through detectInto(), one result kept
     into.into = true;
-    v.push_back(std::move(into));
+    v.push_back(into);
+    Variant geometry_into{"contact-geometry-into", "contacts", [](S& s) { s.contact_geometry = true; }};  // and its memory kept
+    geometry_into.into = true;
+    v.push_back(std::move(geometry_into));
     Variant pipelined{"pipelined", "modes", [](S&) {}, false, true};  // the default, one frame late, back to back
     pipelined.pipelined = true;
     v.push_back(pipelined);

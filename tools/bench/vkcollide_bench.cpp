@@ -130,6 +130,7 @@ void writeProfile(std::ofstream& out, const std::string& prefix, const DetectSta
     row("host", "collect", st.host_collect_ms);
     row("host", "readback", st.readback_ms);
     row("host", "narrow", st.narrow_ms);
+    if (st.contact_geometry_ms > 0) row("host", "contact-geometry", st.contact_geometry_ms);
     row("host", "update", update_ms);
     row("host", "total", total_ms);
     // The host parts of the detection beyond the GPU and the narrow phase (DetectStats);
@@ -144,7 +145,7 @@ void writeProfile(std::ofstream& out, const std::string& prefix, const DetectSta
     row("detect", "gpu-span", st.gpu_span_ms);
     row("detect", "launch-wake", st.launch_wake_ms);
     const double named = st.host_settings_ms + st.host_upload_ms + st.host_declare_ms + st.host_compile_ms + st.host_record_ms +
-                         st.host_submit_ms + st.host_wait_ms + st.readback_ms + st.narrow_ms;
+                         st.host_submit_ms + st.host_wait_ms + st.readback_ms + st.narrow_ms + st.contact_geometry_ms;
     row("detect", "rest", st.total_ms - named);
     row("detect", "reused", st.reused_submissions);  // a count, not ms: submissions submitted again, not recorded
     out.flush();

@@ -176,6 +176,41 @@ void Report::frame(std::size_t frame, const Scene& scene, const vkcollide::Detec
         j.endObject();
     }
     j.endArray();
+    // Contact geometry (--contact-geometry; empty without it): one per pair, in `pairs`' order,
+    // and the sums per pair of objects (docs/contacts.md).
+    const auto vec3 = [&](const char* key, vkcollide::Float3 v) {
+        j.key(key);
+        j.beginArray(Layout::Inline);
+        for (float x : {v.x, v.y, v.z}) j.number(x);
+        j.endArray();
+    };
+    j.key("pair_contacts");
+    j.beginArray();
+    for (const vkcollide::PairContact& c : result.pair_contacts) {
+        j.beginObject(Layout::Inline);
+        j.member("shape", [&] {
+            j.string(c.shape == vkcollide::ContactShape::Segment ? "segment" : c.shape == vkcollide::ContactShape::Point ? "point" : "coplanar");
+        });
+        vec3("start", c.start);
+        vec3("end", c.end);
+        vec3("normal", c.normal);
+        j.member("area", [&] { j.number(c.area); });
+        j.endObject();
+    }
+    j.endArray();
+    j.key("pair_contact_totals");
+    j.beginArray();
+    for (const vkcollide::ObjectPairContact& t : result.pair_contact_totals) {
+        j.beginObject(Layout::Inline);
+        j.member("object_a", [&] { j.integer(t.object_a); });
+        j.member("object_b", [&] { j.integer(t.object_b); });
+        j.member("pairs", [&] { j.integer(t.pairs); });
+        j.member("length", [&] { j.number(t.length); });
+        j.member("area", [&] { j.number(t.area); });
+        vec3("normal", t.normal);
+        j.endObject();
+    }
+    j.endArray();
     // Proximity pairs (--proximity; empty without it): docs/proximity.md.
     j.key("proximity");
     j.beginArray();

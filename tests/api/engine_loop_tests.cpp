@@ -13,7 +13,8 @@
 //  * the pairs on the GPU (DetectSettings::device_pairs): after each submit() the engine
 //    submits its own compute pass (tests/shaders/engine_pairs_check.comp.glsl) that waits
 //    for the world's signal and reads the pairs through their device addresses, before it
-//    collects anything; what it wrote agrees with the host result of that frame.
+//    collects anything; what it wrote agrees with the host result of that frame, and, in a
+//    last loop with host_pairs = false (nothing read back), with the exact reference.
 // Every frame's pairs are those of the same geometry added as host meshes, pairs exist
 // where the spheres overlap and none where they are apart.
 #include <catch2/catch.hpp>
@@ -34,7 +35,9 @@ using namespace vkcollide;
 namespace {
 
 constexpr int kFrames = 6;
-constexpr int kChecks = 2 * kFrames;  // frames with semaphores: the engine reads the device pairs of each
+// Frames with semaphores: the engine reads the device pairs of each (submit/collect,
+// pipelined, then with the pairs on the GPU only).
+constexpr int kChecks = 3 * kFrames;
 constexpr std::uint32_t kCheckWords = 8;  // engine_pairs_check.comp.glsl's output per frame
 
 // The check shader's mix(), on the host.
@@ -432,12 +435,32 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
                 results[first_g + kFrames - 1] = std::move(*last);
             }
         }
+        // 4. The pairs on the GPU only (host_pairs = false): nothing is read back, and the
+        // engine's pass is the only reader of each frame's pairs.
+        DetectSettings gpu_only = on_gpu;
+        gpu_only.host_pairs = false;
+        for (int f = 0; f < kFrames && on_gpu.device_pairs; ++f, ++g) {
+            INFO("pairs on the GPU only, frame " << f);
+            engine.deform(g, f, true);
+            repoint(g);
+            REQUIRE(w.submit(gpu_only, {.wait = engine.waitDeformed(g), .signal = engine.signalDetected(g)}));
+            auto pairs = w.devicePairs();
+            REQUIRE(pairs);
+            engine.check(g, g, *pairs);
+            auto r = w.collect();
+            REQUIRE(r);
+            CHECK(r->pairs.empty());
+            CHECK(r->stats.device_pairs_found == expected[f].size());
+            results[g] = std::move(*r);
+        }
         engine.idle();
-        // What the engine's pass read at the signal is the host result of that frame.
+        // What the engine's pass read at the signal is the host result of that frame (the
+        // exact reference's, for the frames without one).
         int compared = 0;
         for (int k = 0; k < kChecks && on_gpu.device_pairs; ++k) {
             INFO("check " << k);
             const DetectResult& r = results[k];
+            const std::vector<TrianglePair>& want = k < 2 * kFrames ? r.pairs : expected[k - 2 * kFrames];
             const auto seen = engine.checked(k);
             if (r.stats.cells.runs > 1) {  // repeated by collect(): the signal's pairs said so
                 CHECK(seen[1] == kDevicePairsIncomplete);
@@ -445,16 +468,16 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
                 continue;
             }
             std::uint32_t sum = 0, cross = 0;
-            for (std::size_t i = 0; i < r.pairs.size(); ++i) {
-                sum += mix(static_cast<std::uint32_t>(i), r.pairs[i]);
-                cross += r.pairs[i].object_a != r.pairs[i].object_b ? 1u : 0u;
+            for (std::size_t i = 0; i < want.size(); ++i) {
+                sum += mix(static_cast<std::uint32_t>(i), want[i]);
+                cross += want[i].object_a != want[i].object_b ? 1u : 0u;
             }
-            CHECK(seen[0] == r.pairs.size());
+            CHECK(seen[0] == want.size());
             CHECK(seen[1] == 0);
-            CHECK(seen[2] == r.pairs.size());
+            CHECK(seen[2] == want.size());
             CHECK(seen[3] == sum);
             CHECK(seen[4] == cross);
-            CHECK(cross == r.pairs.size());  // two spheres, no self-collision
+            CHECK(cross == want.size());  // two spheres, no self-collision
             ++compared;
         }
         // Reruns happen only while the buffers grow (the second slot's first frames).

@@ -77,14 +77,13 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     auto mask = pairMask(run.ids);
     if (!mask) return mask.error();
     d.broad.pair_mask = *mask;
-    if (auto ok = validation::checkDevicePairsFilter(s.device_pairs, pair_filter && !*mask, run.ids.size()); !ok) return ok.error();
+    const bool filter_on_host_only = pair_filter && !*mask;
+    for (auto ok : {validation::checkSortedOnGpuFilter("device_pairs", s.device_pairs, filter_on_host_only, run.ids.size()),
+                    validation::checkSortedOnGpuFilter("pair_sort Gpu", s.pair_sort == PairSort::Gpu, filter_on_host_only, run.ids.size())})
+        if (!ok) return ok.error();
     d.broad.device_pairs = s.device_pairs;
     d.broad.device_pair_capacity = s.device_pair_capacity;
     d.broad.host_pairs = s.host_pairs;
-    const bool filter_on_host_only = pair_filter && !*mask;
-    if (s.pair_sort == PairSort::Gpu && filter_on_host_only)
-        return Error(ErrorCode::InvalidArgument, "pair_sort Gpu with a pair filter over " + std::to_string(run.ids.size()) +
-                                                     " live objects (more than kMaxFilterMaskObjects): the world applies that filter on the host only");
     d.broad.sort_on_gpu = !filter_on_host_only && (s.pair_sort == PairSort::Gpu || (s.pair_sort == PairSort::Auto && last_narrow_pairs >= kGpuPairSortFrom));
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
@@ -136,7 +135,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     return {};
 }
 
-Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock) {
+Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock, DetectResult* reuse) {
     run.in_flight = false;
     const auto t0 = Clock::now();
     if (restart_clock) {
@@ -146,10 +145,10 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock)
     auto r = run.detection->collect();
     run.wait_ms = msSince(t0);
     if (!r) return noted(describeFailure(run, r.error()));
-    return finish(run, std::move(*r));
+    return finish(run, std::move(*r), reuse);
 }
 
-Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionResult detected) {
+Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionResult detected, DetectResult* reuse) {
     const std::vector<ObjectId>& run_ids = run.ids;
     const DetectSettings& run_settings = run.settings;
     const std::vector<passes::BroadPhaseResult>& broad = detected.axes;
@@ -166,7 +165,6 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         pair_memory = std::move(reuse->pairs);
         response_memory = std::move(reuse->responses);
         out.pair_contacts = std::move(reuse->pair_contacts);  // overwritten (or cleared) below
-        reuse = nullptr;
     }
     for (const passes::ObjectFault& f : detected.excluded) {
         const ObjectId id = run_ids[f.object];
@@ -269,9 +267,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.device_pairs_written = broad[0].device_header->count;
         last_narrow_pairs = 0;
     } else if (detected.hasPairs()) {
-        // Reliable: the pairs sorted on the GPU (runSortedPairs), or the survivors straight from the GPU's memory (deduplicated and sorted
-        // in parallel by the narrow phase), host meshes from the world's source, engine
-        // meshes' triangles from the download.
+        // Reliable: the pairs sorted on the GPU (runSortedPairs), or the survivors straight
+        // from the GPU's memory (deduplicated and sorted in parallel by the narrow phase);
+        // host meshes from the world's source, engine meshes' triangles from the download.
         if (auto ok = syncSource(ids); !ok) return ok.error();
         // As the objects were at start(): transforms, and the positions (updateVertices may
         // have made another copy current since: pipelining).

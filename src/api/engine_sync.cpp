@@ -83,10 +83,7 @@ Result<DetectResult> CollisionWorld::Impl::detectCall(const DetectSettings& sett
     if (pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
     if (auto ok = begin(settings, settings.measure_layers, nullptr); !ok) return ok.error();
     Run& run = runs[oldest];
-    reuse = reuse_memory;
-    auto r = hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, false); });
-    reuse = nullptr;
-    return r;
+    return hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, false, reuse_memory); });
 }
 
 Result<void> CollisionWorld::detectInto(DetectResult& io_result, const DetectSettings& settings) {
@@ -140,10 +137,7 @@ Result<DetectResult> CollisionWorld::Impl::collectCall(DetectResult* reuse_memor
     if (!pending()) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
     Run& run = runs[oldest];
     oldest = 1 - oldest;  // the other slot, in flight or not, is the oldest now
-    reuse = reuse_memory;
-    auto r = hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, true); });
-    reuse = nullptr;
-    return r;
+    return hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, true, reuse_memory); });
 }
 
 Result<bool> CollisionWorld::ready() {

@@ -132,20 +132,32 @@ VkDeviceSize indexBytes(const GpuMeshDesc& d) {
     return d.index_type == VK_INDEX_TYPE_UINT16 ? (VkDeviceSize(d.index_count) * 2 + 3) / 4 * 4 : VkDeviceSize(d.index_count) * 4;
 }
 
+namespace {
+
+// What pairs sorted on the GPU need (device_pairs, pair_sort Gpu): the reliable method and
+// its exact decision on the GPU, so shaderFloat64. `what` names the setting.
+Result<void> checkSortedOnGpu(const std::string& what, const DetectSettings& s, const vk::Device& device) {
+    if (s.method != DetectMethod::Reliable)
+        return invalid(what + " belongs to the reliable method (the peeling method forms its pairs on the host)");
+    if (s.exact == ExactDecision::Cpu)
+        return invalid(what + " needs the exact decision on the GPU (exact Auto or Gpu, not Cpu: the CPU decides its pairs on the host)");
+    if (!device.shader_float64)
+        return Error(ErrorCode::UnsupportedFeature, what + " needs the exact decision on the GPU, so shaderFloat64, which " +
+                                                        device.info.name + " lacks (or the adopted device did not enable)");
+    return {};
+}
+
+}  // namespace
+
 Result<void> checkDevicePairs(const DetectSettings& s, const vk::Device& device) {
     if (!s.host_pairs && !s.device_pairs)
         return invalid("host_pairs = false needs device_pairs = true: the pairs would be kept nowhere");
     if (!s.host_pairs && s.contacts)
         return invalid("host_pairs = false with contacts: object contacts are built from the host's pairs");
+    if (s.pair_sort == PairSort::Gpu)
+        if (auto ok = checkSortedOnGpu("pair_sort Gpu", s, device); !ok) return ok;
     if (!s.device_pairs) return {};
-    if (s.method != DetectMethod::Reliable)
-        return invalid("device_pairs belongs to the reliable method (the peeling method forms its pairs on the host)");
-    if (s.exact == ExactDecision::Cpu)
-        return invalid(
-            "device_pairs needs the exact decision on the GPU (exact Auto or Gpu, not Cpu: the CPU decides its pairs on the host)");
-    if (!device.shader_float64)
-        return Error(ErrorCode::UnsupportedFeature, "device_pairs needs the exact decision on the GPU, so shaderFloat64, which " +
-                                                        device.info.name + " lacks (or the adopted device did not enable)");
+    if (auto ok = checkSortedOnGpu("device_pairs", s, device); !ok) return ok;
     if (s.device_pair_capacity > kMaxDevicePairCapacity)
         return invalid("device_pairs: device_pair_capacity " + std::to_string(s.device_pair_capacity) +
                        " is more than kMaxDevicePairCapacity (" + std::to_string(kMaxDevicePairCapacity) + ")");
@@ -169,9 +181,9 @@ Result<void> checkProximity(const DetectSettings& s, const vk::Device& device) {
     return {};
 }
 
-Result<void> checkDevicePairsFilter(bool device_pairs, bool filter_on_host_only, std::size_t live_objects) {
-    if (device_pairs && filter_on_host_only)
-        return invalid("device_pairs with a pair filter over " + std::to_string(live_objects) +
+Result<void> checkSortedOnGpuFilter(const std::string& what, bool on, bool filter_on_host_only, std::size_t live_objects) {
+    if (on && filter_on_host_only)
+        return invalid(what + " with a pair filter over " + std::to_string(live_objects) +
                        " live objects (more than kMaxFilterMaskObjects, " + std::to_string(gpu::kMaxFilterMaskObjects) +
                        "): the world applies that filter on the host only, so the GPU's pairs would differ");
     return {};
@@ -199,13 +211,6 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     if (s.pair_sort != PairSort::Auto && s.pair_sort != PairSort::Gpu && s.pair_sort != PairSort::Cpu)
         return outside("pair_sort", int(s.pair_sort), "PairSort", "Auto, Gpu or Cpu");
     const bool reliable = s.method == DetectMethod::Reliable;
-    if (s.pair_sort == PairSort::Gpu) {
-        if (!reliable) return invalid("pair_sort Gpu belongs to the reliable method (the peeling method forms its pairs on the host)");
-        if (s.exact == ExactDecision::Cpu) return invalid("pair_sort Gpu needs the exact decision on the GPU (exact Auto or Gpu, not Cpu)");
-        if (!device.shader_float64)
-            return Error(ErrorCode::UnsupportedFeature, "pair_sort Gpu needs the exact decision on the GPU, so shaderFloat64, which " +
-                                                            device.info.name + " lacks (or the adopted device did not enable)");
-    }
     if (s.exact == ExactDecision::Gpu && !reliable)
         return invalid("exact decision on the GPU belongs to the reliable method (the peeling method decides on the CPU)");
     if (s.exact == ExactDecision::Gpu && !device.shader_float64)

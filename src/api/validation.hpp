@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include "broad/broad_phase_types.hpp"
 #include "vkcollide/world.hpp"
@@ -50,14 +51,16 @@ VkDeviceSize indexBytes(const GpuMeshDesc& desc);
 // (per method), direction, epsilons, region, and (peeling) coverage and backend against
 // each other and the device.
 Result<void> checkSettings(const DetectSettings& resolved, const vk::Device& device);
-// DetectSettings::device_pairs: the reliable method, the exact decision on the GPU
-// (shaderFloat64), a capacity within kMaxDevicePairCapacity (checkSettings calls it).
+// DetectSettings::device_pairs and pair_sort Gpu: the reliable method, the exact decision on
+// the GPU (shaderFloat64), a capacity within kMaxDevicePairCapacity; host_pairs = false only
+// with device_pairs and without contacts (checkSettings calls it).
 Result<void> checkDevicePairs(const DetectSettings& resolved, const vk::Device& device);
 // DetectSettings::proximity: the reliable method, shaderFloat64, a finite distance in
 // [0, 2^60], a capacity within kMaxProximityCapacity (checkSettings calls it).
 Result<void> checkProximity(const DetectSettings& resolved, const vk::Device& device);
-// device_pairs with a pair filter the world applies only on the host (no mask kept).
-Result<void> checkDevicePairsFilter(bool device_pairs, bool filter_on_host_only, std::size_t live_objects);
+// `what` (device_pairs, pair_sort Gpu: pairs formed on the GPU for the result) with a pair
+// filter the world applies only on the host (no mask kept).
+Result<void> checkSortedOnGpuFilter(const std::string& what, bool on, bool filter_on_host_only, std::size_t live_objects);
 // The reliable method's limit on an object (host meshes' largest |coordinate| is measured
 // when their geometry changes; GPU meshes pass 0 and are checked on the GPU).
 Result<void> checkReliableObject(const Transform3x4& transform, float max_abs_position);

@@ -153,9 +153,6 @@ struct CollisionWorld::Impl {
 
     // finish()'s scratch (vectors kept between detections).
     std::vector<ObjectId> finish_ids;  // the broad phase's objects (bad ones left out) -> ObjectId
-    // detectInto/collectInto: the caller's result, whose pairs' and responses' memory the
-    // next finish() reuses (null: fresh vectors).
-    DetectResult* reuse = nullptr;
     NarrowOptions narrow_options;
 
     vk::Device& device() const { return *device_ref; }
@@ -233,20 +230,22 @@ struct CollisionWorld::Impl {
     Result<void> prepareProximity(Run& run);
     // restart_clock: the timeout counts from now (submit() and record(): the caller chose
     // when to collect); detect() counts from its start.
-    Result<DetectResult> collect(Run& run, bool restart_clock);
+    // `reuse`: the caller's result (detectInto, collectInto), whose pairs', responses' and
+    // pair contacts' memory finish() reuses; null: fresh vectors.
+    Result<DetectResult> collect(Run& run, bool restart_clock, DetectResult* reuse = nullptr);
     // CollisionWorld::detect/collect and their *Into forms (reuse_memory: the caller's result).
     Result<DetectResult> detectCall(const DetectSettings& settings, DetectResult* reuse_memory);
     Result<DetectResult> collectCall(DetectResult* reuse_memory);
     Error describeFailure(const Run& run, const Error& e) const;
-    Result<DetectResult> finish(Run& run, passes::DetectionResult detected);
+    Result<DetectResult> finish(Run& run, passes::DetectionResult detected, DetectResult* reuse);
 
     // engine_sync.cpp: the slot a new detection starts in (created when needed), and the
     // one detect()/submit()/record() path.
     Result<Run*> freeRun();
     Result<void> begin(const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
-    // contacts.cpp: DetectResult::contacts and their statistics, after the narrow phase
-    // (`out.pairs` mapped to ObjectIds); `ids`: the detection's objects.
-    // pair_contacts.cpp's geometry for out.pairs (ObjectIds), from the run's host meshes.
+    // contacts.cpp, after the narrow phase (`out.pairs` mapped to ObjectIds; `ids`: the
+    // detection's objects): the pairs' contact geometry from the run's host meshes, and
+    // DetectResult::contacts with their statistics.
     Result<void> addPairContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,
                                  DetectResult& out);
     Result<void> addContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,

@@ -37,33 +37,34 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
     std::fill(marks.begin(), marks.end(), std::uint8_t{0});
     Buffer<std::uint64_t>& ends = ws.ends;  // (global a << 32) | global b, per pair
     ends.resize(found);
-    std::atomic<std::size_t> bad{found};
+    // A pair's (a, b) as global ids; kOutOfRange when a triangle is out of range. Every
+    // valid key is above 0 (a < b), so 0 stands for "no pair before".
+    constexpr std::uint64_t kOutOfRange = ~std::uint64_t{0};
+    const auto globalKey = [&](const TrianglePair& p) {
+        if (p.object_a >= objects || p.object_b >= objects || p.triangle_a >= source.triangleCount(p.object_a) ||
+            p.triangle_b >= source.triangleCount(p.object_b))
+            return kOutOfRange;
+        return keyOf(source.triangleBase(p.object_a) + p.triangle_a, source.triangleBase(p.object_b) + p.triangle_b);
+    };
+    std::atomic<std::size_t> bad{found};  // the lowest pair found out of range or out of order
     ex.parallelFor(found, kPairGrain, [&](std::size_t begin, std::size_t end) {
-        std::uint64_t previous = 0;
+        // A chunk's first pair is compared with the pair before it too (chunks may start
+        // anywhere: an engine's executor chooses them); one out of range is its own chunk's.
+        std::uint64_t previous = begin > 0 ? globalKey(sorted[begin - 1]) : 0;
+        if (previous == kOutOfRange) previous = 0;
         for (std::size_t k = begin; k < end; ++k) {
-            const TrianglePair& p = sorted[k];
-            if (p.object_a >= objects || p.object_b >= objects || p.triangle_a >= source.triangleCount(p.object_a) ||
-                p.triangle_b >= source.triangleCount(p.object_b)) {
-                std::size_t expected = bad.load();
-                while (k < expected && !bad.compare_exchange_weak(expected, k)) {}
-                return;
-            }
-            const std::uint32_t a = source.triangleBase(p.object_a) + p.triangle_a, b = source.triangleBase(p.object_b) + p.triangle_b;
-            const std::uint64_t key = keyOf(a, b);
-            if (a >= b || (k > begin && key <= previous)) {
+            const std::uint64_t key = globalKey(sorted[k]);
+            if (key == kOutOfRange || (key >> 32) >= (key & 0xffffffffu) || key <= previous) {
                 std::size_t expected = bad.load();
                 while (k < expected && !bad.compare_exchange_weak(expected, k)) {}
                 return;
             }
             previous = key;
             ends[k] = key;
-            std::atomic_ref<std::uint8_t>(marks[a]).store(1, std::memory_order_relaxed);
-            std::atomic_ref<std::uint8_t>(marks[b]).store(1, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(marks[key >> 32]).store(1, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(marks[key & 0xffffffffu]).store(1, std::memory_order_relaxed);
         }
     });
-    // Order across task borders.
-    for (std::size_t k = kPairGrain; k < found && bad.load() == found; k += kPairGrain)
-        if (ends[k - 1] >= ends[k]) bad = k;
     if (const std::size_t k = bad.load(); k < found) {
         const TrianglePair& p = sorted[k];
         return Error(ErrorCode::VulkanError, "sorted pairs: pair " + std::to_string(k) + " (object " + std::to_string(p.object_a) +

@@ -143,16 +143,20 @@ void Report::frame(std::size_t frame, const Scene& scene, const vkcollide::Detec
         j.endArray();
     }
     j.endArray();
+    // A Float3 as the member `key`: [x, y, z].
+    const auto vec3 = [&](const char* key, vkcollide::Float3 v) {
+        j.key(key);
+        j.beginArray(Layout::Inline);
+        for (float x : {v.x, v.y, v.z}) j.number(x);
+        j.endArray();
+    };
     j.key("responses");
     j.beginArray();
     for (const vkcollide::TriangleResponse& r : result.responses) {
         j.beginObject(Layout::Inline);
         j.member("object", [&] { j.integer(r.object); });
         j.member("triangle", [&] { j.integer(r.triangle); });
-        j.key("direction");
-        j.beginArray(Layout::Inline);
-        for (float v : {r.direction.x, r.direction.y, r.direction.z}) j.number(v);
-        j.endArray();
+        vec3("direction", r.direction);
         j.member("partners", [&] { j.integer(r.partner_count); });
         j.endObject();
     }
@@ -165,12 +169,8 @@ void Report::frame(std::size_t frame, const Scene& scene, const vkcollide::Detec
         j.member("object_a", [&] { j.integer(c.object_a); });
         j.member("object_b", [&] { j.integer(c.object_b); });
         j.member("volume", [&] { j.number(c.volume); });
-        for (const auto& [key, v] : {std::pair<const char*, vkcollide::Float3>{"normal", c.normal}, {"point", c.point}}) {
-            j.key(key);
-            j.beginArray(Layout::Inline);
-            for (float x : {v.x, v.y, v.z}) j.number(x);
-            j.endArray();
-        }
+        vec3("normal", c.normal);
+        vec3("point", c.point);
         j.member("depth", [&] { j.number(c.depth); });
         j.member("contained", [&] { j.boolean(c.contained); });
         j.endObject();
@@ -178,12 +178,6 @@ void Report::frame(std::size_t frame, const Scene& scene, const vkcollide::Detec
     j.endArray();
     // Contact geometry (--contact-geometry; empty without it): one per pair, in `pairs`' order,
     // and the sums per pair of objects (docs/contacts.md).
-    const auto vec3 = [&](const char* key, vkcollide::Float3 v) {
-        j.key(key);
-        j.beginArray(Layout::Inline);
-        for (float x : {v.x, v.y, v.z}) j.number(x);
-        j.endArray();
-    };
     j.key("pair_contacts");
     j.beginArray();
     for (const vkcollide::PairContact& c : result.pair_contacts) {

@@ -7,7 +7,7 @@
 //                  the GPU input check) and the dispatch over the survivors
 //   pairs-bucket   survivors counted per lower triangle id, scanned, scattered
 //   pairs-sort     each bucket sorted by the higher id, repeats dropped, scanned, written
-//   pairs-to-host  (for the host's result) the pairs copied to host memory, coalesced
+//   pairs-to-host  (for the host's result) the pairs copied to host memory by the transfer engine
 //   pairs-header-readback  (with a host copy of the header) the header copied to host memory
 //
 // Capacity: the caller's, or (0) the cell stage's survivor capacity, which bounds the
@@ -41,8 +41,8 @@ public:
     // run, the id its pairs carry. `fault_header`: the broad phase's header whose GPU input
     // check counts mark the run incomplete (0: none). `capacity`: pairs, 0: automatic.
     // `header_to_host`: the passes end by copying the header to host memory (header()).
-    // `for_host`: the pairs are written to host-visible memory for the host's result
-    // (hostPairs()) instead of device-local memory for the engine.
+    // `for_host`: the sorted pairs are also copied to host-visible memory for the host's
+    // result (hostPairs()); the engine's device-local buffer is then only the copy's source.
     [[nodiscard]] Result<void> prepare(const CellPairs& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
                                        VkDeviceAddress fault_header, bool header_to_host = false, bool for_host = false);
     // The passes, after the cell stage's (`cells`: its resources in this graph); `fault_header`

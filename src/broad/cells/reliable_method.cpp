@@ -63,7 +63,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
         if (auto ok = proximity_->prepare(*cells_, run.meshes, run.settings.proximity_distance, run.settings.proximity_capacity); !ok)
             return ok;
     }
-    if (!device_pairs_on_ && !sorted_for_host_) return {};
+    if (!sorting()) return {};
     if (!device_pairs_) {
         auto made = DevicePairStage::create(*device_);
         if (!made) return made.error();
@@ -76,14 +76,23 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     device_pair_capacity_ = run.settings.device_pair_capacity;
     if (sorted_for_host_) device_pair_capacity_ = hostSortCapacity(run.settings.sorted_pairs_expected);
     fault_header_ = run.any_gpu_check ? table_->buffer(core_.header).address() : 0;
+    return prepareSort();
+}
+
+Result<void> ReliableMethod::prepareSort() {
     return device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_, pairs_on_device_only_ || sorted_for_host_,
                                   sorted_for_host_);
+}
+
+Result<void> ReliableMethod::sortAlone(const RunView& run, const char* what, BroadPhaseResult& io_result) {
+    if (auto ok = prepareSort(); !ok) return ok.error();
+    return runAlone(run, what, io_result, [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
 }
 
 void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
     const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
     if (proximity_on_) proximity_->record(g, cells);
-    if (device_pairs_on_ || sorted_for_host_) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
+    if (sorting()) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
 }
 
 // One submission after the run's own (a rerun, a sort), within what is left of the run's
@@ -136,17 +145,10 @@ Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, Bro
             !ok)
             return ok;
     }
-    if ((device_pairs_on_ || sorted_for_host_) && result.cells.runs > 1) {
+    if (sorting() && result.cells.runs > 1) {
         // The device pairs of the first run say Incomplete: sort the final run's survivors
         // (the stage's buffers may have grown, so size for them first).
-        if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_,
-                                             pairs_on_device_only_ || sorted_for_host_, sorted_for_host_);
-            !ok)
-            return ok.error();
-        if (auto ok = runAlone(run, "sorting the device pairs", result,
-                               [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
-            !ok)
-            return ok;
+        if (auto ok = sortAlone(run, "sorting the device pairs", result); !ok) return ok;
     }
     if (proximity_on_) {
         // The pass of the first run saw it fail when the stage ran again: once more after it.
@@ -179,12 +181,7 @@ Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, Bro
         if (h.flags == gpu::kDevicePairsOverflow) {
             // More pairs than expected: sort again into a copy that holds them all.
             device_pair_capacity_ = hostSortCapacity(h.needed);
-            if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_, true, true); !ok)
-                return ok.error();
-            if (auto ok = runAlone(run, "sorting the pairs again", result,
-                                   [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
-                !ok)
-                return ok;
+            if (auto ok = sortAlone(run, "sorting the pairs again", result); !ok) return ok;
             h = device_pairs_->header();
         }
         if (h.flags != 0 || h.count != h.needed)

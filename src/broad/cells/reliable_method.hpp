@@ -81,7 +81,12 @@ private:
     bool device_pairs_on_ = false;
     bool pairs_on_device_only_ = false;  // device pairs without a host result
     bool sorted_for_host_ = false;       // the host result's pairs sorted on the GPU (sort_on_gpu)
+    bool sorting() const { return device_pairs_on_ || sorted_for_host_; }  // the device-pairs passes run
     std::uint32_t hostSortCapacity(std::uint64_t expected) const;
+    // The device-pairs stage sized for this run (capacity, where its header and pairs go),
+    // and run alone after it (a rerun of the cell stage, a larger host copy).
+    [[nodiscard]] Result<void> prepareSort();
+    [[nodiscard]] Result<void> sortAlone(const RunView& run, const char* what, BroadPhaseResult& io_result);
     std::uint32_t device_pair_capacity_ = 0;
     std::vector<std::uint32_t> object_tags_;
     VkDeviceAddress fault_header_ = 0;

@@ -11,6 +11,7 @@
 
 #include "support/device_copy.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/scene_world.hpp"
 #include "support/stability_scenes.hpp"
 #include "support/test_scenes.hpp"
 #include "vk/device.hpp"
@@ -77,25 +78,14 @@ TestScene manySpheres() {
     return s;
 }
 
-// Three copies of one fine grid in one plane: every triangle touches about a dozen of the
-// other copies', far more pairs than the first run's survivor capacity (triangles / 2, at
-// least 4096), so the cell stage reruns after the signal.
+// Three copies of one fine grid in one plane: far more pairs than the first run's survivor
+// capacity (triangles / 2, at least 4096), so the cell stage reruns after the signal.
 TestScene coincidentGrids() {
-    TestScene s{"coincident grids", {}};
-    for (int k = 0; k < 3; ++k) {
-        auto g = clothGrid(1.0f, 1.0f, 40, 40);
-        REQUIRE(g);
-        s.objects.push_back({std::move(*g), {.name = "grid" + std::to_string(k), .open = true}});
-    }
-    return s;
+    auto s = test::coincidentGrids(40);
+    REQUIRE(s);
+    return std::move(*s);
 }
 
-std::unique_ptr<CollisionWorld> worldOf(ValidatedContext& ctx, const TestScene& scene) {
-    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
-    REQUIRE(world);
-    for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
-    return std::move(*world);
-}
 
 }  // namespace
 
@@ -114,7 +104,7 @@ TEST_CASE("device pairs: the GPU's sorted pairs equal DetectResult::pairs on eve
     scenes.push_back(restingStack());
     scenes.push_back(manySpheres());
     for (const TestScene& scene : scenes) {
-        auto world = worldOf(ctx, scene);
+        auto world = sceneWorld(ctx, scene);
         auto r = world->detect(on);
         REQUIRE(r);
         CHECK(r->pairs.size() > 0);
@@ -133,7 +123,7 @@ TEST_CASE("device pairs: the GPU's sorted pairs equal DetectResult::pairs on eve
     auto cases = allStabilityCases();
     REQUIRE(cases);
     for (const StabilityCase& c : *cases) {
-        auto world = worldOf(ctx, c.scene);
+        auto world = sceneWorld(ctx, c.scene);
         DetectSettings s = on;
         s.region = c.settings.region;
         auto r = world->detect(s);
@@ -150,7 +140,7 @@ TEST_CASE("device pairs: pair filter, the final run after an overflow, pipelined
     on.device_pairs = true;
     {
         const TestScene scene = manySpheres();
-        auto world = worldOf(ctx, scene);
+        auto world = sceneWorld(ctx, scene);
         REQUIRE(world->setPairFilter([](ObjectId a, ObjectId b) { return (a + b) % 3 != 0; }));
         auto r = world->detect(on);
         REQUIRE(r);
@@ -160,7 +150,7 @@ TEST_CASE("device pairs: pair filter, the final run after an overflow, pipelined
         // The first run's survivors overflow: at the signal the header says Incomplete;
         // collect() reruns the stage and sorts again, so the buffers hold the final pairs.
         const TestScene scene = coincidentGrids();
-        auto world = worldOf(ctx, scene);
+        auto world = sceneWorld(ctx, scene);
         REQUIRE(world->submit(on));
         auto early = world->devicePairs();
         REQUIRE(early);
@@ -176,7 +166,7 @@ TEST_CASE("device pairs: pair filter, the final run after an overflow, pipelined
     {
         // Two in flight: slot 0 keeps frame 0's pairs while frame 1 writes slot 1.
         const TestScene scene = manySpheres();
-        auto world = worldOf(ctx, scene);
+        auto world = sceneWorld(ctx, scene);
         REQUIRE(world->submit(on));
         REQUIRE(world->submit(on));
         auto first = world->collect();
@@ -205,7 +195,7 @@ TEST_CASE("device pairs: a short capacity says overflow and the count needed", "
     if (!ctx.device().shader_float64) return;
     auto all = allTestScenes();
     REQUIRE(all);
-    auto world = worldOf(ctx, all->front());
+    auto world = sceneWorld(ctx, all->front());
     DetectSettings s;
     s.device_pairs = true;
     s.device_pair_capacity = 5;
@@ -227,7 +217,7 @@ TEST_CASE("device pairs: refused by name without the GPU's exact decision", "[ap
     ValidatedContext ctx;
     auto all = allTestScenes();
     REQUIRE(all);
-    auto world = worldOf(ctx, all->front());
+    auto world = sceneWorld(ctx, all->front());
     const auto refused = [&](DetectSettings s, ErrorCode code, const char* words) {
         s.device_pairs = true;
         auto r = world->detect(s);
@@ -292,13 +282,13 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
     for (TestScene& s : *all) scenes.push_back(std::move(s));
     scenes.push_back(restingStack());
     for (const TestScene& scene : scenes) {
-        auto world = worldOf(ctx, scene);
+        auto world = sceneWorld(ctx, scene);
         same(*world, scene.name);
     }
     {
         // Overflow: the first run's survivors (on the device now) do not fit; collect()
         // reruns and the buffers hold the final pairs.
-        auto world = worldOf(ctx, coincidentGrids());
+        auto world = sceneWorld(ctx, coincidentGrids());
         auto only = world->detect(gpu_only);
         REQUIRE(only);
         CHECK(only->stats.cells.runs > 1);
@@ -311,7 +301,7 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
     }
     {
         // Pipelined, switching between the two forms: each slot's buffers are right.
-        auto world = worldOf(ctx, manySpheres());
+        auto world = sceneWorld(ctx, manySpheres());
         REQUIRE(world->submit(gpu_only));
         REQUIRE(world->submit(with_host));
         auto first = world->collect();
@@ -326,7 +316,7 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
     }
     // A short capacity: the count needed and the count written.
     {
-        auto world = worldOf(ctx, restingStack());
+        auto world = sceneWorld(ctx, restingStack());
         DetectSettings shorter = gpu_only;
         shorter.device_pair_capacity = 7;
         auto r = world->detect(shorter);
@@ -335,7 +325,7 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
         CHECK(r->stats.device_pairs_found > 7);
     }
     // Refused by name: nowhere to keep the pairs, or contacts that need them on the host.
-    auto world = worldOf(ctx, restingStack());
+    auto world = sceneWorld(ctx, restingStack());
     DetectSettings nowhere;
     nowhere.host_pairs = false;
     auto r = world->detect(nowhere);

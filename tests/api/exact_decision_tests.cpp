@@ -10,6 +10,7 @@
 
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/scene_world.hpp"
 #include "support/stability_scenes.hpp"
 #include "support/test_scenes.hpp"
 #include "vkcollide/narrow.hpp"
@@ -246,13 +247,6 @@ void requireSameSorted(const Both& r, const std::string& what) {
     CHECK(r.gpu.stats.cpu_exact_tests == 0);
 }
 
-std::unique_ptr<CollisionWorld> sceneWorld(ValidatedContext& ctx, const TestScene& scene) {
-    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
-    REQUIRE(world);
-    for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
-    return std::move(*world);
-}
-
 }  // namespace
 
 TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the bit", "[api][gpu][reliable][exact]") {
@@ -283,12 +277,9 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     requireSameSorted(cut, "resting scene, max_pairs 37");
     // An overflow: three coincident grids need more survivors than the first run holds;
     // the GPU sorts the final run's.
-    TestScene grids{"coincident grids", {}};
-    for (int k = 0; k < 3; ++k) {
-        auto g = clothGrid(1.0f, 1.0f, 40, 40);
-        REQUIRE(g);
-        grids.objects.push_back({std::move(*g), {.name = "grid" + std::to_string(k), .open = true}});
-    }
+    auto grids_made = coincidentGrids(40);
+    REQUIRE(grids_made);
+    const TestScene& grids = *grids_made;
     auto grid_world = sceneWorld(ctx, grids);
     const Both rerun = sortedBoth(*grid_world);
     CHECK(rerun.gpu.stats.cells.runs > 1);
@@ -342,13 +333,9 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
 
 TEST_CASE("detectInto and collectInto give detect()'s result in the caller's memory", "[api][gpu][reliable]") {
     ValidatedContext ctx;
-    TestScene grids{"coincident grids", {}};
-    for (int k = 0; k < 3; ++k) {
-        auto g = clothGrid(1.0f, 1.0f, 24, 24);
-        REQUIRE(g);
-        grids.objects.push_back({std::move(*g), {.name = "grid" + std::to_string(k), .open = true}});
-    }
-    auto world = sceneWorld(ctx, grids);
+    auto grids = coincidentGrids(24);
+    REQUIRE(grids);
+    auto world = sceneWorld(ctx, *grids);
     auto fresh = world->detect();
     REQUIRE(fresh);
     REQUIRE(fresh->pairs.size() > 100);

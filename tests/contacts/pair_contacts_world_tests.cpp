@@ -9,6 +9,7 @@
 #include "contact_checks.hpp"
 #include "narrow/slots.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/scene_world.hpp"
 #include "support/test_scenes.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
@@ -79,11 +80,9 @@ TEST_CASE("contact geometry: every pair of the test scenes gets a contact on bot
         const WorldTriangles tri = worldTriangles(scene);
         DetectResult first;
         for (unsigned threads : {1u, 3u}) {
-            auto world = CollisionWorld::create(ctx.context(), {.threads = threads});
-            REQUIRE(world);
-            for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
-            auto plain = (*world)->detect();
-            auto r = (*world)->detect(on);
+            auto world = sceneWorld(ctx, scene, threads);
+            auto plain = world->detect();
+            auto r = world->detect(on);
             REQUIRE(plain);
             REQUIRE(r);
             CHECK(r->pairs == plain->pairs);
@@ -108,12 +107,10 @@ TEST_CASE("contact geometry: every pair of the test scenes gets a contact on bot
     }
     // The peeling method's pairs get theirs too.
     const TestScene& scene = scenes->front();
-    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
-    REQUIRE(world);
-    for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
+    auto world = sceneWorld(ctx, scene);
     DetectSettings peeling = on;
     peeling.method = DetectMethod::Peeling;
-    auto r = (*world)->detect(peeling);
+    auto r = world->detect(peeling);
     REQUIRE(r);
     requireContacts(*r, worldTriangles(scene), scene.name + ", peeling");
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
@@ -127,12 +124,10 @@ TEST_CASE("contact geometry: resting boxes touch along segments and coplanar fac
         REQUIRE(b);
         s.objects.push_back({std::move(*b), {.name = "box" + std::to_string(k), .transform = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, float(k)}}});
     }
-    auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
-    REQUIRE(world);
-    for (const SceneObject& o : s.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
+    auto world = sceneWorld(ctx, s);
     DetectSettings on;
     on.contact_geometry = true;
-    auto r = (*world)->detect(on);
+    auto r = world->detect(on);
     REQUIRE(r);
     requireContacts(*r, worldTriangles(s), s.name);
     // The top face of box 0 lies on the bottom face of box 1: their overlap is the whole

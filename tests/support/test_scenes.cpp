@@ -71,6 +71,16 @@ Result<TestScene> clothThroughSphere(float d) {
     return s;
 }
 
+Result<TestScene> coincidentGrids(std::uint32_t cells) {
+    TestScene s{"coincident grids", {}};
+    for (int k = 0; k < 3; ++k) {
+        auto g = clothGrid(1.0f, 1.0f, cells, cells);
+        if (!g) return g.error();
+        s.objects.push_back({std::move(*g), {.name = "grid" + std::to_string(k), .open = true}});
+    }
+    return s;
+}
+
 Result<std::vector<TestScene>> allTestScenes(float d) {
     std::vector<TestScene> out;
     for (auto make : {overlappingSpheres, torusThroughBox, selfIntersectingTube, clothThroughSphere}) {

@@ -35,6 +35,7 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/detect/detection.cpp
   ${S}/mesh/engine_mesh.cpp  # mesh intake (src/mesh/)
   ${S}/mesh/mesh_upload.cpp
+  ${S}/api/collision_rays.cpp  # DetectSettings::collision_rays: ray images to world segments
   ${S}/api/contacts.cpp
   ${S}/api/detect.cpp
   ${S}/api/engine_mesh.cpp

@@ -120,6 +120,7 @@
 
 #include <vulkan/vulkan_core.h>
 
+#include "vkcollide/export.hpp"
 #include "vkcollide/result.hpp"
 
 namespace vkcollide {
@@ -305,7 +306,7 @@ struct AdoptedDevice {
 
 // Sets, in the engine's structs, every feature vkcollide requires (leaves the others as
 // they are). Chain them as usual: io_features.pNext -> io_v12 -> io_v13 -> VkDeviceCreateInfo.
-void enableRequiredFeatures(VkPhysicalDeviceFeatures2& io_features, VkPhysicalDeviceVulkan12Features& io_v12,
+VKCOLLIDE_API void enableRequiredFeatures(VkPhysicalDeviceFeatures2& io_features, VkPhysicalDeviceVulkan12Features& io_v12,
                             VkPhysicalDeviceVulkan13Features& io_v13) noexcept;
 
 struct DeviceInfo {
@@ -325,9 +326,9 @@ struct DeviceInfo {
     std::vector<std::string> missing;
 };
 
-const char* toString(VkPhysicalDeviceType type) noexcept;
+VKCOLLIDE_API const char* toString(VkPhysicalDeviceType type) noexcept;
 
-class Context {
+class VKCOLLIDE_API Context {
 public:
     // Errors: LoaderUnavailable (no libvulkan.so.1 or a required entry point),
     // NoSuitableDevice (no device meets the requirements, or none matches the name; the
@@ -367,12 +368,10 @@ public:
     // pipeline_cache_data next run. Errors: VulkanError / OutOfMemory.
     [[nodiscard]] Result<std::vector<std::byte>> pipelineCacheData() const;
 
-    // Internal access for vkcollide's own subsystems. deviceRef() is what a world holds to
-    // keep the device alive (see Lifetime).
-    vk::Device& device() noexcept { return *device_; }
-    std::shared_ptr<vk::Device> deviceRef() const noexcept { return device_; }
-
 private:
+    // vkcollide's own subsystems reach the device through ContextAccess
+    // (src/api/context_access.hpp); a world holds a reference to keep it alive (Lifetime).
+    friend struct ContextAccess;
     explicit Context(std::shared_ptr<vk::Device> device);
     std::shared_ptr<vk::Device> device_;
 };

@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vkcollide/export.hpp"
 #include "vkcollide/mesh.hpp"
 #include "vkcollide/result.hpp"
 
@@ -27,7 +28,7 @@ enum class MeshFormat {
 
 // The format named by a path's extension (.obj, .off, .ply, any letter case).
 // Error: InvalidArgument for any other extension.
-Result<MeshFormat> meshFormatFromPath(std::string_view path);
+VKCOLLIDE_API Result<MeshFormat> meshFormatFromPath(std::string_view path);
 
 // Parses a whole mesh file held in memory.
 //   in_data:     the file's bytes (text or binary PLY); only read during the call.
@@ -57,7 +58,7 @@ Result<MeshFormat> meshFormatFromPath(std::string_view path);
 // "<source_name>: byte <offset>: what"), naming the object for out-of-range indices and
 // bad coordinates. Absurd counts, truncation and files without any triangle are
 // ParseErrors too. OutOfMemory when host memory runs out (nothing is thrown).
-Result<std::vector<HostMesh>> readMesh(std::string_view in_data, MeshFormat format,
+VKCOLLIDE_API Result<std::vector<HostMesh>> readMesh(std::string_view in_data, MeshFormat format,
                                        std::string_view source_name);
 
 // The largest file readMeshFile() reads (it holds the whole file in memory).
@@ -69,7 +70,7 @@ inline constexpr std::uint64_t kMaxMeshFileBytes = std::uint64_t(4) << 30;  // 4
 // device such as /dev/zero, a pipe, a directory) or is larger than kMaxMeshFileBytes;
 // OutOfMemory when its bytes do not fit in memory; InvalidArgument for an unknown
 // extension; and everything readMesh() returns.
-Result<std::vector<HostMesh>> readMeshFile(const std::string& path);
+VKCOLLIDE_API Result<std::vector<HostMesh>> readMeshFile(const std::string& path);
 
 // --- Writers: exact round trip (shortest float text that reads back bit-exactly). ---
 // The meshes are written as given; no validation. Used by the fuzz seed corpus and the
@@ -78,9 +79,9 @@ Result<std::vector<HostMesh>> readMeshFile(const std::string& path);
 enum class PlyEncoding { Ascii, BinaryLittleEndian, BinaryBigEndian };
 
 // One `o <name>` block per mesh; indices are made global (1-based) as OBJ wants.
-std::string writeObj(std::span<const HostMesh> meshes);
-std::string writeOff(const HostMesh& mesh);
+VKCOLLIDE_API std::string writeObj(std::span<const HostMesh> meshes);
+VKCOLLIDE_API std::string writeOff(const HostMesh& mesh);
 // float x, y, z per vertex; `list uchar uint vertex_indices` per triangle.
-std::string writePly(const HostMesh& mesh, PlyEncoding encoding);
+VKCOLLIDE_API std::string writePly(const HostMesh& mesh, PlyEncoding encoding);
 
 }  // namespace vkcollide

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "vkcollide/export.hpp"
 #include "vkcollide/result.hpp"
 #include "vkcollide/types.hpp"
 
@@ -23,6 +24,6 @@ struct HostMesh {
 // Checks the rules every mesh must meet before vkcollide uses it: at least one
 // triangle, an index count that is a multiple of three, every index below the vertex
 // count and every vertex finite. The error names the mesh and the first broken rule.
-Result<void> validateMesh(const HostMesh& mesh);
+VKCOLLIDE_API Result<void> validateMesh(const HostMesh& mesh);
 
 }  // namespace vkcollide

@@ -37,6 +37,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "vkcollide/export.hpp"
 #include "vkcollide/mesh.hpp"
 #include "vkcollide/result.hpp"
 #include "vkcollide/scene.hpp"
@@ -116,7 +117,7 @@ static_assert(offsetof(GpuTriangle, v) == 16 && sizeof(GpuTriangle) == 52 && ali
 // entries are checked for the triangles a call reads (errors name object and triangle).
 // Thread safety: const member functions may run concurrently; changes must not overlap
 // a call that reads the source.
-class TriangleSource {
+class VKCOLLIDE_API TriangleSource {
 public:
     static constexpr Transform3x4 kIdentity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
 
@@ -262,7 +263,7 @@ struct NarrowResult {
 // candidates, more at a million (docs/narrow_phase.md). Holds no results; its size follows
 // the largest call. Any entry may use any workspace.
 // Thread safety: one call at a time per workspace.
-class NarrowWorkspace {
+class VKCOLLIDE_API NarrowWorkspace {
 public:
     NarrowWorkspace();
     ~NarrowWorkspace();
@@ -293,9 +294,9 @@ private:
 //
 // Thread safety: reentrant; `in_candidates` must not change during the call. The forms
 // without a workspace use one of their own (same results).
-Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
+VKCOLLIDE_API Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
                                     Executor& executor);
-Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
+VKCOLLIDE_API Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candidates, const NarrowOptions& options,
                                     Executor& executor, NarrowWorkspace& io_workspace);
 
 // The record path on 32-byte records; vertices and vertex indices come from `source`
@@ -304,9 +305,9 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateTriangle> in_candid
 // triangle the source does not have, InvalidMesh when a triangle's index is out of
 // range or its world vertex is not finite, and InvalidArgument when a GPU-only
 // triangle has no entry in the source's table or an id appears twice in the table.
-Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
+VKCOLLIDE_API Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
                                     const NarrowOptions& options, Executor& executor);
-Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
+VKCOLLIDE_API Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records, const TriangleSource& source,
                                     const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace);
 
 // The pair path: the exact test on candidate pairs of global triangle ids (see
@@ -316,9 +317,9 @@ Result<NarrowResult> runNarrowPhase(std::span<const CandidateRecord> in_records,
 // every input order, executor and thread count. Errors: InvalidArgument naming the first
 // pair (input position) whose id is not below source.totalTriangles() or that pairs a
 // triangle with itself; the source's errors as for the 32-byte record path.
-Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
+VKCOLLIDE_API Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
                                         const NarrowOptions& options, Executor& executor);
-Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
+VKCOLLIDE_API Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
                                         const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace);
 
 }  // namespace vkcollide

@@ -6,6 +6,8 @@
 #include <utility>
 #include <variant>
 
+#include "vkcollide/export.hpp"
+
 namespace vkcollide {
 
 // What went wrong, coarse enough to branch on; Error::message() says exactly what.
@@ -26,9 +28,9 @@ enum class ErrorCode : std::uint32_t {
     LimitExceeded,       // a documented limit was reached (DetectSettings::max_pairs, the sampling range)
 };
 
-const char* toString(ErrorCode code) noexcept;
+VKCOLLIDE_API const char* toString(ErrorCode code) noexcept;
 
-class Error {
+class VKCOLLIDE_API Error {
 public:
     Error(ErrorCode code, std::string message, std::int32_t vk_result = 0)
         : code_(code), vk_result_(vk_result), message_(std::move(message)) {}

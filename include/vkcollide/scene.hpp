@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "vkcollide/export.hpp"
 #include "vkcollide/mesh.hpp"
 #include "vkcollide/result.hpp"
 
@@ -27,17 +28,17 @@ inline constexpr std::uint64_t kMaxGeneratedTriangles = std::uint64_t{1} << 28;
 // Sphere around the origin, poles on ±Z. `segments` >= 3 around the Z axis,
 // `rings` >= 2 from pole to pole. One vertex per pole.
 // Triangles: 2 * segments * (rings - 1). Vertices: segments * (rings - 1) + 2.
-Result<HostMesh> uvSphere(float radius, std::uint32_t segments, std::uint32_t rings);
+VKCOLLIDE_API Result<HostMesh> uvSphere(float radius, std::uint32_t segments, std::uint32_t rings);
 
 // Torus around the Z axis: tube centre circle of radius `major_radius` in the XY plane,
 // tube radius `minor_radius` < major_radius. `segments` >= 3 around Z, `sides` >= 3
 // around the tube. Triangles: 2 * segments * sides. Vertices: segments * sides.
-Result<HostMesh> torus(float major_radius, float minor_radius, std::uint32_t segments, std::uint32_t sides);
+VKCOLLIDE_API Result<HostMesh> torus(float major_radius, float minor_radius, std::uint32_t segments, std::uint32_t sides);
 
 // Axis-aligned box [-h, h] per axis; each face is a `subdivisions` x `subdivisions` grid
 // of quads (>= 1) sharing the vertices on the box edges.
 // Triangles: 12 * n^2. Vertices: 6 * n^2 + 2.
-Result<HostMesh> box(Float3 half_extents, std::uint32_t subdivisions);
+VKCOLLIDE_API Result<HostMesh> box(Float3 half_extents, std::uint32_t subdivisions);
 
 // A closed tube that passes through itself (for self-intersection tests).
 //
@@ -52,7 +53,7 @@ Result<HostMesh> box(Float3 half_extents, std::uint32_t subdivisions);
 // 0.5 * s), `segments` >= 8 along the path and `sides` >= 3.
 // Triangles: 2 * segments * sides + 2 * sides. Vertices: (segments + 1) * sides + 2.
 // Topologically a sphere (Euler characteristic 2) even though it self-intersects.
-Result<HostMesh> twistedTube(float path_scale, float tube_radius, std::uint32_t segments, std::uint32_t sides,
+VKCOLLIDE_API Result<HostMesh> twistedTube(float path_scale, float tube_radius, std::uint32_t segments, std::uint32_t sides,
                              float twist_turns);
 
 // An open, flat cloth of nx x ny quads (2 triangles each) in the XY plane at z = 0,
@@ -66,20 +67,20 @@ struct ClothOptions {
     float fold_angle = 0.0f;
 };
 // Triangles: 2 * nx * ny. Vertices: (nx + 1) * (ny + 1). nx, ny >= 1.
-Result<HostMesh> clothGrid(float width, float depth, std::uint32_t nx, std::uint32_t ny,
+VKCOLLIDE_API Result<HostMesh> clothGrid(float width, float depth, std::uint32_t nx, std::uint32_t ny,
                            const ClothOptions& options = {});
 
 // Sphere from a subdivided icosahedron: every level splits each triangle into four at
 // its edge midpoints, which are pushed out onto the sphere. Triangles are nearly equal in
 // size (no poles). `levels` <= 12. Triangles: 20 * 4^levels. Vertices: 10 * 4^levels + 2.
-Result<HostMesh> icosphere(float radius, std::uint32_t levels);
+VKCOLLIDE_API Result<HostMesh> icosphere(float radius, std::uint32_t levels);
 
 // Closed frustum around the Z axis from z = -height/2 (radius `radius_bottom`) to
 // z = +height/2 (radius `radius_top`), capped by fans on flat ends: a cylinder when the
 // radii are equal, a cone when radius_top is 0 (the apex is one vertex). radius_bottom > 0,
 // radius_top >= 0, height > 0, `segments` >= 3 around, `stacks` >= 1 along.
 // Triangles: 2 * segments * stacks + 2 * segments (cone: 2 * segments * stacks).
-Result<HostMesh> frustum(float radius_bottom, float radius_top, float height, std::uint32_t segments,
+VKCOLLIDE_API Result<HostMesh> frustum(float radius_bottom, float radius_top, float height, std::uint32_t segments,
                          std::uint32_t stacks);
 
 // `levels` rounds of midpoint subdivision: each triangle becomes four (three corner
@@ -88,21 +89,21 @@ Result<HostMesh> frustum(float radius_bottom, float radius_top, float height, st
 // does not change (no smoothing). Errors: InvalidMesh for a mesh validateMesh refuses,
 // InvalidArgument when the result would exceed kMaxGeneratedTriangles.
 // Triangles: 4^levels times the input's.
-Result<HostMesh> subdivide(const HostMesh& mesh, std::uint32_t levels);
+VKCOLLIDE_API Result<HostMesh> subdivide(const HostMesh& mesh, std::uint32_t levels);
 
 // Deformers, in place; they move vertices and keep indices (so closedness and neighbours
 // stay). Errors (the mesh is left unchanged): InvalidArgument for non-finite parameters or
 // a result that leaves the float range.
 //
 // Twist about the Z axis: a vertex at height z turns by `radians_per_unit * z` about Z.
-Result<void> twistMesh(HostMesh& io_mesh, float radians_per_unit);
+VKCOLLIDE_API Result<void> twistMesh(HostMesh& io_mesh, float radians_per_unit);
 // Bend along X around an axis parallel to Z through (0, radius, 0): the vertex (x, y, z)
 // goes to angle theta = x / radius on the circle of radius (radius - y), and up by
 // pitch * theta / (2 pi): a bar longer than 2 pi radius wraps round more than once and, with
 // a pitch smaller than its thickness along Z, passes through itself. The plane x = 0 stays
 // where it is. Needs radius > 0 and every vertex at y < radius (else it would fold inside
 // out: InvalidArgument naming the vertex).
-Result<void> bendMesh(HostMesh& io_mesh, float radius, float pitch = 0.0f);
+VKCOLLIDE_API Result<void> bendMesh(HostMesh& io_mesh, float radius, float pitch = 0.0f);
 
 // An open square cloth draped over a sphere centred on the origin, with an optional flap
 // folded through the cloth itself. The flat cloth (side `size`, quads x quads, centred over
@@ -124,7 +125,7 @@ struct DrapeOptions {
     float flap = 0.15f;  // in [0, 0.5); 0: no flap
     float flap_lift = 0.08f;
 };
-Result<HostMesh> drapedCloth(const DrapeOptions& options);
+VKCOLLIDE_API Result<HostMesh> drapedCloth(const DrapeOptions& options);
 
 // Row-major affine transforms: p' = M * (x, y, z, 1).
 using Transform3x4 = std::array<float, 12>;
@@ -134,8 +135,8 @@ using Transform4x4 = std::array<float, 16>;  // the last row must be (0, 0, 0, 1
 // (a mirror) would turn outward triangles inward, so each triangle's winding is
 // reversed too. Errors (the mesh is left unchanged): InvalidArgument for non-finite
 // entries, a 4x4 whose last row is not (0, 0, 0, 1), or a result that overflows float.
-Result<void> transformMesh(HostMesh& io_mesh, const Transform3x4& transform);
-Result<void> transformMesh(HostMesh& io_mesh, const Transform4x4& transform);
+VKCOLLIDE_API Result<void> transformMesh(HostMesh& io_mesh, const Transform3x4& transform);
+VKCOLLIDE_API Result<void> transformMesh(HostMesh& io_mesh, const Transform4x4& transform);
 
 struct MeshStats {
     std::size_t triangle_count = 0;
@@ -160,6 +161,6 @@ struct MeshStats {
 
 // Statistics of a mesh, computed in double. Error: InvalidMesh if an index is out of
 // range, the index count is not a multiple of three, or the mesh has no triangle.
-Result<MeshStats> computeMeshStats(const HostMesh& mesh);
+VKCOLLIDE_API Result<MeshStats> computeMeshStats(const HostMesh& mesh);
 
 }  // namespace vkcollide

@@ -17,9 +17,11 @@
 #include <thread>
 #include <vector>
 
+#include "vkcollide/export.hpp"
+
 namespace vkcollide {
 
-class Executor {
+class VKCOLLIDE_API Executor {
 public:
     virtual ~Executor() = default;
 
@@ -57,7 +59,7 @@ using ParallelForCallback =
 // the calling thread without calling back.
 // Thread safety: as thread safe as the callback; vkcollide never calls it concurrently
 // from one narrow-phase call.
-class CallbackExecutor final : public Executor {
+class VKCOLLIDE_API CallbackExecutor final : public Executor {
 public:
     // `thread_count`: how many of the engine's threads may run tasks at once (0 counts as
     // 1). `parallel_for` must not be empty (an empty one runs every task on the caller).
@@ -83,7 +85,7 @@ private:
 //
 // Thread safety: parallelFor may be called from any thread; calls are serialised (one
 // loop runs at a time). The destructor must not run concurrently with parallelFor.
-class ThreadPool final : public Executor {
+class VKCOLLIDE_API ThreadPool final : public Executor {
 public:
     // Runs loops on `thread_count` threads, the calling one included; 0 means
     // std::thread::hardware_concurrency() (at least 1). 1 starts no worker. If the system

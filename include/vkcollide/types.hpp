@@ -7,6 +7,8 @@
 #include <array>
 #include <cstdint>
 
+#include "vkcollide/export.hpp"
+
 namespace vkcollide {
 
 // A position or direction in object or world units.
@@ -77,11 +79,11 @@ enum class PairSort {
 // Lower-case names as the command-line options spell them: "scan", "paper"; "centre",
 // "dilate", "conservative", "best"; "auto", "raster", "compute"; "reliable", "peeling";
 // "auto", "gpu", "cpu" (twice).
-const char* toString(PackingMethod method) noexcept;
-const char* toString(DetectMethod method) noexcept;
-const char* toString(Coverage coverage) noexcept;
-const char* toString(SamplingBackend backend) noexcept;
-const char* toString(ExactDecision exact) noexcept;
-const char* toString(PairSort sort) noexcept;
+VKCOLLIDE_API const char* toString(PackingMethod method) noexcept;
+VKCOLLIDE_API const char* toString(DetectMethod method) noexcept;
+VKCOLLIDE_API const char* toString(Coverage coverage) noexcept;
+VKCOLLIDE_API const char* toString(SamplingBackend backend) noexcept;
+VKCOLLIDE_API const char* toString(ExactDecision exact) noexcept;
+VKCOLLIDE_API const char* toString(PairSort sort) noexcept;
 
 }  // namespace vkcollide

@@ -50,11 +50,12 @@
 #include <vulkan/vulkan_core.h>
 
 #include "vkcollide/contacts.hpp"
-#include "vkcollide/proximity.hpp"
 #include "vkcollide/context.hpp"
+#include "vkcollide/export.hpp"
 #include "vkcollide/gpu_mesh.hpp"
 #include "vkcollide/mesh.hpp"
 #include "vkcollide/narrow.hpp"
+#include "vkcollide/proximity.hpp"
 #include "vkcollide/result.hpp"
 #include "vkcollide/types.hpp"
 
@@ -168,6 +169,10 @@ struct DetectSettings {
     // overlap deeply (about as many on coarse piles). Costs 48 bytes per triangle and 19
     // per ray of GPU memory, and a little GPU time per peeling step.
     bool depth_aware = true;
+    // Peeling: also return where the collision rays were (DetectResult::collision_rays), as
+    // world-space segments, for pictures and debugging. Costs a 4-byte-per-ray readback and
+    // a host pass over the ray image. The reliable method samples no rays: refused there.
+    bool collision_rays = false;
 
     // Limits (docs/stability.md, "Limits"):
     // Longest wait for all of the detection's GPU work together, in milliseconds: every
@@ -482,6 +487,14 @@ struct DevicePairs {
     std::uint32_t slot = 0;            // the detection slot (0 or 1) whose buffers these are
 };
 
+// The collision rays of a peeling detection (DetectSettings::collision_rays): each ray from
+// where the sampled box begins along its direction to where it ends, in world space.
+struct CollisionRays {
+    std::vector<std::array<Float3, 2>> segments;  // every direction's rays, the first direction's first
+    std::array<std::uint32_t, 3> per_axis{};      // how many of `segments` each direction gave
+    float pixel_size = 0;                         // world width of one ray's pixel (first direction)
+};
+
 struct DetectResult {
     std::vector<TrianglePair> pairs;
     // With DetectSettings::device_pairs: where the same pairs are on the GPU (above).
@@ -501,6 +514,8 @@ struct DetectResult {
     std::vector<ProximityPair> proximity;
     // With DetectSettings::proximity: the same pairs on the GPU (vkcollide/proximity.hpp).
     std::optional<DeviceProximity> device_proximity;
+    // With DetectSettings::collision_rays (peeling): where the collision rays were.
+    std::optional<CollisionRays> collision_rays;
     DetectStats stats;
     // DetectSettings::max_pairs was reached: the intersecting pairs found beyond it (not in
     // `pairs`, not in `responses`), and an error (LimitExceeded) that says so. Empty and 0
@@ -534,7 +549,7 @@ struct WorldOptions {
     Executor* executor = nullptr;
 };
 
-class CollisionWorld {
+class VKCOLLIDE_API CollisionWorld {
 public:
     // The world keeps the Context's device alive: it may outlive the Context, and every
     // call works as before after the Context is destroyed (context.hpp, "Lifetime").

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "api/collision_rays.hpp"
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
@@ -124,6 +125,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     if (const unsigned wake = narrow::threadsToWake(last_narrow_pairs, executor->threadCount()))
         d.broad.poll_hook = [ex = executor, wake] { ex->prepare(wake); };
     d.broad.depth_aware = s.depth_aware;
+    d.broad.keep_ray_image = s.collision_rays;  // peeling only (validation)
     d.broad.max_candidate_pairs = s.max_candidate_pairs;  // the reliable method's GPU budget
     d.broad.exact_on_gpu = s.exact != ExactDecision::Cpu;  // Gpu was checked against the device
     d.axes = s.axes;
@@ -224,6 +226,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.submissions += b.host.submissions;
         st.reused_submissions += b.host.reused;
     }
+    if (run_settings.collision_rays) out.collision_rays = collisionRays(broad, st.resolution);
     if (detected.hasPairs()) {
         const passes::CellPairsStats& c = broad[0].cells;
         st.cells = {c.entries,   c.max_cell,      c.deep_cells, c.candidate_cells, c.candidates, c.duplicates,  c.filtered,

@@ -219,6 +219,8 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     if (auto ok = checkDevicePairs(s, device); !ok) return ok;
     if (auto ok = checkProximity(s, device); !ok) return ok;
     if (s.axes != 1 && s.axes != 3) return invalid("axes must be 1 or 3, not " + std::to_string(s.axes));
+    if (reliable && s.collision_rays)
+        return invalid("collision_rays belongs to the peeling method (--method peeling): the reliable method samples no rays");
     if (reliable && s.axes != 1) return invalid("the reliable method runs along one direction (axes 1; resolveSettings sets it)");
     const std::uint32_t n = s.resolution.value_or(0);
     if (reliable) {

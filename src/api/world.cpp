@@ -8,6 +8,7 @@
 #include <new>
 #include <stdexcept>
 
+#include "api/context_access.hpp"
 #include "api/host_passes.hpp"
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
@@ -148,9 +149,9 @@ CollisionWorld::~CollisionWorld() {
 
 Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context, const WorldOptions& options) {
     auto impl = std::make_unique<Impl>();
-    impl->device_ref = context.deviceRef();
+    impl->device_ref = ContextAccess::deviceRef(context);
     // The default method's pipelines now; the other's when a detection first asks for it.
-    auto detection = passes::Detection::create(context.device(), Impl::methodFactory(DetectSettings{}.method));
+    auto detection = passes::Detection::create(ContextAccess::device(context), Impl::methodFactory(DetectSettings{}.method));
     if (!detection) return detection.error();
     impl->runs[0].detection = std::move(*detection);
     if (options.executor) {

@@ -10,10 +10,12 @@
 #pragma once
 
 #include <atomic>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <span>
+#include <string>
 
 #include "vk/dispatch.hpp"
 #include "vk/features.hpp"
@@ -24,6 +26,7 @@ namespace vkcollide::vk {
 
 struct Device;
 using DeviceRef = std::shared_ptr<Device>;
+struct PipelineHandles;  // vk/pipeline.hpp
 
 struct Device : std::enable_shared_from_this<Device> {
     std::shared_ptr<LoaderLibrary> library;  // null when adopted
@@ -63,6 +66,12 @@ struct Device : std::enable_shared_from_this<Device> {
     // vkcollide's own (owns_pipeline_cache), created by setUpPipelineCache().
     VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
     bool owns_pipeline_cache = false;
+    // Every pipeline alive on this device, by what it was made from (Pipeline::createCompute
+    // and createRaster): the worlds of one Context share one set instead of building their own
+    // 12-24 each. Weak: a pipeline dies with the last world that holds it.
+    std::mutex pipelines_mutex;
+    std::map<std::string, std::weak_ptr<const PipelineHandles>> pipelines;
+    std::uint64_t pipelines_created = 0;  // under pipelines_mutex; for tests
     // Serialise what several worlds on several threads share: the queue (every submission
     // goes through queueSubmit) and the engine's memory hooks.
     std::mutex queue_mutex;

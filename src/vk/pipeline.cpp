@@ -3,13 +3,16 @@
 
 #include "vk/shader_limits.hpp"
 
+#include <cstdint>
+#include <string>
 #include <vector>
 
 namespace vkcollide::vk {
 
-Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bindings, std::uint32_t push_bytes,
-                                    VkShaderStageFlags stages, const std::string& name) {
-    device_ = device.ref();
+namespace {
+
+Result<void> makeLayout(Device& device, std::span<const Pipeline::Binding> bindings, std::uint32_t push_bytes,
+                        VkShaderStageFlags stages, const std::string& name, PipelineHandles& h) {
     // Detection reaches its buffers through device addresses and push constants: its
     // pipelines have no descriptor set at all. Only pipelines with bindings (test shaders)
     // need pushed descriptors, hence VK_KHR_push_descriptor.
@@ -18,32 +21,31 @@ Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bin
             return Error(ErrorCode::UnsupportedFeature, "pipeline '" + name + "' has descriptor bindings, which need "
                                                         "VK_KHR_push_descriptor; the device has not enabled it");
         std::vector<VkDescriptorSetLayoutBinding> b;
-        for (const Binding& x : bindings) b.push_back({x.binding, x.type, 1, stages, nullptr});
+        for (const Pipeline::Binding& x : bindings) b.push_back({x.binding, x.type, 1, stages, nullptr});
         VkDescriptorSetLayoutCreateInfo sl{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
         sl.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
         sl.bindingCount = static_cast<std::uint32_t>(b.size());
         sl.pBindings = b.data();
-        VkResult r = device.fns.vkCreateDescriptorSetLayout(device.device, &sl, device.allocator(), &set_layout_);
+        VkResult r = device.fns.vkCreateDescriptorSetLayout(device.device, &sl, device.allocator(), &h.set_layout);
         if (r != VK_SUCCESS) {
-            set_layout_ = VK_NULL_HANDLE;
+            h.set_layout = VK_NULL_HANDLE;
             return vulkanError(r, "vkCreateDescriptorSetLayout for '" + name + "'");
         }
     }
     VkPushConstantRange range{stages, 0, push_bytes};
     VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-    li.setLayoutCount = set_layout_ ? 1 : 0;
-    li.pSetLayouts = set_layout_ ? &set_layout_ : nullptr;
+    li.setLayoutCount = h.set_layout ? 1 : 0;
+    li.pSetLayouts = h.set_layout ? &h.set_layout : nullptr;
     li.pushConstantRangeCount = push_bytes ? 1 : 0;
     li.pPushConstantRanges = &range;
-    VkResult r = device.fns.vkCreatePipelineLayout(device.device, &li, device.allocator(), &layout_);
+    VkResult r = device.fns.vkCreatePipelineLayout(device.device, &li, device.allocator(), &h.layout);
     if (r != VK_SUCCESS) {
-        layout_ = VK_NULL_HANDLE;
+        h.layout = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreatePipelineLayout for '" + name + "'");
     }
     return {};
 }
 
-namespace {
 struct ShaderModule {
     Device* device = nullptr;
     VkShaderModule module = VK_NULL_HANDLE;
@@ -64,7 +66,34 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
     }
     return {};
 }
+// What a pipeline is made from, as a key: the program (an embedded array: its address and
+// size), its bindings and push constant size, and for raster pipelines their fixed state.
+std::string bindingKey(std::span<const Pipeline::Binding> bindings, std::uint32_t push_bytes) {
+    std::string key = "push " + std::to_string(push_bytes);
+    for (const Pipeline::Binding& b : bindings) key += " b" + std::to_string(b.binding) + ":" + std::to_string(int(b.type));
+    return key;
+}
+
+std::string programKey(std::span<const std::uint32_t> spirv) {
+    return std::to_string(reinterpret_cast<std::uintptr_t>(spirv.data())) + "+" + std::to_string(spirv.size());
+}
+
+Result<void> makeRaster(Device& device, const Pipeline::RasterDesc& desc, std::span<const Pipeline::Binding> bindings,
+                        std::uint32_t push_constant_bytes, const std::string& name, PipelineHandles& h);
+
 }  // namespace
+
+Result<Pipeline> Pipeline::share(Device& device, const std::string& key, const Make& make) {
+    std::lock_guard lock(device.pipelines_mutex);
+    std::weak_ptr<const PipelineHandles>& slot = device.pipelines[key];
+    if (auto alive = slot.lock()) return Pipeline(std::move(alive));
+    auto h = std::make_shared<PipelineHandles>();
+    h->device = device.ref();
+    if (auto ok = make(*h); !ok) return ok.error();  // h destroys what was made
+    ++device.pipelines_created;
+    slot = h;
+    return Pipeline(std::move(h));
+}
 
 Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::uint32_t> spirv,
                                          std::span<const Binding> bindings, std::uint32_t push_constant_bytes,
@@ -74,36 +103,48 @@ Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::ui
     if (!needs) return Error(ErrorCode::InvalidArgument, "compute pipeline '" + name + "': " + needs.error().message());
     if (auto over = exceededComputeLimit(*needs, device.properties.limits, name))
         return Error(ErrorCode::UnsupportedFeature, *over + " on " + device.info.name);
-    Pipeline p;
-    if (auto ok = p.createLayout(device, bindings, push_constant_bytes, VK_SHADER_STAGE_COMPUTE_BIT, name); !ok)
-        return ok.error();
-    ShaderModule module;
-    if (auto ok = makeModule(device, spirv, module, name); !ok) return ok.error();
-    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    ci.stage.module = module.module;
-    ci.stage.pName = "main";
-    ci.layout = p.layout_;
-    VkResult r = device.fns.vkCreateComputePipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &p.pipeline_);
-    if (r != VK_SUCCESS) {
-        p.pipeline_ = VK_NULL_HANDLE;
-        return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
-    }
-    p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
-    return p;
+    const std::string key = "compute " + programKey(spirv) + " " + bindingKey(bindings, push_constant_bytes);
+    return share(device, key, [&](PipelineHandles& h) -> Result<void> {
+        if (auto ok = makeLayout(device, bindings, push_constant_bytes, VK_SHADER_STAGE_COMPUTE_BIT, name, h); !ok) return ok;
+        ShaderModule module;
+        if (auto ok = makeModule(device, spirv, module, name); !ok) return ok;
+        VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        ci.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+        ci.stage.module = module.module;
+        ci.stage.pName = "main";
+        ci.layout = h.layout;
+        VkResult r = device.fns.vkCreateComputePipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &h.pipeline);
+        if (r != VK_SUCCESS) {
+            h.pipeline = VK_NULL_HANDLE;
+            return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
+        }
+        h.bind_point = VK_PIPELINE_BIND_POINT_COMPUTE;
+        return {};
+    });
 }
 
 Result<Pipeline> Pipeline::createRaster(Device& device, const RasterDesc& desc, std::span<const Binding> bindings,
                                         std::uint32_t push_constant_bytes, const std::string& name) {
-    Pipeline p;
-    if (auto ok = p.createLayout(device, bindings, push_constant_bytes,
-                                 VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, name);
+    std::string key = "raster " + programKey(desc.vertex_spirv) + " " + programKey(desc.fragment_spirv) + " " +
+                      bindingKey(bindings, push_constant_bytes) + " depth " + std::to_string(int(desc.depth_format)) + " " +
+                      std::to_string(int(desc.depth_test)) + std::to_string(int(desc.depth_write)) + " " +
+                      std::to_string(int(desc.depth_compare)) + " cull " + std::to_string(desc.cull) + " " +
+                      std::to_string(int(desc.front_face)) + " conservative " + std::to_string(int(desc.conservative)) + " colour";
+    for (VkFormat f : desc.color_formats) key += " " + std::to_string(int(f));
+    return share(device, key, [&](PipelineHandles& h) { return makeRaster(device, desc, bindings, push_constant_bytes, name, h); });
+}
+
+namespace {
+
+Result<void> makeRaster(Device& device, const Pipeline::RasterDesc& desc, std::span<const Pipeline::Binding> bindings,
+                        std::uint32_t push_constant_bytes, const std::string& name, PipelineHandles& h) {
+    if (auto ok = makeLayout(device, bindings, push_constant_bytes, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, name, h);
         !ok)
-        return ok.error();
+        return ok;
     ShaderModule vs, fs;
-    if (auto ok = makeModule(device, desc.vertex_spirv, vs, name + ".vert"); !ok) return ok.error();
-    if (auto ok = makeModule(device, desc.fragment_spirv, fs, name + ".frag"); !ok) return ok.error();
+    if (auto ok = makeModule(device, desc.vertex_spirv, vs, name + ".vert"); !ok) return ok;
+    if (auto ok = makeModule(device, desc.fragment_spirv, fs, name + ".frag"); !ok) return ok;
     VkPipelineShaderStageCreateInfo stages[2]{};
     stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
@@ -165,40 +206,26 @@ Result<Pipeline> Pipeline::createRaster(Device& device, const RasterDesc& desc, 
     ci.pDepthStencilState = &ds;
     ci.pColorBlendState = &cb;
     ci.pDynamicState = &dyn;
-    ci.layout = p.layout_;
-    VkResult r = device.fns.vkCreateGraphicsPipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &p.pipeline_);
+    ci.layout = h.layout;
+    VkResult r = device.fns.vkCreateGraphicsPipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &h.pipeline);
     if (r != VK_SUCCESS) {
-        p.pipeline_ = VK_NULL_HANDLE;
+        h.pipeline = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateGraphicsPipelines for '" + name + "'");
     }
-    p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    return p;
+    h.bind_point = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    return {};
 }
 
-Pipeline& Pipeline::operator=(Pipeline&& o) noexcept {
-    if (this != &o) {
-        reset();
-        device_ = std::move(o.device_);
-        o.device_.reset();
-        set_layout_ = std::exchange(o.set_layout_, VK_NULL_HANDLE);
-        layout_ = std::exchange(o.layout_, VK_NULL_HANDLE);
-        pipeline_ = std::exchange(o.pipeline_, VK_NULL_HANDLE);
-        bind_point_ = o.bind_point_;
-    }
-    return *this;
-}
+}  // namespace
 
-void Pipeline::reset() {
-    if (!device_) return;
-    const auto& f = device_->fns;
-    const VkAllocationCallbacks* a = device_->allocator();
-    if (pipeline_) f.vkDestroyPipeline(device_->device, pipeline_, a);
-    if (layout_) f.vkDestroyPipelineLayout(device_->device, layout_, a);
-    if (set_layout_) f.vkDestroyDescriptorSetLayout(device_->device, set_layout_, a);
-    if (pipeline_ || layout_ || set_layout_) device_->resource_generation.fetch_add(1, std::memory_order_relaxed);
-    pipeline_ = VK_NULL_HANDLE;
-    layout_ = VK_NULL_HANDLE;
-    set_layout_ = VK_NULL_HANDLE;
+PipelineHandles::~PipelineHandles() {
+    if (!device) return;
+    const auto& f = device->fns;
+    const VkAllocationCallbacks* a = device->allocator();
+    if (pipeline) f.vkDestroyPipeline(device->device, pipeline, a);
+    if (layout) f.vkDestroyPipelineLayout(device->device, layout, a);
+    if (set_layout) f.vkDestroyDescriptorSetLayout(device->device, set_layout, a);
+    if (pipeline || layout || set_layout) device->resource_generation.fetch_add(1, std::memory_order_relaxed);
 }
 
 }  // namespace vkcollide::vk

@@ -1,9 +1,11 @@
-// Compute and graphics pipelines, move-only, with their layouts. Every pipeline is created
-// through Device::pipeline_cache (the engine's or the Context's own) and with the
-// engine's allocation callbacks; each holds a DeviceRef (see resources.hpp).
+// Compute and graphics pipelines with their layouts, shared by every world of a device.
+// Every pipeline is created through Device::pipeline_cache (the engine's or the Context's
+// own) and with the engine's allocation callbacks; each holds a DeviceRef (see resources.hpp).
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
@@ -13,10 +15,22 @@
 
 namespace vkcollide::vk {
 
+// What one pipeline is made of, destroyed together when the last Pipeline sharing it goes.
+struct PipelineHandles {
+    DeviceRef device;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkPipelineBindPoint bind_point = VK_PIPELINE_BIND_POINT_COMPUTE;
+    ~PipelineHandles();
+};
+
 // A compute or graphics pipeline with its layout. Without bindings the layout has no
 // descriptor set (push constants and device addresses only: every detection pipeline);
 // with bindings the set is pushed, which needs VK_KHR_push_descriptor enabled
 // (Device::push_descriptor), else creation fails with UnsupportedFeature.
+// Pipelines made from the same program and state on one device are one pipeline, shared
+// (Device::pipelines): a second world on a Context creates none of its own.
 class Pipeline {
 public:
     Pipeline() = default;
@@ -42,23 +56,18 @@ public:
     };
     static Result<Pipeline> createRaster(Device& device, const RasterDesc& desc, std::span<const Binding> bindings,
                                          std::uint32_t push_constant_bytes, const std::string& name);
-    ~Pipeline() { reset(); }
-    Pipeline(Pipeline&& o) noexcept { *this = std::move(o); }
-    Pipeline& operator=(Pipeline&& o) noexcept;
 
-    VkPipeline handle() const noexcept { return pipeline_; }
-    VkPipelineLayout layout() const noexcept { return layout_; }
-    VkPipelineBindPoint bindPoint() const noexcept { return bind_point_; }
-    void reset();
+    VkPipeline handle() const noexcept { return handles_ ? handles_->pipeline : VK_NULL_HANDLE; }
+    VkPipelineLayout layout() const noexcept { return handles_ ? handles_->layout : VK_NULL_HANDLE; }
+    VkPipelineBindPoint bindPoint() const noexcept { return handles_ ? handles_->bind_point : VK_PIPELINE_BIND_POINT_COMPUTE; }
+    void reset() noexcept { handles_.reset(); }
 
 private:
-    Result<void> createLayout(Device& device, std::span<const Binding> bindings, std::uint32_t push_bytes,
-                              VkShaderStageFlags stages, const std::string& name);
-    DeviceRef device_;
-    VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-    VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    VkPipelineBindPoint bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
+    // The device's pipeline made from `key` if one is alive, else a new one that `make` fills.
+    using Make = std::function<Result<void>(PipelineHandles&)>;
+    static Result<Pipeline> share(Device& device, const std::string& key, const Make& make);
+    explicit Pipeline(std::shared_ptr<const PipelineHandles> handles) : handles_(std::move(handles)) {}
+    std::shared_ptr<const PipelineHandles> handles_;
 };
 
 }  // namespace vkcollide::vk

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 
 #include "api/engine_copy.hpp"
 #include "support/exact_reference.hpp"
@@ -75,6 +76,88 @@ TEST_CASE("detect() finds only exact pairs and reports the paper's statistics", 
         CHECK((len == 0.0 || std::abs(len - 1.0) < 1e-5));
     }
     CHECK(in_pairs == 2 * result->pairs.size());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("collision_rays returns the peeling detection's collision rays as world segments", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto scene = overlappingSpheres();
+    REQUIRE(scene);
+    addScene(*world, *scene);
+    auto plain = world->detect(fixedSettings(128));
+    REQUIRE(plain);
+    CHECK_FALSE(plain->collision_rays);
+
+    DetectSettings s = fixedSettings(128);
+    s.collision_rays = true;
+    auto result = world->detect(s);
+    REQUIRE(result);
+    CHECK(result->pairs == plain->pairs);  // the rays are read back, nothing else changes
+    REQUIRE(result->collision_rays);
+    const CollisionRays& rays = *result->collision_rays;
+    REQUIRE(rays.segments.size() == result->stats.collision_rays);
+    CHECK(rays.per_axis[0] == rays.segments.size());
+    CHECK(rays.pixel_size > 0);
+    // Every segment runs along the detection's direction.
+    const auto d = *s.direction;
+    const double dn = std::sqrt(double(d[0]) * d[0] + double(d[1]) * d[1] + double(d[2]) * d[2]);
+    for (const auto& [a, b] : rays.segments) {
+        const double v[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
+        const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        REQUIRE(len > 0);
+        const double cosine = (v[0] * d[0] + v[1] * d[1] + v[2] * d[2]) / (len * dn);
+        CHECK(std::abs(std::abs(cosine) - 1.0) < 1e-4);
+    }
+
+    // The reliable method samples no rays: refused by name.
+    DetectSettings reliable;
+    reliable.collision_rays = true;
+    auto refused = world->detect(reliable);
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error().code() == ErrorCode::InvalidArgument);
+    CHECK(mentions(refused.error(), "collision_rays belongs to the peeling method"));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("worlds on one Context share their pipelines", "[api][gpu]") {
+    ValidatedContext ctx;
+    const auto created = [&] {
+        std::lock_guard lock(ctx.device().pipelines_mutex);
+        return ctx.device().pipelines_created;
+    };
+    auto scene = overlappingSpheres();
+    REQUIRE(scene);
+    auto a = makeWorld(ctx);
+    addScene(*a, *scene);
+    auto first = a->detect({});
+    REQUIRE(first);
+    const std::uint64_t after_a = created();
+    CHECK(after_a > 0);
+
+    // A second world on the Context, same method: no pipeline of its own.
+    auto b = makeWorld(ctx);
+    addScene(*b, *scene);
+    auto second = b->detect({});
+    REQUIRE(second);
+    CHECK(second->pairs == first->pairs);
+    CHECK(created() == after_a);
+    // The other method's pipelines are made once, by whichever world needs them first.
+    auto peeled = b->detect(fixedSettings(128));
+    REQUIRE(peeled);
+    const std::uint64_t after_peeling = created();
+    CHECK(after_peeling > after_a);
+    auto peeled_a = a->detect(fixedSettings(128));
+    REQUIRE(peeled_a);
+    CHECK(peeled_a->pairs == peeled->pairs);
+    CHECK(created() == after_peeling);
+
+    // A world that goes takes nothing from the other.
+    b.reset();
+    auto again = a->detect({});
+    REQUIRE(again);
+    CHECK(again->pairs == first->pairs);
+    CHECK(created() == after_peeling);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

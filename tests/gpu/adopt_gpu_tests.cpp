@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "test_shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vk/resources.hpp"
@@ -81,7 +82,7 @@ TEST_CASE("a device with exactly context.hpp's features and no extension detects
     {
         auto ctx = Context::adopt(engine.lend());
         REQUIRE(ctx);
-        CHECK_FALSE((*ctx)->device().push_descriptor);
+        CHECK_FALSE(ContextAccess::device(**ctx).push_descriptor);
         auto world = CollisionWorld::create(**ctx);
         REQUIRE(world);
         auto a = uvSphere(1.0f, 24, 12);
@@ -114,7 +115,7 @@ TEST_CASE("without VK_KHR_push_descriptor a pipeline with descriptor bindings is
     auto ctx = Context::adopt(engine.lend());
     REQUIRE(ctx);
     const vk::Pipeline::Binding bindings[] = {{0, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE}};
-    auto pipeline = vk::Pipeline::createCompute((*ctx)->device(), shaders::graph_test_sum_comp, bindings, 8, "graph-test-sum");
+    auto pipeline = vk::Pipeline::createCompute(ContextAccess::device(**ctx), shaders::graph_test_sum_comp, bindings, 8, "graph-test-sum");
     REQUIRE_FALSE(pipeline);
     CHECK(pipeline.error().code() == ErrorCode::UnsupportedFeature);
     CHECK_THAT(pipeline.error().message(), Catch::Contains("'graph-test-sum'") && Catch::Contains("VK_KHR_push_descriptor"));

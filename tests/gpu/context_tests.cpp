@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 
+#include "api/context_access.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vk/resources.hpp"
 
@@ -75,7 +76,7 @@ TEST_CASE("adopting an engine's device borrows it without owning it", "[gpu][con
         REQUIRE(adopted);
         CHECK_FALSE((*adopted)->ownsDevice());
         CHECK((*adopted)->deviceInfo().name == engine.context().deviceInfo().name);
-        auto buf = vk::Buffer::create((*adopted)->device(), 1024, 0, vk::MemoryKind::Readback, "probe");
+        auto buf = vk::Buffer::create(ContextAccess::device(**adopted), 1024, 0, vk::MemoryKind::Readback, "probe");
         REQUIRE(buf);
         CHECK(buf->mapped() != nullptr);
     }

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <thread>
 
+#include "api/context_access.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/test_scenes.hpp"
 #include "vk/resources.hpp"
@@ -268,10 +269,10 @@ TEST_CASE("an engine's queue hooks, memory allocator, allocation callbacks and p
         auto adopted = Context::adopt(lent);
         REQUIRE(adopted);
         Context& ctx = **adopted;
-        ctx.device().fns.vkQueueSubmit2 = bypassedSubmit;  // anything not through the hook fails
+        ContextAccess::device(ctx).fns.vkQueueSubmit2 = bypassedSubmit;  // anything not through the hook fails
         g_bypassed_submits = 0;
-        CacheSpy::install(ctx.device());
-        QueryPoolSpy::install(ctx.device());
+        CacheSpy::install(ContextAccess::device(ctx));
+        QueryPoolSpy::install(ContextAccess::device(ctx));
         {
             auto world = CollisionWorld::create(ctx, {.threads = 2});
             REQUIRE(world);
@@ -298,7 +299,7 @@ TEST_CASE("an engine's queue hooks, memory allocator, allocation callbacks and p
         REQUIRE(CacheSpy::used.size() >= 10);  // the world's pipelines (24 at the time of writing)
         for (VkPipelineCache used : CacheSpy::used) CHECK(used == engine_cache);
         REQUIRE_FALSE(QueryPoolSpy::callbacks.empty());
-        for (const VkAllocationCallbacks* a : QueryPoolSpy::callbacks) CHECK(a == ctx.device().allocator());
+        for (const VkAllocationCallbacks* a : QueryPoolSpy::callbacks) CHECK(a == ContextAccess::device(ctx).allocator());
         CHECK(hooked_submits.load() >= 2);
         CHECK(locks.load() == hooked_submits.load());
         CHECK(unlocks.load() == locks.load());
@@ -333,7 +334,7 @@ TEST_CASE("vkcollide's own device with the engine's allocation callbacks and a s
         REQUIRE(data);
         saved = *data;
         CHECK(saved.size() >= sizeof(VkPipelineCacheHeaderVersionOne));
-        CHECK(vk::pipelineCacheDataMatches((*ctx)->device(), saved));
+        CHECK(vk::pipelineCacheDataMatches(ContextAccess::device(**ctx), saved));
     }
     CHECK(host.total.load() > 0);
     CHECK(host.live.load() == 0);  // instance, device and every object gone

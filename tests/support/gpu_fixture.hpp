@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "api/context_access.hpp"
 #include "vk/device.hpp"
 #include "vkcollide/context.hpp"
 
@@ -18,7 +19,7 @@ class ValidatedContext {
 public:
     ValidatedContext();
     Context& context() { return *context_; }
-    vk::Device& device() { return context_->device(); }
+    vk::Device& device() { return ContextAccess::device(*context_); }
     // Destroys the Context (its messages stay readable); context() and device() are then
     // invalid: for the tests of what outlives a Context.
     void destroyContext() { context_.reset(); }

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "vk/device.hpp"
 #include "vk/fake_vulkan.hpp"
 
@@ -68,10 +69,10 @@ TEST_CASE("adopt accepts a device created with enableRequiredFeatures() and neve
         CHECK_FALSE((*ctx)->ownsDevice());
         CHECK((*ctx)->deviceInfo().name == "Fake GPU");
         // Nothing optional was listed: nothing optional is used.
-        CHECK_FALSE((*ctx)->device().push_descriptor);
-        CHECK_FALSE((*ctx)->device().conservative_rasterization);
-        CHECK_FALSE((*ctx)->device().shader_float64);
-        CHECK_FALSE((*ctx)->device().robust_buffer_access);
+        CHECK_FALSE(ContextAccess::device(**ctx).push_descriptor);
+        CHECK_FALSE(ContextAccess::device(**ctx).conservative_rasterization);
+        CHECK_FALSE(ContextAccess::device(**ctx).shader_float64);
+        CHECK_FALSE(ContextAccess::device(**ctx).robust_buffer_access);
     }
     // The fake counts only what vkcollide itself created or destroyed: nothing.
     CHECK(scope.fake().instances_alive == 0);
@@ -243,7 +244,7 @@ TEST_CASE("adopt uses the optional extensions and features the engine enabled, w
     scope.fake().device_extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     auto ctx = Context::adopt(engine.lend(scope.fake()));
     REQUIRE(ctx);
-    const vk::Device& d = (*ctx)->device();
+    const vk::Device& d = ContextAccess::device(**ctx);
     CHECK(d.push_descriptor);
     CHECK(d.fns.vkCmdPushDescriptorSetKHR != nullptr);
     CHECK(d.shader_float64);

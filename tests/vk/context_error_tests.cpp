@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <string>
 
+#include "api/context_access.hpp"
 #include "vk/device.hpp"
 #include "vk/fake_vulkan.hpp"
 #include "vk/resources.hpp"
@@ -50,10 +51,10 @@ TEST_CASE("fake driver: a complete device is created with every required feature
         CHECK(lists(fake.device_extensions, VK_EXT_ROBUSTNESS_2_EXTENSION_NAME));
         // Optional extensions the device lacks are not asked for.
         CHECK_FALSE(lists(fake.device_extensions, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME));
-        CHECK_FALSE((*ctx)->device().push_descriptor);
-        CHECK((*ctx)->device().fns.vkCmdPushDescriptorSetKHR == nullptr);
-        CHECK((*ctx)->device().shader_float64);
-        CHECK((*ctx)->device().robust_buffer_access2);
+        CHECK_FALSE(ContextAccess::device(**ctx).push_descriptor);
+        CHECK(ContextAccess::device(**ctx).fns.vkCmdPushDescriptorSetKHR == nullptr);
+        CHECK(ContextAccess::device(**ctx).shader_float64);
+        CHECK(ContextAccess::device(**ctx).robust_buffer_access2);
         CHECK(fake.devices_alive == 1);
     }
     CHECK(fake.devices_alive == 0);
@@ -70,7 +71,7 @@ TEST_CASE("fake driver: robust buffer access can be turned off (to measure its c
     CHECK_FALSE(scope.fake().device_features.has(vk::Feature::RobustBufferAccess));
     CHECK_FALSE(scope.fake().device_features.has(vk::Feature::RobustBufferAccess2));
     CHECK_FALSE(lists(scope.fake().device_extensions, VK_EXT_ROBUSTNESS_2_EXTENSION_NAME));
-    CHECK_FALSE((*ctx)->device().robust_buffer_access);
+    CHECK_FALSE(ContextAccess::device(**ctx).robust_buffer_access);
 }
 
 TEST_CASE("fake driver: optional features the device lacks are left off, not required", "[contract][context]") {
@@ -85,11 +86,11 @@ TEST_CASE("fake driver: optional features the device lacks are left off, not req
     REQUIRE(ctx);
     CHECK_FALSE(fake.device_features.has(vk::Feature::ShaderFloat64));
     CHECK_FALSE(fake.device_features.has(vk::Feature::RobustBufferAccess));
-    CHECK_FALSE((*ctx)->device().shader_float64);
-    CHECK_FALSE((*ctx)->device().robust_buffer_access);
+    CHECK_FALSE(ContextAccess::device(**ctx).shader_float64);
+    CHECK_FALSE(ContextAccess::device(**ctx).robust_buffer_access);
     CHECK(lists(fake.device_extensions, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME));
-    CHECK((*ctx)->device().push_descriptor);
-    CHECK((*ctx)->device().fns.vkCmdPushDescriptorSetKHR != nullptr);
+    CHECK(ContextAccess::device(**ctx).push_descriptor);
+    CHECK(ContextAccess::device(**ctx).fns.vkCmdPushDescriptorSetKHR != nullptr);
 }
 
 TEST_CASE("error LoaderUnavailable: the loader lacks vkCreateInstance", "[contract][context][error]") {
@@ -250,7 +251,7 @@ TEST_CASE("Buffer::flush and invalidate pass their own range, widened to whole a
     fake.physical_devices[0].non_coherent_atom_size = 64;
     auto ctx = createOnFake();
     REQUIRE(ctx);
-    auto buffer = vk::Buffer::create((*ctx)->device(), 1000, 0, vk::MemoryKind::Readback, "readback");
+    auto buffer = vk::Buffer::create(ContextAccess::device(**ctx), 1000, 0, vk::MemoryKind::Readback, "readback");
     REQUIRE(buffer);  // the fake allocates 1024 bytes for it
     REQUIRE(buffer->mapped() != nullptr);
 
@@ -285,7 +286,7 @@ TEST_CASE("Buffer::flush is a no-op on coherent memory", "[contract][resources]"
     FakeVulkanScope scope;
     auto ctx = createOnFake();
     REQUIRE(ctx);
-    auto buffer = vk::Buffer::create((*ctx)->device(), 256, 0, vk::MemoryKind::Upload, "upload");
+    auto buffer = vk::Buffer::create(ContextAccess::device(**ctx), 256, 0, vk::MemoryKind::Upload, "upload");
     REQUIRE(buffer);
     buffer->flush(0, 16);
     buffer->invalidate(0, 16);
@@ -298,8 +299,8 @@ TEST_CASE("Context::deviceMemoryInUse counts every allocation vkcollide holds, u
     auto ctx = createOnFake();
     REQUIRE(ctx);
     CHECK((*ctx)->deviceMemoryInUse() == 0);
-    auto a = vk::Buffer::create((*ctx)->device(), 1000, 0, vk::MemoryKind::DeviceLocal, "a");  // 1024 allocated
-    auto b = vk::Buffer::create((*ctx)->device(), 100, 0, vk::MemoryKind::Upload, "b");        // 256 allocated
+    auto a = vk::Buffer::create(ContextAccess::device(**ctx), 1000, 0, vk::MemoryKind::DeviceLocal, "a");  // 1024 allocated
+    auto b = vk::Buffer::create(ContextAccess::device(**ctx), 100, 0, vk::MemoryKind::Upload, "b");        // 256 allocated
     REQUIRE(a);
     REQUIRE(b);
     CHECK((*ctx)->deviceMemoryInUse() == 1024 + 256);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "vk/fake_engine.hpp"
 #include "vk/resources.hpp"
 #include "vk/semaphore.hpp"
@@ -24,8 +25,10 @@ namespace {
 // Any words do for the fake: it never reads the SPIR-V.
 constexpr std::uint32_t kFakeSpirv[] = {0x07230203u, 0x00010000u, 0u, 1u, 0u};
 
-vk::Pipeline makePipeline(vk::Device& device, const char* name) {
-    auto p = vk::Pipeline::createCompute(device, kFakeSpirv, {}, 16, name);
+// Pipelines of one device made from the same program and state are one (Device::pipelines):
+// `push_bytes` makes them differ where a test needs two.
+vk::Pipeline makePipeline(vk::Device& device, const char* name, std::uint32_t push_bytes = 16) {
+    auto p = vk::Pipeline::createCompute(device, kFakeSpirv, {}, push_bytes, name);
     REQUIRE(p);
     return std::move(*p);
 }
@@ -112,7 +115,7 @@ TEST_CASE("queue hooks: lock, the engine's submit and unlock around every submis
     };
     auto ctx = Context::adopt(lent, [](MessageSeverity, std::string_view) {});
     REQUIRE(ctx);
-    auto s = vk::Submission::create((*ctx)->device());
+    auto s = vk::Submission::create(ContextAccess::device(**ctx));
     REQUIRE(s);
     for (int i = 0; i < 2; ++i) {
         REQUIRE(s->begin());
@@ -144,7 +147,7 @@ TEST_CASE("queue hooks come as a lock/unlock pair, and a hook that throws fails 
     std::vector<std::string> messages;
     auto ctx = Context::adopt(throwing, [&](MessageSeverity, std::string_view m) { messages.emplace_back(m); });
     REQUIRE(ctx);
-    auto s = vk::Submission::create((*ctx)->device());
+    auto s = vk::Submission::create(ContextAccess::device(**ctx));
     REQUIRE(s);
     REQUIRE(s->begin());
     auto r = s->submit();
@@ -163,7 +166,7 @@ TEST_CASE("memory hooks: every buffer and image is bound in the engine's memory,
     ContextCreateInfo info;
     info.memory_hooks = engine.hooks();
     auto ctx = test::createFakeContext(info);
-    vk::Device& dev = ctx->device();
+    vk::Device& dev = ContextAccess::device(*ctx);
     {
         auto upload = vk::Buffer::create(dev, 1000, 0, vk::MemoryKind::Upload, "upload");
         auto readback = vk::Buffer::create(dev, 300, 0, vk::MemoryKind::Readback, "readback");
@@ -204,7 +207,7 @@ TEST_CASE("memory hooks on non-coherent memory: whole atoms, flushes stay inside
     ContextCreateInfo info;
     info.memory_hooks = engine.hooks();
     auto ctx = test::createFakeContext(info);
-    auto buffer = vk::Buffer::create(ctx->device(), 1000, 0, vk::MemoryKind::Readback, "readback");
+    auto buffer = vk::Buffer::create(ContextAccess::device(*ctx), 1000, 0, vk::MemoryKind::Readback, "readback");
     REQUIRE(buffer);
     REQUIRE(engine.requests.size() == 1);
     const DeviceMemoryRequest& r = engine.requests[0];
@@ -227,7 +230,7 @@ TEST_CASE("memory hooks: a failed or broken allocation is refused by name, and a
     ContextCreateInfo info;
     info.memory_hooks = engine.hooks();
     auto ctx = test::createFakeContext(info);
-    vk::Device& dev = ctx->device();
+    vk::Device& dev = ContextAccess::device(*ctx);
 
     engine.fail_with = VK_ERROR_OUT_OF_DEVICE_MEMORY;
     auto oom = vk::Buffer::create(dev, 256, 0, vk::MemoryKind::DeviceLocal, "big");
@@ -293,7 +296,7 @@ TEST_CASE("allocation callbacks reach every object vkcollide creates, and every 
         ContextCreateInfo info;
         info.allocation_callbacks = &counting.callbacks;
         auto ctx = test::createFakeContext(info);
-        vk::Device& dev = ctx->device();
+        vk::Device& dev = ContextAccess::device(*ctx);
         auto buffer = vk::Buffer::create(dev, 1024, 0, vk::MemoryKind::Upload, "b");
         auto image = vk::Image::create(dev, {VK_FORMAT_R32_UINT, 8, 8, 2, VK_IMAGE_USAGE_STORAGE_BIT}, "i");
         auto semaphore = vk::Semaphore::createTimeline(dev, 0, "t");
@@ -325,8 +328,8 @@ TEST_CASE("every pipeline goes through the engine's pipeline cache, and the Cont
     REQUIRE(ctx);
     CHECK(scope.fake().pipeline_caches_alive == 0);
     {
-        vk::Pipeline a = makePipeline((*ctx)->device(), "a");
-        vk::Pipeline b = makePipeline((*ctx)->device(), "b");
+        vk::Pipeline a = makePipeline(ContextAccess::device(**ctx), "a");
+        vk::Pipeline b = makePipeline(ContextAccess::device(**ctx), "b", 32);
     }
     REQUIRE(scope.fake().pipelines_cache_used.size() == 2);
     for (VkPipelineCache used : scope.fake().pipelines_cache_used) CHECK(used == lent.pipeline_cache);
@@ -342,10 +345,10 @@ TEST_CASE("the Context's own pipeline cache: used by every pipeline, saved and l
         auto ctx = test::createFakeContext();
         CHECK(scope.fake().pipeline_caches_alive == 1);
         CHECK(scope.fake().last_pipeline_cache_initial_size == 0);
-        const VkPipelineCache own = ctx->device().pipeline_cache;
+        const VkPipelineCache own = ContextAccess::device(*ctx).pipeline_cache;
         REQUIRE(own != VK_NULL_HANDLE);
-        vk::Pipeline a = makePipeline(ctx->device(), "a");
-        vk::Pipeline b = makePipeline(ctx->device(), "b");
+        vk::Pipeline a = makePipeline(ContextAccess::device(*ctx), "a");
+        vk::Pipeline b = makePipeline(ContextAccess::device(*ctx), "b", 32);
         CHECK(scope.fake().pipelines_cache_used == std::vector<VkPipelineCache>{own, own});
         auto data = ctx->pipelineCacheData();
         REQUIRE(data);
@@ -371,8 +374,8 @@ TEST_CASE("the Context's own pipeline cache: used by every pipeline, saved and l
     REQUIRE(log.size() == 1);
     CHECK(log[0].find("another device or driver") != std::string::npos);
     std::vector<std::byte> truncated(saved.begin(), saved.begin() + 10);
-    CHECK_FALSE(vk::pipelineCacheDataMatches(ctx->device(), truncated));
-    CHECK(vk::pipelineCacheDataMatches(ctx->device(), saved));
+    CHECK_FALSE(vk::pipelineCacheDataMatches(ContextAccess::device(*ctx), truncated));
+    CHECK(vk::pipelineCacheDataMatches(ContextAccess::device(*ctx), saved));
 }
 
 TEST_CASE("a Context destroyed before its resources: they keep the device alive, the last one destroys it",
@@ -383,7 +386,7 @@ TEST_CASE("a Context destroyed before its resources: they keep the device alive,
     ContextCreateInfo info;
     info.allocation_callbacks = &counting.callbacks;
     auto ctx = test::createFakeContext(info);
-    vk::Device& dev = ctx->device();
+    vk::Device& dev = ContextAccess::device(*ctx);
     auto buffer = vk::Buffer::create(dev, 1024, 0, vk::MemoryKind::Upload, "b");
     auto image = vk::Image::create(dev, {VK_FORMAT_R32_UINT, 8, 8, 1, VK_IMAGE_USAGE_STORAGE_BIT}, "i");
     auto semaphore = vk::Semaphore::createTimeline(dev, 0, "t");

@@ -4,6 +4,7 @@
 // only when the test releases it (FakeVulkan::gpu_finishes_at_once, finishPending).
 #include <catch2/catch.hpp>
 
+#include "api/context_access.hpp"
 #include "vk/fake_engine.hpp"
 #include "vk/semaphore.hpp"
 #include "vk/submission.hpp"
@@ -14,13 +15,13 @@ using test::FakeVulkanScope;
 namespace {
 
 vk::Submission makeSubmission(Context& ctx) {
-    auto s = vk::Submission::create(ctx.device());
+    auto s = vk::Submission::create(ContextAccess::device(ctx));
     REQUIRE(s);
     return std::move(*s);
 }
 
 vk::Semaphore timeline(Context& ctx, std::uint64_t initial = 0) {
-    auto t = vk::Semaphore::createTimeline(ctx.device(), initial, "timeline");
+    auto t = vk::Semaphore::createTimeline(ContextAccess::device(ctx), initial, "timeline");
     REQUIRE(t);
     return std::move(*t);
 }
@@ -39,7 +40,7 @@ bool mentions(const Error& e, const std::string& what) { return e.message().find
 TEST_CASE("submit passes its waits and signals to vkQueueSubmit2 with their values and stages", "[contract][submission]") {
     FakeVulkanScope scope;
     auto ctx = test::createFakeContext();
-    auto binary = vk::Semaphore::createBinary(ctx->device(), "binary");
+    auto binary = vk::Semaphore::createBinary(ContextAccess::device(*ctx), "binary");
     REQUIRE(binary);
     vk::Semaphore t = timeline(*ctx, 5);
     vk::Submission s = makeSubmission(*ctx);
@@ -296,8 +297,8 @@ TEST_CASE("recording into an engine command buffer needs timelineSemaphore on an
     test::FakeEngineDevice engine(/*timeline=*/false);
     auto ctx = Context::adopt(engine.lend(scope.fake()), [](MessageSeverity, std::string_view) {});
     REQUIRE(ctx);  // optional: adopt accepts the device
-    CHECK_FALSE((*ctx)->device().timeline_semaphore);
-    auto s = vk::Submission::create((*ctx)->device());
+    CHECK_FALSE(ContextAccess::device(**ctx).timeline_semaphore);
+    auto s = vk::Submission::create(ContextAccess::device(**ctx));
     REQUIRE(s);
     const auto engine_cmd = reinterpret_cast<VkCommandBuffer>(std::uintptr_t{0xE0E0});
     const auto fake_timeline = reinterpret_cast<VkSemaphore>(std::uintptr_t{0x5E5E});
@@ -305,7 +306,7 @@ TEST_CASE("recording into an engine command buffer needs timelineSemaphore on an
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::UnsupportedFeature);
     CHECK(mentions(r.error(), "timelineSemaphore"));
-    auto t = vk::Semaphore::createTimeline((*ctx)->device(), 0, "t");
+    auto t = vk::Semaphore::createTimeline(ContextAccess::device(**ctx), 0, "t");
     REQUIRE_FALSE(t);
     CHECK(t.error().code() == ErrorCode::UnsupportedFeature);
 }
@@ -316,14 +317,14 @@ TEST_CASE("timelineSemaphore is optional: enabled on vkcollide's own device wher
     {
         auto ctx = test::createFakeContext();
         CHECK(scope.fake().device_features.has(vk::Feature::TimelineSemaphore));
-        CHECK(ctx->device().timeline_semaphore);
+        CHECK(ContextAccess::device(*ctx).timeline_semaphore);
         CHECK(ctx->deviceInfo().timeline_semaphore);
     }
     scope.fake().physical_devices[0].features.set(vk::Feature::TimelineSemaphore, false);
     {
         auto ctx = test::createFakeContext();  // not required
         CHECK_FALSE(scope.fake().device_features.has(vk::Feature::TimelineSemaphore));
-        CHECK_FALSE(ctx->device().timeline_semaphore);
+        CHECK_FALSE(ContextAccess::device(*ctx).timeline_semaphore);
     }
     // The single-feature struct counts as well as VkPhysicalDeviceVulkan12Features.
     test::FakeEngineDevice engine(/*timeline=*/false);
@@ -332,7 +333,7 @@ TEST_CASE("timelineSemaphore is optional: enabled on vkcollide's own device wher
     engine.v13.pNext = &single;
     auto adopted = Context::adopt(engine.lend(scope.fake()), [](MessageSeverity, std::string_view) {});
     REQUIRE(adopted);
-    CHECK((*adopted)->device().timeline_semaphore);
+    CHECK(ContextAccess::device(**adopted).timeline_semaphore);
 }
 
 TEST_CASE("submitSyncOnly: a batch of only waits and signals, so a failed detection never leaves the engine waiting",

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "broad/cells/cell_pairs.hpp"
 #include "support/exact_reference.hpp"
 #include "vk/device.hpp"
@@ -318,7 +319,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", ctx.error().message().c_str());
         return 1;
     }
-    vk::Device& device = (*ctx)->device();
+    vk::Device& device = ContextAccess::device(**ctx);
     auto stage = passes::CellPairs::create(device);
     if (!stage) {
         std::fprintf(stderr, "%s\n", stage.error().message().c_str());

@@ -38,6 +38,7 @@
 #include <thread>
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "api/host_passes.hpp"
 #include "vk/device.hpp"
 #include "vk/resources.hpp"
@@ -228,7 +229,7 @@ int main(int argc, char** argv) {
                 std::printf("update-resolve,-,%zu,%zu,%d,%.3f,%.3f,,,,,,,%s\n", big.triangleCount(), big.positions.size(), frames,
                             median(resolve), median(resolve) * 1e6 / n, device.c_str());
         }
-        updateParts((*ctx)->device(), big, frames, threads == 0 ? std::thread::hardware_concurrency() : threads, device);
+        updateParts(ContextAccess::device(**ctx), big, frames, threads == 0 ? std::thread::hardware_concurrency() : threads, device);
     }
 
     const HostMesh a = sphere(1.0f, triangles), b = sphere(0.8f, triangles);
@@ -240,7 +241,7 @@ int main(int argc, char** argv) {
             auto world = CollisionWorld::create(**ctx, {.threads = threads});
             if (!world) die(world.error().message());
             CollisionWorld& w = **world;
-            EngineMesh ea = engineMesh((*ctx)->device(), a), eb = engineMesh((*ctx)->device(), b);
+            EngineMesh ea = engineMesh(ContextAccess::device(**ctx), a), eb = engineMesh(ContextAccess::device(**ctx), b);
             auto ia = w.addGpuMesh(ea.desc(0), {.name = "a"});
             auto ib = w.addGpuMesh(eb.desc(0), {.name = "b"});
             if (!ia || !ib) die((ia ? ib : ia).error().message());

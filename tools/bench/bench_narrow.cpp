@@ -82,6 +82,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "bench_narrow_probes.hpp"
 #include "bench_narrow_scenes.hpp"
 #include "broad/broad_phase.hpp"
@@ -434,7 +435,7 @@ Workload gpuWorkload(const std::string& scene, std::size_t size, std::uint32_t r
         w.triangles += m.triangleCount();
     }
     auto ctx = take(Context::create(), "Vulkan context");
-    vk::Device& dev = ctx->device();
+    vk::Device& dev = ContextAccess::device(*ctx);
     const auto uploaded = take(passes::uploadMeshes(dev, mesh_ptrs), "mesh upload");
     auto broad_phase = take(passes::BroadPhase::create(dev, passes::PeelingMethod::create), "broad phase");
     passes::BroadPhaseSettings settings;

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "broad/broad_phase.hpp"
 #include "broad/peeling/peeling_method.hpp"
 #include "broad/peeling/sampling/backend_choice.hpp"
@@ -222,7 +223,7 @@ int main(int argc, char** argv) {
     }
     auto ctx = Context::create();
     if (!ctx) return fail(ctx.error().message());
-    vk::Device& dev = (*ctx)->device();
+    vk::Device& dev = ContextAccess::device(**ctx);
     std::printf("device: %s (%s), %s; sub-pixel bits %u\n\n", dev.info.name.c_str(), toString(dev.info.type), dev.info.driver.c_str(),
                 dev.properties.limits.subPixelPrecisionBits);
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 
+#include "api/context_access.hpp"
+
 namespace vkcollide::bench {
 namespace {
 
@@ -76,7 +78,7 @@ Result<SceneInWorld> addToWorld(CollisionWorld& world, Context& context, const s
         oo.typical_edge_length = o.typical_edge_length;
         Result<ObjectId> id = Error(ErrorCode::InvalidArgument, "");
         if (o.gpu) {
-            auto e = makeEngineMesh(context.device(), o);
+            auto e = makeEngineMesh(ContextAccess::device(context), o);
             if (!e) return e.error();
             s.engine[k] = std::move(*e);
             id = world.addGpuMesh(s.engine[k].desc, oo);

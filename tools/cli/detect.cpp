@@ -9,7 +9,6 @@
 
 #include "cli/devices.hpp"
 #include "cli/picture.hpp"
-#include "cli/rays.hpp"
 #include "cli/report.hpp"
 #include "cli/scene.hpp"
 #include "render/output.hpp"
@@ -158,7 +157,10 @@ int runDetect(const CommandLine& line) {
             }
         }
         const double read_ms = render::msSince(read_start);
-        result = (*world)->detect(line.settings);
+        // --rays: the frames that are drawn also return where their collision rays were.
+        vkcollide::DetectSettings frame_settings = line.settings;
+        frame_settings.collision_rays = line.rays && picture && (line.sequence || f + 1 == frames);
+        result = (*world)->detect(frame_settings);
         if (!result) return fail(nameSettingOptions(line, result.error().message()));
         total_pairs += result->pairs.size();
         // Closed objects that are inside out or holed: said once, and again when that changes.
@@ -171,16 +173,9 @@ int runDetect(const CommandLine& line) {
         double png_ms = 0;
         if (picture && (line.sequence || last)) {
             const auto png_start = Clock::now();
-            std::optional<CollisionRays> rays;
-            if (line.rays) {
-                auto frame_settings = (*world)->resolveSettings(line.settings);
-                if (!frame_settings) return fail(frame_settings.error().message());
-                auto r = collisionRays(context, *scene, *frame_settings);
-                if (!r) return fail("--rays: " + r.error().message());
-                rays = std::move(*r);
-            }
+            const vkcollide::CollisionRays* rays = result->collision_rays ? &*result->collision_rays : nullptr;
             const std::string path = line.sequence ? Picture::framePath(line.png_path, f) : line.png_path;
-            if (auto ok = picture->write(path, *scene, *result, rays ? &*rays : nullptr); !ok) return fail(ok.error().message());
+            if (auto ok = picture->write(path, *scene, *result, rays); !ok) return fail(ok.error().message());
             png_ms = render::msSince(png_start);
             if (!line.sequence)
                 std::printf("png: %s%s\n", path.c_str(),

@@ -286,7 +286,7 @@ const std::vector<Option>& options() {
              return {};
          }},
         peeling(flag("--rays", Section::Output, "--png: draw the collision rays (of every sampling direction) as thin yellow sticks",
-             "one more broad-phase run per frame, reading back N^2 flags", [](CommandLine& c, std::string_view) -> Result<void> {
+             "reads back N^2 flags per drawn frame and maps the collision rays to world space", [](CommandLine& c, std::string_view) -> Result<void> {
                  c.rays = true;
                  return {};
              })),

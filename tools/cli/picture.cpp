@@ -26,7 +26,7 @@ constexpr Float3 kDefaultView{0.55f, 0.45f, 0.70f};
 constexpr render::Rgb kRayColour{1.0f, 0.9f, 0.1f};
 
 // Each ray as a thin square prism (four sides, eight triangles) of half-width h.
-vkcollide::HostMesh rayPrisms(const CollisionRays& rays, float h) {
+vkcollide::HostMesh rayPrisms(const vkcollide::CollisionRays& rays, float h) {
     vkcollide::HostMesh m;
     m.name = "collision rays";
     m.positions.reserve(rays.segments.size() * 8);
@@ -98,7 +98,7 @@ std::string Picture::framePath(const std::string& path, std::size_t frame) {
 }
 
 vkcollide::Result<void> Picture::write(const std::string& path, const Scene& scene, const vkcollide::DetectResult& result,
-                                       const CollisionRays* rays) {
+                                       const vkcollide::CollisionRays* rays) {
     if (dynamic_)
         for (std::size_t i = 0; i < scene.objects.size(); ++i)
             if (host_[i]) renderer_.updateVertices(draws_[i], scene.objects[i].mesh.positions);

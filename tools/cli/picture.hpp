@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "cli/devices.hpp"
-#include "cli/rays.hpp"
 #include "cli/scene.hpp"
 #include "render/renderer.hpp"
 
@@ -25,7 +24,7 @@ public:
     // Draws this frame (positions in `scene`, highlights from `result`, optional rays) and
     // writes the PNG. Error: IoError naming the file.
     vkcollide::Result<void> write(const std::string& path, const Scene& scene, const vkcollide::DetectResult& result,
-                                  const CollisionRays* rays);
+                                  const vkcollide::CollisionRays* rays);
 
     // "pictures/out.png" -> "pictures/out_0007.png" (a --sequence frame).
     static std::string framePath(const std::string& path, std::size_t frame);

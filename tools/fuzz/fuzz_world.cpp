@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "fuzz/world_checks.hpp"
 #include "fuzz/world_context.hpp"
 #include "fuzz/world_engine.hpp"
@@ -153,7 +154,7 @@ private:
     // description.
     std::pair<std::size_t, GpuMeshDesc> engineMesh(const HostMesh& mesh, std::uint8_t layout) {
         GpuMeshDesc desc;
-        engine_.push_back(makeEngineBuffers(fuzzContext().device(), mesh, layout, desc));
+        engine_.push_back(makeEngineBuffers(ContextAccess::device(fuzzContext()), mesh, layout, desc));
         return {engine_.size() - 1, desc};
     }
 

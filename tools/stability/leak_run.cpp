@@ -16,6 +16,7 @@
 #include <string>
 #include <unistd.h>
 
+#include "api/context_access.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
@@ -78,8 +79,8 @@ int main(int argc, char** argv) {
     const HostMesh ring = must(torus(0.6f, 0.15f, 24, 8), "torus");
     const ObjectId cloth_id = must(world->addMesh(cloth, {.name = "cloth", .self_collision = true, .open = true}), "add cloth");
     ObjectId ball_id = must(world->addMesh(ball, {.name = "ball"}), "add ball");
-    auto vb = must(vk::Buffer::create(ctx->device(), ring.positions.size() * 12, 0, vk::MemoryKind::Upload, "ring-vertices"), "ring vb");
-    auto ib = must(vk::Buffer::create(ctx->device(), ring.indices.size() * 4, 0, vk::MemoryKind::Upload, "ring-indices"), "ring ib");
+    auto vb = must(vk::Buffer::create(ContextAccess::device(*ctx), ring.positions.size() * 12, 0, vk::MemoryKind::Upload, "ring-vertices"), "ring vb");
+    auto ib = must(vk::Buffer::create(ContextAccess::device(*ctx), ring.indices.size() * 4, 0, vk::MemoryKind::Upload, "ring-indices"), "ring ib");
     std::memcpy(ib.mapped(), ring.indices.data(), ring.indices.size() * 4);
     ib.flush();
     GpuMeshDesc desc;

@@ -1,5 +1,6 @@
 #include "user_scene.hpp"
 
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <memory>
@@ -99,6 +100,9 @@ Result<SceneSpec> userScene(const std::vector<MeshFile>& files, std::size_t per_
     auto frame0 = std::make_shared<const FrameMeshes>(std::move(*first));
     SceneSpec s;
     for (std::size_t i = 0; i < per_frame; ++i) s.name += (i ? "+" : "") + fileStem(files[i].path);
+    // The name is a CSV field and a word in the chart scripts (frontier.awk splits on spaces).
+    for (char& c : s.name)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '+' && c != '-' && c != '_' && c != '.') c = '_';
     if (sequence) s.name += "-sequence";
     s.motion = sequence ? Motion::Deforming : Motion::Rigid;
     s.set = set;

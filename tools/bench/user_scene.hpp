@@ -29,7 +29,8 @@ std::string fileStem(const std::string& path);
 // The scene of `files` in set `set`. per_frame 0: all files make one rigid frame; else frame
 // f is files [f * per_frame, (f + 1) * per_frame) of a deforming scene whose frames keep
 // frame 0's topology (checked when a frame is built; the error names the files). Named
-// after frame 0's file stems, '+' between them ("-sequence" after a deforming one).
+// after frame 0's file stems, '+' between them ("-sequence" after a deforming one), with
+// '_' for any character but letters, digits and . _ -.
 // Frame 0 is read here, so that a file that is missing or unreadable, holds no triangle or
 // a coordinate that is not finite fails before any GPU work, with the reader's error (which
 // names the file).

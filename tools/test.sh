@@ -3,7 +3,8 @@
 # suite. Each check runs once, in the one build that can make it:
 #   1. Release: the library, the command-line tool, the samples and the benchmarks (built,
 #      not run) at -O3, then the tests labelled `release`: the samples' smoke tests
-#      (validation layer on) and the installed package (an engine-like consumer against the
+#      (validation layer on), vkcollide_bench on a user's meshes and frontier.sh's input
+#      checks (tests/bench), and the installed package (an engine-like consumer against the
 #      static install and against a shared libvkcollide built from scratch). The package's
 #      consumer cannot link a sanitized library, and the samples are what a user runs, so
 #      they are tested as shipped.

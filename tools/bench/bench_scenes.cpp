@@ -83,7 +83,14 @@ const char* motionName(Motion motion) {
     return "?";
 }
 
-const char* setName(SceneSet set) { return set == SceneSet::Tuning ? "tuning" : "held-out"; }
+const char* setName(SceneSet set) {
+    switch (set) {
+        case SceneSet::Tuning: return "tuning";
+        case SceneSet::HeldOut: return "held-out";
+        case SceneSet::User: return "user";
+    }
+    return "?";
+}
 
 namespace {
 

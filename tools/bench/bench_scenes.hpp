@@ -23,7 +23,8 @@ namespace vkcollide::bench {
 // Rigid: one frame. Deforming: vertices change every frame (updateVertices, or a rewrite
 // of the engine buffer for GPU objects). Moving: only object transforms change (setTransform).
 enum class Motion { Rigid, Deforming, Moving };
-enum class SceneSet { Tuning, HeldOut };
+// User: a scene of the user's own files (user_scene.hpp), in no set of the bench.
+enum class SceneSet { Tuning, HeldOut, User };
 
 const char* motionName(Motion motion);
 const char* setName(SceneSet set);

@@ -6,8 +6,10 @@
 # FROM point to its TO point and puts the scene's name at FROM (without it: at the slowest).
 # Scene names are placed greedily so that no two overlap (in an estimate of the panel's pixels).
 
-# Scene kinds: the bench set's, then the grids of the 2026-11-22 sweep; "other" catches scenes added later.
-function kind(s) {
+# Scene kinds: the user's own scenes (vkcollide_bench --mesh: set "user"), the bench set's, then the
+# grids of the 2026-11-22 sweep; "other" catches scenes added later.
+function kind(s, set) {
+  if (set == "user") return 10
   if (s ~ /^(drape-flap|ball-cloth)/) return 1
   if (s ~ /^twisted-/) return 2
   if (s ~ /^pile-/) return 3
@@ -36,7 +38,7 @@ BEGIN {
   ktitle[3] = "piles of 60-240 rigid meshes";  ktitle[4] = "deep overlaps (1.3M-2.6M triangles), twin meshes"
   ktitle[5] = "deforming pairs (mean of the frames)";  ktitle[6] = "grids of spheres and bunnies"
   ktitle[7] = "host and engine GPU meshes";  ktitle[8] = "face-to-face contacts: recall of ALL pairs"
-  ktitle[9] = "other scenes"
+  ktitle[9] = "other scenes";  ktitle[10] = "your meshes: recall of ALL pairs"
   # Known variants (tools/bench/bench_variants.cpp): legend and style; other series take the palette.
   desc["default"] = "default: the reliable method";  col["default"] = "#1a9850"; pt["default"] = 7
   desc["reliable"] = "the reliable method";           col["reliable"] = "#1a9850"; pt["reliable"] = 7
@@ -51,7 +53,8 @@ BEGIN {
 FILENAME == ARGV[1] { legend[$1] = $2; next }
 FNR == 1 { next }
 { label = $1; variant = $2; scene = $3; res = $6; x = $8 + 0; method = $18
-  k = kind(scene); y = k == 8 ? $15 : $14
+  if (x <= 0) next  # no place on a log axis (csv_check.awk made sure some row has one)
+  k = kind(scene, $4); y = k == 8 || k == 10 ? $15 : $14
   sweep = res != "-"
   if (!sweep && variant ~ /^(res|cells)-[0-9]+$/) { sweep = 1; res = variant; sub(/^.*-/, "", res); sub(/-[0-9]+$/, "", variant) }
   name = label != "" ? label : (sweep ? variant "-sweep" : variant)
@@ -83,8 +86,8 @@ FNR == 1 { next }
   if (!((k, scene) in slow) || x > slow[k, scene]) { slow[k, scene] = x; slowy[k, scene] = y }
 }
 END {
-  order = "1 2 3 4 5 6 7 8 9"; split(order, ko, " ")
-  npanel = 0; for (i = 1; i <= 9; ++i) if (ko[i] in used) panel[++npanel] = ko[i]
+  order = "10 1 2 3 4 5 6 7 8 9"; nk = split(order, ko, " ")
+  npanel = 0; for (i = 1; i <= nk; ++i) if (ko[i] in used) panel[++npanel] = ko[i]
   slots = npanel + 1; cols = slots <= 4 ? slots : (slots <= 9 ? 3 : 4); rows = int((slots + cols - 1) / cols)
   # Screen: the plot areas (margins and spacing as fractions), hence each panel's pixels.
   W = 470 * cols; H = 350 * rows + 40; ml = 0.06; mr = 0.99; mb = 0.12 / rows; mt = 1 - 0.17 / rows; sx = 0.08; sy = 0.24 / rows
@@ -95,13 +98,13 @@ END {
   printf "set multiplot layout %d,%d title %s font \",13\" margins %g,%g,%g,%g spacing %g,%g\n", rows, cols, q(title), ml, mr, mb, mt, sx, sy >> gp
   print "set yrange [" ylo ":" yhi "]; set ytics (\"0 %%\" 0, \"90 %%\" 0.9, \"99 %%\" 0.99, \"99.9 %%\" 0.999, \"100 %%\" 1); set mytics 1" >> gp
   print "set nonlinear y via -log10(1.0001 - y) inverse 1.0001 - 10**(-y)" >> gp
-  print "set logscale x; set xtics (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000); set mxtics default" >> gp
+  print "set logscale x; set xtics (0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000); set mxtics default" >> gp
   print "set grid xtics ytics lc rgb \"#e4e4e4\"; set key off; set format x \"%g\"" >> gp
   print "set xlabel \"ms per frame, end to end (log)\" offset 0,0.6 font \",9\"" >> gp
   for (i = 1; i <= npanel; ++i) {
     k = panel[i]; lo = xmin[k] / 1.5; hi = xmax[k] * 1.5; plo = log10(lo); phi = log10(hi)
     print "set title " q(ktitle[k]) " font \",11\" offset 0,-0.4" >> gp
-    print "set ylabel " q(k == 8 ? "recall of all pairs" : "crossing-pair recall") " offset 2.2,0 font \",9\"" >> gp
+    print "set ylabel " q(k == 8 || k == 10 ? "recall of all pairs" : "crossing-pair recall") " offset 2.2,0 font \",9\"" >> gp
     printf "set xrange [%g:%g]\n", lo, hi >> gp
     # Lines FROM -> TO per scene, and each scene's name where it sits best.
     lf = tmp "/links_" k; nl = 0

@@ -3,11 +3,13 @@
 # frame, one panel per scene kind, every settings variant its own series.
 #   tools/bench/frontier.sh [--title T] [--legend NAME=TEXT]... [--link FROM:TO] OUT.png CSV[@NAME[@REGEX]]...
 #   tools/bench/frontier.sh --install-deps        (gnuplot-nox from Debian's archive, if missing)
-# Each point is one (scene, series), means over frames >= 1 (tools/bench/steady.awk): x is
-# total_ms (vertex update + detect: what an engine waits for), log scale; y is crossing pairs
+# Each point is one (scene, series), means over frames >= 1 (or frame 0 where it is the only
+# one; tools/bench/steady.awk): x is total_ms (vertex update + detect: what an engine waits
+# for), log scale; y is crossing pairs
 # found / crossing pairs of the exact reference, on an axis spaced by the share missed (0, 90,
 # 99, 99.9, 100 %) so that one pair lost in 10,000 still shows; on the face-to-face contact
-# scenes, which have next to no crossing pairs, recall of all pairs (touching included).
+# scenes, which have next to no crossing pairs, and on the user's own scenes (vkcollide_bench
+# --mesh: set "user", their own panel), recall of all pairs (touching included).
 # Series: a CSV's variants by name (default = the reliable method, peeling, paper-sep, ...), or
 # with @NAME every row of that CSV is series NAME (a CSV of another build, e.g. the defaults
 # before), and @REGEX keeps only the variants it matches (CSVs of the 2026-11-22 sweep: VARIANT-BACKEND, e.g.
@@ -19,7 +21,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() { sed -n '4,5p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
-title="Speed against accuracy per scene kind: crossing-pair recall against end-to-end ms per frame"
+title="Speed against accuracy per scene kind: recall (as each panel says) against end-to-end ms per frame"
 link=""
 tmp=$(mktemp -d)
 if [ -n "${FRONTIER_KEEP:-}" ]; then echo "frontier.sh: keeping $tmp" >&2; else trap 'rm -rf "$tmp"' EXIT; fi
@@ -41,16 +43,18 @@ while [ $# -gt 0 ]; do
 done
 [ $# -ge 2 ] || usage
 out="$1"; shift
-command -v gnuplot >/dev/null || { echo "frontier.sh: gnuplot missing: run tools/bench/frontier.sh --install-deps" >&2; exit 1; }
 
+# Every CSV is checked before gnuplot runs: an empty or foreign file is named with what it
+# lacks (gnuplot would only say "empty x range").
 args=()   # steady.awk takes label= and pick= before each file
 for spec in "$@"; do
   IFS=@ read -r file name pick <<< "$spec"
-  [ -r "$file" ] || { echo "frontier.sh: cannot read $file" >&2; exit 1; }
+  [ -f "$file" ] && [ -r "$file" ] || { echo "frontier.sh: cannot read $file (expected a CSV of vkcollide_bench --csv)" >&2; exit 1; }
+  awk -v file="$file" -v pick="$pick" -f "$here/csv_check.awk" "$file"
   args+=("label=$name" "pick=$pick" "$file")
 done
+command -v gnuplot >/dev/null || { echo "frontier.sh: gnuplot missing: run tools/bench/frontier.sh --install-deps" >&2; exit 1; }
 awk -f "$here/steady.awk" "${args[@]}" > "$tmp/steady.tsv"
-[ "$(wc -l < "$tmp/steady.tsv")" -gt 1 ] || { echo "frontier.sh: no rows with frame >= 1 in $*" >&2; exit 1; }
 awk -F'\t' -v tmp="$tmp" -v out="$out" -v title="$title" -v link="$link" -f "$here/frontier.awk" "$tmp/legends.tsv" "$tmp/steady.tsv"
 gnuplot "$tmp/frontier.gp"
 echo "frontier.sh: wrote $out"

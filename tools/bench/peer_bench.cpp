@@ -39,7 +39,7 @@
 #include "bench_scenes.hpp"
 #include "peers.hpp"
 #include "support/exact_reference.hpp"
-#include "vkcollide/io.hpp"
+#include "user_scene.hpp"
 #include "vkcollide/scene.hpp"
 #ifdef VKCOLLIDE_PEER_BENCH_GPU
 #include <chrono>
@@ -377,68 +377,6 @@ Result<std::vector<TrianglePair>> referencePairs(const std::vector<HostMesh>& me
     return test::computeReferencePairs(objects, options);
 }
 
-std::string stem(const std::string& path) {
-    const std::size_t slash = path.find_last_of('/');
-    std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-    const std::size_t dot = name.find_last_of('.');
-    return dot == std::string::npos || dot == 0 ? name : name.substr(0, dot);
-}
-
-// The meshes of some files, in order (each OBJ group or OFF/PLY file one object).
-Result<std::vector<HostMesh>> readFiles(std::span<const std::string> files) {
-    std::vector<HostMesh> out;
-    for (const std::string& f : files) {
-        auto meshes = readMeshFile(f);
-        if (!meshes) return meshes.error();
-        for (HostMesh& m : *meshes) out.push_back(std::move(m));
-    }
-    return out;
-}
-
-// Frame f's meshes have frame 0's topology, or an error naming the files and what differs.
-Result<void> sameTopology(const std::vector<HostMesh>& first, const std::vector<HostMesh>& frame, int f, const std::string& files) {
-    const auto differs = [&](const std::string& what) {
-        return Error(ErrorCode::InvalidArgument, "--sequence: frame " + std::to_string(f) + " (" + files + ") does not have frame 0's topology: " + what);
-    };
-    if (frame.size() != first.size())
-        return differs(std::to_string(frame.size()) + " objects instead of " + std::to_string(first.size()));
-    for (std::size_t i = 0; i < frame.size(); ++i) {
-        const std::string who = "object " + std::to_string(i) + " ('" + first[i].name + "')";
-        if (frame[i].positions.size() != first[i].positions.size())
-            return differs(who + " has " + std::to_string(frame[i].positions.size()) + " vertices instead of " + std::to_string(first[i].positions.size()));
-        if (frame[i].indices != first[i].indices) return differs(who + " has other triangles");
-    }
-    return {};
-}
-
-// A --scene as a SceneSpec: files read when a frame is built (world space, identity
-// transforms); with --sequence, frame f is files [f * K, (f + 1) * K).
-SceneSpec userScene(const std::vector<std::string>& files, const Options& opt) {
-    SceneSpec s;
-    const std::size_t per_frame = opt.sequence ? opt.frame_files : files.size();
-    for (std::size_t i = 0; i < per_frame; ++i) s.name += (i ? "+" : "") + stem(files[i]);
-    if (opt.sequence) s.name += "-sequence";
-    s.motion = opt.sequence ? Motion::Deforming : Motion::Rigid;
-    s.frames = static_cast<int>(files.size() / per_frame);
-    s.what = std::string("user scene: ") + (opt.sequence ? std::to_string(s.frames) + " frames of " : "");
-    for (std::size_t i = 0; i < per_frame; ++i) s.what += (i ? ", " : "") + files[i];
-    s.build = [files, per_frame](int frame) -> Result<std::vector<BenchObject>> {
-        auto meshes = readFiles(std::span<const std::string>(files).subspan(std::size_t(frame) * per_frame, per_frame));
-        if (!meshes) return meshes.error();
-        if (frame > 0) {
-            auto first = readFiles(std::span<const std::string>(files).subspan(0, per_frame));
-            if (!first) return first.error();
-            std::string names;
-            for (std::size_t i = 0; i < per_frame; ++i) names += (i ? ", " : "") + files[std::size_t(frame) * per_frame + i];
-            if (auto ok = sameTopology(*first, *meshes, frame, names); !ok) return ok.error();
-        }
-        std::vector<BenchObject> objects;
-        for (HostMesh& m : *meshes) objects.push_back(BenchObject{std::move(m)});
-        return objects;
-    };
-    return s;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -451,14 +389,23 @@ int main(int argc, char** argv) {
     }
     const std::vector<SceneSpec> scenes = allScenes(opt.data);
     const std::vector<PeerSpec> peers = allPeers(opt.resolution);
-    std::vector<SceneSpec> user_scenes;
-    for (const auto& files : opt.user_scenes) user_scenes.push_back(userScene(files, opt));
     if (opt.list) {
         for (const SceneSpec& s : scenes) {
             std::cout << s.name << "  " << setName(s.set) << "  " << motionName(s.motion) << "  " << s.what << '\n';
         }
         for (const PeerSpec& p : peers) std::cout << p.name << '\n';
         return 0;
+    }
+    std::vector<SceneSpec> user_scenes;
+    for (const auto& files : opt.user_scenes) {
+        std::vector<MeshFile> meshes;
+        for (const std::string& f : files) meshes.push_back({f});
+        auto s = userScene(meshes, opt.sequence ? opt.frame_files : 0, SceneSet::User);
+        if (!s) {
+            std::cerr << "vkcollide_peer_bench: --scene: " << s.error().message() << '\n';
+            return 1;
+        }
+        user_scenes.push_back(std::move(*s));
     }
     std::vector<const SceneSpec*> chosen_scenes;
     for (const std::string& name : opt.scenes) {

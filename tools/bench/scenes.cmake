@@ -9,6 +9,7 @@ set(VKCOLLIDE_BENCH_SCENE_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/scene_piles.cpp
   ${CMAKE_CURRENT_LIST_DIR}/scene_pairs.cpp
   ${CMAKE_CURRENT_LIST_DIR}/reference_cache.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/user_scene.cpp
 )
 if(NOT TARGET vkcollide_bench_scenes)
   add_library(vkcollide_bench_scenes STATIC ${VKCOLLIDE_BENCH_SCENE_SOURCES})

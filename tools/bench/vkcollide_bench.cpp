@@ -1,10 +1,12 @@
 // vkcollide_bench: the speed-against-accuracy sweep. Not a test: a program.
 //
-//   vkcollide_bench [--set tuning|held-out|all] [--scenes a,b,...] [--variants default,mitigations,...]
-//                   [--resolutions 512,1024,...] [--scale S] [--frames K] [--threads N]
-//                   [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--profile FILE] [--warmup-ms MS]
-//                   [--list] [--reference-only]
+//   vkcollide_bench [--set tuning|held-out|all] [--scenes a,b,...] [--mesh FILE[:x,y,z]]...
+//                   [--variants default,mitigations,...] [--resolutions 512,1024,...] [--scale S] [--frames K]
+//                   [--threads N] [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--profile FILE]
+//                   [--warmup-ms MS] [--list] [--reference-only] [--help]
 //
+// --mesh runs the user's own files as one more scene (set "user"; user_scene.hpp), the same
+// way; bench_options.cpp has every option's default.
 // --profile FILE writes where each timed frame's time went (GPU passes, narrow-phase stages,
 // host totals, the detection's host parts as detect:*; tools/bench/profile_table.sh sums it up). --warmup-ms MS detects untimed for
 // that long before each scene and variant: a GPU's clocks drop while it idles.
@@ -29,13 +31,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
 #include <map>
-#include <sstream>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "bench_options.hpp"
 #include "bench_scenes.hpp"
 #include "bench_world.hpp"
 #include "bench_variants.hpp"
@@ -50,14 +52,6 @@ using namespace vkcollide::bench;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-std::vector<std::string> splitList(const std::string& s) {
-    std::vector<std::string> out;
-    std::stringstream ss(s);
-    for (std::string item; std::getline(ss, item, ',');)
-        if (!item.empty()) out.push_back(item);
-    return out;
-}
 
 double ms(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
 
@@ -95,19 +89,6 @@ struct Summary {
     std::uint32_t resolution = 0;
     std::size_t frames = 0, triangles = 0, found_crossing = 0, crossing = 0, found = 0, reference = 0, downloaded = 0;
     double total_ms = 0, gpu_ms = 0, narrow_ms = 0, precision_min = 1;
-};
-
-struct Options {
-    std::string set = "all", data = "data/cgal", csv = "vkcollide_bench.csv", cache = "bench-cache", variants = "default,mitigations,resolutions";
-    double warmup_ms = 0;  // untimed detections per scene and variant before its frames
-    std::string profile;  // long-form per-stage times (GPU passes, narrow-phase stages), empty: none
-    std::vector<std::string> scenes;
-    std::vector<std::uint32_t> resolutions = {512, 1024, 2048, 4096};
-    double scale = 1.0;
-    int frames = 3;
-    unsigned threads = 0;
-    bool list = false;
-    bool reference_only = false;
 };
 
 void writeProfile(std::ofstream& out, const std::string& prefix, const DetectStats& st, double update_ms, double total_ms) {
@@ -151,43 +132,21 @@ void writeProfile(std::ofstream& out, const std::string& prefix, const DetectSta
     out.flush();
 }
 
-int usage() {
-    std::fprintf(stderr, "usage: vkcollide_bench [--set tuning|held-out|all] [--scenes a,b] [--variants names|groups|all] "
-                         "[--resolutions 512,1024] [--scale S] [--frames K] [--threads N] [--data DIR] [--cache DIR | --no-cache] "
-                         "[--csv FILE] [--profile FILE] [--warmup-ms MS] [--list] [--reference-only]\n");
-    return 2;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    Options opt;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const bool has = i + 1 < argc;
-        if (a == "--list") opt.list = true;
-        else if (a == "--reference-only") opt.reference_only = true;
-        else if (a == "--no-cache") opt.cache.clear();
-        else if (!has) return usage();
-        else if (a == "--set") opt.set = argv[++i];
-        else if (a == "--scenes") opt.scenes = splitList(argv[++i]);
-        else if (a == "--variants") opt.variants = argv[++i];
-        else if (a == "--resolutions") {
-            opt.resolutions.clear();
-            for (const auto& r : splitList(argv[++i])) opt.resolutions.push_back(static_cast<std::uint32_t>(std::stoul(r)));
-        } else if (a == "--scale") opt.scale = std::atof(argv[++i]);
-        else if (a == "--frames") opt.frames = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--threads") opt.threads = static_cast<unsigned>(std::atoi(argv[++i]));
-        else if (a == "--data") opt.data = argv[++i];
-        else if (a == "--cache") opt.cache = argv[++i];
-        else if (a == "--csv") opt.csv = argv[++i];
-        else if (a == "--profile") opt.profile = argv[++i];
-        else if (a == "--warmup-ms") opt.warmup_ms = std::atof(argv[++i]);
-        else return usage();
+    const std::optional<Options> parsed = parseOptions(argc, argv);
+    if (!parsed) return 2;
+    const Options& opt = *parsed;
+    if (opt.help) return printHelp(), 0;
+    std::vector<SceneSpec> all = allScenes(opt.data, opt.scale);
+    const std::size_t built_in = all.size();
+    if (!opt.meshes.empty()) {
+        // Read now: a bad file fails before any reference or GPU work, named by the reader.
+        auto mine = userScene(opt.meshes, 0, SceneSet::User);
+        if (!mine) return std::fprintf(stderr, "vkcollide_bench: --mesh: %s\n", mine.error().message().c_str()), 1;
+        all.push_back(std::move(*mine));
     }
-    if (opt.set != "all" && opt.set != "tuning" && opt.set != "held-out") return usage();
-    if (!(opt.scale > 0 && opt.scale <= 4)) return std::fprintf(stderr, "vkcollide_bench: --scale must be in (0, 4]\n"), 2;
-    const std::vector<SceneSpec> all = allScenes(opt.data, opt.scale);
     const std::vector<Variant> every_variant = allVariants(opt.resolutions);
     if (opt.list) {
         for (const SceneSpec& s : all) std::printf("%-24s %-8s %-9s %2d frames  %s\n", s.name.c_str(), setName(s.set), motionName(s.motion), s.frames, s.what.c_str());
@@ -198,9 +157,10 @@ int main(int argc, char** argv) {
     auto variants = selectVariants(every_variant, opt.variants);
     if (!variants) return std::fprintf(stderr, "vkcollide_bench: %s\n", variants.error().message().c_str()), 2;
     std::vector<const SceneSpec*> chosen;
-    for (const SceneSpec& s : all) {
+    for (std::size_t i = 0; i < all.size(); ++i) {
+        const SceneSpec& s = all[i];
         const bool named = opt.scenes.empty() || std::find(opt.scenes.begin(), opt.scenes.end(), s.name) != opt.scenes.end();
-        if (named && (opt.set == "all" || opt.set == setName(s.set))) chosen.push_back(&s);
+        if (i >= built_in || (named && (opt.set == "all" || opt.set == setName(s.set)))) chosen.push_back(&s);
     }
     for (const std::string& n : opt.scenes)
         if (std::none_of(all.begin(), all.end(), [&](const SceneSpec& s) { return s.name == n; }))
@@ -225,10 +185,18 @@ int main(int argc, char** argv) {
             }
         return 0;
     }
-    auto ctx = Context::create();
+    // The test suite's switch (tests/bench): the validation layer on, any message fails the run.
+    ContextCreateInfo context_info;
+    const char* validation_env = std::getenv("VKCOLLIDE_TEST_VALIDATION");
+    context_info.validation = validation_env && std::string(validation_env) == "1";
+    auto ctx = Context::create(context_info);
     if (!ctx) return std::fprintf(stderr, "vkcollide_bench: %s\n", ctx.error().message().c_str()), 1;
     const std::string device = csvField((*ctx)->deviceInfo().name);
-    std::ofstream csv(opt.csv);
+    std::ofstream csv;
+    if (!opt.csv.empty()) {
+        csv.open(opt.csv);
+        if (!csv) return std::fprintf(stderr, "vkcollide_bench: --csv %s: cannot write it\n", opt.csv.c_str()), 1;
+    }
     // One row per stage of every timed frame: where each frame's time went.
     std::ofstream profile;
     if (!opt.profile.empty()) {
@@ -435,6 +403,9 @@ int main(int argc, char** argv) {
         }
     }
     progressDone();
-    std::printf("\nCSV: %s (%zu scene x variant points, %d skipped)\n", opt.csv.c_str(), summaries.size(), failures);
+    std::printf("\nCSV: %s (%zu scene x variant points, %d skipped)\n", opt.csv.empty() ? "none (--csv FILE)" : opt.csv.c_str(),
+                summaries.size(), failures);
+    if (const std::uint64_t messages = (*ctx)->validationMessageCount(); messages > 0)
+        return std::fprintf(stderr, "vkcollide_bench: %llu validation messages\n", (unsigned long long)messages), 3;
     return failures ? 1 : 0;
 }

@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -263,7 +264,7 @@ int main(int argc, char** argv) {
     int frames = 10;
     double warmup_ms = 300;
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    bool reference = false;
+    bool reference = false, passes = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> std::string {
@@ -279,11 +280,13 @@ int main(int argc, char** argv) {
         else if (a == "--warmup-ms") warmup_ms = std::atof(value().c_str());
         else if (a == "--threads") threads = std::max(1, std::atoi(value().c_str()));
         else if (a == "--reference") reference = true;
+        else if (a == "--passes") passes = true;
         else if (a == "--csv") csv_path = value();
         else {
             std::fprintf(stderr,
                          "usage: vkcollide_bench_proximity [--scenes cloth-391k,cloth-524k,pair] [--factors 0.1,0.5,1] [--frames N] "
-                         "[--warmup-ms M] [--threads T] [--reference] [--csv FILE]\n");
+                         "[--warmup-ms M] [--threads T] [--reference] [--passes] [--csv FILE]\n"
+                         "  --passes: also the median GPU time of every pass, with and without proximity\n");
             return a == "--help" ? 0 : 2;
         }
     }
@@ -328,6 +331,7 @@ int main(int argc, char** argv) {
                 if (!(*world)->detect(near)) break;
             }
             std::vector<double> det, span, fp, pr, fi, px, hs, base_det, base_span, pass_pairs, pass_sort;
+            std::map<std::string, std::vector<double>> pass_near, pass_plain;  // --passes
             DetectResult last;
             for (int k = 0; k < frames; ++k) {
                 step(k);
@@ -335,6 +339,7 @@ int main(int argc, char** argv) {
                 if (!b) return std::fprintf(stderr, "%s: %s\n", name.c_str(), b.error().message().c_str()), 1;
                 base_det.push_back(b->stats.total_ms);
                 base_span.push_back(b->stats.gpu_span_ms);
+                for (const PassTime& t : b->stats.gpu_passes) pass_plain[t.name].push_back(t.gpu_ms);
                 auto r = (*world)->detect(near);
                 if (!r) return std::fprintf(stderr, "%s: %s\n", name.c_str(), r.error().message().c_str()), 1;
                 det.push_back(r->stats.total_ms);
@@ -346,6 +351,7 @@ int main(int argc, char** argv) {
                 hs.push_back(r->stats.proximity.host_ms);
                 double pairs_ms = 0, sort_ms = 0;
                 for (const PassTime& t : r->stats.gpu_passes) {
+                    pass_near[t.name].push_back(t.gpu_ms);
                     if (t.name == "proximity-pairs") pairs_ms += t.gpu_ms;
                     if (t.name == "proximity-sort") sort_ms += t.gpu_ms;
                 }
@@ -383,6 +389,15 @@ int main(int argc, char** argv) {
                 << "," << median(hs) << "," << median(pass_pairs) << "," << median(pass_sort) << "," << ps.pairs << "," << ps.vertex_triangle << "," << ps.edge_edge << "," << ps.in_band << ","
                 << ps.triangle_pairs << "," << ps.distances << "," << last.pairs.size() << "," << median(base_det) << ","
                 << median(base_span) << "," << ref_ms << "," << ref_pairs << "," << missing << "," << added << "\n";
+            if (passes) {
+                std::printf("  %-28s %10s %10s\n", "pass (median ms)", "proximity", "plain");
+                for (auto& [pass_name, times] : pass_near)
+                    std::printf("  %-28s %10.4f %10.4f\n", pass_name.c_str(), median(times),
+                                pass_plain.count(pass_name) ? median(pass_plain[pass_name]) : 0.0);
+                std::printf("  candidates %llu, triangle pairs examined %llu, distances %llu\n",
+                            (unsigned long long)last.stats.cells.candidates, (unsigned long long)ps.triangle_pairs,
+                            (unsigned long long)ps.distances);
+            }
             std::fflush(stdout);
         }
     }

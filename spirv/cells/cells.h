@@ -146,6 +146,10 @@ struct CellsGpuTriangle {
     float v[9];
 };
 
+// CellsCandidate.cell of a candidate the pair pass found outside its canonical cell, with
+// proximity on (CellsParams.keep_neighbours): the proximity pass skips it without checking again.
+VKC_CONST kCellsNotCanonical = 0xFFFFFFFFu;
+
 // Small results; the host reads them after each run. The 64-bit counters count without
 // wrapping whatever the scene: the host reads from them what a run needed.
 struct CellsHeader {

@@ -4,10 +4,11 @@
 // Proximity pass (src/proximity/proximity_stage.cpp, docs/proximity.md): after the cell
 // stage ran with every triangle grown by half the distance d (CellsParams.proximity_pad)
 // and the sweep keeping neighbours (keep_neighbours), every candidate triangle pair in its
-// canonical cell is examined here, one invocation each (the pair pass's own dispatch):
-// the vertices each triangle owns against the other triangle, and the edges each owns
-// against the other's owned edges (ProximityParams.owned: a vertex's or an edge's lowest
-// triangle owns it, so each primitive pair is examined once), in double on the CPU's
+// canonical cell (the pair pass marked the others) is examined here, one invocation each
+// (the pair pass's own dispatch): the vertices each triangle owns against the other
+// triangle, and the edges each owns against the other's owned edges
+// (ProximityParams.owned: a vertex's or an edge's lowest triangle owns it, so each
+// primitive pair is examined once), in double on the CPU's
 // world vertices. A pair is written when its computed distance is at most d plus its error
 // bound (flagged kProximityInBand when within the bound of d). One object's primitives
 // that share a vertex index or a bit-identical world vertex are neighbours, left out.
@@ -193,10 +194,11 @@ void main() {
     CellsCandidate c = CellsCandidate(0u, 0u, 0u);
     if (live) {
         c = CellsCandidatesRef(P.candidates).c[id];
-        live = c.b < P.triangle_count && c.cell < P.cell_count;  // else the pair pass flags it
+        // The pair pass marked the candidates outside their canonical cell (kCellsNotCanonical);
+        // other bad ones it flags.
+        live = c.b < P.triangle_count && c.cell < P.cell_count;
     }
     CellsTrianglesRef tris = CellsTrianglesRef(P.triangles);
-    if (live) live = canonical(P, tris.t[c.a], tris.t[c.b], c.cell);
     // First every owned primitive pair's distance, a bit per pair within d (bits 0-2: a's
     // vertices against b, 3-5: b's against a, 6-14: a's edge i against b's edge j at
     // 6 + 3 i + j); then one slot range per subgroup and the records written.

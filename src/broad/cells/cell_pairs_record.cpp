@@ -167,7 +167,7 @@ CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projec
     });
     pass(g, "cells-pairs", PassKind::Compute, Stage::Filtering)
         .indirect(args)
-        .read(candidates)
+        .readWrite(candidates)  // proximity: marks the candidates outside their canonical cell
         .read(tris)
         .read(geometry)
         .readWrite(header)

@@ -1,5 +1,5 @@
 // What each sample's pictures show: the scene with its colliding triangles highlighted
-// (the renderer draws them in red on top of everything, with a yellow halo, both objects'
+// (the renderer draws them in red on top of everything, with a white halo, both objects'
 // triangles), the camera aimed at the box of those triangles, and a caption with the
 // method, the pair count and the detection's times.
 #pragma once

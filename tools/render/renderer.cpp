@@ -319,7 +319,8 @@ void Renderer::writeParams(const Camera& camera) {
     const Float3 light = normalize({0.35f, 0.85f, 0.4f});
     frame->light = {light.x, light.y, light.z, 0};
     frame->highlight = {1.0f, 0.1f, 0.05f, 1};
-    frame->halo = {1.0f, 0.92f, 0.15f, 1};
+    // White: the command-line tool draws its collision rays yellow.
+    frame->halo = {1.0f, 1.0f, 1.0f, 1};
     auto* params = reinterpret_cast<gpu::DrawParams*>(frame + 1);
     for (std::size_t i = 0; i < draws_.size(); ++i) {
         const Draw& d = draws_[i];

@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
     auto cloth_id = (*world)->addMesh(*grid, {.name = "cloth", .self_collision = true, .open = true});
     if (!cloth_id) return fail(cloth_id.error());
     const DrawId cloth_draw = renderer.addMesh(*grid, objectColour(3), /*dynamic=*/true);
-    Picture picture(renderer, common, "cloth", Camera{.eye = {2.2f, 1.9f, 3.2f}, .target = {0, -0.1f, 0}}, 0.6f);
+    Picture picture(renderer, common, "cloth", Camera{.eye = {2.2f, 1.9f, 3.2f}, .target = {0, -0.1f, 0}}, 1.1f);
 
     DetectSettings settings = common.detectSettings();
     FrameLog log(common.out + "/frames.csv",
@@ -232,9 +232,9 @@ int main(int argc, char** argv) {
         const auto render_start = std::chrono::steady_clock::now();
         renderer.updateVertices(cloth_draw, now);
         picture.write(frame, *hits,
-                      std::to_string(sphere_pairs) + " cloth-sphere, " + std::to_string(floor_pairs) + " cloth-floor, " +
-                          std::to_string(self_pairs) + " cloth-cloth pairs" +
-                          (proximity ? ", " + std::to_string(hits->proximity.size()) + " proximity pairs" : std::string()));
+                      "cloth pairs: " + std::to_string(sphere_pairs) + " sphere, " + std::to_string(floor_pairs) + " floor, " +
+                          std::to_string(self_pairs) + " self" +
+                          (proximity ? "; " + std::to_string(hits->proximity.size()) + " near" : std::string()));
         const double values[] = {double(sphere_pairs), double(floor_pairs), double(self_pairs), double(max_penetration),
                                  double(hits->proximity.size())};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));

@@ -283,7 +283,8 @@ int main(int argc, char** argv) {
         sim_ms += msSince(response_start);
 
         const auto render_start = std::chrono::steady_clock::now();
-        picture.write(frame, *hits, std::to_string(retracting_now) + " tentacles retracting, " + std::to_string(ship_pairs) + " ship pairs");
+        picture.write(frame, *hits,
+                      std::to_string(retracting_now) + " tentacles retracting, " + std::to_string(ship_pairs) + " ship pairs");
         const double values[] = {double(tentacle_pairs), double(ship_pairs), double(retracting_now), double(new_retractions),
                                  double(shortest)};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));

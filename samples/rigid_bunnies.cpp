@@ -213,7 +213,9 @@ int main(int argc, char** argv) {
             in_box += std::abs(b.position.x()) < box_size / 2 && std::abs(b.position.z()) < box_size / 2 && b.position.y() > 0;
 
         const auto render_start = std::chrono::steady_clock::now();
-        picture.write(frame, *hits, std::to_string(box_pairs) + " bunny-box, " + std::to_string(bunny_pairs) + " bunny-bunny pairs, " + std::to_string(in_box) + " bunnies in the box");
+        picture.write(frame, *hits,
+                      std::to_string(box_pairs) + " bunny-box, " + std::to_string(bunny_pairs) + " bunny-bunny pairs, " +
+                          std::to_string(in_box) + " in the box");
         const double values[] = {double(box_pairs), double(bunny_pairs), double(in_box), double(lowest)};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));
     }

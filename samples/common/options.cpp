@@ -117,7 +117,8 @@ void addCommonOptions(Args& args, CommonOptions& o) {
     args.option("device", o.device, "Vulkan device name substring (also VKCOLLIDE_DEVICE)");
     args.option("data", o.data, "folder of the CGAL meshes (tools/fetch_cgal_data.sh; default data/cgal)");
     args.flag("stand-ins", o.stand_ins, "generated stand-ins instead of the CGAL meshes");
-    args.option("method", o.method, "reliable (every intersecting pair: cells and pairs on the GPU) or peeling (the paper's depth peeling)");
+    args.option("method", o.method,
+                "reliable (every intersecting pair: cells and pairs on the GPU) or peeling (the paper's depth peeling)");
     args.option("resolution", o.resolution,
                 "reliable: cells per side, 1 to 16384; peeling: rays per image side, a power of two in [4, 16384]; 0: automatic");
     args.option("layer-cap", o.layer_cap, "peeling only: most depth layers to peel; 0: the measured depth complexity");

@@ -23,6 +23,14 @@ constexpr float kFollow = 0.5f;
 // pull the camera away and back.
 constexpr float kReturn = 0.2f;
 
+// Three significant digits at most, and no more than a tenth of a millisecond's detail:
+// 0.42, 7.31, 21.9, 3450.
+std::string milliseconds(double ms) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, ms < 10 ? "%.2f" : ms < 100 ? "%.1f" : "%.0f", ms);
+    return buf;
+}
+
 }  // namespace
 
 std::string shortCount(double v) {
@@ -80,8 +88,8 @@ void Picture::write(int frame, const vkcollide::DetectResult& result, const std:
     std::snprintf(line, sizeof line, "%s: %s method, %s pairs", scene_.c_str(), vkcollide::toString(s.method),
                   shortCount(double(result.pairs.size())).c_str());
     lines.emplace_back(line);
-    std::snprintf(line, sizeof line, "frame %d detect %.1f ms: GPU %.1f reduce %.1f CPU %.1f", frame, s.total_ms, render::gpuMs(s),
-                  render::reduceMs(s), s.narrow_ms);
+    std::snprintf(line, sizeof line, "frame %d detect %s ms: GPU %s reduce %s CPU %s", frame, milliseconds(s.total_ms).c_str(),
+                  milliseconds(render::gpuMs(s)).c_str(), milliseconds(render::reduceMs(s)).c_str(), milliseconds(s.narrow_ms).c_str());
     lines.emplace_back(line);
     if (!note.empty()) lines.push_back(note);
     render::drawCaption(image, renderer_.width(), renderer_.height(), lines);

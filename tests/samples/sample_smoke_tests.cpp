@@ -233,7 +233,8 @@ TEST_CASE("samples: an option of the peeling method is refused under the reliabl
 
 TEST_CASE("samples: a resolution that is not a power of two fails under the peeling method with the API's message", "[samples][gpu]") {
     const Scratch out = scratchFor("resolution");
-    const Run peeling = start(out, VKCOLLIDE_SAMPLE_DEFORMABLE, "--bodies bunnies --bunny-triangles 200 --method peeling --resolution 100", 2);
+    const Run peeling =
+        start(out, VKCOLLIDE_SAMPLE_DEFORMABLE, "--bodies bunnies --bunny-triangles 200 --method peeling --resolution 100", 2);
     INFO(peeling.output);
     CHECK(peeling.status == 1);
     CHECK(peeling.output.find("resolution 100 is not a power of two") != std::string::npos);

@@ -60,9 +60,9 @@ public:
     void replaceMesh(DrawId id, const vkcollide::HostMesh& mesh);
     void setTransform(DrawId id, const vkcollide::Transform3x4& object_to_world);
 
-    // Colliding triangles of the next frame. They are drawn in the highlight colour, then
-    // again on top of everything with a halo a few pixels wide, so that a contact hidden
-    // behind a surface or smaller than a pixel still shows.
+    // Colliding triangles of the next frame. They are drawn in the highlight colour, and
+    // those small on the screen again on top of everything with a halo a few pixels wide,
+    // so that a contact hidden behind a surface or smaller than a pixel still shows.
     void clearHighlights();
     void highlight(DrawId id, std::uint32_t triangle);
     // The world box of the highlighted triangles as drawn (with their draws' transforms and

@@ -25,6 +25,9 @@ vec3 corner(uint triangle, uint k) {
 
 // Outside the depth range: the triangle is clipped away whole.
 const vec4 kNowhere = vec4(0.0, 0.0, -1.0, 1.0);
+// Colliding triangles whose longest edge on the screen is at most this many halo widths
+// are drawn again on top of everything (with the halo); larger ones only in the first pass.
+const float kLargestOnTop = 5.0;
 
 void main() {
     uint triangle = uint(gl_VertexIndex) / 3;
@@ -45,17 +48,24 @@ void main() {
         gl_Position = kNowhere;
         return;
     }
+    vec4 c0 = frame.view_proj * vec4(w0, 1.0), c1 = frame.view_proj * vec4(w1, 1.0), c2 = frame.view_proj * vec4(w2, 1.0);
+    if (c0.w <= 0.0 || c1.w <= 0.0 || c2.w <= 0.0) {
+        gl_Position = kNowhere;  // reaches behind the eye: the first pass shows what is seen
+        return;
+    }
+    vec2 half_size = 0.5 * image_size;
+    vec2 s0 = c0.xy / c0.w * half_size, s1 = c1.xy / c1.w * half_size, s2 = c2.xy / c2.w * half_size;
+    // Large on the screen: the first pass shows it plainly, and on top it would hide the
+    // scene behind it (the rigid bunnies' box floor).
+    if (max(max(length(s1 - s0), length(s2 - s1)), length(s0 - s2)) > kLargestOnTop * halo_width) {
+        gl_Position = kNowhere;
+        return;
+    }
     if (pass == RENDER_PASS_HOT) return;
     // The halo: each corner moves away from the triangle's centre by the halo's width in
     // pixels, so a colliding triangle smaller than a pixel still shows as a spot.
     out_colour = frame.halo.rgb;
-    vec4 c0 = frame.view_proj * vec4(w0, 1.0), c1 = frame.view_proj * vec4(w1, 1.0), c2 = frame.view_proj * vec4(w2, 1.0);
-    if (c0.w <= 0.0 || c1.w <= 0.0 || c2.w <= 0.0) {
-        gl_Position = kNowhere;  // behind the eye: not worth a halo
-        return;
-    }
-    vec2 half_size = 0.5 * image_size;
-    vec2 centre = (c0.xy / c0.w + c1.xy / c1.w + c2.xy / c2.w) / 3.0 * half_size;
+    vec2 centre = (s0 + s1 + s2) / 3.0;
     vec2 here = gl_Position.xy / gl_Position.w * half_size;
     vec2 away = here - centre;
     float d = length(away);

@@ -24,6 +24,7 @@
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
+#include "common/picture.hpp"
 #include "common/render.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
@@ -64,7 +65,8 @@ int main(int argc, char** argv) {
     args.flag("proximity", proximity, "drive the cloth by proximity pairs (within twice its thickness), not by intersecting pairs");
     addCommonOptions(args, common);
     args.parse(argc, argv);
-    finishCommonOptions(common, "cloth");
+    finishCommonOptions(args, common, "cloth");
+    refuseOtherMethod(args, common, "--proximity", DetectMethod::Reliable);
     if (cells < 2 || substeps < 1) die("--cells must be at least 2 and --substeps at least 1");
 
     // The engine's device, lent to vkcollide.
@@ -113,7 +115,7 @@ int main(int argc, char** argv) {
     auto cloth_id = (*world)->addMesh(*grid, {.name = "cloth", .self_collision = true, .open = true});
     if (!cloth_id) return fail(cloth_id.error());
     const DrawId cloth_draw = renderer.addMesh(*grid, objectColour(3), /*dynamic=*/true);
-    const Camera camera{.eye = {2.2f, 1.9f, 3.2f}, .target = {0, -0.1f, 0}};
+    Picture picture(renderer, common, "cloth", Camera{.eye = {2.2f, 1.9f, 3.2f}, .target = {0, -0.1f, 0}}, 1.1f);
 
     DetectSettings settings = common.detectSettings();
     FrameLog log(common.out + "/frames.csv",
@@ -229,11 +231,10 @@ int main(int argc, char** argv) {
         // Render what was tested, with the colliding triangles highlighted.
         const auto render_start = std::chrono::steady_clock::now();
         renderer.updateVertices(cloth_draw, now);
-        if (writesFrame(common, frame)) {
-            const auto& image = renderer.render(camera);
-            if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
-                die("cannot write " + framePath(common.out, frame));
-        }
+        picture.write(frame, *hits,
+                      "cloth pairs: " + std::to_string(sphere_pairs) + " sphere, " + std::to_string(floor_pairs) + " floor, " +
+                          std::to_string(self_pairs) + " self" +
+                          (proximity ? "; " + std::to_string(hits->proximity.size()) + " near" : std::string()));
         const double values[] = {double(sphere_pairs), double(floor_pairs), double(self_pairs), double(max_penetration),
                                  double(hits->proximity.size())};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));

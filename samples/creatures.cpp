@@ -23,6 +23,7 @@
 
 #include "common/options.hpp"
 #include "common/physics.hpp"
+#include "common/picture.hpp"
 #include "common/render.hpp"
 #include "creatures.h"
 #include "creatures_comp.h"
@@ -86,7 +87,7 @@ int main(int argc, char** argv) {
     args.option("dt", dt, "simulated seconds per frame");
     addCommonOptions(args, common);
     args.parse(argc, argv);
-    finishCommonOptions(common, "creatures");
+    finishCommonOptions(args, common, "creatures");
     if (creatures < 1 || tentacles < 1 || segments < 2 || sides < 3) die("needs --creatures >= 1, --tentacles >= 1, --segments >= 2, --sides >= 3");
 
     // The engine's device, lent to vkcollide.
@@ -186,7 +187,8 @@ int main(int argc, char** argv) {
         fleet.push_back(ship);
     }
     std::printf("scene: %zu triangles (%u creatures x %u, %u ships)\n", (*world)->triangleCount(), creatures, triangles, ships);
-    const Camera camera{.eye = {0.3f * field, 0.6f * field + 1.0f, 0.8f * field + 2.0f}, .target = {0, -0.3f, 0}};
+    Picture picture(renderer, common, "creatures",
+                    Camera{.eye = {0.3f * field, 0.6f * field + 1.0f, 0.8f * field + 2.0f}, .target = {0, -0.3f, 0}}, 1.2f);
 
     // Per tentacle: retracting after a hit, or growing back.
     std::vector<bool> retracting(std::size_t{creatures} * tentacles, false);
@@ -281,11 +283,8 @@ int main(int argc, char** argv) {
         sim_ms += msSince(response_start);
 
         const auto render_start = std::chrono::steady_clock::now();
-        if (writesFrame(common, frame)) {
-            const auto& image = renderer.render(camera);
-            if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
-                die("cannot write " + framePath(common.out, frame));
-        }
+        picture.write(frame, *hits,
+                      std::to_string(retracting_now) + " tentacles retracting, " + std::to_string(ship_pairs) + " ship pairs");
         const double values[] = {double(tentacle_pairs), double(ship_pairs), double(retracting_now), double(new_retractions),
                                  double(shortest)};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));

@@ -18,6 +18,7 @@
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
+#include "common/picture.hpp"
 #include "common/render.hpp"
 #include "vkcollide/world.hpp"
 
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
     args.option("dt", dt, "simulated seconds per frame");
     addCommonOptions(args, common);
     args.parse(argc, argv);
-    finishCommonOptions(common, "deformable");
+    finishCommonOptions(args, common, "deformable");
     if (which != "all" && which != "bunnies" && which != "horses") die("--bodies takes all, bunnies or horses");
 
     // The engine's device, lent to vkcollide.
@@ -74,7 +75,11 @@ int main(int argc, char** argv) {
     }
     if (which != "bunnies") {
         bodies.push_back({simplifyMesh(loadSceneMesh(common, "camel.off", StandIn::Long, 1.6f), horse_triangles), "camel"});
-        bodies.push_back({simplifyMesh(loadSceneMesh(common, "elephant.off", StandIn::Ring, 1.4f), horse_triangles), "elephant"});
+        // The CGAL elephant leans back 31 degrees from +y: this up direction (the normal of
+        // the plane its four soles touch) puts it on its feet.
+        const Float3 elephant_up{-0.092f, 0.855f, 0.510f};
+        bodies.push_back(
+            {simplifyMesh(loadSceneMesh(common, "elephant.off", StandIn::Ring, 1.4f, elephant_up), horse_triangles), "elephant"});
     }
     std::vector<SoftBody> soft;
     for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -106,7 +111,7 @@ int main(int argc, char** argv) {
     floor.positions = {{-6, -0.005f, -6}, {6, -0.005f, -6}, {6, -0.005f, 6}, {-6, -0.005f, 6}};
     floor.indices = {0, 2, 1, 0, 3, 2};
     renderer.addMesh(floor, objectColour(6));
-    const Camera camera{.eye = {1.5f, 3.5f, 6.5f}, .target = {0, 0.9f, 0}};
+    Picture picture(renderer, common, "deformable " + which, Camera{.eye = {1.5f, 3.5f, 6.5f}, .target = {0, 0.9f, 0}}, 0.8f);
 
     const DetectSettings settings = common.detectSettings();
     FrameLog log(common.out + "/frames.csv", {"mutual_pairs", "self_pairs", "centre_distance_01"}, common.frames, common.quiet);
@@ -162,11 +167,7 @@ int main(int argc, char** argv) {
         sim_ms += msSince(response_start);
 
         const auto render_start = std::chrono::steady_clock::now();
-        if (writesFrame(common, frame)) {
-            const auto& image = renderer.render(camera);
-            if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
-                die("cannot write " + framePath(common.out, frame));
-        }
+        picture.write(frame, *hits, std::to_string(mutual) + " pairs between bodies, " + std::to_string(self) + " within one");
         const double values[] = {double(mutual), double(self), double((soft[0].centre() - soft[1].centre()).norm())};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));
     }

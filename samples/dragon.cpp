@@ -18,6 +18,7 @@
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
+#include "common/picture.hpp"
 #include "common/render.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
@@ -35,7 +36,7 @@ int main(int argc, char** argv) {
     args.option("passer-triangles", passer_triangles, "triangles of the bunny that passes through (simplified if fewer)");
     addCommonOptions(args, common);
     args.parse(argc, argv);
-    finishCommonOptions(common, "dragon");
+    finishCommonOptions(args, common, "dragon");
 
     // The engine's device, lent to vkcollide.
     auto engine = Engine::create({common.validation, common.device});
@@ -81,7 +82,8 @@ int main(int argc, char** argv) {
     Renderer renderer(*engine, common.width, common.height);
     const DrawId dragon_draw = renderer.addMesh(dragon, objectColour(3));
     const DrawId bunny_draw = renderer.addMesh(bunny, objectColour(0));
-    const Camera camera{.eye = {middle.x() + 2.5f, middle.y() + 2.0f, middle.z() + 7.5f}, .target = toFloat3(middle)};
+    Picture picture(renderer, common, "dragon",
+                    Camera{.eye = {middle.x() + 2.5f, middle.y() + 2.0f, middle.z() + 7.5f}, .target = toFloat3(middle)}, 0.8f);
 
     const DetectSettings settings = common.detectSettings();
     FrameLog log(common.out + "/frames.csv", {"dragon_bunny_pairs"}, common.frames, common.quiet);
@@ -101,11 +103,7 @@ int main(int argc, char** argv) {
             renderer.highlight(dragon_draw, p.triangle_a);
             renderer.highlight(bunny_draw, p.triangle_b);
         }
-        if (writesFrame(common, frame)) {
-            const auto& image = renderer.render(camera);
-            if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
-                die("cannot write " + framePath(common.out, frame));
-        }
+        picture.write(frame, *hits, "the bunny passes through the dragon");
         const double values[] = {double(hits->pairs.size())};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));
     }

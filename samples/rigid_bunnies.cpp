@@ -19,6 +19,7 @@
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
+#include "common/picture.hpp"
 #include "common/render.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
@@ -72,7 +73,7 @@ int main(int argc, char** argv) {
     args.option("seed", seed, "seed of the random start orientations");
     addCommonOptions(args, common);
     args.parse(argc, argv);
-    finishCommonOptions(common, "rigid_bunnies");
+    finishCommonOptions(args, common, "rigid_bunnies");
     if (bunnies < 1 || columns < 1 || bunny_triangles < 16) die("--bunnies and --columns must be at least 1, --bunny-triangles at least 16");
 
     // The engine's device, lent to vkcollide.
@@ -123,7 +124,8 @@ int main(int argc, char** argv) {
         draws.push_back(i == 0 ? first_draw : renderer.addInstance(first_draw, objectColour(i)));
     }
     const float reach = std::max(float(columns) * spacing, box_size);
-    const Camera camera{.eye = {0.9f * reach, 1.1f * reach + 1.5f, 1.4f * reach}, .target = {0, 0.6f, 0}};
+    Picture picture(renderer, common, "rigid bunnies",
+                    Camera{.eye = {0.9f * reach, 1.1f * reach + 1.5f, 1.4f * reach}, .target = {0, 0.6f, 0}}, 1.0f);
 
     const DetectSettings settings = common.detectSettings();
     FrameLog log(common.out + "/frames.csv", {"bunny_box_pairs", "bunny_bunny_pairs", "bunnies_in_box", "lowest_centre"},
@@ -211,11 +213,9 @@ int main(int argc, char** argv) {
             in_box += std::abs(b.position.x()) < box_size / 2 && std::abs(b.position.z()) < box_size / 2 && b.position.y() > 0;
 
         const auto render_start = std::chrono::steady_clock::now();
-        if (writesFrame(common, frame)) {
-            const auto& image = renderer.render(camera);
-            if (!writePng(framePath(common.out, frame), renderer.width(), renderer.height(), image))
-                die("cannot write " + framePath(common.out, frame));
-        }
+        picture.write(frame, *hits,
+                      std::to_string(box_pairs) + " bunny-box, " + std::to_string(bunny_pairs) + " bunny-bunny pairs, " +
+                          std::to_string(in_box) + " in the box");
         const double values[] = {double(box_pairs), double(bunny_pairs), double(in_box), double(lowest)};
         log.record(frame, *hits, values, sim_ms, msSince(render_start));
     }

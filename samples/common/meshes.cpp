@@ -57,7 +57,26 @@ void normalizeMesh(HostMesh& m, float size) {
     for (Float3& p : m.positions) p = {(p.x - c.x) * s, (p.y - c.y) * s, (p.z - c.z) * s};
 }
 
-HostMesh loadSceneMesh(const CommonOptions& options, const std::string& file, StandIn stand_in, float size) {
+void turnMesh(HostMesh& m, Float3 from, Float3 to) {
+    auto unit = [](Float3 v) {
+        const float l = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+        return Float3{v.x / l, v.y / l, v.z / l};
+    };
+    const Float3 a = unit(from), b = unit(to);
+    // Rodrigues' rotation about a x b by the angle between them.
+    const Float3 k{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    const float sin_angle = std::sqrt(k.x * k.x + k.y * k.y + k.z * k.z), cos_angle = a.x * b.x + a.y * b.y + a.z * b.z;
+    if (sin_angle < 1e-7f) return;  // already along it (turning half round is never asked)
+    const Float3 axis{k.x / sin_angle, k.y / sin_angle, k.z / sin_angle};
+    for (Float3& p : m.positions) {
+        const Float3 c{axis.y * p.z - axis.z * p.y, axis.z * p.x - axis.x * p.z, axis.x * p.y - axis.y * p.x};
+        const float d = (axis.x * p.x + axis.y * p.y + axis.z * p.z) * (1 - cos_angle);
+        p = {p.x * cos_angle + c.x * sin_angle + axis.x * d, p.y * cos_angle + c.y * sin_angle + axis.y * d,
+             p.z * cos_angle + c.z * sin_angle + axis.z * d};
+    }
+}
+
+HostMesh loadSceneMesh(const CommonOptions& options, const std::string& file, StandIn stand_in, float size, Float3 file_up) {
     HostMesh mesh;
     const std::string path = options.stand_ins ? std::string() : findDataMesh(options, file);
     if (path.empty()) {
@@ -70,6 +89,7 @@ HostMesh loadSceneMesh(const CommonOptions& options, const std::string& file, St
         auto meshes = vkcollide::readMeshFile(path);
         if (!meshes) die(meshes.error().message());
         mesh = std::move(meshes->front());
+        turnMesh(mesh, file_up, {0, 1, 0});
     }
     normalizeMesh(mesh, size);
     return mesh;

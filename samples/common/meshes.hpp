@@ -22,9 +22,14 @@ enum class StandIn {
 };
 
 // Reads data/cgal/<file> (options.data) or, when it is missing or --stand-ins is given,
-// generates `stand_in` (and says so on stderr). The mesh is centred on its bounding
-// box's centre and scaled so its largest extent is `size`.
-vkcollide::HostMesh loadSceneMesh(const CommonOptions& options, const std::string& file, StandIn stand_in, float size);
+// generates `stand_in` (and says so on stderr). A file's mesh is turned so that `file_up`,
+// its up direction, becomes +y (the scenes' up; stand-ins are made that way). The mesh is
+// centred on its bounding box's centre and scaled so its largest extent is `size`.
+vkcollide::HostMesh loadSceneMesh(const CommonOptions& options, const std::string& file, StandIn stand_in, float size,
+                                  vkcollide::Float3 file_up = {0, 1, 0});
+
+// Turns the mesh about the origin so that the direction `from` points along `to`.
+void turnMesh(vkcollide::HostMesh& io_mesh, vkcollide::Float3 from, vkcollide::Float3 to);
 
 // Centres on the bounding box and scales to the given largest extent.
 void normalizeMesh(vkcollide::HostMesh& io_mesh, float size);

@@ -95,7 +95,14 @@ void Args::parse(int argc, char** argv) {
             std::fprintf(stderr, "%s: bad value '%s' for %s\n", program_.c_str(), value, a.c_str());
             std::exit(2);
         }
+        given_.push_back(a);
     }
+}
+
+bool Args::given(const char* name) const {
+    for (const std::string& g : given_)
+        if (g == std::string("--") + name) return true;
+    return false;
 }
 
 void addCommonOptions(Args& args, CommonOptions& o) {
@@ -110,17 +117,29 @@ void addCommonOptions(Args& args, CommonOptions& o) {
     args.option("device", o.device, "Vulkan device name substring (also VKCOLLIDE_DEVICE)");
     args.option("data", o.data, "folder of the CGAL meshes (tools/fetch_cgal_data.sh; default data/cgal)");
     args.flag("stand-ins", o.stand_ins, "generated stand-ins instead of the CGAL meshes");
-    args.option("resolution", o.resolution, "rays per image side, a power of two; 0: automatic");
-    args.option("layer-cap", o.layer_cap, "most depth layers to peel; 0: the measured depth complexity");
-    args.flag("dual", o.dual, "dual depth peeling (front and back at once)");
-    args.option("backend", o.backend, "object sampling: auto, raster or compute");
-    args.option("axes", o.axes, "sampling directions: 1 (the paper) or 3");
-    args.option("coverage", o.coverage, "thin triangles: centre (the paper), dilate, conservative or best");
+    args.option("method", o.method,
+                "reliable (every intersecting pair: cells and pairs on the GPU) or peeling (the paper's depth peeling)");
+    args.option("resolution", o.resolution,
+                "reliable: cells per side, 1 to 16384; peeling: rays per image side, a power of two in [4, 16384]; 0: automatic");
+    args.option("layer-cap", o.layer_cap, "peeling only: most depth layers to peel; 0: the measured depth complexity");
+    args.flag("dual", o.dual, "peeling only: dual depth peeling (front and back at once)");
+    args.option("backend", o.backend, "peeling only: object sampling: auto, raster or compute");
+    args.option("axes", o.axes, "peeling only: sampling directions: 1 (the paper) or 3");
+    args.option("coverage", o.coverage, "peeling only: thin triangles: centre (the paper), dilate, conservative or best");
     args.option("threads", o.threads, "narrow-phase threads; 0: all hardware threads");
+}
+
+vkcollide::DetectMethod CommonOptions::detectMethod() const {
+    if (method == "reliable") return vkcollide::DetectMethod::Reliable;
+    if (method == "peeling") return vkcollide::DetectMethod::Peeling;
+    die("--method takes reliable or peeling, not '" + method + "'");
 }
 
 vkcollide::DetectSettings CommonOptions::detectSettings() const {
     vkcollide::DetectSettings s;
+    s.method = detectMethod();
+    // Passed on as given: under the peeling method a count that is not a power of two
+    // fails the first detection with the API's message.
     if (resolution) s.resolution = resolution;
     s.layer_cap = layer_cap;
     s.dual = dual;
@@ -135,7 +154,19 @@ vkcollide::DetectSettings CommonOptions::detectSettings() const {
     return s;
 }
 
-void finishCommonOptions(CommonOptions& o, const char* sample_name) {
+void refuseOtherMethod(const Args& args, const CommonOptions& o, const char* option, vkcollide::DetectMethod belongs_to) {
+    const vkcollide::DetectMethod runs = o.detectMethod();
+    if (runs == belongs_to || !args.given(option + 2)) return;
+    const bool peeling = belongs_to == vkcollide::DetectMethod::Peeling;
+    die(std::string(option) + " belongs to the " + vkcollide::toString(belongs_to) + " method (--method " +
+        vkcollide::toString(belongs_to) + (peeling ? "" : ", the default") + "); the " + vkcollide::toString(runs) +
+        " method does not read it");
+}
+
+void finishCommonOptions(const Args& args, CommonOptions& o, const char* sample_name) {
+    // The options that shape the peeling method's rays (DetectSettings, world.hpp).
+    for (const char* option : {"--layer-cap", "--dual", "--backend", "--axes", "--coverage"})
+        refuseOtherMethod(args, o, option, vkcollide::DetectMethod::Peeling);
     if (const char* env = std::getenv("VKCOLLIDE_TEST_VALIDATION"); env && std::strcmp(env, "1") == 0) o.validation = true;
     if (o.frames < 1) die("--frames must be at least 1");
     if (o.width < 16 || o.height < 16 || o.width > 8192 || o.height > 8192) die("--width and --height must be in [16, 8192]");

@@ -25,6 +25,8 @@ public:
     void flag(const char* name, bool& value, const char* help);  // --name sets true
     // Parses argv; --help prints the usage and exits 0, a bad argument exits 2.
     void parse(int argc, char** argv);
+    // Whether --name was on the command line (after parse).
+    bool given(const char* name) const;
 
 private:
     struct Entry {
@@ -35,6 +37,7 @@ private:
     void add(const char* name, const char* help, std::string default_text, bool is_flag, std::function<bool(const char*)> set);
     std::string program_, summary_;
     std::vector<Entry> entries_;
+    std::vector<std::string> given_;
 };
 
 struct CommonOptions {
@@ -50,7 +53,11 @@ struct CommonOptions {
     bool stand_ins = false;          // generated stand-ins instead of the CGAL meshes
 
     // Detection settings (DetectSettings); 0 / "auto": chosen by vkcollide from the scene.
-    std::uint32_t resolution = 0;
+    // The method as DetectSettings::method: reliable (its default) or peeling (the
+    // paper's). Layer cap, dual, backend, axes and coverage shape the peeling method's rays
+    // only (world.hpp): given under the reliable method they are refused, not ignored.
+    std::string method = "reliable";
+    std::uint32_t resolution = 0;    // reliable: any cell count; peeling: a power of two (the API checks)
     std::uint32_t layer_cap = 0;
     bool dual = false;
     std::string backend = "auto";    // auto, raster, compute
@@ -58,15 +65,21 @@ struct CommonOptions {
     std::string coverage = "centre"; // centre, dilate, conservative, best
     std::uint32_t threads = 0;       // narrow-phase threads; 0: all
 
+    vkcollide::DetectMethod detectMethod() const;
     vkcollide::DetectSettings detectSettings() const;
 };
 
 // Registers the shared options. Call after setting the sample's own defaults in `options`.
 void addCommonOptions(Args& args, CommonOptions& options);
 
-// Turns validation on from VKCOLLIDE_TEST_VALIDATION, fills the default output folder and
+// Checks the method and refuses an option the method does not read (exit status 1), turns
+// validation on from VKCOLLIDE_TEST_VALIDATION, fills the default output folder and
 // creates it. Call after Args::parse.
-void finishCommonOptions(CommonOptions& options, const char* sample_name);
+void finishCommonOptions(const Args& args, CommonOptions& options, const char* sample_name);
+
+// Exits with status 1 when `option` was given (Args::given) but belongs to the other method
+// than the one that runs, naming the method it belongs to, as the command-line tool does.
+void refuseOtherMethod(const Args& args, const CommonOptions& options, const char* option, vkcollide::DetectMethod belongs_to);
 
 // Whether this frame is written as a PNG (--no-png, --png-every).
 bool writesFrame(const CommonOptions& options, int frame);

@@ -80,7 +80,7 @@ TEST_CASE("vkcollide detect --sequence: per-frame pairs, JSON and CSV", "[cli][g
         CHECK(cells.at(7) == std::to_string(j["frames"][f]["pairs"].size()));
     }
     CHECK(run.out.find("frame    3") != std::string::npos);  // a line per frame
-    CHECK(run.out.find("Table 1 (3 frames, the first left out)") != std::string::npos);
+    CHECK(run.out.find("Table 1 (reliable method, 3 frames, the first left out)") != std::string::npos);
 }
 
 TEST_CASE("vkcollide detect --sequence: --gpu-mesh frames are written into the engine's buffers", "[cli][gpu]") {

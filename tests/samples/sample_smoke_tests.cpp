@@ -12,6 +12,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
@@ -19,9 +20,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The columns of a sample's frames.csv, numeric ones as numbers (others read as 0).
+// The columns of a sample's frames.csv, numeric ones as numbers (others read as 0), and
+// every one as text.
 struct Csv {
     std::map<std::string, std::vector<double>> columns;
+    std::map<std::string, std::vector<std::string>> text;
     std::size_t rows = 0;
     const std::vector<double>& operator[](const std::string& name) const {
         auto it = columns.find(name);
@@ -42,8 +45,10 @@ Csv readCsv(const fs::path& path) {
     while (std::getline(in, line)) {
         std::stringstream row(line);
         std::size_t i = 0;
-        for (std::string cell; std::getline(row, cell, ',') && i < names.size(); ++i)
+        for (std::string cell; std::getline(row, cell, ',') && i < names.size(); ++i) {
             csv.columns[names[i]].push_back(std::strtod(cell.c_str(), nullptr));
+            csv.text[names[i]].push_back(cell);
+        }
         ++csv.rows;
     }
     return csv;
@@ -59,21 +64,29 @@ struct Scratch {
     }
 };
 
-// Runs a sample into a fresh folder. The sample must exit with 0 (3 would mean validation
-// messages) and write one PNG per frame.
-void runSample(const Scratch& scratch, const char* program, const std::string& args, int frames) {
-    const fs::path& out = scratch.dir;
-    const fs::path& log = scratch.log;
-    fs::remove_all(out);
-    const std::string cmd = std::string(program) + " --out " + out.string() + " --frames " + std::to_string(frames) +
-                            " --width 96 --height 64 --quiet --stand-ins " + args + " > " + log.string() + " 2>&1";
-    INFO(cmd);
+struct Run {
+    int status = 0;      // the program's exit status
+    std::string output;  // stdout and stderr
+};
+
+Run start(const Scratch& scratch, const char* program, const std::string& args, int frames) {
+    fs::remove_all(scratch.dir);
+    const std::string cmd = std::string(program) + " --out " + scratch.dir.string() + " --frames " + std::to_string(frames) +
+                            " --width 96 --height 64 --quiet --stand-ins " + args + " > " + scratch.log.string() + " 2>&1";
     const int rc = std::system(cmd.c_str());
-    std::ifstream text(log);
+    std::ifstream text(scratch.log);
     std::stringstream output;
     output << text.rdbuf();
-    INFO(output.str());
-    REQUIRE(rc == 0);
+    return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, cmd + "\n" + output.str()};
+}
+
+// Runs a sample into a fresh folder. The sample must exit with 0 (3 would mean validation
+// messages) and write one PNG per frame. Returns what it printed.
+std::string runSample(const Scratch& scratch, const char* program, const std::string& args, int frames) {
+    const fs::path& out = scratch.dir;
+    const Run run = start(scratch, program, args, frames);
+    INFO(run.output);
+    REQUIRE(run.status == 0);
     for (int f = 0; f < frames; ++f) {
         char png[32];
         std::snprintf(png, sizeof png, "frame_%04d.png", f);
@@ -82,6 +95,7 @@ void runSample(const Scratch& scratch, const char* program, const std::string& a
         image.read(signature, 8);
         REQUIRE(std::string(signature + 1, 3) == "PNG");
     }
+    return run.output;
 }
 
 Scratch scratchFor(const std::string& name) {
@@ -154,4 +168,78 @@ TEST_CASE("deformable sample: two bodies collide and are pushed apart", "[sample
     // After they touch, the centres move apart again.
     const double at_contact = distance[first_contact];
     CHECK(*std::max_element(distance.begin() + first_contact, distance.end()) > at_contact + 0.05);
+}
+
+TEST_CASE("samples: every scene runs under the peeling method and records the method it ran", "[samples][gpu]") {
+    const struct {
+        const char* name;
+        const char* program;
+        std::string args;
+    } scenes[] = {
+        {"cloth", VKCOLLIDE_SAMPLE_CLOTH, "--cells 12 --drop 0.05 --fold 0 --dt 0.01"},
+        {"rigid", VKCOLLIDE_SAMPLE_RIGID_BUNNIES, "--bunnies 3 --columns 1 --bunny-triangles 300 --drop 0.05"},
+        {"dragon", VKCOLLIDE_SAMPLE_DRAGON, "--triangles 12000 --passer-triangles 600"},
+        {"creatures", VKCOLLIDE_SAMPLE_CREATURES, "--creatures 2 --tentacles 10 --segments 6 --sides 6 --ships 1 --spacing 1.6"},
+        {"deformable", VKCOLLIDE_SAMPLE_DEFORMABLE, "--bodies bunnies --bunny-triangles 500 --distance 0.9 --speed 3"},
+    };
+    for (const auto& scene : scenes)
+        for (const std::string& method : {std::string("peeling"), std::string("reliable")}) {
+            INFO(scene.name << " --method " << method);
+            const int frames = 3;
+            const Scratch out = scratchFor(std::string(scene.name) + "-" + method);
+            const std::string printed = runSample(out, scene.program, scene.args + " --method " + method, frames);
+            const Csv csv = readCsv(out.dir / "frames.csv");
+            REQUIRE(csv.rows == frames);
+            for (const std::string& m : csv.text.at("method")) CHECK(m == method);
+            CHECK(printed.find("Table 1 (" + method + " method") != std::string::npos);
+        }
+}
+
+TEST_CASE("deformable sample: the peeling method finds the bodies' contact too", "[samples][gpu]") {
+    const int frames = 40;
+    const Scratch out = scratchFor("deformable-peeling");
+    runSample(out, VKCOLLIDE_SAMPLE_DEFORMABLE,
+              "--bodies bunnies --bunny-triangles 500 --distance 0.9 --speed 3 --method peeling --dual --backend compute", frames);
+    const Csv csv = readCsv(out.dir / "frames.csv");
+    REQUIRE(csv.rows == frames);
+    CHECK(max(csv["mutual_pairs"]) > 0);
+    CHECK(max(csv["peel_passes"]) > 0);
+}
+
+TEST_CASE("samples: an option of the peeling method is refused under the reliable method, naming its method", "[samples][gpu]") {
+    const Scratch out = scratchFor("refused");
+    for (const std::string& option : {std::string("--dual"), std::string("--layer-cap 4"), std::string("--backend raster"),
+                                       std::string("--coverage dilate"), std::string("--axes 3")}) {
+        for (const std::string& method : {std::string(), std::string(" --method reliable")}) {
+            const Run run = start(out, VKCOLLIDE_SAMPLE_DEFORMABLE, "--bodies bunnies --bunny-triangles 200 " + option + method, 2);
+            INFO(run.output);
+            CHECK(run.status == 1);
+            const std::string name = option.substr(0, option.find(' '));
+            CHECK(run.output.find(name + " belongs to the peeling method (--method peeling); the reliable method does not read it") !=
+                  std::string::npos);
+            CHECK(!fs::exists(out.dir / "frames.csv"));  // refused before anything ran
+        }
+    }
+    // The cloth's proximity pairs belong to the reliable method.
+    const Run cloth = start(out, VKCOLLIDE_SAMPLE_CLOTH, "--cells 8 --proximity --method peeling", 2);
+    INFO(cloth.output);
+    CHECK(cloth.status == 1);
+    CHECK(cloth.output.find("--proximity belongs to the reliable method (--method reliable, the default); the peeling method does not "
+                            "read it") != std::string::npos);
+    const Run unknown = start(out, VKCOLLIDE_SAMPLE_CLOTH, "--cells 8 --method cells", 2);
+    CHECK(unknown.status != 0);
+    CHECK(unknown.output.find("--method takes reliable or peeling") != std::string::npos);
+}
+
+TEST_CASE("samples: a resolution that is not a power of two fails under the peeling method with the API's message", "[samples][gpu]") {
+    const Scratch out = scratchFor("resolution");
+    const Run peeling =
+        start(out, VKCOLLIDE_SAMPLE_DEFORMABLE, "--bodies bunnies --bunny-triangles 200 --method peeling --resolution 100", 2);
+    INFO(peeling.output);
+    CHECK(peeling.status == 1);
+    CHECK(peeling.output.find("resolution 100 is not a power of two") != std::string::npos);
+    // The reliable method takes any cell count, and runs at the one given.
+    runSample(out, VKCOLLIDE_SAMPLE_DEFORMABLE, "--bodies bunnies --bunny-triangles 200 --resolution 100", 2);
+    const Csv csv = readCsv(out.dir / "frames.csv");
+    for (double r : csv["resolution"]) CHECK(r == 100);
 }

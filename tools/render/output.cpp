@@ -98,6 +98,7 @@ void FrameLog::record(int frame, const vkcollide::DetectResult& r, std::span<con
         std::fprintf(csv_, "\n");
         std::fflush(csv_);
     }
+    method_ = vkcollide::toString(s.method);
     rows_.push_back({{double(s.triangles), double(s.collision_rays), double(s.triangles_downloaded),
                       double(s.potentially_colliding_triangles), double(s.triangle_tests), double(s.positive_tests), gpuMs(s),
                       reduceMs(s), s.narrow_ms, s.total_ms, double(r.pairs.size())}});
@@ -154,8 +155,8 @@ void FrameLog::finish(const std::string& scene_name) {
                     count(v[3]).c_str(), count(v[4]).c_str(), count(v[5]).c_str(), v[6], v[7], v[8], v[9],
                     v[9] > 0 ? 1000.0 / v[9] : 0.0, count(v[10]).c_str());
     };
-    std::printf("\nTable 1 (%zu frame%s%s):\n%-22s %-8s %-8s %-8s %-8s %-8s %-8s %7s %7s %7s %7s\n", rows_.size() - first,
-                rows_.size() - first == 1 ? "" : "s", first ? ", the first left out" : "", "scene", "# tri's", "# coll.",
+    std::printf("\nTable 1 (%s method, %zu frame%s%s):\n%-22s %-8s %-8s %-8s %-8s %-8s %-8s %7s %7s %7s %7s\n", method_.c_str(),
+                rows_.size() - first, rows_.size() - first == 1 ? "" : "s", first ? ", the first left out" : "", "scene", "# tri's", "# coll.",
                 "# downl.", "# pot.", "# tests", "# pos.", "GPU", "Reduce", "CPU", "Overall");
     line("mean", mean);
     line("max", peak);

@@ -57,6 +57,7 @@ private:
         double values[11];
     };
     std::vector<Row> rows_;
+    std::string method_;  // the method of the frames recorded, for the summary
     int last_percent_ = -1;
 };
 

@@ -1,8 +1,10 @@
 #include "render/renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
+#include "highlight_box_comp.h"
 #include "render.h"
 #include "render_frag.h"
 #include "render_vert.h"
@@ -90,6 +92,15 @@ Renderer::Renderer(Engine& engine, std::uint32_t width, std::uint32_t height)
     lci.pPushConstantRanges = &push;
     check(vkCreatePipelineLayout(dev, &lci, nullptr, &layout_), "vkCreatePipelineLayout");
 
+    pipeline_ = createPipeline(true);
+    // The highlighted triangles again, on top: no depth test.
+    hot_pipeline_ = createPipeline(false);
+    box_pipeline_ = engine_.createComputePipeline(kHighlightBoxComp, sizeof(gpu::BoxPush));
+    box_words_ = engine_.createBuffer(6 * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, Memory::Host);
+}
+
+VkPipeline Renderer::createPipeline(bool depth_tested) {
+    VkDevice dev = engine_.device();
     VkShaderModule vert = engine_.createShaderModule(kRenderVert);
     VkShaderModule frag = engine_.createShaderModule(kRenderFrag);
     VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
@@ -112,7 +123,7 @@ Renderer::Renderer(Engine& engine, std::uint32_t width, std::uint32_t height)
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-    ds.depthTestEnable = ds.depthWriteEnable = VK_TRUE;
+    ds.depthTestEnable = ds.depthWriteEnable = depth_tested ? VK_TRUE : VK_FALSE;
     ds.depthCompareOp = VK_COMPARE_OP_LESS;
     VkPipelineColorBlendAttachmentState blend{};
     blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
@@ -140,9 +151,11 @@ Renderer::Renderer(Engine& engine, std::uint32_t width, std::uint32_t height)
     pci.pColorBlendState = &cb;
     pci.pDynamicState = &dyn;
     pci.layout = layout_;
-    check(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &pci, nullptr, &pipeline_), "vkCreateGraphicsPipelines");
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    check(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &pci, nullptr, &pipeline), "vkCreateGraphicsPipelines");
     vkDestroyShaderModule(dev, vert, nullptr);
     vkDestroyShaderModule(dev, frag, nullptr);
+    return pipeline;
 }
 
 Renderer::~Renderer() {
@@ -155,7 +168,10 @@ Renderer::~Renderer() {
     }
     engine_.destroy(readback_);
     engine_.destroy(params_);
+    engine_.destroy(box_words_);
+    engine_.destroy(box_pipeline_);
     vkDestroyPipeline(dev, pipeline_, nullptr);
+    vkDestroyPipeline(dev, hot_pipeline_, nullptr);
     vkDestroyPipelineLayout(dev, layout_, nullptr);
     vkDestroyImageView(dev, colour_view_, nullptr);
     vkDestroyImageView(dev, depth_view_, nullptr);
@@ -239,17 +255,60 @@ void Renderer::updateVertices(DrawId id, std::span<const Float3> positions) {
 void Renderer::setTransform(DrawId id, const vkcollide::Transform3x4& object_to_world) { draws_.at(id).transform = object_to_world; }
 
 void Renderer::clearHighlights() {
-    for (Draw& d : draws_) std::memset(d.highlights.mapped, 0, d.highlights.size);
+    for (Draw& d : draws_) {
+        std::memset(d.highlights.mapped, 0, d.highlights.size);
+        d.hot = 0;
+    }
 }
 
 void Renderer::highlight(DrawId id, std::uint32_t triangle) {
     Draw& d = draws_.at(id);
     if (triangle >= d.triangles) return;
-    static_cast<std::uint32_t*>(d.highlights.mapped)[triangle / 32] |= 1u << (triangle % 32);
+    std::uint32_t& word = static_cast<std::uint32_t*>(d.highlights.mapped)[triangle / 32];
+    const std::uint32_t bit = 1u << (triangle % 32);
+    if (!(word & bit)) ++d.hot;
+    word |= bit;
 }
 
-const std::vector<std::uint8_t>& Renderer::render(const Camera& camera) {
-    // Frame parameters, then one DrawParams per mesh, in one host-visible buffer.
+std::optional<Box> Renderer::highlightBox() {
+    bool any = false;
+    for (const Draw& d : draws_) any = any || d.hot > 0;
+    if (!any) return std::nullopt;
+    writeParams(Camera{});
+    auto* words = static_cast<std::uint32_t*>(box_words_.mapped);
+    for (int a = 0; a < 3; ++a) words[a] = ~0u, words[a + 3] = 0;
+    engine_.submit([&](VkCommandBuffer cmd) {
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, box_pipeline_.pipeline);
+        for (std::size_t i = 0; i < draws_.size(); ++i) {
+            if (draws_[i].hot == 0) continue;
+            const gpu::BoxPush push{params_.address + sizeof(gpu::FrameParams) + i * sizeof(gpu::DrawParams), box_words_.address,
+                                    draws_[i].triangles};
+            vkCmdPushConstants(cmd, box_pipeline_.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            vkCmdDispatch(cmd, (draws_[i].triangles + 63) / 64, 1, 1);
+        }
+        VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        to_host.srcStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+        to_host.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+        to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &to_host;
+        vkCmdPipelineBarrier2(cmd, &dep);
+    });
+    // Back from the order-preserving uint (highlight_box.comp) to the float.
+    auto value = [&](int slot) {
+        const std::uint32_t u = words[slot];
+        const std::uint32_t bits = (u & 0x80000000u) ? u & 0x7fffffffu : ~u;
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        return f;
+    };
+    if (words[0] == ~0u) return std::nullopt;  // every corner was NaN or infinite
+    return Box{{value(0), value(1), value(2)}, {value(3), value(4), value(5)}};
+}
+
+void Renderer::writeParams(const Camera& camera) {
     const VkDeviceSize need = sizeof(gpu::FrameParams) + draws_.size() * sizeof(gpu::DrawParams);
     if (params_.size < need) {
         engine_.destroy(params_);
@@ -259,7 +318,9 @@ const std::vector<std::uint8_t>& Renderer::render(const Camera& camera) {
     frame->view_proj = viewProjection(camera, static_cast<float>(width_) / static_cast<float>(height_));
     const Float3 light = normalize({0.35f, 0.85f, 0.4f});
     frame->light = {light.x, light.y, light.z, 0};
-    frame->highlight = {1.0f, 0.22f, 0.08f, 1};
+    frame->highlight = {1.0f, 0.1f, 0.05f, 1};
+    // White: the command-line tool draws its collision rays yellow.
+    frame->halo = {1.0f, 1.0f, 1.0f, 1};
     auto* params = reinterpret_cast<gpu::DrawParams*>(frame + 1);
     for (std::size_t i = 0; i < draws_.size(); ++i) {
         const Draw& d = draws_[i];
@@ -272,6 +333,10 @@ const std::vector<std::uint8_t>& Renderer::render(const Camera& camera) {
         p.colour = {d.colour[0], d.colour[1], d.colour[2], 1};
         for (int r = 0; r < 3; ++r) p.model[r] = {d.transform[r * 4], d.transform[r * 4 + 1], d.transform[r * 4 + 2], d.transform[r * 4 + 3]};
     }
+}
+
+const std::vector<std::uint8_t>& Renderer::render(const Camera& camera) {
+    writeParams(camera);
 
     engine_.submit([&](VkCommandBuffer cmd) {
         VkImageMemoryBarrier2 to_attachment[2] = {{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2}, {VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2}};
@@ -319,13 +384,22 @@ const std::vector<std::uint8_t>& Renderer::render(const Camera& camera) {
         VkRect2D scissor{{0, 0}, {width_, height_}};
         vkCmdSetViewport(cmd, 0, 1, &viewport);
         vkCmdSetScissor(cmd, 0, 1, &scissor);
+        auto draw_all = [&](std::uint32_t pass) {
+            for (std::size_t i = 0; i < draws_.size(); ++i) {
+                if (draws_[i].triangles == 0 || (pass != RENDER_PASS_ALL && draws_[i].hot == 0)) continue;
+                // Three pixels of halo at 640 wide; at least one and a half on a thumbnail.
+                const gpu::RenderPush push{params_.address, params_.address + sizeof(gpu::FrameParams) + i * sizeof(gpu::DrawParams),
+                                           pass, std::max(1.5f, float(width_) / 200.0f), float(width_), float(height_)};
+                vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
+                vkCmdDraw(cmd, draws_[i].triangles * 3, 1, 0, 0);
+            }
+        };
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-        for (std::size_t i = 0; i < draws_.size(); ++i) {
-            if (draws_[i].triangles == 0) continue;
-            gpu::RenderPush push{params_.address, params_.address + sizeof(gpu::FrameParams) + i * sizeof(gpu::DrawParams)};
-            vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(push), &push);
-            vkCmdDraw(cmd, draws_[i].triangles * 3, 1, 0, 0);
-        }
+        draw_all(RENDER_PASS_ALL);
+        // Every halo first, then every highlighted triangle: no halo covers a contact.
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, hot_pipeline_);
+        draw_all(RENDER_PASS_HALO);
+        draw_all(RENDER_PASS_HOT);
         vkCmdEndRendering(cmd);
 
         VkImageMemoryBarrier2 to_copy{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -34,6 +35,10 @@ struct Camera {
 
 using DrawId = std::uint32_t;
 
+struct Box {
+    vkcollide::Float3 min, max;
+};
+
 class Renderer {
 public:
     Renderer(Engine& engine, std::uint32_t width, std::uint32_t height);
@@ -55,9 +60,14 @@ public:
     void replaceMesh(DrawId id, const vkcollide::HostMesh& mesh);
     void setTransform(DrawId id, const vkcollide::Transform3x4& object_to_world);
 
-    // Colliding triangles of the next frame.
+    // Colliding triangles of the next frame. They are drawn in the highlight colour, and
+    // those small on the screen again on top of everything with a halo a few pixels wide,
+    // so that a contact hidden behind a surface or smaller than a pixel still shows.
     void clearHighlights();
     void highlight(DrawId id, std::uint32_t triangle);
+    // The world box of the highlighted triangles as drawn (with their draws' transforms and
+    // current vertices, the GPU's included), measured on the GPU; none without highlights.
+    std::optional<Box> highlightBox();
 
     // Renders every mesh and returns the image, RGBA8, rows top to bottom.
     const std::vector<std::uint8_t>& render(const Camera& camera);
@@ -71,9 +81,13 @@ private:
         std::uint32_t first_float = 0, stride_floats = 3, triangles = 0;
         Rgb colour{};
         vkcollide::Transform3x4 transform{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+        std::uint32_t hot = 0;  // triangles highlighted
     };
     DrawId addDraw(Draw draw);
     void uploadMesh(Draw& draw, const vkcollide::HostMesh& mesh, bool dynamic);
+    VkPipeline createPipeline(bool depth_tested);
+    // Frame parameters, then one DrawParams per draw, into params_.
+    void writeParams(const Camera& camera);
 
     Engine& engine_;
     std::uint32_t width_, height_;
@@ -81,8 +95,9 @@ private:
     VkDeviceMemory colour_memory_ = VK_NULL_HANDLE, depth_memory_ = VK_NULL_HANDLE;
     VkImageView colour_view_ = VK_NULL_HANDLE, depth_view_ = VK_NULL_HANDLE;
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
-    VkPipeline pipeline_ = VK_NULL_HANDLE;
-    Buffer readback_, params_;
+    VkPipeline pipeline_ = VK_NULL_HANDLE, hot_pipeline_ = VK_NULL_HANDLE;
+    Engine::ComputePipeline box_pipeline_;
+    Buffer readback_, params_, box_words_;
     std::vector<Draw> draws_;
     std::vector<std::uint8_t> pixels_;
 };

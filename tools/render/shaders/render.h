@@ -42,12 +42,34 @@ layout(buffer_reference, scalar) readonly buffer FrameParams {
     mat4 view_proj;
     vec4 light;      // direction towards the light, world space
     vec4 highlight;  // colour of colliding triangles
+    vec4 halo;       // colour of the halo drawn around them
 };
+
+// What one draw call draws (RenderPush::pass): every triangle (depth-tested), or only the
+// colliding ones on top of everything: grown by the halo's width in the halo colour, then
+// as they are in the highlight colour.
+#define RENDER_PASS_ALL 0u
+#define RENDER_PASS_HALO 1u
+#define RENDER_PASS_HOT 2u
+
+// The box of the colliding triangles in world space (highlight_box.comp): min x, y, z then
+// max x, y, z, each a float mapped to a uint that orders as the float does.
+#ifndef __cplusplus
+layout(buffer_reference, scalar) buffer BoxWords { uint v[6]; };
+#endif
 
 #ifdef __cplusplus
 struct RenderPush {
     std::uint64_t frame;
     std::uint64_t draw;
+    uint pass;         // RENDER_PASS_*
+    float halo_width;  // pixels
+    float width, height;  // of the image, pixels
+};
+struct BoxPush {
+    std::uint64_t draw;
+    std::uint64_t box;
+    uint triangles;
 };
 }  // namespace render::gpu
 #endif

@@ -1,6 +1,7 @@
 // Compute and graphics pipelines with their layouts (src/vk/pipeline.hpp).
 #include "vk/pipeline.hpp"
 
+#include "vk/debug_names.hpp"
 #include "vk/shader_limits.hpp"
 
 #include <vector>
@@ -28,6 +29,7 @@ Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bin
             set_layout_ = VK_NULL_HANDLE;
             return vulkanError(r, "vkCreateDescriptorSetLayout for '" + name + "'");
         }
+        nameObject(device, set_layout_, name + " set layout");
     }
     VkPushConstantRange range{stages, 0, push_bytes};
     VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -40,6 +42,7 @@ Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bin
         layout_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreatePipelineLayout for '" + name + "'");
     }
+    nameObject(device, layout_, name + " layout");
     return {};
 }
 
@@ -62,6 +65,7 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
         out.module = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateShaderModule for '" + name + "'");
     }
+    nameObject(device, out.module, name + " shader");
     return {};
 }
 }  // namespace
@@ -90,6 +94,7 @@ Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::ui
         p.pipeline_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
     }
+    nameObject(device, p.pipeline_, name);
     p.bind_point_ = VK_PIPELINE_BIND_POINT_COMPUTE;
     return p;
 }
@@ -171,6 +176,7 @@ Result<Pipeline> Pipeline::createRaster(Device& device, const RasterDesc& desc, 
         p.pipeline_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateGraphicsPipelines for '" + name + "'");
     }
+    nameObject(device, p.pipeline_, name);
     p.bind_point_ = VK_PIPELINE_BIND_POINT_GRAPHICS;
     return p;
 }

@@ -19,9 +19,11 @@ bool loadDebugLabelFunctions(PFN_vkGetInstanceProcAddr gipa, VkInstance instance
     return all;
 }
 
-void nameObject(const Device& device, VkObjectType type, std::uint64_t handle, std::string_view what) {
+void nameObject(const Device& device, VkObjectType type, std::uint64_t handle, std::string_view what, std::string_view suffix) {
     if (!device.debug_utils || handle == 0) return;
-    const std::string name = std::string(kDebugPrefix) + std::string(what);
+    std::string name;
+    name.reserve(kDebugPrefix.size() + what.size() + suffix.size());
+    name.append(kDebugPrefix).append(what).append(suffix);
     VkDebugUtilsObjectNameInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_OBJECT_NAME_INFO_EXT};
     info.objectType = type;
     info.objectHandle = handle;

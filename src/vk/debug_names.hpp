@@ -23,9 +23,11 @@ inline constexpr std::string_view kDebugPrefix = "vkcollide: ";
 // left null, so that names and labels are all or nothing.
 bool loadDebugLabelFunctions(PFN_vkGetInstanceProcAddr gipa, VkInstance instance, DeviceFunctions& io_fns) noexcept;
 
-// Names an object "vkcollide: <what>". A failure is ignored: a name is a diagnostic, never
-// a reason for the object's creation to fail.
-void nameObject(const Device& device, VkObjectType type, std::uint64_t handle, std::string_view what);
+// Names an object "vkcollide: <what><suffix>" (the suffix joined here, after the flag's test,
+// so that a device without names builds no string). A failure is ignored: a name is a
+// diagnostic, never a reason for the object's creation to fail.
+void nameObject(const Device& device, VkObjectType type, std::uint64_t handle, std::string_view what,
+                std::string_view suffix = {});
 
 template <class Handle>
 constexpr VkObjectType objectTypeOf() noexcept {
@@ -47,12 +49,12 @@ constexpr VkObjectType objectTypeOf() noexcept {
 }
 
 template <class Handle>
-void nameObject(const Device& device, Handle handle, std::string_view what) {
+void nameObject(const Device& device, Handle handle, std::string_view what, std::string_view suffix = {}) {
     if (!device.debug_utils) return;
     std::uint64_t bits;
     if constexpr (std::is_pointer_v<Handle>) bits = reinterpret_cast<std::uintptr_t>(handle);
     else bits = static_cast<std::uint64_t>(handle);  // non-dispatchable handles on 32-bit targets
-    nameObject(device, objectTypeOf<Handle>(), bits, what);
+    nameObject(device, objectTypeOf<Handle>(), bits, what, suffix);
 }
 
 // A label around commands recorded straight into a command buffer (not through a command

@@ -29,7 +29,7 @@ Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bin
             set_layout_ = VK_NULL_HANDLE;
             return vulkanError(r, "vkCreateDescriptorSetLayout for '" + name + "'");
         }
-        nameObject(device, set_layout_, name + " set layout");
+        nameObject(device, set_layout_, name, " set layout");
     }
     VkPushConstantRange range{stages, 0, push_bytes};
     VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -42,7 +42,7 @@ Result<void> Pipeline::createLayout(Device& device, std::span<const Binding> bin
         layout_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreatePipelineLayout for '" + name + "'");
     }
-    nameObject(device, layout_, name + " layout");
+    nameObject(device, layout_, name, " layout");
     return {};
 }
 
@@ -65,7 +65,7 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
         out.module = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateShaderModule for '" + name + "'");
     }
-    nameObject(device, out.module, name + " shader");
+    nameObject(device, out.module, name, " shader");
     return {};
 }
 }  // namespace

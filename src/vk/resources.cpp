@@ -173,7 +173,7 @@ Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::st
         img.view_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateImageView for '" + name + "'");
     }
-    nameObject(device, img.view_, name + " view");
+    nameObject(device, img.view_, name, " view");
     for (std::uint32_t level = 0; level < desc.mip_levels; ++level) {
         vi.subresourceRange.baseMipLevel = level;
         vi.subresourceRange.levelCount = 1;
@@ -181,7 +181,7 @@ Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::st
         r = f.vkCreateImageView(device.device, &vi, device.allocator(), &view);
         if (r != VK_SUCCESS) return vulkanError(r, "vkCreateImageView (level) for '" + name + "'");
         img.level_views_.push_back(view);
-        if (device.debug_utils) nameObject(device, view, name + " level " + std::to_string(level));
+        if (device.debug_utils) nameObject(device, view, name, " level " + std::to_string(level));
     }
     return img;
 }

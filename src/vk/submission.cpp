@@ -43,7 +43,7 @@ Result<Submission> Submission::create(Device& device, std::string_view name) {
         s.pool_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateCommandPool");
     }
-    nameObject(device, s.pool_, std::string(name) + " pool");
+    nameObject(device, s.pool_, name, " pool");
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = s.pool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
@@ -57,7 +57,7 @@ Result<Submission> Submission::create(Device& device, std::string_view name) {
         s.fence_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateFence");
     }
-    nameObject(device, s.fence_, std::string(name) + " fence");
+    nameObject(device, s.fence_, name, " fence");
     return s;
 }
 

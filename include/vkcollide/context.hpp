@@ -92,6 +92,16 @@
 //             engine's (AdoptedDevice::pipeline_cache) or one the Context creates, filled
 //             from pipeline_cache_data and read back by Context::pipelineCacheData().
 //
+// ---- Captures (RenderDoc, Nsight Graphics) ----------------------------------------------
+//
+// Where the instance has VK_EXT_debug_utils enabled (Context::create: wherever the loader
+// offers it, ContextCreateInfo::debug_names; adopt(): where
+// AdoptedDevice::enabled_instance_extensions lists it), every Vulkan object vkcollide
+// creates is named "vkcollide: <what>" (a buffer by its role, "vkcollide: cells-survivors";
+// a pipeline by its program), each pass in a command buffer is inside a label
+// "vkcollide: <pass>", and each command buffer's work (or a record() into the engine's)
+// inside one "vkcollide: detect". Without the extension vkcollide makes none of these calls.
+//
 // ---- Lifetime -------------------------------------------------------------------------
 //
 // A Context may be destroyed before the resources made from it: each of them keeps the
@@ -263,6 +273,11 @@ struct ContextCreateInfo {
     // Optional: what Context::pipelineCacheData() returned in an earlier run; read only
     // during create(). Data for another device or driver (its header says so) is ignored.
     std::span<const std::byte> pipeline_cache_data;
+    // Name objects and label passes for capture tools (see Captures above): VK_EXT_debug_utils
+    // is enabled on vkcollide's instance wherever the loader offers it (always with
+    // validation, which needs it for its messages). false: no names or labels, and the
+    // extension only where validation needs it.
+    bool debug_names = true;
 };
 
 // Everything an engine lends to adopt(). Every handle must outlive the Context and every
@@ -289,6 +304,12 @@ struct AdoptedDevice {
     // read only during adopt(). None is required; the optional ones above are used where
     // listed (and where the physical device has them).
     std::span<const char* const> enabled_extensions;
+    // The instance extensions the engine enabled (VkInstanceCreateInfo::ppEnabledExtensionNames);
+    // read only during adopt(). None is required. VK_EXT_debug_utils listed: vkcollide names
+    // its objects and labels its passes (see Captures above); not listed: it makes no
+    // debug-utils call. Vulkan cannot tell vkcollide what an instance enabled, so only this
+    // list counts.
+    std::span<const char* const> enabled_instance_extensions;
     // Optional: the engine's lock around (or its own path for) vkcollide's submissions.
     QueueHooks queue_hooks;
     // Optional: as ContextCreateInfo's (the callbacks vkcollide's own objects are created

@@ -6,6 +6,7 @@
 
 #include "api/world_impl.hpp"
 #include "core/host_memory.hpp"
+#include "vk/debug_names.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {
@@ -111,7 +112,7 @@ Result<void> CollisionWorld::submit(const DetectSettings& settings, const Submit
         // Keep the promise made to the engine's queues: its waits consumed and its
         // signals made, after whatever of this detection was submitted.
         if (!w.sync_only.valid())
-            if (auto s = vk::Submission::create(w.device())) w.sync_only = std::move(*s);
+            if (auto s = vk::Submission::create(w.device(), "sync-only submission")) w.sync_only = std::move(*s);
         if (w.sync_only.valid()) {
             SubmitSync rest = sync;
             if (target.waits_submitted) rest.wait = {};
@@ -126,7 +127,12 @@ Result<void> CollisionWorld::record(const EngineCommandBuffer& target, const Det
     auto scope = w.guard.enter("CollisionWorld::record");
     if (!scope) return scope.error();
     graph::SubmitTarget into{{}, &target};
-    return w.begin(settings, false, &into);
+    // One label around all of it: several executors may record into the engine's buffer.
+    const bool label = target.command_buffer != VK_NULL_HANDLE;
+    if (label) vk::beginLabel(w.device(), target.command_buffer, "detect");
+    auto recorded = w.begin(settings, false, &into);
+    if (label) vk::endLabel(w.device(), target.command_buffer);
+    return recorded;
 }
 
 Result<DetectResult> CollisionWorld::collect() { return impl_->collectCall(nullptr); }

@@ -186,4 +186,17 @@ void CommandTape::writeTimestamp(VkPipelineStageFlags2 stage, VkQueryPool pool, 
     put(query);
 }
 
+void CommandTape::beginLabel(std::string_view prefix, std::string_view name) {
+    put(kBeginLabel);
+    const std::size_t size = prefix.size() + name.size() + 1;
+    put(size);
+    const std::size_t at = words_.size();
+    words_.resize(at + wordsFor(size), 0);  // the NUL and the last word's unused bytes stay 0
+    auto* text = reinterpret_cast<char*>(words_.data() + at);
+    if (!prefix.empty()) std::memcpy(text, prefix.data(), prefix.size());
+    if (!name.empty()) std::memcpy(text + prefix.size(), name.data(), name.size());
+}
+
+void CommandTape::endLabel() { put(kEndLabel); }
+
 }  // namespace vkcollide::graph

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include <vulkan/vulkan_core.h>
@@ -43,6 +44,10 @@ public:
     void setViewport(const VkViewport& viewport);
     void setScissor(const VkRect2D& scissor);
     void writeTimestamp(VkPipelineStageFlags2 stage, VkQueryPool pool, std::uint32_t query);
+    // A VK_EXT_debug_utils label named prefix + name (stored with its NUL, so that replay
+    // passes it in place) until the matching endLabel().
+    void beginLabel(std::string_view prefix, std::string_view name);
+    void endLabel();
 
     void clear() noexcept { words_.clear(); }
     // Position after the last command (replay() starts from one).
@@ -53,7 +58,7 @@ public:
 
     // Records the commands from position `from` (0, or a size() taken earlier) to the end
     // into `cmd`, which is recording. Needs fns.vkCmdPushDescriptorSetKHR only when the
-    // tape pushes descriptors.
+    // tape pushes descriptors, the debug-utils label functions only when it has labels.
     void replay(const vk::DeviceFunctions& fns, VkCommandBuffer cmd, std::size_t from = 0);
 
 private:

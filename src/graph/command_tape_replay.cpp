@@ -219,6 +219,15 @@ void CommandTape::replay(const vk::DeviceFunctions& f, VkCommandBuffer cmd, std:
                 f.vkCmdWriteTimestamp2(cmd, stage, pool, static_cast<std::uint32_t>(in.next()));
                 break;
             }
+            case kBeginLabel: {
+                const std::uint64_t size = in.next();
+                VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};
+                label.pLabelName = reinterpret_cast<const char*>(in.p);  // NUL-terminated in place
+                in.p += wordsFor(size);
+                f.vkCmdBeginDebugUtilsLabelEXT(cmd, &label);
+                break;
+            }
+            case kEndLabel: f.vkCmdEndDebugUtilsLabelEXT(cmd); break;
             default: std::abort();  // not a command: the tape is corrupt
         }
     }

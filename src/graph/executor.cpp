@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "vk/debug_names.hpp"
+
 namespace vkcollide::graph {
 
 ResourceId Graph::importBuffer(std::string name, vk::Buffer& buffer, bool host_readback) {
@@ -166,13 +168,17 @@ void Executor::tapeBarriers(const std::vector<Barrier>& barriers, const PassCont
     tape_.pipelineBarrier(di);
 }
 
-void Executor::tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& ctx) {
+void Executor::tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& ctx, bool outer_label) {
+    // Labels only where the device has them: without, the tape (and what it costs) is as before.
+    const bool labels = device_->debug_utils;
+    if (labels && outer_label) tape_.beginLabel(vk::kDebugPrefix, "detect");
     std::uint32_t q = 0;
     for (const PlannedPass& planned : plan.order) {
         const PassDecl& p = graph.passes()[planned.pass];
         pending_names_.push_back(p.name);
         pending_stages_.push_back(p.stage);
         tapeBarriers(planned.barriers, ctx);
+        if (labels) tape_.beginLabel(vk::kDebugPrefix, p.name);
         tape_.writeTimestamp(VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries_, q++);
         if (p.kind == PassKind::Raster) {
             std::vector<VkRenderingAttachmentInfo>& colors = colors_;
@@ -218,8 +224,10 @@ void Executor::tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& 
             p.record(ctx);
         }
         tape_.writeTimestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
+        if (labels) tape_.endLabel();
     }
     tapeBarriers(plan.final_barriers, ctx);
+    if (labels && outer_label) tape_.endLabel();
 }
 
 VkCommandBuffer Executor::directCommands() {
@@ -270,7 +278,7 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
     pending_host_.compile_ms = msBetween(t_start, t_compiled);
     const auto& f = device_->fns;
     if (!submission_.valid()) {
-        auto s = vk::Submission::create(*device_);
+        auto s = vk::Submission::create(*device_, "graph");
         if (!s) return s.error();
         submission_ = std::move(*s);
     }
@@ -288,6 +296,7 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
         qi.queryCount = needed;
         VkResult r = f.vkCreateQueryPool(device_->device, &qi, device_->allocator(), &queries_);
         if (r != VK_SUCCESS) return vk::vulkanError(r, "vkCreateQueryPool");
+        vk::nameObject(*device_, queries_, "graph timestamps");
         query_capacity_ = needed;
     }
     f.vkResetQueryPool(device_->device, queries_, 0, query_capacity_);
@@ -313,7 +322,9 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
     pending_culled_.clear();
     for (std::uint32_t c : plan->culled) pending_culled_.push_back(graph.passes()[c].name);
     tape_.clear();
-    tapePlan(graph, *plan, ctx);
+    // The engine's command buffer gets its outer label from CollisionWorld::record, around
+    // every executor that records into it.
+    tapePlan(graph, *plan, ctx, !into_engine);
     if (direct_error_) return *direct_error_;
     // Nothing the held command buffer names was destroyed since it was recorded (a count
     // read after the tape was built: nothing the tape names is destroyed while it is).

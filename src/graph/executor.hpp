@@ -137,9 +137,9 @@ private:
     Result<void> planFor(const Graph& graph);
     // collect()'s wait for the last submission (setWaitPolling).
     Result<void> waitForCollect(std::uint64_t timeout_ns);
-    // The plan's commands, the executor's own (barriers, timestamps, rendering) and the
-    // passes', onto tape_.
-    void tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& ctx);
+    // The plan's commands, the executor's own (barriers, timestamps, rendering, labels) and
+    // the passes', onto tape_; outer_label: inside one "vkcollide: detect" label.
+    void tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& ctx, bool outer_label);
     void tapeBarriers(const std::vector<Barrier>& barriers, const PassContext& ctx);
     // PassContext::cmd's conversion: the command buffer, recording, with tape_ replayed
     // into it up to now.

@@ -29,6 +29,8 @@ enum Op : std::uint64_t {
     kSetViewport,
     kSetScissor,
     kWriteTimestamp,
+    kBeginLabel,
+    kEndLabel,
 };
 
 template <class H>

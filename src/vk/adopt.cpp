@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "vk/debug_names.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {
@@ -92,6 +93,9 @@ Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& in, Message
     auto dev = loadDeviceFunctions(d->instance_fns, d->device, d->push_descriptor);
     if (!dev) return dev.error();
     d->fns = *dev;
+    // Vulkan has no query for an instance's enabled extensions: the engine's list says it.
+    d->debug_utils = listsExtension(in.enabled_instance_extensions, VK_EXT_DEBUG_UTILS_EXTENSION_NAME) &&
+                     loadDebugLabelFunctions(in.get_instance_proc_addr, in.instance, d->fns);
     if (auto ok = setUpPipelineCache(*d, in.pipeline_cache, in.pipeline_cache_data); !ok) return ok.error();
     return std::unique_ptr<Context>(new Context(std::move(d)));
 }

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "vk/debug_names.hpp"
+
 namespace vkcollide::vk {
 namespace {
 
@@ -21,6 +23,15 @@ bool hasExtension(const std::vector<VkExtensionProperties>& exts, const char* na
 std::string lower(std::string s) {
     for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     return s;
+}
+
+bool loaderOffers(const GlobalFunctions& global, const char* extension) {
+    std::uint32_t count = 0;
+    if (global.vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr) != VK_SUCCESS) return false;
+    std::vector<VkExtensionProperties> exts(count);
+    if (global.vkEnumerateInstanceExtensionProperties(nullptr, &count, exts.data()) < 0) return false;
+    exts.resize(count);
+    return hasExtension(exts, extension);
 }
 
 int typeRank(VkPhysicalDeviceType type) {
@@ -268,7 +279,13 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
         extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
         extensions.push_back(VK_EXT_VALIDATION_FEATURES_EXTENSION_NAME);
         validation_features.pNext = &messenger_info;
+    } else if (info.debug_names && loaderOffers(d->global, VK_EXT_DEBUG_UTILS_EXTENSION_NAME)) {
+        // Names and labels cost a few calls at creation and two per recorded pass (none for a
+        // command buffer submitted again), and make a capture of the application readable
+        // without a rebuild: on wherever the loader has the extension.
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
     }
+    const bool debug_utils_enabled = listsExtension(extensions, VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
 
     VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
     app.pApplicationName = "vkcollide";
@@ -387,6 +404,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     }
     d->fns = *dev;
     d->owns_device = true;
+    d->debug_utils = info.debug_names && debug_utils_enabled && loadDebugLabelFunctions(gipa, d->instance, d->fns);
     d->fns.vkGetDeviceQueue(d->device, d->queue_family, 0, &d->queue);
     if (auto ok = finishDevice(*d); !ok) return ok.error();
     if (auto ok = setUpPipelineCache(*d, VK_NULL_HANDLE, info.pipeline_cache_data); !ok) return ok.error();

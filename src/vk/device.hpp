@@ -93,6 +93,9 @@ struct Device : std::enable_shared_from_this<Device> {
     bool robust_buffer_access = false;        // robustBufferAccess (descriptor accesses only)
     bool robust_buffer_access2 = false;       // VK_EXT_robustness2's robustBufferAccess2
     bool timeline_semaphore = false;          // timelineSemaphore (engine timelines only)
+    // VK_EXT_debug_utils on the instance, and fns' VKC_DEBUG_LABEL_FUNCTIONS loaded: objects
+    // get names and passes labels (vk/debug_names.hpp).
+    bool debug_utils = false;
 
     Device() = default;
     ~Device();

@@ -109,6 +109,16 @@ namespace vkcollide::vk {
 #define VKC_PUSH_DESCRIPTOR_FUNCTIONS(X) \
     X(vkCmdPushDescriptorSetKHR)
 
+// VK_EXT_debug_utils' names and labels (optional): loaded only where the instance enabled the
+// extension (vk/debug_names.hpp), else null. Commands of an instance extension, so they come
+// from vkGetInstanceProcAddr (not every loader and driver returns them from
+// vkGetDeviceProcAddr); they live in the device table because command tapes replay them.
+#define VKC_DEBUG_LABEL_FUNCTIONS(X)    \
+    X(vkSetDebugUtilsObjectNameEXT)     \
+    X(vkCmdBeginDebugUtilsLabelEXT)     \
+    X(vkCmdEndDebugUtilsLabelEXT)       \
+    X(vkCmdInsertDebugUtilsLabelEXT)
+
 #define VKC_DECLARE_PFN(name) PFN_##name name = nullptr;
 
 struct GlobalFunctions {
@@ -124,6 +134,7 @@ struct InstanceFunctions {
 struct DeviceFunctions {
     VKC_DEVICE_FUNCTIONS(VKC_DECLARE_PFN)
     VKC_PUSH_DESCRIPTOR_FUNCTIONS(VKC_DECLARE_PFN)
+    VKC_DEBUG_LABEL_FUNCTIONS(VKC_DECLARE_PFN)
 };
 
 #undef VKC_DECLARE_PFN

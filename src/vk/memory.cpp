@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <exception>
 
+#include "vk/debug_names.hpp"
+
 namespace vkcollide::vk {
 namespace {
 
@@ -100,6 +102,7 @@ Result<MemoryBlock> allocateMemory(Device& device, const MemoryNeed& need, const
         ai.memoryTypeIndex = need.memory_type;
         VkResult r = device.fns.vkAllocateMemory(device.device, &ai, device.allocator(), &block.memory);
         if (r != VK_SUCCESS) return vulkanError(r, "vkAllocateMemory of " + std::to_string(req.size) + " bytes for '" + name + "'");
+        nameObject(device, block.memory, name, " memory");  // not the engine's memory: that one is the engine's to name
         if (need.map && host_visible) {
             r = device.fns.vkMapMemory(device.device, block.memory, 0, VK_WHOLE_SIZE, 0, &block.mapped);
             if (r != VK_SUCCESS) {

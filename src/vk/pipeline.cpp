@@ -1,6 +1,7 @@
 // Compute and graphics pipelines with their layouts (src/vk/pipeline.hpp).
 #include "vk/pipeline.hpp"
 
+#include "vk/debug_names.hpp"
 #include "vk/shader_limits.hpp"
 
 #include <cstdint>
@@ -31,6 +32,7 @@ Result<void> makeLayout(Device& device, std::span<const Pipeline::Binding> bindi
             h.set_layout = VK_NULL_HANDLE;
             return vulkanError(r, "vkCreateDescriptorSetLayout for '" + name + "'");
         }
+        nameObject(device, h.set_layout, name, " set layout");
     }
     VkPushConstantRange range{stages, 0, push_bytes};
     VkPipelineLayoutCreateInfo li{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
@@ -43,6 +45,7 @@ Result<void> makeLayout(Device& device, std::span<const Pipeline::Binding> bindi
         h.layout = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreatePipelineLayout for '" + name + "'");
     }
+    nameObject(device, h.layout, name, " layout");
     return {};
 }
 
@@ -64,6 +67,7 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
         out.module = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateShaderModule for '" + name + "'");
     }
+    nameObject(device, out.module, name, " shader");
     return {};
 }
 // What a pipeline is made from, as a key: the program (an embedded array: its address and
@@ -119,6 +123,7 @@ Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::ui
             h.pipeline = VK_NULL_HANDLE;
             return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
         }
+        nameObject(device, h.pipeline, name);
         h.bind_point = VK_PIPELINE_BIND_POINT_COMPUTE;
         return {};
     });
@@ -212,6 +217,7 @@ Result<void> makeRaster(Device& device, const Pipeline::RasterDesc& desc, std::s
         h.pipeline = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateGraphicsPipelines for '" + name + "'");
     }
+    nameObject(device, h.pipeline, name);
     h.bind_point = VK_PIPELINE_BIND_POINT_GRAPHICS;
     return {};
 }

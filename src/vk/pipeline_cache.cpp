@@ -3,6 +3,7 @@
 #include <cstring>
 #include <vector>
 
+#include "vk/debug_names.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide::vk {
@@ -39,6 +40,7 @@ Result<void> setUpPipelineCache(Device& device, VkPipelineCache borrowed, std::s
         device.pipeline_cache = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreatePipelineCache");
     }
+    nameObject(device, device.pipeline_cache, "pipeline cache");
     device.owns_pipeline_cache = true;
     return {};
 }

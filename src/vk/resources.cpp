@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "vk/debug_names.hpp"
+
 namespace vkcollide::vk {
 
 // ---- Buffer ---------------------------------------------------------------
@@ -27,6 +29,7 @@ Result<Buffer> Buffer::create(Device& device, VkDeviceSize size, VkBufferUsageFl
         b.buffer_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateBuffer for '" + name + "'");
     }
+    nameObject(device, b.buffer_, name);
     VkMemoryRequirements req;
     f.vkGetBufferMemoryRequirements(device.device, b.buffer_, &req);
 
@@ -148,6 +151,7 @@ Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::st
         img.image_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateImage for '" + name + "'");
     }
+    nameObject(device, img.image_, name);
     VkMemoryRequirements req;
     f.vkGetImageMemoryRequirements(device.device, img.image_, &req);
     auto type = device.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
@@ -169,6 +173,7 @@ Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::st
         img.view_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateImageView for '" + name + "'");
     }
+    nameObject(device, img.view_, name, " view");
     for (std::uint32_t level = 0; level < desc.mip_levels; ++level) {
         vi.subresourceRange.baseMipLevel = level;
         vi.subresourceRange.levelCount = 1;
@@ -176,6 +181,7 @@ Result<Image> Image::create(Device& device, const ImageDesc& desc, const std::st
         r = f.vkCreateImageView(device.device, &vi, device.allocator(), &view);
         if (r != VK_SUCCESS) return vulkanError(r, "vkCreateImageView (level) for '" + name + "'");
         img.level_views_.push_back(view);
+        if (device.debug_utils) nameObject(device, view, name, " level " + std::to_string(level));
     }
     return img;
 }

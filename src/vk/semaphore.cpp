@@ -1,5 +1,7 @@
 #include "vk/semaphore.hpp"
 
+#include "vk/debug_names.hpp"
+
 namespace vkcollide::vk {
 
 Result<Semaphore> Semaphore::make(Device& device, bool timeline, std::uint64_t initial, const std::string& name) {
@@ -18,6 +20,7 @@ Result<Semaphore> Semaphore::make(Device& device, bool timeline, std::uint64_t i
         s.semaphore_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateSemaphore for '" + name + "'");
     }
+    nameObject(device, s.semaphore_, name);
     return s;
 }
 

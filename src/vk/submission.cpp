@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "vk/debug_names.hpp"
+
 namespace vkcollide::vk {
 namespace {
 
@@ -29,7 +31,7 @@ void appendInfos(std::span<const SemaphoreSubmit> list, std::vector<VkSemaphoreS
 
 }  // namespace
 
-Result<Submission> Submission::create(Device& device) {
+Result<Submission> Submission::create(Device& device, std::string_view name) {
     Submission s;
     s.device_ = device.ref();
     const auto& f = device.fns;
@@ -41,18 +43,21 @@ Result<Submission> Submission::create(Device& device) {
         s.pool_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateCommandPool");
     }
+    nameObject(device, s.pool_, name, " pool");
     VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     ai.commandPool = s.pool_;
     ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     ai.commandBufferCount = 1;
     r = f.vkAllocateCommandBuffers(device.device, &ai, &s.cmd_);
     if (r != VK_SUCCESS) return vulkanError(r, "vkAllocateCommandBuffers");
+    nameObject(device, s.cmd_, name);
     VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
     r = f.vkCreateFence(device.device, &fi, device.allocator(), &s.fence_);
     if (r != VK_SUCCESS) {
         s.fence_ = VK_NULL_HANDLE;
         return vulkanError(r, "vkCreateFence");
     }
+    nameObject(device, s.fence_, name, " fence");
     return s;
 }
 

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
 
 #include "vk/device.hpp"
 
@@ -41,7 +42,8 @@ public:
     enum class Reuse { Once, Again };
 
     Submission() = default;
-    static Result<Submission> create(Device& device);
+    // `name` names its command pool, command buffer and fence (vk/debug_names.hpp).
+    static Result<Submission> create(Device& device, std::string_view name = "submission");
     ~Submission() { reset(); }
     Submission(Submission&& o) noexcept { *this = std::move(o); }
     Submission& operator=(Submission&& o) noexcept;

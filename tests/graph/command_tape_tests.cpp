@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "graph/command_tape.hpp"
@@ -53,6 +54,10 @@ vk::DeviceFunctions loggingTable() {
         }
         calls().push_back(s);
     };
+    f.vkCmdBeginDebugUtilsLabelEXT = [](VkCommandBuffer, const VkDebugUtilsLabelEXT* label) {
+        calls().push_back(std::string("label ") + label->pLabelName);
+    };
+    f.vkCmdEndDebugUtilsLabelEXT = [](VkCommandBuffer) { calls().emplace_back("end label"); };
     f.vkCmdDispatch = [](VkCommandBuffer, std::uint32_t x, std::uint32_t y, std::uint32_t z) {
         calls().push_back("dispatch " + std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z));
     };
@@ -258,4 +263,25 @@ TEST_CASE("replay makes the recorded calls with the recorded parameters, in orde
     calls().clear();
     t.replay(f, cmd, t.size());
     CHECK(calls().empty());
+}
+
+TEST_CASE("labels are tape commands: compared by their text, replayed in place around the commands they hold", "[graph][tape]") {
+    const auto tape = [](std::string_view name) {
+        CommandTape t;
+        t.beginLabel("vkcollide: ", name);
+        t.dispatch(1, 1, 1);
+        t.endLabel();
+        return t;
+    };
+    CHECK(tape("cells-sweep") == tape("cells-sweep"));
+    CHECK_FALSE(tape("cells-sweep") == tape("cells-fill"));
+    // Names of every length up to two words of text, so the NUL lands in every byte of a word.
+    for (std::size_t n = 0; n <= 16; ++n) {
+        const std::string name(n, 'x');
+        const vk::DeviceFunctions f = loggingTable();
+        CommandTape t = tape(name);
+        calls().clear();
+        t.replay(f, fakeHandle<VkCommandBuffer>(0x10));
+        CHECK(calls() == std::vector<std::string>{"label vkcollide: " + name, "dispatch 1 1 1", "end label"});
+    }
 }

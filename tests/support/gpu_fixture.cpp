@@ -2,9 +2,11 @@
 
 namespace vkcollide::test {
 
-ValidatedContext::ValidatedContext() {
+ValidatedContext::ValidatedContext(PFN_vkGetInstanceProcAddr get_instance_proc_addr, bool debug_names) {
     ContextCreateInfo info;
     info.validation = true;
+    info.get_instance_proc_addr = get_instance_proc_addr;
+    info.debug_names = debug_names;
     auto log = log_;
     info.on_message = [log](MessageSeverity severity, std::string_view text) {
         if (severity == MessageSeverity::Info) return;

@@ -17,7 +17,9 @@ namespace vkcollide::test {
 
 class ValidatedContext {
 public:
-    ValidatedContext();
+    // get_instance_proc_addr, debug_names: as ContextCreateInfo's (a test's own loader
+    // wrapper; names and labels off).
+    explicit ValidatedContext(PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr, bool debug_names = true);
     Context& context() { return *context_; }
     vk::Device& device() { return ContextAccess::device(*context_); }
     // Destroys the Context (its messages stay readable); context() and device() are then

@@ -93,6 +93,9 @@ void destroyed(const char* what, const void* object, const VkAllocationCallbacks
     }
 }
 
+// Every object the device layer creates, for the tests of its names.
+void made(VkObjectType type, std::uint64_t handle) { fake().created_objects.push_back({type, handle}); }
+
 // ---- the "GPU": batches finish in submission order once released and their waits hold ---
 
 bool waitsHold(const FakeVulkan::Submit& s) {
@@ -136,17 +139,30 @@ void finishForUnboundedWait(std::uint64_t timeout) {
 
 // ---- global -----------------------------------------------------------------
 
-VKAPI_ATTR VkResult VKAPI_CALL createInstance(const VkInstanceCreateInfo*, const VkAllocationCallbacks* callbacks, VkInstance* out) {
+VKAPI_ATTR VkResult VKAPI_CALL createInstance(const VkInstanceCreateInfo* info, const VkAllocationCallbacks* callbacks, VkInstance* out) {
     if (fake().create_instance_result != VK_SUCCESS) return fake().create_instance_result;
+    fake().enabled_instance_extensions.assign(info->ppEnabledExtensionNames,
+                                              info->ppEnabledExtensionNames + info->enabledExtensionCount);
     ++fake().instances_alive;
     *out = reinterpret_cast<VkInstance>(&g_instance_object);
     created(&g_instance_object, callbacks);
     return VK_SUCCESS;
 }
 
-VKAPI_ATTR VkResult VKAPI_CALL enumerateInstanceExtensionProperties(const char*, std::uint32_t* count, VkExtensionProperties*) {
-    *count = 0;
-    return VK_SUCCESS;
+VKAPI_ATTR VkResult VKAPI_CALL enumerateInstanceExtensionProperties(const char*, std::uint32_t* count, VkExtensionProperties* out) {
+    const auto& exts = fake().instance_extensions;
+    if (!out) {
+        *count = static_cast<std::uint32_t>(exts.size());
+        return VK_SUCCESS;
+    }
+    const std::uint32_t written = std::min(*count, static_cast<std::uint32_t>(exts.size()));
+    for (std::uint32_t i = 0; i < written; ++i) {
+        out[i] = VkExtensionProperties{};
+        std::snprintf(out[i].extensionName, sizeof(out[i].extensionName), "%s", exts[i].c_str());
+        out[i].specVersion = 1;
+    }
+    *count = written;
+    return written < exts.size() ? VK_INCOMPLETE : VK_SUCCESS;
 }
 
 VKAPI_ATTR VkResult VKAPI_CALL enumerateInstanceLayerProperties(std::uint32_t* count, VkLayerProperties* out) {
@@ -326,6 +342,27 @@ VKAPI_ATTR void VKAPI_CALL destroyDebugUtilsMessenger(VkInstance, VkDebugUtilsMe
     destroyed("vkDestroyDebugUtilsMessengerEXT", key(id(m)), callbacks);
 }
 
+// VK_EXT_debug_utils' names and labels: recorded, and counted in debug_utils_calls even
+// where the instance did not enable the extension (a real loader gives no entry points then;
+// the fake gives them, so that a call made anyway is seen, not a crash).
+VKAPI_ATTR VkResult VKAPI_CALL setDebugUtilsObjectName(VkDevice, const VkDebugUtilsObjectNameInfoEXT* info) {
+    ++fake().debug_utils_calls;
+    fake().object_names[info->objectHandle] = info->pObjectName ? info->pObjectName : "";
+    return VK_SUCCESS;
+}
+VKAPI_ATTR void VKAPI_CALL cmdBeginDebugUtilsLabel(VkCommandBuffer, const VkDebugUtilsLabelEXT* label) {
+    ++fake().debug_utils_calls;
+    fake().labels.push_back(std::string("begin ") + label->pLabelName);
+}
+VKAPI_ATTR void VKAPI_CALL cmdEndDebugUtilsLabel(VkCommandBuffer) {
+    ++fake().debug_utils_calls;
+    fake().labels.emplace_back("end");
+}
+VKAPI_ATTR void VKAPI_CALL cmdInsertDebugUtilsLabel(VkCommandBuffer, const VkDebugUtilsLabelEXT* label) {
+    ++fake().debug_utils_calls;
+    fake().labels.push_back(std::string("insert ") + label->pLabelName);
+}
+
 // ---- device -----------------------------------------------------------------------
 
 VKAPI_ATTR void VKAPI_CALL destroyDevice(VkDevice, const VkAllocationCallbacks* callbacks) {
@@ -341,6 +378,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createBuffer(VkDevice, const VkBufferCreateInfo* 
     *out = newHandle<VkBuffer>();
     g_state->buffers[id(*out)] = FakeBuffer{info->size};
     ++fake().buffers_alive;
+    made(VK_OBJECT_TYPE_BUFFER, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -359,6 +397,7 @@ VKAPI_ATTR VkResult VKAPI_CALL allocateMemory(VkDevice, const VkMemoryAllocateIn
     *out = newHandle<VkDeviceMemory>();
     g_state->memory[id(*out)] = std::make_unique<std::byte[]>(info->allocationSize);
     ++fake().allocations_alive;
+    made(VK_OBJECT_TYPE_DEVICE_MEMORY, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -396,6 +435,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createImage(VkDevice, const VkImageCreateInfo* in
     *out = newHandle<VkImage>();
     g_state->images[id(*out)] = VkDeviceSize(info->extent.width) * info->extent.height * 4 * 2;
     ++fake().images_alive;
+    made(VK_OBJECT_TYPE_IMAGE, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -416,6 +456,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createImageView(VkDevice, const VkImageViewCreate
                                                VkImageView* out) {
     *out = newHandle<VkImageView>();
     ++fake().image_views_alive;
+    made(VK_OBJECT_TYPE_IMAGE_VIEW, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -432,6 +473,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createPipelineCache(VkDevice, const VkPipelineCac
     *out = newHandle<VkPipelineCache>();
     fake().last_pipeline_cache_initial_size = info->initialDataSize;
     ++fake().pipeline_caches_alive;
+    made(VK_OBJECT_TYPE_PIPELINE_CACHE, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -457,6 +499,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createShaderModule(VkDevice, const VkShaderModule
                                                   VkShaderModule* out) {
     *out = newHandle<VkShaderModule>();
     ++fake().shader_modules_alive;
+    made(VK_OBJECT_TYPE_SHADER_MODULE, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -469,6 +512,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createPipelineLayout(VkDevice, const VkPipelineLa
                                                     VkPipelineLayout* out) {
     *out = newHandle<VkPipelineLayout>();
     ++fake().pipeline_layouts_alive;
+    made(VK_OBJECT_TYPE_PIPELINE_LAYOUT, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -483,6 +527,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createComputePipelines(VkDevice, VkPipelineCache 
     for (std::uint32_t i = 0; i < count; ++i) {
         out[i] = newHandle<VkPipeline>();
         fake().pipelines_cache_used.push_back(cache);
+        made(VK_OBJECT_TYPE_PIPELINE, id(out[i]));
         ++fake().pipelines_alive;
         created(key(id(out[i])), callbacks);
     }
@@ -500,6 +545,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createCommandPool(VkDevice, const VkCommandPoolCr
                                                  VkCommandPool* out) {
     *out = newHandle<VkCommandPool>();
     ++fake().command_pools_alive;
+    made(VK_OBJECT_TYPE_COMMAND_POOL, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -510,7 +556,10 @@ VKAPI_ATTR void VKAPI_CALL destroyCommandPool(VkDevice, VkCommandPool pool, cons
 }
 VKAPI_ATTR VkResult VKAPI_CALL resetCommandPool(VkDevice, VkCommandPool, VkCommandPoolResetFlags) { return VK_SUCCESS; }
 VKAPI_ATTR VkResult VKAPI_CALL allocateCommandBuffers(VkDevice, const VkCommandBufferAllocateInfo* info, VkCommandBuffer* out) {
-    for (std::uint32_t i = 0; i < info->commandBufferCount; ++i) out[i] = newHandle<VkCommandBuffer>();
+    for (std::uint32_t i = 0; i < info->commandBufferCount; ++i) {
+        out[i] = newHandle<VkCommandBuffer>();
+        made(VK_OBJECT_TYPE_COMMAND_BUFFER, id(out[i]));
+    }
     return VK_SUCCESS;
 }
 VKAPI_ATTR VkResult VKAPI_CALL beginCommandBuffer(VkCommandBuffer, const VkCommandBufferBeginInfo*) { return VK_SUCCESS; }
@@ -521,6 +570,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createFence(VkDevice, const VkFenceCreateInfo* in
     *out = newHandle<VkFence>();
     g_state->fences[id(*out)] = (info->flags & VK_FENCE_CREATE_SIGNALED_BIT) != 0;
     ++fake().fences_alive;
+    made(VK_OBJECT_TYPE_FENCE, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -558,6 +608,7 @@ VKAPI_ATTR VkResult VKAPI_CALL createSemaphore(VkDevice, const VkSemaphoreCreate
     *out = newHandle<VkSemaphore>();
     g_state->semaphores[id(*out)] = sem;
     ++fake().semaphores_alive;
+    made(VK_OBJECT_TYPE_SEMAPHORE, id(*out));
     created(key(id(*out)), callbacks);
     return VK_SUCCESS;
 }
@@ -689,6 +740,10 @@ VKAPI_ATTR PFN_vkVoidFunction VKAPI_CALL fakeGetInstanceProcAddr(VkInstance inst
         FAKE_ENTRY("vkGetDeviceProcAddr", getDeviceProcAddr),
         FAKE_ENTRY("vkCreateDebugUtilsMessengerEXT", createDebugUtilsMessenger),
         FAKE_ENTRY("vkDestroyDebugUtilsMessengerEXT", destroyDebugUtilsMessenger),
+        FAKE_ENTRY("vkSetDebugUtilsObjectNameEXT", setDebugUtilsObjectName),
+        FAKE_ENTRY("vkCmdBeginDebugUtilsLabelEXT", cmdBeginDebugUtilsLabel),
+        FAKE_ENTRY("vkCmdEndDebugUtilsLabelEXT", cmdEndDebugUtilsLabel),
+        FAKE_ENTRY("vkCmdInsertDebugUtilsLabelEXT", cmdInsertDebugUtilsLabel),
     };
     if (std::string_view(name) == "vkGetInstanceProcAddr") return reinterpret_cast<PFN_vkVoidFunction>(fakeGetInstanceProcAddr);
     if (auto it = global.find(name); it != global.end()) return it->second;

@@ -5,8 +5,9 @@
 //
 // It implements the instance queries, device creation, the buffer/image/memory calls of
 // vk::Buffer and vk::Image, pipeline caches, shader modules, compute pipelines, command
-// pools, fences, semaphores (binary and timeline) and vkQueueSubmit2 (recorded; the "GPU"
-// finishes submitted work at once, or when the test says); any other entry point is a trap
+// pools, fences, semaphores (binary and timeline), vkQueueSubmit2 (recorded; the "GPU"
+// finishes submitted work at once, or when the test says) and VK_EXT_debug_utils' names and
+// labels (recorded); any other entry point is a trap
 // that aborts the test when called, so a contract test cannot silently reach code it does
 // not describe. Objects created with VkAllocationCallbacks get one host allocation from
 // them, freed at destruction; a destruction without the callbacks the object was created
@@ -50,6 +51,7 @@ struct FakeVulkan {
     VkResult create_instance_result = VK_SUCCESS;
     VkResult create_device_result = VK_SUCCESS;
     std::set<std::string> missing_entry_points;  // vkGet*ProcAddr returns null for these
+    std::vector<std::string> instance_extensions;  // what the loader offers (VK_EXT_debug_utils, ...)
     std::vector<FakePhysicalDevice> physical_devices = {FakePhysicalDevice{}};
     // false: submitted work stays pending (fences unsignalled, semaphore signals not
     // applied, timeline waits time out) until finishPending().
@@ -87,6 +89,17 @@ struct FakeVulkan {
         VkFence fence = VK_NULL_HANDLE;
     };
     std::vector<Submit> submits;  // every successful vkQueueSubmit2 batch, in order
+    std::vector<std::string> enabled_instance_extensions;  // what the last vkCreateInstance enabled
+    // Every buffer, memory, image, view, shader module, pipeline layout, pipeline, pipeline
+    // cache, command pool, command buffer, fence and semaphore created, in order.
+    struct Created {
+        VkObjectType type;
+        std::uint64_t handle;
+    };
+    std::vector<Created> created_objects;
+    std::map<std::uint64_t, std::string> object_names;  // the last vkSetDebugUtilsObjectNameEXT per handle
+    std::vector<std::string> labels;                    // "begin <name>", "end", "insert <name>", in call order
+    int debug_utils_calls = 0;                          // of those four entry points, with the extension or not
 
     // Completes every submitted batch: signals its fence and applies its semaphore signals.
     void finishPending();

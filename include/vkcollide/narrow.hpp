@@ -40,7 +40,7 @@
 #include "vkcollide/export.hpp"
 #include "vkcollide/mesh.hpp"
 #include "vkcollide/result.hpp"
-#include "vkcollide/scene.hpp"
+#include "vkcollide/types.hpp"
 
 namespace vkcollide {
 

@@ -126,7 +126,7 @@ TEST_CASE("detection settings are refused at the API, naming the rule", "[api][g
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-// Issue 30 item 5: a value outside an enum of the settings selected no branch: Coverage(77)
+// A value outside an enum of the settings selected no branch: Coverage(77)
 // made the paper's method sample nothing and return no pairs, without an error. Every enum
 // of DetectSettings is checked by the gate, under either method (the reliable method
 // ignores coverage, backend and packing, but a value outside them is still a caller's bug).

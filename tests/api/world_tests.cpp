@@ -460,7 +460,7 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-// Issue 30 item 4: the world held a raw Context pointer, so every call that asked the
+// A world that held a raw Context pointer made every call that asked the
 // Context for its device (detect's settings check, Coverage::Best, addGpuMesh's buffer
 // check, resolveSettings) read freed memory once the Context was gone (ASan: heap
 // use-after-free in detect.cpp and world.cpp). The world now holds the device itself.

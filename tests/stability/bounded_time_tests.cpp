@@ -1,4 +1,4 @@
-// Issue 30, "Bounded in time": one timeout covers a whole detection (every submission and
+// Bounded in time: one timeout covers a whole detection (every submission and
 // rerun), and a detection that times out leaves the world usable. docs/stability.md,
 // "Limits", lists the bounds.
 #include <catch2/catch.hpp>

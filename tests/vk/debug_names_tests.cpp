@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "api/context_access.hpp"
 #include "vk/fake_engine.hpp"
 #include "vk/resources.hpp"
 #include "vk/semaphore.hpp"
@@ -67,8 +68,8 @@ TEST_CASE("with VK_EXT_debug_utils offered, Context::create enables it and names
     fake.instance_extensions = {VK_EXT_DEBUG_UTILS_EXTENSION_NAME};
     auto ctx = test::createFakeContext();
     CHECK(enabledDebugUtils(fake));
-    REQUIRE(ctx->device().debug_utils);
-    makeOneOfEach(ctx->device());
+    REQUIRE(ContextAccess::device(*ctx).debug_utils);
+    makeOneOfEach(ContextAccess::device(*ctx));
     requireAllNamed(fake);
     // Each by what it is to vkcollide: the buffer-table row, the program, the submission.
     CHECK(nameOf(fake, VK_OBJECT_TYPE_BUFFER) == "vkcollide: ray-image");
@@ -96,10 +97,10 @@ TEST_CASE("without VK_EXT_debug_utils, or with names turned off, vkcollide makes
     }
     auto ctx = test::createFakeContext(info);
     CHECK_FALSE(enabledDebugUtils(fake));
-    CHECK_FALSE(ctx->device().debug_utils);
-    makeOneOfEach(ctx->device());
+    CHECK_FALSE(ContextAccess::device(*ctx).debug_utils);
+    makeOneOfEach(ContextAccess::device(*ctx));
     CHECK(fake.debug_utils_calls == 0);
-    CHECK(ctx->device().fns.vkCmdBeginDebugUtilsLabelEXT == nullptr);
+    CHECK(ContextAccess::device(*ctx).fns.vkCmdBeginDebugUtilsLabelEXT == nullptr);
 }
 
 TEST_CASE("validation turns debug utils on, and names still follow ContextCreateInfo::debug_names", "[vk][debug-names]") {
@@ -111,8 +112,8 @@ TEST_CASE("validation turns debug utils on, and names still follow ContextCreate
     info.debug_names = GENERATE(true, false);
     auto ctx = test::createFakeContext(info);
     CHECK(enabledDebugUtils(fake));  // the messages need it either way
-    CHECK(ctx->device().debug_utils == info.debug_names);
-    makeOneOfEach(ctx->device());
+    CHECK(ContextAccess::device(*ctx).debug_utils == info.debug_names);
+    makeOneOfEach(ContextAccess::device(*ctx));
     if (info.debug_names) requireAllNamed(fake);
     else CHECK(fake.debug_utils_calls == 0);
 }
@@ -127,9 +128,9 @@ TEST_CASE("an adopted device gets names only where the engine lists VK_EXT_debug
     if (lists) lent.enabled_instance_extensions = listed;
     auto ctx = Context::adopt(lent);
     REQUIRE(ctx);
-    CHECK((*ctx)->device().debug_utils == lists);
+    CHECK(ContextAccess::device(**ctx).debug_utils == lists);
     const std::size_t before = fake.created_objects.size();  // the engine's own objects are not vkcollide's
-    makeOneOfEach((*ctx)->device());
+    makeOneOfEach(ContextAccess::device(**ctx));
     if (lists) requireAllNamed(fake, before);
     else CHECK(fake.debug_utils_calls == 0);
 }

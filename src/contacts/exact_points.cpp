@@ -24,7 +24,9 @@
 // plus 2^-53 |q| for the division q = fl(n/d); the bound is scaled by 1 + 2^-40 (its own
 // few roundings) and padded by 2^-600 (underflow in its terms; every float midpoint is a
 // multiple of 2^-150). f = float(q) is the answer when [q - bound, q + bound] lies strictly
-// between the midpoints of f and its two float neighbours (doubles, exact).
+// between the midpoints of f and its two float neighbours: checked as float(q - bound) ==
+// float(q + bound) == f, rounding being monotonic (2^-52 |q| more covers q -+ bound's own
+// rounding).
 //  * First n, d come from the filters' double determinants and their error bounds
 //    (orient3dEstimate: Shewchuk's), with the products' and differences' roundings added.
 //  * When that cannot decide, from the exact expansions, compressed: n, d are their largest
@@ -60,8 +62,11 @@ bool clearRounding(double n, double error_n, double d, double error_d, float& ou
     const float f = std::fabs(q) > kMax ? std::copysign(kMax, static_cast<float>(q)) : static_cast<float>(q);
     out = f;  // the exact steps' start when this cannot decide
     if (!(std::fabs(d) > error_d)) return false;
-    const double bound = ((error_n + std::fabs(q) * error_d) / (std::fabs(d) - error_d) + std::fabs(q) * 0x1p-53) * (1 + 0x1p-40) + 0x1p-600;
-    return q - bound > midpoint(f, -kInf) && q + bound < midpoint(f, kInf);
+    // The bound, plus 2^-52 |q| for rounding q -+ bound themselves: the real interval lies
+    // within [lo, hi], and rounding is monotonic, so when both ends round to f, so does N/D.
+    const double bound = ((error_n + std::fabs(q) * error_d) / (std::fabs(d) - error_d) + std::fabs(q) * 0x1p-53) * (1 + 0x1p-40) +
+                         std::fabs(q) * 0x1p-52 + 0x1p-600;
+    return static_cast<float>(q - bound) == f && static_cast<float>(q + bound) == f;
 }
 
 // The crossing from the filters' double determinants d_p, d_q (errors e_p, e_q), when every
@@ -152,20 +157,25 @@ float roundQuotient(Expansion<256>& io_numerator, Expansion<128>& io_denominator
     }
 }
 
+Float3 roundPlaneCrossing(const Float3& p, const Float3& q, const std::array<Float3, 3>& plane, double d_p, double e_p, double d_q,
+                          double e_q) noexcept {
+    Float3 out;
+    if (crossingFromEstimates(p, q, d_p, e_p, d_q, e_q, out)) return out;
+    Expansion<64> exact_p, exact_q;
+    narrow::orient3dValue(plane[0], plane[1], plane[2], p, exact_p);
+    narrow::orient3dValue(plane[0], plane[1], plane[2], q, exact_q);
+    return crossing(p, q, exact_p, exact_q);
+}
+
 Float3 roundExact(const ExactPoint& point) noexcept {
     switch (point.kind) {
         case ExactPoint::Kind::Vertex:
             return point.p;
         case ExactPoint::Kind::PlaneCrossing: {
-            Float3 out;
             double e_p, e_q;
             const double d_p = narrow::orient3dEstimate(point.a, point.b, point.c, point.p, e_p);
             const double d_q = narrow::orient3dEstimate(point.a, point.b, point.c, point.q, e_q);
-            if (crossingFromEstimates(point.p, point.q, d_p, e_p, d_q, e_q, out)) return out;
-            Expansion<64> exact_p, exact_q;
-            narrow::orient3dValue(point.a, point.b, point.c, point.p, exact_p);
-            narrow::orient3dValue(point.a, point.b, point.c, point.q, exact_q);
-            return crossing(point.p, point.q, exact_p, exact_q);
+            return roundPlaneCrossing(point.p, point.q, {point.a, point.b, point.c}, d_p, e_p, d_q, e_q);
         }
         case ExactPoint::Kind::LineCrossing: {
             const narrow::Float2 a = drop(point.a, point.drop), b = drop(point.b, point.drop);

@@ -1,11 +1,12 @@
 // Contact points rounded from their exact construction (docs/contacts.md, "Where two
 // triangles meet"). Every point a pair contact reports is an input vertex, an edge of one
 // triangle crossing the other's plane, or (coplanar triangles) an edge of one crossing an
-// edge's line of the other. pair_contacts.cpp keeps candidate points in that symbolic form,
-// picks the contact's ends on double approximations, and rounds the two it keeps here: each
-// coordinate is the exact rational value rounded to the nearest float, ties to even.
+// edge's line of the other. pair_contacts.cpp rounds each candidate point here, each
+// coordinate the exact rational value rounded to the nearest float, ties to even, and picks
+// the contact's ends among the rounded points.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "narrow/expansion.hpp"
@@ -27,6 +28,12 @@ struct ExactPoint {
 
 // The point, each coordinate correctly rounded from its exact value.
 Float3 roundExact(const ExactPoint& point) noexcept;
+
+// The PlaneCrossing point of edge p..q and `plane`, given the filter's determinants of p and
+// q against it (narrow::orient3dEstimate: value and error bound), which the caller has
+// already computed for the signs.
+Float3 roundPlaneCrossing(const Float3& p, const Float3& q, const std::array<Float3, 3>& plane, double d_p, double e_p, double d_q,
+                          double e_q) noexcept;
 
 // numerator / denominator (denominator != 0, of sign denominator_sign) rounded to the nearest
 // float, ties to even. Both operands are compressed in place (same values). Their components

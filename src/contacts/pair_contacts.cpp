@@ -58,12 +58,13 @@ bool zeroArea(const std::array<Float3, 3>& t) {
 // The points of triangle t in the plane of `plane`: its vertices with sign 0, and where an
 // edge goes from one side to the other (signs exact, each point rounded from its exact
 // construction).
-int planeCut(const std::array<Float3, 3>& t, const int (&sign)[3], const std::array<Float3, 3>& plane, Float3 (&out)[6]) {
+int planeCut(const std::array<Float3, 3>& t, const int (&sign)[3], const std::array<Float3, 3>& plane, const double (&det)[3],
+             const double (&error)[3], Float3 (&out)[6]) {
     int count = 0;
     for (int i = 0; i < 3; ++i) {
         if (sign[i] == 0) out[count++] = t[i];
         const int j = (i + 1) % 3;
-        if (sign[i] * sign[j] < 0) out[count++] = roundExact({ExactPoint::Kind::PlaneCrossing, 0, t[i], t[j], plane[0], plane[1], plane[2]});
+        if (sign[i] * sign[j] < 0) out[count++] = roundPlaneCrossing(t[i], t[j], plane, det[i], error[i], det[j], error[j]);
     }
     return count;
 }
@@ -190,10 +191,14 @@ PairContact pairContact(const std::array<Float3, 3>& a, const std::array<Float3,
     const D3 A[3] = {d3(a[0]), d3(a[1]), d3(a[2])}, B[3] = {d3(b[0]), d3(b[1]), d3(b[2])};
     const D3 na = cross(A[1] - A[0], A[2] - A[0]), nb = cross(B[1] - B[0], B[2] - B[0]);
     const D3 normal = unit(unit(nb) - unit(na));
+    // The signs as orient3d gives them, its filter's values kept for the crossings' rounding.
     int sa[3], sb[3];
+    double det_a[3], error_a[3], det_b[3], error_b[3];
     for (int i = 0; i < 3; ++i) {
-        sa[i] = narrow::orient3d(b[0], b[1], b[2], a[i]);
-        sb[i] = narrow::orient3d(a[0], a[1], a[2], b[i]);
+        det_a[i] = narrow::orient3dEstimate(b[0], b[1], b[2], a[i], error_a[i]);
+        det_b[i] = narrow::orient3dEstimate(a[0], a[1], a[2], b[i], error_b[i]);
+        sa[i] = std::fabs(det_a[i]) > error_a[i] ? (det_a[i] > 0 ? 1 : -1) : narrow::orient3d(b[0], b[1], b[2], a[i]);
+        sb[i] = std::fabs(det_b[i]) > error_b[i] ? (det_b[i] > 0 ? 1 : -1) : narrow::orient3d(a[0], a[1], a[2], b[i]);
     }
     const bool a_flat = zeroArea(a), b_flat = zeroArea(b);
     const bool a_in_b = !b_flat && sa[0] == 0 && sa[1] == 0 && sa[2] == 0;
@@ -223,8 +228,8 @@ PairContact pairContact(const std::array<Float3, 3>& a, const std::array<Float3,
         return c;
     }
     Float3 cut_a[6], cut_b[6];
-    const int na_count = b_flat ? 0 : planeCut(a, sa, b, cut_a);
-    const int nb_count = a_flat ? 0 : planeCut(b, sb, a, cut_b);
+    const int na_count = b_flat ? 0 : planeCut(a, sa, b, det_a, error_a, cut_a);
+    const int nb_count = a_flat ? 0 : planeCut(b, sb, a, det_b, error_b, cut_b);
     if (a_flat) return fromPoints(cut_a, na_count, normal);  // a's segment meets b's plane in a point
     if (b_flat) return fromPoints(cut_b, nb_count, normal);
     if (na_count == 0 || nb_count == 0) return fromPoints(na_count ? cut_a : cut_b, std::max(na_count, nb_count), normal);

@@ -1,9 +1,8 @@
 // Contact points rounded from their exact construction (docs/contacts.md, "Where two
 // triangles meet"). Every point a pair contact reports is an input vertex, an edge of one
 // triangle crossing the other's plane, or (coplanar triangles) an edge of one crossing an
-// edge's line of the other. pair_contacts.cpp rounds each candidate point here, each
-// coordinate the exact rational value rounded to the nearest float, ties to even, and picks
-// the contact's ends among the rounded points.
+// edge's line of the other. pair_contacts.cpp rounds the candidate points it needs here:
+// each coordinate the exact rational value rounded to the nearest float, ties to even.
 #pragma once
 
 #include <array>

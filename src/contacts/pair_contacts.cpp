@@ -17,11 +17,14 @@
 //     kept in 3D): an area (Coplanar), a segment or a point.
 //   A zero-area triangle (a segment or a point) has no plane of its own: its cut by the
 //     other's plane, or, when it lies in that plane, its overlap with the other triangle.
-// Every candidate point (a vertex, an edge crossing a plane, an edge crossing an edge) is
-// rounded from its exact construction (contacts/exact_points.hpp); the ends are chosen among
-// the rounded points (the diameter, the overlap's extremes), so each end is an exact
-// intersection point correctly rounded, while the choice itself is made in double on the
-// rounded points. The coplanar area stays a double computation (a Sutherland-Hodgman clip).
+// Every end point is an exact intersection point (a vertex, an edge crossing a plane, an
+// edge crossing an edge) with each coordinate correctly rounded from its exact construction
+// (contacts/exact_points.hpp). Crossing planes: every cut point is rounded, and the overlap
+// of the cuts is ordered on the rounded points (a double interpolation is too rough to order
+// them when coordinates differ by many magnitudes, and a point taken out of order would lie
+// outside the other cut). One plane: every corner is a corner of the overlap, so the
+// diameter is chosen on double approximations and only its two ends rounded. The coplanar
+// area stays a double computation (a Sutherland-Hodgman clip).
 
 namespace vkcollide::contacts {
 namespace {
@@ -42,8 +45,36 @@ D3 unit(const D3& a) {
 }
 Float3 toFloat(const D3& a) { return {static_cast<float>(a.x), static_cast<float>(a.y), static_cast<float>(a.z)}; }
 
+// A corner of a coplanar overlap: what it is exactly, and roughly where (in double, to
+// choose the two ends before rounding only those).
+struct Corner {
+    D3 approx;
+    ExactPoint exact;
+};
+
 narrow::Float2 dropAxis(const Float3& p, int axis) {
     return axis == 0 ? narrow::Float2{p.y, p.z} : (axis == 1 ? narrow::Float2{p.x, p.z} : narrow::Float2{p.x, p.y});
+}
+
+// The coplanar overlap's diameter: chosen on the corners' approximations, only the two
+// chosen rounded exactly.
+PairContact fromCorners(const Corner* corners, int count, const D3& normal) {
+    PairContact c;
+    c.normal = toFloat(normal);
+    if (count == 0) return c;
+    int first = 0, second = 0;
+    double far = -1;
+    for (int i = 0; i < count; ++i)
+        for (int j = i + 1; j < count; ++j)
+            if (const D3 d = corners[j].approx - corners[i].approx; dot(d, d) > far) {
+                far = dot(d, d);
+                first = i;
+                second = j;
+            }
+    c.start = roundExact(corners[first].exact);
+    c.end = roundExact(corners[second].exact);
+    c.shape = c.start.x == c.end.x && c.start.y == c.end.y && c.start.z == c.end.z ? ContactShape::Point : ContactShape::Segment;
+    return c;
 }
 
 // Exactly: the triangle's vertices are collinear (its three axis projections have no area).
@@ -98,7 +129,7 @@ PairContact fromPoints(const Float3* points, int count, const D3& normal) {
 // clipper, clipper vertices in the subject (on it, for a zero-area subject), and proper
 // crossings of a subject edge with a clipper edge. Returns 0 when the projection loses the
 // clipper's area on every axis (a clipper only the double normal calls non-flat).
-int overlapCorners(const std::array<Float3, 3>& subject, const std::array<Float3, 3>& clipper, int axis, Float3 (&out)[16]) {
+int overlapCorners(const std::array<Float3, 3>& subject, const std::array<Float3, 3>& clipper, int axis, Corner (&out)[16]) {
     narrow::Float2 s[3], c[3];
     int c_turn = 0;
     for (int tries = 0; tries < 3 && c_turn == 0; ++tries, axis = (axis + 1) % 3) {
@@ -131,15 +162,19 @@ int overlapCorners(const std::array<Float3, 3>& subject, const std::array<Float3
     };
     int count = 0;
     for (int i = 0; i < 3; ++i) {
-        if (inside(c, c_turn, side_s[i], s[i])) out[count++] = subject[i];
-        if (inside(s, s_turn, side_c[i], c[i])) out[count++] = clipper[i];
+        if (inside(c, c_turn, side_s[i], s[i])) out[count++] = {d3(subject[i]), {ExactPoint::Kind::Vertex, 0, subject[i], {}, {}, {}, {}}};
+        if (inside(s, s_turn, side_c[i], c[i])) out[count++] = {d3(clipper[i]), {ExactPoint::Kind::Vertex, 0, clipper[i], {}, {}, {}, {}}};
     }
     for (int i = 0; i < 3; ++i) {
         const int j = (i + 1) % 3;
         for (int e = 0; e < 3; ++e) {
             const int f = (e + 1) % 3;
             if (side_s[i][e] * side_s[j][e] >= 0 || side_c[e][i] * side_c[f][i] >= 0) continue;
-            out[count++] = roundExact({ExactPoint::Kind::LineCrossing, static_cast<std::uint8_t>(axis), subject[i], subject[j], clipper[e], clipper[f], clipper[f]});
+            double error;
+            const double side_i = narrow::orient2dEstimate(c[e], c[f], s[i], error), side_j = narrow::orient2dEstimate(c[e], c[f], s[j], error);
+            const double t = side_i != side_j ? std::clamp(side_i / (side_i - side_j), 0.0, 1.0) : 0.5;
+            out[count++] = {d3(subject[i]) + t * (d3(subject[j]) - d3(subject[i])),
+                            {ExactPoint::Kind::LineCrossing, static_cast<std::uint8_t>(axis), subject[i], subject[j], clipper[e], clipper[f], {}}};
         }
     }
     return count;
@@ -214,9 +249,9 @@ PairContact pairContact(const std::array<Float3, 3>& a, const std::array<Float3,
         const bool clip_by_b = !b_flat;
         const D3 clip_normal = clip_by_b ? nb : na;
         const double ax = std::fabs(clip_normal.x), ay = std::fabs(clip_normal.y), az = std::fabs(clip_normal.z);
-        Float3 corners[16];
+        Corner corners[16];
         const int count = overlapCorners(clip_by_b ? a : b, clip_by_b ? b : a, ax >= ay && ax >= az ? 0 : (ay >= az ? 1 : 2), corners);
-        PairContact c = fromPoints(corners, count, normal);
+        PairContact c = fromCorners(corners, count, normal);
         if (count == 0 || a_flat || b_flat) return c;
         D3 polygon[12];
         const int clipped = clipInPlane(clip_by_b ? A : B, 3, clip_by_b ? B : A, clip_normal, polygon);

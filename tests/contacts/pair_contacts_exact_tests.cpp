@@ -144,8 +144,12 @@ bool checkPair(const Tri& a, const Tri& b, int& io_old_wrong) {
     }
     const CrossingReference r = crossingReference(a, b);
     // The reference's ends lie on both planes and in order along their line.
-    CHECK(orient(b0, b1, b2, r.lo.p).sign() == 0);
-    CHECK(orient(a0, a1, a2, r.hi.p).sign() == 0);
+    for (const R3* end : {&r.lo.p, &r.hi.p}) {
+        CHECK(orient(a0, a1, a2, *end).sign() == 0);
+        CHECK(orient(b0, b1, b2, *end).sign() == 0);
+    }
+    CHECK(compare(dot(r.lo.p, cross(cross(a1 - a0, a2 - a0), cross(b1 - b0, b2 - b0))),
+                  dot(r.hi.p, cross(cross(a1 - a0, a2 - a0), cross(b1 - b0, b2 - b0)))) <= 0);
     const Float3 lo = roundToFloat(r.lo.p), hi = roundToFloat(r.hi.p);
     const bool match = (same(c.start, lo) && same(c.end, hi)) || (same(c.start, hi) && same(c.end, lo));
     if (!match) {  // the pair in hex floats, to paste into a closed-form case
@@ -219,10 +223,11 @@ TEST_CASE("exact contact points: random pairs against a rational reference", "[c
                 p = {x, y, k % 2 ? 0.25f : x / 2 + y / 4 + 0.125f};
             }
     };
-    const auto subnormal = [&](Tri& a, Tri& b, int k) {  // the uniform pairs scaled down to subnormals
+    const auto subnormal = [&](Tri& a, Tri& b, int k) {  // the uniform pairs scaled to subnormals, or across 2^-126
         uniform(a, b, k);
+        const int e = k % 2 ? -128 : -122;
         for (Tri* t : {&a, &b})
-            for (Float3& p : *t) p = {scaled(p.x, -128), scaled(p.y, -128), scaled(p.z, -128)};
+            for (Float3& p : *t) p = {scaled(p.x, e), scaled(p.y, e), scaled(p.z, e)};
     };
     struct Kind {
         const char* name;

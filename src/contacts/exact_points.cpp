@@ -86,7 +86,8 @@ bool crossingFromEstimates(const Float3& p, const Float3& q, double d_p, double 
         const double left = d_p * qc[k], right = d_q * pc[k];
         // The determinants' errors times the coordinates, plus two products and a difference
         // each rounded by at most 2^-53 of |left| + |right|.
-        const double error_n = (e_p * std::fabs(qc[k]) + e_q * std::fabs(pc[k]) + (std::fabs(left) + std::fabs(right)) * 0x1p-51) * (1 + 0x1p-40) + 0x1p-600;
+        const double error_n =
+            (e_p * std::fabs(qc[k]) + e_q * std::fabs(pc[k]) + (std::fabs(left) + std::fabs(right)) * 0x1p-51) * (1 + 0x1p-40) + 0x1p-600;
         if (!clearRounding(left - right, error_n, denominator, error_d, result[k])) return false;
     }
     out = {result[0], result[1], result[2]};
@@ -169,8 +170,7 @@ Float3 roundPlaneCrossing(const Float3& p, const Float3& q, const std::array<Flo
 
 Float3 roundExact(const ExactPoint& point) noexcept {
     switch (point.kind) {
-        case ExactPoint::Kind::Vertex:
-            return point.p;
+        case ExactPoint::Kind::Vertex: return point.p;
         case ExactPoint::Kind::PlaneCrossing: {
             double e_p, e_q;
             const double d_p = narrow::orient3dEstimate(point.a, point.b, point.c, point.p, e_p);

@@ -15,10 +15,13 @@ namespace vkcollide::contacts {
 
 struct ExactPoint {
     enum class Kind : std::uint8_t {
-        Vertex,         // p itself
-        PlaneCrossing,  // edge p..q crossing the plane through a, b, c (p, q strictly on opposite sides)
-        LineCrossing,   // edge p..q crossing the line a..b, both in one plane, orientations taken
-                        // in the two coordinates other than `drop` (p, q strictly on opposite sides)
+        // p itself.
+        Vertex,
+        // Edge p..q crossing the plane through a, b, c (p, q strictly on opposite sides).
+        PlaneCrossing,
+        // Edge p..q crossing the line a..b, all in one plane; orientations taken in the two
+        // coordinates other than `drop` (p, q strictly on opposite sides).
+        LineCrossing,
     };
     Kind kind = Kind::Vertex;
     std::uint8_t drop = 0;

@@ -150,12 +150,12 @@ int overlapCorners(const std::array<Float3, 3>& subject, const std::array<Float3
         }
     // Inside (or on) triangle t of turn `turn` by the signs against its edges; for turn 0,
     // on one of its edges.
-    const auto inside = [](const narrow::Float2 (&t)[3], int turn, const int (&side)[3], const narrow::Float2& p) {
+    const auto inside = [](const narrow::Float2(&t)[3], int turn, const int(&side)[3], const narrow::Float2& p) {
         for (int i = 0; i < 3; ++i) {
             const narrow::Float2 &e0 = t[i], &e1 = t[(i + 1) % 3];
             if (turn != 0 && side[i] * turn < 0) return false;
-            if (turn == 0 && side[i] == 0 && std::min(e0.x, e1.x) <= p.x && p.x <= std::max(e0.x, e1.x) &&
-                std::min(e0.y, e1.y) <= p.y && p.y <= std::max(e0.y, e1.y))
+            if (turn == 0 && side[i] == 0 && std::min(e0.x, e1.x) <= p.x && p.x <= std::max(e0.x, e1.x) && std::min(e0.y, e1.y) <= p.y &&
+                p.y <= std::max(e0.y, e1.y))
                 return true;
         }
         return turn != 0;
@@ -170,11 +170,13 @@ int overlapCorners(const std::array<Float3, 3>& subject, const std::array<Float3
         for (int e = 0; e < 3; ++e) {
             const int f = (e + 1) % 3;
             if (side_s[i][e] * side_s[j][e] >= 0 || side_c[e][i] * side_c[f][i] >= 0) continue;
-            double error;
-            const double side_i = narrow::orient2dEstimate(c[e], c[f], s[i], error), side_j = narrow::orient2dEstimate(c[e], c[f], s[j], error);
+            double error_i, error_j;  // unused: the approximation needs no bound
+            const double side_i = narrow::orient2dEstimate(c[e], c[f], s[i], error_i);
+            const double side_j = narrow::orient2dEstimate(c[e], c[f], s[j], error_j);
             const double t = side_i != side_j ? std::clamp(side_i / (side_i - side_j), 0.0, 1.0) : 0.5;
-            out[count++] = {d3(subject[i]) + t * (d3(subject[j]) - d3(subject[i])),
-                            {ExactPoint::Kind::LineCrossing, static_cast<std::uint8_t>(axis), subject[i], subject[j], clipper[e], clipper[f], {}}};
+            out[count++] = {
+                d3(subject[i]) + t * (d3(subject[j]) - d3(subject[i])),
+                {ExactPoint::Kind::LineCrossing, static_cast<std::uint8_t>(axis), subject[i], subject[j], clipper[e], clipper[f], {}}};
         }
     }
     return count;

@@ -5,8 +5,8 @@
 // misrounding some near-parallel pairs the exact construction gets right.
 #include <catch2/catch.hpp>
 
-#include <functional>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <string>
 #include <tuple>
@@ -53,7 +53,10 @@ Float3 doubleCrossing(const Tri& t, int i, const Tri& plane) {
     const auto sub = [](D a, D b) { return D{a.x - b.x, a.y - b.y, a.z - b.z}; };
     const D u = sub(d(plane[1]), d(plane[0])), v = sub(d(plane[2]), d(plane[0]));
     const D n{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
-    const auto dist = [&](const Float3& p) { const D w = sub(d(p), d(plane[0])); return n.x * w.x + n.y * w.y + n.z * w.z; };
+    const auto dist = [&](const Float3& p) {
+        const D w = sub(d(p), d(plane[0]));
+        return n.x * w.x + n.y * w.y + n.z * w.z;
+    };
     const Float3 &p = t[i], &q = t[(i + 1) % 3];
     const double di = dist(p), dj = dist(q);
     const double s = std::clamp(di / (di - dj), 0.0, 1.0);
@@ -137,7 +140,8 @@ bool checkPair(const Tri& a, const Tri& b, int& io_old_wrong) {
         Rational chosen(-1.0);
         for (const R3& p : corners)
             for (const R3& q : corners)
-                if (same(roundToFloat(p), c.start) && same(roundToFloat(q), c.end) && compare(distance2(p, q), chosen) > 0) chosen = distance2(p, q);
+                if (same(roundToFloat(p), c.start) && same(roundToFloat(q), c.end) && compare(distance2(p, q), chosen) > 0)
+                    chosen = distance2(p, q);
         CHECK(chosen.sign() >= 0);
         if (chosen.sign() >= 0) CHECK(chosen.approx() >= widest.approx() * (1 - 1e-9));
         return true;
@@ -155,8 +159,8 @@ bool checkPair(const Tri& a, const Tri& b, int& io_old_wrong) {
     if (!match) {  // the pair in hex floats, to paste into a closed-form case
         const auto hex = [](const Tri& t) {
             char text[256];
-            std::snprintf(text, sizeof text, "{{{%a,%a,%a},{%a,%a,%a},{%a,%a,%a}}}", t[0].x, t[0].y, t[0].z, t[1].x, t[1].y, t[1].z, t[2].x, t[2].y,
-                          t[2].z);
+            std::snprintf(text, sizeof text, "{{{%a,%a,%a},{%a,%a,%a},{%a,%a,%a}}}", t[0].x, t[0].y, t[0].z, t[1].x, t[1].y, t[1].z, t[2].x,
+                          t[2].y, t[2].z);
             return std::string(text);
         };
         UNSCOPED_INFO("a " << hex(a) << " b " << hex(b));
@@ -234,8 +238,11 @@ TEST_CASE("exact contact points: random pairs against a rational reference", "[c
         std::function<void(Tri&, Tri&, int)> make;
         int wanted;
     };
-    const Kind kinds[] = {{"uniform", uniform, 2000}, {"magnitudes", magnitudes, 1000}, {"near-parallel", near_parallel, 2000},
-                          {"coplanar", coplanar, 1000}, {"subnormal", subnormal, 1000}};
+    const Kind kinds[] = {{"uniform", uniform, 2000},
+                          {"magnitudes", magnitudes, 1000},
+                          {"near-parallel", near_parallel, 2000},
+                          {"coplanar", coplanar, 1000},
+                          {"subnormal", subnormal, 1000}};
     for (const Kind& kind : kinds) {
         INFO(kind.name);
         int tested = 0, old_wrong = 0;

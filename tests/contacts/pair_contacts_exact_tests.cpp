@@ -192,6 +192,35 @@ TEST_CASE("exact contact points: ties round to even, subnormals included", "[con
     }
 }
 
+TEST_CASE("exact contact points: pairs the double interpolation got far wrong", "[contacts][host][exact]") {
+    // Found by the random test below. Mixed magnitudes: the double interpolation of a's
+    // edge 2 clamps to its vertex a[2] (about 2^-68), the exact crossing is near 2^50.
+    const Tri a1{{{0x1.a2a5ep+90f, -0x1.09756p+91f, -0x1.0be93ap+92f},
+                  {0x1.b998ep+32f, 0x1.4291p+33f, 0x1.829b68p+33f},
+                  {-0x1.adebf8p-68f, -0x1.ec2b98p-68f, -0x1.79749cp-68f}}};
+    const Tri b1{{{0x1.798bfep+90f, -0x1.f80c18p+90f, -0x1.18fa14p+92f},
+                  {0x1.a8251cp+71f, 0x1.473cfp+33f, 0x1.9c8e4p+67f},
+                  {-0x1.a12dep+51f, 0x1.853318p+28f, -0x1.d8fd9ap-25f}}};
+    // Planes 2^-23 and 2^-60 off z = 0: the double z of a's edge 2 crossing is 4,946 ulps off.
+    const Tri a2{{{0x1.3c8278p-1f, -0x1.31fa9p-2f, 0x1.a90368p-24f},
+                  {0x1.f63d8cp-1f, 0x1.76f6ep-1f, -0x1.ffdd7cp-23f},
+                  {0x1.2f16cp-2f, 0x1.135f38p-2f, -0x1.d3d354p-23f}}};
+    const Tri b2{{{0x1.fc47d4p-1f, 0x1.b78ep-4f, 0x1.3fdf48p-61f},
+                  {0x1.240cap-4f, 0x1.9c19p-7f, 0x1.e8dc3p-60f},
+                  {0x1.7d8ee8p-2f, -0x1.ceb6e8p-3f, -0x1.815d18p-62f}}};
+    const Float3 exact1{0x1.7ef2d2p+49f, -0x1.e5a4dep+49f, -0x1.ea217ep+50f};
+    const Float3 exact2{0x1.08fb48p-1f, -0x1.f18f06p-4f, 0x1.55195cp-65f};
+    for (const auto& [a, b, end, edge, of_a] : {std::tuple{a1, b1, exact1, 2, true}, std::tuple{a2, b2, exact2, 2, true}}) {
+        REQUIRE(narrow::trianglesIntersect(a, b));
+        const PairContact c = contacts::pairContact(a, b);
+        CHECK((same(c.start, end) || same(c.end, end)));
+        CHECK(!same(of_a ? doubleCrossing(a, edge, b) : doubleCrossing(b, edge, a), end));
+        int old_wrong = 0;
+        CHECK(checkPair(a, b, old_wrong));  // and the whole contact against the reference
+        CHECK(old_wrong >= 1);
+    }
+}
+
 TEST_CASE("exact contact points: random pairs against a rational reference", "[contacts][host][exact]") {
     std::mt19937 rng(2026);
     std::uniform_real_distribution<float> u(-1, 1);

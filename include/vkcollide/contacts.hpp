@@ -51,10 +51,12 @@ enum class ContactShape : std::uint8_t {
     Coplanar,  // both lie in one plane and overlap: `area`, start..end the overlap's diameter
 };
 struct PairContact {
-    // The intersection's end points. Computed in double from the triangles' float world
-    // vertices (the exact test's orientation signs decide which edges cross the other plane,
-    // so the shape is the exact one; the points are rounded from double to float), within
-    // a few units in the last place of the largest coordinate involved.
+    // The intersection's end points, each coordinate the exact point's coordinate rounded
+    // to the nearest float (ties to even): every end is a vertex, an edge of one triangle
+    // crossing the other's plane, or (coplanar) an edge crossing an edge, constructed exactly
+    // from the float world vertices; the exact test's signs decide the shape. Which points
+    // are the ends is chosen on the rounded points, in double (docs/contacts.md). Not exact:
+    // two zero-area triangles (segments or points) get their six vertices' centroid.
     Float3 start, end;
     // Unit normal(b) - normal(a), as TriangleResponse sums it: the direction that pushes
     // triangle a out of triangle b. Zero where the two normals are equal (coplanar and

@@ -7,4 +7,4 @@ list(APPEND VKCOLLIDE_GPU_SOURCES
 list(APPEND VKCOLLIDE_SHADERS contacts/contacts_bounds.comp contacts/contacts_setup.comp contacts/contacts_tiles.comp
   contacts/contacts_walk.comp)
 # Contact geometry of intersecting triangle pairs (DetectSettings::contact_geometry): host only.
-list(APPEND VKCOLLIDE_HOST_SOURCES ${CMAKE_CURRENT_LIST_DIR}/pair_contacts.cpp)
+list(APPEND VKCOLLIDE_HOST_SOURCES ${CMAKE_CURRENT_LIST_DIR}/pair_contacts.cpp ${CMAKE_CURRENT_LIST_DIR}/exact_points.cpp)

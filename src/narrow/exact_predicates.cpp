@@ -1,8 +1,9 @@
 #include "narrow/exact_predicates.hpp"
 
+#include "narrow/expansion.hpp"
+
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cmath>
 
 // Why these predicates are exact for float inputs
@@ -32,72 +33,12 @@ constexpr double kEpsilon = 0x1p-53;  // half an ulp of 1.0: the unit roundoff
 constexpr double kOrient2dBound = (3.0 + 16.0 * kEpsilon) * kEpsilon;
 constexpr double kOrient3dBound = (7.0 + 56.0 * kEpsilon) * kEpsilon;
 
-inline void twoSum(double a, double b, double& out_sum, double& out_err) {
-    const double x = a + b;
-    const double b_virtual = x - a;
-    const double a_virtual = x - b_virtual;
-    out_err = (a - a_virtual) + (b - b_virtual);
-    out_sum = x;
-}
-
-inline void twoProduct(double a, double b, double& out_product, double& out_err) {
-    const double x = a * b;
-    out_err = std::fma(a, b, -x);
-    out_product = x;
-}
-
-// A nonoverlapping expansion: the exact value is the sum of c[0..n), components ordered
-// by increasing magnitude, zeros eliminated (n == 0 means the value zero).
-template <int kCapacity>
-struct Expansion {
-    double c[kCapacity];
-    int n = 0;
-
-    // this += b (Shewchuk's GROW-EXPANSION with zero elimination).
-    void add(double b) {
-        double q = b;
-        int out = 0;
-        for (int i = 0; i < n; ++i) {
-            double sum, err;
-            twoSum(q, c[i], sum, err);
-            q = sum;
-            if (err != 0) c[out++] = err;
-        }
-        if (q != 0) {
-            assert(out < kCapacity);
-            c[out++] = q;
-        }
-        n = out;
-    }
-
-    template <int kOther>
-    void add(const Expansion<kOther>& e, double sign = 1.0) {
-        for (int i = 0; i < e.n; ++i) add(sign * e.c[i]);
-    }
-
-    // this += e * b (Shewchuk's SCALE-EXPANSION, each partial product added exactly).
-    template <int kOther>
-    void addScaled(const Expansion<kOther>& e, double b) {
-        for (int i = 0; i < e.n; ++i) {
-            double product, err;
-            twoProduct(e.c[i], b, product, err);
-            add(err);
-            add(product);
-        }
-    }
-
-    int sign() const { return n == 0 ? 0 : (c[n - 1] > 0 ? 1 : -1); }
-};
-
-// u.x * v.y - v.x * u.y as an exact two-component expansion (the float products are exact).
-inline Expansion<2> minorXY(double ux, double uy, double vx, double vy) {
-    Expansion<2> e;
-    double diff, err;
-    twoSum(ux * vy, -(vx * uy), diff, err);
-    if (err != 0) e.c[e.n++] = err;
-    if (diff != 0) e.c[e.n++] = diff;
-    return e;
-}
+using exact::differenceOfProducts;
+using exact::Expansion;
+using exact::minorXY;
+using exact::signOf;
+using exact::twoProduct;
+using exact::twoSum;
 
 inline Expansion<2> minorXY(const Float3& u, const Float3& v) { return minorXY(u.x, u.y, v.x, v.y); }
 
@@ -110,8 +51,6 @@ inline Expansion<16> det3(const Float3& p, const Float3& q, const Float3& r, con
     e.addScaled(m_pq, r.z);
     return e;
 }
-
-inline int signOf(double x) { return (x > 0) - (x < 0); }
 
 // zeroFactors: the filters' free exact answer for contacts along axis-aligned planes and
 // lines (boxes resting on boxes: every test of such a pair would otherwise take the exact
@@ -137,28 +76,6 @@ bool exactDifferences(const Float3& a, const Float3& b, const Float3& c, const F
         }
     }
     return exact;
-}
-
-// p * q - r * s, exactly (a four-component expansion).
-Expansion<4> differenceOfProducts(double p, double q, double r, double s) {
-    double pq, pq_err, rs, rs_err;
-    twoProduct(p, q, pq, pq_err);
-    twoProduct(r, s, rs, rs_err);
-    Expansion<4> e;
-    if (pq_err == 0 && rs_err == 0) {
-        // Both products exact (coordinates with few significant bits, as on a grid): one
-        // exact subtraction, as minorXY does, instead of four expansion steps.
-        double diff, err;
-        twoSum(pq, -rs, diff, err);
-        if (err != 0) e.c[e.n++] = err;
-        if (diff != 0) e.c[e.n++] = diff;
-        return e;
-    }
-    e.add(pq_err);
-    e.add(pq);
-    e.add(-rs_err);
-    e.add(-rs);
-    return e;
 }
 
 // u x v on exact differences, each component an exact expansion of at most 4 terms.
@@ -192,6 +109,26 @@ int crossDotSign(const std::array<Expansion<4>, 3>& n, double wx, double wy, dou
     return det.sign();
 }
 
+// det[b-a, c-a, d-a] = -det4[(a,1);(b,1);(c,1);(d,1)]
+//                    = det3(b,c,d) - det3(a,c,d) + det3(a,b,d) - det3(a,b,c).
+// Working on the raw coordinates (not differences) keeps every product a product of
+// floats, which is exact in double. Adds to io_det (4 x 16 components at most).
+void undifferencedOrient3d(const Float3& a, const Float3& b, const Float3& c, const Float3& d, Expansion<64>& io_det) {
+    const Expansion<2> ab = minorXY(a, b), ac = minorXY(a, c), ad = minorXY(a, d);
+    const Expansion<2> bc = minorXY(b, c), bd = minorXY(b, d), cd = minorXY(c, d);
+    io_det.add(det3(b, c, d, cd, bd, bc));
+    io_det.add(det3(a, c, d, cd, ad, ac), -1.0);
+    io_det.add(det3(a, b, d, bd, ad, ab));
+    io_det.add(det3(a, b, c, bc, ac, ab), -1.0);
+}
+
+// det[b-a, c-a] = M(a,b) + M(b,c) + M(c,a), on the raw coordinates; adds to io_det.
+void undifferencedOrient2d(const Float2& a, const Float2& b, const Float2& c, Expansion<8>& io_det) {
+    io_det.add(minorXY(a.x, a.y, b.x, b.y));
+    io_det.add(minorXY(b.x, b.y, c.x, c.y));
+    io_det.add(minorXY(c.x, c.y, a.x, a.y));
+}
+
 }  // namespace
 
 int orient3dExact(const Float3& a, const Float3& b, const Float3& c, const Float3& d) noexcept {
@@ -201,18 +138,30 @@ int orient3dExact(const Float3& a, const Float3& b, const Float3& c, const Float
         // v = c - a, w = d - a.
         return crossDotSign(exactCross(diff), diff[6], diff[7], diff[8]);
     }
-    // det[b-a, c-a, d-a] = -det4[(a,1);(b,1);(c,1);(d,1)]
-    //                    = det3(b,c,d) - det3(a,c,d) + det3(a,b,d) - det3(a,b,c).
-    // Working on the raw coordinates (not differences) keeps every product a product of
-    // floats, which is exact in double.
-    const Expansion<2> ab = minorXY(a, b), ac = minorXY(a, c), ad = minorXY(a, d);
-    const Expansion<2> bc = minorXY(b, c), bd = minorXY(b, d), cd = minorXY(c, d);
     Expansion<64> det;
-    det.add(det3(b, c, d, cd, bd, bc));
-    det.add(det3(a, c, d, cd, ad, ac), -1.0);
-    det.add(det3(a, b, d, bd, ad, ab));
-    det.add(det3(a, b, c, bc, ac, ab), -1.0);
+    undifferencedOrient3d(a, b, c, d, det);
     return det.sign();
+}
+
+void orient3dValue(const Float3& a, const Float3& b, const Float3& c, const Float3& d, exact::Expansion<64>& out) noexcept {
+    out.n = 0;
+    double diff[9];
+    if (!exactDifferences(a, b, c, d, diff)) return undifferencedOrient3d(a, b, c, d, out);
+    // w . (u x v) as orient3dExact's first form, kept as a value: 3 x 4 components, each
+    // scaled into two.
+    const std::array<Expansion<4>, 3> n = exactCross(diff);
+    for (int k = 0; k < 3; ++k) out.addScaled(n[k], diff[6 + k]);
+}
+
+void orient2dValue(const Float2& a, const Float2& b, const Float2& c, exact::Expansion<8>& out) noexcept {
+    out.n = 0;
+    double bax, bay, cax, cay, e0, e1, e2, e3;
+    twoSum(b.x, -double(a.x), bax, e0);
+    twoSum(b.y, -double(a.y), bay, e1);
+    twoSum(c.x, -double(a.x), cax, e2);
+    twoSum(c.y, -double(a.y), cay, e3);
+    if (e0 == 0 && e1 == 0 && e2 == 0 && e3 == 0) return out.add(differenceOfProducts(bax, cay, bay, cax));
+    undifferencedOrient2d(a, b, c, out);
 }
 
 int orient2dExact(const Float2& a, const Float2& b, const Float2& c) noexcept {
@@ -230,11 +179,8 @@ int orient2dExact(const Float2& a, const Float2& b, const Float2& c) noexcept {
         if (left_err == 0 && right_err == 0) return (left > right) - (left < right);
         return differenceOfProducts(bax, cay, bay, cax).sign();
     }
-    // det[b-a, c-a] = M(a,b) + M(b,c) + M(c,a).
     Expansion<8> det;
-    det.add(minorXY(a.x, a.y, b.x, b.y));
-    det.add(minorXY(b.x, b.y, c.x, c.y));
-    det.add(minorXY(c.x, c.y, a.x, a.y));
+    undifferencedOrient2d(a, b, c, det);
     return det.sign();
 }
 
@@ -316,6 +262,29 @@ bool PlaneOrientation::certainlyNotCollinear() const noexcept {
         if (normal_[k] > bound || -normal_[k] > bound) return true;
     }
     return false;
+}
+
+double orient3dEstimate(const Float3& a, const Float3& b, const Float3& c, const Float3& d, double& out_error) noexcept {
+    // orient3d's filter, kept as a value: Shewchuk's bound is a bound on the absolute error
+    // of this evaluation (rounded differences included), which is what the sign test uses.
+    const double bax = double(b.x) - a.x, bay = double(b.y) - a.y, baz = double(b.z) - a.z;
+    const double cax = double(c.x) - a.x, cay = double(c.y) - a.y, caz = double(c.z) - a.z;
+    const double dax = double(d.x) - a.x, day = double(d.y) - a.y, daz = double(d.z) - a.z;
+    const double cay_daz = cay * daz, caz_day = caz * day;
+    const double caz_dax = caz * dax, cax_daz = cax * daz;
+    const double cax_day = cax * day, cay_dax = cay * dax;
+    const double permanent = std::fabs(bax) * (std::fabs(cay_daz) + std::fabs(caz_day)) +
+                             std::fabs(bay) * (std::fabs(caz_dax) + std::fabs(cax_daz)) +
+                             std::fabs(baz) * (std::fabs(cax_day) + std::fabs(cay_dax));
+    out_error = kOrient3dBound * permanent;
+    return bax * (cay_daz - caz_day) + bay * (caz_dax - cax_daz) + baz * (cax_day - cay_dax);
+}
+
+double orient2dEstimate(const Float2& a, const Float2& b, const Float2& c, double& out_error) noexcept {
+    const double left = (double(b.x) - a.x) * (double(c.y) - a.y);
+    const double right = (double(b.y) - a.y) * (double(c.x) - a.x);
+    out_error = kOrient2dBound * (std::fabs(left) + std::fabs(right));
+    return left - right;
 }
 
 int orient2d(const Float2& a, const Float2& b, const Float2& c) noexcept {

@@ -6,6 +6,7 @@
 // exact for every finite input: see exact_predicates.cpp for the argument.
 #pragma once
 
+#include "narrow/expansion.hpp"
 #include "vkcollide/mesh.hpp"
 
 namespace vkcollide::narrow {
@@ -55,5 +56,17 @@ private:
 // fallback against each other.
 int orient3dExact(const Float3& a, const Float3& b, const Float3& c, const Float3& d) noexcept;
 int orient2dExact(const Float2& a, const Float2& b, const Float2& c) noexcept;
+
+// The filters' double evaluations of the same determinants, with in out_error a bound on
+// their absolute error (the bound whose excess decides orient3d's / orient2d's sign).
+double orient3dEstimate(const Float3& a, const Float3& b, const Float3& c, const Float3& d, double& out_error) noexcept;
+double orient2dEstimate(const Float2& a, const Float2& b, const Float2& c, double& out_error) noexcept;
+
+// The exact determinants themselves (orient3d's det[b - a, c - a, d - a], orient2d's
+// det[b - a, c - a]) as expansions, for constructions that divide by them
+// (contacts/exact_points.cpp). out is overwritten. Exact for all finite floats, and every
+// component is a multiple of 2^-447 (3D) / 2^-298 (2D) below 2^390 in magnitude.
+void orient3dValue(const Float3& a, const Float3& b, const Float3& c, const Float3& d, exact::Expansion<64>& out) noexcept;
+void orient2dValue(const Float2& a, const Float2& b, const Float2& c, exact::Expansion<8>& out) noexcept;
 
 }  // namespace vkcollide::narrow

@@ -5,6 +5,9 @@
 #       file but the one asked for, a chart when gnuplot is installed, and the readers' errors
 #       (missing file, no triangle, a NaN vertex) named with the file
 #   user_meshes_test.sh frontier FRONTIER_SH                an empty CSV: exit 1, the file named
+#   user_meshes_test.sh peers FRONTIER_SH                   a vkcollide_peer_bench CSV charted beside a
+#       vkcollide_bench one (both written here): the peers' series in the data gnuplot gets, on
+#       the user's panel; the drawing only where gnuplot is installed; peer CSVs without rows
 set -euo pipefail
 mode="$1"
 dir=$(mktemp -d)
@@ -25,6 +28,73 @@ if [ "$mode" = frontier ]; then
   echo "device,set,scene,variant,frame" > "$dir/header.csv"
   expectError "bash '$frontier' '$dir/chart.png' '$dir/header.csv'" "$dir/header.csv" "lacks the column(s) total_ms"
   [ ! -e "$dir/chart.png" ] || fail "a chart was written from an empty CSV"
+  exit 0
+fi
+
+if [ "$mode" = peers ]; then
+  frontier="$2"
+  # vkcollide_bench's header (tools/bench/vkcollide_bench.cpp) and rows given by column name,
+  # the rest 0: the user's scene cube+slab, two variants, frames 0 and 1.
+  header="device,set,scene,motion,triangles,objects,gpu_objects,scale,variant,frame,backend,resolution,direction,axes,coverage,dual,layer_cap,packing,open,async,depth_complexity,layers,peel_passes,sampling_ms,merging_ms,separation_ms,packing_ms,gpu_ms,readback_ms,narrow_ms,update_ms,total_ms,collision_rays,downloaded,pot_colliding,tests,positive_tests,pairs,reference_pairs,reference_crossing,found_crossing,recall,recall_crossing,precision,gpu_mib,host_peak_mib,narrow_threads,reference_s,reference_cached,method,footprints_ms,pairing_ms,filtering_ms,cell_candidates,cell_survivors,settings_note,cell_entries,cell_duplicates,cell_filtered,cell_deep_cells,cell_max_cell,gpu_exact_tests,cpu_exact_tests,gpu_span_ms,sorting_ms"
+  awk -v header="$header" 'BEGIN { n = split(header, h, ","); print header }
+    { delete v; for (i = 1; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
+      line = ""; for (i = 1; i <= n; ++i) line = line (i > 1 ? "," : "") (h[i] in v ? v[h[i]] : 0); print line }' > "$dir/mine.csv" <<'ROWS'
+device=lavapipe set=user scene=cube+slab variant=default method=reliable frame=0 total_ms=9 reference_pairs=40 reference_crossing=30 found_crossing=30 recall=1
+device=lavapipe set=user scene=cube+slab variant=default method=reliable frame=1 total_ms=2 reference_pairs=40 reference_crossing=30 found_crossing=30 recall=1
+device=lavapipe set=user scene=cube+slab variant=peeling method=peeling frame=0 total_ms=8 reference_pairs=40 reference_crossing=30 found_crossing=29 recall=0.95
+device=lavapipe set=user scene=cube+slab variant=peeling method=peeling frame=1 total_ms=1 reference_pairs=40 reference_crossing=30 found_crossing=29 recall=0.95
+ROWS
+  # vkcollide_peer_bench's (tools/bench/peer_bench.cpp): the same scene, two peers, and a
+  # built-in scene of the tuning set.
+  cat > "$dir/peers.csv" <<'CSV'
+# vkcollide_peer_bench: test CPU, 2 hardware threads; peers run with 2 threads
+scene,triangles,objects,peer,mode,frame,build_ms,query_ms,total_ms,pairs,recall,precision,candidates,memory_mb,reference_pairs,threads,set
+cube+slab,108,2,fcl-aabb,rigid-between,0,3.000,1.000,4.000,36,0.900000,1.000000,0,0.1,40,2,user
+cube+slab,108,2,fcl-aabb,rigid-between,1,2.000,1.000,3.000,36,0.900000,1.000000,0,0.1,40,2,user
+cube+slab,108,2,fcl-aabb,rigid-between,2,4.000,1.000,5.000,36,0.900000,1.000000,0,0.1,40,2,user
+cube+slab,108,2,embree,rigid-self,0,1.000,1.000,2.000,40,1.000000,1.000000,0,0.1,40,2,user
+cube+slab,108,2,embree,rigid-self,1,1.000,0.500,1.500,40,1.000000,1.000000,0,0.1,40,2,user
+spheres-8x10K,79520,8,cgal,rigid-between,0,50.000,50.000,100.000,2882,1.000000,1.000000,0,12.4,2882,2,tuning
+spheres-8x10K,79520,8,cgal,rigid-between,1,40.000,40.000,80.000,2882,1.000000,1.000000,0,12.4,2882,2,tuning
+CSV
+  status=0
+  FRONTIER_KEEP=1 bash "$frontier" "$dir/chart.png" "$dir/mine.csv" "$dir/peers.csv" > "$dir/out.txt" 2> "$dir/err.txt" || status=$?
+  kept=$(sed -n 's/^frontier.sh: keeping //p' "$dir/err.txt")
+  [ -n "$kept" ] && [ -d "$kept" ] || { cat "$dir/err.txt" >&2; fail "frontier.sh kept no data folder"; }
+  trap 'rm -rf "$dir" "$kept"' EXIT
+  if command -v gnuplot > /dev/null; then
+    [ "$status" -eq 0 ] && [ -s "$dir/chart.png" ] || { cat "$dir/err.txt" >&2; fail "frontier.sh on a vkcollide_bench and a peer CSV"; }
+    echo "ok: frontier.sh charted both"
+  else
+    grep -q "gnuplot missing" "$dir/err.txt" || { cat "$dir/err.txt" >&2; fail "frontier.sh without gnuplot"; }
+    echo "gnuplot missing (tools/bench/frontier.sh --install-deps): the drawing is not tried, its data is"
+  fi
+  # steady.awk's means over frames >= 1: a series per peer and mode, the scene named and set as
+  # vkcollide_bench's, x = total_ms, the recall (all pairs) in both recall columns.
+  awk -F'\t' '
+    NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+    { got[$c["variant"] "|" $c["scene"] "|" $c["set"]] = $c["total_ms"] " " $c["recall"] " " $c["crossing_recall"] }
+    END {
+      want["default|cube+slab|user"] = "2 1 1"; want["peeling|cube+slab|user"] = "1 0.95 0.966667"
+      want["fcl-aabb/rigid-between|cube+slab|user"] = "4 0.9 0.9"; want["embree/rigid-self|cube+slab|user"] = "1.5 1 1"
+      want["cgal/rigid-between|spheres-8x10K|tuning"] = "80 1 1"
+      for (k in want) if (got[k] != want[k]) { print k ": got \"" got[k] "\", want \"" want[k] "\""; bad = 1 }
+      for (k in got) if (!(k in want)) { print "unexpected " k; bad = 1 }
+      exit bad }' "$kept/steady.tsv" || { cat "$kept/steady.tsv" >&2; fail "steady.awk's lines"; }
+  # frontier.awk: the user's panel (10) has a point file per series, 4 of them, and the legend names the peers.
+  [ "$(ls "$kept" | grep -c '^pts_10_')" -eq 4 ] || { ls "$kept" >&2; fail "the user's panel lacks series"; }
+  for series in fcl-aabb/rigid-between embree/rigid-self cgal/rigid-between; do
+    grep -qF "title '$series'" "$kept/frontier.gp" || fail "no legend entry for $series in frontier.gp"
+  done
+  echo "ok: the peers' series are in the chart's data, cube+slab on the user's panel"
+  # A peer CSV without rows, without a column, without a usable row.
+  head -2 "$dir/peers.csv" > "$dir/header.csv"
+  expectError "bash '$frontier' '$dir/x.png' '$dir/header.csv'" "$dir/header.csv" "has a header but no rows" "vkcollide_peer_bench"
+  sed 's/,total_ms,/,time_ms,/' "$dir/peers.csv" > "$dir/column.csv"
+  expectError "bash '$frontier' '$dir/x.png' '$dir/column.csv'" "$dir/column.csv" "lacks the column(s) total_ms" "vkcollide_peer_bench"
+  sed '3,$s/,0\.900000,/,1.5,/; 3,$s/,1\.000000,1\.000000,/,2,1,/' "$dir/peers.csv" > "$dir/recall.csv"
+  expectError "bash '$frontier' '$dir/x.png' '$dir/recall.csv'" "$dir/recall.csv" "none of its 7 rows has"
+  [ ! -e "$dir/x.png" ] || fail "a chart was written from a peer CSV without usable rows"
   exit 0
 fi
 

@@ -130,3 +130,19 @@ TEST_CASE("peer bench: --sequence runs each frame of the user's files", "[peers]
     CHECK(odd.status == 2);
     CHECK(odd.err.find("do not make two or more whole frames of 2") != std::string::npos);
 }
+
+TEST_CASE("peer bench: --scene FILE:x,y,z moves a file's objects, named and set as vkcollide_bench --mesh", "[peers][gpu]") {
+    Scratch s;
+    // b is made 30 away from a; its offset brings it back to 1.2 from a (as in the first case).
+    const std::string a = s.sphere("a.off", 0), b = s.sphere("b.off", 30);
+    const Run moved = bench(s, "--scene " + a + "," + b + ":-28.8,0,0 --peers cgal --modes between --frames 1");
+    REQUIRE(moved.status == 0);
+    REQUIRE(moved.rows.size() == 1);
+    CHECK(moved.rows[0].at("scene") == "a+b");  // frontier.sh puts it beside vkcollide_bench's a+b
+    CHECK(moved.rows[0].at("set") == "user");
+    CHECK(std::stod(moved.rows[0].at("reference_pairs")) > 0);
+    const Run apart = bench(s, "--scene " + a + "," + b + " --peers cgal --modes between --frames 1");
+    REQUIRE(apart.status == 0);
+    REQUIRE(apart.rows.size() == 1);
+    CHECK(apart.rows[0].at("reference_pairs") == "0");
+}

@@ -10,6 +10,12 @@
 # 99, 99.9, 100 %) so that one pair lost in 10,000 still shows; on the face-to-face contact
 # scenes, which have next to no crossing pairs, and on the user's own scenes (vkcollide_bench
 # --mesh: set "user", their own panel), recall of all pairs (touching included).
+# A CSV of vkcollide_peer_bench --csv (FCL, Embree, CGAL, vkcollide as a peer; told by its
+# header, which starts "scene,") charts beside them: tools/bench/peer_rows.awk makes each
+# peer and mode a series PEER/MODE (e.g. fcl-aabb/rigid-between; @REGEX matches these), x its
+# total_ms (build + query), y its recall of all pairs on every panel (it measures no other);
+# its --scene files are named and set as vkcollide_bench --mesh's, so they share the panel:
+#   tools/bench/frontier.sh mine.png mine.csv peers.csv
 # Series: a CSV's variants by name (default = the reliable method, peeling, paper-sep, ...), or
 # with @NAME every row of that CSV is series NAME (a CSV of another build, e.g. the defaults
 # before), and @REGEX keeps only the variants it matches (CSVs of the 2026-11-22 sweep: VARIANT-BACKEND, e.g.
@@ -49,12 +55,21 @@ out="$1"; shift
 args=()   # steady.awk takes label= and pick= before each file
 for spec in "$@"; do
   IFS=@ read -r file name pick <<< "$spec"
-  [ -f "$file" ] && [ -r "$file" ] || { echo "frontier.sh: cannot read $file (expected a CSV of vkcollide_bench --csv)" >&2; exit 1; }
+  [ -f "$file" ] && [ -r "$file" ] || { echo "frontier.sh: cannot read $file (expected a CSV of vkcollide_bench --csv or vkcollide_peer_bench --csv)" >&2; exit 1; }
   awk -v file="$file" -v pick="$pick" -f "$here/csv_check.awk" "$file"
+  # A peer bench CSV (its first line that is no comment starts "scene,") enters steady.awk as
+  # vkcollide_bench rows (peer_rows.awk); steady.awk's pick then matches PEER/MODE.
+  if awk '/^#/ || /^[ \t\r]*$/ { next } { exit !/^scene,/ }' "$file"; then
+    rows="$tmp/peers_${#args[@]}.csv"
+    awk -f "$here/peer_rows.awk" "$file" > "$rows"
+    file="$rows"
+  fi
   args+=("label=$name" "pick=$pick" "$file")
 done
-command -v gnuplot >/dev/null || { echo "frontier.sh: gnuplot missing: run tools/bench/frontier.sh --install-deps" >&2; exit 1; }
 awk -f "$here/steady.awk" "${args[@]}" > "$tmp/steady.tsv"
 awk -F'\t' -v tmp="$tmp" -v out="$out" -v title="$title" -v link="$link" -f "$here/frontier.awk" "$tmp/legends.tsv" "$tmp/steady.tsv"
+# Checked only now, so that without gnuplot the data it would get is still made (FRONTIER_KEEP=1
+# keeps it: the tests read it).
+command -v gnuplot >/dev/null || { echo "frontier.sh: gnuplot missing: run tools/bench/frontier.sh --install-deps" >&2; exit 1; }
 gnuplot "$tmp/frontier.gp"
 echo "frontier.sh: wrote $out"

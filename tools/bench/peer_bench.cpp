@@ -6,16 +6,18 @@
 //   vkcollide_peer_bench [--scenes a,b,...] [--peers a,b,...] [--modes self,between]
 //                        [--frames K] [--threads N] [--budget-s S] [--data DIR]
 //                        [--csv FILE] [--list] [--help]
-//                        [--scene a.obj,b.off ... [--sequence [--frame-files K]]] [--resolution N]
+//                        [--scene a.obj,b.off[:x,y,z] ... [--sequence [--frame-files K]]] [--resolution N]
 //
-// --scene: the user's own scene from mesh files (world space; each OBJ group or OFF/PLY
-// file an object), repeatable; --sequence makes each --scene's files the frames of one
+// --scene: the user's own scene from mesh files (world space, or moved by x,y,z; each OBJ
+// group or OFF/PLY file an object), repeatable, named and read as vkcollide_bench --mesh
+// names and reads them (user_scene.hpp), so that frontier.sh charts both on one panel; --sequence makes each --scene's files the frames of one
 // deforming scene (K files per frame), checked to keep frame 0's topology. With --scene
 // only those scenes run (unless --scenes names built-in ones too) and the peers default
 // to every peer, vkcollide included.
 //
 // Prints a summary table (a progress line on stderr) and, with --csv FILE, writes one CSV
-// row per (scene, peer, mode, frame); it writes no file unless asked. Modes: "self" = pairs within objects too (FCL cannot:
+// row per (scene, peer, mode, frame), the scene's set (tuning, held-out, user) last; it
+// writes no file unless asked. Modes: "self" = pairs within objects too (FCL cannot:
 // skipped), "between" = pairs between objects only; each scene is rigid (every frame
 // builds and queries from scratch) or deforming (frame 0 builds, later frames move every
 // vertex and the peer refits or rebuilds). See docs/peers.md.
@@ -173,7 +175,7 @@ struct Options {
     bool list = false, help = false;
     // The user's own scenes (--scene), each a list of files; with --sequence each list is
     // the frames of one scene, frame_files files per frame.
-    std::vector<std::vector<std::string>> user_scenes;
+    std::vector<std::vector<MeshFile>> user_scenes;
     bool sequence = false;
     std::uint32_t frame_files = 1;
     std::uint32_t resolution = 0;  // the vkcollide peer's; 0: automatic
@@ -192,7 +194,7 @@ std::vector<std::string> splitList(const std::string& s) {
 void printUsage(std::ostream& out) {
     out << "usage: vkcollide_peer_bench [--scenes a,b] [--peers a,b] [--modes self,between] [--frames K]\n"
         << "                            [--threads N] [--budget-s S] [--data DIR] [--csv FILE] [--list] [--help]\n"
-        << "                            [--scene a.obj,b.off ... [--sequence [--frame-files K]]] [--resolution N]\n";
+        << "                            [--scene a.obj,b.off[:x,y,z] ... [--sequence [--frame-files K]]] [--resolution N]\n";
 }
 
 void printHelp() {
@@ -201,7 +203,8 @@ void printHelp() {
                  "reference (docs/peers.md, docs/cli.md). Prints a summary table; writes no file unless --csv.\n\n"
                  "  --scenes a,b       built-in scenes (--list names them); default spheres-8x10K,bunnies-2x75K,deform-pair-100K\n"
                  "  --scene f1,f2,...  your own scene from mesh files (world space; each OBJ group or OFF/PLY file an\n"
-                 "                     object); repeatable; alone, only these scenes run, with every peer\n"
+                 "                     object; f:x,y,z moves f's objects by x,y,z); repeatable; alone, only these\n"
+                 "                     scenes run, with every peer\n"
                  "  --sequence         each --scene's files are the frames of one deforming scene\n"
                  "  --frame-files K    --sequence: K files per frame (default 1)\n"
                  "  --peers a,b        which peers (--list names them)\n"
@@ -243,8 +246,15 @@ std::optional<Options> parseOptions(int argc, char** argv) {
             if (ok) o.peers = splitList(*v), o.peers_given = true;
         } else if (arg == "--scene") {
             const auto v = value();
-            ok = v.has_value() && !splitList(*v).empty();
-            if (ok) o.user_scenes.push_back(splitList(*v));
+            ok = v.has_value();
+            if (ok) {
+                auto files = parseMeshList(*v);
+                if (!files) {
+                    std::cerr << "vkcollide_peer_bench: --scene: " << files.error().message() << '\n';
+                    return std::nullopt;
+                }
+                o.user_scenes.push_back(std::move(*files));
+            }
         } else if (arg == "--sequence") {
             o.sequence = true;
         } else if (arg == "--frame-files") {
@@ -397,10 +407,8 @@ int main(int argc, char** argv) {
         return 0;
     }
     std::vector<SceneSpec> user_scenes;
-    for (const auto& files : opt.user_scenes) {
-        std::vector<MeshFile> meshes;
-        for (const std::string& f : files) meshes.push_back({f});
-        auto s = userScene(meshes, opt.sequence ? opt.frame_files : 0, SceneSet::User);
+    for (const std::vector<MeshFile>& files : opt.user_scenes) {
+        auto s = userScene(files, opt.sequence ? opt.frame_files : 0, SceneSet::User);
         if (!s) {
             std::cerr << "vkcollide_peer_bench: --scene: " << s.error().message() << '\n';
             return 1;
@@ -439,7 +447,7 @@ int main(int argc, char** argv) {
         cpuModel() + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads";
     csv << "# vkcollide_peer_bench: " << host << "; peers run with " << opt.threads << " threads\n";
     csv << "scene,triangles,objects,peer,mode,frame,build_ms,query_ms,total_ms,pairs,recall,precision,"
-           "candidates,memory_mb,reference_pairs,threads\n";
+           "candidates,memory_mb,reference_pairs,threads,set\n";
     std::cout << "host: " << host << "; peers run with " << opt.threads << " threads\n";
 
     Progress progress;
@@ -543,7 +551,7 @@ int main(int argc, char** argv) {
                         << ',' << fixed(row.recall, 6) << ',' << fixed(row.precision, 6) << ','
                         << row.timings.candidates << ','
                         << fixed(static_cast<double>(row.timings.memory_bytes) / 1048576.0, 1) << ','
-                        << row.reference_pairs << ',' << opt.threads << '\n';
+                        << row.reference_pairs << ',' << opt.threads << ',' << setName(scene->set) << '\n';
                     csv.flush();
                     rows.push_back(row);
                 }

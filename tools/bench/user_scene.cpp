@@ -82,6 +82,36 @@ Result<MeshFile> parseMeshFile(std::string_view text) {
     return out;
 }
 
+Result<std::vector<MeshFile>> parseMeshList(std::string_view text) {
+    std::vector<std::string_view> items;
+    for (std::size_t start = 0;;) {
+        const std::size_t comma = text.find(',', start);
+        items.push_back(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+        if (comma == std::string_view::npos) break;
+        start = comma + 1;
+    }
+    std::vector<MeshFile> out;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        if (items[i].empty()) continue;  // "a.obj,,b.off" or a trailing comma
+        if (i + 2 < items.size()) {
+            // items[i..i+2] are adjacent in text: their span is "FILE:x,y,z" if it is one.
+            const std::size_t from = std::size_t(items[i].data() - text.data());
+            const std::string_view joined = text.substr(from, std::size_t(items[i + 2].data() - items[i].data()) + items[i + 2].size());
+            Result<MeshFile> f = parseMeshFile(joined);
+            if (f && f->path.size() < joined.size()) {
+                out.push_back(std::move(*f));
+                i += 2;
+                continue;
+            }
+        }
+        Result<MeshFile> f = parseMeshFile(items[i]);
+        if (!f) return f.error();
+        out.push_back(std::move(*f));
+    }
+    if (out.empty()) return Error(ErrorCode::InvalidArgument, "no file in '" + std::string(text) + "' (FILE[:x,y,z],...)");
+    return out;
+}
+
 std::string fileStem(const std::string& path) {
     const std::size_t slash = path.find_last_of('/');
     std::string name = slash == std::string::npos ? path : path.substr(slash + 1);

@@ -1,5 +1,5 @@
 // The user's own scene from mesh files, shared by vkcollide_bench (--mesh FILE[:x,y,z]) and
-// vkcollide_peer_bench (--scene a.obj,b.off): the library's readers (vkcollide/io.hpp) read
+// vkcollide_peer_bench (--scene a.obj,b.off:x,y,z): the library's readers (vkcollide/io.hpp) read
 // each file, and every OBJ group or OFF/PLY file is one object, self-colliding as in the
 // built-in scenes.
 #pragma once
@@ -22,6 +22,12 @@ struct MeshFile {
 // comma-separated finite numbers, so a path that holds ':' still reads as a path.
 // Error: InvalidArgument for an empty path.
 Result<MeshFile> parseMeshFile(std::string_view text);
+
+// A comma-separated list of FILE or FILE:x,y,z (vkcollide_peer_bench --scene), each item read
+// by parseMeshFile. The offset's own commas are told from the list's: an item and the two
+// after it are one FILE:x,y,z where, joined, they read as a file with an offset.
+// Error: InvalidArgument for an empty list or an item without a file name.
+Result<std::vector<MeshFile>> parseMeshList(std::string_view text);
 
 // "a/bunny.off" -> "bunny".
 std::string fileStem(const std::string& path);

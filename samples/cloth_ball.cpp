@@ -69,7 +69,7 @@ int runBall(CommonOptions& common, const BallScene& scene) {
     auto cloth_id = (*world)->addMesh(*grid, {.name = "cloth", .self_collision = true, .open = true});
     if (!cloth_id) return fail(cloth_id.error());
     const DrawId cloth_draw = renderer.addMesh(*grid, objectColour(3), /*dynamic=*/true);
-    Picture picture(renderer, common, "cloth", Camera{.eye = {1.6f, 1.3f, 2.6f}, .target = {0, -0.25f, 0}}, 0.8f);
+    Picture picture(renderer, common, "cloth", Camera{.eye = {1.7f, 0.8f, 2.6f}, .target = {0, -0.15f, 0}}, 0.8f);
 
     // The cloth's thickness, as in --proximity: a quarter of an edge, pairs within twice that.
     const float edge = scene.size / static_cast<float>(n), thickness = 0.25f * edge;
@@ -149,7 +149,7 @@ int runBall(CommonOptions& common, const BallScene& scene) {
         renderer.updateVertices(cloth_draw, now);
         renderer.updateVertices(ball_draw, ball_world);
         char caption[160];
-        std::snprintf(caption, sizeof caption, "ball %.2f m/s, %d near cloth; cloth %d near itself; %zu intersecting",
+        std::snprintf(caption, sizeof caption, "ball %.2f m/s; near: %d ball, %d self; %zu intersect",
                       velocity.norm(), ball_pairs, self_pairs, hits->pairs.size());
         picture.write(frame, *hits, caption);
         const double values[] = {ball.position.y(), velocity.norm(), double(ball_pairs), double(self_pairs), double(hits->pairs.size()),

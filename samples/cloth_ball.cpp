@@ -75,6 +75,12 @@ int runBall(CommonOptions& common, const BallScene& scene) {
     const float edge = scene.size / static_cast<float>(n), thickness = 0.25f * edge;
     DetectSettings settings = common.detectSettings();
     settings.proximity.distance = 2 * thickness;
+    // Contacts come only from pairs already within the distance: a ball that moves
+    // farther in one frame can meet cloth no pair warned of.
+    if (scene.speed * scene.dt > settings.proximity.distance)
+        std::printf("ball: note: it moves %.3f a frame at the start, more than the proximity distance %.3f; it may reach the cloth "
+                    "between detections (lower --dt or --speed, or fewer --cells)\n",
+                    scene.speed * scene.dt, settings.proximity.distance);
     FrameLog log(common.out + "/frames.csv",
                  {"ball_height", "ball_speed", "ball_cloth_near", "cloth_self_near", "intersecting_pairs", "cloth_lowest"},
                  common.frames, common.quiet);

@@ -14,13 +14,17 @@
 // cloth is kept in front of the obstacle triangles it touches, and pushed back from a
 // cloth triangle it touches to the side it came from.
 //
-//   vkcollide_cloth [--frames 400] [--cells 32] [--drop 0.2] [--proximity] [--out cloth] (--help for all)
+// With --ball (cloth_ball.cpp) the scene is README's ball and cloth instead: a ball thrown
+// onto a cloth pinned at its edges, the cloth stopping it through proximity pairs.
+//
+//   vkcollide_cloth [--frames 400] [--cells 32] [--drop 0.2] [--proximity | --ball] [--out cloth] (--help for all)
 #include "render/vk.hpp"  // first: the samples call Vulkan themselves
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "cloth_ball.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
@@ -54,7 +58,8 @@ int main(int argc, char** argv) {
     std::uint32_t substeps = 4;
     float fold = 1.6f;         // radians: the cloth starts folded over, one half above the other
     float dt = 0.005f;  // small: the cloth moves a fraction of an edge between detections
-    bool proximity = false;
+    bool proximity = false, ball = false;
+    BallScene ball_scene;
     Args args("vkcollide_cloth", "an open cloth falls onto a sphere (paper section 8.2)");
     args.option("cells", cells, "cloth quads per side (2 triangles each)");
     args.option("drop", drop, "start height of the cloth above the sphere");
@@ -63,11 +68,22 @@ int main(int argc, char** argv) {
     args.option("fold", fold, "how far one half of the cloth is turned over the other at the start, radians");
     args.option("dt", dt, "simulated seconds per frame (one detection per frame)");
     args.flag("proximity", proximity, "drive the cloth by proximity pairs (within twice its thickness), not by intersecting pairs");
+    args.flag("ball", ball, "a ball thrown onto a cloth pinned at its edges, stopped by proximity pairs (implies --proximity)");
+    args.option("speed", ball_scene.speed, "--ball: the ball's speed when thrown, m/s");
+    args.option("ball-mass", ball_scene.ball_mass, "--ball: the ball's mass (the cloth's: --cloth-mass), kg");
+    args.option("cloth-mass", ball_scene.cloth_mass, "--ball: the cloth's mass, kg");
     addCommonOptions(args, common);
     args.parse(argc, argv);
     finishCommonOptions(args, common, "cloth");
     refuseOtherMethod(args, common, "--proximity", DetectMethod::Reliable);
+    refuseOtherMethod(args, common, "--ball", DetectMethod::Reliable);
     if (cells < 2 || substeps < 1) die("--cells must be at least 2 and --substeps at least 1");
+    if (ball) {
+        if (!(ball_scene.ball_mass > 0 && ball_scene.cloth_mass > 0)) die("--ball-mass and --cloth-mass must be positive");
+        ball_scene.cells = cells, ball_scene.size = size, ball_scene.drop = drop;
+        ball_scene.substeps = substeps, ball_scene.dt = dt;
+        return runBall(common, ball_scene);
+    }
 
     // The engine's device, lent to vkcollide.
     auto engine = Engine::create({common.validation, common.device});

@@ -202,6 +202,7 @@ void separate(RigidBody& a, RigidBody* b, const Vec3& normal, float distance) {
 Cloth::Cloth(const vkcollide::HostMesh& grid, std::uint32_t nx, std::uint32_t ny, float friction)
     : positions_(grid.positions), friction_(friction) {
     for (const Float3& p : positions_) previous_.push_back(toVec(p));
+    inverse_mass_.assign(positions_.size(), 1.0f);
     const auto at = [nx](std::uint32_t i, std::uint32_t j) { return j * (nx + 1) + i; };
     auto link = [&](std::uint32_t a, std::uint32_t b, float stiffness) {
         links_.push_back({a, b, (toVec(positions_[a]) - toVec(positions_[b])).norm(), stiffness});
@@ -219,6 +220,12 @@ Cloth::Cloth(const vkcollide::HostMesh& grid, std::uint32_t nx, std::uint32_t ny
         }
 }
 
+void Cloth::setMass(float total) {
+    const auto free = std::count_if(inverse_mass_.begin(), inverse_mass_.end(), [](float w) { return w > 0; });
+    for (float& w : inverse_mass_)
+        if (w > 0) w = static_cast<float>(free) / total;
+}
+
 void Cloth::push(std::uint32_t vertex, const Vec3& offset) {
     positions_[vertex] = toFloat3(toVec(positions_[vertex]) + offset);
     previous_[vertex] += offset;
@@ -227,6 +234,7 @@ void Cloth::push(std::uint32_t vertex, const Vec3& offset) {
 void Cloth::step(float dt, const Vec3& gravity, int iterations) {
     const std::size_t n = positions_.size();
     for (std::size_t i = 0; i < n; ++i) {
+        if (inverse_mass_[i] == 0) continue;
         const Vec3 x = toVec(positions_[i]);
         const Vec3 v = (x - previous_[i]) * 0.99f;
         previous_[i] = x;
@@ -237,17 +245,24 @@ void Cloth::step(float dt, const Vec3& gravity, int iterations) {
             const Vec3 a = toVec(positions_[l.a]), b = toVec(positions_[l.b]);
             const Vec3 d = b - a;
             const float len = d.norm();
-            if (len < 1e-9f) continue;
-            const Vec3 corr = (len - l.rest) / len * 0.5f * l.stiffness * d;
-            positions_[l.a] = toFloat3(a + corr);
-            positions_[l.b] = toFloat3(b - corr);
+            const float wa = inverse_mass_[l.a], wb = inverse_mass_[l.b];
+            if (len < 1e-9f || wa + wb == 0) continue;
+            // Shared by inverse mass: half each between free vertices, all on the free one
+            // next to a pinned one.
+            positions_[l.a] = toFloat3(a + (len - l.rest) / len * (wa / (wa + wb)) * l.stiffness * d);
+            positions_[l.b] = toFloat3(b - (len - l.rest) / len * (wb / (wa + wb)) * l.stiffness * d);
         }
         for (const Contact& c : contacts_) {
+            const float wv = inverse_mass_[c.vertex], wb = c.body ? c.body->inverse_mass : 0.0f;
+            if (wv + wb == 0) continue;
             Vec3 x = toVec(positions_[c.vertex]);
-            const float depth = c.normal.dot(x - c.point);
+            const Vec3 point = c.body ? Vec3(c.point + c.body->position) : c.point;
+            const float depth = c.normal.dot(x - point);
             if (depth >= c.thickness || depth < -c.reach) continue;  // apart, or too deep to trust
-            x += (c.thickness - depth) * c.normal;
-            if (it == iterations - 1) {
+            const Vec3 correction = (c.thickness - depth) * c.normal;
+            x += correction * (wv / (wv + wb));
+            if (c.body) c.body->position -= correction * (wb / (wv + wb));
+            if (it == iterations - 1 && wv > 0) {
                 // Friction: take back part of this step's sliding along the plane.
                 const Vec3 moved = x - previous_[c.vertex];
                 x -= friction_ * (moved - moved.dot(c.normal) * c.normal);

@@ -93,13 +93,24 @@ public:
     // friction in [0, 1]: the share of sliding a contact removes per step.
     Cloth(const vkcollide::HostMesh& grid, std::uint32_t nx, std::uint32_t ny, float friction);
 
+    // A body that moves only by translation (a ball) and that contacts can push back:
+    // its position is moved by the steps' contacts, so (position - position before the
+    // step) / dt is its velocity with the cloth's pushes in it.
+    struct Body {
+        Vec3 position = Vec3::Zero();
+        float inverse_mass = 1.0f;
+    };
     // A collision response: vertex `vertex` must stay at least `thickness` in front of
     // the plane through `point` with unit normal `normal`; a vertex more than `reach`
-    // behind it is left alone (the plane is only a local approximation).
+    // behind it is left alone (the plane is only a local approximation). With a body,
+    // `point` is relative to the body's position (the plane moves with it), and the
+    // correction is shared by inverse mass: the body takes the opposite of the vertex's,
+    // so momentum is kept and the cloth slows the body as much as the body moves the cloth.
     struct Contact {
         std::uint32_t vertex;
         Vec3 point, normal;
         float thickness, reach;
+        Body* body = nullptr;
     };
     // The contacts the next steps enforce, inside the solver (after the other constraints
     // of each iteration), so stretching cannot pull the cloth back through them.
@@ -108,6 +119,12 @@ public:
     void push(std::uint32_t vertex, const Vec3& offset);
     void step(float dt, const Vec3& gravity, int iterations);
     const std::vector<vkcollide::Float3>& positions() const { return positions_; }
+    // The cloth's mass, spread evenly over its free vertices (each vertex weighs 1 until
+    // this is called: only ratios matter to the cloth alone, masses to a Body).
+    void setMass(float total);
+    // A vertex held where it is (a corner or edge tied down): nothing moves it.
+    void pin(std::uint32_t vertex) { inverse_mass_[vertex] = 0; }
+    bool pinned(std::uint32_t vertex) const { return inverse_mass_[vertex] == 0; }
 
 private:
     struct Link {
@@ -116,6 +133,7 @@ private:
     };
     std::vector<vkcollide::Float3> positions_;
     std::vector<Vec3> previous_;
+    std::vector<float> inverse_mass_;
     std::vector<Link> links_;
     std::vector<Contact> contacts_;
     float friction_;

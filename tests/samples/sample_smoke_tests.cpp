@@ -120,6 +120,26 @@ TEST_CASE("cloth sample: the falling cloth touches the sphere and does not pass 
     CHECK(min(csv["triangles"]) == max(csv["triangles"]));
 }
 
+TEST_CASE("cloth sample --ball: the pinned cloth stops the ball, and no frame has an intersecting pair", "[samples][gpu]") {
+    const int frames = 30;
+    const Scratch out = scratchFor("cloth-ball");
+    // Ball radius 0.35, thrown down at 3 m/s from 0.2 above the cloth; 0.3 s.
+    const std::string output = runSample(out, VKCOLLIDE_SAMPLE_CLOTH, "--ball --cells 10 --size 2 --dt 0.01", frames);
+    INFO(output);
+    CHECK(output.find("ball: no intersecting pair in any of the 30 frames") != std::string::npos);
+    const Csv csv = readCsv(out.dir / "frames.csv");
+    REQUIRE(csv.rows == frames);
+    CHECK(max(csv["intersecting_pairs"]) == 0);
+    CHECK(csv["ball_cloth_near"].front() == 0);  // it starts out of reach
+    CHECK(max(csv["ball_cloth_near"]) > 0);
+    CHECK(min(csv["cloth_lowest"]) < -0.05);  // the ball pushed the cloth down
+    // Falling freely, the ball's centre would end 1.3 below where it started (0.55) and
+    // faster than it started; the cloth holds it within its sag and turns it back.
+    CHECK(min(csv["ball_height"]) > 0.35 - 0.4);
+    CHECK(csv["ball_speed"].back() < csv["ball_speed"].front());
+    CHECK(csv["ball_height"].back() > min(csv["ball_height"]) + 0.1);
+}
+
 TEST_CASE("rigid bunnies sample: bunnies land in the box and on each other", "[samples][gpu]") {
     const int frames = 60;
     const Scratch out = scratchFor("rigid");
@@ -226,6 +246,11 @@ TEST_CASE("samples: an option of the peeling method is refused under the reliabl
     CHECK(cloth.status == 1);
     CHECK(cloth.output.find("--proximity belongs to the reliable method (--method reliable, the default); the peeling method does not "
                             "read it") != std::string::npos);
+    const Run ball = start(out, VKCOLLIDE_SAMPLE_CLOTH, "--cells 8 --ball --method peeling", 2);
+    INFO(ball.output);
+    CHECK(ball.status == 1);
+    CHECK(ball.output.find("--ball belongs to the reliable method") != std::string::npos);
+    CHECK(!fs::exists(out.dir / "frames.csv"));
     const Run unknown = start(out, VKCOLLIDE_SAMPLE_CLOTH, "--cells 8 --method cells", 2);
     CHECK(unknown.status != 0);
     CHECK(unknown.output.find("--method takes reliable or peeling") != std::string::npos);

@@ -261,7 +261,7 @@ struct DevicePairsParams {
 // Buckets up to this size are sorted by insertion, larger ones by heap sort (in place).
 VKC_CONST kDevicePairsInsertionSort = 16u;
 
-// Unit test of the filter alone (cells_filter_test.comp): one pair per invocation.
+// Unit test of the filter alone (tests/shaders/cells_filter_test.comp): one pair per invocation.
 struct CellsFilterCase {
     float a[9];
     float b[9];

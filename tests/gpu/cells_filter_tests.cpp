@@ -12,8 +12,8 @@
 #include "cells/cells.h"
 #include "graph/executor.hpp"
 #include "narrow/triangle_intersection.hpp"
-#include "shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
+#include "test_shaders/all.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::test;

@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // The triangle-triangle filter alone, for its unit tests (tests/gpu/cells_filter_tests.cpp):
 // one CellsFilterCase per invocation, verdict 1 when rejected (proved disjoint).
-#include "cells_common.glsl.inc"
-#include "tritri_filter.glsl.inc"
+#include "cells/cells_common.glsl.inc"
+#include "cells/tritri_filter.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer FilterParamsRef { CellsFilterParams p; };

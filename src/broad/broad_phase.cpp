@@ -78,19 +78,23 @@ double msSince(Clock::time_point t0) { return std::chrono::duration<double, std:
 
 }  // namespace
 
-std::uint64_t waitNs(const BroadPhaseSettings& s) {
-    if (!s.deadline) return s.timeout_ns;
-    const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(*s.deadline - std::chrono::steady_clock::now()).count();
-    return left > 0 ? static_cast<std::uint64_t>(left) : 0;
+gpu::ObjectGpu objectGpu(const GpuMesh& m, std::uint32_t triangle_base) {
+    gpu::ObjectGpu o{};
+    o.vertices = m.vertices;
+    o.indices = m.indices;
+    o.vertex_stride = m.vertex_stride;
+    o.vertex_count = m.vertex_count;
+    o.triangle_count = m.triangle_count;
+    o.triangle_base = triangle_base;
+    o.flags = (m.open ? gpu::kObjectOpen : 0u) | (m.index16 ? gpu::kObjectIndex16 : 0u) |
+              (m.check_on_gpu ? gpu::kObjectCheckOnGpu : 0u) | (m.self_collision ? gpu::kObjectSelfCollide : 0u);
+    for (int r = 0; r < 3; ++r) o.model[r] = {m.transform[r * 4], m.transform[r * 4 + 1], m.transform[r * 4 + 2], m.transform[r * 4 + 3]};
+    return o;
 }
 
-Error timeoutOfRun(const BroadPhaseSettings& s, Error e) {
-    if (e.code() != ErrorCode::Timeout || !s.deadline) return e;
-    return Error(ErrorCode::Timeout,
-                 "the detection's GPU work did not finish within " + std::to_string(s.timeout_ns / 1000000) +
-                     " ms (its timeout, DetectSettings::timeout_ms, for every submission and rerun together)",
-                 e.vkResult());
-}
+std::uint64_t waitNs(const BroadPhaseSettings& s) { return graph::waitNs(s.timeout_ns, s.deadline); }
+
+Error timeoutOfRun(const BroadPhaseSettings& s, Error e) { return graph::timeoutOfDetection(s.timeout_ns, s.deadline.has_value(), std::move(e)); }
 
 std::string describe(const ObjectFault& f) {
     const std::string affected = " (" + std::to_string(f.triangles_affected) + " triangles affected)";
@@ -132,14 +136,6 @@ BroadPhase::~BroadPhase() {
     (void)executor_.settle(~std::uint64_t(0));
 }
 
-Result<void> BroadPhase::settle(std::uint64_t timeout_ns) {
-    const auto t0 = std::chrono::steady_clock::now();
-    if (auto ok = executor_.settle(timeout_ns); !ok) return ok;
-    const auto spent =
-        static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count());
-    return method_->settle(spent < timeout_ns ? timeout_ns - spent : 0);
-}
-
 Result<void> BroadPhase::prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
     const Clock::time_point t0 = Clock::now();
     auto ok = prepareRun(meshes, s);
@@ -174,19 +170,10 @@ Result<void> BroadPhase::prepareRun(std::span<const GpuMesh> meshes, const Broad
     std::uint64_t vertex_base = 0;  // within the bounds pass's batch (CommonStages::recordFront)
     for (std::uint32_t i = 0; i < shape.objects; ++i) {
         const GpuMesh& m = meshes[i];
-        gpu::ObjectGpu o{};
-        o.vertices = m.vertices;
-        o.indices = m.indices;
-        o.vertex_stride = m.vertex_stride;
-        o.vertex_count = m.vertex_count;
-        o.triangle_count = m.triangle_count;
-        o.triangle_base = base;
+        gpu::ObjectGpu o = objectGpu(m, base);
         if (vertex_base + m.vertex_count > kBoundsBatchVertices) vertex_base = 0;  // a new batch
         o.vertex_base = static_cast<std::uint32_t>(vertex_base);
         vertex_base += m.vertex_count;
-        o.flags = (m.open ? gpu::kObjectOpen : 0u) | (m.index16 ? gpu::kObjectIndex16 : 0u) |
-                  (m.check_on_gpu ? gpu::kObjectCheckOnGpu : 0u) | (m.self_collision ? gpu::kObjectSelfCollide : 0u);
-        for (int r = 0; r < 3; ++r) o.model[r] = {m.transform[r * 4], m.transform[r * 4 + 1], m.transform[r * 4 + 2], m.transform[r * 4 + 3]};
         objs[i] = o;
         base += m.triangle_count;
     }
@@ -223,17 +210,22 @@ RunView BroadPhase::view() const {
     return {run_.settings, run_.meshes, run_.frame, table_.buffer(core_.frame).address(), run_.any_gpu_check, run_.objects};
 }
 
-void BroadPhase::record(graph::Graph& g, bool measure, bool main) {
+void BroadPhase::record(graph::Graph& g, Recording what) {
     const Clock::time_point t0 = Clock::now();
     const RunView run = view();
     const GraphBuffers buffers = table_.import(g);
     method_->import(g);
-    if (measure) {
-        common_->recordFront(g, run, buffers, core_, table_.cleared());
-        method_->recordMeasure(g, run, buffers);
+    if (what == Recording::Again) {
+        // The method's passes alone: the front's outputs (projection, header) stay.
+        method_->record(Phase::Again, g, run, buffers);
+    } else {
+        if (what != Recording::Main) {
+            common_->recordFront(g, run, buffers, core_, table_.cleared());
+            method_->record(Phase::Measure, g, run, buffers);
+        }
+        if (what != Recording::Measure) method_->record(Phase::Main, g, run, buffers);
+        common_->recordReadback(g, buffers, core_);
     }
-    if (main) method_->recordMain(g, run, buffers);
-    common_->recordReadback(g, buffers, core_);
     run_.host.declare_ms += msSince(t0);
 }
 
@@ -310,20 +302,20 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
 
     // Submission 1: front and measurement; the method reads the header.
     graph::Graph g1;
-    record(g1, true, false);
+    record(g1, Recording::Measure);
     if (auto ok = executor_.submit(g1, waitNs(s), target, false); !ok) return timeoutOfRun(s, ok.error());
     auto report1 = executor_.collect(waitNs(s));
     if (!report1) return timeoutOfRun(s, report1.error());
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
     if (auto ok = checkExtent(h1); !ok) return ok.error();
-    if (auto ok = method_->afterMeasure(view(), h1); !ok) return ok.error();
+    if (auto ok = method_->begin(view(), &h1, 0); !ok) return ok.error();
     run_.first = BroadPhaseResult{};
     addTimings(run_.first, *report1);
 
     // Submission 2: the method's main passes.
     graph::Graph g2;
-    record(g2, false, true);
+    record(g2, Recording::Main);
     if (s.deadline && waitNs(s) == 0) return timeoutOfRun(s, Error(ErrorCode::Timeout, "deadline passed"));
     if (auto ok = executor_.submit(g2, waitNs(s), target, signal); !ok) return timeoutOfRun(s, ok.error());
     pending_ = true;
@@ -335,12 +327,26 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
     const Clock::time_point t_predict = Clock::now();
-    if (auto ok = method_->predict(view(), layers); !ok) return ok.error();
+    if (auto ok = method_->begin(view(), nullptr, layers); !ok) return ok.error();
     run_.host.upload_ms += msSince(t_predict);
     graph::Graph g;
-    record(g, true, true);
+    record(g, Recording::Whole);
     if (auto ok = executor_.submit(g, waitNs(s), target, signal); !ok) return timeoutOfRun(s, ok.error());
     pending_ = true;
+    return {};
+}
+
+// The method's Again passes, on the same executor within what is left of the run's
+// deadline (nothing starts after it ends); their times join the run's.
+Result<void> BroadPhase::runAgain(BroadPhaseResult& io_result) {
+    const BroadPhaseSettings& s = run_.settings;
+    if (s.deadline && waitNs(s) == 0)
+        return timeoutOfRun(s, Error(ErrorCode::Timeout, "deadline passed before the method's passes could run again"));
+    graph::Graph g;
+    record(g, Recording::Again);
+    auto report = executor_.run(g, waitNs(s));
+    if (!report) return timeoutOfRun(s, report.error());
+    addTimings(io_result, *report);
     return {};
 }
 
@@ -366,13 +372,21 @@ Result<BroadPhaseResult> BroadPhase::collect() {
     result.projection = s.region ? regionProjection(basis, *s.region, s.open_epsilon, s.closed_epsilon)
                                  : fitProjection(basis, boundsFromHeader(h), s.fit_margin, s.open_epsilon, s.closed_epsilon);
     if (!s.region) result.scene_box = worldBox(basis, boundsFromHeader(h));
-    if (auto ok = method_->collect(view(), h, result); !ok) {
-        if (ok.error().code() == ErrorCode::InvalidMesh)
-            if (const std::optional<ObjectFault> f = method_->fault(); f && f->object < run_.meshes.size()) {
-                faults_.push_back(*f);
-                return Error(ErrorCode::InvalidMesh, "object " + std::to_string(f->object) + ": " + describe(*f));
-            }
-        return timeoutOfRun(run_.settings, ok.error());
+    for (std::uint32_t agains = 0;; ++agains) {
+        auto collected = method_->collect(view(), h, result);
+        if (!collected) {
+            if (collected.error().code() == ErrorCode::InvalidMesh)
+                if (const std::optional<ObjectFault> f = method_->fault(); f && f->object < run_.meshes.size()) {
+                    faults_.push_back(*f);
+                    return Error(ErrorCode::InvalidMesh, "object " + std::to_string(f->object) + ": " + describe(*f));
+                }
+            return collected.error();
+        }
+        if (*collected == Collected::Done) break;
+        if (agains == kMaxMethodAgains)
+            return Error(ErrorCode::VulkanError, "the broad phase's method asked for more than " + std::to_string(kMaxMethodAgains) +
+                                                     " submissions after the first (internal error)");
+        if (auto ok = runAgain(result); !ok) return ok.error();
     }
     result.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return result;

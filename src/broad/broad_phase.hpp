@@ -65,8 +65,7 @@ public:
     // After a run or collect() failed with ErrorCode::Timeout its GPU work goes on: busy()
     // polls it, settle() waits for it. The next run() or submit() settles first (with its
     // own timeout) and fails with Timeout while that work still runs.
-    // The method's own submissions (the reliable method's reruns) count too.
-    bool busy() const { return executor_.busy() || method_->busy(); }
+    bool busy() const { return executor_.busy(); }
     // Done when the submission in flight has finished (collect() will not wait); never waits.
     [[nodiscard]] Result<vk::Completion> poll() { return executor_.poll(); }
     // Forgets the run in flight without waiting for it (after host memory ran out while
@@ -75,7 +74,7 @@ public:
     // Moves the run's deadline (BroadPhaseSettings::deadline): the waits of collect() and
     // of the method's reruns end by then.
     void setDeadline(std::chrono::steady_clock::time_point deadline) { run_.settings.deadline = deadline; }
-    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns);
+    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
     MethodTraits traits() const noexcept { return method_->traits(); }
     // After an InvalidMesh error from the GPU input check: what it found, per object (run
     // indices); at most one per kind of problem, so other objects may be bad too.
@@ -95,9 +94,13 @@ private:
     Result<void> prepare(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
     Result<void> prepareRun(std::span<const GpuMesh> meshes, const BroadPhaseSettings& settings);
     RunView view() const;
-    // The one recording path: front and the method's measuring passes (`measure`), its
-    // main passes (`main`), then the header readback (timed into run_.host.declare_ms).
-    void record(graph::Graph& g, bool measure, bool main);
+    // The one recording path (timed into run_.host.declare_ms): front and the method's
+    // measuring passes, its main passes, then the header readback; or the method's Again
+    // passes alone.
+    enum class Recording { Measure, Main, Whole, Again };
+    void record(graph::Graph& g, Recording what);
+    // After the method's collect() answered Again: records and runs its Again passes.
+    Result<void> runAgain(BroadPhaseResult& io_result);
     gpu::Header readHeader() const;
     Result<void> checkInputs(const gpu::Header& header);
     Result<void> checkExtent(const gpu::Header& header) const;

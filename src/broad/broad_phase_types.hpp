@@ -162,6 +162,10 @@ struct DevicePairsView {
     std::uint32_t capacity = 0;
 };
 
+// A mesh as the shaders read it (gpu::ObjectGpu), its triangles numbered from
+// `triangle_base`; vertex_base (the bounds pass's batching) is the broad phase's to set.
+gpu::ObjectGpu objectGpu(const GpuMesh& mesh, std::uint32_t triangle_base);
+
 // How long the run's next wait may take (ns): what is left before the deadline (0 once it
 // passed: a wait then only polls), or timeout_ns without one.
 std::uint64_t waitNs(const BroadPhaseSettings& s);

@@ -1,20 +1,25 @@
 // The seam between the broad phase and a method. Every run records
 //
 //     front (clear, GPU input checks, bounds, fit)      common_stages.hpp
-//     method: measuring passes                          BroadPhaseMethod::recordMeasure
-//     method: main passes                               BroadPhaseMethod::recordMain
+//     method: Phase::Measure                            BroadPhaseMethod::record
+//     method: Phase::Main                               BroadPhaseMethod::record
 //     readback of the header                            common_stages.hpp
 //
-// run() submits the first two, waits, lets the method read the header (afterMeasure), then
-// submits the main passes; submit() records all of it in one submission after predict().
-// BroadPhase::record is the one recording path for both.
+// run() submits front and Measure, waits, lets the method read the header (begin), then
+// submits Main; submit() records all of it in one submission after begin() with a
+// predicted depth. Then collect() reads the method's outputs; a method whose GPU-sized
+// buffers overflowed grows them and answers Again, and the broad phase records
+// Phase::Again and submits it on the same executor, within the same deadline, until the
+// method answers Done. BroadPhase::record is the one recording path for all of them, and
+// the broad phase's executor the one that submits: a method owns no submissions.
 //
 // PeelingMethod (the paper: sampling, merging, separation, packing) returns triangle
-// records; ReliableMethod (broad/cells/: the cell pair stage) measures nothing, runs in one
-// submission and returns candidate pairs (BroadPhaseResult::has_pairs). To add one: a class implementing this interface in its own folder under
-// src/broad/ (with a sources.cmake there), its buffers added as rows of the BufferTable
-// in its factory, its own gpu::Frame extension behind gpu::Frame::method if its shaders
-// need one; BroadPhase::create(device, yourFactory) runs it (docs/rooms.md).
+// records; ReliableMethod (broad/cells/: the cell stage) measures nothing, runs in one
+// submission (plus one per overflow) and returns candidate pairs
+// (BroadPhaseResult::has_pairs). To add one: a class implementing this interface in its
+// own folder under src/broad/ (with a sources.cmake there), its buffers added as rows of
+// the BufferTable in its factory, its own gpu::Frame extension behind gpu::Frame::method
+// if its shaders need one; BroadPhase::create(device, yourFactory) runs it (docs/rooms.md).
 #pragma once
 
 #include <cstdint>
@@ -34,8 +39,8 @@ struct CoreBuffers {
 
 // What the broad phase needs to know about a method before a run.
 struct MethodTraits {
-    // It records measuring passes that run() waits for before the main ones (afterMeasure);
-    // without, run() is one submission (predict(), then collect()).
+    // It records measuring passes that run() waits for before the main ones (begin() reads
+    // their header); without, run() is one submission (begin() with a prediction).
     bool measures = true;
     // BroadPhaseSettings::resolution must be a power of two in [kMinResolution,
     // kMaxResolution]; otherwise any value in [1, kMaxResolution].
@@ -45,6 +50,20 @@ struct MethodTraits {
     bool pairs = false;
 };
 
+// Which of its passes a recording asks the method for.
+enum class Phase {
+    Measure,  // after the front: passes that measure the scene (traits().measures)
+    Main,     // the main passes
+    Again,    // after collect() answered Again: what it asked to run again
+};
+
+// collect()'s answer.
+enum class Collected {
+    Done,   // the outputs are in the result
+    Again,  // a buffer the GPU sized overflowed and was grown: record Phase::Again, run it
+            // and collect again
+};
+
 class BroadPhaseMethod {
 public:
     virtual ~BroadPhaseMethod() = default;
@@ -52,32 +71,30 @@ public:
     // Per run, after the table's buffers are reserved and before the frame is uploaded:
     // per-run choices, the method's own resources, and its fields of `io_frame`.
     [[nodiscard]] virtual Result<void> prepare(const BroadPhaseSettings& settings, const RunShape& shape, gpu::Frame& io_frame) = 0;
+    // Before Phase::Main is recorded: `measured` is the header of run()'s measuring
+    // submission, or null in submit(), where `predicted_layers` is the caller's prediction
+    // of the depth (what the last run measured).
+    [[nodiscard]] virtual Result<void> begin(const RunView& run, const gpu::Header* measured, std::uint32_t predicted_layers) = 0;
     // Its own resources (outside the table) into a graph about to be recorded.
     virtual void import(graph::Graph& g) = 0;
-    // Passes that measure the scene, after the front stage.
-    virtual void recordMeasure(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const = 0;
-    // run(), between the submissions: the header the measuring submission wrote.
-    [[nodiscard]] virtual Result<void> afterMeasure(const RunView& run, const gpu::Header& header) = 0;
-    // submit(), instead of afterMeasure: nothing is measured yet; `layers` is the caller's
-    // prediction of the depth (what the last run measured).
-    [[nodiscard]] virtual Result<void> predict(const RunView& run, std::uint32_t layers) = 0;
-    // The method's main passes.
-    virtual void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const = 0;
-    // After the last submission: the method's outputs and statistics into `io_result`.
-    [[nodiscard]] virtual Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) = 0;
+    // Its passes of `phase` (a method without measuring passes records nothing for Measure).
+    virtual void record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const = 0;
+    // After a submission ended: the method's outputs and statistics into `io_result`, or
+    // Again (at most kMaxMethodAgains times in a run).
+    [[nodiscard]] virtual Result<Collected> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) = 0;
     // After collect() failed with InvalidMesh: the object (run index) the method's own
     // input checks blamed, if any (the broad phase adds it to its ObjectFaults).
     virtual std::optional<ObjectFault> fault() const { return std::nullopt; }
-    // Submissions of its own (outside the broad phase's executor) whose GPU work goes on
-    // after a Timeout: busy() polls them, settle() waits up to timeout_ns for them.
-    virtual bool busy() const { return false; }
-    [[nodiscard]] virtual Result<void> settle(std::uint64_t /*timeout_ns*/) { return {}; }
     // Bytes of GPU memory the method holds outside the table.
     virtual std::uint64_t memoryBytes() const noexcept { return 0; }
     // With BroadPhaseSettings::device_pairs: where the run started last writes its sorted
-    // pairs on the GPU (valid from predict() on); nullopt when it writes none.
+    // pairs on the GPU (valid from begin() on); nullopt when it writes none.
     virtual std::optional<DevicePairsView> devicePairs() const { return std::nullopt; }
 };
+
+// The most submissions of a run after the first (Again answers) before the broad phase
+// gives up (an internal error: each overflow grows a buffer to what the GPU counted).
+inline constexpr std::uint32_t kMaxMethodAgains = 24;
 
 // Creates a method on `device`, adding its rows to `io_table` (after the core rows).
 using MethodFactory = Result<std::unique_ptr<BroadPhaseMethod>> (*)(vk::Device& device, BufferTable& io_table,

@@ -98,7 +98,7 @@ Result<std::vector<std::array<float, 6>>> ContactStage::measureBoxes(const Conta
             pc.copyBuffer(bounds_buffer, rb_buffer, copy);
         });
     auto report = executor_.run(g, in.waitNs());
-    if (!report) return report.error();
+    if (!report) return in.timeoutOf(report.error());
     last_gpu_ms_ = report->total_gpu_ms;
     buf_.bounds_rb.invalidate(0, 2 * half);
     const auto* words = static_cast<const std::uint32_t*>(buf_.bounds_rb.mapped());
@@ -205,16 +205,7 @@ Result<ContactStageResult> ContactStage::run(const ContactInput& in) {
     objects_.resize(n);
     for (std::uint32_t i = 0; i < n; ++i) {
         const GpuMesh& m = in.meshes[i];
-        gpu::ObjectGpu o{};
-        o.vertices = m.vertices;
-        o.indices = m.indices;
-        o.vertex_stride = m.vertex_stride;
-        o.vertex_count = m.vertex_count;
-        o.triangle_count = m.triangle_count;
-        o.triangle_base = static_cast<std::uint32_t>(total);
-        o.flags = (m.open ? gpu::kObjectOpen : 0u) | (m.index16 ? gpu::kObjectIndex16 : 0u);
-        for (int r = 0; r < 3; ++r) o.model[r] = {m.transform[r * 4], m.transform[r * 4 + 1], m.transform[r * 4 + 2], m.transform[r * 4 + 3]};
-        objects_[i] = o;
+        objects_[i] = objectGpu(m, static_cast<std::uint32_t>(total));
         total += m.triangle_count;
         any_closed = any_closed || (!m.open && m.triangle_count > 0);
     }
@@ -303,7 +294,7 @@ Result<ContactStageResult> ContactStage::run(const ContactInput& in) {
         graph::Graph g;
         recordMain(g);
         auto report = executor_.run(g, in.waitNs());
-        if (!report) return report.error();
+        if (!report) return in.timeoutOf(report.error());
         out.gpu_ms += report->total_gpu_ms;
         ++out.runs;
         buf_.readback.invalidate(0, sizeof(gpu::ContactsHeader) + table_bytes);

@@ -51,11 +51,8 @@ struct ContactInput {
     std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;  // each submission's longest wait
     // When set, every submission's wait ends by then instead (a detection's timeout_ms).
     std::optional<std::chrono::steady_clock::time_point> deadline;
-    std::uint64_t waitNs() const {
-        if (!deadline) return timeout_ns;
-        const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(*deadline - std::chrono::steady_clock::now()).count();
-        return left > 0 ? static_cast<std::uint64_t>(left) : 0;
-    }
+    std::uint64_t waitNs() const { return graph::waitNs(timeout_ns, deadline); }
+    Error timeoutOf(Error e) const { return graph::timeoutOfDetection(timeout_ns, deadline.has_value(), std::move(e)); }
 };
 
 // One candidate pair's sums, in world units.

@@ -6,6 +6,20 @@
 
 namespace vkcollide::graph {
 
+std::uint64_t waitNs(std::uint64_t timeout_ns, const std::optional<std::chrono::steady_clock::time_point>& deadline) {
+    if (!deadline) return timeout_ns;
+    const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(*deadline - std::chrono::steady_clock::now()).count();
+    return left > 0 ? static_cast<std::uint64_t>(left) : 0;
+}
+
+Error timeoutOfDetection(std::uint64_t timeout_ns, bool has_deadline, Error e) {
+    if (e.code() != ErrorCode::Timeout || !has_deadline) return e;
+    return Error(ErrorCode::Timeout,
+                 "the detection's GPU work did not finish within " + std::to_string(timeout_ns / 1000000) +
+                     " ms (its timeout, DetectSettings::timeout_ms, for every submission and rerun together)",
+                 e.vkResult());
+}
+
 ResourceId Graph::importBuffer(std::string name, vk::Buffer& buffer, bool host_readback) {
     ResourceId id = importBuffer(std::move(name), buffer.size(), host_readback);
     resources_[id.index].external_buffer = &buffer;

@@ -77,6 +77,14 @@ struct SubmitTarget {
 // How long the executor waits for the GPU unless told otherwise.
 inline constexpr std::uint64_t kDefaultTimeoutNs = 60ull * 1000 * 1000 * 1000;
 
+// The one timeout rule of a detection, for every submission and rerun of every stage: a
+// wait may take what is left before the deadline (0 once it passed), or timeout_ns where
+// there is no deadline.
+std::uint64_t waitNs(std::uint64_t timeout_ns, const std::optional<std::chrono::steady_clock::time_point>& deadline);
+// `e` as the detection's error: a Timeout under a deadline names the whole timeout (a
+// wait's own message would name only what was left of it).
+Error timeoutOfDetection(std::uint64_t timeout_ns, bool has_deadline, Error e);
+
 // Every wait takes a timeout (ns). A wait that runs out returns ErrorCode::Timeout and
 // leaves the work in flight: nothing of it is reused until a later wait (settle(), the
 // next submit(), the destructor) has seen it finish.

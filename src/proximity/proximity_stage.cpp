@@ -257,12 +257,9 @@ Result<void> ProximityStage::growRecords() {
     return {};
 }
 
-Result<graph::ExecutionReport> ProximityStage::runAlone(passes::CellPairs& cells, std::uint64_t timeout_ns) {
-    writeParams(cells);  // the records buffer may have grown
+void ProximityStage::refresh(const passes::CellPairs& cells) {
+    writeParams(cells);
     cells_args_ = cells.argsBuffer();
-    graph::Graph g;
-    record(g, cells.importOutputs(g));
-    return executor_.run(g, timeout_ns);
 }
 
 std::span<const gpu::ProximityRecord> ProximityStage::records() const noexcept {
@@ -275,7 +272,7 @@ DeviceProximity ProximityStage::view() const noexcept {
 }
 
 std::uint64_t ProximityStage::memoryBytes() const noexcept {
-    std::uint64_t total = executor_.memoryBytes();
+    std::uint64_t total = 0;
     for (const vk::Buffer* b : {&buf_.params, &buf_.owned, &buf_.object_ids, &buf_.vertex_base, &buf_.header, &buf_.header_rb,
                                 &buf_.records, &buf_.sorted, &buf_.order, &buf_.counts, &buf_.offsets, &buf_.block_sums, &buf_.args})
         total += b->memoryBytes();

@@ -44,15 +44,14 @@ public:
     // The passes, after the cell stage's (`cells`: its resources in this graph).
     void record(graph::Graph& g, const passes::CellPairs::Resources& cells);
     // After the graph ran (and the cell stage completed): Complete, or Rerun when an
-    // automatic capacity overflowed (grown: run the pass again, runAlone()). Errors:
+    // automatic capacity overflowed (grown: refresh(), then record the pass again). Errors:
     // LimitExceeded past a fixed capacity; VulkanError when the cell stage's run failed
     // (the caller must rerun both).
     enum class Outcome { Complete, Rerun };
     [[nodiscard]] Result<Outcome> finish();
-    // The passes alone on the stage's own executor, waiting at most timeout_ns.
-    [[nodiscard]] Result<graph::ExecutionReport> runAlone(passes::CellPairs& cells, std::uint64_t timeout_ns);
-    bool busy() const { return executor_.busy(); }
-    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
+    // Before the pass is recorded alone (after the cell stage ran again, or after Rerun):
+    // the parameters for the buffers as they are now (either may have grown).
+    void refresh(const passes::CellPairs& cells);
 
     // After a Complete finish(): the records in the result's order (a rare pair twice, side
     // by side), the header, and the passes run so far for this detection.
@@ -64,7 +63,7 @@ public:
     std::uint64_t memoryBytes() const noexcept;
 
 private:
-    explicit ProximityStage(vk::Device& device) : device_(&device), executor_(device) {}
+    explicit ProximityStage(vk::Device& device) : device_(&device) {}
     Result<void> grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name);
     Result<void> growRecords();  // records, sorted and order for capacity_
     void writeParams(const passes::CellPairs& cells);
@@ -81,7 +80,6 @@ private:
     std::uint32_t runs_ = 0, count_ = 0;
     VkBuffer cells_args_ = VK_NULL_HANDLE;  // the cell stage's indirect dispatches
     gpu::ProximityHeader header_{};
-    graph::Executor executor_;  // declared last: waits for its work before the buffers go
 };
 
 }  // namespace vkcollide::proximity

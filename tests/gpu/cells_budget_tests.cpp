@@ -55,10 +55,11 @@ CellScene crossing(std::uint32_t count) {
 struct Staged {
     UploadedScene up;
     passes::CellPairsInput in;
+    std::unique_ptr<graph::Executor> executor;  // what the stage's runs are submitted on
 };
 
 Staged stage(ValidatedContext& ctx, const CellScene& scene, std::uint32_t resolution, std::array<double, 3> direction) {
-    Staged s{uploadScene(ctx.device(), scene), {}};
+    Staged s{uploadScene(ctx.device(), scene), {}, std::make_unique<graph::Executor>(ctx.device())};
     s.in.objects = s.up.objects;
     s.in.projection = fitProjection(scene, direction);
     s.in.resolution = resolution;
@@ -71,7 +72,7 @@ Result<passes::CellPairsResult> runWith(passes::CellPairs& cells, const Staged& 
     passes::CellPairsSettings settings;
     settings.max_candidate_pairs = budget;
     settings.initial = initial;
-    return cells.run(s.in, settings);
+    return cells.run(*s.executor, s.in, settings);
 }
 
 // What a run needs of the budget: the largest of its three counts (comparisons divided
@@ -101,7 +102,7 @@ TEST_CASE("cells: past the budget a run fails naming the count, at the budget it
         REQUIRE(cells);
         const Staged s = stage(ctx, c.scene, c.resolution, c.direction);
         // Unbounded (the stage's own limit): the counts the budget is checked against.
-        auto full = (*cells)->run(s.in);
+        auto full = (*cells)->run(*s.executor, s.in);
         REQUIRE(full);
         const passes::CellPairsStats st = full->stats;
         requireAllFound(CellRun{*full, toObjectPairs(s.up.objects, full->pairs)}, referencePairs(c.scene));
@@ -160,7 +161,7 @@ TEST_CASE("cells: first capacities never exceed a small budget, a budget of 0 fa
     const Staged s = stage(ctx, scene, 4, {1.0, 0.31, 0.17});
     auto cells = passes::CellPairs::create(ctx.device());
     REQUIRE(cells);
-    auto full = (*cells)->run(s.in);
+    auto full = (*cells)->run(*s.executor, s.in);
     REQUIRE(full);
     const std::uint64_t enough = need(full->stats);
     // The estimates (8 entries and 2 candidates per triangle, at least 4,096) are above it.

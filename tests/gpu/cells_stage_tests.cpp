@@ -86,7 +86,8 @@ TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "
     passes::CellPairsSettings s;
     s.initial = {1, 1, 1, 1};
     s.max_runs = 1;
-    auto r = (*limited)->run(in, s);
+    graph::Executor executor(ctx.device());
+    auto r = (*limited)->run(executor, in, s);
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::OutOfMemory);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
@@ -324,7 +325,8 @@ TEST_CASE("cells: bad input is refused, naming the object and triangle", "[cells
         in.projection = fitProjection(scene, {0, 0, 1});
         in.resolution = 32;
         edit(in, up);
-        auto r = (*stage)->run(in);
+        graph::Executor executor(ctx.device());
+        auto r = (*stage)->run(executor, in);
         REQUIRE_NO_VALIDATION_MESSAGES(ctx);
         return r;
     };

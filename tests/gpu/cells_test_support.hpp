@@ -188,7 +188,8 @@ inline CellRun runCells(ValidatedContext& ctx, passes::CellPairs& stage, const C
     in.resolution = opt.resolution;
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) in.self_collision.push_back(scene.selfOf(i) ? 1 : 0);
     in.may_collide = opt.may_collide;
-    auto r = stage.run(in, opt.settings);
+    graph::Executor executor(ctx.device());
+    auto r = stage.run(executor, in, opt.settings);
     INFO((r ? std::string() : r.error().message()));
     REQUIRE(r);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

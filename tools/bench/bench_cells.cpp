@@ -384,12 +384,12 @@ int main(int argc, char** argv) {
                 in.projection = geo.projection;
                 in.resolution = row.n;
                 in.self_collision = scene->self;
-                (void)(*stage)->run(in);  // warm-up: buffers grow to this scene and resolution
+                (void)(*stage)->run(executor, in);  // warm-up: buffers grow to this scene and resolution
                 const int runs = spec.deforming ? 1 : repeat;
                 passes::CellPairsResult result;
                 for (int r = 0; r < runs; ++r) {
                     const auto t0 = Clock::now();
-                    auto res = (*stage)->run(in);
+                    auto res = (*stage)->run(executor, in);
                     const double wall = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
                     if (!res) {
                         std::fprintf(stderr, "%s N=%u: %s\n", spec.name.c_str(), row.n, res.error().message().c_str());

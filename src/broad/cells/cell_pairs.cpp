@@ -346,14 +346,7 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
     return Outcome::Complete;
 }
 
-Result<graph::ExecutionReport> CellPairs::runAgain(vk::Buffer* projection, std::uint64_t timeout_ns) {
-    survivor_count_ = gpu_triangle_count_ = 0;
-    graph::Graph g;
-    record(g, projection ? g.importBuffer("projection", *projection) : graph::ResourceId{});
-    return executor_.run(g, timeout_ns);
-}
-
-Result<CellPairsResult> CellPairs::run(const CellPairsInput& input, const CellPairsSettings& settings) {
+Result<CellPairsResult> CellPairs::run(graph::Executor& executor, const CellPairsInput& input, const CellPairsSettings& settings) {
     if (input.projection_address != 0)
         return Error(ErrorCode::InvalidArgument, "cell pairs: run() needs a host projection (record() takes a projection address)");
     if (auto ok = prepare(input, settings); !ok) return ok.error();
@@ -361,7 +354,7 @@ Result<CellPairsResult> CellPairs::run(const CellPairsInput& input, const CellPa
     for (std::uint32_t attempt = 0; attempt < std::max(settings.max_runs, 1u); ++attempt) {
         graph::Graph g;
         record(g);
-        auto report = executor_.run(g);
+        auto report = executor.run(g);
         if (!report) return report.error();
         auto outcome = finish(out);
         if (!outcome) return outcome.error();
@@ -383,7 +376,7 @@ std::uint64_t CellPairs::memoryBytes() const noexcept {
                                 &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.candidates,
                                 &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks})
         total += b->memoryBytes();
-    return total + executor_.memoryBytes();
+    return total;
 }
 
 }  // namespace vkcollide::passes

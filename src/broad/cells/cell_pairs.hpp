@@ -20,13 +20,15 @@
 // run fails with LimitExceeded, so pathological scenes (stacks of identical triangles)
 // cost bounded time and memory.
 //
-// Two ways to use it: run() (prepare, record, run and finish on its own executor, pairs
-// sorted and unique), or as part of a larger graph (ReliableMethod): prepare(), record()
-// after the passes that write the projection, and after that graph ran finish(stats), the
-// survivors read in place (survivors(), gpuTriangles()), with runAgain() after an overflow.
+// Two ways to use it: run() (prepare, record, run and finish on the caller's executor,
+// pairs sorted and unique; tests and the stage benchmark), or as part of a larger graph
+// (ReliableMethod): prepare(), record() after the passes that write the projection, and
+// after that graph ran finish(stats), the survivors read in place (survivors(),
+// gpuTriangles()); after an overflow record() and run the stage again (the broad phase's
+// Again submission). It submits nothing itself.
 //
-// Not thread-safe; one instance per user (it owns its buffers and executor). Buffers are
-// kept between runs and only grow, so a steady scene allocates nothing per run.
+// Not thread-safe; one instance per user (it owns its buffers). Buffers are kept between
+// runs and only grow, so a steady scene allocates nothing per run.
 #pragma once
 
 #include <array>
@@ -171,21 +173,12 @@ public:
     // The same without host work beyond the header: Complete fills `out_stats` (not
     // host_duplicates) and makes survivors() and gpuTriangles() valid.
     [[nodiscard]] Result<Outcome> finish(CellPairsStats& out_stats);
-    // After a Complete finish, until the next prepare(), record() or runAgain(): the
+    // After a Complete finish, until the next prepare() or record(): the
     // survivors as the GPU wrote them (global ids, a < b, unsorted, a rare pair twice)
     // and the download objects' triangles, read in place from host-visible (cached where
     // the device has it) memory.
     std::span<const CandidatePair> survivors() const noexcept;
     std::span<const GpuTriangle> gpuTriangles() const noexcept;
-    // After finish() returned Rerun: records the stage alone and runs it on the stage's
-    // own executor (waits up to timeout_ns; a Timeout leaves the work running, and the
-    // next prepare() must not come before it ends: busy()). `projection`: the buffer holding
-    // the projection when the input gave projection_address (its contents are kept from
-    // the first run).
-    [[nodiscard]] Result<graph::ExecutionReport> runAgain(vk::Buffer* projection, std::uint64_t timeout_ns = graph::kDefaultTimeoutNs);
-    // Whether a rerun that timed out still runs on the GPU; settle() waits up to timeout_ns.
-    bool busy() const { return executor_.busy(); }
-    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
     // After finish() failed on bad input found on the GPU: the flags (gpu::kCellsBad*),
     // the object (index in the input) and its triangle.
     struct BadInput {
@@ -193,9 +186,11 @@ public:
     };
     const std::optional<BadInput>& badInput() const noexcept { return bad_input_; }
 
-    // prepare(), then record, run and finish with its own executor until complete (at
-    // most settings.max_runs runs; then OutOfMemory).
-    [[nodiscard]] Result<CellPairsResult> run(const CellPairsInput& input, const CellPairsSettings& settings = {});
+    // prepare(), then record, run (on `executor`, default waits) and finish until complete
+    // (at most settings.max_runs runs; then OutOfMemory).
+    [[nodiscard]] Result<CellPairsResult> run(graph::Executor& executor, const CellPairsInput& input, const CellPairsSettings& settings = {});
+    // The runs finish() has read since prepare() (the first plus one per overflow).
+    std::uint32_t runs() const noexcept { return runs_; }
 
     // The capacities the next run uses.
     const CellPairsCapacity& capacity() const noexcept { return capacity_; }
@@ -203,7 +198,7 @@ public:
     std::uint64_t memoryBytes() const noexcept;
 
 private:
-    explicit CellPairs(vk::Device& device) : device_(&device), executor_(device) {}
+    explicit CellPairs(vk::Device& device) : device_(&device) {}
     Result<void> ensureBuffers();
     void writeParams();
     Result<void> checkFailure(const gpu::CellsHeader& header);
@@ -235,8 +230,6 @@ private:
     std::uint64_t asked_budget_ = 0;       // as the settings gave it (for the messages)
     CellPairsCapacity capacity_;
     std::uint32_t runs_ = 0;
-    // Declared last, destroyed first: it waits for work in flight before the buffers go.
-    graph::Executor executor_;
 };
 
 }  // namespace vkcollide::passes

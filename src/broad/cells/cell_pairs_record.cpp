@@ -29,6 +29,7 @@ graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage 
 }  // namespace
 
 CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
+    survivor_count_ = gpu_triangle_count_ = 0;  // until this recording's finish()
     const VkDeviceAddress params = buf_.params.address();
     // The count buffer is cleared and scanned over its capacity while that is within a
     // quarter of this run's cells (the shaders stop at the params' cell and block counts):

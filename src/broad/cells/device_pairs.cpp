@@ -222,18 +222,12 @@ gpu::DevicePairsHeader DevicePairStage::header() const {
     return h;
 }
 
-Result<graph::ExecutionReport> DevicePairStage::runAlone(CellPairs& cells, std::uint64_t timeout_ns) {
-    graph::Graph g;
-    record(g, cells.importOutputs(g));
-    return executor_.run(g, timeout_ns);
-}
-
 DevicePairsView DevicePairStage::view() const noexcept {
     return {buf_.pairs.handle(), buf_.header.handle(), buf_.pairs.address(), buf_.header.address(), capacity_};
 }
 
 std::uint64_t DevicePairStage::memoryBytes() const noexcept {
-    std::uint64_t total = executor_.memoryBytes();
+    std::uint64_t total = 0;
     for (const vk::Buffer* b : {&buf_.params, &buf_.object_ids, &buf_.counts, &buf_.offsets, &buf_.out_offsets, &buf_.block_sums,
                                 &buf_.partners, &buf_.args, &buf_.header, &buf_.pairs, &buf_.header_rb, &buf_.host_pairs})
         total += b->memoryBytes();

@@ -45,16 +45,11 @@ public:
     // result (hostPairs()); the engine's device-local buffer is then only the copy's source.
     [[nodiscard]] Result<void> prepare(const CellPairs& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
                                        VkDeviceAddress fault_header, bool header_to_host = false, bool for_host = false);
-    // The passes, after the cell stage's (`cells`: its resources in this graph); `fault_header`
-    // the broad phase header's resource (invalid: not in this graph).
+    // The passes, after the cell stage's (`cells`: its resources in this graph, or its
+    // outputs imported alone after it ran again on an overflow, so that the buffers hold
+    // the final run's pairs); `fault_header` the broad phase header's resource (invalid:
+    // not in this graph).
     void record(graph::Graph& g, const CellPairs::Resources& cells, graph::ResourceId fault_header = {});
-    // The passes alone on the stage's own executor (waits): after the cell stage ran again
-    // on its own (an overflow), so that the buffers hold the final run's pairs.
-    // Whether a sort that timed out still runs on the GPU; settle() waits up to timeout_ns.
-    bool busy() const { return executor_.busy(); }
-    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) { return executor_.settle(timeout_ns); }
-    // Waits at most timeout_ns (what is left of the detection's time) for the GPU.
-    [[nodiscard]] Result<graph::ExecutionReport> runAlone(CellPairs& cells, std::uint64_t timeout_ns);
     // Called at each detection's start: frees what was retired two starts ago.
     void retire();
 
@@ -66,7 +61,7 @@ public:
     std::uint64_t memoryBytes() const noexcept;
 
 private:
-    explicit DevicePairStage(vk::Device& device) : device_(&device), executor_(device) {}
+    explicit DevicePairStage(vk::Device& device) : device_(&device) {}
     Result<void> grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name, bool keep_old);
 
     vk::Device* device_;
@@ -78,7 +73,6 @@ private:
     bool header_to_host_ = false, for_host_ = false;
     // Output buffers replaced since the last start, and at the start before it.
     std::vector<vk::Buffer> retired_new_, retired_old_;
-    graph::Executor executor_;  // declared last: waits for its work before the buffers go
 };
 
 }  // namespace vkcollide::passes

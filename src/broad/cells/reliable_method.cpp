@@ -16,6 +16,8 @@ Result<std::unique_ptr<BroadPhaseMethod>> ReliableMethod::create(vk::Device& dev
 // writes (or the caller's region, uploaded there), per-object flags and the pair mask.
 Result<void> ReliableMethod::prepareStage(const RunView& run) {
     fault_.reset();
+    again_ = Step::Cells;
+    cells_done_ = proximity_stale_ = proximity_done_ = host_sort_grown_ = false;
     const std::size_t n = run.meshes.size();
     CellPairsInput& in = input_;
     in.objects = run.objects;
@@ -84,32 +86,19 @@ Result<void> ReliableMethod::prepareSort() {
                                   sorted_for_host_);
 }
 
-Result<void> ReliableMethod::sortAlone(const RunView& run, const char* what, BroadPhaseResult& io_result) {
-    if (auto ok = prepareSort(); !ok) return ok.error();
-    return runAlone(run, what, io_result, [&](std::uint64_t wait_ns) { return device_pairs_->runAlone(*cells_, wait_ns); });
-}
-
-void ReliableMethod::recordMain(graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
-    const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
-    if (proximity_on_) proximity_->record(g, cells);
-    if (sorting()) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
-}
-
-// One submission after the run's own (a rerun, a sort), within what is left of the run's
-// deadline (BroadPhaseSettings::deadline: nothing starts after it ends); its passes join the
-// run's times.
-template <typename Submit>
-Result<void> ReliableMethod::runAlone(const RunView& run, const char* what, BroadPhaseResult& io_result, Submit&& submit) {
-    const std::uint64_t wait_ns = waitNs(run.settings);
-    if (run.settings.deadline && wait_ns == 0)
-        return timeoutOfRun(run.settings, Error(ErrorCode::Timeout, std::string("deadline passed before ") + what));
-    Result<graph::ExecutionReport> report = submit(wait_ns);
-    if (!report) return report.error();
-    for (const graph::PassTiming& p : report->passes) {
-        addStageTime(io_result, p);
-        io_result.passes.push_back(p);
+void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
+    if (phase == Phase::Measure) return;
+    if (phase == Phase::Main || again_ == Step::Cells) {
+        // The projection the front wrote stays in its buffer for a rerun.
+        const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
+        if (phase == Phase::Again) return;  // the stage alone: the passes after it run once it completes
+        if (proximity_on_) proximity_->record(g, cells);
+        if (sorting()) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
+        return;
     }
-    return {};
+    const CellPairs::Resources cells = cells_->importOutputs(g);
+    if (again_ == Step::Sort) device_pairs_->record(g, cells);
+    if (again_ == Step::Proximity) proximity_->record(g, cells);
 }
 
 // The host copy's capacity for `expected` pairs: a quarter more, at least 4096, at most the
@@ -119,87 +108,101 @@ std::uint32_t ReliableMethod::hostSortCapacity(std::uint64_t expected) const {
     return static_cast<std::uint32_t>(std::min<std::uint64_t>(wanted, std::max(cells_->capacity().survivors, 1u)));
 }
 
-Result<void> ReliableMethod::collect(const RunView& run, const gpu::Header&, BroadPhaseResult& result) {
-    const CellPairsSettings limits;
-    for (std::uint32_t runs = 1;; ++runs) {
-        auto outcome = cells_->finish(result.cells);
-        if (!outcome) {
-            // Bad input only this stage checks (magnitudes of 2^62 and more): named as a
-            // fault of the object, so the detection's BadObjectPolicy applies to it.
-            if (const auto& bad = cells_->badInput(); bad && bad->object < run.meshes.size()) {
-                const bool index = (bad->flags & gpu::kCellsBadIndex) != 0;
-                fault_ = ObjectFault{bad->object, index ? ObjectFault::Kind::IndexOutOfRange : ObjectFault::Kind::OutOfRange,
-                                     bad->triangle, 1, run.meshes[bad->object].vertex_count};
-            }
-            return outcome.error();
-        }
-        if (*outcome == CellPairs::Outcome::Complete) break;
-        if (runs >= limits.max_runs)
-            return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(runs) + " runs (entries " +
-                                                     std::to_string(cells_->capacity().entries) + ", candidates " +
-                                                     std::to_string(cells_->capacity().candidates) + ")");
-        // An overflow: the stage alone again, its buffers grown; the projection stays.
-        if (auto ok = runAlone(run, "a rerun", result, [&](std::uint64_t wait_ns) {
-                return cells_->runAgain(&table_->buffer(core_.projection), wait_ns);
-            });
-            !ok)
-            return ok;
-    }
-    if (sorting() && result.cells.runs > 1) {
-        // The device pairs of the first run say Incomplete: sort the final run's survivors
-        // (the stage's buffers may have grown, so size for them first).
-        if (auto ok = sortAlone(run, "sorting the device pairs", result); !ok) return ok;
-    }
-    if (proximity_on_) {
-        // The pass of the first run saw it fail when the stage ran again: once more after it.
-        bool again = result.cells.runs > 1;
-        for (std::uint32_t runs = 0;; ++runs) {
-            if (again)
-                if (auto ok = runAlone(run, "the proximity pass", result,
-                                       [&](std::uint64_t wait_ns) { return proximity_->runAlone(*cells_, wait_ns); });
-                    !ok)
-                    return ok;
-            auto outcome = proximity_->finish();
-            if (!outcome) return outcome.error();
-            if (*outcome == proximity::ProximityStage::Outcome::Complete) break;
-            if (runs + 1 >= limits.max_runs)
-                return Error(ErrorCode::OutOfMemory, "proximity: the record buffer still overflowed after " + std::to_string(runs + 1) + " runs");
-            again = true;
-        }
-        result.has_proximity = true;
-        const std::span<const gpu::ProximityRecord> records = proximity_->records();
-        // The public record is the GPU's (static_asserts in proximity_stage.cpp).
-        result.proximity = {reinterpret_cast<const ProximityPair*>(records.data()), records.size()};
-        const gpu::ProximityHeader& h = proximity_->header();
-        result.proximity_counts = {h.pairs_tested, h.distances, h.neighbours, h.capacity};
-        result.proximity_runs = proximity_->runs();
-        result.proximity_device = proximity_->view();
-    }
+// Each step ends in the result or asks for its passes again (the broad phase records
+// Phase::Again and calls collect() once more): the cell stage until it completes, then
+// the device pairs and the proximity pass, whose first run saw the stage fail, once more
+// each, then their own overflows.
+Result<Collected> ReliableMethod::collect(const RunView& run, const gpu::Header&, BroadPhaseResult& result) {
+    if (!cells_done_)
+        if (auto step = collectCells(run, result); !step || *step == Collected::Again) return step;
+    if (proximity_on_ && !proximity_done_)
+        if (auto step = collectProximity(result); !step || *step == Collected::Again) return step;
     result.has_pairs = true;
-    if (sorted_for_host_) {
-        gpu::DevicePairsHeader h = device_pairs_->header();
-        if (h.flags == gpu::kDevicePairsOverflow) {
-            // More pairs than expected: sort again into a copy that holds them all.
-            device_pair_capacity_ = hostSortCapacity(h.needed);
-            if (auto ok = sortAlone(run, "sorting the pairs again", result); !ok) return ok;
-            h = device_pairs_->header();
-        }
-        if (h.flags != 0 || h.count != h.needed)
-            return Error(ErrorCode::VulkanError, "sorted pairs: the GPU's sort ended with flags " + std::to_string(h.flags) + ", " +
-                                                     std::to_string(h.count) + " of " + std::to_string(h.needed) + " pairs (internal error)");
-        result.has_sorted_pairs = true;
-        result.sorted_pairs = device_pairs_->hostPairs(h.count);
-        result.gpu_triangles = cells_->gpuTriangles();
-        return {};
-    }
+    if (sorted_for_host_) return collectSorted(result);
     if (pairs_on_device_only_) {
         const gpu::DevicePairsHeader h = device_pairs_->header();
         result.device_header = BroadPhaseResult::DeviceHeader{h.count, h.needed, h.flags, h.capacity};
-        return {};
+        return Collected::Done;
     }
     result.pairs = cells_->survivors();
     result.gpu_triangles = cells_->gpuTriangles();
-    return {};
+    return Collected::Done;
+}
+
+Result<Collected> ReliableMethod::collectCells(const RunView& run, BroadPhaseResult& result) {
+    auto outcome = cells_->finish(result.cells);
+    if (!outcome) {
+        // Bad input only this stage checks (magnitudes of 2^62 and more): named as a fault
+        // of the object, so the detection's BadObjectPolicy applies to it.
+        if (const auto& bad = cells_->badInput(); bad && bad->object < run.meshes.size()) {
+            const bool index = (bad->flags & gpu::kCellsBadIndex) != 0;
+            fault_ = ObjectFault{bad->object, index ? ObjectFault::Kind::IndexOutOfRange : ObjectFault::Kind::OutOfRange,
+                                 bad->triangle, 1, run.meshes[bad->object].vertex_count};
+        }
+        return outcome.error();
+    }
+    if (*outcome == CellPairs::Outcome::Rerun) {
+        if (cells_->runs() >= CellPairsSettings{}.max_runs)
+            return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(cells_->runs()) +
+                                                     " runs (entries " + std::to_string(cells_->capacity().entries) +
+                                                     ", candidates " + std::to_string(cells_->capacity().candidates) + ")");
+        // An overflow: the stage alone again, its buffers grown; the projection stays.
+        proximity_stale_ = proximity_on_;
+        return again(Step::Cells);
+    }
+    cells_done_ = true;
+    if (sorting() && result.cells.runs > 1) {
+        // The device pairs of the first run say Incomplete: sort the final run's survivors
+        // (the stage's buffers may have grown, so size for them first).
+        if (auto ok = prepareSort(); !ok) return ok.error();
+        return again(Step::Sort);
+    }
+    return Collected::Done;
+}
+
+Result<Collected> ReliableMethod::collectProximity(BroadPhaseResult& result) {
+    if (proximity_stale_) {
+        // The pass of the first run saw the stage fail: once more after it completed.
+        proximity_stale_ = false;
+        proximity_->refresh(*cells_);
+        return again(Step::Proximity);
+    }
+    auto outcome = proximity_->finish();
+    if (!outcome) return outcome.error();
+    if (*outcome == proximity::ProximityStage::Outcome::Rerun) {
+        if (proximity_->runs() >= CellPairsSettings{}.max_runs)
+            return Error(ErrorCode::OutOfMemory, "proximity: the record buffer still overflowed after " + std::to_string(proximity_->runs()) + " runs");
+        proximity_->refresh(*cells_);
+        return again(Step::Proximity);
+    }
+    proximity_done_ = true;
+    result.has_proximity = true;
+    const std::span<const gpu::ProximityRecord> records = proximity_->records();
+    // The public record is the GPU's (static_asserts in proximity_stage.cpp).
+    result.proximity = {reinterpret_cast<const ProximityPair*>(records.data()), records.size()};
+    const gpu::ProximityHeader& h = proximity_->header();
+    result.proximity_counts = {h.pairs_tested, h.distances, h.neighbours, h.capacity};
+    result.proximity_runs = proximity_->runs();
+    result.proximity_device = proximity_->view();
+    return Collected::Done;
+}
+
+Result<Collected> ReliableMethod::collectSorted(BroadPhaseResult& result) {
+    gpu::DevicePairsHeader h = device_pairs_->header();
+    if (h.flags == gpu::kDevicePairsOverflow && !host_sort_grown_) {
+        // More pairs than expected: sort again into a copy that holds them all.
+        host_sort_grown_ = true;
+        device_pair_capacity_ = hostSortCapacity(h.needed);
+        if (auto ok = prepareSort(); !ok) return ok.error();
+        return again(Step::Sort);
+    }
+    if (h.flags != 0 || h.count != h.needed)
+        return Error(ErrorCode::VulkanError, "sorted pairs: the GPU's sort ended with flags " + std::to_string(h.flags) + ", " +
+                                                 std::to_string(h.count) + " of " + std::to_string(h.needed) + " pairs (internal error)");
+    result.has_sorted_pairs = true;
+    result.sorted_pairs = device_pairs_->hostPairs(h.count);
+    result.gpu_triangles = cells_->gpuTriangles();
+    return Collected::Done;
 }
 
 }  // namespace vkcollide::passes

@@ -7,8 +7,9 @@
 //   readback  the broad phase's header                    common_stages.hpp
 //   (device pairs, BroadPhaseSettings::device_pairs: pairs-clear/args/bucket/sort after
 //             the stage's passes, device_pairs.hpp)
-//   collect   the stage's header; after an overflow the stage alone again (its buffers
-//             already grown), until complete, then the device pairs alone; the survivors
+//   collect   the stage's header; after an overflow Again (the broad phase runs the
+//             stage's passes alone, its buffers already grown) until complete, then the
+//             device pairs and the proximity pass once more (Again each); the survivors
 //             and the engine meshes' triangles as views of host-visible memory
 //             (BroadPhaseResult::pairs, gpu_triangles), nothing sorted or copied on the host.
 //
@@ -36,12 +37,11 @@ public:
 
     MethodTraits traits() const noexcept override { return {false, false, true}; }
     Result<void> prepare(const BroadPhaseSettings&, const RunShape&, gpu::Frame&) override { return {}; }
+    // Nothing measured, nothing predicted: the stage sizes its buffers from the scene.
+    Result<void> begin(const RunView& run, const gpu::Header*, std::uint32_t) override { return prepareStage(run); }
     void import(graph::Graph&) override {}
-    void recordMeasure(graph::Graph&, const RunView&, const GraphBuffers&) const override {}
-    Result<void> afterMeasure(const RunView& run, const gpu::Header&) override { return prepareStage(run); }
-    Result<void> predict(const RunView& run, std::uint32_t) override { return prepareStage(run); }
-    void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
-    Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
+    void record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
+    Result<Collected> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
     std::optional<ObjectFault> fault() const override { return fault_; }
     std::uint64_t memoryBytes() const noexcept override {
         return cells_->memoryBytes() + (device_pairs_ ? device_pairs_->memoryBytes() : 0) + (proximity_ ? proximity_->memoryBytes() : 0);
@@ -50,23 +50,20 @@ public:
         if (!device_pairs_on_) return std::nullopt;  // sorted_for_host_'s buffers are the host's
         return device_pairs_->view();
     }
-    // A rerun of the stage or a sort of its pairs that timed out (each has its executor).
-    bool busy() const override {
-        return cells_->busy() || (device_pairs_ && device_pairs_->busy()) || (proximity_ && proximity_->busy());
-    }
-    [[nodiscard]] Result<void> settle(std::uint64_t timeout_ns) override {
-        if (auto ok = cells_->settle(timeout_ns); !ok) return ok;
-        if (proximity_)
-            if (auto ok = proximity_->settle(timeout_ns); !ok) return ok;
-        return device_pairs_ ? device_pairs_->settle(timeout_ns) : Result<void>{};
-    }
 
 private:
     ReliableMethod(vk::Device& device, BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellPairs> cells)
         : device_(&device), table_(&table), core_(core), cells_(std::move(cells)) {}
     Result<void> prepareStage(const RunView& run);
-    template <typename Submit>
-    Result<void> runAlone(const RunView& run, const char* what, BroadPhaseResult& io_result, Submit&& submit);
+    // collect()'s steps, in order; each answers Again after asking for its passes.
+    Result<Collected> collectCells(const RunView& run, BroadPhaseResult& io_result);
+    Result<Collected> collectProximity(BroadPhaseResult& io_result);
+    Result<Collected> collectSorted(BroadPhaseResult& io_result);
+    enum class Step { Cells, Sort, Proximity };
+    Collected again(Step step) {
+        again_ = step;
+        return Collected::Again;
+    }
 
     vk::Device* device_;
     BufferTable* table_;
@@ -83,16 +80,18 @@ private:
     bool sorted_for_host_ = false;       // the host result's pairs sorted on the GPU (sort_on_gpu)
     bool sorting() const { return device_pairs_on_ || sorted_for_host_; }  // the device-pairs passes run
     std::uint32_t hostSortCapacity(std::uint64_t expected) const;
-    // The device-pairs stage sized for this run (capacity, where its header and pairs go),
-    // and run alone after it (a rerun of the cell stage, a larger host copy).
+    // The device-pairs stage sized for this run (capacity, where its header and pairs go);
+    // again after a rerun of the cell stage and for a larger host copy.
     [[nodiscard]] Result<void> prepareSort();
-    [[nodiscard]] Result<void> sortAlone(const RunView& run, const char* what, BroadPhaseResult& io_result);
     std::uint32_t device_pair_capacity_ = 0;
     std::vector<std::uint32_t> object_tags_;
     VkDeviceAddress fault_header_ = 0;
     // Proximity (BroadPhaseSettings::proximity_distance): made on first use.
     std::unique_ptr<proximity::ProximityStage> proximity_;
     bool proximity_on_ = false;
+    // Where collect() is in a run: the steps done, what Phase::Again records.
+    Step again_ = Step::Cells;
+    bool cells_done_ = false, proximity_stale_ = false, proximity_done_ = false, host_sort_grown_ = false;
 };
 
 }  // namespace vkcollide::passes

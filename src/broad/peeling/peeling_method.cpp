@@ -97,8 +97,12 @@ SamplingBuffers PeelingMethod::samplingBuffers(const GraphBuffers& b) const {
     return {b[core_.projection], b[core_.header], b[buf_.counts], b[buf_.state], b[buf_.front], b[buf_.back], b[buf_.fragments]};
 }
 
-void PeelingMethod::recordMeasure(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const {
-    sampling_->recordMeasure(g, run, samplingBuffers(buffers));
+void PeelingMethod::record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const {
+    switch (phase) {
+        case Phase::Measure: sampling_->recordMeasure(g, run, samplingBuffers(buffers)); return;
+        case Phase::Main: recordMain(g, run, buffers); return;
+        case Phase::Again: return;  // collect() never asks for it
+    }
 }
 
 void PeelingMethod::setLayers(const RunView& run, std::uint32_t layers) {
@@ -109,17 +113,13 @@ void PeelingMethod::setLayers(const RunView& run, std::uint32_t layers) {
     steps_ = run.settings.dual ? (layers_ + 1) / 2 : layers_;
 }
 
-Result<void> PeelingMethod::afterMeasure(const RunView& run, const gpu::Header& header) {
-    // The compute backend sizes its per-ray fragment lists for the measured depth.
-    if (auto ok = sampling_->preparePeeling(header.depth_complexity); !ok) return ok.error();
-    setLayers(run, header.depth_complexity);
-    return {};
-}
-
-Result<void> PeelingMethod::predict(const RunView& run, std::uint32_t layers) {
-    // Unknown depth: the compute backend draws each peeling step (fragment lists could be
-    // incomplete if the scene got deeper, and that would not be conservative).
-    if (auto ok = sampling_->preparePeeling(0); !ok) return ok.error();
+Result<void> PeelingMethod::begin(const RunView& run, const gpu::Header* measured, std::uint32_t predicted_layers) {
+    // Measured: the compute backend sizes its per-ray fragment lists for that depth.
+    // Predicted: the depth is unknown, so the compute backend draws each peeling step
+    // (fragment lists could be incomplete if the scene got deeper, and that would not be
+    // conservative).
+    const std::uint32_t layers = measured ? measured->depth_complexity : predicted_layers;
+    if (auto ok = sampling_->preparePeeling(measured ? layers : 0); !ok) return ok.error();
     setLayers(run, layers);
     return {};
 }
@@ -136,7 +136,7 @@ void PeelingMethod::recordMain(graph::Graph& g, const RunView& run, const GraphB
                      {b[buf_.sparse], b[buf_.scratch], b[core_.header], b[core_.projection], b[buf_.records], b[buf_.sparse_depth]});
 }
 
-Result<void> PeelingMethod::collect(const RunView& run, const gpu::Header& h, BroadPhaseResult& result) {
+Result<Collected> PeelingMethod::collect(const RunView& run, const gpu::Header& h, BroadPhaseResult& result) {
     const std::uint32_t triangles = run.frame.triangle_count, pixels = run.frame.resolution * run.frame.resolution;
     sampling_->report(h, triangles, result);
     result.layers = layers_;
@@ -166,7 +166,7 @@ Result<void> PeelingMethod::collect(const RunView& run, const gpu::Header& h, Br
             std::memcpy(result.ray_depth.data(), depths.mapped(), size_t(pixels) * sizeof(result.ray_depth[0]));
         }
     }
-    return {};
+    return Collected::Done;
 }
 
 }  // namespace vkcollide::passes

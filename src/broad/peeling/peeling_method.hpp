@@ -35,17 +35,18 @@ public:
 
     Result<void> prepare(const BroadPhaseSettings& settings, const RunShape& shape, gpu::Frame& io_frame) override;
     void import(graph::Graph& g) override { sampling_->import(g); }
-    void recordMeasure(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
-    Result<void> afterMeasure(const RunView& run, const gpu::Header& header) override;
-    Result<void> predict(const RunView& run, std::uint32_t layers) override;
-    void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
-    Result<void> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
+    Result<void> begin(const RunView& run, const gpu::Header* measured, std::uint32_t predicted_layers) override;
+    // Measure: the depth complexity; Main: peeling, merging, separation, packing. Nothing
+    // overflows on the GPU, so there is no Again.
+    void record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
+    Result<Collected> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
     std::uint64_t memoryBytes() const noexcept override { return sampling_->memoryBytes(); }
 
 private:
     PeelingMethod(BufferTable& table, const CoreBuffers& core) : table_(&table), core_(core) {}
     SamplingBuffers samplingBuffers(const GraphBuffers& buffers) const;
     void setLayers(const RunView& run, std::uint32_t layers);
+    void recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const;
 
     BufferTable* table_;
     CoreBuffers core_;

@@ -95,8 +95,9 @@ VKC_CONST kCellsMaxExponentBits = 189u;  // biased exponent of 2^62
 VKC_CONST kCellsArgsBig = 0u;    // big-triangle work items (count and fill)
 VKC_CONST kCellsArgsSweep = 1u;  // one invocation per entry
 VKC_CONST kCellsArgsDeep = 2u;   // deep-cell work items
-VKC_CONST kCellsArgsPairs = 3u;  // one invocation per candidate
-VKC_CONST kCellsArgsCount = 4u;
+VKC_CONST kCellsArgsPairs = 3u;  // one invocation per candidate (passes after the pair pass)
+VKC_CONST kCellsArgsPairChunk = 4u;  // the pair pass: one invocation per candidate of its chunk
+VKC_CONST kCellsArgsCount = 5u;
 
 // One triangle after setup (80 bytes + 4), written once, read by the count, fill and pair
 // passes, so all of them see the same footprint and depth bounds bit for bit.
@@ -172,6 +173,8 @@ struct CellsHeader {
     uint64_t comparisons;   // pairs of footprints sharing a cell, k (k - 1) / 2 summed over cells (scan)
     uint exact_tests;  // candidates the exact test decided (CellsParams.exact)
     uint exact_neighbours;  // of those, left out as neighbours: a bit-identical world vertex
+    uint pairs_done;        // candidates the pair pass's chunks so far cover (CellsParams.pair_chunk)
+    uint header_pad;
 };
 
 // Everything the shaders need, uploaded once per run (Push.frame points here).
@@ -218,7 +221,10 @@ struct CellsParams {
     // Proximity: every triangle grown by this many world units along each axis (half the
     // distance, rounded up), so two triangles closer than the distance share a point.
     float proximity_pad;
-    uint pad;
+    // Candidates the pair pass decides per submission: chunk k (the push constant's step)
+    // covers [k * pair_chunk, (k + 1) * pair_chunk), so that no submission holds more
+    // than about a target time of work (CellPairs: the device's measured rate).
+    uint pair_chunk;
 };
 
 // ---- Device pairs (DetectSettings::device_pairs; src/broad/cells/device_pairs.cpp) -------

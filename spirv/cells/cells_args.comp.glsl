@@ -4,7 +4,8 @@
 // previous pass left in the header; nothing to do (0 workgroups) once the run failed.
 //   step 0, after setup: big-triangle work items (count and fill);
 //   step 1, after the scan: the sweep (one invocation per entry) and the deep cells;
-//   step 2, after the sweep: the pair pass (one invocation per candidate).
+//   step 2 + k, after the sweep: every candidate (passes after the pair pass) and the pair
+//   pass's chunk k (one invocation per candidate in it); the chunks so far into the header.
 #include "cells_common.glsl.inc"
 layout(local_size_x = 1) in;
 
@@ -20,6 +21,11 @@ void main() {
         writeDispatch(P, kCellsArgsSweep, failed ? 0u : groupsFor(h.entries));
         writeDispatch(P, kCellsArgsDeep, failed ? 0u : min(h.deep_items, P.deep_capacity));
     } else {
-        writeDispatch(P, kCellsArgsPairs, failed ? 0u : groupsFor(uint(min(h.candidates, uint64_t(P.candidate_capacity)))));
+        uint total = failed ? 0u : uint(min(h.candidates, uint64_t(P.candidate_capacity)));
+        uint first = (pc.step - 2u) * P.pair_chunk;  // at most total + pair_chunk < 2^32
+        uint n = total > first ? min(total - first, P.pair_chunk) : 0u;
+        writeDispatch(P, kCellsArgsPairs, groupsFor(total));
+        writeDispatch(P, kCellsArgsPairChunk, groupsFor(n));
+        if (!failed) cellsHeader(P).h.pairs_done = first + n;
     }
 }

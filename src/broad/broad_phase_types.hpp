@@ -152,6 +152,9 @@ struct BroadPhaseSettings {
     // mesh with its GpuMesh::proximity_owned. Capacity in records, 0: automatic.
     double proximity_distance = 0;
     std::uint32_t proximity_capacity = 0;
+    // Methods that decide candidates in a pair pass: at most this many per submission (0:
+    // automatic, CellPairsSettings::pair_chunk); tests set it small.
+    std::uint32_t pair_chunk = 0;
 };
 
 // Where a run writes its sorted pairs on the GPU (BroadPhaseSettings::device_pairs):

@@ -93,8 +93,11 @@ public:
 };
 
 // The most submissions of a run after the first (Again answers) before the broad phase
-// gives up (an internal error: each overflow grows a buffer to what the GPU counted).
-inline constexpr std::uint32_t kMaxMethodAgains = 24;
+// gives up: an internal error, a guard against a method that never ends. A method bounds
+// its own answers (each overflow grows a buffer to what the GPU counted, each chunk of
+// the pair pass covers at least 4096 more candidates when automatic), and the run's
+// deadline bounds them in time.
+inline constexpr std::uint32_t kMaxMethodAgains = 1u << 20;
 
 // Creates a method on `device`, adding its rows to `io_table` (after the core rows).
 using MethodFactory = Result<std::unique_ptr<BroadPhaseMethod>> (*)(vk::Device& device, BufferTable& io_table,

@@ -4,6 +4,7 @@
 // result for denormal coordinates).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <limits>
 #include <random>
 
@@ -113,6 +114,61 @@ TEST_CASE("cells: dispatches split into rows of workgroups give the same pairs",
         CHECK(split.result.stats.entries == whole.result.stats.entries);
         CHECK(split.result.stats.candidates == whole.result.stats.candidates);
     }
+}
+
+// A submission holds at most one chunk of the pair pass, so that work left running after a
+// timeout ends soon: chunks must decide exactly what one pass decides, with the filter and
+// with the exact decision, and a chunk that overflows the survivors reruns the stage.
+TEST_CASE("cells: the pair pass in chunks decides what one pass decides", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellPairs::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(11);
+    CellScene scene = mixedScene();
+    scene.meshes.push_back(soup(rng, 1500, -0.5f, 0.5f, 0.03f, "soup"));
+    scene.self.push_back(1);
+    for (bool exact : {false, true}) {
+        INFO((exact ? "exact decision" : "filter"));
+        CellRunOptions opt;
+        opt.resolution = 128;
+        opt.settings.exact = exact;
+        const CellRun whole = runCells(ctx, **stage, scene, opt);
+        REQUIRE(whole.result.stats.candidates > 500);
+        auto pairPasses = [](const CellRun& run) {
+            return std::count_if(run.result.passes.begin(), run.result.passes.end(),
+                                 [](const graph::PassTiming& p) { return p.name == "cells-pairs"; });
+        };
+        CHECK(pairPasses(whole) == 1);  // automatic: one chunk on a scene this small
+        for (std::uint32_t chunk : {97u, 1000u, 1u << 20}) {
+            INFO("chunks of " << chunk << " candidates");
+            opt.settings.pair_chunk = chunk;
+            const CellRun split = runCells(ctx, **stage, scene, opt);
+            CHECK(split.pairs == whole.pairs);
+            CHECK(split.result.stats.runs == 1);
+            CHECK(split.result.stats.candidates == whole.result.stats.candidates);
+            CHECK(split.result.stats.survivors == whole.result.stats.survivors);
+            CHECK(split.result.stats.filtered == whole.result.stats.filtered);
+            CHECK(split.result.stats.exact_tests == whole.result.stats.exact_tests);
+            CHECK(split.result.stats.duplicates == whole.result.stats.duplicates);
+            CHECK(std::uint64_t(pairPasses(split)) == std::max<std::uint64_t>(1, (whole.result.stats.candidates + chunk - 1) / chunk));
+        }
+        // Tiny survivor capacity: a chunk overflows it, counting only the survivors so far;
+        // the stage sizes for every candidate then, so chunks cost no more reruns than one pass.
+        opt.settings.initial.survivors = 1;
+        opt.settings.pair_chunk = 0;
+        auto fresh = passes::CellPairs::create(ctx.device());
+        REQUIRE(fresh);
+        const CellRun one_pass = runCells(ctx, **fresh, scene, opt);
+        auto fresh_chunked = passes::CellPairs::create(ctx.device());
+        REQUIRE(fresh_chunked);
+        opt.settings.pair_chunk = 211;
+        const CellRun grown = runCells(ctx, **fresh_chunked, scene, opt);
+        CHECK(one_pass.pairs == whole.pairs);
+        CHECK(grown.pairs == whole.pairs);
+        CHECK(one_pass.result.stats.runs >= 2);
+        CHECK(grown.result.stats.runs == one_pass.result.stats.runs);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
 TEST_CASE("cells: identical results run to run", "[cells][gpu]") {

@@ -254,6 +254,12 @@ inline passes::CellPairsResult runWithWrittenProjection(ValidatedContext& ctx, p
         stage.record(g, dst);
         REQUIRE(executor.run(g));
         auto outcome = stage.finish(out);
+        while (outcome && *outcome == passes::CellPairs::Outcome::MorePairs) {  // the pair pass's next chunk
+            graph::Graph chunk;
+            stage.recordPairChunk(chunk);
+            REQUIRE(executor.run(chunk));
+            outcome = stage.finish(out);
+        }
         INFO((outcome ? std::string() : outcome.error().message()));
         REQUIRE(outcome);
         if (*outcome == passes::CellPairs::Outcome::Complete) break;

@@ -53,3 +53,32 @@ TEST_CASE("reliable: one timeout covers every rerun of a detection, and the worl
     checkExact(again->pairs, *c->reference);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+// After a timeout the GPU work already submitted cannot be cancelled, so the world stays
+// Busy and its destructor waits until that work ends. The pair pass decides at most about
+// 200 ms of candidates per submission (CellPairsSettings::pair_chunk, sized from the rate
+// the last detection measured), and nothing new is submitted after the deadline: what is
+// left is one chunk (or the passes before the pair pass, bounded by the candidate budget).
+// 600 crossing triangles: their pair pass alone is about 4 s on lavapipe, in one
+// submission before chunks.
+TEST_CASE("reliable: after a timeout the destructor waits for at most one chunk of the pair pass",
+          "[stability][gpu][limits][reliable][time]") {
+    ValidatedContext ctx;
+    auto c = crossingTriangles(600);
+    REQUIRE(c);
+    auto world = worldOf(ctx, *c);
+    auto warm = world->detect({});  // the buffers grow to the scene, the pair pass's rate is measured
+    REQUIRE(warm);
+    checkExact(warm->pairs, *c->reference);
+    DetectSettings s;
+    s.timeout_ms = 1000;
+    auto r = world->detect(s);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code() == ErrorCode::Timeout);
+    const auto t0 = Clock::now();
+    world.reset();
+    const double waited = secondsSince(t0);
+    INFO("the destructor waited " << waited << " s; the pair pass takes " << warm->stats.filtering_ms << " ms");
+    CHECK(waited < 1.0);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

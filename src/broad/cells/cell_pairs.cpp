@@ -15,7 +15,7 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 88 && sizeof(gpu::CellsParams) == 224);
+static_assert(sizeof(gpu::CellsHeader) == 96 && sizeof(gpu::CellsParams) == 224);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
               offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
               offsetof(gpu::CellsHeader, exact_neighbours) == 84);  // kHeaderCandidates, ... in cells_common.glsl.inc
@@ -127,6 +127,8 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     has_download_ = download_triangles_ > 0;
     runs_ = 0;
     bad_input_.reset();
+    pair_chunk_ = settings.pair_chunk ? settings.pair_chunk : automaticPairChunk();
+    next_chunk_ = 0;
     asked_budget_ = settings.max_candidate_pairs;
     budget_ = static_cast<std::uint32_t>(std::min(settings.max_candidate_pairs, kMaxElements));
     const std::uint32_t device_limit = device_->properties.limits.maxComputeWorkGroupCount[0];
@@ -219,6 +221,7 @@ void CellPairs::writeParams() {
     p.budget = budget_;
     p.keep_neighbours = proximity_pad_ > 0 ? 1u : 0u;
     p.proximity_pad = proximity_pad_;
+    p.pair_chunk = pair_chunk_;
     std::memcpy(buf_.params.mapped(), &p, sizeof p);
     buf_.params.flush();
 }
@@ -271,7 +274,6 @@ Result<void> CellPairs::checkBudget(const gpu::CellsHeader& h) const {
 }
 
 Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
-    ++runs_;
     survivor_count_ = gpu_triangle_count_ = 0;
     buf_.header_rb.invalidate();
     gpu::CellsHeader h;
@@ -286,14 +288,24 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
         if (h.flags & gpu::kCellsOverflowItems) capacity_.items = std::max(capacity_.items, grown(h.items, budget_));
         if (h.flags & gpu::kCellsOverflowEntries) capacity_.entries = std::max(capacity_.entries, grown(h.entries, budget_));
         if (h.flags & gpu::kCellsOverflowCandidates) capacity_.candidates = std::max(capacity_.candidates, grown(h.candidates, budget_));
-        if (h.flags & gpu::kCellsOverflowSurvivors) capacity_.survivors = std::max(capacity_.survivors, grown(h.survivors, budget_));
+        // A chunk of the pair pass that overflows counts only the survivors so far: size for
+        // every candidate (and every download triangle) then, so one rerun is enough.
+        const bool chunks_left = h.pairs_done < std::min<std::uint64_t>(h.candidates, capacity_.candidates);
+        const std::uint32_t all_candidates = static_cast<std::uint32_t>(std::min<std::uint64_t>(h.candidates, budget_));
+        if (h.flags & gpu::kCellsOverflowSurvivors)
+            capacity_.survivors = std::max({capacity_.survivors, grown(h.survivors, budget_), chunks_left ? all_candidates : 0u});
         if (h.flags & gpu::kCellsOverflowTriangles)
-            capacity_.gpu_triangles =
-                std::max(capacity_.gpu_triangles, std::min(grown(h.gpu_triangles, static_cast<std::uint32_t>(kMaxElements)), std::max(download_triangles_, 1u)));
+            capacity_.gpu_triangles = std::max(
+                capacity_.gpu_triangles,
+                chunks_left ? std::max(download_triangles_, 1u)
+                            : std::min(grown(h.gpu_triangles, static_cast<std::uint32_t>(kMaxElements)), std::max(download_triangles_, 1u)));
         if (auto ok = ensureBuffers(); !ok) return ok.error();
         writeParams();
+        ++runs_;
         return Outcome::Rerun;
     }
+    if (h.pairs_done < std::min<std::uint64_t>(h.candidates, capacity_.candidates)) return Outcome::MorePairs;
+    ++runs_;
     s = CellPairsStats{};
     s.entries = h.entries;
     s.box_cells = h.box_cells;
@@ -333,7 +345,7 @@ std::span<const GpuTriangle> CellPairs::gpuTriangles() const noexcept {
 
 Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
     auto outcome = finish(out.stats);
-    if (!outcome || *outcome == Outcome::Rerun) return outcome;
+    if (!outcome || *outcome != Outcome::Complete) return outcome;
     const std::span<const CandidatePair> raw = survivors();
     std::vector<std::uint64_t> keys(raw.size());
     for (std::size_t i = 0; i < raw.size(); ++i) keys[i] = (std::uint64_t(raw[i].a) << 32) | raw[i].b;
@@ -351,22 +363,49 @@ Result<CellPairsResult> CellPairs::run(graph::Executor& executor, const CellPair
         return Error(ErrorCode::InvalidArgument, "cell pairs: run() needs a host projection (record() takes a projection address)");
     if (auto ok = prepare(input, settings); !ok) return ok.error();
     CellPairsResult out;
-    for (std::uint32_t attempt = 0; attempt < std::max(settings.max_runs, 1u); ++attempt) {
+    Outcome next = Outcome::Rerun;  // what to record: the whole stage first
+    for (;;) {
         graph::Graph g;
-        record(g);
+        if (next == Outcome::MorePairs) {
+            recordPairChunk(g);
+        } else {
+            out.passes.clear();  // the run's passes: a rerun starts over
+            out.gpu_ms = 0;
+            record(g);
+        }
         auto report = executor.run(g);
         if (!report) return report.error();
+        out.passes.insert(out.passes.end(), report->passes.begin(), report->passes.end());
+        out.gpu_ms += report->total_gpu_ms;
         auto outcome = finish(out);
         if (!outcome) return outcome.error();
         if (*outcome == Outcome::Complete) {
-            out.passes = std::move(report->passes);
-            out.gpu_ms = report->total_gpu_ms;
+            double pair_ms = 0;
+            for (const graph::PassTiming& p : out.passes)
+                if (p.name == "cells-pairs") pair_ms += p.gpu_ms;
+            notePairPassTime(pair_ms, out.stats.candidates);
             return out;
         }
+        if (*outcome == Outcome::Rerun && runs_ >= std::max(settings.max_runs, 1u))
+            return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(runs_) + " runs (entries " +
+                                                     std::to_string(capacity_.entries) + ", candidates " +
+                                                     std::to_string(capacity_.candidates) + ")");
+        next = *outcome;
     }
-    return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(settings.max_runs) +
-                                             " runs (entries " + std::to_string(capacity_.entries) + ", candidates " +
-                                             std::to_string(capacity_.candidates) + ")");
+}
+
+// What the device decides in about kPairChunkTargetMs: at the rate the last complete run
+// measured, or before any, a guess by device type (a CPU implementation such as lavapipe
+// decides about a hundred candidates a millisecond, a GPU millions).
+std::uint32_t CellPairs::automaticPairChunk() const {
+    double rate = pair_rate_;
+    if (rate <= 0) rate = device_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 100.0 : 1.0e6;
+    return static_cast<std::uint32_t>(std::clamp(rate * kPairChunkTargetMs, 4096.0, double(kMaxElements)));
+}
+
+void CellPairs::notePairPassTime(double gpu_ms, std::uint64_t candidates) {
+    // Too little work to time reliably says nothing about the rate.
+    if (gpu_ms > 1.0 && candidates >= 1024) pair_rate_ = double(candidates) / gpu_ms;
 }
 
 std::uint64_t CellPairs::memoryBytes() const noexcept {

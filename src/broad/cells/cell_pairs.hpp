@@ -118,7 +118,15 @@ struct CellPairsSettings {
     // Dispatches are split into rows of at most this many workgroups (0: the device's
     // maxComputeWorkGroupCount[0]); tests set it small to exercise the split.
     std::uint32_t max_workgroups_x = 0;
+    // Candidates the pair pass decides per submission (0: automatic, what the device
+    // decides in about kPairChunkTargetMs at the rate measured in earlier runs), so that a
+    // submission left running after a timeout ends soon. More candidates than that:
+    // finish() answers MorePairs until the chunks cover them all.
+    std::uint32_t pair_chunk = 0;
 };
+
+// The GPU time an automatic pair-pass chunk aims at (CellsSettings::pair_chunk).
+inline constexpr double kPairChunkTargetMs = 200.0;
 
 struct CellPairsResult {
     // Global triangle ids (object's triangle_base + triangle), a < b, sorted, unique.
@@ -164,11 +172,18 @@ public:
     std::uint32_t maxGroupsX() const noexcept { return max_groups_x_; }
     // After the recorded graph ran: reads the header. Complete: `out` holds the pairs
     // and statistics. Rerun: a buffer overflowed; it has been grown (and the parameters
-    // re-uploaded), so record and run the stage again. Errors: InvalidMesh or
+    // re-uploaded), so record and run the stage again. MorePairs: the pair pass has
+    // chunks to go (CellPairsSettings::pair_chunk): recordPairChunk() and run that. Errors: InvalidMesh or
     // InvalidArgument for bad input found on the GPU (naming object and triangle);
     // LimitExceeded past the budget (CellPairsSettings::max_candidate_pairs), naming the
     // count the run needed. After any error the stage is ready for the next prepare().
-    enum class Outcome { Complete, Rerun };
+    enum class Outcome { Complete, Rerun, MorePairs };
+    // After MorePairs: the pair pass over the next chunk and the header readback.
+    void recordPairChunk(graph::Graph& g);
+    // The pair pass's GPU time in a complete run that decided `candidates` (one chunk or
+    // several): the rate the automatic chunk of later runs is sized from.
+    void notePairPassTime(double gpu_ms, std::uint64_t candidates);
+    std::uint32_t pairChunk() const noexcept { return pair_chunk_; }
     [[nodiscard]] Result<Outcome> finish(CellPairsResult& out);
     // The same without host work beyond the header: Complete fills `out_stats` (not
     // host_duplicates) and makes survivors() and gpuTriangles() valid.
@@ -200,6 +215,11 @@ public:
 private:
     explicit CellPairs(vk::Device& device) : device_(&device) {}
     Result<void> ensureBuffers();
+    std::uint32_t automaticPairChunk() const;
+    struct PairPassIds {
+        graph::ResourceId header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks;
+    };
+    void recordPairPass(graph::Graph& g, const PairPassIds& ids, std::uint32_t chunk);
     void writeParams();
     Result<void> checkFailure(const gpu::CellsHeader& header);
     Result<void> checkBudget(const gpu::CellsHeader& header) const;
@@ -230,6 +250,8 @@ private:
     std::uint64_t asked_budget_ = 0;       // as the settings gave it (for the messages)
     CellPairsCapacity capacity_;
     std::uint32_t runs_ = 0;
+    std::uint32_t pair_chunk_ = 0, next_chunk_ = 0;  // the run's chunk size; the chunk recorded next
+    double pair_rate_ = 0;  // candidates per GPU ms of the pair pass, measured (0: not yet)
 };
 
 }  // namespace vkcollide::passes

@@ -59,13 +59,10 @@ CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projec
     const VkBuffer marks_buffer = has_download_ ? buf_.marks.handle() : VK_NULL_HANDLE;
     const VkDeviceSize marks_bytes = (VkDeviceSize(std::max(triangles_, 1u)) + 31) / 32 * 4;
     const VkBuffer args_buffer = buf_.args.handle();
-    const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
+    const VkBuffer header_buffer = buf_.header.handle();
     const VkBuffer counts_buffer = buf_.counts.handle();
     const auto& P = pipes_;
     const std::uint32_t max_x = max_groups_x_;
-    // The double-precision variant wherever the device has it (P.use_filter switches the
-    // filter): it also computes download objects' world vertices as the CPU does.
-    const vk::Pipeline* pairs = filterSupported() ? &filter_pipeline_ : &P.pairs;
 
     pass(g, "cells-clear", PassKind::Transfer, Stage::Footprints).use(header, Use::TransferDst).use(counts, Use::TransferDst)
         .use(marks, Use::TransferDst).record(
@@ -162,32 +159,59 @@ CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projec
             bind(pc, P.deep, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsDeep * 12);
         });
-    pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing).read(header).write(args).record([&P, params](PassContext& pc) {
-        bind(pc, P.args, params, 2);
-        pc.dispatch(1, 1, 1);
-    });
-    pass(g, "cells-pairs", PassKind::Compute, Stage::Filtering)
-        .indirect(args)
-        .readWrite(candidates)  // proximity: marks the candidates outside their canonical cell
-        .read(tris)
-        .read(geometry)
-        .readWrite(header)
-        .readWrite(marks)
-        .write(gpu_triangles)
-        .write(survivors)
-        .record([pairs, params, args_buffer](PassContext& pc) {
-            bind(pc, *pairs, params);
-            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsPairs * 12);
-        });
+    recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks}, 0);
+    return {header, survivors, tris, candidates, geometry, args};
+}
 
+// The pair pass over chunk `chunk` of the candidates (its arguments first), then the header
+// to the host: the last passes of a run, and all of a later chunk's submission.
+void CellPairs::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint32_t chunk) {
+    const VkDeviceAddress params = buf_.params.address();
+    const VkBuffer args_buffer = buf_.args.handle();
+    const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
+    const auto& P = pipes_;
+    // The double-precision variant wherever the device has it (P.use_filter switches the
+    // filter): it also computes download objects' world vertices as the CPU does.
+    const vk::Pipeline* pairs = filterSupported() ? &filter_pipeline_ : &P.pairs;
+    pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing)
+        .readWrite(id.header)  // the chunks done so far
+        .write(id.args)
+        .record([&P, params, chunk](PassContext& pc) {
+            bind(pc, P.args, params, 2 + chunk);
+            pc.dispatch(1, 1, 1);
+        });
+    pass(g, "cells-pairs", PassKind::Compute, Stage::Filtering)
+        .indirect(id.args)
+        .readWrite(id.candidates)  // proximity: marks the candidates outside their canonical cell
+        .read(id.tris)
+        .read(id.geometry)
+        .readWrite(id.header)
+        .readWrite(id.marks)
+        .write(id.gpu_triangles)
+        .write(id.survivors)
+        .record([pairs, params, args_buffer, chunk](PassContext& pc) {
+            bind(pc, *pairs, params, chunk);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsPairChunk * 12);
+        });
     pass(g, "cells-readback", PassKind::Transfer, Stage::Readback)
-        .use(header, Use::TransferSrc)
-        .use(header_rb, Use::TransferDst)
+        .use(id.header, Use::TransferSrc)
+        .use(id.header_rb, Use::TransferDst)
         .record([header_buffer, header_rb_buffer](PassContext& pc) {
             VkBufferCopy copy{0, 0, sizeof(gpu::CellsHeader)};
             pc.copyBuffer(header_buffer, header_rb_buffer, copy);
         });
-    return {header, survivors, tris, candidates, geometry, args};
+    next_chunk_ = chunk + 1;
+}
+
+void CellPairs::recordPairChunk(graph::Graph& g) {
+    survivor_count_ = gpu_triangle_count_ = 0;
+    recordPairPass(g,
+                   {g.importBuffer("cells-header", buf_.header), g.importBuffer("cells-header-readback", buf_.header_rb, true),
+                    g.importBuffer("cells-triangles", buf_.triangles), g.importBuffer("cells-geometry", buf_.geometry),
+                    g.importBuffer("cells-candidates", buf_.candidates),
+                    g.importBuffer("cells-survivors", buf_.survivors, !survivors_on_device_), g.importBuffer("cells-args", buf_.args),
+                    g.importBuffer("cells-gpu-triangles", buf_.gpu_triangles, true), g.importBuffer("cells-marks", buf_.marks)},
+                   next_chunk_);
 }
 
 }  // namespace vkcollide::passes

@@ -17,7 +17,7 @@ Result<std::unique_ptr<BroadPhaseMethod>> ReliableMethod::create(vk::Device& dev
 Result<void> ReliableMethod::prepareStage(const RunView& run) {
     fault_.reset();
     again_ = Step::Cells;
-    cells_done_ = proximity_stale_ = proximity_done_ = host_sort_grown_ = false;
+    cells_done_ = cells_resubmitted_ = proximity_stale_ = proximity_done_ = host_sort_grown_ = false;
     const std::size_t n = run.meshes.size();
     CellPairsInput& in = input_;
     in.objects = run.objects;
@@ -39,6 +39,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     CellPairsSettings settings;
     settings.max_candidate_pairs = run.settings.max_candidate_pairs;
     settings.exact = run.settings.exact_on_gpu;
+    settings.pair_chunk = run.settings.pair_chunk;
     // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
     device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
     pairs_on_device_only_ = device_pairs_on_ && !run.settings.host_pairs;
@@ -88,6 +89,10 @@ Result<void> ReliableMethod::prepareSort() {
 
 void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
     if (phase == Phase::Measure) return;
+    if (phase == Phase::Again && again_ == Step::PairChunk) {
+        cells_->recordPairChunk(g);
+        return;
+    }
     if (phase == Phase::Main || again_ == Step::Cells) {
         // The projection the front wrote stays in its buffer for a rerun.
         const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
@@ -147,11 +152,22 @@ Result<Collected> ReliableMethod::collectCells(const RunView& run, BroadPhaseRes
                                                      " runs (entries " + std::to_string(cells_->capacity().entries) +
                                                      ", candidates " + std::to_string(cells_->capacity().candidates) + ")");
         // An overflow: the stage alone again, its buffers grown; the projection stays.
-        proximity_stale_ = proximity_on_;
+        cells_resubmitted_ = true;
         return again(Step::Cells);
     }
+    if (*outcome == CellPairs::Outcome::MorePairs) {
+        // The pair pass's next chunk, in a submission of its own (CellPairsSettings::pair_chunk).
+        cells_resubmitted_ = true;
+        return again(Step::PairChunk);
+    }
     cells_done_ = true;
-    if (sorting() && result.cells.runs > 1) {
+    double pair_ms = 0;
+    for (const graph::PassTiming& p : result.passes)
+        if (p.name == "cells-pairs") pair_ms += p.gpu_ms;
+    cells_->notePairPassTime(pair_ms, result.cells.candidates);
+    // The passes after the stage in the first submission saw it incomplete: again, once.
+    proximity_stale_ = proximity_on_ && cells_resubmitted_;
+    if (sorting() && cells_resubmitted_) {
         // The device pairs of the first run say Incomplete: sort the final run's survivors
         // (the stage's buffers may have grown, so size for them first).
         if (auto ok = prepareSort(); !ok) return ok.error();

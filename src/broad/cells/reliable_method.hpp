@@ -8,8 +8,9 @@
 //   (device pairs, BroadPhaseSettings::device_pairs: pairs-clear/args/bucket/sort after
 //             the stage's passes, device_pairs.hpp)
 //   collect   the stage's header; after an overflow Again (the broad phase runs the
-//             stage's passes alone, its buffers already grown) until complete, then the
-//             device pairs and the proximity pass once more (Again each); the survivors
+//             stage's passes alone, its buffers already grown), while the pair pass has
+//             chunks to go Again (its next chunk alone), until complete, then the device
+//             pairs and the proximity pass once more (Again each); the survivors
 //             and the engine meshes' triangles as views of host-visible memory
 //             (BroadPhaseResult::pairs, gpu_triangles), nothing sorted or copied on the host.
 //
@@ -59,7 +60,7 @@ private:
     Result<Collected> collectCells(const RunView& run, BroadPhaseResult& io_result);
     Result<Collected> collectProximity(BroadPhaseResult& io_result);
     Result<Collected> collectSorted(BroadPhaseResult& io_result);
-    enum class Step { Cells, Sort, Proximity };
+    enum class Step { Cells, PairChunk, Sort, Proximity };
     Collected again(Step step) {
         again_ = step;
         return Collected::Again;
@@ -91,7 +92,7 @@ private:
     bool proximity_on_ = false;
     // Where collect() is in a run: the steps done, what Phase::Again records.
     Step again_ = Step::Cells;
-    bool cells_done_ = false, proximity_stale_ = false, proximity_done_ = false, host_sort_grown_ = false;
+    bool cells_done_ = false, cells_resubmitted_ = false, proximity_stale_ = false, proximity_done_ = false, host_sort_grown_ = false;
 };
 
 }  // namespace vkcollide::passes

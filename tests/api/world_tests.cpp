@@ -11,8 +11,9 @@
 #include "api/engine_copy.hpp"
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
-#include "support/world_fixture.hpp"
+#include "support/scene_world.hpp"
 #include "support/test_scenes.hpp"
+#include "support/world_fixture.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/world.hpp"
 
@@ -81,10 +82,9 @@ TEST_CASE("detect() finds only exact pairs and reports the paper's statistics", 
 
 TEST_CASE("collision_rays returns the peeling detection's collision rays as world segments", "[api][gpu]") {
     ValidatedContext ctx;
-    auto world = makeWorld(ctx);
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    addScene(*world, *scene);
+    auto world = sceneWorld(ctx, *scene);
     auto plain = world->detect(fixedSettings(128));
     REQUIRE(plain);
     CHECK_FALSE(plain->collision_rays);
@@ -128,16 +128,14 @@ TEST_CASE("worlds on one Context share their pipelines", "[api][gpu]") {
     };
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    auto a = makeWorld(ctx);
-    addScene(*a, *scene);
+    auto a = sceneWorld(ctx, *scene);
     auto first = a->detect({});
     REQUIRE(first);
     const std::uint64_t after_a = created();
     CHECK(after_a > 0);
 
     // A second world on the Context, same method: no pipeline of its own.
-    auto b = makeWorld(ctx);
-    addScene(*b, *scene);
+    auto b = sceneWorld(ctx, *scene);
     auto second = b->detect({});
     REQUIRE(second);
     CHECK(second->pairs == first->pairs);
@@ -163,10 +161,9 @@ TEST_CASE("worlds on one Context share their pipelines", "[api][gpu]") {
 
 TEST_CASE("a steady scene's later detections submit their command buffer again, with the same pairs", "[api][gpu]") {
     ValidatedContext ctx;
-    auto world = makeWorld(ctx);
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    addScene(*world, *scene);
+    auto world = sceneWorld(ctx, *scene);
     std::vector<Result<DetectResult>> runs;
     for (int k = 0; k < 4; ++k) runs.push_back(world->detect());  // the reliable method, automatic settings
     for (const auto& r : runs) {
@@ -300,8 +297,7 @@ TEST_CASE("engine-owned GPU buffers give the host meshes' pairs", "[api][gpu]") 
     ValidatedContext ctx;
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    auto host_world = makeWorld(ctx);
-    addScene(*host_world, *scene);
+    auto host_world = sceneWorld(ctx, *scene);
     auto expected = host_world->detect(fixedSettings(128));
     REQUIRE(expected);
 
@@ -433,10 +429,9 @@ TEST_CASE("bad input gets an error that names the object and the problem", "[api
 
 TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     ValidatedContext ctx;
-    auto world = makeWorld(ctx);
     auto cloth = clothThroughSphere();
     REQUIRE(cloth);
-    addScene(*world, *cloth);
+    auto world = sceneWorld(ctx, *cloth);
     const DetectSettings paper{.method = DetectMethod::Peeling};
     auto s = world->resolveSettings(paper);
     REQUIRE(s);
@@ -446,10 +441,9 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     CHECK(*s->resolution == 256);
     CHECK(*s->open_epsilon > 0);
     // Finer meshes ask for more rays.
-    auto fine_world = makeWorld(ctx);
     auto fine = clothThroughSphere(2.0f);
     REQUIRE(fine);
-    addScene(*fine_world, *fine);
+    auto fine_world = sceneWorld(ctx, *fine);
     auto fs = fine_world->resolveSettings(paper);
     REQUIRE(fs);
     CHECK(*fs->resolution == 2 * *s->resolution);
@@ -466,10 +460,9 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
 // use-after-free in detect.cpp and world.cpp). The world now holds the device itself.
 TEST_CASE("a world used after its Context is destroyed: every call works as before", "[api][gpu][lifetime]") {
     ValidatedContext ctx;
-    auto world = makeWorld(ctx);
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    addScene(*world, *scene);
+    auto world = sceneWorld(ctx, *scene);
     // An engine mesh made before the Context goes (its buffers keep the device alive too).
     EngineMesh engine = engineCopy(ctx.device(), scene->objects[0].mesh);
     DetectSettings peeling = fixedSettings(128);

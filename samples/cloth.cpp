@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "cloth_ball.hpp"
+#include "common/lent_device.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
@@ -86,12 +87,9 @@ int main(int argc, char** argv) {
     }
 
     // The engine's device, lent to vkcollide.
-    auto engine = Engine::create({common.validation, common.device});
-    auto context = Context::adopt(engine->adoptedDevice(), engine->messageCallback());
-    if (!context) return fail(context.error());
-    auto world = CollisionWorld::create(**context, {.threads = common.threads});
-    if (!world) return fail(world.error());
-    std::printf("device: %s\n", engine->deviceName().c_str());
+    LentDevice lent;
+    if (int status = lendDevice(common, lent)) return status;
+    auto& [engine, context, world] = lent;
 
     // Two closed obstacles that never move: the sphere, and the floor it stands on.
     constexpr float kRadius = 0.35f;
@@ -107,7 +105,7 @@ int main(int argc, char** argv) {
         const bool floor = !obstacles.empty();
         if (auto ok = transformMesh(*part, Transform3x4{1, 0, 0, 0, 0, 1, 0, floor ? -kRadius - 0.05f : 0, 0, 0, 1, 0}); !ok)
             return fail(ok.error());
-        auto id = (*world)->addMesh(*part, {.name = floor ? "floor" : "sphere"});
+        auto id = world->addMesh(*part, {.name = floor ? "floor" : "sphere"});
         if (!id) return fail(id.error());
         const DrawId draw = renderer.addMesh(*part, objectColour(floor ? 6 : 0));
         obstacles.push_back({std::move(*part), *id, draw});
@@ -115,7 +113,7 @@ int main(int argc, char** argv) {
 
     // The sphere stands on the floor: they touch, and that is of no interest. Only pairs
     // with the cloth (itself included) are tested.
-    if (auto ok = (*world)->setPairFilter([&](ObjectId a, ObjectId b) { return !(a == obstacles[0].id && b == obstacles[1].id); }); !ok)
+    if (auto ok = world->setPairFilter([&](ObjectId a, ObjectId b) { return !(a == obstacles[0].id && b == obstacles[1].id); }); !ok)
         return fail(ok.error());
 
     // The cloth: a grid folded like a page being turned, one half above the other, laid
@@ -128,7 +126,7 @@ int main(int argc, char** argv) {
         p = {x + 0.22f * size, height + p.z, z};
     }
     Cloth cloth(*grid, cells, cells, /*friction=*/0.3f);
-    auto cloth_id = (*world)->addMesh(*grid, {.name = "cloth", .self_collision = true, .open = true});
+    auto cloth_id = world->addMesh(*grid, {.name = "cloth", .self_collision = true, .open = true});
     if (!cloth_id) return fail(cloth_id.error());
     const DrawId cloth_draw = renderer.addMesh(*grid, objectColour(3), /*dynamic=*/true);
     Picture picture(renderer, common, "cloth", Camera{.eye = {2.2f, 1.9f, 3.2f}, .target = {0, -0.1f, 0}}, 1.1f);
@@ -151,8 +149,8 @@ int main(int argc, char** argv) {
         double sim_ms = msSince(sim_start);
 
         // New vertices, then one detection: every intersecting pair of triangles.
-        if (auto ok = (*world)->updateVertices(*cloth_id, cloth.positions()); !ok) return fail(ok.error());
-        auto hits = (*world)->detect(settings);
+        if (auto ok = world->updateVertices(*cloth_id, cloth.positions()); !ok) return fail(ok.error());
+        auto hits = world->detect(settings);
         if (!hits) return fail(hits.error());
 
         // Response, per pair. Against an obstacle: contact planes that the next steps

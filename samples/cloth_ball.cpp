@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cloth_ball.hpp"
+#include "common/lent_device.hpp"
 #include "common/physics.hpp"
 #include "common/picture.hpp"
 #include "common/render.hpp"
@@ -29,12 +30,9 @@ namespace samples {
 using namespace vkcollide;
 
 int runBall(CommonOptions& common, const BallScene& scene) {
-    auto engine = Engine::create({common.validation, common.device});
-    auto context = Context::adopt(engine->adoptedDevice(), engine->messageCallback());
-    if (!context) return fail(context.error());
-    auto world = CollisionWorld::create(**context, {.threads = common.threads});
-    if (!world) return fail(world.error());
-    std::printf("device: %s\n", engine->deviceName().c_str());
+    LentDevice lent;
+    if (int status = lendDevice(common, lent)) return status;
+    auto& [engine, context, world] = lent;
     Renderer renderer(*engine, common.width, common.height);
 
     // The ball: a rigid body in object space, moved by setTransform (translation only: it
@@ -47,7 +45,7 @@ int runBall(CommonOptions& common, const BallScene& scene) {
         const Vec3& p = ball.position;
         return Transform3x4{1, 0, 0, p.x(), 0, 1, 0, p.y(), 0, 0, 1, p.z()};
     };
-    auto ball_id = (*world)->addMesh(*ball_mesh, {.name = "ball"});
+    auto ball_id = world->addMesh(*ball_mesh, {.name = "ball"});
     if (!ball_id) return fail(ball_id.error());
     std::vector<Float3> ball_world(ball_mesh->positions.size());  // where the detection saw it
     const auto placeBall = [&] {
@@ -66,7 +64,7 @@ int runBall(CommonOptions& common, const BallScene& scene) {
         for (std::uint32_t i = 0; i <= n; ++i)
             if (i == 0 || j == 0 || i == n || j == n) cloth.pin(j * (n + 1) + i);
     cloth.setMass(scene.cloth_mass);
-    auto cloth_id = (*world)->addMesh(*grid, {.name = "cloth", .self_collision = true, .open = true});
+    auto cloth_id = world->addMesh(*grid, {.name = "cloth", .self_collision = true, .open = true});
     if (!cloth_id) return fail(cloth_id.error());
     const DrawId cloth_draw = renderer.addMesh(*grid, objectColour(3), /*dynamic=*/true);
     Picture picture(renderer, common, "cloth", Camera{.eye = {1.7f, 0.8f, 2.6f}, .target = {0, -0.15f, 0}}, 0.8f);
@@ -105,9 +103,9 @@ int runBall(CommonOptions& common, const BallScene& scene) {
         lowest = std::min(lowest, ball.position.y() - scene.radius);
         double sim_ms = msSince(sim_start);
 
-        if (auto ok = (*world)->setTransform(*ball_id, translation()); !ok) return fail(ok.error());
-        if (auto ok = (*world)->updateVertices(*cloth_id, cloth.positions()); !ok) return fail(ok.error());
-        auto hits = (*world)->detect(settings);
+        if (auto ok = world->setTransform(*ball_id, translation()); !ok) return fail(ok.error());
+        if (auto ok = world->updateVertices(*cloth_id, cloth.positions()); !ok) return fail(ok.error());
+        auto hits = world->detect(settings);
         if (!hits) return fail(hits.error());
         if (!hits->pairs.empty()) ++frames_intersecting;
 

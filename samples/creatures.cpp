@@ -21,6 +21,7 @@
 #include <cstring>
 #include <vector>
 
+#include "common/lent_device.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
 #include "common/picture.hpp"
@@ -91,12 +92,9 @@ int main(int argc, char** argv) {
     if (creatures < 1 || tentacles < 1 || segments < 2 || sides < 3) die("needs --creatures >= 1, --tentacles >= 1, --segments >= 2, --sides >= 3");
 
     // The engine's device, lent to vkcollide.
-    auto engine = Engine::create({common.validation, common.device});
-    auto context = Context::adopt(engine->adoptedDevice(), engine->messageCallback());
-    if (!context) return fail(context.error());
-    auto world = CollisionWorld::create(**context, {.threads = common.threads});
-    if (!world) return fail(world.error());
-    std::printf("device: %s\n", engine->deviceName().c_str());
+    LentDevice lent;
+    if (int status = lendDevice(common, lent)) return status;
+    auto& [engine, context, world] = lent;
     Renderer renderer(*engine, common.width, common.height);
 
     // --- The engine's GPU geometry: parameters the CPU writes, vertices the GPU writes. ---
@@ -158,7 +156,7 @@ int main(int argc, char** argv) {
         desc.index_buffer_size = index_buffer.size;
         desc.index_count = static_cast<std::uint32_t>(indices.size());
         const float edge = 2 * 3.14159265f * kTentacleRadius / float(sides);
-        auto id = (*world)->addGpuMesh(desc, {.name = "creature " + std::to_string(c), .typical_edge_length = edge});
+        auto id = world->addGpuMesh(desc, {.name = "creature " + std::to_string(c), .typical_edge_length = edge});
         if (!id) return fail(id.error());
         creature_ids.push_back(*id);
         creature_draws.push_back(renderer.addGpuMesh(positions, desc.vertex_offset, 12, index_buffer, 0, triangles, objectColour(c % 5)));
@@ -180,13 +178,13 @@ int main(int argc, char** argv) {
         ship.body.position = Vec3(-field / 2 - 1.0f - 2.0f * float(s), 0.4f * float(s % 3) - 0.4f,
                                   (float(s % columns) - float(columns) / 2 + 1.0f) * spacing - spacing / 2);
         ship.body.velocity = Vec3(1.6f, 0, 0);
-        auto id = (*world)->addMesh(*hull, {.name = "ship " + std::to_string(s), .transform = ship.body.transform()});
+        auto id = world->addMesh(*hull, {.name = "ship " + std::to_string(s), .transform = ship.body.transform()});
         if (!id) return fail(id.error());
         ship.id = *id;
         ship.draw = renderer.addMesh(*hull, {0.92f, 0.92f, 0.95f});
         fleet.push_back(ship);
     }
-    std::printf("scene: %zu triangles (%u creatures x %u, %u ships)\n", (*world)->triangleCount(), creatures, triangles, ships);
+    std::printf("scene: %zu triangles (%u creatures x %u, %u ships)\n", world->triangleCount(), creatures, triangles, ships);
     Picture picture(renderer, common, "creatures",
                     Camera{.eye = {0.3f * field, 0.6f * field + 1.0f, 0.8f * field + 2.0f}, .target = {0, -0.3f, 0}}, 1.2f);
 
@@ -231,12 +229,12 @@ int main(int argc, char** argv) {
         for (Ship& s : fleet) {
             s.body.integrate(dt, Vec3::Zero(), 0.0f);
             if (s.body.position.x() > field / 2 + 2.0f) s.body.position.x() = -field / 2 - 2.0f;  // round again
-            if (auto ok = (*world)->setTransform(s.id, s.body.transform()); !ok) return fail(ok.error());
+            if (auto ok = world->setTransform(s.id, s.body.transform()); !ok) return fail(ok.error());
             renderer.setTransform(s.draw, s.body.transform());
         }
         double sim_ms = msSince(sim_start);
 
-        auto hits = (*world)->detect(settings);
+        auto hits = world->detect(settings);
         if (!hits) return fail(hits.error());
 
         // What was hit: a tentacle (from the triangle index) retracts; a ship turns away

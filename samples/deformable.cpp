@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/lent_device.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
@@ -50,12 +51,9 @@ int main(int argc, char** argv) {
     if (which != "all" && which != "bunnies" && which != "horses") die("--bodies takes all, bunnies or horses");
 
     // The engine's device, lent to vkcollide.
-    auto engine = Engine::create({common.validation, common.device});
-    auto context = Context::adopt(engine->adoptedDevice(), engine->messageCallback());
-    if (!context) return fail(context.error());
-    auto world = CollisionWorld::create(**context, {.threads = common.threads});
-    if (!world) return fail(world.error());
-    std::printf("device: %s\n", engine->deviceName().c_str());
+    LentDevice lent;
+    if (int status = lendDevice(common, lent)) return status;
+    auto& [engine, context, world] = lent;
     Renderer renderer(*engine, common.width, common.height);
 
     // The bodies, on a circle around the middle, each thrown on an arc that reaches the
@@ -91,7 +89,7 @@ int main(int argc, char** argv) {
         soft.back().setVelocity(Vec3(-std::cos(angle) * speed, 9.81f * flight / 2, -std::sin(angle) * speed));
         HostMesh placed = b.mesh;
         placed.positions = soft.back().positions();
-        auto id = (*world)->addMesh(placed, {.name = b.name, .self_collision = true});
+        auto id = world->addMesh(placed, {.name = b.name, .self_collision = true});
         if (!id) return fail(id.error());
         b.id = *id;
         b.draw = renderer.addMesh(placed, objectColour(i), /*dynamic=*/true);
@@ -121,12 +119,12 @@ int main(int argc, char** argv) {
         const auto sim_start = std::chrono::steady_clock::now();
         for (std::size_t i = 0; i < bodies.size(); ++i) {
             soft[i].step(dt, gravity, 0.0f);
-            if (auto ok = (*world)->updateVertices(bodies[i].id, soft[i].positions()); !ok) return fail(ok.error());
+            if (auto ok = world->updateVertices(bodies[i].id, soft[i].positions()); !ok) return fail(ok.error());
             renderer.updateVertices(bodies[i].draw, soft[i].positions());
         }
         double sim_ms = msSince(sim_start);
 
-        auto hits = (*world)->detect(settings);
+        auto hits = world->detect(settings);
         if (!hits) return fail(hits.error());
 
         // Response, locally: every vertex of a colliding triangle moves out along the

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <string>
 
+#include "common/lent_device.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
@@ -39,12 +40,9 @@ int main(int argc, char** argv) {
     finishCommonOptions(args, common, "dragon");
 
     // The engine's device, lent to vkcollide.
-    auto engine = Engine::create({common.validation, common.device});
-    auto context = Context::adopt(engine->adoptedDevice(), engine->messageCallback());
-    if (!context) return fail(context.error());
-    auto world = CollisionWorld::create(**context, {.threads = common.threads});
-    if (!world) return fail(world.error());
-    std::printf("device: %s\n", engine->deviceName().c_str());
+    LentDevice lent;
+    if (int status = lendDevice(common, lent)) return status;
+    auto& [engine, context, world] = lent;
 
     // The dragon: closed, subdivided, 4 units long; it never moves.
     constexpr float kSize = 4.0f;
@@ -56,7 +54,7 @@ int main(int argc, char** argv) {
     if (!stats) return fail(stats.error());
     std::printf("dragon: %zu holes closed, subdivided (%s) to %zu triangles, %s\n", holes, steps.c_str(), dragon.triangleCount(),
                 stats->closed ? "closed" : "not closed");
-    auto dragon_id = (*world)->addMesh(dragon, {.name = "dragon"});
+    auto dragon_id = world->addMesh(dragon, {.name = "dragon"});
     if (!dragon_id) return fail(dragon_id.error());
 
     // The bunny that passes through from side to side, just behind the dragon's front so
@@ -75,9 +73,9 @@ int main(int argc, char** argv) {
         pose.orientation = Eigen::AngleAxisf(2.0f * s, Vec3(0.3f, 1.0f, 0.2f).normalized());
         return pose.transform();
     };
-    auto bunny_id = (*world)->addMesh(bunny, {.name = "bunny", .transform = bunnyAt(0)});
+    auto bunny_id = world->addMesh(bunny, {.name = "bunny", .transform = bunnyAt(0)});
     if (!bunny_id) return fail(bunny_id.error());
-    std::printf("scene: %zu triangles\n", (*world)->triangleCount());
+    std::printf("scene: %zu triangles\n", world->triangleCount());
 
     Renderer renderer(*engine, common.width, common.height);
     const DrawId dragon_draw = renderer.addMesh(dragon, objectColour(3));
@@ -90,11 +88,11 @@ int main(int argc, char** argv) {
     for (int frame = 0; frame < common.frames; ++frame) {
         const auto sim_start = std::chrono::steady_clock::now();
         const Transform3x4 pose = bunnyAt(frame);
-        if (auto ok = (*world)->setTransform(*bunny_id, pose); !ok) return fail(ok.error());
+        if (auto ok = world->setTransform(*bunny_id, pose); !ok) return fail(ok.error());
         renderer.setTransform(bunny_draw, pose);
         const double sim_ms = msSince(sim_start);
 
-        auto hits = (*world)->detect(settings);
+        auto hits = world->detect(settings);
         if (!hits) return fail(hits.error());
 
         const auto render_start = std::chrono::steady_clock::now();

@@ -16,6 +16,7 @@
 #include <random>
 #include <vector>
 
+#include "common/lent_device.hpp"
 #include "common/meshes.hpp"
 #include "common/options.hpp"
 #include "common/physics.hpp"
@@ -77,18 +78,15 @@ int main(int argc, char** argv) {
     if (bunnies < 1 || columns < 1 || bunny_triangles < 16) die("--bunnies and --columns must be at least 1, --bunny-triangles at least 16");
 
     // The engine's device, lent to vkcollide.
-    auto engine = Engine::create({common.validation, common.device});
-    auto context = Context::adopt(engine->adoptedDevice(), engine->messageCallback());
-    if (!context) return fail(context.error());
-    auto world = CollisionWorld::create(**context, {.threads = common.threads});
-    if (!world) return fail(world.error());
-    std::printf("device: %s\n", engine->deviceName().c_str());
+    LentDevice lent;
+    if (int status = lendDevice(common, lent)) return status;
+    auto& [engine, context, world] = lent;
     Renderer renderer(*engine, common.width, common.height);
 
     // The static box.
     auto box = openBox(box_size, 1.6f, 0.4f);
     if (!box) return fail(box.error());
-    auto box_id = (*world)->addMesh(*box, {.name = "box"});
+    auto box_id = world->addMesh(*box, {.name = "box"});
     if (!box_id) return fail(box_id.error());
     const DrawId box_draw = renderer.addMesh(*box, objectColour(6));
 
@@ -116,7 +114,7 @@ int main(int argc, char** argv) {
         const float middle = float(columns - 1) / 2.0f;
         b.position = Vec3((col - middle) * spacing, drop + half.y() + layer * spacing, (row - middle) * spacing);
         b.orientation = Eigen::Quaternionf(1.0f, 0.3f * unit(rng), unit(rng), 0.3f * unit(rng)).normalized();
-        auto id = (*world)->addMesh(bunny, {.name = "bunny " + std::to_string(i), .transform = b.transform()});
+        auto id = world->addMesh(bunny, {.name = "bunny " + std::to_string(i), .transform = b.transform()});
         if (!id) return fail(id.error());
         body_of[*id] = bodies.size();
         bodies.push_back(b);
@@ -145,12 +143,12 @@ int main(int argc, char** argv) {
         const auto sim_start = std::chrono::steady_clock::now();
         for (RigidBody& b : bodies) b.integrate(dt, gravity, 0.002f);
         for (std::size_t i = 0; i < bodies.size(); ++i) {
-            if (auto ok = (*world)->setTransform(ids[i], bodies[i].transform()); !ok) return fail(ok.error());
+            if (auto ok = world->setTransform(ids[i], bodies[i].transform()); !ok) return fail(ok.error());
             renderer.setTransform(draws[i], bodies[i].transform());  // the picture shows what was detected
         }
         double sim_ms = msSince(sim_start);
 
-        auto hits = (*world)->detect(settings);
+        auto hits = world->detect(settings);
         if (!hits) return fail(hits.error());
 
         // Contacts: one per touching pair of objects, at the mean of the colliding

@@ -70,6 +70,20 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
     nameObject(device, out.module, name, " shader");
     return {};
 }
+
+// The end of either pipeline kind's creation: a failed create may have written its handle,
+// which must not reach ~PipelineHandles.
+Result<void> finishPipeline(Device& device, VkResult r, const char* create_call, VkPipelineBindPoint bind_point, const std::string& name,
+                            PipelineHandles& h) {
+    if (r != VK_SUCCESS) {
+        h.pipeline = VK_NULL_HANDLE;
+        return vulkanError(r, std::string(create_call) + " for '" + name + "'");
+    }
+    nameObject(device, h.pipeline, name);
+    h.bind_point = bind_point;
+    return {};
+}
+
 // What a pipeline is made from, as a key: the program (an embedded array: its address and
 // size), its bindings and push constant size, and for raster pipelines their fixed state.
 std::string bindingKey(std::span<const Pipeline::Binding> bindings, std::uint32_t push_bytes) {
@@ -119,13 +133,7 @@ Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::ui
         ci.stage.pName = "main";
         ci.layout = h.layout;
         VkResult r = device.fns.vkCreateComputePipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &h.pipeline);
-        if (r != VK_SUCCESS) {
-            h.pipeline = VK_NULL_HANDLE;
-            return vulkanError(r, "vkCreateComputePipelines for '" + name + "'");
-        }
-        nameObject(device, h.pipeline, name);
-        h.bind_point = VK_PIPELINE_BIND_POINT_COMPUTE;
-        return {};
+        return finishPipeline(device, r, "vkCreateComputePipelines", VK_PIPELINE_BIND_POINT_COMPUTE, name, h);
     });
 }
 
@@ -213,13 +221,7 @@ Result<void> makeRaster(Device& device, const Pipeline::RasterDesc& desc, std::s
     ci.pDynamicState = &dyn;
     ci.layout = h.layout;
     VkResult r = device.fns.vkCreateGraphicsPipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &h.pipeline);
-    if (r != VK_SUCCESS) {
-        h.pipeline = VK_NULL_HANDLE;
-        return vulkanError(r, "vkCreateGraphicsPipelines for '" + name + "'");
-    }
-    nameObject(device, h.pipeline, name);
-    h.bind_point = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    return {};
+    return finishPipeline(device, r, "vkCreateGraphicsPipelines", VK_PIPELINE_BIND_POINT_GRAPHICS, name, h);
 }
 
 }  // namespace

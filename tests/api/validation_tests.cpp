@@ -5,9 +5,11 @@
 #include <limits>
 #include <string>
 
+#include "api/engine_copy.hpp"
 #include "api/validation.hpp"
 #include "broad/broad_phase_types.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/world_fixture.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
 
@@ -58,6 +60,85 @@ TEST_CASE("addMesh names the object once and checks the transform before uploadi
     auto bad_update = (*world)->setTransform(*ok, inf.transform);
     REQUIRE_FALSE(bad_update);
     CHECK(bad_update.error().message() == "object 0 ('fine'): transform is not finite");
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("bad input gets an error that names the object and the problem", "[api][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto empty = world->detect();
+    REQUIRE_FALSE(empty);
+    CHECK(mentions(empty.error(), "no objects"));
+
+    auto sphere = uvSphere(1.0f, 12, 6);
+    REQUIRE(sphere);
+    HostMesh nan = *sphere;
+    nan.positions[5].z = std::numeric_limits<float>::quiet_NaN();
+    auto r = world->addMesh(nan, {.name = "melted"});
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code() == ErrorCode::InvalidMesh);
+    CHECK(mentions(r.error(), "melted"));
+    HostMesh bad_index = *sphere;
+    bad_index.indices[4] = 100000;
+    r = world->addMesh(bad_index, {.name = "torn"});
+    REQUIRE_FALSE(r);
+    CHECK(mentions(r.error(), "torn"));
+    HostMesh short_indices = *sphere;
+    short_indices.indices.pop_back();
+    r = world->addMesh(short_indices, {.name = "short"});
+    REQUIRE_FALSE(r);
+    CHECK(mentions(r.error(), "multiple of three"));
+    r = world->addMesh(HostMesh{"nothing", {}, {}}, {.name = "nothing"});
+    REQUIRE_FALSE(r);
+    CHECK(mentions(r.error(), "nothing"));
+    ObjectOptions inf_transform;
+    inf_transform.transform[3] = std::numeric_limits<float>::infinity();
+    CHECK_FALSE(world->addMesh(*sphere, inf_transform));
+    CHECK(world->objectCount() == 0);
+
+    EngineMesh e = engineCopy(ctx.device(), *sphere, 12, VK_FORMAT_R32G32B32_SFLOAT, false);
+    GpuMeshDesc d = e.desc;
+    d.vertex_count += 1;
+    auto small = world->addGpuMesh(d, {.name = "skinned"});
+    REQUIRE_FALSE(small);
+    CHECK(small.error().code() == ErrorCode::BufferTooSmall);
+    CHECK(mentions(small.error(), "skinned"));
+    d = e.desc;
+    d.vertex_buffer_size *= 4;  // more than the buffer holds
+    small = world->addGpuMesh(d);
+    REQUIRE_FALSE(small);
+    CHECK(small.error().code() == ErrorCode::BufferTooSmall);
+    d = e.desc;
+    d.position_format = VK_FORMAT_R16G16B16A16_SFLOAT;
+    auto format = world->addGpuMesh(d);
+    REQUIRE_FALSE(format);
+    CHECK(format.error().code() == ErrorCode::UnsupportedFeature);
+    d = e.desc;
+    d.index_count -= 1;
+    CHECK_FALSE(world->addGpuMesh(d));
+    d = e.desc;
+    d.index_count = 0;
+    CHECK_FALSE(world->addGpuMesh(d));
+    d = e.desc;
+    d.index_buffer = VK_NULL_HANDLE;
+    CHECK_FALSE(world->addGpuMesh(d));
+
+    auto ok = world->addMesh(*sphere, {.name = "fine"});
+    REQUIRE(ok);
+    CHECK_FALSE(world->setTransform(*ok + 1, {}));
+    DetectSettings s;
+    s.method = DetectMethod::Peeling;
+    s.resolution = 100;
+    auto bad_res = world->detect(s);
+    REQUIRE_FALSE(bad_res);
+    CHECK(mentions(bad_res.error(), "power of two"));
+    s.method = DetectMethod::Reliable;  // cells per side: any count up to 16384
+    CHECK(world->detect(s));
+    s.resolution = 16385;
+    bad_res = world->detect(s);
+    REQUIRE_FALSE(bad_res);
+    CHECK(mentions(bad_res.error(), "16384"));
+    CHECK(world->detect());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

@@ -1,6 +1,6 @@
 // The public API (CollisionWorld) on the device, validation on: what detect() returns,
-// the asynchronous form, object flags and filters, engine-owned GPU buffers, and the
-// errors bad input gets.
+// the asynchronous form, object flags and filters, engine-owned GPU buffers (the errors
+// bad input gets: validation_tests.cpp).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -11,8 +11,9 @@
 #include "api/engine_copy.hpp"
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
-#include "support/world_fixture.hpp"
+#include "support/scene_world.hpp"
 #include "support/test_scenes.hpp"
+#include "support/world_fixture.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/world.hpp"
 
@@ -81,10 +82,9 @@ TEST_CASE("detect() finds only exact pairs and reports the paper's statistics", 
 
 TEST_CASE("collision_rays returns the peeling detection's collision rays as world segments", "[api][gpu]") {
     ValidatedContext ctx;
-    auto world = makeWorld(ctx);
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    addScene(*world, *scene);
+    auto world = sceneWorld(ctx, *scene);
     auto plain = world->detect(fixedSettings(128));
     REQUIRE(plain);
     CHECK_FALSE(plain->collision_rays);
@@ -128,16 +128,14 @@ TEST_CASE("worlds on one Context share their pipelines", "[api][gpu]") {
     };
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    auto a = makeWorld(ctx);
-    addScene(*a, *scene);
+    auto a = sceneWorld(ctx, *scene);
     auto first = a->detect({});
     REQUIRE(first);
     const std::uint64_t after_a = created();
     CHECK(after_a > 0);
 
     // A second world on the Context, same method: no pipeline of its own.
-    auto b = makeWorld(ctx);
-    addScene(*b, *scene);
+    auto b = sceneWorld(ctx, *scene);
     auto second = b->detect({});
     REQUIRE(second);
     CHECK(second->pairs == first->pairs);
@@ -163,10 +161,9 @@ TEST_CASE("worlds on one Context share their pipelines", "[api][gpu]") {
 
 TEST_CASE("a steady scene's later detections submit their command buffer again, with the same pairs", "[api][gpu]") {
     ValidatedContext ctx;
-    auto world = makeWorld(ctx);
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    addScene(*world, *scene);
+    auto world = sceneWorld(ctx, *scene);
     std::vector<Result<DetectResult>> runs;
     for (int k = 0; k < 4; ++k) runs.push_back(world->detect());  // the reliable method, automatic settings
     for (const auto& r : runs) {
@@ -300,8 +297,7 @@ TEST_CASE("engine-owned GPU buffers give the host meshes' pairs", "[api][gpu]") 
     ValidatedContext ctx;
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    auto host_world = makeWorld(ctx);
-    addScene(*host_world, *scene);
+    auto host_world = sceneWorld(ctx, *scene);
     auto expected = host_world->detect(fixedSettings(128));
     REQUIRE(expected);
 
@@ -352,91 +348,11 @@ TEST_CASE("engine-owned GPU buffers give the host meshes' pairs", "[api][gpu]") 
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("bad input gets an error that names the object and the problem", "[api][gpu]") {
-    ValidatedContext ctx;
-    auto world = makeWorld(ctx);
-    auto empty = world->detect();
-    REQUIRE_FALSE(empty);
-    CHECK(mentions(empty.error(), "no objects"));
-
-    auto sphere = uvSphere(1.0f, 12, 6);
-    REQUIRE(sphere);
-    HostMesh nan = *sphere;
-    nan.positions[5].z = std::numeric_limits<float>::quiet_NaN();
-    auto r = world->addMesh(nan, {.name = "melted"});
-    REQUIRE_FALSE(r);
-    CHECK(r.error().code() == ErrorCode::InvalidMesh);
-    CHECK(mentions(r.error(), "melted"));
-    HostMesh bad_index = *sphere;
-    bad_index.indices[4] = 100000;
-    r = world->addMesh(bad_index, {.name = "torn"});
-    REQUIRE_FALSE(r);
-    CHECK(mentions(r.error(), "torn"));
-    HostMesh short_indices = *sphere;
-    short_indices.indices.pop_back();
-    r = world->addMesh(short_indices, {.name = "short"});
-    REQUIRE_FALSE(r);
-    CHECK(mentions(r.error(), "multiple of three"));
-    r = world->addMesh(HostMesh{"nothing", {}, {}}, {.name = "nothing"});
-    REQUIRE_FALSE(r);
-    CHECK(mentions(r.error(), "nothing"));
-    ObjectOptions inf_transform;
-    inf_transform.transform[3] = std::numeric_limits<float>::infinity();
-    CHECK_FALSE(world->addMesh(*sphere, inf_transform));
-    CHECK(world->objectCount() == 0);
-
-    EngineMesh e = engineCopy(ctx.device(), *sphere, 12, VK_FORMAT_R32G32B32_SFLOAT, false);
-    GpuMeshDesc d = e.desc;
-    d.vertex_count += 1;
-    auto small = world->addGpuMesh(d, {.name = "skinned"});
-    REQUIRE_FALSE(small);
-    CHECK(small.error().code() == ErrorCode::BufferTooSmall);
-    CHECK(mentions(small.error(), "skinned"));
-    d = e.desc;
-    d.vertex_buffer_size *= 4;  // more than the buffer holds
-    small = world->addGpuMesh(d);
-    REQUIRE_FALSE(small);
-    CHECK(small.error().code() == ErrorCode::BufferTooSmall);
-    d = e.desc;
-    d.position_format = VK_FORMAT_R16G16B16A16_SFLOAT;
-    auto format = world->addGpuMesh(d);
-    REQUIRE_FALSE(format);
-    CHECK(format.error().code() == ErrorCode::UnsupportedFeature);
-    d = e.desc;
-    d.index_count -= 1;
-    CHECK_FALSE(world->addGpuMesh(d));
-    d = e.desc;
-    d.index_count = 0;
-    CHECK_FALSE(world->addGpuMesh(d));
-    d = e.desc;
-    d.index_buffer = VK_NULL_HANDLE;
-    CHECK_FALSE(world->addGpuMesh(d));
-
-    auto ok = world->addMesh(*sphere, {.name = "fine"});
-    REQUIRE(ok);
-    CHECK_FALSE(world->setTransform(*ok + 1, {}));
-    DetectSettings s;
-    s.method = DetectMethod::Peeling;
-    s.resolution = 100;
-    auto bad_res = world->detect(s);
-    REQUIRE_FALSE(bad_res);
-    CHECK(mentions(bad_res.error(), "power of two"));
-    s.method = DetectMethod::Reliable;  // cells per side: any count up to 16384
-    CHECK(world->detect(s));
-    s.resolution = 16385;
-    bad_res = world->detect(s);
-    REQUIRE_FALSE(bad_res);
-    CHECK(mentions(bad_res.error(), "16384"));
-    CHECK(world->detect());
-    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
-}
-
 TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     ValidatedContext ctx;
-    auto world = makeWorld(ctx);
     auto cloth = clothThroughSphere();
     REQUIRE(cloth);
-    addScene(*world, *cloth);
+    auto world = sceneWorld(ctx, *cloth);
     const DetectSettings paper{.method = DetectMethod::Peeling};
     auto s = world->resolveSettings(paper);
     REQUIRE(s);
@@ -446,10 +362,9 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     CHECK(*s->resolution == 256);
     CHECK(*s->open_epsilon > 0);
     // Finer meshes ask for more rays.
-    auto fine_world = makeWorld(ctx);
     auto fine = clothThroughSphere(2.0f);
     REQUIRE(fine);
-    addScene(*fine_world, *fine);
+    auto fine_world = sceneWorld(ctx, *fine);
     auto fs = fine_world->resolveSettings(paper);
     REQUIRE(fs);
     CHECK(*fs->resolution == 2 * *s->resolution);
@@ -466,10 +381,9 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
 // use-after-free in detect.cpp and world.cpp). The world now holds the device itself.
 TEST_CASE("a world used after its Context is destroyed: every call works as before", "[api][gpu][lifetime]") {
     ValidatedContext ctx;
-    auto world = makeWorld(ctx);
     auto scene = overlappingSpheres();
     REQUIRE(scene);
-    addScene(*world, *scene);
+    auto world = sceneWorld(ctx, *scene);
     // An engine mesh made before the Context goes (its buffers keep the device alive too).
     EngineMesh engine = engineCopy(ctx.device(), scene->objects[0].mesh);
     DetectSettings peeling = fixedSettings(128);

@@ -10,7 +10,7 @@ set(VKCOLLIDE_HOST_SOURCES
   ${S}/graph/compile.cpp  # the plan: order, culling, barriers
   ${S}/graph/command_tape.cpp  # plain data: recording a tape
   ${S}/graph/command_tape_replay.cpp  # replayed through a dispatch table
-  ${S}/api/host_passes.cpp  # the world's passes over host positions (no Vulkan)
+  ${S}/api/vertex_scans.cpp  # the world's loops over host positions (no Vulkan)
   ${S}/api/mesh_checks.cpp  # closed meshes: holes and inside-out (no Vulkan)
 )
 # Subsystems owned elsewhere append to VKCOLLIDE_HOST_SOURCES in their own list file.
@@ -31,6 +31,7 @@ set(VKCOLLIDE_GPU_SOURCES
   ${S}/broad/common_stages.cpp
   ${S}/broad/projection.cpp
   ${S}/broad/stage.cpp
+  ${S}/broad/dispatch.cpp
   ${S}/detect/axis_union.cpp  # one or three directions (src/detect/)
   ${S}/detect/detection.cpp
   ${S}/mesh/engine_mesh.cpp  # mesh intake (src/mesh/)

@@ -3,7 +3,7 @@
 // A CollisionWorld holds the objects (mesh instances) of one scene on one Context and
 // finds every pair of intersecting triangles between them (and inside an object, if
 // its self-collision is on), with a GPU broad phase and an exact CPU narrow phase. Two
-// broad phases (DetectSettings::method): the reliable cell pair stage (default: never
+// broad phases (DetectSettings::method): the reliable cell stage (default: never
 // misses a pair) and the depth peeling of Georgii, Krüger and Westermann (2006).
 //
 //   auto ctx = vkcollide::Context::adopt(engine_device);         // Context::create(): host meshes only
@@ -303,7 +303,7 @@ struct PassTime {
     double gpu_ms = 0;
 };
 
-// The reliable method's cell pair stage, counted on the GPU (docs/reliable.md).
+// The reliable method's cell stage, counted on the GPU (docs/reliable.md).
 struct CellStats {
     std::uint64_t entries = 0;          // footprints: (triangle, cell) pairs
     std::uint64_t max_cell = 0;         // most triangles in one cell

@@ -1,4 +1,4 @@
-// Data shared by the cell pair stage's shaders (GLSL) and its host side (C++,
+// Data shared by the cell stage's shaders (GLSL) and its host side (C++,
 // src/broad/cells/): buffer layouts, limits and flags. docs/reliable.md explains the
 // method and why it cannot miss an intersecting pair.
 //
@@ -223,7 +223,7 @@ struct CellsParams {
     float proximity_pad;
     // Candidates the pair pass decides per submission: chunk k (the push constant's step)
     // covers [k * pair_chunk, (k + 1) * pair_chunk), so that no submission holds more
-    // than about a target time of work (CellPairs: the device's measured rate).
+    // than about a target time of work (CellStage: the device's measured rate).
     uint pair_chunk;
 };
 

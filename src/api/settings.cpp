@@ -7,7 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "api/host_passes.hpp"
+#include "api/vertex_scans.hpp"
 #include "api/world_impl.hpp"
 #include "common/broadphase.h"
 #include "contacts/contacts.h"
@@ -87,7 +87,7 @@ void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positi
 // The shapes steer automatic settings only (resolution rounded to a power of two or a cell
 // count, direction the largest of three facings), so a deterministic sample of at most
 // kShapeSampleTriangles triangles (evenly spaced blocks) measures them as well as all of them
-// would (host_passes::measureShape). They are measured when a detection or resolveSettings
+// would (vertex_scans::measureShape). They are measured when a detection or resolveSettings
 // needs them: here, for meshes still stale, or already by updateVertices, in its own loop,
 // while the last settings needed them (wantsShape); not at all while the settings that use
 // the shape are given. The direction and resolution use every object's; the open epsilon
@@ -98,15 +98,15 @@ void CollisionWorld::Impl::measureShapes(const DetectSettings& in) const {
     shapes_wanted_all = !in.direction || !in.resolution;
     shapes_wanted_open = !in.open_epsilon;
     std::vector<const Object*> stale;
-    std::vector<host_passes::ShapeMesh> meshes;
+    std::vector<vertex_scans::ShapeMesh> meshes;
     for (const Object& o : objects) {
         if (!o.alive || !o.host || !o.shape_stale || !wantsShape(o)) continue;
         stale.push_back(&o);
         meshes.push_back({o.host_positions, o.host_indices});
     }
     if (stale.empty()) return;
-    std::vector<host_passes::Shape> shapes(stale.size());
-    host_passes::measureShapes(*executor, meshes, shapes);
+    std::vector<vertex_scans::Shape> shapes(stale.size());
+    vertex_scans::measureShapes(*executor, meshes, shapes);
     for (std::size_t i = 0; i < stale.size(); ++i) {
         stale[i]->edge_length = shapes[i].edge_length;
         stale[i]->area_moment = shapes[i].area_moment;

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "api/context_access.hpp"
-#include "api/host_passes.hpp"
+#include "api/vertex_scans.hpp"
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
@@ -271,10 +271,10 @@ Result<void> CollisionWorld::Impl::updateHostVertices(ObjectId id, std::span<con
     host_copy.resize(positions.size());
     auto* upload = static_cast<Float3*>(upload_buffer.mapped());
     const bool measure = wantsShape(o);
-    host_passes::Shape shape;
-    const host_passes::VertexScan scan =
-        measure ? host_passes::copyScanAndMeasure(*executor, positions, host_copy, upload, o.host_indices, shape)
-                : host_passes::copyAndScan(*executor, positions, host_copy, upload);
+    vertex_scans::Shape shape;
+    const vertex_scans::VertexScan scan =
+        measure ? vertex_scans::copyScanAndMeasure(*executor, positions, host_copy, upload, o.host_indices, shape)
+                : vertex_scans::copyAndScan(*executor, positions, host_copy, upload);
     auto refused = [&](const Error& e) {
         if (!copy) std::memcpy(upload, o.host_positions.data(), positions.size_bytes());
         return named(id, e);

@@ -1,6 +1,6 @@
 // The GPU broad phase on the render graph: a common front (clear, GPU input checks, bounds,
 // fit), a method's stages (PeelingMethod, the paper's passes 1-4: sampling, ray merging,
-// primitive separation, packing; or ReliableMethod, the cell pair stage), then the header
+// primitive separation, packing; or ReliableMethod, the cell stage), then the header
 // readback. docs/rooms.md maps
 // each stage to its file and each buffer to its row.
 //

@@ -18,7 +18,7 @@
 
 #include <vulkan/vulkan_core.h>
 
-#include "broad/cell_pairs_stats.hpp"
+#include "broad/cell_stage_stats.hpp"
 #include "broad/sampling_types.hpp"
 #include "common/broadphase.h"
 #include "graph/executor.hpp"
@@ -126,12 +126,12 @@ struct BroadPhaseSettings {
     // Methods that form pairs on the GPU: which object pairs may collide (null: all). Must
     // outlive the run (until collect); its object count is the run's.
     const ObjectPairMask* pair_mask = nullptr;
-    // Methods that form pairs on the GPU: their budget (CellPairsSettings::max_candidate_pairs;
+    // Methods that form pairs on the GPU: their budget (CellStageSettings::max_candidate_pairs;
     // DetectSettings::max_candidate_pairs in a detection). Past it the run fails with
     // LimitExceeded.
     std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
     // Methods that form pairs on the GPU: decide them exactly there where the device can
-    // (CellPairsSettings::exact); BroadPhaseResult::cells.exact_ran says whether it did.
+    // (CellStageSettings::exact); BroadPhaseResult::cells.exact_ran says whether it did.
     bool exact_on_gpu = false;
     // Methods that decide pairs exactly on the GPU: also sort them there into device
     // buffers (DevicePairsView; objects named by GpuMesh::tag). Capacity in pairs, 0: automatic.
@@ -153,7 +153,7 @@ struct BroadPhaseSettings {
     double proximity_distance = 0;
     std::uint32_t proximity_capacity = 0;
     // Methods that decide candidates in a pair pass: at most this many per submission (0:
-    // automatic, CellPairsSettings::pair_chunk); tests set it small.
+    // automatic, CellStageSettings::pair_chunk); tests set it small.
     std::uint32_t pair_chunk = 0;
 };
 
@@ -205,7 +205,7 @@ struct BroadPhaseResult {
     bool has_pairs = false;
     std::span<const CandidatePair> pairs;
     std::span<const GpuTriangle> gpu_triangles;
-    CellPairsStats cells;                    // the cell pair stage's counters (has_pairs)
+    CellStageStats cells;                    // the cell stage's counters (has_pairs)
     // BroadPhaseSettings::sort_on_gpu where it ran: the pairs final and in order, objects as
     // run indices (host-visible memory, valid until the next run); `pairs` is then empty.
     bool has_sorted_pairs = false;
@@ -250,7 +250,7 @@ struct BroadPhaseResult {
     // GPU time per stage (broad/stage.hpp; the front's clear, checks and fit count as
     // sampling, as in the paper), and the host's reading of the results.
     double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0, readback_ms = 0;
-    // The cell pair stage (Stage::Footprints, Pairing, Filtering).
+    // The cell stage (Stage::Footprints, Pairing, Filtering).
     double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;
     double sorting_ms = 0;  // device pairs (Stage::Sorting)
     double proximity_ms = 0;  // the proximity pass (Stage::Proximity)

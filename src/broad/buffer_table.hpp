@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 #include "common/broadphase.h"
 #include "vk/resources.hpp"

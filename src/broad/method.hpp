@@ -28,6 +28,8 @@
 #include <span>
 
 #include "broad/buffer_table.hpp"
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 
 namespace vkcollide::passes {

@@ -5,6 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 #include "contacts/contact_grid.hpp"
 #include "shaders/all.hpp"

@@ -182,7 +182,7 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, c
     input.has_range = true;
     std::copy(std::begin(range.lo), std::end(range.lo), input.range_lo);
     std::copy(std::begin(range.hi), std::end(range.hi), input.range_hi);
-    narrow::CellSweep& sweep = ws.sweep;
+    narrow::GridSweep& sweep = ws.sweep;
     sweep.build(input, &ex);
     const std::size_t tiles = sweep.tileCount();
     const std::size_t sweep_grain = narrow::grainFor(tiles, ex.threadCount(), kTasksPerThread, 1, kMaxSweepGrain);
@@ -207,7 +207,7 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, c
         std::size_t budget_mark = kBoxBudgetStride;      // sap_pairs at the next look at the budget
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
         // Runs for every reported pair: inlined into the sweep.
-        narrow::CellSweep::TileCells cells;
+        narrow::GridSweep::TileCells cells;
         sweep.sweepTiles(begin, end, cells, [&](std::uint32_t i, std::uint32_t j, std::uint32_t object_i,
                                                 std::uint32_t object_j) VKCOLLIDE_ALWAYS_INLINE {
             ++sap_pairs;

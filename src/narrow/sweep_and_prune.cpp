@@ -58,11 +58,11 @@ std::uint32_t orderedBits(float x) noexcept {
 
 }  // namespace sweep_detail
 
-std::size_t CellSweep::cellCount() const noexcept {
+std::size_t GridSweep::cellCount() const noexcept {
     return std::size_t{axis_[0].count()} * axis_[1].count() * axis_[2].count();
 }
 
-CellSweep::CellRange CellSweep::cellsOf(const Entry& e) const noexcept {
+GridSweep::CellRange GridSweep::cellsOf(const Entry& e) const noexcept {
     CellRange r;
 #if defined(__SSE2__)
     // (x0, x1, y0, y1) at once, then (z0, z1): the same float operations as Axis.
@@ -81,7 +81,7 @@ CellSweep::CellRange CellSweep::cellsOf(const Entry& e) const noexcept {
     return r;
 }
 
-CellSweep::CellRange CellSweep::cellsOf(const BoxZ& b) const noexcept {
+GridSweep::CellRange GridSweep::cellsOf(const BoxZ& b) const noexcept {
     CellRange r;
 #if defined(__SSE2__)
     // (x0, y0, x1, y1) at once: the same float operations as Axis.
@@ -100,7 +100,7 @@ CellSweep::CellRange CellSweep::cellsOf(const BoxZ& b) const noexcept {
     return r;
 }
 
-void CellSweep::build(const SweepInput& in, Executor* executor) {
+void GridSweep::build(const SweepInput& in, Executor* executor) {
     const std::size_t n = in.count;
     entry_count_ = 0;
     tile_count_ = 0;
@@ -203,7 +203,7 @@ void CellSweep::build(const SweepInput& in, Executor* executor) {
     }
 }
 
-bool CellSweep::listInTiles(const SweepInput& in, Executor& ex, std::size_t max_cell_listings) {
+bool GridSweep::listInTiles(const SweepInput& in, Executor& ex, std::size_t max_cell_listings) {
     const std::size_t n = in.count;
     // Tiles: cubes of 2^s cells a side, about n / kBoxesPerTile of them (a surface
     // crosses a cube of k^3 cells in about k^2 of them), at most kMaxTileCells cells each.
@@ -301,7 +301,7 @@ bool CellSweep::listInTiles(const SweepInput& in, Executor& ex, std::size_t max_
     return true;
 }
 
-void CellSweep::fillTile(std::size_t tile, TileCells& out) const {
+void GridSweep::fillTile(std::size_t tile, TileCells& out) const {
     out.begin.assign(1, 0);
     out.entries.clear();
     const Entry* const list = entries_.data() + tile_begin_[tile];
@@ -398,7 +398,7 @@ void CellSweep::fillTile(std::size_t tile, TileCells& out) const {
     }
 }
 
-void CellSweep::build(std::span<const CandidateTriangle> in_candidates, Executor* executor) {
+void GridSweep::build(std::span<const CandidateTriangle> in_candidates, Executor* executor) {
     SweepInput in;
     in.count = in_candidates.size();
     if (!in_candidates.empty()) {
@@ -409,10 +409,10 @@ void CellSweep::build(std::span<const CandidateTriangle> in_candidates, Executor
 }
 
 std::vector<IndexPair> sweepAndPrunePairs(std::span<const CandidateTriangle> in_candidates, Executor* executor) {
-    CellSweep sweep;
+    GridSweep sweep;
     sweep.build(in_candidates, executor);
     std::vector<IndexPair> pairs;
-    CellSweep::TileCells cells;
+    GridSweep::TileCells cells;
     sweep.sweepTiles(0, sweep.tileCount(), cells, [&](std::uint32_t i, std::uint32_t j) { pairs.push_back({i, j}); });
     std::sort(pairs.begin(), pairs.end());
     return pairs;

@@ -64,7 +64,7 @@ struct SweepInput {
 // At most this many slots (an entry keeps a slot in 28 bits).
 inline constexpr std::size_t kMaxSweepSlots = (std::size_t{1} << 28) - 1;
 
-class CellSweep {
+class GridSweep {
 public:
     // A box as listed in a tile or a cell (32 bytes).
     struct Entry {
@@ -151,7 +151,7 @@ inline constexpr std::size_t kAllPairsMax = 16;
 // Whether b overlaps a in x, y and z: 1 or 0, without branches (compilers turn even `&`
 // of float comparisons into jumps, so on x86-64 this uses SSE2 masks).
 struct Overlap {
-    using Entry = CellSweep::Entry;
+    using Entry = GridSweep::Entry;
 #if defined(__SSE2__)
     explicit Overlap(const Entry& a) noexcept
         : high_xy(_mm_setr_ps(a.x1, 0, a.y1, 0)), low_xy(_mm_setr_ps(0, a.x0, 0, a.y0)),
@@ -178,7 +178,7 @@ struct Overlap {
 // 1 when the pair may be reported here: this is the cell of the largest starts (on each
 // axis one of the two starts here) and not two boxes of an object that does not
 // self-collide.
-inline std::uint32_t reportable(const CellSweep::Entry& a, const CellSweep::Entry& b) noexcept {
+inline std::uint32_t reportable(const GridSweep::Entry& a, const GridSweep::Entry& b) noexcept {
     const std::uint32_t starts = (((a.slot_flags | b.slot_flags) & 7) + 1) >> 3;
     const std::uint32_t other = static_cast<std::uint32_t>(a.object != b.object) | ((a.slot_flags >> 3) & 1);
     return starts & other;
@@ -189,7 +189,7 @@ std::uint32_t orderedBits(float x) noexcept;
 }  // namespace sweep_detail
 
 template <typename Visit>
-void CellSweep::sweepTiles(std::size_t begin, std::size_t end, TileCells& cells, Visit&& visit) const {
+void GridSweep::sweepTiles(std::size_t begin, std::size_t end, TileCells& cells, Visit&& visit) const {
     using namespace sweep_detail;
     // Reported partners of the current box, visited in batches: filling the batch is
     // branch-free, which matters because the tests pass for an unpredictable fraction.

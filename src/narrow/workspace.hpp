@@ -17,7 +17,7 @@
 // capacity carries over.
 struct vkcollide::NarrowWorkspace::Impl {
     // Record paths.
-    narrow::CellSweep sweep;
+    narrow::GridSweep sweep;
     narrow::Buffer<narrow::KeyIndex> keys, key_scratch;  // (object, triangle) keys when the input is not in order
     narrow::Buffer<std::uint32_t> record_of;             // slot -> record then
     narrow::Buffer<std::uint8_t> in_pair;                // per slot: in a candidate pair (std::atomic_ref)

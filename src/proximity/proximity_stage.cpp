@@ -5,6 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 #include "shaders/all.hpp"
 #include "vkcollide/proximity.hpp"
@@ -53,7 +55,7 @@ Result<void> ProximityStage::grow(vk::Buffer& buffer, VkDeviceSize size, vk::Mem
     return {};
 }
 
-Result<void> ProximityStage::prepare(const passes::CellPairs& cells, std::span<const passes::GpuMesh> meshes, double distance,
+Result<void> ProximityStage::prepare(const passes::CellStage& cells, std::span<const passes::GpuMesh> meshes, double distance,
                                      std::uint32_t capacity) {
     using vk::MemoryKind;
     distance_ = distance;
@@ -111,7 +113,7 @@ Result<void> ProximityStage::prepare(const passes::CellPairs& cells, std::span<c
     return {};
 }
 
-void ProximityStage::writeParams(const passes::CellPairs& cells) {
+void ProximityStage::writeParams(const passes::CellStage& cells) {
     gpu::ProximityParams p{};
     p.cells = cells.paramsAddress();
     p.owned = buf_.owned.address();
@@ -135,7 +137,7 @@ void ProximityStage::writeParams(const passes::CellPairs& cells) {
     buf_.params.flush();
 }
 
-void ProximityStage::record(graph::Graph& g, const passes::CellPairs::Resources& cells) {
+void ProximityStage::record(graph::Graph& g, const passes::CellStage::Resources& cells) {
     const auto header = g.importBuffer("proximity-header", buf_.header);
     const auto header_rb = g.importBuffer("proximity-header-readback", buf_.header_rb, true);
     const auto records = g.importBuffer("proximity-records", buf_.records);
@@ -257,7 +259,7 @@ Result<void> ProximityStage::growRecords() {
     return {};
 }
 
-void ProximityStage::refresh(const passes::CellPairs& cells) {
+void ProximityStage::refresh(const passes::CellStage& cells) {
     writeParams(cells);
     cells_args_ = cells.argsBuffer();
 }

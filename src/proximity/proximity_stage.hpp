@@ -1,5 +1,5 @@
 // The proximity pass (DetectSettings::proximity, docs/proximity.md): after the cell stage
-// ran with every triangle grown by half the distance (CellPairsSettings::proximity_pad),
+// ran with every triangle grown by half the distance (CellStageSettings::proximity_pad),
 // one invocation per candidate triangle pair computes, in double on the CPU's world
 // vertices, the distances of the vertices and edges the two triangles own
 // (ownership.hpp) and writes every vertex-triangle and edge-edge pair within the distance
@@ -26,7 +26,7 @@
 #include <span>
 
 #include "broad/broad_phase_types.hpp"
-#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/cell_stage.hpp"
 #include "proximity/proximity.h"
 
 namespace vkcollide::proximity {
@@ -36,13 +36,13 @@ public:
     // Needs shaderFloat64 (UnsupportedFeature otherwise, naming the device).
     static Result<std::unique_ptr<ProximityStage>> create(vk::Device& device);
 
-    // After CellPairs::prepare(): the run's meshes (each with its owned primitives, one per
+    // After CellStage::prepare(): the run's meshes (each with its owned primitives, one per
     // triangle: InvalidArgument naming the mesh otherwise), the distance (world units) and
     // the capacity (0: automatic).
-    [[nodiscard]] Result<void> prepare(const passes::CellPairs& cells, std::span<const passes::GpuMesh> meshes, double distance,
+    [[nodiscard]] Result<void> prepare(const passes::CellStage& cells, std::span<const passes::GpuMesh> meshes, double distance,
                                        std::uint32_t capacity);
     // The passes, after the cell stage's (`cells`: its resources in this graph).
-    void record(graph::Graph& g, const passes::CellPairs::Resources& cells);
+    void record(graph::Graph& g, const passes::CellStage::Resources& cells);
     // After the graph ran (and the cell stage completed): Complete, or Rerun when an
     // automatic capacity overflowed (grown: refresh(), then record the pass again). Errors:
     // LimitExceeded past a fixed capacity; VulkanError when the cell stage's run failed
@@ -51,7 +51,7 @@ public:
     [[nodiscard]] Result<Outcome> finish();
     // Before the pass is recorded alone (after the cell stage ran again, or after Rerun):
     // the parameters for the buffers as they are now (either may have grown).
-    void refresh(const passes::CellPairs& cells);
+    void refresh(const passes::CellStage& cells);
 
     // After a Complete finish(): the records in the result's order (a rare pair twice, side
     // by side), the header, and the passes run so far for this detection.
@@ -66,7 +66,7 @@ private:
     explicit ProximityStage(vk::Device& device) : device_(&device) {}
     Result<void> grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name);
     Result<void> growRecords();  // records, sorted and order for capacity_
-    void writeParams(const passes::CellPairs& cells);
+    void writeParams(const passes::CellStage& cells);
 
     vk::Device* device_;
     vk::Pipeline pipeline_, sort_pipeline_;

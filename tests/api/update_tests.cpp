@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "api/host_passes.hpp"
+#include "api/vertex_scans.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/world_fixture.hpp"
 #include "vkcollide/scene.hpp"
@@ -53,7 +53,7 @@ void requireSameSettings(const DetectSettings& a, const DetectSettings& b) {
 TEST_CASE("updateVertices over four threads gives what a world built from the same positions gives", "[api][gpu]") {
     ValidatedContext ctx;
     const Scene scene;
-    REQUIRE(scene.big.positions.size() > 3 * host_passes::kMinChunkVertices);
+    REQUIRE(scene.big.positions.size() > 3 * vertex_scans::kMinChunkVertices);
     auto world = worldOf(ctx, scene.big, scene.small);
     REQUIRE(world->detect());
     // Squashed to half its height, twice as wide, and moved: other pairs, other edges,

@@ -1,4 +1,4 @@
-// The cell pair stage's budget (CellPairsSettings::max_candidate_pairs): the
+// The cell stage's budget (CellStageSettings::max_candidate_pairs): the
 // cells of the footprint boxes, the pairs of footprints sharing a cell (what the sweep
 // compares) and the candidate pairs are each checked against it; past one the run fails
 // with LimitExceeded naming the count, no buffer grows beyond the budget, and the stage
@@ -54,7 +54,7 @@ CellScene crossing(std::uint32_t count) {
 
 struct Staged {
     UploadedScene up;
-    passes::CellPairsInput in;
+    passes::CellStageInput in;
     std::unique_ptr<graph::Executor> executor;  // what the stage's runs are submitted on
 };
 
@@ -67,9 +67,9 @@ Staged stage(ValidatedContext& ctx, const CellScene& scene, std::uint32_t resolu
     return s;
 }
 
-Result<passes::CellPairsResult> runWith(passes::CellPairs& cells, const Staged& s, std::uint64_t budget,
-                                        passes::CellPairsCapacity initial = {}) {
-    passes::CellPairsSettings settings;
+Result<passes::CellStageResult> runWith(passes::CellStage& cells, const Staged& s, std::uint64_t budget,
+                                        passes::CellStageCapacity initial = {}) {
+    passes::CellStageSettings settings;
     settings.max_candidate_pairs = budget;
     settings.initial = initial;
     return cells.run(*s.executor, s.in, settings);
@@ -77,7 +77,7 @@ Result<passes::CellPairsResult> runWith(passes::CellPairs& cells, const Staged& 
 
 // What a run needs of the budget: the largest of its three counts (comparisons divided
 // by kCellsComparisonsPerBudget, rounded up).
-std::uint64_t need(const passes::CellPairsStats& st) {
+std::uint64_t need(const passes::CellStageStats& st) {
     const std::uint64_t per = gpu::kCellsComparisonsPerBudget;
     return std::max({st.box_cells, (st.comparisons + per - 1) / per, st.candidates});
 }
@@ -98,13 +98,13 @@ TEST_CASE("cells: past the budget a run fails naming the count, at the budget it
     };
     for (Case& c : cases) {
         INFO(c.name);
-        auto cells = passes::CellPairs::create(ctx.device());
+        auto cells = passes::CellStage::create(ctx.device());
         REQUIRE(cells);
         const Staged s = stage(ctx, c.scene, c.resolution, c.direction);
         // Unbounded (the stage's own limit): the counts the budget is checked against.
         auto full = (*cells)->run(*s.executor, s.in);
         REQUIRE(full);
-        const passes::CellPairsStats st = full->stats;
+        const passes::CellStageStats st = full->stats;
         requireAllFound(CellRun{*full, toObjectPairs(s.up.objects, full->pairs)}, referencePairs(c.scene));
         CHECK(st.entries <= st.box_cells);
         const std::uint64_t enough = need(st);
@@ -122,7 +122,7 @@ TEST_CASE("cells: past the budget a run fails naming the count, at the budget it
             limits.push_back({enough - 1, st.candidates, "candidate pairs"});
         for (const Limit& l : limits) {
             INFO("budget " << l.budget << ": " << l.says);
-            auto fresh = passes::CellPairs::create(ctx.device());
+            auto fresh = passes::CellStage::create(ctx.device());
             REQUIRE(fresh);
             auto r = runWith(**fresh, s, l.budget);
             REQUIRE_FALSE(r);
@@ -131,7 +131,7 @@ TEST_CASE("cells: past the budget a run fails naming the count, at the budget it
             CHECK(mentions(r.error(), " " + std::to_string(l.count) + " "));
             CHECK(mentions(r.error(), "max_candidate_pairs (" + std::to_string(l.budget) + ")"));
             // Nothing grew for it.
-            const passes::CellPairsCapacity& cap = (*fresh)->capacity();
+            const passes::CellStageCapacity& cap = (*fresh)->capacity();
             CHECK(std::max({cap.entries, cap.items, cap.candidates, cap.survivors}) <= l.budget);
             // The stage goes on: the next run with enough budget gives every pair.
             auto again = runWith(**fresh, s, enough);
@@ -143,13 +143,13 @@ TEST_CASE("cells: past the budget a run fails naming the count, at the budget it
 
         // Exactly the budget the run needs: complete, from capacities of 1 grown to at
         // most the budget.
-        auto fresh = passes::CellPairs::create(ctx.device());
+        auto fresh = passes::CellStage::create(ctx.device());
         REQUIRE(fresh);
         auto exact = runWith(**fresh, s, enough, {1, 1, 1, 1});
         REQUIRE(exact);
         CHECK(exact->pairs == full->pairs);
         CHECK(exact->stats.runs >= 2);
-        const passes::CellPairsCapacity& cap = (*fresh)->capacity();
+        const passes::CellStageCapacity& cap = (*fresh)->capacity();
         CHECK(std::max({cap.entries, cap.items, cap.candidates, cap.survivors}) <= enough);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
@@ -159,22 +159,22 @@ TEST_CASE("cells: first capacities never exceed a small budget, a budget of 0 fa
     ValidatedContext ctx;
     const CellScene scene = crossing(40);
     const Staged s = stage(ctx, scene, 4, {1.0, 0.31, 0.17});
-    auto cells = passes::CellPairs::create(ctx.device());
+    auto cells = passes::CellStage::create(ctx.device());
     REQUIRE(cells);
     auto full = (*cells)->run(*s.executor, s.in);
     REQUIRE(full);
     const std::uint64_t enough = need(full->stats);
     // The estimates (8 entries and 2 candidates per triangle, at least 4,096) are above it.
     REQUIRE(enough < 4096);
-    auto fresh = passes::CellPairs::create(ctx.device());
+    auto fresh = passes::CellStage::create(ctx.device());
     REQUIRE(fresh);
     auto r = runWith(**fresh, s, enough);
     REQUIRE(r);
     CHECK(r->pairs == full->pairs);
-    const passes::CellPairsCapacity& cap = (*fresh)->capacity();
+    const passes::CellStageCapacity& cap = (*fresh)->capacity();
     CHECK(std::max({cap.entries, cap.items, cap.candidates, cap.survivors}) <= enough);
 
-    auto none = passes::CellPairs::create(ctx.device());
+    auto none = passes::CellStage::create(ctx.device());
     REQUIRE(none);
     auto zero = runWith(**none, s, 0);
     REQUIRE_FALSE(zero);
@@ -206,7 +206,7 @@ TEST_CASE("cells: projection rows of 2^62 or more, or not finite when written on
         for (int r : rows) p.row[r] = {p.row[r].x * by, p.row[r].y * by, p.row[r].z * by, p.row[r].w * by};
         return p;
     };
-    auto cells = passes::CellPairs::create(ctx.device());
+    auto cells = passes::CellStage::create(ctx.device());
     REQUIRE(cells);
     // Given by the host: rows times 2^70 (finite), scaled back below 2^62 on the GPU.
     for (auto rows : {std::initializer_list<int>{2}, std::initializer_list<int>{0, 1}}) {
@@ -222,10 +222,10 @@ TEST_CASE("cells: projection rows of 2^62 or more, or not finite when written on
     for (auto rows : {std::initializer_list<int>{2}, std::initializer_list<int>{0}}) {
         INFO("row " << *rows.begin() << " not finite");
         const gpu::Projection pr = *rows.begin() == 2 ? scaled(rows, nan) : scaled(rows, std::numeric_limits<float>::infinity());
-        passes::CellPairsInput in;
+        passes::CellStageInput in;
         in.objects = up.objects;
         in.resolution = 32;
-        const passes::CellPairsResult out = runWithWrittenProjection(ctx, **cells, in, pr);
+        const passes::CellStageResult out = runWithWrittenProjection(ctx, **cells, in, pr);
         requireAllFound(CellRun{out, toObjectPairs(up.objects, out.pairs)}, reference);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

@@ -1,4 +1,4 @@
-// The cell pair stage against the exact reference (tests/support/exact_reference.cpp) on
+// The cell stage against the exact reference (tests/support/exact_reference.cpp) on
 // lavapipe with validation on: every reference pair, touching included, must survive
 // (100 % recall) on adversarial scenes and at resolutions from 1 to 1024 cells per side.
 #include <catch2/catch.hpp>
@@ -56,7 +56,7 @@ CellScene twoSpheres() {
 
 TEST_CASE("cells: two overlapping spheres, every pair at every resolution", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     const CellScene scene = twoSpheres();
     const auto reference = referencePairs(scene);
@@ -75,7 +75,7 @@ TEST_CASE("cells: two overlapping spheres, every pair at every resolution", "[ce
 
 TEST_CASE("cells: random sub-cell triangle soups, several objects, self-collision on and off", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(12345);
     CellScene scene;
@@ -102,7 +102,7 @@ TEST_CASE("cells: random sub-cell triangle soups, several objects, self-collisio
 
 TEST_CASE("cells: needles, slivers and collinear triangles", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(777);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f), sign(-1.0f, 1.0f);
@@ -136,7 +136,7 @@ TEST_CASE("cells: needles, slivers and collinear triangles", "[cells][gpu]") {
 
 TEST_CASE("cells: edge-on contacts along each axis, crossing and touching", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(99);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
@@ -183,7 +183,7 @@ TEST_CASE("cells: edge-on contacts along each axis, crossing and touching", "[ce
 
 TEST_CASE("cells: nearly coplanar crossings and shared-edge touching between objects", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(4242);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f), tiny(-1e-6f, 1e-6f);
@@ -218,7 +218,7 @@ TEST_CASE("cells: nearly coplanar crossings and shared-edge touching between obj
 
 TEST_CASE("cells: coordinates around 1e6, rotated objects, GPU world rounding", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     SECTION("translated by transforms") {
         CellScene scene;
@@ -268,7 +268,7 @@ TEST_CASE("cells: coordinates around 1e6, rotated objects, GPU world rounding", 
 
 TEST_CASE("cells: self-collision, the object pair mask and 16-bit indices", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     CellScene scene;
     scene.meshes.push_back(generated(twistedTube(1.0f, 0.2f, 96, 12, 1.5f), "tube"));
@@ -309,7 +309,7 @@ TEST_CASE("cells: self-collision, the object pair mask and 16-bit indices", "[ce
 // pairs share no cell.
 TEST_CASE("cells: contacts within an ulp of cell borders", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(2024);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -370,7 +370,7 @@ TEST_CASE("cells: contacts within an ulp of cell borders", "[cells][gpu]") {
 // world-error padding of the footprints and the filter's ulp margin keep these pairs.
 TEST_CASE("cells: contacts through transformed vertices on cell borders", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(31337);
     std::uniform_real_distribution<double> unit(0.0, 1.0);

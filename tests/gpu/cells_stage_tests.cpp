@@ -1,4 +1,4 @@
-// The cell pair stage's machinery: overflow and rerun, identical results run to run, the
+// The cell stage's machinery: overflow and rerun, identical results run to run, the
 // big-triangle and deep-cell paths, the projection written by an earlier pass, the filter
 // switched off, and bad input (errors naming object and triangle, or a conservative
 // result for denormal coordinates).
@@ -50,7 +50,7 @@ CellScene mixedScene() {
 
 TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     const CellScene scene = mixedScene();
     CellRunOptions opt;
@@ -59,7 +59,7 @@ TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "
     requireAllFound(normal, referencePairs(scene));
     CHECK(normal.result.stats.big_triangles > 0);
 
-    auto fresh = passes::CellPairs::create(ctx.device());
+    auto fresh = passes::CellStage::create(ctx.device());
     REQUIRE(fresh);
     opt.settings.initial = {1, 1, 1, 1};
     const CellRun grown = runCells(ctx, **fresh, scene, opt);
@@ -77,14 +77,14 @@ TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "
     CHECK(again.pairs == normal.pairs);
 
     // A run limit that overflow cannot meet is an error, not a partial result.
-    auto limited = passes::CellPairs::create(ctx.device());
+    auto limited = passes::CellStage::create(ctx.device());
     REQUIRE(limited);
     UploadedScene up = uploadScene(ctx.device(), scene);
-    passes::CellPairsInput in;
+    passes::CellStageInput in;
     in.objects = up.objects;
     in.projection = fitProjection(scene, {0, 0, 1});
     in.resolution = 256;
-    passes::CellPairsSettings s;
+    passes::CellStageSettings s;
     s.initial = {1, 1, 1, 1};
     s.max_runs = 1;
     graph::Executor executor(ctx.device());
@@ -96,7 +96,7 @@ TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "
 
 TEST_CASE("cells: dispatches split into rows of workgroups give the same pairs", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(6);
     CellScene scene = mixedScene();
@@ -121,7 +121,7 @@ TEST_CASE("cells: dispatches split into rows of workgroups give the same pairs",
 // with the exact decision, and a chunk that overflows the survivors reruns the stage.
 TEST_CASE("cells: the pair pass in chunks decides what one pass decides", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(11);
     CellScene scene = mixedScene();
@@ -156,10 +156,10 @@ TEST_CASE("cells: the pair pass in chunks decides what one pass decides", "[cell
         // the stage sizes for every candidate then, so chunks cost no more reruns than one pass.
         opt.settings.initial.survivors = 1;
         opt.settings.pair_chunk = 0;
-        auto fresh = passes::CellPairs::create(ctx.device());
+        auto fresh = passes::CellStage::create(ctx.device());
         REQUIRE(fresh);
         const CellRun one_pass = runCells(ctx, **fresh, scene, opt);
-        auto fresh_chunked = passes::CellPairs::create(ctx.device());
+        auto fresh_chunked = passes::CellStage::create(ctx.device());
         REQUIRE(fresh_chunked);
         opt.settings.pair_chunk = 211;
         const CellRun grown = runCells(ctx, **fresh_chunked, scene, opt);
@@ -173,7 +173,7 @@ TEST_CASE("cells: the pair pass in chunks decides what one pass decides", "[cell
 
 TEST_CASE("cells: identical results run to run", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(5);
     CellScene scene = mixedScene();
@@ -196,7 +196,7 @@ TEST_CASE("cells: identical results run to run", "[cells][gpu]") {
 
 TEST_CASE("cells: deep cells (sorted in shared memory and in chunks) and big triangles", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(8);
     CellScene scene;
@@ -226,7 +226,7 @@ TEST_CASE("cells: deep cells (sorted in shared memory and in chunks) and big tri
 // the chunked deep path alike.
 TEST_CASE("cells: triangles apart within a shared cell are not paired", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     // Sampling = world: x, y across the grid, z the depth; N = 4, so cell (1, 1) is
     // [0.25, 0.5]^2.
@@ -273,7 +273,7 @@ TEST_CASE("cells: triangles apart within a shared cell are not paired", "[cells]
 // self flag and object ids past 2^15 must survive), once as two self-colliding objects.
 TEST_CASE("cells: more objects than boxed entry keys hold", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(33001);
     const HostMesh soup_mesh = soup(rng, 33000, 0.0f, 1.0f, 0.02f, "soup");
@@ -321,7 +321,7 @@ TEST_CASE("cells: more objects than boxed entry keys hold", "[cells][gpu]") {
 
 TEST_CASE("cells: projection written by an earlier pass of the same graph", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     const CellScene scene = mixedScene();
     CellRunOptions opt;
@@ -330,13 +330,13 @@ TEST_CASE("cells: projection written by an earlier pass of the same graph", "[ce
 
     UploadedScene up = uploadScene(ctx.device(), scene);
     const gpu::Projection pr = fitProjection(scene, opt.direction);
-    passes::CellPairsInput in;
+    passes::CellStageInput in;
     in.objects = up.objects;
     in.resolution = 64;
     in.self_collision = scene.self;
-    auto other = passes::CellPairs::create(ctx.device());
+    auto other = passes::CellStage::create(ctx.device());
     REQUIRE(other);
-    const passes::CellPairsResult out = runWithWrittenProjection(ctx, **other, in, pr);
+    const passes::CellStageResult out = runWithWrittenProjection(ctx, **other, in, pr);
     REQUIRE(expected.pairs.size() > 50);
     CHECK(toObjectPairs(up.objects, out.pairs) == expected.pairs);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
@@ -344,7 +344,7 @@ TEST_CASE("cells: projection written by an earlier pass of the same graph", "[ce
 
 TEST_CASE("cells: without the filter every pair the filter keeps survives", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(9);
     CellScene scene = mixedScene();
@@ -369,14 +369,14 @@ TEST_CASE("cells: without the filter every pair the filter keeps survives", "[ce
 
 TEST_CASE("cells: bad input is refused, naming the object and triangle", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     CellScene scene;
     scene.meshes.push_back(generated(uvSphere(1.0f, 8, 4), "a"));
     scene.meshes.push_back(generated(uvSphere(1.0f, 8, 4), "b"));
     auto attempt = [&](const CellScene& s, auto&& edit) {
         UploadedScene up = uploadScene(ctx.device(), s);
-        passes::CellPairsInput in;
+        passes::CellStageInput in;
         in.objects = up.objects;
         in.projection = fitProjection(scene, {0, 0, 1});
         in.resolution = 32;
@@ -390,7 +390,7 @@ TEST_CASE("cells: bad input is refused, naming the object and triangle", "[cells
         for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), 1e38f, 5e18f}) {
             CellScene s = scene;
             s.meshes[1].positions[s.meshes[1].indices[3 * 5 + 1]].y = bad;
-            auto r = attempt(s, [](passes::CellPairsInput&, UploadedScene&) {});
+            auto r = attempt(s, [](passes::CellStageInput&, UploadedScene&) {});
             INFO("value " << bad);
             REQUIRE_FALSE(r);
             CHECK(r.error().code() == ErrorCode::InvalidMesh);
@@ -400,13 +400,13 @@ TEST_CASE("cells: bad input is refused, naming the object and triangle", "[cells
     SECTION("an index beyond the vertices") {
         CellScene s = scene;
         s.meshes[0].indices[3 * 7 + 2] = 100000;
-        auto r = attempt(s, [](passes::CellPairsInput&, UploadedScene&) {});
+        auto r = attempt(s, [](passes::CellStageInput&, UploadedScene&) {});
         REQUIRE_FALSE(r);
         CHECK(r.error().code() == ErrorCode::InvalidMesh);
         CHECK_THAT(r.error().message(), Catch::Contains("object 0, triangle 7") && Catch::Contains("index"));
     }
     SECTION("a world coordinate of 2^62 or more") {
-        auto r = attempt(scene, [](passes::CellPairsInput&, UploadedScene& up) {
+        auto r = attempt(scene, [](passes::CellStageInput&, UploadedScene& up) {
             // Entries below 2^62, but the sum reaches 8e18 > 2^62 at the sphere's +x pole.
             up.objects[1].model[0] = {4e18f, 0, 0, 4e18f};
         });
@@ -415,21 +415,21 @@ TEST_CASE("cells: bad input is refused, naming the object and triangle", "[cells
         CHECK_THAT(r.error().message(), Catch::Contains("object 1") && Catch::Contains("world"));
     }
     SECTION("host-side checks") {
-        auto huge = attempt(scene, [](passes::CellPairsInput& in, UploadedScene& up) {
+        auto huge = attempt(scene, [](passes::CellStageInput& in, UploadedScene& up) {
             up.objects[0].model[2].w = 1e30f;
             in.objects = up.objects;
         });
         REQUIRE_FALSE(huge);
         CHECK(huge.error().code() == ErrorCode::InvalidArgument);
-        auto projection = attempt(scene, [](passes::CellPairsInput& in, UploadedScene&) {
+        auto projection = attempt(scene, [](passes::CellStageInput& in, UploadedScene&) {
             in.projection->row[1].y = std::numeric_limits<float>::quiet_NaN();
         });
         REQUIRE_FALSE(projection);
         CHECK(projection.error().code() == ErrorCode::InvalidArgument);
-        auto resolution = attempt(scene, [](passes::CellPairsInput& in, UploadedScene&) { in.resolution = 0; });
+        auto resolution = attempt(scene, [](passes::CellStageInput& in, UploadedScene&) { in.resolution = 0; });
         REQUIRE_FALSE(resolution);
         CHECK(resolution.error().code() == ErrorCode::InvalidArgument);
-        auto base = attempt(scene, [](passes::CellPairsInput& in, UploadedScene& up) {
+        auto base = attempt(scene, [](passes::CellStageInput& in, UploadedScene& up) {
             up.objects[1].triangle_base += 1;
             in.objects = up.objects;
         });
@@ -445,7 +445,7 @@ TEST_CASE("cells: bad input is refused, naming the object and triangle", "[cells
 
 TEST_CASE("cells: denormal coordinates are handled conservatively", "[cells][gpu]") {
     ValidatedContext ctx;
-    auto stage = passes::CellPairs::create(ctx.device());
+    auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     std::mt19937 rng(10);
     CellScene scene;

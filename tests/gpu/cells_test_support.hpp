@@ -1,4 +1,4 @@
-// Shared by the cell pair stage's tests: a scene of host meshes with transforms uploaded
+// Shared by the cell stage's tests: a scene of host meshes with transforms uploaded
 // as gpu::ObjectGpu, a projection fitted to it along a direction, one run of the stage,
 // and its survivors as (object, triangle) pairs for comparison with the exact reference.
 #pragma once
@@ -14,7 +14,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/cell_stage.hpp"
 #include "graph/executor.hpp"
 #include "graph/graph.hpp"
 #include "support/exact_reference.hpp"
@@ -150,7 +150,7 @@ inline gpu::Projection fitProjection(const CellScene& scene, std::array<double, 
 }
 
 struct CellRun {
-    passes::CellPairsResult result;
+    passes::CellStageResult result;
     std::vector<TrianglePair> pairs;  // (object, triangle) pairs
 };
 
@@ -173,16 +173,16 @@ inline std::vector<TrianglePair> toObjectPairs(const std::vector<gpu::ObjectGpu>
 struct CellRunOptions {
     std::uint32_t resolution = 64;
     std::array<double, 3> direction{0, 0, 1};
-    passes::CellPairsSettings settings;
+    passes::CellStageSettings settings;
     std::function<bool(std::uint32_t, std::uint32_t)> may_collide;
     bool index16 = false;
     bool shared_buffers = false;                // uploadSharedScene (32-bit indices)
     std::optional<gpu::Projection> projection;  // instead of fitting one along `direction`
 };
 
-inline CellRun runCells(ValidatedContext& ctx, passes::CellPairs& stage, const CellScene& scene, const CellRunOptions& opt) {
+inline CellRun runCells(ValidatedContext& ctx, passes::CellStage& stage, const CellScene& scene, const CellRunOptions& opt) {
     UploadedScene up = opt.shared_buffers ? uploadSharedScene(ctx.device(), scene) : uploadScene(ctx.device(), scene, opt.index16);
-    passes::CellPairsInput in;
+    passes::CellStageInput in;
     in.objects = up.objects;
     in.projection = opt.projection ? *opt.projection : fitProjection(scene, opt.direction);
     in.resolution = opt.resolution;
@@ -225,7 +225,7 @@ inline void requireAllFound(const CellRun& run, const std::vector<TrianglePair>&
 // projection `pr` into a device-local buffer (as the detection's fit does) and the stage
 // reads it there; rerun until complete (at most 8 runs). `in` is used as given, its
 // projection_address set here.
-inline passes::CellPairsResult runWithWrittenProjection(ValidatedContext& ctx, passes::CellPairs& stage, passes::CellPairsInput in,
+inline passes::CellStageResult runWithWrittenProjection(ValidatedContext& ctx, passes::CellStage& stage, passes::CellStageInput in,
                                                         const gpu::Projection& pr) {
     auto staging = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::Upload, "projection-staging");
     auto written = vk::Buffer::create(ctx.device(), sizeof pr, 0, vk::MemoryKind::DeviceLocal, "projection");
@@ -237,7 +237,7 @@ inline passes::CellPairsResult runWithWrittenProjection(ValidatedContext& ctx, p
     in.projection_address = written->address();
     REQUIRE(stage.prepare(in));
     graph::Executor executor(ctx.device());
-    passes::CellPairsResult out;
+    passes::CellStageResult out;
     for (int attempt = 0;; ++attempt) {
         REQUIRE(attempt < 8);
         graph::Graph g;
@@ -254,7 +254,7 @@ inline passes::CellPairsResult runWithWrittenProjection(ValidatedContext& ctx, p
         stage.record(g, dst);
         REQUIRE(executor.run(g));
         auto outcome = stage.finish(out);
-        while (outcome && *outcome == passes::CellPairs::Outcome::MorePairs) {  // the pair pass's next chunk
+        while (outcome && *outcome == passes::CellStage::Outcome::MorePairs) {  // the pair pass's next chunk
             graph::Graph chunk;
             stage.recordPairChunk(chunk);
             REQUIRE(executor.run(chunk));
@@ -262,7 +262,7 @@ inline passes::CellPairsResult runWithWrittenProjection(ValidatedContext& ctx, p
         }
         INFO((outcome ? std::string() : outcome.error().message()));
         REQUIRE(outcome);
-        if (*outcome == passes::CellPairs::Outcome::Complete) break;
+        if (*outcome == passes::CellStage::Outcome::Complete) break;
     }
     return out;
 }

@@ -8,6 +8,8 @@
 #include <algorithm>
 
 #include "broad/broad_phase.hpp"
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/pathological_scenes.hpp"

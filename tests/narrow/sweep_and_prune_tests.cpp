@@ -108,7 +108,7 @@ TEST_CASE("Sweep and prune in cells: tall, deep, wide, flat and touching boxes, 
         const float y = float(i % 100) / 100, z = float(i / 100) / 10;
         c.push_back(boxCandidate(i, 0, y, 1, y + 0.005f, z, z + 0.05f));
     }
-    narrow::CellSweep sweep;
+    narrow::GridSweep sweep;
     sweep.build(c, &pool3);
     CHECK(sweep.cellCount() > 50);
     CHECK(sweep.entryCount() < 3 * c.size());
@@ -123,11 +123,11 @@ TEST_CASE("Sweep and prune tiles give the pairs exactly once", "[narrow][sap]") 
         const float x = unit(rng), y = unit(rng), z = unit(rng);
         c.push_back(boxCandidate(i, x, y, x + size(rng), y + size(rng), z, z + size(rng)));
     }
-    narrow::CellSweep sweep;
+    narrow::GridSweep sweep;
     sweep.build(c, nullptr);
     REQUIRE(sweep.tileCount() > 1);
     std::vector<IndexPair> pairs;
-    narrow::CellSweep::TileCells cells;
+    narrow::GridSweep::TileCells cells;
     for (std::size_t begin = 0; begin < sweep.tileCount(); begin += 3) {
         sweep.sweepTiles(begin, std::min(sweep.tileCount(), begin + 3), cells, [&](std::uint32_t i, std::uint32_t j) {
             CHECK(i < j);
@@ -159,10 +159,10 @@ TEST_CASE("Sweep and prune skips pairs of objects that do not self-collide", "[n
     in.options = &options;
     for (unsigned threads : {1u, 4u}) {
         ThreadPool pool(threads);
-        narrow::CellSweep sweep;
+        narrow::GridSweep sweep;
         sweep.build(in, &pool);
         std::vector<IndexPair> pairs;
-        narrow::CellSweep::TileCells cells;
+        narrow::GridSweep::TileCells cells;
         sweep.sweepTiles(0, sweep.tileCount(), cells, [&](std::uint32_t i, std::uint32_t j) { pairs.push_back({i, j}); });
         std::sort(pairs.begin(), pairs.end());
         std::vector<IndexPair> expected;

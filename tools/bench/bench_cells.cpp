@@ -1,4 +1,4 @@
-// vkcollide_bench_cells: the cell pair stage (src/broad/cells) alone on generated scenes
+// vkcollide_bench_cells: the cell stage (src/broad/cells) alone on generated scenes
 // of the bench set's kinds. Not a test: a program that prints one table.
 //
 //   vkcollide_bench_cells [--scenes a,b,...] [--scale S] [--factors 0.5,1,2] [--repeat K]
@@ -13,7 +13,7 @@
 // dropped as duplicates and as proved disjoint, survivors, the exact pairs and the recall against them
 // (tests/support/exact_reference.cpp), candidates per true pair, the median GPU time (first
 // pass start to last pass end, from the graph's timestamps), the median wall time of
-// CellPairs::run (parameters, graph, submission, wait, readback, sorting: all host work of
+// CellStage::run (parameters, graph, submission, wait, readback, sorting: all host work of
 // a detection) and the mean time of each pass. Meshes live in device-local memory;
 // deforming scenes get new positions every frame (uploaded untimed, one run per frame;
 // counts are per frame).
@@ -30,7 +30,7 @@
 #include <vector>
 
 #include "api/context_access.hpp"
-#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/cell_stage.hpp"
 #include "support/exact_reference.hpp"
 #include "vk/device.hpp"
 #include "vkcollide/context.hpp"
@@ -320,7 +320,7 @@ int main(int argc, char** argv) {
         return 1;
     }
     vk::Device& device = ContextAccess::device(**ctx);
-    auto stage = passes::CellPairs::create(device);
+    auto stage = passes::CellStage::create(device);
     if (!stage) {
         std::fprintf(stderr, "%s\n", stage.error().message().c_str());
         return 1;
@@ -337,7 +337,7 @@ int main(int argc, char** argv) {
         struct Row {
             std::map<std::string, double> pass_total;
             std::vector<double> gpu_ms, wall_ms;
-            passes::CellPairsStats stats{};  // summed over frames
+            passes::CellStageStats stats{};  // summed over frames
             std::size_t found = 0;
             std::uint32_t n = 0;
             bool failed = false;
@@ -379,14 +379,14 @@ int main(int argc, char** argv) {
                 Row& row = rows[fi];
                 if (row.failed) continue;
                 row.n = std::uint32_t(std::clamp(std::lround(factors[fi] * geo.extent / geo.edge), 1l, long(gpu::kCellsMaxResolution)));
-                passes::CellPairsInput in;
+                passes::CellStageInput in;
                 in.objects = gpu_scene.objects;
                 in.projection = geo.projection;
                 in.resolution = row.n;
                 in.self_collision = scene->self;
                 (void)(*stage)->run(executor, in);  // warm-up: buffers grow to this scene and resolution
                 const int runs = spec.deforming ? 1 : repeat;
-                passes::CellPairsResult result;
+                passes::CellStageResult result;
                 for (int r = 0; r < runs; ++r) {
                     const auto t0 = Clock::now();
                     auto res = (*stage)->run(executor, in);
@@ -407,7 +407,7 @@ int main(int argc, char** argv) {
                     result = std::move(*res);
                 }
                 if (row.failed) continue;
-                const passes::CellPairsStats& s = result.stats;
+                const passes::CellStageStats& s = result.stats;
                 row.stats.entries += s.entries;
                 row.stats.max_cell = std::max(row.stats.max_cell, s.max_cell);
                 row.stats.deep_cells += s.deep_cells;

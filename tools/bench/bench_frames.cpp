@@ -12,7 +12,7 @@
 //        memcpy-upload     a plain copy into the upload buffer: the bus's write rate;
 //        scan-host         updateVertices' pass without the upload buffer;
 //        fused / staged    updateVertices' pass, both ways of writing the upload buffer
-//                          (host_passes::UploadWrites; the world uses fused);
+//                          (vertex_scans::UploadWrites; the world uses fused);
 //  * detect / submit / pipelined: a deforming pair of engine meshes (two spheres of about
 //    --triangles triangles each, written by the host into host-visible buffers, double
 //    buffered with setGpuMeshBuffers), per frame the host wall time from writing the
@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "api/context_access.hpp"
-#include "api/host_passes.hpp"
+#include "api/vertex_scans.hpp"
 #include "vk/device.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/scene.hpp"
@@ -154,16 +154,16 @@ void updateParts(vk::Device& dev, const HostMesh& big, int frames, unsigned thre
     ThreadPool one(1), many(threads);
     for (ThreadPool* pool : {&many, &one}) {
         const std::string suffix = pool == &one ? "-1t" : "";
-        const std::size_t grain = std::max<std::size_t>(host_passes::kMinChunkVertices, (n / (4 * pool->threadCount()) + 15) / 16 * 16);
+        const std::size_t grain = std::max<std::size_t>(vertex_scans::kMinChunkVertices, (n / (4 * pool->threadCount()) + 15) / 16 * 16);
         auto copyTo = [&](Float3* dst) {
             pool->parallelFor(n, grain, [&](std::size_t b, std::size_t e) { std::memcpy(dst + b, next.data() + b, (e - b) * sizeof(Float3)); });
         };
         row("part:memcpy-host" + suffix, timeMedian(frames, [&](int) { copyTo(host.data()); }));
         row("part:memcpy-upload" + suffix, timeMedian(frames, [&](int) { copyTo(upload); }));
-        row("part:scan-host" + suffix, timeMedian(frames, [&](int) { (void)host_passes::copyAndScan(*pool, next, host, nullptr); }));
-        for (auto writes : {host_passes::UploadWrites::Fused, host_passes::UploadWrites::Staged})
-            row(std::string(writes == host_passes::UploadWrites::Fused ? "part:fused" : "part:staged") + suffix,
-                timeMedian(frames, [&](int) { (void)host_passes::copyAndScan(*pool, next, host, upload, writes); }));
+        row("part:scan-host" + suffix, timeMedian(frames, [&](int) { (void)vertex_scans::copyAndScan(*pool, next, host, nullptr); }));
+        for (auto writes : {vertex_scans::UploadWrites::Fused, vertex_scans::UploadWrites::Staged})
+            row(std::string(writes == vertex_scans::UploadWrites::Fused ? "part:fused" : "part:staged") + suffix,
+                timeMedian(frames, [&](int) { (void)vertex_scans::copyAndScan(*pool, next, host, upload, writes); }));
     }
 }
 

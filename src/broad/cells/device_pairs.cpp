@@ -5,6 +5,8 @@
 #include <cstring>
 #include <string>
 
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 #include "shaders/all.hpp"
 #include "vkcollide/world.hpp"
@@ -55,7 +57,7 @@ Result<void> DevicePairStage::grow(vk::Buffer& buffer, VkDeviceSize size, vk::Me
     return {};
 }
 
-Result<void> DevicePairStage::prepare(const CellPairs& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
+Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
                                       VkDeviceAddress fault_header, bool header_to_host, bool for_host) {
     using vk::MemoryKind;
     triangles_ = cells.triangleCount();
@@ -107,7 +109,7 @@ Result<void> DevicePairStage::prepare(const CellPairs& cells, std::span<const st
     return {};
 }
 
-void DevicePairStage::record(graph::Graph& g, const CellPairs::Resources& cells, graph::ResourceId fault_header) {
+void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) {
     Buffers& b = buf_;
     const auto header = g.importBuffer("device-pairs-header", b.header);
     const auto pairs = g.importBuffer("device-pairs", b.pairs);

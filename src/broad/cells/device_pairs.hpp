@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "broad/broad_phase_types.hpp"
-#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/cell_stage.hpp"
 
 namespace vkcollide::passes {
 
@@ -36,20 +36,20 @@ class DevicePairStage {
 public:
     static Result<std::unique_ptr<DevicePairStage>> create(vk::Device& device);
 
-    // After CellPairs::prepare() (and again after it grew its buffers): sizes the buffers for
+    // After CellStage::prepare() (and again after it grew its buffers): sizes the buffers for
     // its survivors and triangles and uploads the parameters. `object_ids`: per object of the
     // run, the id its pairs carry. `fault_header`: the broad phase's header whose GPU input
     // check counts mark the run incomplete (0: none). `capacity`: pairs, 0: automatic.
     // `header_to_host`: the passes end by copying the header to host memory (header()).
     // `for_host`: the sorted pairs are also copied to host-visible memory for the host's
     // result (hostPairs()); the engine's device-local buffer is then only the copy's source.
-    [[nodiscard]] Result<void> prepare(const CellPairs& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
+    [[nodiscard]] Result<void> prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
                                        VkDeviceAddress fault_header, bool header_to_host = false, bool for_host = false);
     // The passes, after the cell stage's (`cells`: its resources in this graph, or its
     // outputs imported alone after it ran again on an overflow, so that the buffers hold
     // the final run's pairs); `fault_header` the broad phase header's resource (invalid:
     // not in this graph).
-    void record(graph::Graph& g, const CellPairs::Resources& cells, graph::ResourceId fault_header = {});
+    void record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header = {});
     // Called at each detection's start: frees what was retired two starts ago.
     void retire();
 

@@ -7,7 +7,7 @@
 namespace vkcollide::passes {
 
 Result<std::unique_ptr<BroadPhaseMethod>> ReliableMethod::create(vk::Device& device, BufferTable& table, const CoreBuffers& core) {
-    auto cells = CellPairs::create(device);
+    auto cells = CellStage::create(device);
     if (!cells) return cells.error();
     return std::unique_ptr<BroadPhaseMethod>(new ReliableMethod(device, table, core, std::move(*cells)));
 }
@@ -19,7 +19,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     again_ = Step::Cells;
     cells_done_ = cells_resubmitted_ = proximity_stale_ = proximity_done_ = host_sort_grown_ = false;
     const std::size_t n = run.meshes.size();
-    CellPairsInput& in = input_;
+    CellStageInput& in = input_;
     in.objects = run.objects;
     in.projection.reset();
     in.projection_address = table_->buffer(core_.projection).address();
@@ -36,7 +36,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     if (!any_self) in.self_collision.clear();  // keeps its capacity
     in.download = any_download ? std::span<const std::uint8_t>(download_) : std::span<const std::uint8_t>();
     in.pair_mask = run.settings.pair_mask ? std::span<const std::uint32_t>(run.settings.pair_mask->bits) : std::span<const std::uint32_t>();
-    CellPairsSettings settings;
+    CellStageSettings settings;
     settings.max_candidate_pairs = run.settings.max_candidate_pairs;
     settings.exact = run.settings.exact_on_gpu;
     settings.pair_chunk = run.settings.pair_chunk;
@@ -95,13 +95,13 @@ void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const 
     }
     if (phase == Phase::Main || again_ == Step::Cells) {
         // The projection the front wrote stays in its buffer for a rerun.
-        const CellPairs::Resources cells = cells_->record(g, buffers[core_.projection]);
+        const CellStage::Resources cells = cells_->record(g, buffers[core_.projection]);
         if (phase == Phase::Again) return;  // the stage alone: the passes after it run once it completes
         if (proximity_on_) proximity_->record(g, cells);
         if (sorting()) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
         return;
     }
-    const CellPairs::Resources cells = cells_->importOutputs(g);
+    const CellStage::Resources cells = cells_->importOutputs(g);
     if (again_ == Step::Sort) device_pairs_->record(g, cells);
     if (again_ == Step::Proximity) proximity_->record(g, cells);
 }
@@ -146,17 +146,17 @@ Result<Collected> ReliableMethod::collectCells(const RunView& run, BroadPhaseRes
         }
         return outcome.error();
     }
-    if (*outcome == CellPairs::Outcome::Rerun) {
-        if (cells_->runs() >= CellPairsSettings{}.max_runs)
-            return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(cells_->runs()) +
+    if (*outcome == CellStage::Outcome::Rerun) {
+        if (cells_->runs() >= CellStageSettings{}.max_runs)
+            return Error(ErrorCode::OutOfMemory, "cell stage: buffers still overflowed after " + std::to_string(cells_->runs()) +
                                                      " runs (entries " + std::to_string(cells_->capacity().entries) +
                                                      ", candidates " + std::to_string(cells_->capacity().candidates) + ")");
         // An overflow: the stage alone again, its buffers grown; the projection stays.
         cells_resubmitted_ = true;
         return again(Step::Cells);
     }
-    if (*outcome == CellPairs::Outcome::MorePairs) {
-        // The pair pass's next chunk, in a submission of its own (CellPairsSettings::pair_chunk).
+    if (*outcome == CellStage::Outcome::MorePairs) {
+        // The pair pass's next chunk, in a submission of its own (CellStageSettings::pair_chunk).
         cells_resubmitted_ = true;
         return again(Step::PairChunk);
     }
@@ -186,7 +186,7 @@ Result<Collected> ReliableMethod::collectProximity(BroadPhaseResult& result) {
     auto outcome = proximity_->finish();
     if (!outcome) return outcome.error();
     if (*outcome == proximity::ProximityStage::Outcome::Rerun) {
-        if (proximity_->runs() >= CellPairsSettings{}.max_runs)
+        if (proximity_->runs() >= CellStageSettings{}.max_runs)
             return Error(ErrorCode::OutOfMemory, "proximity: the record buffer still overflowed after " + std::to_string(proximity_->runs()) + " runs");
         proximity_->refresh(*cells_);
         return again(Step::Proximity);

@@ -1,8 +1,8 @@
-// The reliable method on the broad phase's seam (method.hpp): the cell pair stage
-// (cell_pairs.hpp, docs/reliable.md) after the front's fit, in one submission.
+// The reliable method on the broad phase's seam (method.hpp): the cell stage
+// (cell_stage.hpp, docs/reliable.md) after the front's fit, in one submission.
 //
 //   front     clear, GPU input checks, bounds, fit       common_stages.hpp (the projection)
-//   main      cells-clear ... cells-pairs                 CellPairs::record, reading the
+//   main      cells-clear ... cells-pairs                 CellStage::record, reading the
 //                                                         projection the fit wrote
 //   readback  the broad phase's header                    common_stages.hpp
 //   (device pairs, BroadPhaseSettings::device_pairs: pairs-clear/args/bucket/sort after
@@ -25,7 +25,7 @@
 #include <memory>
 #include <vector>
 
-#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/cell_stage.hpp"
 #include "broad/cells/device_pairs.hpp"
 #include "broad/method.hpp"
 #include "proximity/proximity_stage.hpp"
@@ -53,7 +53,7 @@ public:
     }
 
 private:
-    ReliableMethod(vk::Device& device, BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellPairs> cells)
+    ReliableMethod(vk::Device& device, BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellStage> cells)
         : device_(&device), table_(&table), core_(core), cells_(std::move(cells)) {}
     Result<void> prepareStage(const RunView& run);
     // collect()'s steps, in order; each answers Again after asking for its passes.
@@ -69,9 +69,9 @@ private:
     vk::Device* device_;
     BufferTable* table_;
     CoreBuffers core_;
-    std::unique_ptr<CellPairs> cells_;
+    std::unique_ptr<CellStage> cells_;
     // Per run, kept between runs (no allocation in a steady scene).
-    CellPairsInput input_;
+    CellStageInput input_;
     std::vector<std::uint8_t> download_;
     std::optional<ObjectFault> fault_;
     // Device pairs (BroadPhaseSettings::device_pairs): made on first use.

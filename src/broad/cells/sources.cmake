@@ -1,9 +1,9 @@
-# The cell pair stage (reliable mode, GPU pair stage; docs/reliable.md): host side here,
+# The cell stage (reliable mode, GPU pair stage; docs/reliable.md): host side here,
 # programs in spirv/cells/ (cells*.glsl, tritri_filter.glsl.inc, the exact decision, cells.h).
 list(APPEND VKCOLLIDE_GPU_SOURCES
-  ${CMAKE_CURRENT_LIST_DIR}/cell_pairs.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/cell_pairs_buffers.cpp  # the buffer plan: refused by name, then created
-  ${CMAKE_CURRENT_LIST_DIR}/cell_pairs_record.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/cell_stage.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/cell_stage_buffers.cpp  # the buffer plan: refused by name, then created
+  ${CMAKE_CURRENT_LIST_DIR}/cell_stage_record.cpp
   ${CMAKE_CURRENT_LIST_DIR}/reliable_method.cpp
   ${CMAKE_CURRENT_LIST_DIR}/device_pairs.cpp
 )

@@ -7,6 +7,8 @@
 
 #include <memory>
 
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 
 namespace vkcollide::passes {

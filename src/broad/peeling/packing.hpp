@@ -10,6 +10,8 @@
 
 #include <memory>
 
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 
 namespace vkcollide::passes {

@@ -11,6 +11,8 @@
 #include <cstdint>
 
 #include "broad/buffer_table.hpp"
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 #include "graph/graph.hpp"
 

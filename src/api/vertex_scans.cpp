@@ -1,4 +1,4 @@
-#include "api/host_passes.hpp"
+#include "api/vertex_scans.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include <emmintrin.h>
 #endif
 
-namespace vkcollide::host_passes {
+namespace vkcollide::vertex_scans {
 namespace {
 
 static_assert(sizeof(Float3) == 12, "Float3 is three packed floats");
@@ -288,4 +288,4 @@ VertexScan copyScanAndMeasure(Executor& executor, std::span<const Float3> in, st
     return scan;
 }
 
-}  // namespace vkcollide::host_passes
+}  // namespace vkcollide::vertex_scans

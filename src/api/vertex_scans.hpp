@@ -1,5 +1,5 @@
-// The world's passes over a host mesh's positions, split over its Executor (host code only,
-// no Vulkan): updateVertices' one pass (copy into the host copy and the upload buffer,
+// The world's loops over a host mesh's positions, split over its Executor (host code only,
+// no Vulkan): updateVertices' one loop (copy into the host copy and the upload buffer,
 // finiteness, box) and the shape measurement behind the automatic settings (typical edge,
 // area moment). Both give the same result on every executor and thread count.
 #pragma once
@@ -12,7 +12,7 @@
 #include "vkcollide/thread_pool.hpp"
 #include "vkcollide/types.hpp"
 
-namespace vkcollide::host_passes {
+namespace vkcollide::vertex_scans {
 
 // What updateVertices learns of new positions in its one pass.
 struct VertexScan {
@@ -74,4 +74,4 @@ inline constexpr std::size_t kShapeChunk = 512;
 inline constexpr std::size_t kShapeBlock = 32;
 static_assert(kShapeSampleTriangles % kShapeBlock == 0 && kShapeChunk % kShapeBlock == 0);
 
-}  // namespace vkcollide::host_passes
+}  // namespace vkcollide::vertex_scans

@@ -1,4 +1,4 @@
-// The cell pair stage: every pair of triangles that may intersect, formed and filtered on
+// The cell stage: every pair of triangles that may intersect, formed and filtered on
 // the GPU, compute only (docs/reliable.md has the method and the proof that it misses no
 // intersecting pair, touching included, at any resolution).
 //
@@ -14,7 +14,7 @@
 // One submission, no host round trip inside a run. Every capacity is checked on the GPU:
 // an overflow sets a flag with the size needed, and run() grows that buffer and runs
 // again, so no pair is lost and nothing is accessed out of bounds. A budget
-// (CellPairsSettings::max_candidate_pairs) bounds what the scene may ask for: the setup
+// (CellStageSettings::max_candidate_pairs) bounds what the scene may ask for: the setup
 // sums the footprint boxes and the scan the pairs of footprints sharing a cell before
 // anything grows or the sweep runs, the sweep counts candidates in 64 bits; past it the
 // run fails with LimitExceeded, so pathological scenes (stacks of identical triangles)
@@ -40,7 +40,7 @@
 #include <span>
 #include <vector>
 
-#include "broad/cell_pairs_stats.hpp"
+#include "broad/cell_stage_stats.hpp"
 #include "cells/cells.h"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
@@ -54,7 +54,7 @@ namespace vkcollide::passes {
 // of the 3x4 object-to-world transform. Positions and transform entries must be finite
 // with magnitudes below 2^62, and so must world coordinates; a run that meets one that is
 // not fails with InvalidMesh naming the object and triangle (docs/reliable.md).
-struct CellPairsInput {
+struct CellStageInput {
     std::span<const gpu::ObjectGpu> objects;
     // World -> sampling space: x, y in [0, 1] across the grid, z the depth (any affine map
     // with finite rows; points outside [0, 1]^2 fall into the border cells; rows of 2^62
@@ -78,7 +78,7 @@ struct CellPairsInput {
 
 // Element counts of the buffers whose size is only known on the GPU. 0: estimate from
 // the scene (or keep what an earlier run needed).
-struct CellPairsCapacity {
+struct CellStageCapacity {
     std::uint32_t entries = 0;     // footprints (16 + 4 bytes each)
     std::uint32_t items = 0;       // big-triangle work items (8 bytes)
     std::uint32_t candidates = 0;  // candidate pairs (12 bytes)
@@ -86,7 +86,7 @@ struct CellPairsCapacity {
     std::uint32_t gpu_triangles = 0;  // survivors' triangles of download objects (52 bytes, host-visible)
 };
 
-struct CellPairsSettings {
+struct CellStageSettings {
     // Run the double-precision filter where the device has shaderFloat64 enabled.
     bool filter = true;
     // Decide every candidate the filter keeps exactly on the GPU (where the device has
@@ -103,7 +103,7 @@ struct CellPairsSettings {
     std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
     // Capacities of the first run (at most the budget); they grow (to 1.25x what was
     // needed, at most the budget) on overflow.
-    CellPairsCapacity initial;
+    CellStageCapacity initial;
     // Runs allowed per call (the first plus reruns after overflows).
     std::uint32_t max_runs = 8;
     // Proximity (src/proximity/): half the distance, in world units (0: off). Every triangle
@@ -128,18 +128,18 @@ struct CellPairsSettings {
 // The GPU time an automatic pair-pass chunk aims at (CellsSettings::pair_chunk).
 inline constexpr double kPairChunkTargetMs = 200.0;
 
-struct CellPairsResult {
+struct CellStageResult {
     // Global triangle ids (object's triangle_base + triangle), a < b, sorted, unique.
     std::vector<std::array<std::uint32_t, 2>> pairs;
-    CellPairsStats stats;
+    CellStageStats stats;
     std::vector<graph::PassTiming> passes;  // the last run's passes, in order
     double gpu_ms = 0;                      // the last run, first pass start to last pass end
 };
 
-class CellPairs {
+class CellStage {
 public:
     // Needs subgroup basic, ballot and arithmetic operations in compute shaders.
-    static Result<std::unique_ptr<CellPairs>> create(vk::Device& device);
+    static Result<std::unique_ptr<CellStage>> create(vk::Device& device);
 
     // Whether the double-precision filter can run (shaderFloat64 enabled on the device).
     bool filterSupported() const noexcept { return filter_pipeline_.handle() != VK_NULL_HANDLE; }
@@ -147,7 +147,7 @@ public:
     // Checks the input, sizes the buffers and uploads the run's parameters. Errors:
     // InvalidArgument (resolution, projection, object layout), OutOfMemory (a buffer
     // larger than the device allows).
-    [[nodiscard]] Result<void> prepare(const CellPairsInput& input, const CellPairsSettings& settings = {});
+    [[nodiscard]] Result<void> prepare(const CellStageInput& input, const CellStageSettings& settings = {});
     // Adds the stage's passes (names start with "cells-") to `graph`, after prepare().
     // `projection` is the buffer an earlier pass wrote the projection into, when the
     // input gave projection_address. The header readback is the last pass. Returns the
@@ -173,9 +173,9 @@ public:
     // After the recorded graph ran: reads the header. Complete: `out` holds the pairs
     // and statistics. Rerun: a buffer overflowed; it has been grown (and the parameters
     // re-uploaded), so record and run the stage again. MorePairs: the pair pass has
-    // chunks to go (CellPairsSettings::pair_chunk): recordPairChunk() and run that. Errors: InvalidMesh or
+    // chunks to go (CellStageSettings::pair_chunk): recordPairChunk() and run that. Errors: InvalidMesh or
     // InvalidArgument for bad input found on the GPU (naming object and triangle);
-    // LimitExceeded past the budget (CellPairsSettings::max_candidate_pairs), naming the
+    // LimitExceeded past the budget (CellStageSettings::max_candidate_pairs), naming the
     // count the run needed. After any error the stage is ready for the next prepare().
     enum class Outcome { Complete, Rerun, MorePairs };
     // After MorePairs: the pair pass over the next chunk and the header readback.
@@ -184,10 +184,10 @@ public:
     // several): the rate the automatic chunk of later runs is sized from.
     void notePairPassTime(double gpu_ms, std::uint64_t candidates);
     std::uint32_t pairChunk() const noexcept { return pair_chunk_; }
-    [[nodiscard]] Result<Outcome> finish(CellPairsResult& out);
+    [[nodiscard]] Result<Outcome> finish(CellStageResult& out);
     // The same without host work beyond the header: Complete fills `out_stats` (not
     // host_duplicates) and makes survivors() and gpuTriangles() valid.
-    [[nodiscard]] Result<Outcome> finish(CellPairsStats& out_stats);
+    [[nodiscard]] Result<Outcome> finish(CellStageStats& out_stats);
     // After a Complete finish, until the next prepare() or record(): the
     // survivors as the GPU wrote them (global ids, a < b, unsorted, a rare pair twice)
     // and the download objects' triangles, read in place from host-visible (cached where
@@ -203,17 +203,17 @@ public:
 
     // prepare(), then record, run (on `executor`, default waits) and finish until complete
     // (at most settings.max_runs runs; then OutOfMemory).
-    [[nodiscard]] Result<CellPairsResult> run(graph::Executor& executor, const CellPairsInput& input, const CellPairsSettings& settings = {});
+    [[nodiscard]] Result<CellStageResult> run(graph::Executor& executor, const CellStageInput& input, const CellStageSettings& settings = {});
     // The runs finish() has read since prepare() (the first plus one per overflow).
     std::uint32_t runs() const noexcept { return runs_; }
 
     // The capacities the next run uses.
-    const CellPairsCapacity& capacity() const noexcept { return capacity_; }
+    const CellStageCapacity& capacity() const noexcept { return capacity_; }
     // Bytes of device and host-visible memory the stage holds.
     std::uint64_t memoryBytes() const noexcept;
 
 private:
-    explicit CellPairs(vk::Device& device) : device_(&device) {}
+    explicit CellStage(vk::Device& device) : device_(&device) {}
     Result<void> ensureBuffers();
     std::uint32_t automaticPairChunk() const;
     struct PairPassIds {
@@ -248,7 +248,7 @@ private:
     std::uint32_t max_groups_x_ = 0;
     std::uint32_t budget_ = 0;             // the run's budget, at most kMaxElements
     std::uint64_t asked_budget_ = 0;       // as the settings gave it (for the messages)
-    CellPairsCapacity capacity_;
+    CellStageCapacity capacity_;
     std::uint32_t runs_ = 0;
     std::uint32_t pair_chunk_ = 0, next_chunk_ = 0;  // the run's chunk size; the chunk recorded next
     double pair_rate_ = 0;  // candidates per GPU ms of the pair pass, measured (0: not yet)

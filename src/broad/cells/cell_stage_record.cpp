@@ -1,11 +1,13 @@
-// CellPairs::record: the stage's passes on the render graph. Every shader reaches its
+// CellStage::record: the stage's passes on the render graph. Every shader reaches its
 // buffers through device addresses, so each pass declares the buffers it touches and the
 // graph derives the barriers between passes; inside a pass, dependent dispatches are
 // separated by shader barriers. Indirect arguments are always written one pass before
 // the pass that dispatches from them (indirect reads need the graph's barrier).
 #include <algorithm>
 
-#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/cell_stage.hpp"
+#include "broad/dispatch.hpp"
+#include "broad/run_view.hpp"
 #include "broad/stage.hpp"
 
 namespace vkcollide::passes {
@@ -28,7 +30,7 @@ graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage 
 
 }  // namespace
 
-CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projection) {
+CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projection) {
     survivor_count_ = gpu_triangle_count_ = 0;  // until this recording's finish()
     const VkDeviceAddress params = buf_.params.address();
     // The count buffer is cleared and scanned over its capacity while that is within a
@@ -165,7 +167,7 @@ CellPairs::Resources CellPairs::record(graph::Graph& g, graph::ResourceId projec
 
 // The pair pass over chunk `chunk` of the candidates (its arguments first), then the header
 // to the host: the last passes of a run, and all of a later chunk's submission.
-void CellPairs::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint32_t chunk) {
+void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint32_t chunk) {
     const VkDeviceAddress params = buf_.params.address();
     const VkBuffer args_buffer = buf_.args.handle();
     const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
@@ -203,7 +205,7 @@ void CellPairs::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
     next_chunk_ = chunk + 1;
 }
 
-void CellPairs::recordPairChunk(graph::Graph& g) {
+void CellStage::recordPairChunk(graph::Graph& g) {
     survivor_count_ = gpu_triangle_count_ = 0;
     recordPairPass(g,
                    {g.importBuffer("cells-header", buf_.header), g.importBuffer("cells-header-readback", buf_.header_rb, true),

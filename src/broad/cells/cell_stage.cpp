@@ -1,4 +1,4 @@
-#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/cell_stage.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -36,7 +36,7 @@ bool moderate(float x) { return std::isfinite(x) && std::fabs(x) < 4.61168601842
 
 }  // namespace
 
-Result<std::unique_ptr<CellPairs>> CellPairs::create(vk::Device& device) {
+Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device) {
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     props.pNext = &subgroup;
@@ -45,9 +45,9 @@ Result<std::unique_ptr<CellPairs>> CellPairs::create(vk::Device& device) {
         VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
     if (!(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) || (subgroup.supportedOperations & needed) != needed)
         return Error(ErrorCode::UnsupportedFeature,
-                     "the cell pair stage needs subgroup basic, ballot and arithmetic operations in compute shaders, which " +
+                     "the cell stage needs subgroup basic, ballot and arithmetic operations in compute shaders, which " +
                          device.info.name + " lacks");
-    std::unique_ptr<CellPairs> cp(new CellPairs(device));
+    std::unique_ptr<CellStage> cp(new CellStage(device));
     const std::span<const vk::Pipeline::Binding> none;
     auto compute = [&](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) -> Result<void> {
         auto p = vk::Pipeline::createCompute(device, code, none, sizeof(gpu::Push), name);
@@ -67,32 +67,32 @@ Result<std::unique_ptr<CellPairs>> CellPairs::create(vk::Device& device) {
     return cp;
 }
 
-Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSettings& settings) {
-    if (in.objects.empty()) return Error(ErrorCode::InvalidArgument, "cell pairs: no objects");
+Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSettings& settings) {
+    if (in.objects.empty()) return Error(ErrorCode::InvalidArgument, "cell stage: no objects");
     if (in.resolution < 1 || in.resolution > gpu::kCellsMaxResolution)
-        return Error(ErrorCode::InvalidArgument, "cell pairs: resolution " + std::to_string(in.resolution) + " is not in [1, " +
+        return Error(ErrorCode::InvalidArgument, "cell stage: resolution " + std::to_string(in.resolution) + " is not in [1, " +
                                                      std::to_string(gpu::kCellsMaxResolution) + "]");
     if (in.projection.has_value() == (in.projection_address != 0))
-        return Error(ErrorCode::InvalidArgument, "cell pairs: give either a host projection or a projection address, not both or neither");
+        return Error(ErrorCode::InvalidArgument, "cell stage: give either a host projection or a projection address, not both or neither");
     if (in.projection) {  // rows of 2^62 or more are scaled on the GPU (cells_setup.comp)
         for (const gpu::vec4& row : in.projection->row)
             if (!std::isfinite(row.x) || !std::isfinite(row.y) || !std::isfinite(row.z) || !std::isfinite(row.w))
-                return Error(ErrorCode::InvalidArgument, "cell pairs: projection entries must be finite");
+                return Error(ErrorCode::InvalidArgument, "cell stage: projection entries must be finite");
     }
     if (!in.self_collision.empty() && in.self_collision.size() != in.objects.size())
-        return Error(ErrorCode::InvalidArgument, "cell pairs: self_collision has " + std::to_string(in.self_collision.size()) +
+        return Error(ErrorCode::InvalidArgument, "cell stage: self_collision has " + std::to_string(in.self_collision.size()) +
                                                      " entries for " + std::to_string(in.objects.size()) + " objects");
     if (!in.download.empty() && in.download.size() != in.objects.size())
-        return Error(ErrorCode::InvalidArgument, "cell pairs: download has " + std::to_string(in.download.size()) + " entries for " +
+        return Error(ErrorCode::InvalidArgument, "cell stage: download has " + std::to_string(in.download.size()) + " entries for " +
                                                      std::to_string(in.objects.size()) + " objects");
     const std::uint64_t mask_words = (std::uint64_t(in.objects.size()) * in.objects.size() + 31) / 32;
     if (!in.pair_mask.empty() && in.pair_mask.size() != mask_words)
-        return Error(ErrorCode::InvalidArgument, "cell pairs: pair_mask has " + std::to_string(in.pair_mask.size()) + " words for " +
+        return Error(ErrorCode::InvalidArgument, "cell stage: pair_mask has " + std::to_string(in.pair_mask.size()) + " words for " +
                                                      std::to_string(in.objects.size()) + " objects (" + std::to_string(mask_words) + " needed)");
     std::uint64_t total = 0;
     for (std::size_t i = 0; i < in.objects.size(); ++i) {
         const gpu::ObjectGpu& o = in.objects[i];
-        const std::string who = "cell pairs: object " + std::to_string(i) + " ";
+        const std::string who = "cell stage: object " + std::to_string(i) + " ";
         if (o.triangle_base != total)
             return Error(ErrorCode::InvalidArgument, who + "has triangle_base " + std::to_string(o.triangle_base) +
                                                          ", not the sum of the counts before it (" + std::to_string(total) + ")");
@@ -107,9 +107,9 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
                 return Error(ErrorCode::InvalidArgument, who + "has a transform entry that is not finite or not below 2^62");
         total += o.triangle_count;
     }
-    if (total >= gpu::kMaxTriangles) return Error(ErrorCode::InvalidArgument, "cell pairs: more than 2^30 triangles");
+    if (total >= gpu::kMaxTriangles) return Error(ErrorCode::InvalidArgument, "cell stage: more than 2^30 triangles");
     if (!(settings.proximity_pad >= 0) || !moderate(settings.proximity_pad))
-        return Error(ErrorCode::InvalidArgument, "cell pairs: proximity_pad must be finite, at least 0 and below 2^62");
+        return Error(ErrorCode::InvalidArgument, "cell stage: proximity_pad must be finite, at least 0 and below 2^62");
 
     objects_.assign(in.objects.begin(), in.objects.end());
     triangles_ = static_cast<std::uint32_t>(total);
@@ -183,7 +183,7 @@ Result<void> CellPairs::prepare(const CellPairsInput& in, const CellPairsSetting
     return {};
 }
 
-void CellPairs::writeParams() {
+void CellStage::writeParams() {
     gpu::CellsParams p{};
     p.objects = buf_.objects.address();
     p.object_flags = has_self_ || has_download_ ? buf_.object_flags.address() : 0;
@@ -226,11 +226,11 @@ void CellPairs::writeParams() {
     buf_.params.flush();
 }
 
-Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) {
+Result<void> CellStage::checkFailure(const gpu::CellsHeader& h) {
     const std::uint32_t errors = h.flags & ~(gpu::kCellsOverflowMask | gpu::kCellsOverBudget);
     if (!errors) return {};
     if (errors & gpu::kCellsInconsistent)
-        return Error(ErrorCode::VulkanError, "cell pairs: the fill found more footprints than the count (internal error)");
+        return Error(ErrorCode::VulkanError, "cell stage: the fill found more footprints than the count (internal error)");
     std::string where = "triangle " + std::to_string(h.bad_triangle);
     for (std::size_t i = objects_.size(); i-- > 0;) {
         if (objects_[i].triangle_base <= h.bad_triangle && objects_[i].triangle_count > 0) {
@@ -240,40 +240,40 @@ Result<void> CellPairs::checkFailure(const gpu::CellsHeader& h) {
             break;
         }
     }
-    if (errors & gpu::kCellsBadIndex) return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has an index beyond its vertices");
+    if (errors & gpu::kCellsBadIndex) return Error(ErrorCode::InvalidMesh, "cell stage: " + where + " has an index beyond its vertices");
     if (errors & gpu::kCellsBadPosition)
-        return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has a position or transform entry that is not finite or not below 2^62");
-    return Error(ErrorCode::InvalidMesh, "cell pairs: " + where + " has a world coordinate not below 2^62");
+        return Error(ErrorCode::InvalidMesh, "cell stage: " + where + " has a position or transform entry that is not finite or not below 2^62");
+    return Error(ErrorCode::InvalidMesh, "cell stage: " + where + " has a world coordinate not below 2^62");
 }
 
 // Past the budget: the count the run needed, the budget, and what to change. The counts
 // are complete where they are checked: the setup sums every triangle's box, the scan every
 // cell's pairs, and candidates are only counted by a sweep that ran in full.
-Result<void> CellPairs::checkBudget(const gpu::CellsHeader& h) const {
+Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
     const std::string budget = asked_budget_ > budget_ ? "the stage's limit of " + std::to_string(budget_) + " (32-bit buffer indices)"
                                                        : "max_candidate_pairs (" + std::to_string(budget_) + ")";
     const std::string where = " at resolution " + std::to_string(resolution_) + " (" + std::to_string(triangles_) + " triangles)";
     if (h.box_cells > budget_)
-        return Error(ErrorCode::LimitExceeded, "cell pairs: the triangles' footprint boxes span " + std::to_string(h.box_cells) +
+        return Error(ErrorCode::LimitExceeded, "cell stage: the triangles' footprint boxes span " + std::to_string(h.box_cells) +
                                                    " cells" + where + ", more than " + budget +
                                                    ": lower the resolution or raise max_candidate_pairs");
     const std::uint64_t comparisons = std::uint64_t{budget_} * gpu::kCellsComparisonsPerBudget;
     if (h.comparisons > comparisons)
         return Error(ErrorCode::LimitExceeded,
-                     "cell pairs: " + std::to_string(h.comparisons) + " pairs of footprints share a cell" + where + " (up to " +
+                     "cell stage: " + std::to_string(h.comparisons) + " pairs of footprints share a cell" + where + " (up to " +
                          std::to_string(h.max_cell) + " footprints in one cell), more than " +
                          std::to_string(gpu::kCellsComparisonsPerBudget) + " x " + budget + " = " + std::to_string(comparisons) +
                          " the sweep may compare: stacked or repeated triangles? Lower the resolution or raise max_candidate_pairs");
     if (h.candidates > budget_)
-        return Error(ErrorCode::LimitExceeded, "cell pairs: " + std::to_string(h.candidates) + " candidate pairs" + where +
+        return Error(ErrorCode::LimitExceeded, "cell stage: " + std::to_string(h.candidates) + " candidate pairs" + where +
                                                    " (triangles that may collide, with overlapping depth in a cell), more than " +
                                                    budget + ": stacked or repeated triangles?");
     if (h.flags & gpu::kCellsOverBudget)  // never without one of the counts above
-        return Error(ErrorCode::VulkanError, "cell pairs: the budget flag is set but no count exceeds it (internal error)");
+        return Error(ErrorCode::VulkanError, "cell stage: the budget flag is set but no count exceeds it (internal error)");
     return {};
 }
 
-Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
+Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     survivor_count_ = gpu_triangle_count_ = 0;
     buf_.header_rb.invalidate();
     gpu::CellsHeader h;
@@ -306,7 +306,7 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
     }
     if (h.pairs_done < std::min<std::uint64_t>(h.candidates, capacity_.candidates)) return Outcome::MorePairs;
     ++runs_;
-    s = CellPairsStats{};
+    s = CellStageStats{};
     s.entries = h.entries;
     s.box_cells = h.box_cells;
     s.comparisons = h.comparisons;
@@ -333,17 +333,17 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsStats& s) {
     return Outcome::Complete;
 }
 
-std::span<const CandidatePair> CellPairs::survivors() const noexcept {
+std::span<const CandidatePair> CellStage::survivors() const noexcept {
     if (!survivor_count_ || survivors_on_device_) return {};
     return {static_cast<const CandidatePair*>(buf_.survivors.mapped()), survivor_count_};
 }
 
-std::span<const GpuTriangle> CellPairs::gpuTriangles() const noexcept {
+std::span<const GpuTriangle> CellStage::gpuTriangles() const noexcept {
     if (!gpu_triangle_count_) return {};
     return {static_cast<const GpuTriangle*>(buf_.gpu_triangles.mapped()), gpu_triangle_count_};
 }
 
-Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
+Result<CellStage::Outcome> CellStage::finish(CellStageResult& out) {
     auto outcome = finish(out.stats);
     if (!outcome || *outcome != Outcome::Complete) return outcome;
     const std::span<const CandidatePair> raw = survivors();
@@ -358,11 +358,11 @@ Result<CellPairs::Outcome> CellPairs::finish(CellPairsResult& out) {
     return Outcome::Complete;
 }
 
-Result<CellPairsResult> CellPairs::run(graph::Executor& executor, const CellPairsInput& input, const CellPairsSettings& settings) {
+Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStageInput& input, const CellStageSettings& settings) {
     if (input.projection_address != 0)
-        return Error(ErrorCode::InvalidArgument, "cell pairs: run() needs a host projection (record() takes a projection address)");
+        return Error(ErrorCode::InvalidArgument, "cell stage: run() needs a host projection (record() takes a projection address)");
     if (auto ok = prepare(input, settings); !ok) return ok.error();
-    CellPairsResult out;
+    CellStageResult out;
     Outcome next = Outcome::Rerun;  // what to record: the whole stage first
     for (;;) {
         graph::Graph g;
@@ -387,7 +387,7 @@ Result<CellPairsResult> CellPairs::run(graph::Executor& executor, const CellPair
             return out;
         }
         if (*outcome == Outcome::Rerun && runs_ >= std::max(settings.max_runs, 1u))
-            return Error(ErrorCode::OutOfMemory, "cell pairs: buffers still overflowed after " + std::to_string(runs_) + " runs (entries " +
+            return Error(ErrorCode::OutOfMemory, "cell stage: buffers still overflowed after " + std::to_string(runs_) + " runs (entries " +
                                                      std::to_string(capacity_.entries) + ", candidates " +
                                                      std::to_string(capacity_.candidates) + ")");
         next = *outcome;
@@ -397,18 +397,18 @@ Result<CellPairsResult> CellPairs::run(graph::Executor& executor, const CellPair
 // What the device decides in about kPairChunkTargetMs: at the rate the last complete run
 // measured, or before any, a guess by device type (a CPU implementation such as lavapipe
 // decides about a hundred candidates a millisecond, a GPU millions).
-std::uint32_t CellPairs::automaticPairChunk() const {
+std::uint32_t CellStage::automaticPairChunk() const {
     double rate = pair_rate_;
     if (rate <= 0) rate = device_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 100.0 : 1.0e6;
     return static_cast<std::uint32_t>(std::clamp(rate * kPairChunkTargetMs, 4096.0, double(kMaxElements)));
 }
 
-void CellPairs::notePairPassTime(double gpu_ms, std::uint64_t candidates) {
+void CellStage::notePairPassTime(double gpu_ms, std::uint64_t candidates) {
     // Too little work to time reliably says nothing about the rate.
     if (gpu_ms > 1.0 && candidates >= 1024) pair_rate_ = double(candidates) / gpu_ms;
 }
 
-std::uint64_t CellPairs::memoryBytes() const noexcept {
+std::uint64_t CellStage::memoryBytes() const noexcept {
     std::uint64_t total = 0;
     for (const vk::Buffer* b : {&buf_.params, &buf_.objects, &buf_.object_flags, &buf_.pair_mask, &buf_.projection, &buf_.header,
                                 &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,

@@ -1,4 +1,4 @@
-// The world's passes over host positions (src/api/host_passes.cpp), host only: the one
+// The world's passes over host positions (src/api/vertex_scans.cpp), host only: the one
 // pass of updateVertices split over executors gives a plain loop's copy, box and first bad
 // vertex on every thread count and write order, and the shape measurement does not depend
 // on the executor.
@@ -11,11 +11,11 @@
 #include <random>
 #include <vector>
 
-#include "api/host_passes.hpp"
+#include "api/vertex_scans.hpp"
 #include "vkcollide/thread_pool.hpp"
 
 using namespace vkcollide;
-using host_passes::UploadWrites;
+using vertex_scans::UploadWrites;
 
 namespace {
 
@@ -89,7 +89,7 @@ TEST_CASE("updateVertices' pass copies and boxes exactly on every executor and s
     const auto pool = executors();
     // Around the chunk and block sizes: 1 vertex, tails of 1-3 vertices after blocks of
     // four, one chunk exactly, one vertex more, and many chunks.
-    const std::size_t k = host_passes::kMinChunkVertices;
+    const std::size_t k = vertex_scans::kMinChunkVertices;
     for (std::size_t n : {std::size_t{1}, std::size_t{3}, std::size_t{5}, std::size_t{17}, k - 1, k, k + 1, 4 * k + 7, std::size_t{300001}}) {
         const std::vector<Float3> in = randomPositions(n, std::uint32_t(n));
         const Reference want = reference(in);
@@ -99,7 +99,7 @@ TEST_CASE("updateVertices' pass copies and boxes exactly on every executor and s
                     INFO("vertices " << n << ", threads " << ex->threadCount() << ", staged " << (writes == UploadWrites::Staged)
                                      << ", upload " << with_upload);
                     std::vector<Float3> out(n, Float3{7, 7, 7}), upload(n, Float3{9, 9, 9});
-                    const auto got = host_passes::copyAndScan(*ex, in, out, with_upload ? upload.data() : nullptr, writes);
+                    const auto got = vertex_scans::copyAndScan(*ex, in, out, with_upload ? upload.data() : nullptr, writes);
                     CHECK(got.finite);
                     CHECK(got.box == want.box);
                     CHECK(got.max_abs == want.max_abs);
@@ -112,7 +112,7 @@ TEST_CASE("updateVertices' pass copies and boxes exactly on every executor and s
 
 TEST_CASE("updateVertices' pass names the first NaN or infinite vertex whichever chunk holds it", "[api][host]") {
     const auto pool = executors();
-    const std::size_t n = 5 * host_passes::kMinChunkVertices + 3;
+    const std::size_t n = 5 * vertex_scans::kMinChunkVertices + 3;
     const std::vector<Float3> clean = randomPositions(n, 11);
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
     struct Case {
@@ -123,7 +123,7 @@ TEST_CASE("updateVertices' pass names the first NaN or infinite vertex whichever
     // The first vertex, the last (the tail after the last block of four, in the last
     // chunk), both ends of a chunk boundary, two bad vertices in different chunks, and
     // every component, NaN and both infinities.
-    const std::size_t k = host_passes::kMinChunkVertices;
+    const std::size_t k = vertex_scans::kMinChunkVertices;
     const Case cases[] = {{{0}, 0, nan},          {{n - 1}, 2, nan},          {{n - 2, n - 1}, 1, -inf},
                           {{k - 1}, 1, inf},      {{k}, 0, nan},              {{4 * k + 9, 2 * k + 5}, 2, -inf},
                           {{3 * k + 2, n - 1}, 0, inf}};
@@ -139,7 +139,7 @@ TEST_CASE("updateVertices' pass names the first NaN or infinite vertex whichever
             for (UploadWrites writes : {UploadWrites::Fused, UploadWrites::Staged}) {
                 INFO("first bad " << first << ", threads " << ex->threadCount() << ", staged " << (writes == UploadWrites::Staged));
                 std::vector<Float3> out(n), upload(n);
-                const auto got = host_passes::copyAndScan(*ex, in, out, upload.data(), writes);
+                const auto got = vertex_scans::copyAndScan(*ex, in, out, upload.data(), writes);
                 CHECK_FALSE(got.finite);
                 CHECK(got.first_bad == first);
                 CHECK(sameBits(out, in));  // still copied: the caller decides (updateVertices restores the upload)
@@ -158,15 +158,15 @@ TEST_CASE("copy, scan and shape in one loop: the copy and scan of copyAndScan, t
         for (const auto& ex : pool) {
             INFO("grid " << n << ", threads " << ex->threadCount());
             std::vector<Float3> out(p.size()), upload(p.size()), plain_out(p.size()), plain_upload(p.size());
-            host_passes::Shape shape;
-            const auto got = host_passes::copyScanAndMeasure(*ex, p, out, upload.data(), idx, shape);
-            const auto want = host_passes::copyAndScan(*ex, p, plain_out, plain_upload.data());
+            vertex_scans::Shape shape;
+            const auto got = vertex_scans::copyScanAndMeasure(*ex, p, out, upload.data(), idx, shape);
+            const auto want = vertex_scans::copyAndScan(*ex, p, plain_out, plain_upload.data());
             CHECK(got.finite);
             CHECK(got.box == want.box);
             CHECK(got.max_abs == want.max_abs);
             CHECK(sameBits(out, p));
             CHECK(sameBits(upload, p));
-            const auto alone = host_passes::measureShape(*ex, out, idx);
+            const auto alone = vertex_scans::measureShape(*ex, out, idx);
             CHECK(shape.edge_length == alone.edge_length);
             CHECK(shape.area_moment == alone.area_moment);
         }
@@ -176,9 +176,9 @@ TEST_CASE("copy, scan and shape in one loop: the copy and scan of copyAndScan, t
     p[1000].y = std::numeric_limits<float>::quiet_NaN();
     for (const auto& ex : pool) {
         std::vector<Float3> out(p.size());
-        host_passes::Shape shape;
+        vertex_scans::Shape shape;
         shape.edge_length = 7.0f;
-        const auto got = host_passes::copyScanAndMeasure(*ex, p, out, nullptr, idx, shape);
+        const auto got = vertex_scans::copyScanAndMeasure(*ex, p, out, nullptr, idx, shape);
         CHECK_FALSE(got.finite);
         CHECK(got.first_bad == 1000u);
         CHECK(shape.edge_length == 7.0f);
@@ -208,14 +208,14 @@ TEST_CASE("the shape measure is the same on every executor, and a plain loop's o
             m[3] += w * c[0] * c[1], m[4] += w * c[0] * c[2], m[5] += w * c[1] * c[2];
         }
         for (const auto& ex : pool) {
-            const auto s = host_passes::measureShape(*ex, p, idx);
+            const auto s = vertex_scans::measureShape(*ex, p, idx);
             CHECK(s.edge_length == static_cast<float>(sum / double(idx.size())));
             CHECK(s.area_moment == m);
         }
     }
     SECTION("large: sampled in runs, the same on every executor") {
         grid(300, p, idx);  // 180,000 triangles: 128 blocks of 32 consecutive ones sampled, 4,096 in 8 runs
-        const auto first = host_passes::measureShape(*pool[0], p, idx);
+        const auto first = vertex_scans::measureShape(*pool[0], p, idx);
         CHECK(first.edge_length > 0.003f);
         CHECK(first.edge_length < 0.006f);
         // The moment's trace is the area: the sample, scaled, estimates all triangles' area.
@@ -232,7 +232,7 @@ TEST_CASE("the shape measure is the same on every executor, and a plain loop's o
         CHECK(m[2] > m[0]);  // mostly facing z
         CHECK(m[2] > m[1]);
         for (const auto& ex : pool) {
-            const auto s = host_passes::measureShape(*ex, p, idx);
+            const auto s = vertex_scans::measureShape(*ex, p, idx);
             CHECK(s.edge_length == first.edge_length);
             CHECK(s.area_moment == first.area_moment);
         }
@@ -253,14 +253,14 @@ TEST_CASE("several shapes measured in one loop are each mesh's own measure, exac
         positions.push_back(std::move(p));
         indices.push_back(std::move(idx));
     }
-    std::vector<host_passes::ShapeMesh> meshes;
+    std::vector<vertex_scans::ShapeMesh> meshes;
     for (std::size_t i = 0; i < positions.size(); ++i) meshes.push_back({positions[i], indices[i]});
     for (const auto& ex : pool) {
-        std::vector<host_passes::Shape> shapes(meshes.size());
-        host_passes::measureShapes(*ex, meshes, shapes);
+        std::vector<vertex_scans::Shape> shapes(meshes.size());
+        vertex_scans::measureShapes(*ex, meshes, shapes);
         for (std::size_t i = 0; i < meshes.size(); ++i) {
             INFO("mesh " << i);
-            const auto alone = host_passes::measureShape(*ex, positions[i], indices[i]);
+            const auto alone = vertex_scans::measureShape(*ex, positions[i], indices[i]);
             CHECK(shapes[i].edge_length == alone.edge_length);
             CHECK(shapes[i].area_moment == alone.area_moment);
         }

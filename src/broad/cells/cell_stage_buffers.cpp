@@ -1,4 +1,4 @@
-// CellPairs::ensureBuffers: the stage's buffers planned for the prepared run, refused by
+// CellStage::ensureBuffers: the stage's buffers planned for the prepared run, refused by
 // name when the device cannot hold them, then created (they only grow).
 #include <algorithm>
 #include <array>
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "broad/cells/cell_pairs.hpp"
+#include "broad/cells/cell_stage.hpp"
 
 namespace vkcollide::passes {
 namespace {
@@ -19,7 +19,7 @@ std::string gibText(VkDeviceSize bytes) {
 
 }  // namespace
 
-Result<void> CellPairs::ensureBuffers() {
+Result<void> CellStage::ensureBuffers() {
     using vk::MemoryKind;
     const VkDeviceSize limit = std::min(device_->max_buffer_size, device_->max_allocation_size);
     // Cells rounded up to a sixteenth of their power of two: a resolution that grows by a
@@ -81,14 +81,14 @@ Result<void> CellPairs::ensureBuffers() {
     }
     for (std::uint32_t h = 0; h < device_->memory.memoryHeapCount; ++h)
         if (per_heap[h] > device_->memory.memoryHeaps[h].size)
-            return Error(ErrorCode::OutOfMemory, "cell pairs: resolution " + std::to_string(resolution_) + " with " +
+            return Error(ErrorCode::OutOfMemory, "cell stage: resolution " + std::to_string(resolution_) + " with " +
                                                      std::to_string(triangles_) + " triangles needs " + gibText(total) +
                                                      " of device memory, more than the " + gibText(device_->memory.memoryHeaps[h].size) +
                                                      " memory heap holds: lower the resolution or split the scene");
     for (const Plan& p : plan) {
         const VkDeviceSize size = std::max<VkDeviceSize>(p.size, 16);
         if (size > limit)
-            return Error(ErrorCode::OutOfMemory, std::string("cell pairs: the '") + p.name + "' buffer would need " + gibText(size) +
+            return Error(ErrorCode::OutOfMemory, std::string("cell stage: the '") + p.name + "' buffer would need " + gibText(size) +
                                                      ", more than the device's largest buffer (" + gibText(limit) +
                                                      "): lower the resolution or split the scene");
         if (p.buffer->valid() && p.buffer->size() >= size) continue;
@@ -101,7 +101,7 @@ Result<void> CellPairs::ensureBuffers() {
     // cells_common.glsl.inc). Buffers start at the device's storage alignment, which Vulkan
     // does not bound from below: check.
     if (buf_.entries.address() % 16 != 0)
-        return Error(ErrorCode::UnsupportedFeature, "cell pairs: the device placed 'cells-entries' at address " +
+        return Error(ErrorCode::UnsupportedFeature, "cell stage: the device placed 'cells-entries' at address " +
                                                         std::to_string(buf_.entries.address()) + ", not a multiple of 16 bytes");
     return {};
 }

@@ -1,4 +1,4 @@
-// The cell pair stage's counters (docs/reliable.md; the stage is src/broad/cells/): in the
+// The cell stage's counters (docs/reliable.md; the stage is src/broad/cells/): in the
 // seam, so that the broad phase's result (BroadPhaseResult::cells) carries them without the
 // stage's Vulkan types and the contract (broad_phase_types.hpp) includes no method's room.
 #pragma once
@@ -7,7 +7,7 @@
 
 namespace vkcollide::passes {
 
-struct CellPairsStats {
+struct CellStageStats {
     std::uint64_t entries = 0;        // footprints: (triangle, cell) pairs
     std::uint64_t box_cells = 0;      // cells of the footprint boxes (>= entries; the budget's first count)
     std::uint64_t comparisons = 0;    // pairs of footprints sharing a cell (the budget's second count)

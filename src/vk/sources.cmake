@@ -1,6 +1,8 @@
-# Device-layer files added after cmake/Sources.cmake's list (which names loader, device
-# and resources); included from the top-level CMakeLists.txt.
+# The device layer: loader, device, resources, pipelines, memory, submission.
 list(APPEND VKCOLLIDE_GPU_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/loader.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/device.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/resources.cpp
   ${CMAKE_CURRENT_LIST_DIR}/adopt.cpp
   ${CMAKE_CURRENT_LIST_DIR}/debug_names.cpp
   ${CMAKE_CURRENT_LIST_DIR}/features.cpp

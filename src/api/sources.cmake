@@ -1,0 +1,15 @@
+# The public API's implementation (CollisionWorld).
+list(APPEND VKCOLLIDE_HOST_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/vertex_scans.cpp  # the world's loops over host positions (no Vulkan)
+  ${CMAKE_CURRENT_LIST_DIR}/mesh_checks.cpp  # closed meshes: holes and inside-out (no Vulkan)
+)
+list(APPEND VKCOLLIDE_GPU_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/collision_rays.cpp  # DetectSettings::collision_rays: ray images to world segments
+  ${CMAKE_CURRENT_LIST_DIR}/contacts.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/detect.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/engine_mesh.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/engine_sync.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/settings.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/validation.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/world.cpp
+)

@@ -18,7 +18,7 @@
 #      how their leaks are told apart from ours.
 #   3. VKCOLLIDE_HOST_ONLY configured (not built): the host-only build, which needs no shader
 #      tools, stays configurable; its code and tests are the host part of build 2.
-# 26 minutes from a fresh clone on an idle two-core machine (docs/stability.md, "CI coverage").
+# 48 minutes from a fresh clone on an idle two-core machine (docs/stability.md, "CI coverage").
 #
 #   tools/test.sh [BUILD_ROOT]   the folder the build folders go in (or VKCOLLIDE_BUILD_ROOT;
 #                                default: the checkout), so that a read-only checkout is testable

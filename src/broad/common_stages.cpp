@@ -32,16 +32,7 @@ void CommonStages::recordFront(graph::Graph& g, const RunView& run, const GraphB
         zeroed.push_back({buffers[row], size});
     }
     clear.record([header, zeroed](PassContext& pc) {
-        // Writes the engine submitted earlier (vertex buffers it skinned or simulated)
-        // become visible to everything this detection does.
-        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-        mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &mb;
-        pc.pipelineBarrier(dep);
+        makeEngineWritesVisible(pc);
         // Disjoint ranges: counters 0, bound minima +inf (ordered), maxima and checks 0.
         constexpr VkDeviceSize mins = offsetof(gpu::Header, bounds), maxs = mins + 12;
         const VkBuffer h = pc.buffer(header).handle();

@@ -43,6 +43,17 @@ void dispatchItems(const graph::PassContext& pc, std::uint64_t items, std::uint3
     dispatchGroups(pc, (items + size - 1) / size);
 }
 
+void makeEngineWritesVisible(const graph::PassContext& pc) {
+    VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &mb;
+    pc.pipelineBarrier(dep);
+}
+
 Result<void> makeCompute(vk::Device& device, vk::Pipeline& out, std::span<const std::uint32_t> spirv, const char* name) {
     auto p = vk::Pipeline::createCompute(device, spirv, {}, sizeof(gpu::Push), name);
     if (!p) return p.error();

@@ -35,6 +35,9 @@ struct DispatchShape {
     std::uint32_t x = 0, y = 0;
 };
 DispatchShape dispatchShape(std::uint64_t groups, std::uint32_t max_x, std::uint32_t max_y);
+// Writes the engine submitted earlier (vertex buffers it skinned or simulated) become
+// visible to everything recorded after this barrier: the first command of a run.
+void makeEngineWritesVisible(const graph::PassContext& pc);
 // A compute pipeline from embedded SPIR-V with the broad phase's push constants (gpu::Push).
 Result<void> makeCompute(vk::Device& device, vk::Pipeline& out, std::span<const std::uint32_t> spirv, const char* name);
 

@@ -69,16 +69,7 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
     pass(g, "cells-clear", PassKind::Transfer, Stage::Footprints).use(header, Use::TransferDst).use(counts, Use::TransferDst)
         .use(marks, Use::TransferDst).record(
         [header_buffer, counts_buffer, cells, marks_buffer, marks_bytes](PassContext& pc) {
-            // Writes the engine submitted earlier (vertex buffers it skinned or simulated)
-            // become visible to everything this run does.
-            VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-            mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-            mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-            mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dep.memoryBarrierCount = 1;
-            dep.pMemoryBarriers = &mb;
-            pc.pipelineBarrier(dep);
+            makeEngineWritesVisible(pc);
             // Header: flags 0, bad_triangle ~0, counters 0.
             pc.fillBuffer(header_buffer, 0, 4, 0);
             pc.fillBuffer(header_buffer, 4, 4, 0xFFFFFFFFu);

@@ -380,10 +380,7 @@ Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStag
         auto outcome = finish(out);
         if (!outcome) return outcome.error();
         if (*outcome == Outcome::Complete) {
-            double pair_ms = 0;
-            for (const graph::PassTiming& p : out.passes)
-                if (p.name == "cells-pairs") pair_ms += p.gpu_ms;
-            notePairPassTime(pair_ms, out.stats.candidates);
+            notePairPassTime(out.passes, out.stats.candidates);
             return out;
         }
         if (*outcome == Outcome::Rerun && runs_ >= std::max(settings.max_runs, 1u))
@@ -403,7 +400,10 @@ std::uint32_t CellStage::automaticPairChunk() const {
     return static_cast<std::uint32_t>(std::clamp(rate * kPairChunkTargetMs, 4096.0, double(kMaxElements)));
 }
 
-void CellStage::notePairPassTime(double gpu_ms, std::uint64_t candidates) {
+void CellStage::notePairPassTime(std::span<const graph::PassTiming> passes, std::uint64_t candidates) {
+    double gpu_ms = 0;
+    for (const graph::PassTiming& p : passes)
+        if (p.name == kPairPassName) gpu_ms += p.gpu_ms;
     // Too little work to time reliably says nothing about the rate.
     if (gpu_ms > 1.0 && candidates >= 1024) pair_rate_ = double(candidates) / gpu_ms;
 }

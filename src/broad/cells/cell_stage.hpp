@@ -125,8 +125,10 @@ struct CellStageSettings {
     std::uint32_t pair_chunk = 0;
 };
 
-// The GPU time an automatic pair-pass chunk aims at (CellsSettings::pair_chunk).
+// The GPU time an automatic pair-pass chunk aims at (CellStageSettings::pair_chunk).
 inline constexpr double kPairChunkTargetMs = 200.0;
+// The pair pass's name in the graph (and in the passes' timings).
+inline constexpr const char* kPairPassName = "cells-pairs";
 
 struct CellStageResult {
     // Global triangle ids (object's triangle_base + triangle), a < b, sorted, unique.
@@ -180,9 +182,10 @@ public:
     enum class Outcome { Complete, Rerun, MorePairs };
     // After MorePairs: the pair pass over the next chunk and the header readback.
     void recordPairChunk(graph::Graph& g);
-    // The pair pass's GPU time in a complete run that decided `candidates` (one chunk or
-    // several): the rate the automatic chunk of later runs is sized from.
-    void notePairPassTime(double gpu_ms, std::uint64_t candidates);
+    // After a complete run that decided `candidates`: its passes (one pair-pass chunk or
+    // several, among others), whose pair-pass time gives the rate the automatic chunk of
+    // later runs is sized from.
+    void notePairPassTime(std::span<const graph::PassTiming> passes, std::uint64_t candidates);
     std::uint32_t pairChunk() const noexcept { return pair_chunk_; }
     [[nodiscard]] Result<Outcome> finish(CellStageResult& out);
     // The same without host work beyond the header: Complete fills `out_stats` (not

@@ -173,7 +173,7 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
             bind(pc, P.args, params, 2 + chunk);
             pc.dispatch(1, 1, 1);
         });
-    pass(g, "cells-pairs", PassKind::Compute, Stage::Filtering)
+    pass(g, kPairPassName, PassKind::Compute, Stage::Filtering)
         .indirect(id.args)
         .readWrite(id.candidates)  // proximity: marks the candidates outside their canonical cell
         .read(id.tris)

@@ -161,10 +161,7 @@ Result<Collected> ReliableMethod::collectCells(const RunView& run, BroadPhaseRes
         return again(Step::PairChunk);
     }
     cells_done_ = true;
-    double pair_ms = 0;
-    for (const graph::PassTiming& p : result.passes)
-        if (p.name == "cells-pairs") pair_ms += p.gpu_ms;
-    cells_->notePairPassTime(pair_ms, result.cells.candidates);
+    cells_->notePairPassTime(result.passes, result.cells.candidates);
     // The passes after the stage in the first submission saw it incomplete: again, once.
     proximity_stale_ = proximity_on_ && cells_resubmitted_;
     if (sorting() && cells_resubmitted_) {

@@ -6,6 +6,7 @@
 #define VKCOLLIDE_CONFIG_H
 
 #ifdef __cplusplus
+#include <cstddef>
 #include <cstdint>
 namespace vkcollide::gpu {
 using uint = std::uint32_t;
@@ -160,5 +161,101 @@ inline constexpr std::uint32_t kCsExtraItems = 65536;
 
 #ifdef __cplusplus
 }  // namespace vkcollide::gpu
+
+// ---- Narrow phase (host) ---------------------------------------------------------------
+// Work sizes and thresholds of the CPU narrow phase (src/narrow/). None changes a result:
+// every form and split gives the same pairs and responses to the bit.
+namespace vkcollide::narrow {
+// Validation (narrow_phase.cpp):
+// Records per validation task.
+inline constexpr std::size_t kValidateGrain = 16384;
+// Sweep tiles per task: about kTasksPerThread tasks per thread (active tiles cluster where
+// objects meet, so many small tasks balance better), at most this many.
+inline constexpr std::size_t kMaxSweepGrain = 256;
+inline constexpr std::size_t kTasksPerThread = 32;
+// Box pairs a sweep task counts between looks at NarrowOptions::max_box_pairs (one atomic
+// add per stride: nothing next to the sweep's nanoseconds per pair).
+inline constexpr std::size_t kBoxBudgetStride = std::size_t{1} << 16;
+// The narrow phase's CPU grid sweep (GridSweep, sweep_and_prune.cpp):
+// Cell size in typical (median) box extents: high and deep, and wide. Cells are swept
+// along x, so they can be long in x; the limit in x lets cells of a single object be
+// skipped (docs/narrow_phase.md has the measurements).
+inline constexpr double kGridCellExtent = 3.0;
+inline constexpr double kGridCellExtentX = 8.0;
+// At most one cell per box on average, this many slabs per axis.
+inline constexpr double kGridMaxSlabs = 65535;
+// Average cells per box allowed by the sampled estimate (large boxes are listed often);
+// the exact count allowed before the grid is made coarser anyway.
+inline constexpr double kGridMaxListingsPerBox = 4.0;
+inline constexpr std::size_t kGridHardListingsPerBox = 12;
+// Boxes sampled to choose the grid: enough for a stable median, independent of n.
+inline constexpr std::size_t kGridSampleSize = 1024;
+// Tiles: about one per this many boxes, at most this many, at most this many cells each.
+inline constexpr std::size_t kGridBoxesPerTile = 512;
+inline constexpr std::size_t kGridMaxTiles = 16384;
+inline constexpr std::size_t kGridMaxTileCells = 1u << 16;
+// Boxes per task while listing them in tiles: about two tasks per thread (each task has
+// a count per tile), at least this many.
+inline constexpr std::size_t kGridMinListGrain = 8192;
+// Exact tests (exact_stage.cpp):
+// Exact tests per task: about four tasks per thread, within [kMinTestGrain, kMaxTestGrain]:
+// large enough to amortise the hand-out, small enough to balance (a test costs 0.05 to 1
+// microseconds, more when the exact fallback runs) and, for the few hundred tests of a
+// light contact, to spread them over the threads at all (a fixed 512 ran 650 tests as two
+// tasks). Results do not depend on it: hits are concatenated in test order.
+inline constexpr std::size_t kMinTestGrain = 32;
+inline constexpr std::size_t kMaxTestGrain = 512;
+// Results and responses (exact_stage.cpp, responses.cpp): items per task of the linear
+// loops that build the result, and of those over slots.
+inline constexpr std::size_t kResultGrain = 2048;
+inline constexpr std::size_t kSlotGrain = 8192;
+// Responses on the calling thread below this many colliding pairs (respondSerial), when
+// the slots number at most kSlotsPerEnd per end plus kSlotsFree. From the single-thread
+// cost (15 ns a pair here, against 29 for the parallel form run on one thread) and the
+// H200 host's 0.205 ms for 7.2K pairs on 16 threads: serial is estimated at ~0.15 ms there.
+inline constexpr std::size_t kSerialResponsesBelow = std::size_t{1} << 13;
+// The Grouped form from this many threads on: on one thread it costs about twice the
+// Serial form (5.1-7.7 against 2.3-2.4 ms for 596K pairs, touching scene), so two or
+// three threads would gain little or nothing (the Sorted form it replaces cost 2-3 times
+// the Serial one on two threads).
+inline constexpr unsigned kGroupedFromThreads = 4;
+inline constexpr std::size_t kSlotsPerEnd = 4;
+inline constexpr std::size_t kSlotsFree = 4096;
+// The pair path (pair_narrow_phase.cpp, pair_keys.cpp, sorted_pairs.cpp, slots.cpp): pairs
+// per task of its loops;
+inline constexpr std::size_t kPairUpGrain = 1024;
+inline constexpr std::size_t kPairKeyGrain = 2048;
+inline constexpr std::size_t kSortedPairGrain = 8192;
+// The parallel form numbers slots through one marker per id while ids span at most this
+// many per input pair (plus a constant); beyond, through sorting the pairs' ends.
+inline constexpr std::size_t kDenseIdsPerPair = 8;
+inline constexpr std::size_t kDenseIdsFree = std::size_t{1} << 16;
+// The serial form's radix digits: at most this wide, and about as many buckets as ends
+// (a digit's buckets are cleared and summed once per call), at least kMinDigitBits.
+inline constexpr int kMaxDigitBits = 11;
+inline constexpr int kMinDigitBits = 4;
+// Digits times buckets for 32-bit ids: at most ceil(32 / w) * 2^w for w in [4, 11], 3 * 2048.
+inline constexpr std::size_t kCountCapacity = 3 * 2048;
+// A run of keys sharing a lower slot longer than this is sorted by std::sort.
+inline constexpr std::size_t kInsertionRun = 16;
+// Triangles per block of the sorted pairs' slot numbering.
+inline constexpr std::size_t kSlotMarkBlock = std::size_t{1} << 16;
+// Slots per gather task: a task walks the objects and the sorted GPU table from its first
+// slot on, so it starts with two binary searches. At most kMaxGatherGrain; down to
+// kMinGatherGrain so that the thousand-odd slots of a light contact spread over about
+// two tasks per thread (each slot is a few cache misses: threads overlap them), and on
+// the calling thread alone below 2 * kMinGatherGrain (a loop that wakes a sleeping
+// worker costs the caller more than gathering them).
+inline constexpr std::size_t kMaxGatherGrain = 1024;
+inline constexpr std::size_t kMinGatherGrain = 256;
+// The gather is bound by memory latency, not arithmetic: each slot loads three indices
+// from its mesh, then three positions they name, both usually cache misses (a pile's
+// meshes are megabytes, and between two detections the GPU wait and the engine evict
+// them). Slot s prefetches the indices of slot s + kIndicesAhead and, those having
+// arrived meanwhile, the positions of slot s + kPositionsAhead, so several slots' misses
+// overlap instead of following one another.
+inline constexpr std::size_t kIndicesAhead = 8;
+inline constexpr std::size_t kPositionsAhead = 4;
+}  // namespace vkcollide::narrow
 #endif
 #endif

@@ -6,4 +6,7 @@ list(APPEND VKCOLLIDE_HOST_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/command_tape.cpp  # plain data: recording a tape
   ${CMAKE_CURRENT_LIST_DIR}/command_tape_replay.cpp  # replayed through a dispatch table
 )
-list(APPEND VKCOLLIDE_GPU_SOURCES ${CMAKE_CURRENT_LIST_DIR}/executor.cpp)
+list(APPEND VKCOLLIDE_GPU_SOURCES
+  ${CMAKE_CURRENT_LIST_DIR}/executor.cpp  # submitting a graph: resources, taping, waiting
+  ${CMAKE_CURRENT_LIST_DIR}/pass_context.cpp  # what a pass records through
+)

@@ -1,13 +1,15 @@
 #include "narrow/exact_stage.hpp"
-#include "narrow/workspace.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <bit>
 #include <limits>
 
+#include "common/config.h"
+#include "narrow/radix_sort.hpp"
 #include "narrow/responses.hpp"
 #include "narrow/triangle_intersection.hpp"
+#include "narrow/workspace.hpp"
 
 namespace vkcollide {
 
@@ -22,21 +24,6 @@ NarrowWorkspace::Impl& NarrowWorkspace::impl() {
 }
 
 namespace narrow {
-namespace {
-
-// Exact tests per task: about four tasks per thread, within [kMinTestGrain, kMaxTestGrain]:
-// large enough to amortise the hand-out, small enough to balance (a test costs 0.05 to 1
-// microseconds, more when the exact fallback runs) and, for the few hundred tests of a
-// light contact, to spread them over the threads at all (a fixed 512 ran 650 tests as two
-// tasks). Results do not depend on it: hits are concatenated in test order.
-constexpr std::size_t kMinTestGrain = 32;
-constexpr std::size_t kMaxTestGrain = 512;
-// Items per task of the linear loops that build the result.
-constexpr std::size_t kResultGrain = 2048;
-
-int bitsFor(std::size_t count) { return std::max(1, static_cast<int>(std::bit_width(count))); }
-
-}  // namespace
 
 std::size_t testGrain(std::size_t tests, unsigned threads) { return grainFor(tests, threads, 4, kMinTestGrain, kMaxTestGrain); }
 
@@ -195,7 +182,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
         }
     }
     if (!tests_in_order) {
-        parallelRadixSort(ex, colliding, ws.colliding_scratch, 32 + bitsFor(slot_count));
+        parallelRadixSort(ex, colliding, ws.colliding_scratch, 32 + keyBits(slot_count));
         ex.parallelFor(hit_count, kResultGrain, [&, keys = colliding.data()](std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) fill_from(keys, k);
         });

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "common/config.h"
 #include "narrow/exact_stage.hpp"
 #include "narrow/guarded_executor.hpp"
 #include "narrow/workspace.hpp"
@@ -37,15 +38,6 @@ using narrow::Buffer;
 using narrow::keyOf;
 using narrow::Strided;
 
-// Records per validation task.
-constexpr std::size_t kValidateGrain = 16384;
-// Sweep tiles per task: about kTasksPerThread tasks per thread (active tiles cluster where
-// objects meet, so many small tasks balance better), at most this many.
-constexpr std::size_t kMaxSweepGrain = 256;
-constexpr std::size_t kTasksPerThread = 32;
-// Box pairs a sweep task counts between looks at NarrowOptions::max_box_pairs (one atomic
-// add per stride: nothing next to the sweep's nanoseconds per pair).
-constexpr std::size_t kBoxBudgetStride = std::size_t{1} << 16;
 
 // Either kind of record, seen through strided views.
 struct RecordView {
@@ -93,11 +85,11 @@ Result<bool> validateAndRank(const RecordView& rv, Check&& check, Executor& ex, 
                              BoxRange& out_range) {
     const std::size_t n = rv.n;
     const auto keyAt = [&](std::size_t i) { return keyOf(rv.object[i], rv.triangle[i]); };
-    const std::size_t tasks = narrow::taskCount(n, kValidateGrain);
+    const std::size_t tasks = narrow::taskCount(n, narrow::kValidateGrain);
     std::vector<std::size_t> first_bad(tasks, n);
     std::vector<char> ascending(tasks, 1);
     std::vector<BoxRange> task_range(tasks);
-    ex.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
+    ex.parallelFor(n, narrow::kValidateGrain, [&](std::size_t begin, std::size_t end) {
         std::size_t bad = n;
         bool task_ascending = true;
         std::uint64_t previous = keyAt(begin);
@@ -114,9 +106,9 @@ Result<bool> validateAndRank(const RecordView& rv, Check&& check, Executor& ex, 
             task_ascending = task_ascending && (i == begin || previous < key);
             previous = key;
         }
-        first_bad[begin / kValidateGrain] = bad;
-        ascending[begin / kValidateGrain] = task_ascending ? 1 : 0;
-        task_range[begin / kValidateGrain] = r;
+        first_bad[begin / narrow::kValidateGrain] = bad;
+        ascending[begin / narrow::kValidateGrain] = task_ascending ? 1 : 0;
+        task_range[begin / narrow::kValidateGrain] = r;
     });
     if (tasks > 0) {
         out_range = task_range[0];
@@ -133,21 +125,21 @@ Result<bool> validateAndRank(const RecordView& rv, Check&& check, Executor& ex, 
     }
     bool keys_ascending = true;
     for (std::size_t t = 0; t < tasks; ++t) {
-        keys_ascending = keys_ascending && ascending[t] && (t == 0 || keyAt(t * kValidateGrain - 1) < keyAt(t * kValidateGrain));
+        keys_ascending = keys_ascending && ascending[t] && (t == 0 || keyAt(t * narrow::kValidateGrain - 1) < keyAt(t * narrow::kValidateGrain));
     }
     if (keys_ascending) return true;
     // Sort the keys, find duplicates (neighbours once sorted), rank.
     Buffer<narrow::KeyIndex>& keys = ws.keys;
     keys.resize(n);
-    ex.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
+    ex.parallelFor(n, narrow::kValidateGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) keys[i] = {keyAt(i), static_cast<std::uint32_t>(i)};
     });
     narrow::parallelRadixSort(ex, keys, ws.key_scratch, 64);
     std::vector<std::size_t> first_repeat(tasks, n);
-    ex.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
+    ex.parallelFor(n, narrow::kValidateGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t r = std::max<std::size_t>(begin, 1); r < end; ++r) {
             if (keys[r].key == keys[r - 1].key) {
-                first_repeat[begin / kValidateGrain] = r;
+                first_repeat[begin / narrow::kValidateGrain] = r;
                 break;
             }
         }
@@ -161,7 +153,7 @@ Result<bool> validateAndRank(const RecordView& rv, Check&& check, Executor& ex, 
         }
     }
     ws.record_of.resize(n);
-    ex.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
+    ex.parallelFor(n, narrow::kValidateGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t r = begin; r < end; ++r) ws.record_of[r] = keys[r].index;
     });
     return false;
@@ -185,7 +177,7 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, c
     narrow::GridSweep& sweep = ws.sweep;
     sweep.build(input, &ex);
     const std::size_t tiles = sweep.tileCount();
-    const std::size_t sweep_grain = narrow::grainFor(tiles, ex.threadCount(), kTasksPerThread, 1, kMaxSweepGrain);
+    const std::size_t sweep_grain = narrow::grainFor(tiles, ex.threadCount(), narrow::kTasksPerThread, 1, narrow::kMaxSweepGrain);
     std::vector<narrow::PairTask>& tasks = ws.pair_tasks;
     tasks.resize(narrow::taskCount(tiles, sweep_grain));
     Buffer<std::uint8_t>& in_pair = ws.in_pair;
@@ -204,18 +196,18 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, c
         task.tests.clear();
         task.object_pairs.clear();
         std::size_t sap_pairs = 0, neighbour_pairs = 0;  // in registers, not in `task`
-        std::size_t budget_mark = kBoxBudgetStride;      // sap_pairs at the next look at the budget
+        std::size_t budget_mark = narrow::kBoxBudgetStride;      // sap_pairs at the next look at the budget
         std::uint64_t last_object_pair = std::numeric_limits<std::uint64_t>::max();
         // Runs for every reported pair: inlined into the sweep.
         narrow::GridSweep::TileCells cells;
         sweep.sweepTiles(begin, end, cells, [&](std::uint32_t i, std::uint32_t j, std::uint32_t object_i,
                                                 std::uint32_t object_j) VKCOLLIDE_ALWAYS_INLINE {
             ++sap_pairs;
-            // The box-pair budget, every kBoxBudgetStride pairs: past it, this task throws
+            // The box-pair budget, every narrow::kBoxBudgetStride pairs: past it, this task throws
             // (GuardedExecutor ends the loop) and the call returns LimitExceeded.
             if (sap_pairs == budget_mark) {
-                budget_mark += kBoxBudgetStride;
-                if (box_pairs_seen.fetch_add(kBoxBudgetStride, std::memory_order_relaxed) + kBoxBudgetStride > options.max_box_pairs)
+                budget_mark += narrow::kBoxBudgetStride;
+                if (box_pairs_seen.fetch_add(narrow::kBoxBudgetStride, std::memory_order_relaxed) + narrow::kBoxBudgetStride > options.max_box_pairs)
                     throw narrow::BoxBudgetExceeded{};
             }
             // Store only when not set yet: most pairs find both flags set, and reading keeps
@@ -254,11 +246,11 @@ Result<NarrowResult> sweepAndTest(const RecordView& rv, const BoxRange& range, c
     // once the strides counted so far are).
     if (stats.sap_pairs > options.max_box_pairs) throw narrow::BoxBudgetExceeded{};
     // The loop's end ordered every flag store before these (plain) reads.
-    std::vector<std::size_t> flagged(narrow::taskCount(n, kValidateGrain), 0);
-    ex.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::size_t> flagged(narrow::taskCount(n, narrow::kValidateGrain), 0);
+    ex.parallelFor(n, narrow::kValidateGrain, [&](std::size_t begin, std::size_t end) {
         std::size_t c = 0;
         for (std::size_t i = begin; i < end; ++i) c += in_pair[i];
-        flagged[begin / kValidateGrain] = c;
+        flagged[begin / narrow::kValidateGrain] = c;
     });
     for (const std::size_t c : flagged) stats.potentially_colliding_triangles += c;
     clock.lap(result.timings.sweep_ms);
@@ -314,7 +306,7 @@ Result<NarrowResult> triangleRecordPhase(std::span<const CandidateTriangle> in_c
     } else {
         ws.tags.resize(n);
         ws.vertices.resize(n);
-        executor.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
+        executor.parallelFor(n, narrow::kValidateGrain, [&](std::size_t begin, std::size_t end) {
             for (std::size_t s = begin; s < end; ++s) {
                 const CandidateTriangle& c = in_candidates[ws.record_of[s]];
                 ws.tags[s] = {c.object, c.triangle, {c.vertex_index[0], c.vertex_index[1], c.vertex_index[2]}};
@@ -355,7 +347,7 @@ Result<NarrowResult> leanRecordPhase(std::span<const CandidateRecord> in_records
     // Global ids in slot order (ascending), then the gather.
     const std::uint32_t* record_of = *ascending ? nullptr : ws.record_of.data();
     ws.slot_ids.resize(n);
-    executor.parallelFor(n, kValidateGrain, [&](std::size_t begin, std::size_t end) {
+    executor.parallelFor(n, narrow::kValidateGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t s = begin; s < end; ++s) {
             const CandidateRecord& r = in_records[record_of ? record_of[s] : s];
             ws.slot_ids[s] = source.triangleBase(r.object) + r.triangle;

@@ -7,27 +7,13 @@
 #include <utility>
 #include <vector>
 
+#include "common/config.h"
 #include "narrow/radix_sort.hpp"
 #include "narrow/workspace.hpp"
 
 namespace vkcollide::narrow {
 namespace {
 
-constexpr std::size_t kPairGrain = 2048;
-// The parallel form numbers slots through one marker per id while ids span at most this
-// many per input pair (plus a constant); beyond, through sorting the pairs' ends.
-constexpr std::size_t kDenseIdsPerPair = 8;
-constexpr std::size_t kDenseIdsFree = std::size_t{1} << 16;
-// The serial form's radix digits: at most this wide, and about as many buckets as ends
-// (a digit's buckets are cleared and summed once per call), at least kMinDigitBits.
-constexpr int kMaxDigitBits = 11;
-constexpr int kMinDigitBits = 4;
-// Digits times buckets for 32-bit ids: at most ceil(32 / w) * 2^w for w in [4, 11], 3 * 2048.
-constexpr std::size_t kCountCapacity = 3 * 2048;
-// A run of keys sharing a lower slot longer than this is sorted by std::sort.
-constexpr std::size_t kInsertionRun = 16;
-
-int bitsFor(std::uint64_t max_value) { return std::max(1, static_cast<int>(std::bit_width(max_value))); }
 
 // Sorts keys[first, last) ascending and drops repeats; returns the new end.
 std::size_t sortRun(std::uint64_t* keys, std::size_t first, std::size_t last) {
@@ -57,8 +43,8 @@ std::optional<std::size_t> serialKeys(std::span<const CandidatePair> in_pairs, s
                                       PairKeys& out) {
     const std::size_t n = in_pairs.size();
     const std::size_t end_count = 2 * n;
-    const int id_bits = bitsFor(total == 0 ? 0 : total - 1);
-    const int widest = std::clamp(bitsFor(end_count), kMinDigitBits, kMaxDigitBits);
+    const int id_bits = keyBits(total == 0 ? 0 : total - 1);
+    const int widest = std::clamp(keyBits(end_count), kMinDigitBits, kMaxDigitBits);
     const int digits = (id_bits + widest - 1) / widest;
     const int digit_bits = (id_bits + digits - 1) / digits;
     const std::size_t buckets = std::size_t{1} << digit_bits;
@@ -103,7 +89,7 @@ std::optional<std::size_t> serialKeys(std::span<const CandidatePair> in_pairs, s
     }
     slot_ids.resize(slots);
 
-    const int slot_bits = bitsFor(slots == 0 ? 0 : slots - 1);
+    const int slot_bits = keyBits(slots == 0 ? 0 : slots - 1);
     Buffer<std::uint64_t>& keys = ws.pair_keys;
     keys.resize(n);
     std::size_t count = 0, run = 0;
@@ -129,17 +115,17 @@ std::optional<std::size_t> serialKeys(std::span<const CandidatePair> in_pairs, s
 std::optional<std::size_t> parallelKeys(Executor& ex, std::span<const CandidatePair> in_pairs, std::uint32_t total,
                                         NarrowWorkspace::Impl& ws, PairKeys& out) {
     const std::size_t input = in_pairs.size();
-    const int id_bits = bitsFor(total == 0 ? 0 : total - 1);
+    const int id_bits = keyBits(total == 0 ? 0 : total - 1);
 
     // Checks.
     Buffer<std::uint64_t>& keys = ws.pair_keys;
     keys.resize(input);
-    std::vector<std::size_t> first_bad(taskCount(input, kPairGrain), input);
-    ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+    std::vector<std::size_t> first_bad(taskCount(input, kPairKeyGrain), input);
+    ex.parallelFor(input, kPairKeyGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
             const CandidatePair p = in_pairs[k];
             if (p.a >= total || p.b >= total || p.a == p.b) {
-                first_bad[begin / kPairGrain] = k;
+                first_bad[begin / kPairKeyGrain] = k;
                 return;
             }
         }
@@ -156,11 +142,11 @@ std::optional<std::size_t> parallelKeys(Executor& ex, std::span<const CandidateP
     if (std::size_t{total} <= kDenseIdsPerPair * input + kDenseIdsFree) {
         Buffer<std::uint32_t>& slot_of = ws.responder_of;  // borrowed: free until the responses
         slot_of.resize(total);
-        ex.parallelFor(total, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        ex.parallelFor(total, kPairKeyGrain, [&](std::size_t begin, std::size_t end) {
             std::fill(slot_of.begin() + begin, slot_of.begin() + end, 0u);
         });
         static_assert(std::atomic_ref<std::uint32_t>::required_alignment <= alignof(std::uint32_t));
-        ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        ex.parallelFor(input, kPairKeyGrain, [&](std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
                 std::atomic_ref<std::uint32_t>(slot_of[in_pairs[k].a]).store(1, std::memory_order_relaxed);
                 std::atomic_ref<std::uint32_t>(slot_of[in_pairs[k].b]).store(1, std::memory_order_relaxed);
@@ -172,17 +158,17 @@ std::optional<std::size_t> parallelKeys(Executor& ex, std::span<const CandidateP
             [&](std::size_t position, std::size_t g) { ws.slot_ids[position] = static_cast<std::uint32_t>(g); });
         ws.slot_ids.resize(slot_count);
         exclusiveScan(ex, slot_of.data(), total);
-        ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        ex.parallelFor(input, kPairKeyGrain, [&](std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
                 slot_of_end[2 * k] = slot_of[in_pairs[k].a];
                 slot_of_end[2 * k + 1] = slot_of[in_pairs[k].b];
             }
         });
     } else {
-        const int end_bits = bitsFor(2 * std::uint64_t{input});
+        const int end_bits = keyBits(2 * std::uint64_t{input});
         Buffer<std::uint64_t>& ends = ws.ends;
         ends.resize(2 * input);
-        ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        ex.parallelFor(input, kPairKeyGrain, [&](std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
                 ends[2 * k] = (std::uint64_t{in_pairs[k].a} << end_bits) | (2 * k);
                 ends[2 * k + 1] = (std::uint64_t{in_pairs[k].b} << end_bits) | (2 * k + 1);
@@ -197,7 +183,7 @@ std::optional<std::size_t> parallelKeys(Executor& ex, std::span<const CandidateP
         slot_begin[slot_count] = static_cast<std::uint32_t>(ends.size());
         ws.slot_ids.resize(slot_count);
         const std::uint64_t end_mask = (std::uint64_t{1} << end_bits) - 1;
-        ex.parallelFor(slot_count, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        ex.parallelFor(slot_count, kPairKeyGrain, [&](std::size_t begin, std::size_t end) {
             for (std::size_t s = begin; s < end; ++s) {
                 ws.slot_ids[s] = static_cast<std::uint32_t>(ends[slot_begin[s]] >> end_bits);
                 for (std::size_t e = slot_begin[s]; e < slot_begin[s + 1]; ++e) {
@@ -209,8 +195,8 @@ std::optional<std::size_t> parallelKeys(Executor& ex, std::span<const CandidateP
 
     // The pairs as (lower slot, higher slot) keys, sorted, repeats dropped: the distinct
     // pairs in canonical order (slots follow the ids, ids follow (object, triangle)).
-    const int slot_bits = bitsFor(slot_count == 0 ? 0 : slot_count - 1);
-    ex.parallelFor(input, kPairGrain, [&](std::size_t begin, std::size_t end) {
+    const int slot_bits = keyBits(slot_count == 0 ? 0 : slot_count - 1);
+    ex.parallelFor(input, kPairKeyGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) {
             const std::uint32_t sa = slot_of_end[2 * k], sb = slot_of_end[2 * k + 1];
             keys[k] = (std::uint64_t{std::min(sa, sb)} << slot_bits) | std::max(sa, sb);

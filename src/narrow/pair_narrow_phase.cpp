@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "common/config.h"
 #include "narrow/exact_stage.hpp"
 #include "narrow/guarded_executor.hpp"
 #include "narrow/workspace.hpp"
@@ -30,7 +31,6 @@ namespace {
 using narrow::Buffer;
 using narrow::keyOf;
 
-constexpr std::size_t kPairUpGrain = 1024;
 // Ends are numbered in 32 bits.
 constexpr std::size_t kMaxPairs = (std::size_t{1} << 31) - 1;
 
@@ -97,10 +97,10 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
 
     // Stage 5: pairing up.
     std::vector<narrow::PairTask>& tasks = ws.pair_tasks;
-    tasks.resize(narrow::taskCount(pairs, kPairUpGrain));
+    tasks.resize(narrow::taskCount(pairs, narrow::kPairUpGrain));
     const bool filter_objects = static_cast<bool>(options.may_collide);
-    ex.parallelFor(pairs, kPairUpGrain, [&](std::size_t begin, std::size_t end) {
-        narrow::PairTask task = std::move(tasks[begin / kPairUpGrain]);  // see the sweep in narrow_phase.cpp
+    ex.parallelFor(pairs, narrow::kPairUpGrain, [&](std::size_t begin, std::size_t end) {
+        narrow::PairTask task = std::move(tasks[begin / narrow::kPairUpGrain]);  // see the sweep in narrow_phase.cpp
         task.tests.clear();
         task.object_pairs.clear();
         std::size_t filtered = 0, neighbours = 0;
@@ -131,7 +131,7 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
         task.neighbour_pairs = neighbours;
         std::sort(task.object_pairs.begin(), task.object_pairs.end());
         task.object_pairs.erase(std::unique(task.object_pairs.begin(), task.object_pairs.end()), task.object_pairs.end());
-        tasks[begin / kPairUpGrain] = std::move(task);
+        tasks[begin / narrow::kPairUpGrain] = std::move(task);
     });
     for (const narrow::PairTask& task : tasks) {
         result.stats.filtered_pairs += task.filtered_pairs;

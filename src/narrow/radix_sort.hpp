@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -12,6 +13,9 @@
 #include "narrow/parallel.hpp"
 
 namespace vkcollide::narrow {
+
+// Bits a sort key needs to hold values up to `max_value` (at least 1).
+inline int keyBits(std::uint64_t max_value) { return std::max(1, static_cast<int>(std::bit_width(max_value))); }
 
 // A key and the index of the item it belongs to.
 struct KeyIndex {

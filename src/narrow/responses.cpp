@@ -5,28 +5,12 @@
 #include <cmath>
 #include <vector>
 
+#include "common/config.h"
 #include "narrow/radix_sort.hpp"
 
 namespace vkcollide::narrow {
 namespace {
 
-// Items per task of the linear loops.
-constexpr std::size_t kResultGrain = 2048;
-constexpr std::size_t kSlotGrain = 8192;
-// Responses on the calling thread below this many colliding pairs (respondSerial), when
-// the slots number at most kSlotsPerEnd per end plus kSlotsFree. From the single-thread
-// cost (15 ns a pair here, against 29 for the parallel form run on one thread) and the
-// H200 host's 0.205 ms for 7.2K pairs on 16 threads: serial is estimated at ~0.15 ms there.
-constexpr std::size_t kSerialResponsesBelow = std::size_t{1} << 13;
-// The Grouped form from this many threads on: on one thread it costs about twice the
-// Serial form (5.1-7.7 against 2.3-2.4 ms for 596K pairs, touching scene), so two or
-// three threads would gain little or nothing (the Sorted form it replaces cost 2-3 times
-// the Serial one on two threads).
-constexpr unsigned kGroupedFromThreads = 4;
-constexpr std::size_t kSlotsPerEnd = 4;
-constexpr std::size_t kSlotsFree = 4096;
-
-int bitsFor(std::size_t count) { return std::max(1, static_cast<int>(std::bit_width(count))); }
 
 Vec3d unitNormal(const Vertex3& v) {
     const double ux = double(v[1].x) - v[0].x, uy = double(v[1].y) - v[0].y, uz = double(v[1].z) - v[0].z;
@@ -127,7 +111,7 @@ void respondSorted(const Buffer<std::uint64_t>& colliding, const SlotData& slots
             ends[2 * k + 1] = keyOf(static_cast<std::uint32_t>(colliding[k]), static_cast<std::uint32_t>(k));
         }
     });
-    parallelRadixSort(ex, ends, ws.contribution_scratch, 32 + bitsFor(slot_count), 32);  // built in pair order
+    parallelRadixSort(ex, ends, ws.contribution_scratch, 32 + keyBits(slot_count), 32);  // built in pair order
     // Responders: where the slot changes in the sorted keys.
     Buffer<std::uint32_t>& begin_of = ws.responder_begin;
     begin_of.resize(ends.size() + 1);
@@ -179,7 +163,7 @@ void respondGrouped(const Buffer<std::uint64_t>& colliding, const SlotData& slot
     ex.parallelFor(pairs, kResultGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) higher[k] = keyOf(static_cast<std::uint32_t>(colliding[k]), static_cast<std::uint32_t>(k));
     });
-    parallelSortKeys(ex, higher, ws.contribution_scratch, 32 + bitsFor(slot_count), 32);  // built in pair order
+    parallelSortKeys(ex, higher, ws.contribution_scratch, 32 + keyBits(slot_count), 32);  // built in pair order
     Buffer<std::uint64_t>& lower_run = ws.lower_runs;        // slot s's pairs as the lower end: colliding[first, first + count)
     Buffer<std::uint64_t>& higher_group = ws.higher_groups;  // ... as the higher end: higher[first, first + count)
     lower_run.resize(slot_count);

@@ -5,29 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "common/config.h"
 #include "narrow/radix_sort.hpp"
 
 namespace vkcollide::narrow {
 namespace {
 
-// Slots per gather task: a task walks the objects and the sorted GPU table from its first
-// slot on, so it starts with two binary searches. At most kMaxGatherGrain; down to
-// kMinGatherGrain so that the thousand-odd slots of a light contact spread over about
-// two tasks per thread (each slot is a few cache misses: threads overlap them), and on
-// the calling thread alone below 2 * kMinGatherGrain (a loop that wakes a sleeping
-// worker costs the caller more than gathering them).
-constexpr std::size_t kMaxGatherGrain = 1024;
-constexpr std::size_t kMinGatherGrain = 256;
 // world_begin of an object transformed per slot.
 constexpr std::size_t kNotWhole = std::numeric_limits<std::size_t>::max();
-// The gather is bound by memory latency, not arithmetic: each slot loads three indices
-// from its mesh, then three positions they name, both usually cache misses (a pile's
-// meshes are megabytes, and between two detections the GPU wait and the engine evict
-// them). Slot s prefetches the indices of slot s + kIndicesAhead and, those having
-// arrived meanwhile, the positions of slot s + kPositionsAhead, so several slots' misses
-// overlap instead of following one another.
-constexpr std::size_t kIndicesAhead = 8;
-constexpr std::size_t kPositionsAhead = 4;
 
 inline void prefetch(const void* p) {
 #if defined(__GNUC__) || defined(__clang__)

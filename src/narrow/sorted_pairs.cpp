@@ -4,6 +4,7 @@
 #include <atomic>
 #include <string>
 
+#include "common/config.h"
 #include "narrow/exact_stage.hpp"
 #include "narrow/guarded_executor.hpp"
 #include "narrow/pair_keys.hpp"
@@ -13,8 +14,6 @@
 namespace vkcollide::narrow {
 namespace {
 
-constexpr std::size_t kPairGrain = 8192;
-constexpr std::size_t kMarkBlock = std::size_t{1} << 16;  // triangles per block of the slot numbering
 
 Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
                                  Executor& ex, NarrowWorkspace::Impl& ws, std::vector<TrianglePair>& pair_memory,
@@ -47,7 +46,7 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
         return keyOf(source.triangleBase(p.object_a) + p.triangle_a, source.triangleBase(p.object_b) + p.triangle_b);
     };
     std::atomic<std::size_t> bad{found};  // the lowest pair found out of range or out of order
-    ex.parallelFor(found, kPairGrain, [&](std::size_t begin, std::size_t end) {
+    ex.parallelFor(found, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
         // A chunk's first pair is compared with the pair before it too (chunks may start
         // anywhere: an engine's executor chooses them); one out of range is its own chunk's.
         std::uint64_t previous = begin > 0 ? globalKey(sorted[begin - 1]) : 0;
@@ -75,12 +74,12 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
     clock.lap(result.timings.validate_ms);
 
     // Slots: the marked triangles in id order, numbered in blocks (count, scan, assign).
-    const std::size_t blocks = (std::size_t{total} + kMarkBlock - 1) / kMarkBlock;
+    const std::size_t blocks = (std::size_t{total} + narrow::kSlotMarkBlock - 1) / narrow::kSlotMarkBlock;
     std::vector<std::size_t>& block_first = ws.hit_begin;
     block_first.assign(blocks + 1, 0);
     ex.parallelFor(blocks, 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t blk = begin; blk < end; ++blk) {
-            const std::size_t from = blk * kMarkBlock, to = std::min<std::size_t>(total, from + kMarkBlock);
+            const std::size_t from = blk * narrow::kSlotMarkBlock, to = std::min<std::size_t>(total, from + narrow::kSlotMarkBlock);
             std::size_t n = 0;
             for (std::size_t t = from; t < to; ++t) n += marks[t];
             block_first[blk + 1] = n;
@@ -94,7 +93,7 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
     slot_ids.resize(slot_count);
     ex.parallelFor(blocks, 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t blk = begin; blk < end; ++blk) {
-            const std::size_t from = blk * kMarkBlock, to = std::min<std::size_t>(total, from + kMarkBlock);
+            const std::size_t from = blk * narrow::kSlotMarkBlock, to = std::min<std::size_t>(total, from + narrow::kSlotMarkBlock);
             auto slot = static_cast<std::uint32_t>(block_first[blk]);
             for (std::size_t t = from; t < to; ++t)
                 if (marks[t]) {
@@ -106,7 +105,7 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
     // The colliding pairs as slot keys: slots follow the ids, so they stay sorted.
     Buffer<std::uint64_t>& colliding = ws.colliding;
     colliding.resize(kept);
-    ex.parallelFor(kept, kPairGrain, [&](std::size_t begin, std::size_t end) {
+    ex.parallelFor(kept, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k)
             colliding[k] = keyOf(slot_of[ends[k] >> 32], slot_of[ends[k] & 0xffffffffu]);
     });
@@ -127,7 +126,7 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
     if (result.pairs.capacity() >= kept) {
         // Reused memory: resize() zeroes only what grows; the copy runs in parallel.
         result.pairs.resize(kept);
-        ex.parallelFor(kept, kPairGrain, [&](std::size_t begin, std::size_t end) {
+        ex.parallelFor(kept, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
             std::copy(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
                       result.pairs.begin() + static_cast<std::ptrdiff_t>(begin));
         });

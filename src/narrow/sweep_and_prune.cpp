@@ -1,5 +1,7 @@
 #include "narrow/sweep_and_prune.hpp"
 
+#include "common/config.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,26 +11,6 @@
 namespace vkcollide::narrow {
 namespace {
 
-// Cell size in typical (median) box extents: high and deep, and wide. Cells are swept
-// along x, so they can be long in x; the limit in x lets cells of a single object be
-// skipped (docs/narrow_phase.md has the measurements).
-constexpr double kCellExtent = 3.0;
-constexpr double kCellExtentX = 8.0;
-// At most one cell per box on average, this many slabs per axis.
-constexpr double kMaxSlabs = 65535;
-// Average cells per box allowed by the sampled estimate (large boxes are listed often);
-// the exact count allowed before the grid is made coarser anyway.
-constexpr double kMaxListingsPerBox = 4.0;
-constexpr std::size_t kHardListingsPerBox = 12;
-// Boxes sampled to choose the grid: enough for a stable median, independent of n.
-constexpr std::size_t kSampleSize = 1024;
-// Tiles: about one per this many boxes, at most this many, at most this many cells each.
-constexpr std::size_t kBoxesPerTile = 512;
-constexpr std::size_t kMaxTiles = 16384;
-constexpr std::size_t kMaxTileCells = 1u << 16;
-// Boxes per task while listing them in tiles: about two tasks per thread (each task has
-// a count per tile), at least this many.
-constexpr std::size_t kMinListGrain = 8192;
 
 struct Range {
     float lo[3], hi[3];
@@ -132,10 +114,10 @@ void GridSweep::build(const SweepInput& in, Executor* executor) {
         }
     }
 
-    // Slabs per axis: cells of kCellExtent(X) median boxes, at most one cell per box
+    // Slabs per axis: cells of kGridCellExtent(X) median boxes, at most one cell per box
     // (shrunk alike on all axes), then coarser while the sample says boxes would be listed
     // too often (on the axis whose boxes span most slabs).
-    const std::size_t step = std::max<std::size_t>(1, n / kSampleSize);
+    const std::size_t step = std::max<std::size_t>(1, n / kGridSampleSize);
     double extent[3], slabs[3];
     {
         std::vector<float> sizes[3];
@@ -148,8 +130,8 @@ void GridSweep::build(const SweepInput& in, Executor* executor) {
         double product = 1;
         for (int a = 0; a < 3; ++a) {
             extent[a] = double(range.hi[a] - range.lo[a]);  // as the slab map computes it, in float
-            const double cell = (a == 0 ? kCellExtentX : kCellExtent) * medianOf(sizes[a]);
-            slabs[a] = !(extent[a] > 0) ? 1.0 : std::clamp(cell > 0 ? std::ceil(extent[a] / cell) : kMaxSlabs, 1.0, kMaxSlabs);
+            const double cell = (a == 0 ? kGridCellExtentX : kGridCellExtent) * medianOf(sizes[a]);
+            slabs[a] = !(extent[a] > 0) ? 1.0 : std::clamp(cell > 0 ? std::ceil(extent[a] / cell) : kGridMaxSlabs, 1.0, kGridMaxSlabs);
             product *= slabs[a];
         }
         const double max_cells = double(n);
@@ -190,12 +172,12 @@ void GridSweep::build(const SweepInput& in, Executor* executor) {
             listings += sx * sy * sz;
             span[0] += sx, span[1] += sy, span[2] += sz;
         }
-        if (listings <= kMaxListingsPerBox * double(sampled) || !coarsen(span)) break;
+        if (listings <= kGridMaxListingsPerBox * double(sampled) || !coarsen(span)) break;
         setAxes();
     }
     // The sample can miss a few huge boxes: the exact count decides (coarser until it fits;
     // a 1 x 1 x 1 grid always does).
-    const std::size_t max_cell_listings = kHardListingsPerBox * n + 1024;
+    const std::size_t max_cell_listings = kGridHardListingsPerBox * n + 1024;
     while (!listInTiles(in, ex, max_cell_listings)) {
         const double span[3] = {slabs[0], slabs[1], slabs[2]};
         if (!coarsen(span)) break;
@@ -205,10 +187,10 @@ void GridSweep::build(const SweepInput& in, Executor* executor) {
 
 bool GridSweep::listInTiles(const SweepInput& in, Executor& ex, std::size_t max_cell_listings) {
     const std::size_t n = in.count;
-    // Tiles: cubes of 2^s cells a side, about n / kBoxesPerTile of them (a surface
-    // crosses a cube of k^3 cells in about k^2 of them), at most kMaxTileCells cells each.
+    // Tiles: cubes of 2^s cells a side, about n / kGridBoxesPerTile of them (a surface
+    // crosses a cube of k^3 cells in about k^2 of them), at most kGridMaxTileCells cells each.
     {
-        const double target = std::clamp<double>(double(n) / kBoxesPerTile, 1, kMaxTiles);
+        const double target = std::clamp<double>(double(n) / kGridBoxesPerTile, 1, kGridMaxTiles);
         const double side = std::max(1.0, std::cbrt(double(cellCount()) / target));
         std::uint32_t shift = 0;
         while (shift < 5 && double(2u << shift) <= side) ++shift;
@@ -220,7 +202,7 @@ bool GridSweep::listInTiles(const SweepInput& in, Executor& ex, std::size_t max_
         }
     }
     const std::size_t tiles = std::size_t{tiles_[0]} * tiles_[1] * tiles_[2];
-    const std::size_t grain = grainFor(n, ex.threadCount(), 2, kMinListGrain, std::size_t(1) << 30);
+    const std::size_t grain = grainFor(n, ex.threadCount(), 2, kGridMinListGrain, std::size_t(1) << 30);
     const std::size_t tasks = taskCount(n, grain);
     const auto forTiles = [&](const CellRange& r, auto&& f) {
         const std::uint32_t x0 = r.lo[0] >> tile_shift_[0], x1 = r.hi[0] >> tile_shift_[0];

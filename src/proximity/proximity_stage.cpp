@@ -170,13 +170,10 @@ void ProximityStage::record(graph::Graph& g, const passes::CellStage::Resources&
         .write(records)
         .write(args)
         .record([pipe, params, args_buffer](graph::PassContext& pc) {
-            gpu::Push push{params, 0, 0, 0, 0};
-            pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, pipe->handle());
-            pc.pushConstants(pipe->layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            passes::bindAndPush(pc, *pipe, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsPairs * 12);
             pc.shaderBarrier();
-            push.step = 1;
-            pc.pushConstants(pipe->layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+            passes::bindAndPush(pc, *pipe, params, 0, 1);
             pc.dispatch(1, 1, 1);
         });
     // The sort: per record (steps 0, 4, 6: indirect, from the count the pass found), the
@@ -196,9 +193,7 @@ void ProximityStage::record(graph::Graph& g, const passes::CellStage::Resources&
         .write(sorted)
         .record([sort, params, sort_args, bucket_groups, blocks, max_x](graph::PassContext& pc) {
             auto step = [&](std::uint32_t s, std::uint64_t groups) {  // groups 0: one per record (indirect)
-                gpu::Push push{params, 0, s, 0, 0};
-                pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, sort->handle());
-                pc.pushConstants(sort->layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+                passes::bindAndPush(pc, *sort, params, 0, s);
                 if (groups) passes::dispatchGroups(pc, groups, max_x);
                 else pc.dispatchIndirect(sort_args, 0);
                 pc.shaderBarrier();

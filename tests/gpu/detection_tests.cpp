@@ -53,7 +53,7 @@ DetectionSettings settings(std::uint32_t axes) {
     return s;
 }
 
-std::vector<TrianglePair> narrow(const DetectionResult& r) {
+std::vector<TrianglePair> narrowPairs(const DetectionResult& r) {
     ThreadPool pool(1);
     auto n = runNarrowPhase(r.candidates(), {}, pool);
     REQUIRE(n);
@@ -109,7 +109,7 @@ TEST_CASE("a detection runs one or three directions without a world", "[gpu][det
     CHECK(one->objects == std::vector<std::uint32_t>{0, 1, 2});
     CHECK(one->excluded.empty());
     CHECK(one->candidates().size() == one->axes[0].records.size());
-    const std::vector<TrianglePair> pairs_one = narrow(*one);
+    const std::vector<TrianglePair> pairs_one = narrowPairs(*one);
     REQUIRE_FALSE(pairs_one.empty());
 
     // Predicted depth (one submission each): the same candidates as measured.
@@ -117,7 +117,7 @@ TEST_CASE("a detection runs one or three directions without a world", "[gpu][det
     auto predicted = d.collect();
     REQUIRE(predicted);
     CHECK(predicted->axes[0].depth_complexity == one->axes[0].depth_complexity);
-    CHECK(narrow(*predicted) == pairs_one);
+    CHECK(narrowPairs(*predicted) == pairs_one);
 
     // Three directions: the first one's and its image axes; the union keeps every pair.
     REQUIRE(d.start(row.up.meshes, settings(3), true));
@@ -128,7 +128,7 @@ TEST_CASE("a detection runs one or three directions without a world", "[gpu][det
     CHECK(three->directions[1] == basis.u);
     CHECK(three->directions[2] == basis.v);
     CHECK(three->candidates().size() == three->united.size());
-    const std::vector<TrianglePair> pairs_three = narrow(*three);
+    const std::vector<TrianglePair> pairs_three = narrowPairs(*three);
     CHECK(std::includes(pairs_three.begin(), pairs_three.end(), pairs_one.begin(), pairs_one.end()));
     CHECK(d.memoryBytes() > 0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
@@ -160,9 +160,9 @@ TEST_CASE("a detection leaves out a mesh the GPU check refuses, or fails with th
         CHECK(r->excluded[0].triangles_affected >= 1);
         CHECK(r->objects == std::vector<std::uint32_t>{0, 2});
         std::vector<TrianglePair> expected;
-        for (const TrianglePair& p : narrow(*clean))
+        for (const TrianglePair& p : narrowPairs(*clean))
             if (p.object_a != 1 && p.object_b != 1) expected.push_back(p);
-        CHECK(narrow(*r) == expected);
+        CHECK(narrowPairs(*r) == expected);
     }
 
     // BadObjectPolicy::Fail: the error, and the finding as data.

@@ -17,12 +17,6 @@ using graph::PassContext;
 using graph::PassKind;
 using graph::Use;
 
-void bind(const PassContext& pc, const vk::Pipeline& p, VkDeviceAddress params, std::uint32_t step = 0) {
-    gpu::Push push{params, 0, step, 0, 0};
-    pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
-    pc.pushConstants(p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-}
-
 std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize; }
 
 // Each pass declares its stage, so a broad phase sums its GPU time (stage.hpp).
@@ -82,10 +76,10 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
     setup.readWrite(header).write(tris).write(geometry).readWrite(counts).write(big).write(args);
     if (projection.valid()) setup.read(projection);
     setup.record([&P, params, tri_groups, max_x](PassContext& pc) {
-        bind(pc, P.setup, params);
+        bindAndPush(pc, P.setup, params);
         dispatchGroups(pc, tri_groups, max_x);
         pc.shaderBarrier();
-        bind(pc, P.args, params, 0);
+        bindAndPush(pc, P.args, params, 0, 0);
         pc.dispatch(1, 1, 1);
     });
 
@@ -96,7 +90,7 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
         .read(header)
         .readWrite(counts)
         .record([&P, params, args_buffer](PassContext& pc) {
-            bind(pc, P.big, params, 0);
+            bindAndPush(pc, P.big, params, 0, 0);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
         });
 
@@ -108,16 +102,16 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
         .write(deep)
         .write(args)
         .record([&P, params, blocks, max_x](PassContext& pc) {
-            bind(pc, P.scan, params, 0);
+            bindAndPush(pc, P.scan, params, 0, 0);
             dispatchGroups(pc, blocks, max_x);
             pc.shaderBarrier();
-            bind(pc, P.scan, params, 1);
+            bindAndPush(pc, P.scan, params, 0, 1);
             pc.dispatch(1, 1, 1);
             pc.shaderBarrier();
-            bind(pc, P.scan, params, 2);
+            bindAndPush(pc, P.scan, params, 0, 2);
             dispatchGroups(pc, blocks, max_x);
             pc.shaderBarrier();
-            bind(pc, P.args, params, 1);
+            bindAndPush(pc, P.args, params, 0, 1);
             pc.dispatch(1, 1, 1);
         });
 
@@ -131,9 +125,9 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
         .write(entries)
         .write(entry_cells)
         .record([&P, params, tri_groups, args_buffer, max_x](PassContext& pc) {
-            bind(pc, P.fill, params);
+            bindAndPush(pc, P.fill, params);
             dispatchGroups(pc, tri_groups, max_x);
-            bind(pc, P.big, params, 1);  // other cells than the small triangles': no barrier needed
+            bindAndPush(pc, P.big, params, 0, 1);  // other cells than the small triangles': no barrier needed
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
         });
 
@@ -147,9 +141,9 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
         .readWrite(header)
         .write(candidates)
         .record([&P, params, args_buffer](PassContext& pc) {
-            bind(pc, P.sweep, params);
+            bindAndPush(pc, P.sweep, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsSweep * 12);
-            bind(pc, P.deep, params);
+            bindAndPush(pc, P.deep, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsDeep * 12);
         });
     recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks}, 0);
@@ -170,7 +164,7 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
         .readWrite(id.header)  // the chunks done so far
         .write(id.args)
         .record([&P, params, chunk](PassContext& pc) {
-            bind(pc, P.args, params, 2 + chunk);
+            bindAndPush(pc, P.args, params, 0, 2 + chunk);
             pc.dispatch(1, 1, 1);
         });
     pass(g, kPairPassName, PassKind::Compute, Stage::Filtering)
@@ -183,7 +177,7 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
         .write(id.gpu_triangles)
         .write(id.survivors)
         .record([pairs, params, args_buffer, chunk](PassContext& pc) {
-            bind(pc, *pairs, params, chunk);
+            bindAndPush(pc, *pairs, params, 0, chunk);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsPairChunk * 12);
         });
     pass(g, "cells-readback", PassKind::Transfer, Stage::Readback)

@@ -23,12 +23,6 @@ static_assert(sizeof(gpu::DevicePairsHeader) == sizeof(DevicePairsHeader) && off
 static_assert(gpu::kDevicePairsOverflow == kDevicePairsOverflow && gpu::kDevicePairsIncomplete == kDevicePairsIncomplete);
 static_assert(sizeof(gpu::DevicePairsParams) == 11 * 8 + 4 * 4);
 
-void bind(const graph::PassContext& pc, const vk::Pipeline& p, VkDeviceAddress params, std::uint32_t step, std::uint32_t level = 0) {
-    gpu::Push push{params, 0, step, level, 0};
-    pc.bindPipeline(VK_PIPELINE_BIND_POINT_COMPUTE, p.handle());
-    pc.pushConstants(p.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-}
-
 }  // namespace
 
 Result<std::unique_ptr<DevicePairStage>> DevicePairStage::create(vk::Device& device) {
@@ -136,17 +130,17 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
     first.read(cells.header).write(header).write(args);
     if (fault_header.valid()) first.read(fault_header);
     first.record([pipe, params](graph::PassContext& pc) {
-        bind(pc, *pipe, params, 0);
+        bindAndPush(pc, *pipe, params, 0, 0);
         pc.dispatch(1, 1, 1);
     });
     auto scan = [pipe, params, blocks, max_x](graph::PassContext& pc, std::uint32_t level) {
-        bind(pc, *pipe, params, 2, level);
+        bindAndPush(pc, *pipe, params, 0, 2, level);
         dispatchGroups(pc, blocks, max_x);
         pc.shaderBarrier();
-        bind(pc, *pipe, params, 3, level);
+        bindAndPush(pc, *pipe, params, 0, 3, level);
         pc.dispatch(1, 1, 1);
         pc.shaderBarrier();
-        bind(pc, *pipe, params, 4, level);
+        bindAndPush(pc, *pipe, params, 0, 4, level);
         dispatchGroups(pc, blocks, max_x);
         pc.shaderBarrier();
     };
@@ -159,11 +153,11 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
         .readWrite(sums)
         .write(partners)
         .record([pipe, params, args_buffer, scan](graph::PassContext& pc) {
-            bind(pc, *pipe, params, 1);
+            bindAndPush(pc, *pipe, params, 0, 1);
             pc.dispatchIndirect(args_buffer, 0);
             pc.shaderBarrier();
             scan(pc, 0);
-            bind(pc, *pipe, params, 5);
+            bindAndPush(pc, *pipe, params, 0, 5);
             pc.dispatchIndirect(args_buffer, 0);
         });
     addPass(g, "pairs-sort", graph::PassKind::Compute, Stage::Sorting)
@@ -176,11 +170,11 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
         .write(out_offsets)
         .write(pairs)
         .record([pipe, params, tri_groups, max_x, scan](graph::PassContext& pc) {
-            bind(pc, *pipe, params, 6);
+            bindAndPush(pc, *pipe, params, 0, 6);
             dispatchGroups(pc, tri_groups, max_x);
             pc.shaderBarrier();
             scan(pc, 1);
-            bind(pc, *pipe, params, 7);
+            bindAndPush(pc, *pipe, params, 0, 7);
             dispatchGroups(pc, tri_groups, max_x);
         });
     if (for_host_) {

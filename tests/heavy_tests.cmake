@@ -1,6 +1,6 @@
-# The tests that take longest in CI's sanitized run (seconds on two busy cores, ASan + UBSan,
-# lavapipe with validation; 2026-12-04): CTest starts them first (COST), so that none of them
-# begins near the end and leaves one core idle for minutes. CTest's own cost file cannot do
+# The tests that take longest in CI (seconds on two busy cores under ASan + UBSan, lavapipe
+# with validation; 2026-12-04): CTest starts them first (COST), so that none of them begins
+# near the end and leaves one core idle for minutes. CTest's own cost file cannot do
 # it for us: it cuts test names at the first space. A name that is no longer a test is
 # ignored; a new slow test belongs here.
 set(VKCOLLIDE_TEST_COSTS
@@ -20,10 +20,28 @@ set(VKCOLLIDE_TEST_COSTS
   "a detection that runs out of time fails with Timeout, the world is Busy, then works again=37"
 )
 
-# Writes `script`: for each test of `target` (once CTest knows them) that is in the list,
-# its COST.
-function(vkcollide_write_test_costs target script)
-  set(body "foreach(t IN LISTS ${target}_TESTS)\n")
+# Scene sweeps of the executables the sanitized build runs (vkcollide_add_test SANITIZED)
+# that run in the Release build instead: the same code as those executables' other tests,
+# on many more scenes or at sizes where ASan's allocator dominates (up to 146 s under ASan).
+set(VKCOLLIDE_RELEASE_ONLY_TESTS
+  "the largest resolution this device holds runs with the validation layer quiet"
+  "device pairs: the GPU's sorted pairs equal DetectResult::pairs on every scene"
+  "device pairs without a host result hold the host result's pairs"
+  "proximity: a folded self-touching cloth over a ball, every pair within d found, none beyond the band"
+  "proximity: adversarial contacts exactly at d, on edges, degenerate and coincident"
+  "proximity: scales from 1e-6 to 1e6"
+)
+
+# Writes `script`: for each test of `target` (once CTest knows them) its labels (`labels`
+# and `runs_in`, release or sanitized; release for the tests listed above) and, for those
+# in VKCOLLIDE_TEST_COSTS, its COST.
+function(vkcollide_write_test_properties target script labels runs_in)
+  list(JOIN labels ";" joined)
+  set(body "foreach(t IN LISTS ${target}_TESTS)\n  set(runs_in ${runs_in})\n")
+  foreach(name ${VKCOLLIDE_RELEASE_ONLY_TESTS})
+    string(APPEND body "  if(t STREQUAL \"${name}\")\n    set(runs_in release)\n  endif()\n")
+  endforeach()
+  string(APPEND body "  set_tests_properties(\"\${t}\" PROPERTIES LABELS \"${joined};\${runs_in}\")\n")
   foreach(entry ${VKCOLLIDE_TEST_COSTS})
     string(FIND "${entry}" "=" at REVERSE)
     string(SUBSTRING "${entry}" 0 ${at} name)

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what vkcollide needs from Debian's archive, only if something is missing.
 set -euo pipefail
-packages=(cmake ninja-build g++ clang libclang-rt-14-dev libvulkan-dev glslang-tools spirv-tools libeigen3-dev libgmp-dev
+packages=(cmake ninja-build ccache g++ clang libclang-rt-14-dev libvulkan-dev glslang-tools spirv-tools libeigen3-dev libgmp-dev
           catch2 mesa-vulkan-drivers vulkan-validationlayers vulkan-tools libpng-dev libmeshoptimizer-dev)
 missing=()
 for p in "${packages[@]}"; do

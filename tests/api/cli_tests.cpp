@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "api/cli_support.hpp"
 #include "support/exact_reference.hpp"
 #include "support/test_scenes.hpp"
 #include "vkcollide/io.hpp"
@@ -27,20 +28,11 @@ fs::path scratchDir(const std::string& name) {
     return dir;
 }
 
-void writeText(const fs::path& p, const std::string& text) {
-    std::ofstream f(p, std::ios::binary);
-    f << text;
-    REQUIRE(f.good());
-}
+using clitest::readText;
+using clitest::writeText;
 
-std::string readText(const fs::path& p) {
-    std::ifstream f(p, std::ios::binary);
-    std::stringstream s;
-    s << f.rdbuf();
-    return s.str();
-}
-
-int runCli(const std::string& args, const fs::path& log) {
+// The tool's output goes to `log` (the tests read it back).
+int runCliLogged(const std::string& args, const fs::path& log) {
     const std::string cmd = std::string(VKCOLLIDE_CLI_PATH) + " " + args + " > " + log.string() + " 2>&1";
     UNSCOPED_INFO(cmd);
     return std::system(cmd.c_str());
@@ -71,7 +63,7 @@ TEST_CASE("vkcollide detect writes the exact pairs as global triangle indices", 
     writeText(dir / "third.off", writeOff(world[2]));
     writeText(dir / "fourth.off", writeOff(world[3]));
     const fs::path csv = dir / "pairs.csv", json = dir / "stats.json", log = dir / "log.txt";
-    const int rc = runCli("detect " + (dir / "two.obj").string() + " " + (dir / "third.off").string() + " " + (dir / "fourth.off").string() +
+    const int rc = runCliLogged("detect " + (dir / "two.obj").string() + " " + (dir / "third.off").string() + " " + (dir / "fourth.off").string() +
                               " --resolution 256 --direction 0.15,-0.2,1 --pairs " + csv.string() + " --stats " + json.string(),
                           log);
     INFO(readText(log));
@@ -114,17 +106,17 @@ TEST_CASE("vkcollide detect names bad input and bad options", "[cli][gpu]") {
     const fs::path dir = scratchDir("errors");
     const fs::path log = dir / "log.txt";
     writeText(dir / "broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n");
-    CHECK(runCli("detect " + (dir / "broken.obj").string(), log) != 0);
+    CHECK(runCliLogged("detect " + (dir / "broken.obj").string(), log) != 0);
     CHECK(readText(log).find("broken.obj") != std::string::npos);
-    CHECK(runCli("detect " + (dir / "missing.off").string(), log) != 0);
+    CHECK(runCliLogged("detect " + (dir / "missing.off").string(), log) != 0);
     CHECK(readText(log).find("missing.off") != std::string::npos);
-    CHECK(runCli("detect --resolution", log) != 0);
-    CHECK(runCli("", log) != 0);
+    CHECK(runCliLogged("detect --resolution", log) != 0);
+    CHECK(runCliLogged("", log) != 0);
     writeText(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
-    CHECK(runCli("detect " + (dir / "tri.obj").string() + " --method peeling --resolution 100", log) != 0);
+    CHECK(runCliLogged("detect " + (dir / "tri.obj").string() + " --method peeling --resolution 100", log) != 0);
     CHECK(readText(log).find("power of two") != std::string::npos);
-    CHECK(runCli("detect " + (dir / "tri.obj").string() + " --bogus", log) != 0);
-    CHECK(runCli("detect " + (dir / "tri.obj").string(), log) == 0);
+    CHECK(runCliLogged("detect " + (dir / "tri.obj").string() + " --bogus", log) != 0);
+    CHECK(runCliLogged("detect " + (dir / "tri.obj").string(), log) == 0);
     CHECK(readText(log).find("colliding triangle pairs: 0") != std::string::npos);
     fs::remove_all(dir);
 }
@@ -134,7 +126,7 @@ TEST_CASE("vkcollide detect --help prints the help and succeeds", "[cli]") {
     const fs::path log = dir / "log.txt";
     for (const char* args : {"detect --help", "detect -h", "--help", "detect scene.obj --help"}) {
         INFO(args);
-        CHECK(exitCode(runCli(args, log)) == 0);
+        CHECK(exitCode(runCliLogged(args, log)) == 0);
         const std::string text = readText(log);
         CHECK(text.find("usage: vkcollide info") != std::string::npos);
         CHECK(text.find("--threads T") != std::string::npos);
@@ -150,10 +142,10 @@ TEST_CASE("vkcollide detect refuses an absurd --threads by name instead of abort
     const std::string scene = (dir / "tri.obj").string();
     for (const char* threads : {"4294967295", "1025", "0", "-1", "99999999999"}) {
         INFO("--threads " << threads);
-        CHECK(exitCode(runCli("detect " + scene + " --threads " + threads, log)) == 1);
+        CHECK(exitCode(runCliLogged("detect " + scene + " --threads " + threads, log)) == 1);
         CHECK(readText(log).find("--threads needs a number from 1 to 1024") != std::string::npos);
     }
-    CHECK(exitCode(runCli("detect " + scene + " --threads 2", log)) == 0);
+    CHECK(exitCode(runCliLogged("detect " + scene + " --threads 2", log)) == 0);
     CHECK(readText(log).find("(2 threads)") != std::string::npos);
     fs::remove_all(dir);
 }
@@ -162,7 +154,7 @@ TEST_CASE("vkcollide detect refuses a mesh path that leads to /dev/zero instead 
     const fs::path dir = scratchDir("zero");
     const fs::path log = dir / "log.txt";
     fs::create_symlink("/dev/zero", dir / "zero.obj");
-    CHECK(exitCode(runCli("detect " + (dir / "zero.obj").string(), log)) == 1);
+    CHECK(exitCode(runCliLogged("detect " + (dir / "zero.obj").string(), log)) == 1);
     const std::string text = readText(log);
     CHECK(text.find("zero.obj: not a regular file") != std::string::npos);
     CHECK(text.find("bad_alloc") == std::string::npos);
@@ -178,7 +170,7 @@ TEST_CASE("vkcollide detect --no-robust-access finds the same pairs", "[cli][gpu
     const std::string scene = (dir / "cross.obj").string();
     for (const char* flag : {"", " --no-robust-access"}) {
         INFO("flag:" << flag);
-        CHECK(exitCode(runCli("detect " + scene + " --pairs " + (dir / "p.csv").string() + flag, log)) == 0);
+        CHECK(exitCode(runCliLogged("detect " + scene + " --pairs " + (dir / "p.csv").string() + flag, log)) == 0);
         CHECK(readText(dir / "p.csv") == "0,1\n");
     }
     fs::remove_all(dir);

@@ -12,6 +12,7 @@
 
 #include "support/gpu_fixture.hpp"
 #include "support/test_scenes.hpp"
+#include "support/world_fixture.hpp"
 #include "vkcollide/scene.hpp"
 #include "vkcollide/world.hpp"
 
@@ -21,12 +22,6 @@ using namespace vkcollide::test;
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-std::unique_ptr<CollisionWorld> makeWorld(ValidatedContext& ctx) {
-    auto w = CollisionWorld::create(ctx.context(), {.threads = 2});
-    REQUIRE(w);
-    return std::move(*w);
-}
 
 Transform3x4 translation(double x, double y, double z) {
     return {1, 0, 0, float(x), 0, 1, 0, float(y), 0, 0, 1, float(z)};

@@ -10,6 +10,7 @@
 
 #include "api/engine_copy.hpp"
 #include "support/engine_commands.hpp"
+#include "support/error_text.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/world_fixture.hpp"
 #include "support/test_scenes.hpp"
@@ -24,7 +25,7 @@ namespace {
 
 constexpr std::uint64_t kForever = UINT64_MAX;
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+using test::mentions;
 
 DetectSettings peeling() {
     DetectSettings s;

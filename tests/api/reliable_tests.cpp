@@ -8,9 +8,11 @@
 #include <limits>
 
 #include "api/engine_copy.hpp"
+#include "support/error_text.hpp"
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/test_scenes.hpp"
+#include "support/world_fixture.hpp"
 #include "vkcollide/world.hpp"
 
 using namespace vkcollide;
@@ -18,19 +20,13 @@ using namespace vkcollide::test;
 
 namespace {
 
-std::unique_ptr<CollisionWorld> makeWorld(ValidatedContext& ctx) {
-    auto w = CollisionWorld::create(ctx.context(), {.threads = 2});
-    REQUIRE(w);
-    return std::move(*w);
-}
-
 std::vector<TrianglePair> reference(const std::vector<ReferenceObject>& objects) {
     auto ref = computeReferencePairs(objects, {.threads = 2});
     REQUIRE(ref);
     return *ref;
 }
 
-bool mentions(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+using test::mentions;
 
 // Exactly the reference: nothing missed, nothing extra (the narrow phase is exact).
 void requireExact(const DetectResult& r, const std::vector<TrianglePair>& ref, const std::string& what) {

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "api/vertex_scans.hpp"
+#include "support/error_text.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/world_fixture.hpp"
 #include "vkcollide/scene.hpp"
@@ -19,7 +20,7 @@ using namespace vkcollide::test;
 
 namespace {
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+using test::mentions;
 
 HostMesh sphere(float radius, std::uint32_t rings, float dx) {
     auto m = uvSphere(radius, 2 * rings, rings);

@@ -8,6 +8,7 @@
 #include "api/engine_copy.hpp"
 #include "api/validation.hpp"
 #include "broad/broad_phase_types.hpp"
+#include "support/error_text.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/world_fixture.hpp"
 #include "vkcollide/scene.hpp"
@@ -18,7 +19,7 @@ using namespace vkcollide::test;
 
 namespace {
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+using test::mentions;
 
 std::size_t count(const std::string& text, const std::string& what) {
     std::size_t n = 0;

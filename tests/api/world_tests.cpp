@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "api/engine_copy.hpp"
+#include "support/error_text.hpp"
 #include "support/exact_reference.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/scene_world.hpp"
@@ -39,7 +40,7 @@ DetectSettings fixedSettings(std::uint32_t resolution) {
     return s;
 }
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+using test::mentions;
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "gpu/cells_test_support.hpp"
+#include "support/error_text.hpp"
 #include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
@@ -20,7 +21,7 @@ using namespace vkcollide::test;
 
 namespace {
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+using test::mentions;
 
 // `copies` copies of one triangle sharing its indices (neighbours, never candidates) in a
 // self-colliding object, and a triangle through them (object 1): cells deep in

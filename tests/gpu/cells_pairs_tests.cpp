@@ -13,12 +13,6 @@ using namespace vkcollide::test;
 
 namespace {
 
-HostMesh generated(Result<HostMesh> made, const char* name) {
-    REQUIRE(made);
-    made->name = name;
-    return std::move(*made);
-}
-
 Transform rotation(double ax, double ay, double az, double angle, Float3 t) {
     const double len = std::sqrt(ax * ax + ay * ay + az * az);
     ax /= len, ay /= len, az /= len;
@@ -26,22 +20,6 @@ Transform rotation(double ax, double ay, double az, double angle, Float3 t) {
     return transformFrom3x4({float(c + ax * ax * k), float(ax * ay * k - az * s), float(ax * az * k + ay * s), t.x,
                              float(ay * ax * k + az * s), float(c + ay * ay * k), float(ay * az * k - ax * s), t.y,
                              float(az * ax * k - ay * s), float(az * ay * k + ax * s), float(c + az * az * k), t.z});
-}
-
-// `count` independent triangles (no shared vertices) with vertices within `size` of a
-// random point of the cube [lo, hi]^3.
-HostMesh soup(std::mt19937& rng, std::uint32_t count, float lo, float hi, float size, const char* name) {
-    std::uniform_real_distribution<float> where(lo, hi), offset(-size, size);
-    HostMesh m;
-    m.name = name;
-    for (std::uint32_t t = 0; t < count; ++t) {
-        const Float3 c{where(rng), where(rng), where(rng)};
-        for (int k = 0; k < 3; ++k) {
-            m.indices.push_back(static_cast<std::uint32_t>(m.positions.size()));
-            m.positions.push_back({c.x + offset(rng), c.y + offset(rng), c.z + offset(rng)});
-        }
-    }
-    return m;
 }
 
 CellScene twoSpheres() {

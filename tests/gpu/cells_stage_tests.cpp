@@ -16,26 +16,6 @@ using namespace vkcollide::test;
 
 namespace {
 
-HostMesh generated(Result<HostMesh> made, const char* name) {
-    REQUIRE(made);
-    made->name = name;
-    return std::move(*made);
-}
-
-HostMesh soup(std::mt19937& rng, std::uint32_t count, float lo, float hi, float size, const char* name) {
-    std::uniform_real_distribution<float> where(lo, hi), offset(-size, size);
-    HostMesh m;
-    m.name = name;
-    for (std::uint32_t t = 0; t < count; ++t) {
-        const Float3 c{where(rng), where(rng), where(rng)};
-        for (int k = 0; k < 3; ++k) {
-            m.indices.push_back(static_cast<std::uint32_t>(m.positions.size()));
-            m.positions.push_back({c.x + offset(rng), c.y + offset(rng), c.z + offset(rng)});
-        }
-    }
-    return m;
-}
-
 CellScene mixedScene() {
     CellScene s;
     s.meshes.push_back(generated(uvSphere(1.0f, 32, 16), "sphere"));

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <functional>
 #include <optional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,29 @@
 #include "support/gpu_fixture.hpp"
 
 namespace vkcollide::test {
+
+// A generated mesh, required to have been made, named.
+inline HostMesh generated(Result<HostMesh> made, const char* name) {
+    REQUIRE(made);
+    made->name = name;
+    return std::move(*made);
+}
+
+// `count` independent triangles (no shared vertices) with vertices within `size` of a
+// random point of the cube [lo, hi]^3.
+inline HostMesh soup(std::mt19937& rng, std::uint32_t count, float lo, float hi, float size, const char* name) {
+    std::uniform_real_distribution<float> where(lo, hi), offset(-size, size);
+    HostMesh m;
+    m.name = name;
+    for (std::uint32_t t = 0; t < count; ++t) {
+        const Float3 c{where(rng), where(rng), where(rng)};
+        for (int k = 0; k < 3; ++k) {
+            m.indices.push_back(static_cast<std::uint32_t>(m.positions.size()));
+            m.positions.push_back({c.x + offset(rng), c.y + offset(rng), c.z + offset(rng)});
+        }
+    }
+    return m;
+}
 
 // Appends a triangle with vertices of its own.
 inline void addTriangle(HostMesh& m, Float3 a, Float3 b, Float3 c) {

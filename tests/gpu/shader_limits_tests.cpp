@@ -5,6 +5,7 @@
 #include "cells/cells.h"
 #include "common/broadphase.h"
 #include "shaders/all.hpp"
+#include "support/error_text.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vk/pipeline.hpp"
 #include "vk/shader_limits.hpp"
@@ -13,7 +14,7 @@ using namespace vkcollide;
 
 namespace {
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+using test::mentions;
 
 }  // namespace
 

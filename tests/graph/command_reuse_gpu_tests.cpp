@@ -107,7 +107,7 @@ TEST_CASE("a steady graph is recorded once and submitted again, and a changed pu
     auto counters = vk::Buffer::create(dev, 8, 0, vk::MemoryKind::Readback, "counters");
     REQUIRE(counters);
 
-    Executor exec(dev);
+    graph::Executor exec(dev);
     Params params;
     // One run of a freshly declared graph; whether it was a resubmission; the two counters.
     struct Outcome {
@@ -198,7 +198,7 @@ TEST_CASE("a callback that records through PassContext::cmd keeps its order and 
     vk::Device& dev = ctx.device();
     auto out = vk::Buffer::create(dev, 16, 0, vk::MemoryKind::Readback, "out");
     REQUIRE(out);
-    Executor exec(dev);
+    graph::Executor exec(dev);
     // Words 0..2 written by tape, direct, tape calls in that order (the same word twice,
     // so the order shows); word 3 by the tape only.
     const auto run = [&](bool direct) {
@@ -245,7 +245,7 @@ TEST_CASE("work recorded into the engine's command buffer is never a resubmissio
     REQUIRE(out);
     REQUIRE(timeline);
     {
-        Executor exec(dev);
+        graph::Executor exec(dev);
         std::uint64_t value = 0;
         // engine: the engine's command buffer takes the work and the engine submits it.
         const auto run = [&](bool engine) {

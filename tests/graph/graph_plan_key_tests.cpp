@@ -12,7 +12,7 @@ using namespace vkcollide;
 using namespace vkcollide::graph;
 
 namespace {
-const RecordFn kNoop = [](PassContext&) {};
+const RecordFn kRecordNothing = [](PassContext&) {};
 
 bool sameBarrier(const Barrier& a, const Barrier& b) {
     return a.resource == b.resource && a.is_image == b.is_image && a.src_stage == b.src_stage && a.src_access == b.src_access &&
@@ -49,7 +49,7 @@ struct Cosmetic {
     VkFormat format = VK_FORMAT_R32_UINT;
     std::uint32_t extent = 64;
     float clear = 0;
-    RecordFn record = kNoop;
+    RecordFn record = kRecordNothing;
 };
 
 // Every field compile() reads, each switchable on its own.
@@ -168,7 +168,7 @@ TEST_CASE("plan key: random graphs with equal keys compile to equal plans or the
             auto b = g.addPass("p" + std::to_string(p) + "-" + std::to_string(i), u == Use::TransferDst ? PassKind::Transfer : PassKind::Compute);
             b.use(res[pick(n_res)], u);
             if (pick(2)) b.sideEffects();
-            b.record(kNoop);
+            b.record(kRecordNothing);
         }
         Built out;
         g.planKey(out.key);

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "io/parse_error.hpp"
 #include "vkcollide/io.hpp"
 
 using namespace vkcollide;
@@ -13,11 +14,7 @@ Result<std::vector<HostMesh>> readObjText(const std::string& text, std::string_v
     return readMesh(text, MeshFormat::Obj, name);
 }
 
-std::string errorOf(const Result<std::vector<HostMesh>>& result) {
-    REQUIRE_FALSE(result);
-    CHECK(result.error().code() == ErrorCode::ParseError);
-    return result.error().message();
-}
+using test::errorOf;
 
 }  // namespace
 

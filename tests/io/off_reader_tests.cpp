@@ -4,6 +4,7 @@
 #include <string>
 
 #include "vkcollide/io.hpp"
+#include "io/parse_error.hpp"
 
 using namespace vkcollide;
 
@@ -13,11 +14,7 @@ Result<std::vector<HostMesh>> readOffText(const std::string& text, std::string_v
     return readMesh(text, MeshFormat::Off, name);
 }
 
-std::string errorOf(const Result<std::vector<HostMesh>>& result) {
-    REQUIRE_FALSE(result);
-    CHECK(result.error().code() == ErrorCode::ParseError);
-    return result.error().message();
-}
+using test::errorOf;
 
 const std::string kSquareVertices = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "vkcollide/io.hpp"
+#include "io/parse_error.hpp"
 
 using namespace vkcollide;
 
@@ -42,11 +43,7 @@ Result<std::vector<HostMesh>> readPlyBytes(const std::string& bytes, std::string
     return readMesh(bytes, MeshFormat::Ply, name);
 }
 
-std::string errorOf(const Result<std::vector<HostMesh>>& result) {
-    REQUIRE_FALSE(result);
-    CHECK(result.error().code() == ErrorCode::ParseError);
-    return result.error().message();
-}
+using test::errorOf;
 
 bool contains(const std::string& text, std::string_view part) { return text.find(part) != std::string::npos; }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "narrow/printers.hpp"
+#include "narrow/same_result.hpp"
 #include "narrow/scene_builders.hpp"
 #include "narrow/sweep_and_prune.hpp"
 #include "support/exact_reference.hpp"
@@ -23,19 +24,6 @@ using namespace vkcollide;
 using namespace vkcollide::test;
 
 namespace {
-
-bool sameBits(const Float3& a, const Float3& b) { return std::memcmp(&a, &b, sizeof(Float3)) == 0; }
-
-void requireIdentical(const NarrowResult& a, const NarrowResult& b) {
-    REQUIRE(a.pairs == b.pairs);
-    REQUIRE(a.responses.size() == b.responses.size());
-    for (std::size_t i = 0; i < a.responses.size(); ++i) {
-        REQUIRE(a.responses[i].object == b.responses[i].object);
-        REQUIRE(a.responses[i].triangle == b.responses[i].triangle);
-        REQUIRE(a.responses[i].partner_count == b.responses[i].partner_count);
-        REQUIRE(sameBits(a.responses[i].direction, b.responses[i].direction));
-    }
-}
 
 void requireSameStats(const NarrowStats& a, const NarrowStats& b) {
     CHECK(a.candidates == b.candidates);
@@ -163,7 +151,7 @@ TEST_CASE("TriangleSource computes world vertices as the exact reference does", 
     const auto lean = runNarrowPhase(scene.records(), source, {}, pool);
     const auto full = runNarrowPhase(scene.candidates, {}, pool);
     REQUIRE((lean && full));
-    requireIdentical(*full, *lean);
+    requireSamePairsAndResponses(*full, *lean);
     requireSameStats(full->stats, lean->stats);
     CHECK(lean->stats.neighbour_pairs > 0);
 }
@@ -186,7 +174,7 @@ TEST_CASE("Lean records equal the reference and the 80-byte path, host and GPU-o
         const auto lean = runNarrowPhase(scene.records(), source, options, pool);
         REQUIRE(lean);
         CHECK(lean->pairs == *reference);
-        requireIdentical(*full, *lean);
+        requireSamePairsAndResponses(*full, *lean);
         requireSameStats(full->stats, lean->stats);
         // Table order does not matter.
         std::vector<GpuTriangle> reversed(table.rbegin(), table.rend());
@@ -194,7 +182,7 @@ TEST_CASE("Lean records equal the reference and the 80-byte path, host and GPU-o
         shuffled.setGpuTriangles(reversed);
         const auto again = runNarrowPhase(scene.records(), shuffled, options, pool);
         REQUIRE(again);
-        requireIdentical(*lean, *again);
+        requireSamePairsAndResponses(*lean, *again);
     }
 }
 
@@ -210,7 +198,7 @@ TEST_CASE("Lean and pair paths are identical for every thread count, executor an
     const auto from_pairs = runPairNarrowPhase(pairs, source, options, pool1);
     REQUIRE(from_pairs);
     // The pair path tests exactly the record path's candidate pairs here.
-    requireIdentical(*lean, *from_pairs);
+    requireSamePairsAndResponses(*lean, *from_pairs);
     CHECK(from_pairs->stats.input_pairs == pairs.size());
     CHECK(from_pairs->stats.positive_tests == lean->stats.positive_tests);
 
@@ -237,11 +225,11 @@ TEST_CASE("Lean and pair paths are identical for every thread count, executor an
         NarrowWorkspace workspace;
         const auto r = runNarrowPhase(records, source, options, ex, workspace);
         REQUIRE(r);
-        requireIdentical(*lean, *r);
+        requireSamePairsAndResponses(*lean, *r);
         requireSameStats(lean->stats, r->stats);
         const auto p = runPairNarrowPhase(noisy, source, options, ex, workspace);
         REQUIRE(p);
-        requireIdentical(*from_pairs, *p);
+        requireSamePairsAndResponses(*from_pairs, *p);
         CHECK(p->stats.input_pairs == noisy.size());
         CHECK(p->stats.sap_pairs == from_pairs->stats.sap_pairs);
         CHECK(p->stats.triangle_tests == from_pairs->stats.triangle_tests);
@@ -495,12 +483,12 @@ TEST_CASE("Pair path with many hits: serial and parallel stages agree bit for bi
         four.prepare(4);
         const auto parallel = runPairNarrowPhase(pairs, source, options, four, workspace);
         REQUIRE(parallel);
-        requireIdentical(*serial, *parallel);
+        requireSamePairsAndResponses(*serial, *parallel);
         requireSameStats(serial->stats, parallel->stats);
     }
     std::vector<CandidateRecord> records;
     for (const CandidateTriangle& c : *candidates) records.push_back({c.object, c.triangle, {c.box[0], c.box[1], c.box[2], c.box[3]}, c.zmin, c.zmax});
     const auto lean = runNarrowPhase(records, source, options, four);
     REQUIRE(lean);
-    requireIdentical(*serial, *lean);
+    requireSamePairsAndResponses(*serial, *lean);
 }

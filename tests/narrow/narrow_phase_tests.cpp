@@ -9,6 +9,7 @@
 
 #include "narrow/neighbours.hpp"
 #include "narrow/printers.hpp"
+#include "narrow/same_result.hpp"
 #include "vkcollide/thread_pool.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "vkcollide/narrow.hpp"
@@ -50,17 +51,9 @@ CandidateTriangle needle(std::uint32_t object, std::uint32_t triangle) {
     return candidate(object, triangle, {0.25f, 0.25f, -1}, {0.25f, 0.25f, 1}, {0.1f, 0.1f, 0}, {8, 9, 10});
 }
 
-bool sameBits(const Float3& a, const Float3& b) { return std::memcmp(&a, &b, sizeof(Float3)) == 0; }
 
 void requireIdentical(const NarrowResult& a, const NarrowResult& b) {
-    REQUIRE(a.pairs == b.pairs);
-    REQUIRE(a.responses.size() == b.responses.size());
-    for (std::size_t i = 0; i < a.responses.size(); ++i) {
-        REQUIRE(a.responses[i].object == b.responses[i].object);
-        REQUIRE(a.responses[i].triangle == b.responses[i].triangle);
-        REQUIRE(a.responses[i].partner_count == b.responses[i].partner_count);
-        REQUIRE(sameBits(a.responses[i].direction, b.responses[i].direction));
-    }
+    test::requireSamePairsAndResponses(a, b);
     REQUIRE(a.stats.candidates == b.stats.candidates);
     REQUIRE(a.stats.potentially_colliding_triangles == b.stats.potentially_colliding_triangles);
     REQUIRE(a.stats.sap_pairs == b.stats.sap_pairs);

@@ -3,7 +3,8 @@
 #   cmake -DSOURCE_DIR=... -DWORK_DIR=... [-DBUILD_DIR=...] [-DSHARED=ON] -P run_consumer.cmake
 # BUILD_DIR: install that (already built) build tree.
 # SHARED=ON: first configure and build vkcollide itself with -DBUILD_SHARED_LIBS=ON in
-#            WORK_DIR (library and CLI only), and install that: a shared libvkcollide.
+#            SHARED_BUILD_DIR (default WORK_DIR/vkcollide; emptied first; library and CLI
+#            only), and install that: a shared libvkcollide.
 # The consumer is configured with Eigen3 made unfindable: consumers must not need it.
 file(REMOVE_RECURSE ${WORK_DIR})
 set(prefix ${WORK_DIR}/prefix)
@@ -20,7 +21,11 @@ endfunction()
 
 if(SHARED)
   set(expect SHARED_LIBRARY)
-  set(BUILD_DIR ${WORK_DIR}/vkcollide)
+  if(NOT SHARED_BUILD_DIR)
+    set(SHARED_BUILD_DIR ${WORK_DIR}/vkcollide)
+  endif()
+  file(REMOVE_RECURSE ${SHARED_BUILD_DIR})
+  set(BUILD_DIR ${SHARED_BUILD_DIR})
   step(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON
        -DVKCOLLIDE_BUILD_TESTS=OFF -DVKCOLLIDE_BUILD_SAMPLES=OFF -DVKCOLLIDE_BUILD_TOOLS=ON -DVKCOLLIDE_INSTALL=ON
        -DVKCOLLIDE_WERROR=ON)

@@ -6,19 +6,16 @@
 #include <numbers>
 
 #include "scene/scene_test_util.hpp"
+#include "scene/mesh_stats_check.hpp"
 #include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using test::kPi;
 
-MeshStats statsOf(const HostMesh& mesh) {
-    const Result<MeshStats> stats = computeMeshStats(mesh);
-    REQUIRE(stats);
-    return *stats;
-}
+using test::statsOf;
 
 void checkClosedAndOutward(const MeshStats& s) {
     CHECK(s.closed);

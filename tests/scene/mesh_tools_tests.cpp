@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "vkcollide/scene.hpp"
+#include "scene/mesh_stats_check.hpp"
 
 using namespace vkcollide;
 
@@ -19,11 +20,7 @@ HostMesh tetrahedron() {
     return m;
 }
 
-MeshStats statsOf(const HostMesh& mesh) {
-    const Result<MeshStats> stats = computeMeshStats(mesh);
-    REQUIRE(stats);
-    return *stats;
-}
+using test::statsOf;
 
 }  // namespace
 

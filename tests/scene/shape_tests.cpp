@@ -9,21 +9,18 @@
 #include <numbers>
 
 #include "support/exact_reference.hpp"
+#include "scene/mesh_stats_check.hpp"
 #include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+using test::kPi;
 
-MeshStats statsOf(const HostMesh& mesh) {
-    const Result<MeshStats> stats = computeMeshStats(mesh);
-    REQUIRE(stats);
-    return *stats;
-}
+using test::statsOf;
 
-void checkClosedAndOutward(const MeshStats& s) {
+void checkClosedOutwardVolume(const MeshStats& s) {
     CHECK(s.closed);
     CHECK(s.degenerate_triangles == 0);
     CHECK(s.signed_volume > 0.0);
@@ -47,7 +44,7 @@ TEST_CASE("icosphere: 20 * 4^levels triangles, closed, Euler 2, volume converges
         CHECK(m->triangleCount() == 20ull << (2 * levels));
         CHECK(m->positions.size() == 10ull * (1ull << (2 * levels)) + 2);
         const MeshStats s = statsOf(*m);
-        checkClosedAndOutward(s);
+        checkClosedOutwardVolume(s);
         CHECK(s.euler_characteristic == 2);
         const double error = std::fabs(s.signed_volume - 4.0 / 3.0 * kPi * 1.5 * 1.5 * 1.5) / (4.0 / 3.0 * kPi * 3.375);
         CHECK(error < previous);
@@ -63,14 +60,14 @@ TEST_CASE("frustum: cylinder and cone are closed with the analytic volume", "[sc
     REQUIRE(cylinder);
     CHECK(cylinder->triangleCount() == 2u * 256 * 3 + 2u * 256);
     MeshStats s = statsOf(*cylinder);
-    checkClosedAndOutward(s);
+    checkClosedOutwardVolume(s);
     CHECK(s.euler_characteristic == 2);
     CHECK(std::fabs(s.signed_volume - kPi * 2.0) / (kPi * 2.0) < 1e-3);
     auto cone = frustum(1.0f, 0.0f, 3.0f, 256, 4);
     REQUIRE(cone);
     CHECK(cone->triangleCount() == 2u * 256 * 4);
     s = statsOf(*cone);
-    checkClosedAndOutward(s);
+    checkClosedOutwardVolume(s);
     CHECK(s.euler_characteristic == 2);
     CHECK(std::fabs(s.signed_volume - kPi * 3.0 / 3.0) / kPi < 1e-3);
     CHECK_FALSE(frustum(1.0f, -1.0f, 1.0f, 8, 1));
@@ -109,17 +106,17 @@ TEST_CASE("twist and bend keep the mesh closed and outward, and a bend past a fu
     REQUIRE(twistMesh(*bar, 2.0f * static_cast<float>(kPi) / 4.0f));
     REQUIRE(transformMesh(*bar, Transform3x4{0, 0, 1, 0, 0, 1, 0, 0, -1, 0, 0, 0}));
     const MeshStats straight = statsOf(*bar);
-    checkClosedAndOutward(straight);
+    checkClosedOutwardVolume(straight);
     CHECK(selfPairs(*bar) == 0);
     HostMesh half = *bar;
     REQUIRE(bendMesh(half, 8.0f / static_cast<float>(kPi)));  // half a turn: no contact
-    checkClosedAndOutward(statsOf(half));
+    checkClosedOutwardVolume(statsOf(half));
     CHECK(selfPairs(half) == 0);
     HostMesh wrapped = *bar;
     const float radius = 8.0f / (2.0f * static_cast<float>(kPi) * 1.2f);  // 1.2 turns
     REQUIRE(bendMesh(wrapped, radius, 0.15f));
     const MeshStats w = statsOf(wrapped);
-    checkClosedAndOutward(w);
+    checkClosedOutwardVolume(w);
     CHECK(w.signed_volume == Approx(straight.signed_volume).epsilon(0.02));
     CHECK(selfPairs(wrapped) > 0);
     HostMesh far = *bar;

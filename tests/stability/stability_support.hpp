@@ -9,6 +9,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/error_text.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/pathological_scenes.hpp"
 #include "support/world_fixture.hpp"
@@ -17,7 +18,6 @@
 
 namespace vkcollide::test {
 
-inline bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
 
 // An engine-owned copy of a mesh: packed positions, 32-bit indices, host-visible.
 struct EngineMesh {

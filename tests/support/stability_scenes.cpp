@@ -19,12 +19,6 @@ ObjectOptions named(const char* name, Transform3x4 t, bool open = false, bool se
     return o;
 }
 
-Result<void> add(TestScene& s, Result<HostMesh> mesh, ObjectOptions options) {
-    if (!mesh) return mesh.error();
-    s.objects.push_back({std::move(*mesh), std::move(options)});
-    return {};
-}
-
 // A tetrahedron wound outwards whatever order its corners come in.
 HostMesh tetrahedron(Float3 a, Float3 b, Float3 c, Float3 d) {
     const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z, vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
@@ -61,8 +55,8 @@ Result<StabilityCase> subPixelTriangles() {
     StabilityCase c{"sub-pixel triangles", {"sub-pixel", {}}, onGrid(kZ), {}};
     // Box top face at z = 0.75 and the sphere's centre on a pixel corner in every view:
     // no pixel centre within 0.7 px of it, so no ray sees the sphere at all.
-    for (auto r : {add(c.scene, box({0.75f, 0.75f, 0.75f}, 4), named("box", at(0, 0, 0))),
-                   add(c.scene, uvSphere(0.3f * kPixel, 12, 6), named("speck", at(0, 0, 0.75f)))})
+    for (auto r : {addObject(c.scene, box({0.75f, 0.75f, 0.75f}, 4), named("box", at(0, 0, 0))),
+                   addObject(c.scene, uvSphere(0.3f * kPixel, 12, 6), named("speck", at(0, 0, 0.75f)))})
         if (!r) return r.error();
     return finish(std::move(c));
 }
@@ -72,16 +66,16 @@ Result<StabilityCase> edgeOnOverlap() {
     // x in [-1, 0] and [-0.2 px, 1 - 0.2 px]: the overlap is a slab 0.2 px thick parallel to
     // the direction, between the pixel centres either side of the corner at x = 0.
     const float overlap = 0.2f * kPixel;
-    for (auto r : {add(c.scene, box({0.5f, 0.5f, 0.5f}, 2), named("left", at(-0.5f, 0, 0))),
-                   add(c.scene, box({0.5f, 0.5f, 0.5f}, 2), named("right", at(0.5f - overlap, 0.1f, 0.05f)))})
+    for (auto r : {addObject(c.scene, box({0.5f, 0.5f, 0.5f}, 2), named("left", at(-0.5f, 0, 0))),
+                   addObject(c.scene, box({0.5f, 0.5f, 0.5f}, 2), named("right", at(0.5f - overlap, 0.1f, 0.05f)))})
         if (!r) return r.error();
     return finish(std::move(c));
 }
 
 Result<StabilityCase> coplanarOpenQuads(bool edge_on) {
     StabilityCase c{edge_on ? "coplanar quads, edge-on" : "coplanar quads, face-on", {"coplanar", {}}, onGrid(edge_on ? kX : kZ), {}};
-    for (auto r : {add(c.scene, clothGrid(1.0f, 1.0f, 4, 4), named("quad-a", at(-0.2f, 0, 0.1f), true)),
-                   add(c.scene, clothGrid(1.0f, 1.0f, 3, 3), named("quad-b", at(0.25f, 0.15f, 0.1f), true))})
+    for (auto r : {addObject(c.scene, clothGrid(1.0f, 1.0f, 4, 4), named("quad-a", at(-0.2f, 0, 0.1f), true)),
+                   addObject(c.scene, clothGrid(1.0f, 1.0f, 3, 3), named("quad-b", at(0.25f, 0.15f, 0.1f), true))})
         if (!r) return r.error();
     return finish(std::move(c));
 }
@@ -97,7 +91,7 @@ Result<StabilityCase> edgeEdgeTouch() {
 
 Result<StabilityCase> vertexFaceTouch() {
     StabilityCase c{"vertex-face touch", {"vertex-face", {}}, onGrid(kZ), {}};
-    if (auto r = add(c.scene, box({0.75f, 0.75f, 0.75f}, 4), named("box", at(0, 0, 0))); !r) return r.error();
+    if (auto r = addObject(c.scene, box({0.75f, 0.75f, 0.75f}, 4), named("box", at(0, 0, 0))); !r) return r.error();
     c.scene.objects.push_back(
         {tetrahedron({0, 0, 0.75f}, {-0.3f, -0.2f, 1.25f}, {0.3f, -0.2f, 1.25f}, {0, 0.35f, 1.25f}), named("apex", at(0, 0, 0))});
     return finish(std::move(c));
@@ -107,15 +101,15 @@ Result<StabilityCase> needleSliver() {
     StabilityCase c{"needle (slivers)", {"needle", {}}, onGrid(kZ), {}};
     // 0.4 px thick, centred on pixel corners in every view: its side faces are slivers.
     const float h = 0.2f * kPixel;
-    for (auto r : {add(c.scene, box({0.75f, 0.75f, 0.75f}, 4), named("box", at(0, 0, 0))),
-                   add(c.scene, box({h, h, 0.25f}, 1), named("needle", at(0, 0, 0.75f)))})
+    for (auto r : {addObject(c.scene, box({0.75f, 0.75f, 0.75f}, 4), named("box", at(0, 0, 0))),
+                   addObject(c.scene, box({h, h, 0.25f}, 1), named("needle", at(0, 0, 0.75f)))})
         if (!r) return r.error();
     return finish(std::move(c));
 }
 
 Result<StabilityCase> zeroAreaTriangle() {
     StabilityCase c{"zero-area triangle", {"zero-area", {}}, onGrid(kZ), {}};
-    if (auto r = add(c.scene, box({0.75f, 0.75f, 0.75f}, 4), named("box", at(0, 0, 0))); !r) return r.error();
+    if (auto r = addObject(c.scene, box({0.75f, 0.75f, 0.75f}, 4), named("box", at(0, 0, 0))); !r) return r.error();
     // Three collinear points: a segment from inside the box to outside its top face.
     c.scene.objects.push_back({HostMesh{"segment", {{0.1f, 0.1f, 0.5f}, {0.1f, 0.1f, 1.0f}, {0.1f, 0.1f, 0.75f}}, {0, 1, 2}},
                                named("segment", at(0, 0, 0), true)});
@@ -128,16 +122,16 @@ Result<StabilityCase> deepStack(std::uint32_t layer_cap) {
     c.settings.layer_cap = layer_cap;
     const char* names[] = {"plate-0", "plate-1", "plate-2", "plate-3"};
     for (int i = 0; i < 4; ++i)
-        if (auto r = add(c.scene, box({1.0f, 1.0f, 0.05f}, 4), named(names[i], at(0, 0, -0.9f + 0.45f * static_cast<float>(i + 1)))); !r)
+        if (auto r = addObject(c.scene, box({1.0f, 1.0f, 0.05f}, 4), named(names[i], at(0, 0, -0.9f + 0.45f * static_cast<float>(i + 1)))); !r)
             return r.error();
-    if (auto r = add(c.scene, uvSphere(0.3f, 16, 8), named("ball", at(0.2f, 0.1f, 0.9f))); !r) return r.error();
+    if (auto r = addObject(c.scene, uvSphere(0.3f, 16, 8), named("ball", at(0.2f, 0.1f, 0.9f))); !r) return r.error();
     return finish(std::move(c));
 }
 
 Result<StabilityCase> nestedSpheres() {
     StabilityCase c{"nested closed meshes", {"nested", {}}, onGrid(kZ), {}};
-    for (auto r : {add(c.scene, uvSphere(1.0f, 24, 12), named("outer", at(0, 0, 0))),
-                   add(c.scene, uvSphere(0.5f, 16, 8), named("inner", at(0.1f, 0.05f, 0)))})
+    for (auto r : {addObject(c.scene, uvSphere(1.0f, 24, 12), named("outer", at(0, 0, 0))),
+                   addObject(c.scene, uvSphere(0.5f, 16, 8), named("inner", at(0.1f, 0.05f, 0)))})
         if (!r) return r.error();
     return finish(std::move(c));
 }
@@ -147,8 +141,8 @@ Result<StabilityCase> invertedSphere() {
     auto inside_out = uvSphere(0.7f, 24, 12);
     if (!inside_out) return inside_out.error();
     for (std::size_t t = 0; t + 2 < inside_out->indices.size(); t += 3) std::swap(inside_out->indices[t + 1], inside_out->indices[t + 2]);
-    for (auto r : {add(c.scene, uvSphere(0.8f, 24, 12), named("normal", at(-0.4f, 0, 0))),
-                   add(c.scene, std::move(inside_out), named("inside-out", at(0.4f, 0.05f, 0.02f)))})
+    for (auto r : {addObject(c.scene, uvSphere(0.8f, 24, 12), named("normal", at(-0.4f, 0, 0))),
+                   addObject(c.scene, std::move(inside_out), named("inside-out", at(0.4f, 0.05f, 0.02f)))})
         if (!r) return r.error();
     return finish(std::move(c));
 }
@@ -157,8 +151,8 @@ Result<StabilityCase> openClothAsClosed(bool declared_open) {
     StabilityCase c{declared_open ? "open cloth, declared open" : "open cloth in closed mode", {"cloth", {}}, onGrid(kZ), {}};
     ClothOptions sag;
     sag.sag = 0.2f;
-    for (auto r : {add(c.scene, clothGrid(2.4f, 2.4f, 16, 16, sag), named("cloth", at(0, 0, 0.2f), declared_open)),
-                   add(c.scene, uvSphere(0.6f, 20, 10), named("ball", at(0.1f, 0.05f, 0)))})
+    for (auto r : {addObject(c.scene, clothGrid(2.4f, 2.4f, 16, 16, sag), named("cloth", at(0, 0, 0.2f), declared_open)),
+                   addObject(c.scene, uvSphere(0.6f, 20, 10), named("ball", at(0.1f, 0.05f, 0)))})
         if (!r) return r.error();
     return finish(std::move(c));
 }
@@ -178,8 +172,8 @@ Result<StabilityCase> nonManifoldFin() {
         m->positions.push_back({m->positions[edge[k + 1]].x, 1.1f, 1.1f});
         for (std::uint32_t i : {edge[k], edge[k + 1], base + 1, edge[k], base + 1, base}) m->indices.push_back(i);
     }
-    for (auto r : {add(c.scene, std::move(m), named("finned box", at(0, 0, 0))),
-                   add(c.scene, uvSphere(0.4f, 20, 10), named("ball", at(0.05f, 0.75f, 0.75f)))})
+    for (auto r : {addObject(c.scene, std::move(m), named("finned box", at(0, 0, 0))),
+                   addObject(c.scene, uvSphere(0.4f, 20, 10), named("ball", at(0.05f, 0.75f, 0.75f)))})
         if (!r) return r.error();
     return finish(std::move(c));
 }
@@ -215,9 +209,9 @@ Result<StabilityCase> farFromOrigin(float distance) {
 Result<StabilityCase> thinWall(bool with_sphere) {
     StabilityCase c{with_sphere ? "thin wall, sphere through it" : "thin wall alone", {"wall", {}}, onGrid(kZ), {}};
     // 2e-8 thick: 6e-9 of the normalised depth range, a tenth of a float ulp there.
-    if (auto r = add(c.scene, box({0.75f, 0.75f, 1e-8f}, 4), named("wall", at(0, 0, 0))); !r) return r.error();
+    if (auto r = addObject(c.scene, box({0.75f, 0.75f, 1e-8f}, 4), named("wall", at(0, 0, 0))); !r) return r.error();
     if (with_sphere)
-        if (auto r = add(c.scene, uvSphere(0.5f, 20, 10), named("ball", at(0.1f, 0.05f, 0))); !r) return r.error();
+        if (auto r = addObject(c.scene, uvSphere(0.5f, 20, 10), named("ball", at(0.1f, 0.05f, 0))); !r) return r.error();
     return finish(std::move(c));
 }
 
@@ -226,7 +220,7 @@ Result<StabilityCase> farObject(bool with_region) {
     auto spheres = overlappingSpheres(0.5f);
     if (!spheres) return spheres.error();
     c.scene = std::move(*spheres);
-    if (auto r = add(c.scene, box({0.3f, 0.3f, 0.3f}, 2), named("far box", at(1000, 0, 0))); !r) return r.error();
+    if (auto r = addObject(c.scene, box({0.3f, 0.3f, 0.3f}, 2), named("far box", at(1000, 0, 0))); !r) return r.error();
     c.settings.method = DetectMethod::Peeling;
     c.settings.resolution = 128;
     c.settings.direction = kZ;
@@ -238,8 +232,8 @@ Result<StabilityCase> farObject(bool with_region) {
 Result<StabilityCase> exactlyTouching(bool face_on) {
     StabilityCase c{face_on ? "exactly touching, face-on" : "exactly touching, edge-on", {"touching", {}}, onGrid(face_on ? kX : kZ), {}};
     // x in [-1, 0] and [0, 1]: the faces at x = 0 coincide (bit-identical coordinates).
-    for (auto r : {add(c.scene, box({0.5f, 0.5f, 0.5f}, 2), named("left", at(-0.5f, 0, 0))),
-                   add(c.scene, box({0.5f, 0.5f, 0.5f}, 2), named("right", at(0.5f, 0.1f, 0.05f)))})
+    for (auto r : {addObject(c.scene, box({0.5f, 0.5f, 0.5f}, 2), named("left", at(-0.5f, 0, 0))),
+                   addObject(c.scene, box({0.5f, 0.5f, 0.5f}, 2), named("right", at(0.5f, 0.1f, 0.05f)))})
         if (!r) return r.error();
     return finish(std::move(c));
 }

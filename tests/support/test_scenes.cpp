@@ -8,12 +8,6 @@ namespace {
 
 std::uint32_t scaled(std::uint32_t n, float detail) { return std::max<std::uint32_t>(3, static_cast<std::uint32_t>(std::lround(static_cast<float>(n) * detail))); }
 
-Result<void> add(TestScene& s, Result<HostMesh> mesh, ObjectOptions options) {
-    if (!mesh) return mesh.error();
-    s.objects.push_back({std::move(*mesh), std::move(options)});
-    return {};
-}
-
 ObjectOptions placed(const char* name, Transform3x4 t, bool self = false, bool open = false) {
     ObjectOptions o;
     o.name = name;
@@ -38,25 +32,25 @@ std::vector<ReferenceObject> TestScene::reference() const {
 
 Result<TestScene> overlappingSpheres(float d) {
     TestScene s{"overlapping spheres", {}};
-    for (auto r : {add(s, uvSphere(1.0f, scaled(48, d), scaled(24, d)), placed("sphere-a", rotationY(0.3f, {-0.6f, 0.05f, 0.0f}))),
-                   add(s, uvSphere(0.9f, scaled(40, d), scaled(20, d)), placed("sphere-b", rotationY(0.7f, {0.55f, -0.1f, 0.2f}))),
-                   add(s, uvSphere(0.5f, scaled(32, d), scaled(16, d)), placed("sphere-c", rotationY(0.1f, {0.1f, 0.9f, 0.3f}))),
-                   add(s, uvSphere(0.4f, scaled(24, d), scaled(12, d)), placed("sphere-far", rotationY(0.0f, {-2.5f, -1.5f, 0.0f})))})
+    for (auto r : {addObject(s, uvSphere(1.0f, scaled(48, d), scaled(24, d)), placed("sphere-a", rotationY(0.3f, {-0.6f, 0.05f, 0.0f}))),
+                   addObject(s, uvSphere(0.9f, scaled(40, d), scaled(20, d)), placed("sphere-b", rotationY(0.7f, {0.55f, -0.1f, 0.2f}))),
+                   addObject(s, uvSphere(0.5f, scaled(32, d), scaled(16, d)), placed("sphere-c", rotationY(0.1f, {0.1f, 0.9f, 0.3f}))),
+                   addObject(s, uvSphere(0.4f, scaled(24, d), scaled(12, d)), placed("sphere-far", rotationY(0.0f, {-2.5f, -1.5f, 0.0f})))})
         if (!r) return r.error();
     return s;
 }
 
 Result<TestScene> torusThroughBox(float d) {
     TestScene s{"torus through box", {}};
-    for (auto r : {add(s, torus(0.9f, 0.25f, scaled(64, d), scaled(16, d)), placed("torus", rotationY(0.2f, {0, 0, 0}))),
-                   add(s, box({0.3f, 0.3f, 1.4f}, scaled(6, d)), placed("bar", rotationY(0.1f, {0.9f, 0, 0})))})
+    for (auto r : {addObject(s, torus(0.9f, 0.25f, scaled(64, d), scaled(16, d)), placed("torus", rotationY(0.2f, {0, 0, 0}))),
+                   addObject(s, box({0.3f, 0.3f, 1.4f}, scaled(6, d)), placed("bar", rotationY(0.1f, {0.9f, 0, 0})))})
         if (!r) return r.error();
     return s;
 }
 
 Result<TestScene> selfIntersectingTube(float d) {
     TestScene s{"self-intersecting tube", {}};
-    if (auto r = add(s, twistedTube(1.0f, 0.2f, scaled(96, d), scaled(16, d), 1.0f), placed("tube", rotationY(0.4f, {0, 0, 0}), true)); !r)
+    if (auto r = addObject(s, twistedTube(1.0f, 0.2f, scaled(96, d), scaled(16, d), 1.0f), placed("tube", rotationY(0.4f, {0, 0, 0}), true)); !r)
         return r.error();
     return s;
 }
@@ -65,8 +59,8 @@ Result<TestScene> clothThroughSphere(float d) {
     TestScene s{"cloth through sphere", {}};
     ClothOptions folded;
     folded.sag = 0.3f;
-    for (auto r : {add(s, clothGrid(3.0f, 3.0f, scaled(40, d), scaled(40, d), folded), placed("cloth", rotationY(0.05f, {0, 0, 0.2f}), true, true)),
-                   add(s, uvSphere(0.8f, scaled(48, d), scaled(24, d)), placed("ball", rotationY(0.0f, {0.1f, 0.2f, 0.0f})))})
+    for (auto r : {addObject(s, clothGrid(3.0f, 3.0f, scaled(40, d), scaled(40, d), folded), placed("cloth", rotationY(0.05f, {0, 0, 0.2f}), true, true)),
+                   addObject(s, uvSphere(0.8f, scaled(48, d), scaled(24, d)), placed("ball", rotationY(0.0f, {0.1f, 0.2f, 0.0f})))})
         if (!r) return r.error();
     return s;
 }
@@ -89,6 +83,12 @@ Result<std::vector<TestScene>> allTestScenes(float d) {
         out.push_back(std::move(*s));
     }
     return out;
+}
+
+Result<void> addObject(TestScene& s, Result<HostMesh> mesh, ObjectOptions options) {
+    if (!mesh) return mesh.error();
+    s.objects.push_back({std::move(*mesh), std::move(options)});
+    return {};
 }
 
 }  // namespace vkcollide::test

@@ -25,6 +25,9 @@ struct TestScene {
     std::vector<ReferenceObject> reference() const;
 };
 
+// Appends `mesh` with `options`, or returns the generator's error.
+Result<void> addObject(TestScene& s, Result<HostMesh> mesh, ObjectOptions options);
+
 // `detail` scales the tessellation (1: a few thousand triangles per scene).
 Result<TestScene> overlappingSpheres(float detail = 1.0f);
 Result<TestScene> torusThroughBox(float detail = 1.0f);

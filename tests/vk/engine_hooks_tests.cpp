@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "api/context_access.hpp"
+#include "support/error_text.hpp"
 #include "vk/fake_engine.hpp"
 #include "vk/resources.hpp"
 #include "vk/semaphore.hpp"
@@ -33,7 +34,7 @@ vk::Pipeline makePipeline(vk::Device& device, const char* name, std::uint32_t pu
     return std::move(*p);
 }
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+using test::mentions;
 
 // VkAllocationCallbacks that count what is outstanding (the fake never reallocates).
 struct CountingCallbacks {

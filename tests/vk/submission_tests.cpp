@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "api/context_access.hpp"
+#include "support/error_text.hpp"
 #include "vk/fake_engine.hpp"
 #include "vk/semaphore.hpp"
 #include "vk/submission.hpp"
@@ -33,7 +34,7 @@ Result<void> submitWith(vk::Submission& s, const SubmitSync& sync = {}) {
     return s.submit(sync);
 }
 
-bool mentions(const Error& e, const std::string& what) { return e.message().find(what) != std::string::npos; }
+using test::mentions;
 
 }  // namespace
 

@@ -25,6 +25,7 @@
 #include <cstring>
 #include <functional>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -41,7 +42,6 @@ using namespace vkcollide;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr double kPi = 3.14159265358979323846;
 
 struct Scene {
     std::vector<HostMesh> meshes;  // world space
@@ -107,7 +107,7 @@ Result<Scene> pile(double scale, int) {
         }
         if (!m) return m.error();
         const Float3 t{float(4 * hash01(3 * i)), float(4 * hash01(3 * i + 1)), float(2 * hash01(3 * i + 2))};
-        if (auto ok = transformMesh(*m, rotation(hash01(5 * i) - 0.5, hash01(5 * i + 1) - 0.5, hash01(5 * i + 2), 2 * kPi * hash01(5 * i + 3), t)); !ok)
+        if (auto ok = transformMesh(*m, rotation(hash01(5 * i) - 0.5, hash01(5 * i + 1) - 0.5, hash01(5 * i + 2), 2 * std::numbers::pi * hash01(5 * i + 3), t)); !ok)
             return ok.error();
         s.meshes.push_back(std::move(*m));
         s.self.push_back(0);

@@ -22,7 +22,6 @@ using namespace vkcollide;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 using V3 = std::array<double, 3>;
 
 Transform3x4 translation(double x, double y, double z) { return {1, 0, 0, float(x), 0, 1, 0, float(y), 0, 0, 1, float(z)}; }
@@ -54,7 +53,7 @@ Case twoSpheres() {
     c.objects.push_back({*icosphere(float(r1), 4), kIdentity3x4});
     c.objects.push_back({*icosphere(float(r2), 4), translation(axis[0] * d, axis[1] * d, axis[2] * d)});
     const double a = (d * d + r1 * r1 - r2 * r2) / (2 * d), h1 = r1 - a, h2 = r2 - (d - a);
-    auto cap = [](double r, double h) { return kPi * h * h * (3 * r - h) / 3; };
+    auto cap = [](double r, double h) { return std::numbers::pi * h * h * (3 * r - h) / 3; };
     auto cz = [](double r, double h) { return 3 * (2 * r - h) * (2 * r - h) / (4 * (3 * r - h)); };
     const double v1 = cap(r1, h1), v2 = cap(r2, h2), at = (v1 * cz(r1, h1) + v2 * (d - cz(r2, h2))) / (v1 + v2);
     c.volume = v1 + v2;
@@ -93,7 +92,7 @@ Case halfSunk() {
 double angle(Float3 n, V3 d) {
     const double ln = std::sqrt(double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z);
     if (ln == 0) return 180;
-    return std::acos(std::clamp((n.x * d[0] + n.y * d[1] + n.z * d[2]) / ln, -1.0, 1.0)) * 180 / kPi;
+    return std::acos(std::clamp((n.x * d[0] + n.y * d[1] + n.z * d[2]) / ln, -1.0, 1.0)) * 180 / std::numbers::pi;
 }
 
 }  // namespace

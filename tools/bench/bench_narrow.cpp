@@ -75,6 +75,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <numbers>
 #include <optional>
 #include <random>
 #include <string>
@@ -256,7 +257,6 @@ double hash01(std::uint32_t i) {
 bool fixedSize(const std::string& scene) { return scene == "demo" || scene == "pile"; }
 
 std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) {
-    constexpr double kPi = 3.14159265358979323846;
     if (std::optional<std::vector<SceneObject>> touching = bench::touchingScene(scene, size)) return std::move(*touching);
     std::vector<SceneObject> objects;
     if (scene == "demo") {
@@ -291,7 +291,7 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
         const std::uint32_t s = atLeast(std::sqrt(double(size) / 2.0), 8);
         const HostMesh sphere = generated(uvSphere(1.0f, s, s / 2));
         objects.push_back({sphere, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}});
-        objects.push_back({sphere, rotationTranslation(0.3, 1, 0.2, 3 * kPi / 180, {0, 0, 0})});
+        objects.push_back({sphere, rotationTranslation(0.3, 1, 0.2, 3 * std::numbers::pi / 180, {0, 0, 0})});
     } else if (scene == "graze") {
         // Two unit spheres of size/2 triangles, centres 1.8 apart: they cross along one
         // circle of radius 0.44, a light contact between two detailed meshes.
@@ -308,7 +308,7 @@ std::vector<SceneObject> buildScene(const std::string& scene, std::size_t size) 
         for (std::uint32_t i = 0; i < kCount; ++i) {
             const Float3 t{1.8f * float(i % kSide), 1.8f * float((i / kSide) % kSide), 1.8f * float(i / (kSide * kSide))};
             objects.push_back({base, rotationTranslation(hash01(3 * i) - 0.5, hash01(3 * i + 1) - 0.5, hash01(3 * i + 2) + 0.1,
-                                                         2 * kPi * hash01(7 * i + 5), t)});
+                                                         2 * std::numbers::pi * hash01(7 * i + 5), t)});
         }
     } else {
         die("unknown scene " + scene + " (use demo, spheres, torus-box, deep, twin, graze, pile, touching, touching-tilted, gpu-demo, gpu-deep, gpu-pile)");

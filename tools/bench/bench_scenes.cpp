@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "vkcollide/io.hpp"
@@ -9,7 +10,6 @@
 namespace vkcollide::bench {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 }  // namespace
 
@@ -108,7 +108,7 @@ Result<std::vector<HostMesh>> sphereGrid(std::uint32_t count, std::uint32_t segm
         const Float3 t{spacing * static_cast<float>(i % side), spacing * static_cast<float>((i / side) % side),
                        spacing * static_cast<float>(i / (side * side))};
         const Transform3x4 xf = rotationTranslation(hash01(3 * i) - 0.5, hash01(3 * i + 1) - 0.5,
-                                                    hash01(3 * i + 2) + 0.1, 2 * kPi * hash01(7 * i + 5), t);
+                                                    hash01(3 * i + 2) + 0.1, 2 * std::numbers::pi * hash01(7 * i + 5), t);
         if (Result<void> ok = transformMesh(m, xf); !ok) return ok.error();
         meshes.push_back(std::move(m));
     }
@@ -135,9 +135,9 @@ Result<std::vector<HostMesh>> meshRing(const std::string& path, std::uint32_t co
     std::vector<HostMesh> meshes;
     // Neighbours step apart on a circle of `count` copies (two copies: a segment).
     const double step = step_fraction * size;
-    const double radius = count > 2 ? step / (2 * std::sin(kPi / count)) : 0.5 * step;
+    const double radius = count > 2 ? step / (2 * std::sin(std::numbers::pi / count)) : 0.5 * step;
     for (std::uint32_t i = 0; i < count; ++i) {
-        const double a = 2 * kPi * i / count;
+        const double a = 2 * std::numbers::pi * i / count;
         HostMesh m = base;
         m.name = base.name + std::to_string(i);
         const Float3 t{static_cast<float>(radius * std::cos(a)), 0.05f * size * static_cast<float>(i % 2),
@@ -214,7 +214,7 @@ std::vector<SceneSpec> issue7Scenes(const std::string& data, double scale) {
         rigid("bunnies-2x75K", "two overlapping bunny00.off (75,408 triangles each)", [bunny] { return meshRing(bunny, 2); }),
         rigid("bunnies-2x75K-deep", "two bunny00.off overlapping by 85% of their size", [bunny] { return meshRing(bunny, 2, 0.15); }),
         rigid("bunnies-2x75K-twin", "bunny00.off and a copy turned by 3 degrees: surfaces cross all over",
-              [bunny] { return meshTwin(bunny, 3 * kPi / 180); }),
+              [bunny] { return meshTwin(bunny, 3 * std::numbers::pi / 180); }),
         rigid("spheres-60x10K", "60 overlapping spheres of 9,940 triangles (596K)", [n] { return sphereGrid(60, n(70), n(72)); }),
         rigid("spheres-60x10K-dense", "60 spheres of 9,940 triangles, 1.25 apart (radius 1)", [n] { return sphereGrid(60, n(70), n(72), 1.25f); }),
         rigid("spheres-100x10K", "100 overlapping spheres of 9,940 triangles (994K)", [n] { return sphereGrid(100, n(70), n(72)); }),

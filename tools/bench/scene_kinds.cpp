@@ -12,7 +12,6 @@
 namespace vkcollide::bench {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 std::string count(std::size_t n) {
     return n >= 1000000 ? std::to_string(n / 1000000) + "." + std::to_string(n / 100000 % 10) + "M" : std::to_string((n + 500) / 1000) + "K";
@@ -30,11 +29,11 @@ BenchObject object(HostMesh mesh, std::string name, Transform3x4 transform = kId
 // times and bent `turns` times round with `pitch` per turn, so its ends pass through its start.
 Result<HostMesh> wrappedBar(float a, float b, float radius, float turns, float twists, float pitch, std::uint32_t around,
                             std::uint32_t along) {
-    const float length = 2.0f * static_cast<float>(kPi) * radius * turns;
+    const float length = 2.0f * static_cast<float>(std::numbers::pi) * radius * turns;
     Result<HostMesh> bar = frustum(1.0f, 1.0f, length, around, along);
     if (!bar) return bar.error();
     for (Result<void> ok : {transformMesh(*bar, Transform3x4{a, 0, 0, 0, 0, b, 0, 0, 0, 0, 1, 0}),
-                            twistMesh(*bar, 2.0f * static_cast<float>(kPi) * twists / length),
+                            twistMesh(*bar, 2.0f * static_cast<float>(std::numbers::pi) * twists / length),
                             transformMesh(*bar, Transform3x4{0, 0, 1, 0, 0, 1, 0, 0, -1, 0, 0, 0}), bendMesh(*bar, radius, pitch)})
         if (!ok) return ok.error();
     return bar;
@@ -169,7 +168,7 @@ std::vector<SceneSpec> mixedScenes(double scale) {
                                         rotationTranslation(hash01(5 * i) - 0.5, hash01(5 * i + 1) - 0.5, 1, 6 * hash01(5 * i + 2),
                                                             {1.0f * static_cast<float>(i % 3), 1.0f * static_cast<float>(i / 3), 0.1f * static_cast<float>(i % 2)}));
                  o.gpu = i % 2 == 1;
-                 o.typical_edge_length = o.gpu ? 0.6f * 2.0f * static_cast<float>(kPi) / static_cast<float>(n) : 0.0f;
+                 o.typical_edge_length = o.gpu ? 0.6f * 2.0f * static_cast<float>(std::numbers::pi) / static_cast<float>(n) : 0.0f;
                  out.push_back(std::move(o));
              }
              DrapeOptions d;
@@ -200,7 +199,7 @@ std::vector<SceneSpec> mixedScenes(double scale) {
                                       : i % 3 == 1 ? frustum(0.035f, 0.035f, 0.14f, seg, seg / 3)
                                                    : icosphere(0.05f, std::clamp<std::uint32_t>(seg / 16, 1, 5));
                  if (!m) return m.error();
-                 const double a = 2 * kPi * i / 12;
+                 const double a = 2 * std::numbers::pi * i / 12;
                  const Transform3x4 place = rotationTranslation(hash01(9 * i), 1, hash01(9 * i + 1), 6 * hash01(9 * i + 2),
                                                                 {static_cast<float>(0.16 * std::cos(a)), static_cast<float>(0.16 * std::sin(a)), 0});
                  BenchObject o = object(std::move(*m), "part" + std::to_string(i), compose(rotationTranslation(1, 1, 0, 0.6, {0, 0, 0}), place));

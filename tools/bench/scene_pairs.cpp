@@ -10,7 +10,6 @@
 namespace vkcollide::bench {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 // Subdivision levels that bring `base` triangles closest to `target` (at least 0).
 std::uint32_t levelsFor(double base, double target, std::uint32_t most) {
@@ -85,7 +84,7 @@ std::vector<SceneSpec> deformingPairScenes(const std::string& data, double scale
              " triangles whose waves move every frame, approaching along a diagonal, passing deep into each other and separating over 10 frames",
          [=](int f) -> Result<std::vector<BenchObject>> {
              const double t = static_cast<double>(f) / (kBlobFrames - 1);
-             const double gap = 0.3 + 2.0 * std::fabs(std::cos(kPi * t));  // centre distance in radii
+             const double gap = 0.3 + 2.0 * std::fabs(std::cos(std::numbers::pi * t));  // centre distance in radii
              const double d[3] = {0.92, 0.32, 0.21};  // a unit diagonal
              std::vector<BenchObject> out(2);
              for (int o = 0; o < 2; ++o) {
@@ -110,13 +109,13 @@ std::vector<SceneSpec> deformingPairScenes(const std::string& data, double scale
              const double t = static_cast<double>(f) / (kToriFrames - 1);
              std::vector<BenchObject> out(2);
              for (int o = 0; o < 2; ++o) {
-                 Result<HostMesh> m = torus(1.0f, 0.3f + 0.04f * static_cast<float>(std::sin(2 * kPi * t + o)), around, sides);
+                 Result<HostMesh> m = torus(1.0f, 0.3f + 0.04f * static_cast<float>(std::sin(2 * std::numbers::pi * t + o)), around, sides);
                  if (!m) return m.error();
-                 if (Result<void> ok = twistMesh(*m, static_cast<float>(0.4 * std::sin(kPi * t) * (o ? -1 : 1))); !ok) return ok.error();
+                 if (Result<void> ok = twistMesh(*m, static_cast<float>(0.4 * std::sin(std::numbers::pi * t) * (o ? -1 : 1))); !ok) return ok.error();
                  // Torus b stands in the XZ plane and slides along X from outside a's tube,
                  // through it, to its hole and back out the far side.
                  const Transform3x4 place = o == 0 ? kIdentity3x4
-                                                   : rotationTranslation(1, 0, 0, kPi / 2, {static_cast<float>(-2.6 + 3.2 * t), 0.0f, 0.05f});
+                                                   : rotationTranslation(1, 0, 0, std::numbers::pi / 2, {static_cast<float>(-2.6 + 3.2 * t), 0.0f, 0.05f});
                  Transform3x4 world = compose(rotationTranslation(0.3, 0.5, 1, 0.7, {0, 0, 0}), place);
                  for (float& v : world) v *= 1000.0f;
                  if (Result<void> ok = transformMesh(*m, world); !ok) return ok.error();
@@ -135,9 +134,9 @@ std::vector<SceneSpec> deformingPairScenes(const std::string& data, double scale
              for (int o = 0; o < 2; ++o) {
                  Result<HostMesh> m = loadMesh(data, files[o], 1.0f);
                  if (!m) return m.error();
-                 if (Result<void> ok = twistMesh(*m, static_cast<float>(0.8 * std::sin(2 * kPi * t + o))); !ok) return ok.error();
+                 if (Result<void> ok = twistMesh(*m, static_cast<float>(0.8 * std::sin(2 * std::numbers::pi * t + o))); !ok) return ok.error();
                  // Centres 1.8 apart, through each other to 1.4 apart on the far sides, and back.
-                 const double x = (o == 0 ? -1 : 1) * (0.9 - 1.6 * std::sin(kPi * t));
+                 const double x = (o == 0 ? -1 : 1) * (0.9 - 1.6 * std::sin(std::numbers::pi * t));
                  Transform3x4 at = rotationTranslation(0.2, 1, 0.1, o ? 2.5 : 0.3, {static_cast<float>(x), 0, 0});
                  at = compose(rotationTranslation(0.1, 0.3, 1, 0.6, {0, 0, 0}), at);
                  if (Result<void> ok = transformMesh(*m, at); !ok) return ok.error();

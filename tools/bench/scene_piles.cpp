@@ -14,7 +14,6 @@
 namespace vkcollide::bench {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 struct PileOptions {
     std::uint32_t objects = 60;
@@ -31,7 +30,7 @@ struct PileOptions {
 Transform3x4 randomRotation(std::uint32_t key, float s, Float3 t) {
     const double u1 = hash01(key), u2 = hash01(key + 1), u3 = hash01(key + 2);
     const double a = std::sqrt(1 - u1), b = std::sqrt(u1);
-    const double x = a * std::sin(2 * kPi * u2), y = a * std::cos(2 * kPi * u2), z = b * std::sin(2 * kPi * u3), w = b * std::cos(2 * kPi * u3);
+    const double x = a * std::sin(2 * std::numbers::pi * u2), y = a * std::cos(2 * std::numbers::pi * u2), z = b * std::sin(2 * std::numbers::pi * u3), w = b * std::cos(2 * std::numbers::pi * u3);
     const auto f = [s](double v) { return static_cast<float>(s * v); };
     return {f(1 - 2 * (y * y + z * z)), f(2 * (x * y - z * w)), f(2 * (x * z + y * w)), t.x,
             f(2 * (x * y + z * w)), f(1 - 2 * (x * x + z * z)), f(2 * (y * z - x * w)), t.y,
@@ -47,7 +46,7 @@ Result<std::vector<BenchObject>> pile(const std::vector<HostMesh>& shapes, const
         if (!st) return st.error();
         double bound = 0;
         for (const Float3& p : m.positions) bound = std::max(bound, std::sqrt(double{p.x} * p.x + double{p.y} * p.y + double{p.z} * p.z));
-        radius.push_back(0.5 * (bound + std::cbrt(3.0 * std::fabs(st->signed_volume) / (4.0 * kPi))));
+        radius.push_back(0.5 * (bound + std::cbrt(3.0 * std::fabs(st->signed_volume) / (4.0 * std::numbers::pi))));
     }
     struct Placed {
         double x, y, z, r;

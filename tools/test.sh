@@ -2,11 +2,10 @@
 # Quick start 2: install what is missing, build warning-free (-Werror) and run the whole
 # suite. Each test runs once, in the one build that can make its check (its label says
 # which: tests/CMakeLists.txt):
-#   1. Release: the library (each source alone, as any build compiles it), the command-line
-#      tool, the samples and the benchmarks (built, not run) at -O3, then the tests labelled
-#      `release`: every GPU test but the sanitized build's (lavapipe, Khronos validation
-#      layer and synchronization validation on: any message fails a test), the samples'
-#      smoke tests, vkcollide_bench on a user's meshes and frontier.sh's input checks, and
+#   1. Release: the library, the command-line tool, the samples and the benchmarks (built,
+#      not run) at -O3, then the tests labelled `release`: every GPU test but the sanitized
+#      build's (lavapipe, Khronos validation layer and synchronization validation on: any
+#      message fails a test), the samples' smoke tests, vkcollide_bench on a user's meshes and frontier.sh's input checks, and
 #      the installed package (an engine-like consumer against the static install and
 #      against a shared libvkcollide configured and built from scratch; the consumer cannot
 #      link a sanitized library).
@@ -22,9 +21,10 @@
 #      leaks are told apart from ours.
 #   3. VKCOLLIDE_HOST_ONLY configured (not built): the host-only build, which needs no shader
 #      tools, stays configurable; its code and tests are the host part of build 2.
-# Tests, tools and samples compile in batches (CMake unity builds, about a third of the
-# compiling), and so does the sanitized library; a compiler cache for this run (ccache,
-# in BUILD_ROOT/build-ccache) builds the shared package from build 1's objects.
+# Everything compiles in batches (CMake unity builds: about a third of the compiling), the
+# tests' own sources at -O1 (Release) and -O0 (sanitized; the library and the tests'
+# references keep their optimisation); a compiler cache for this run (ccache, in
+# BUILD_ROOT/build-ccache) builds the shared package from build 1's objects.
 # Minutes from a fresh clone on an idle two-core machine: docs/stability.md, "CI coverage".
 #
 #   tools/test.sh [BUILD_ROOT]   the folder the build folders go in (or VKCOLLIDE_BUILD_ROOT;
@@ -45,10 +45,11 @@ CCACHE_BASEDIR="$src"
 while [[ "$PWD/" != "$CCACHE_BASEDIR/"* && "$CCACHE_BASEDIR" != / ]]; do CCACHE_BASEDIR="$(dirname "$CCACHE_BASEDIR")"; done
 export CCACHE_BASEDIR CCACHE_DIR="$PWD/build-ccache" CCACHE_NOHASHDIR=1
 export CMAKE_C_COMPILER_LAUNCHER=ccache CMAKE_CXX_COMPILER_LAUNCHER=ccache
-unity=(-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16)
+unity=(-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 -DVKCOLLIDE_UNITY_LIBRARY=ON)
 
 echo "== Release: library, CLI, samples, benchmarks; the GPU tests, samples' smoke tests and the installed package =="
-cmake -S "$src" -B build-ci -G Ninja -DCMAKE_BUILD_TYPE=Release -DVKCOLLIDE_WERROR=ON "${unity[@]}" >/dev/null
+cmake -S "$src" -B build-ci -G Ninja -DCMAKE_BUILD_TYPE=Release -DVKCOLLIDE_WERROR=ON "${unity[@]}" \
+  -DVKCOLLIDE_TEST_COMPILE_OPTIONS=-O1 >/dev/null
 cmake --build build-ci -j "$jobs" --target vkcollide vkcollide_cli vkcollide_samples vkcollide_benchmarks vkcollide_release_suite
 ctest --test-dir build-ci -j "$jobs" -L release --output-on-failure --no-tests=error
 elapsed
@@ -59,7 +60,7 @@ elapsed
 echo "== the host tests, fuzz seeds and GPU rooms under AddressSanitizer + UndefinedBehaviorSanitizer (validation layer on) =="
 cmake -S "$src" -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" -DVKCOLLIDE_WERROR=ON \
   -DVKCOLLIDE_SANITIZE=address,undefined -DVKCOLLIDE_BUILD_SAMPLES=OFF -DVKCOLLIDE_BUILD_BENCHMARKS=OFF -DVKCOLLIDE_INSTALL=OFF \
-  "${unity[@]}" -DVKCOLLIDE_UNITY_LIBRARY=ON >/dev/null
+  "${unity[@]}" -DVKCOLLIDE_TEST_COMPILE_OPTIONS=-O0 >/dev/null
 cmake -S "$src" -B build-host-only -G Ninja -DVKCOLLIDE_HOST_ONLY=ON -DVKCOLLIDE_WERROR=ON >/dev/null
 cmake --build build-asan -j "$jobs" --target vkcollide_sanitized_suite
 ctest --test-dir build-asan -j "$jobs" -L sanitized --output-on-failure --no-tests=error

@@ -98,9 +98,8 @@ struct ObjectOptions {
 // candidate pair (the filter); about 100 bytes per triangle, 20 per footprint (2 to 10 per
 // triangle at the automatic resolution) and 12 per candidate of device memory; on the
 // host only the surviving pairs (within a few per cent of the intersecting ones for
-// different objects; more for self-collision) are read, in place, and tested. H200,
-// stage alone: 2.56M triangles overlapping deeply 3.8 ms, a pile of 60 meshes (610K)
-// 0.8 ms, a deforming 100K pair 0.2 ms. One submission; nothing is measured first.
+// different objects; more for self-collision) are read, in place, and tested. One
+// submission; nothing is measured first (measured times: docs/results.md).
 // It uses resolution (cells per side), direction, region and bad_objects; it ignores
 // layer_cap, dual, packing, backend, coverage, open_epsilon, closed_epsilon and
 // measure_layers (they shape the sampling of rays, which it does not do), and runs
@@ -188,14 +187,13 @@ struct DetectSettings {
     // How the thread that collects a detection waits for its GPU work: it sleeps until
     // shortly (0.15 ms) before the work's expected end (the submission time plus the last
     // detection's GPU time), then polls the GPU's fence for up to wait_poll_us
-    // microseconds, then sleeps for the rest of timeout_ms. A sleeping wait alone wakes
-    // the thread 0.05-0.2 ms after the GPU finishes (NVIDIA's driver on an H200,
-    // docs/results.md); polling wakes it at once, and keeps one core busy for at most about
-    // wait_poll_us + 150 microseconds per detection. While it polls, the world calls its
-    // executor's prepare() (WorldOptions::executor's, or its own pool's: that one keeps as
-    // many workers awake as the last detection's narrow phase used, when it had 256 pairs
-    // or more, and those cores spin for the same time), so they start on the pairs at once.
-    // 0: sleep only.
+    // microseconds, then sleeps for the rest of timeout_ms. A sleeping wait alone may wake
+    // the thread well after the GPU finishes (docs/results.md measures it); polling wakes
+    // it at once, and keeps one core busy for at most about wait_poll_us + 150
+    // microseconds per detection. While it polls, the world calls its executor's prepare()
+    // (WorldOptions::executor's, or its own pool's: that one keeps as many workers awake as
+    // the last detection's narrow phase used, when it had 256 pairs or more, and those
+    // cores spin for the same time), so they start on the pairs at once. 0: sleep only.
     std::uint32_t wait_poll_us = 500;
     // Most colliding pairs a detection returns. When the exact phase finds more, the
     // result holds max_pairs of them (the same ones for the same input, not necessarily
@@ -210,8 +208,7 @@ struct DetectSettings {
     // one triangle give k^2/2 pairs. Either way the world stays usable after the error.
     // Peeling: the pairs of candidate triangles whose boxes overlap, which the narrow phase
     // sweeps (DetectStats::narrow.sap_pairs, up to 8 bytes each). Real scenes make about 9
-    // per candidate (8.7M for 1M candidates, docs/narrow_phase.md); 2^27 = 134M takes
-    // about a second to sweep on two cores.
+    // per candidate (8.7M for 1M candidates; docs/narrow_phase.md measures the sweep's time).
     // Reliable: the GPU cell stage's work and memory (docs/stability.md, "Limits"): the
     // cells of the triangles' footprint boxes (each footprint costs 20 bytes of GPU memory)
     // and the candidate pairs the cells form (12 bytes each, DetectStats::cells.candidates)
@@ -231,7 +228,7 @@ struct DetectSettings {
     // the region where those boxes overlap, sorts each ray's hits and walks them. Cost:
     // GPU time about one sampling pass of those objects at that resolution, 72 bytes per
     // triangle and 4 + 8 x (most hits on one ray) bytes per ray of GPU memory
-    // (docs/contacts.md measures it: on lavapipe it adds 3-60 % to a detection).
+    // (docs/contacts.md measures it).
     bool contacts = false;
     // Contact geometry of the intersecting pairs (vkcollide/contacts.hpp, docs/contacts.md):
     // where each pair meets (a segment, a point or a coplanar overlap, open surfaces
@@ -602,10 +599,8 @@ public:
     // needed them, else at the next one that does (not at all while `direction`,
     // `resolution` and `open_epsilon` are given).
     // Cost: about the time to write 12 bytes per vertex twice, once over the bus when the
-    // upload buffer is device memory: 0.6-0.9 ms per million vertices on two cores with the
-    // upload buffer in host memory (lavapipe); docs/api.md, "Costs", has the measurements
-    // and where the time goes. Measuring the shapes added 0-0.045 ms to a frame's updates
-    // of two deforming 50K-500K-triangle meshes (an H200 host, 16 threads; docs/results.md).
+    // upload buffer is device memory; measuring the shapes adds a little to it. docs/api.md,
+    // "Costs", and docs/results.md have the measurements and where the time goes.
     // The inside-out check of DetectStats::mesh_warnings is made by addMesh, not here: a
     // deformation rarely turns a mesh inside out, and a pass over its triangles per frame
     // would cost a deforming mesh about as much as this call's own copy.
@@ -642,8 +637,8 @@ public:
     [[nodiscard]] Result<DetectResult> detect(const DetectSettings& settings = {});
     // detect() into a result the caller keeps from frame to frame: the memory of its pairs,
     // responses and pair contacts is reused, so a loop that passes the same DetectResult every frame asks
-    // the system for fresh pages only when they outgrow it (1.7M pairs: filling a fresh
-    // 27 MB vector costs more than sorting it; docs/results.md). Every field is overwritten
+    // the system for fresh pages only when they outgrow it (filling fresh pages can cost
+    // more than sorting the pairs: docs/results.md). Every field is overwritten
     // with what detect() would return; on failure io_result holds no result (its pairs and
     // responses may be empty) and the error is returned. collectInto() is collect()'s form.
     [[nodiscard]] Result<void> detectInto(DetectResult& io_result, const DetectSettings& settings = {});

@@ -39,16 +39,16 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--resolution" && i + 1 < argc) settings.resolution = static_cast<std::uint32_t>(std::atoi(argv[++i]));
-        else if (a == "--cap" && i + 1 < argc) settings.layer_cap = static_cast<std::uint32_t>(std::atoi(argv[++i]));
+        else if (a == "--cap" && i + 1 < argc) settings.peeling.layer_cap = static_cast<std::uint32_t>(std::atoi(argv[++i]));
         else if (a == "--frames" && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
         else if (a == "--backend" && i + 1 < argc) {
             const std::string b = argv[++i];
-            if (b == "raster") settings.backend = SamplingBackend::Raster;
-            else if (b == "compute") settings.backend = SamplingBackend::Compute;
-            else if (b == "auto") settings.backend = SamplingBackend::Auto;
+            if (b == "raster") settings.peeling.backend = SamplingBackend::Raster;
+            else if (b == "compute") settings.peeling.backend = SamplingBackend::Compute;
+            else if (b == "auto") settings.peeling.backend = SamplingBackend::Auto;
             else return fail("--backend takes raster, compute or auto");
-        } else if (a == "--dual") settings.dual = true;
-        else if (a == "--paper-packing") settings.packing = PackingMethod::Paper;
+        } else if (a == "--dual") settings.peeling.dual = true;
+        else if (a == "--paper-packing") settings.peeling.packing = PackingMethod::Paper;
         else return fail("unknown argument " + a + " (use --resolution N, --dual, --paper-packing, --cap L, --frames K, --backend B)");
     }
 

@@ -79,7 +79,7 @@ struct ObjectOptions {
 
 // Every field left empty is chosen from the scene (DetectStats::settings_note says how).
 //
-// The method (DetectSettings::method):
+// The method (DetectSettings::method), and what it reads:
 //
 // Reliable (the default). A grid of N x N cells across the image plane of `direction`
 // (the grid's square fitted to the scene, or `region`; cells on its border reach to
@@ -100,63 +100,46 @@ struct ObjectOptions {
 // host only the surviving pairs (within a few per cent of the intersecting ones for
 // different objects; more for self-collision) are read, in place, and tested. One
 // submission; nothing is measured first (measured times: docs/results.md).
-// It uses resolution (cells per side), direction, region and bad_objects; it ignores
-// layer_cap, dual, packing, backend, coverage, open_epsilon, closed_epsilon and
-// measure_layers (they shape the sampling of rays, which it does not do), and runs
-// axes = 3 as 1 (one grid finds everything; the note says so).
+// It reads the top-level fields (resolution: cells per side), `reliable`, `contacts`,
+// `proximity` and `limits`; it ignores `peeling` (it shapes the sampling of rays, which
+// it does not do), except that it runs peeling.axes = 3 as 1 (one grid finds everything;
+// the note says so).
 //
 // Peeling (the paper). Depth peeling along N x N parallel rays, the triangles near rays
 // that cross two surfaces read back and paired on the host. Misses what no ray centre
 // sees (sub-pixel, sliver and edge-on triangles, touching contacts: docs/stability.md
-// measures each case and the settings that mitigate it); every field below applies.
-struct DetectSettings {
-    DetectMethod method = DetectMethod::Reliable;
-    // Reliable: cells per side, any integer in [1, 16384]. Automatic: about
-    // kCellsPerEdge (spirv/common/config.h; 2) cells per typical projected triangle edge across
-    // the scene's extent, within [kMinAutoCells, kMaxAutoCells] and at most
-    // kMaxCellsPerTriangle cells per triangle.
-    // Peeling: rays per image side, a power of two in [4, 16384]. Automatic: about four
-    // pixels per typical triangle edge across the scene's extent, within [64, 2048].
-    // Typical edges: measured for host meshes, ObjectOptions::typical_edge_length for GPU
-    // meshes; the extent: host meshes' boxes and, with GPU meshes, the scene box the last
-    // detection measured on the GPU (the first detection of a world has only the host's).
-    std::optional<std::uint32_t> resolution;
-    // Projection direction. Automatic: the world axis along which the most triangle area
-    // faces (host meshes' area-weighted normals, measured after their geometry changes; GPU
-    // meshes, whose geometry the host never sees, counted as facing like the faces of the
-    // last measured scene box), so a flat cloth is seen face-on, not edge-on. Ties: z,
-    // then y, then x.
-    std::optional<std::array<float, 3>> direction;
-    // Peeling: most layers to peel; rays deeper than this count as collision rays
-    // (conservative). 0: as many as the scene's depth complexity (measured), no more.
+// measures each case and the settings that mitigate it). It reads the top-level fields
+// (resolution: rays per side), `peeling`, `contacts` and `limits`; `reliable` and
+// `proximity` belong to the reliable method (what they ask for is refused by name here).
+
+// Read only by the peeling method (DetectMethod::Peeling).
+struct PeelingSettings {
+    // Most layers to peel; rays deeper than this count as collision rays (conservative).
+    // 0: as many as the scene's depth complexity (measured), no more.
     std::uint32_t layer_cap = 0;
-    bool dual = false;  // peeling: peel from the front and the back at once (half the passes)
-    PackingMethod packing = PackingMethod::Scan;       // peeling
-    SamplingBackend backend = SamplingBackend::Auto;  // peeling
-    // Peeling, open surfaces: two hits closer than this along a ray (world units) may
-    // collide. Automatic: half the typical edge length of the open objects.
+    bool dual = false;  // peel from the front and the back at once (half the passes)
+    PackingMethod packing = PackingMethod::Scan;
+    SamplingBackend backend = SamplingBackend::Auto;
+    // Open surfaces: two hits closer than this along a ray (world units) may collide.
+    // Automatic: half the typical edge length of the open objects.
     std::optional<float> open_epsilon;
-    // Sample only this world box (min x, y, z, max x, y, z); default: fit to the scene.
-    // Reliable: the grid's square spans this box's extent; what lies outside falls into
-    // the border cells (slower, never missed).
-    std::optional<std::array<float, 6>> region;
-    // Peeling, detect() only: measure the depth complexity before peeling (one extra host
-    // wait, exactly the layers needed). Off, and always in submit(): peel as many layers
-    // as the last detection measured (rays that need more become collision rays and the
+    // detect() only: measure the depth complexity before peeling (one extra host wait,
+    // exactly the layers needed). Off, and always in submit(): peel as many layers as the
+    // last detection measured (rays that need more become collision rays and the
     // statistics say so); the first detection of a world measures.
     bool measure_layers = true;
 
-    // Peeling, beyond the paper (docs/stability.md measures each on the failure cases):
+    // Beyond the paper (docs/stability.md measures each on the failure cases):
     // Sampling directions: 1 (the paper), or 3: also the two directions perpendicular to
     // `direction`; each triangle's candidates from the three are united (their kept
     // regions mapped back to world boxes) and tested once. About 3x the GPU time.
+    // The reliable method runs 3 as 1 (resolveSettings says so).
     std::uint32_t axes = 1;
     Coverage coverage = Coverage::Centre;
     // Depth-epsilon policy for closed surfaces (world units): leaving one closed surface
     // and entering the next across a gap of at most this along a ray counts as touching
     // (a collision ray). 0: only exact depth ties, ordered front before back, do.
     float closed_epsilon = 0;
-    BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
     // Depth-aware separation (docs/broadphase.md): rays also record where two consecutive
     // hits may collide (triangles of different objects, or of one self-colliding object and
     // not neighbours, whose surfaces come within a pixel of each other in depth), and a
@@ -168,12 +151,87 @@ struct DetectSettings {
     // overlap deeply (about as many on coarse piles). Costs 48 bytes per triangle and 19
     // per ray of GPU memory, and a little GPU time per peeling step.
     bool depth_aware = true;
-    // Peeling: also return where the collision rays were (DetectResult::collision_rays), as
+    // Also return where the collision rays were (DetectResult::collision_rays), as
     // world-space segments, for pictures and debugging. Costs a 4-byte-per-ray readback and
     // a host pass over the ray image. The reliable method samples no rays: refused there.
     bool collision_rays = false;
+};
 
-    // Limits (docs/stability.md, "Limits"):
+// Read only by the reliable method (DetectMethod::Reliable, the default); the peeling
+// method refuses by name what it cannot do (exact Gpu, pair_sort Gpu, device_pairs).
+struct ReliableSettings {
+    // Where the exact triangle-triangle test decides the pairs the GPU's filter keeps
+    // (docs/exact_gpu.md). Gpu (Auto where the device has shaderFloat64): the pair pass
+    // decides every candidate exactly in double-precision expansion arithmetic and applies
+    // the neighbour rule, so only intersecting pairs are read back and the CPU computes
+    // their responses alone. Cpu: the filter's survivors are read back and the CPU narrow
+    // phase tests them (the reference path, and the only one without shaderFloat64). The
+    // pairs are the same either way; DetectStats::gpu_exact_tests and ::cpu_exact_tests say
+    // which ran. Peeling decides on the CPU: Gpu is refused there.
+    ExactDecision exact = ExactDecision::Auto;
+    // Exact decision on the GPU, no device_pairs: where the host result's pairs are put in
+    // order (PairSort; docs/exact_gpu.md). Gpu: sorted on the GPU and read back in order, so
+    // the CPU only computes the responses; Cpu: the narrow phase sorts them (the reference
+    // path). Same pairs and responses either way; DetectStats::reliable.pairs_sorted_on_gpu
+    // says which ran. Gpu is refused where device_pairs would be (peeling, exact Cpu, no
+    // shaderFloat64, a pair filter the world applies on the host only); Auto then sorts on
+    // the CPU. With engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
+    PairSort pair_sort = PairSort::Auto;
+
+    // With the exact decision on the GPU (exact Auto or Gpu, a device with shaderFloat64):
+    // the detection also leaves its pairs on the GPU, in buffers the world owns, sorted as
+    // DetectResult::pairs, for the engine's next command buffer (DevicePairs below;
+    // docs/api.md, "Results on the GPU"). Refused by name with the peeling method, with
+    // exact Cpu, without shaderFloat64 (UnsupportedFeature), and with a pair filter the
+    // world applies on the host only (more than kMaxFilterMaskObjects live objects). The
+    // host result is unchanged. Costs GPU passes over the survivors and the triangles
+    // (DetectStats::reliable.sorting_ms) and 16 bytes per pair of capacity plus 12 per
+    // triangle and 4 per survivor of capacity of device memory.
+    bool device_pairs = false;
+    // Pairs the device buffer holds. 0: automatic, the reliable method's survivor capacity
+    // (it grows with the scene and holds every pair of a complete run: no overflow). A
+    // smaller one: the first `device_pair_capacity` pairs in order are written and the
+    // header says kDevicePairsOverflow with the count needed (never a silent drop); at most
+    // kMaxDevicePairCapacity.
+    std::uint32_t device_pair_capacity = 0;
+    // With device_pairs: false leaves the pairs on the GPU only, for an engine that reads
+    // them there. Nothing is read back and no host narrow phase runs: DetectResult::pairs
+    // and ::responses stay empty, DetectStats::reliable.device_pairs_found says how many
+    // pairs the buffers hold, and the survivors stay in device-local memory. Refused without
+    // device_pairs and with contacts.objects (they are built from the host's pairs).
+    bool host_pairs = true;
+};
+
+// Contacts beyond the triangle pairs (vkcollide/contacts.hpp, docs/contacts.md). Either
+// method; the contacts are the same whatever the method.
+struct ContactSettings {
+    // Object-level contacts: for every pair of closed objects whose volumes overlap, the
+    // intersection volume, a contact normal, the penetration depth along it and the
+    // centroid, in DetectResult::contacts. Off by default: it is a second GPU stage after
+    // the broad phase (two short submissions, waited for in detect() or collect(): the
+    // first measures the objects' boxes), which draws the closed objects whose boxes
+    // overlap another's along `resolution`^2 rays across the region where those boxes
+    // overlap, sorts each ray's hits and walks them. Cost: GPU time about one sampling pass
+    // of those objects at that resolution, 72 bytes per triangle and 4 + 8 x (most hits on
+    // one ray) bytes per ray of GPU memory (docs/contacts.md measures it).
+    bool objects = false;
+    // Contact geometry of the intersecting pairs: where each pair meets (a segment, a point
+    // or a coplanar overlap, open surfaces included) and a normal, in
+    // DetectResult::pair_contacts, and per pair of objects the total length, area and normal
+    // in ::pair_contact_totals. Host meshes only (their vertices are on the host; engine
+    // meshes are refused by name). Off by default: computed on the host after the narrow
+    // phase (DetectStats::contacts.geometry_ms).
+    bool geometry = false;
+    // Object-level contacts: rays across the longer side of the region where closed
+    // objects' boxes overlap, an integer in [kMinContactResolution, kMaxContactResolution]
+    // (16 .. 4096). The error of the volume shrinks about linearly with it
+    // (docs/contacts.md). Automatic: kDefaultContactResolution (spirv/contacts/contacts.h; 128).
+    std::optional<std::uint32_t> resolution;
+};
+
+// Bounds on a detection's time, memory and result (docs/stability.md, "Limits"). Both
+// methods.
+struct LimitSettings {
     // Longest wait for all of the detection's GPU work together, in milliseconds: every
     // submission, the reliable method's reruns after a buffer grew, each direction, the
     // runs without bad engine meshes and the contacts' submissions share it, and nothing
@@ -217,78 +275,42 @@ struct DetectSettings {
     // spheres overlapping deeply need 15.6M box cells, 5.2e8 comparisons and 181K
     // candidates at the automatic resolution.
     std::uint64_t max_candidate_pairs = std::uint64_t{1} << 27;
+};
 
-    // Object-level contacts (vkcollide/contacts.hpp, docs/contacts.md): for every pair of
-    // closed objects whose volumes overlap, the intersection volume, a contact normal, the
-    // penetration depth along it and the centroid, in DetectResult::contacts. Either
-    // method; the contacts are the same whatever the method. Off by default: it is a
-    // second GPU stage after the broad phase (two short submissions, waited for in
-    // detect() or collect(): the first measures the objects' boxes), which draws the
-    // closed objects whose boxes overlap another's along contact_resolution^2 rays across
-    // the region where those boxes overlap, sorts each ray's hits and walks them. Cost:
-    // GPU time about one sampling pass of those objects at that resolution, 72 bytes per
-    // triangle and 4 + 8 x (most hits on one ray) bytes per ray of GPU memory
-    // (docs/contacts.md measures it).
-    bool contacts = false;
-    // Contact geometry of the intersecting pairs (vkcollide/contacts.hpp, docs/contacts.md):
-    // where each pair meets (a segment, a point or a coplanar overlap, open surfaces
-    // included) and a normal, in DetectResult::pair_contacts, and per pair of objects the
-    // total length, area and normal in ::pair_contact_totals. Either method; host meshes only
-    // (their vertices are on the host; engine meshes are refused by name). Off by default:
-    // computed on the host after the narrow phase (DetectStats::contact_geometry_ms).
-    bool contact_geometry = false;
-    // Rays across the longer side of the region where closed objects' boxes overlap, an
-    // integer in [kMinContactResolution, kMaxContactResolution] (16 .. 4096). The error of
-    // the volume shrinks about linearly with it (docs/contacts.md). Automatic:
-    // kDefaultContactResolution (spirv/contacts/contacts.h; 128).
-    std::optional<std::uint32_t> contact_resolution;
+struct DetectSettings {
+    // Both methods.
+    DetectMethod method = DetectMethod::Reliable;
+    // Reliable: cells per side, any integer in [1, 16384]. Automatic: about
+    // kCellsPerEdge (spirv/common/config.h; 2) cells per typical projected triangle edge across
+    // the scene's extent, within [kMinAutoCells, kMaxAutoCells] and at most
+    // kMaxCellsPerTriangle cells per triangle.
+    // Peeling: rays per image side, a power of two in [4, 16384]. Automatic: about four
+    // pixels per typical triangle edge across the scene's extent, within [64, 2048].
+    // Typical edges: measured for host meshes, ObjectOptions::typical_edge_length for GPU
+    // meshes; the extent: host meshes' boxes and, with GPU meshes, the scene box the last
+    // detection measured on the GPU (the first detection of a world has only the host's).
+    std::optional<std::uint32_t> resolution;
+    // Projection direction. Automatic: the world axis along which the most triangle area
+    // faces (host meshes' area-weighted normals, measured after their geometry changes; GPU
+    // meshes, whose geometry the host never sees, counted as facing like the faces of the
+    // last measured scene box), so a flat cloth is seen face-on, not edge-on. Ties: z,
+    // then y, then x.
+    std::optional<std::array<float, 3>> direction;
+    // Sample only this world box (min x, y, z, max x, y, z); default: fit to the scene.
+    // Reliable: the grid's square spans this box's extent; what lies outside falls into
+    // the border cells (slower, never missed).
+    std::optional<std::array<float, 6>> region;
+    BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
 
-    // Reliable: where the exact triangle-triangle test decides the pairs the GPU's filter
-    // keeps (docs/exact_gpu.md). Gpu (Auto where the device has shaderFloat64): the pair
-    // pass decides every candidate exactly in double-precision expansion arithmetic and
-    // applies the neighbour rule, so only intersecting pairs are read back and the CPU
-    // computes their responses alone. Cpu: the filter's survivors are read back and the
-    // CPU narrow phase tests them (the reference path, and the only one without
-    // shaderFloat64). The pairs are the same either way; DetectStats::gpu_exact_tests and
-    // ::cpu_exact_tests say which ran. Peeling decides on the CPU: Gpu is refused there.
-    ExactDecision exact = ExactDecision::Auto;
-    // Reliable, exact decision on the GPU, no device_pairs: where the host result's pairs are
-    // put in order (PairSort; docs/exact_gpu.md). Gpu: sorted on the GPU and read back in
-    // order, so the CPU only computes the responses; Cpu: the narrow phase sorts them (the
-    // reference path). Same pairs and responses either way; DetectStats::pairs_sorted_on_gpu
-    // says which ran. Gpu is refused where device_pairs would be (peeling, exact Cpu, no
-    // shaderFloat64, a pair filter the world applies on the host only); Auto then sorts on
-    // the CPU. With engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
-    PairSort pair_sort = PairSort::Auto;
-
-    // Reliable, with the exact decision on the GPU (exact Auto or Gpu, a device with
-    // shaderFloat64): the detection also leaves its pairs on the GPU, in buffers the world
-    // owns, sorted as DetectResult::pairs, for the engine's next command buffer (DevicePairs
-    // below; docs/api.md, "Results on the GPU"). Refused by name with the peeling method,
-    // with exact Cpu, without shaderFloat64 (UnsupportedFeature), and with a pair filter
-    // the world applies on the host only (more than kMaxFilterMaskObjects live objects).
-    // The host result is unchanged. Costs GPU passes over the survivors and the triangles
-    // (DetectStats::sorting_ms) and 16 bytes per pair of capacity plus 12 per triangle and
-    // 4 per survivor of capacity of device memory.
-    bool device_pairs = false;
-    // Pairs the device buffer holds. 0: automatic, the reliable method's survivor capacity
-    // (it grows with the scene and holds every pair of a complete run: no overflow). A
-    // smaller one: the first `device_pair_capacity` pairs in order are written and the
-    // header says kDevicePairsOverflow with the count needed (never a silent drop); at most
-    // kMaxDevicePairCapacity.
-    std::uint32_t device_pair_capacity = 0;
-    // With device_pairs: false leaves the pairs on the GPU only, for an engine that reads
-    // them there. Nothing is read back and no host narrow phase runs: DetectResult::pairs
-    // and ::responses stay empty, DetectStats::device_pairs_found says how many pairs the
-    // buffers hold, and the survivors stay in device-local memory. Refused without
-    // device_pairs and with contacts (they are built from the host's pairs).
-    bool host_pairs = true;
-
+    PeelingSettings peeling;    // the peeling method only
+    ReliableSettings reliable;  // the reliable method only
+    ContactSettings contacts;   // either method
     // Reliable: also every vertex-triangle and edge-edge pair within a distance, with its
     // distance, closest points and normal, in DetectResult::proximity (vkcollide/
     // proximity.hpp, docs/proximity.md). Off (distance 0) by default. Host meshes only (their
     // indices say which primitives neighbour each other); needs shaderFloat64.
     ProximitySettings proximity;
+    LimitSettings limits;  // either method
 };
 inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
 // PairSort::Auto sorts on the GPU from this many pairs in the world's last detection: below
@@ -313,16 +335,16 @@ struct CellStats {
     std::uint64_t gpu_triangles = 0;    // engine meshes' triangles read back with their vertices (52 bytes each)
     std::uint32_t runs = 1;             // submissions (more after a buffer grew)
     bool filter_ran = false;            // the device has shaderFloat64
-    bool exact_ran = false;  // the pair pass decided exactly (DetectSettings::exact)
+    bool exact_ran = false;  // the pair pass decided exactly (DetectSettings::reliable.exact)
     std::uint64_t exact_tests = 0;  // candidates the GPU's exact test decided (after the filter)
     std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (a bit-identical vertex)
 };
 
 // A host mesh declared closed (ObjectOptions::open false) that is not a closed surface
 // facing outwards. Closed objects are told apart by inside and outside: an inside-out one
-// gets contact volume 0 (DetectSettings::contacts) and, under the peeling method, collision
-// rays wherever a ray crosses it; a holed one has no inside. The pairs of the reliable
-// method do not depend on it. Checked on the host when the mesh is added (holes: its
+// gets contact volume 0 (DetectSettings::contacts.objects) and, under the peeling method,
+// collision rays wherever a ray crosses it; a holed one has no inside. The pairs of the
+// reliable method do not depend on it. Checked on the host when the mesh is added (holes: its
 // topology; inside out: the sign of its volume, one pass over its triangles on the world's
 // executor, then counted under each detection's transform); updateVertices does not
 // re-check, and engine meshes are not checked.
@@ -346,13 +368,13 @@ struct DetectStats {
     std::size_t potentially_colliding_triangles = 0;  // "# pot. coll. tri's"
     std::size_t triangle_tests = 0;                   // "# tri-tri tests"
     std::size_t positive_tests = 0;                   // "# pos. tests"
-    std::size_t gpu_exact_tests = 0;  // of the tests, decided on the GPU (reliable, DetectSettings::exact)
+    std::size_t gpu_exact_tests = 0;  // of the tests, decided on the GPU (reliable, DetectSettings::reliable.exact)
     std::size_t cpu_exact_tests = 0;  // of the tests, decided on the CPU
     // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
     // as DetectResult::pairs would have held) and `count` (those the buffer holds).
     std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
-    bool pairs_sorted_on_gpu = false;  // DetectSettings::pair_sort: the GPU ordered the host result's pairs
-    double contact_geometry_ms = 0;    // DetectSettings::contact_geometry: host wall time
+    bool pairs_sorted_on_gpu = false;  // DetectSettings::reliable.pair_sort: the GPU ordered the host result's pairs
+    double contact_geometry_ms = 0;    // DetectSettings::contacts.geometry: host wall time
     NarrowStats narrow;                               // every narrow-phase counter
     NarrowTimings narrow_timings;                     // the narrow phase's stages (host wall clock)
     CellStats cells;                                  // reliable only
@@ -386,7 +408,7 @@ struct DetectStats {
     double sorting_ms = 0;               // reliable, device_pairs: the GPU's sort of the pairs
     double readback_ms = 0;              // host: reading the header and the records or pairs
     double narrow_ms = 0;                // host: the CPU narrow phase
-    // Contacts (DetectSettings::contacts): the stage's host wall time (both submissions,
+    // Contacts (DetectSettings::contacts.objects): the stage's host wall time (both submissions,
     // waits and reading), its GPU time, and its rays (width x height), the most hits on one
     // ray, the candidate object pairs (closed, allowed, boxes overlapping), rays inside
     // more than 16 objects at once (those extra objects ignored there) and submissions.
@@ -436,7 +458,7 @@ struct ExcludedObject {
     Error error{ErrorCode::InvalidMesh, {}};  // names the object, a bad triangle and the problem
 };
 
-// ---- Results on the GPU (DetectSettings::device_pairs; docs/api.md) ---------------------
+// ---- Results on the GPU (DetectSettings::reliable.device_pairs; docs/api.md) ------------
 //
 // Layout. `pairs`: TrianglePair records (four uint32: object_a, triangle_a, object_b,
 // triangle_b; 16 bytes, tightly packed) at offset 0, `capacity` of them; the first
@@ -484,7 +506,7 @@ struct DevicePairs {
     std::uint32_t slot = 0;            // the detection slot (0 or 1) whose buffers these are
 };
 
-// The collision rays of a peeling detection (DetectSettings::collision_rays): each ray from
+// The collision rays of a peeling detection (DetectSettings::peeling.collision_rays): each ray from
 // where the sampled box begins along its direction to where it ends, in world space.
 struct CollisionRays {
     std::vector<std::array<Float3, 2>> segments;  // every direction's rays, the first direction's first
@@ -494,15 +516,15 @@ struct CollisionRays {
 
 struct DetectResult {
     std::vector<TrianglePair> pairs;
-    // With DetectSettings::device_pairs: where the same pairs are on the GPU (above).
+    // With DetectSettings::reliable.device_pairs: where the same pairs are on the GPU (above).
     std::optional<DevicePairs> device;
     std::vector<TriangleResponse> responses;  // one per colliding triangle, world space
     std::vector<ExcludedObject> excluded;     // engine meshes that failed the GPU check this time
-    // With DetectSettings::contacts: one per pair of closed objects whose volumes overlap
+    // With DetectSettings::contacts.objects: one per pair of closed objects whose volumes overlap
     // or whose triangles intersect (filtered pairs and excluded objects have none), sorted
     // by (object_a, object_b). Empty otherwise.
     std::vector<ObjectContact> contacts;
-    // With DetectSettings::contact_geometry: one per `pairs` entry, same index; and per pair
+    // With DetectSettings::contacts.geometry: one per `pairs` entry, same index; and per pair
     // of objects with intersecting triangles, their sums, sorted by (object_a, object_b).
     std::vector<PairContact> pair_contacts;
     std::vector<ObjectPairContact> pair_contact_totals;
@@ -511,10 +533,10 @@ struct DetectResult {
     std::vector<ProximityPair> proximity;
     // With DetectSettings::proximity: the same pairs on the GPU (vkcollide/proximity.hpp).
     std::optional<DeviceProximity> device_proximity;
-    // With DetectSettings::collision_rays (peeling): where the collision rays were.
+    // With DetectSettings::peeling.collision_rays: where the collision rays were.
     std::optional<CollisionRays> collision_rays;
     DetectStats stats;
-    // DetectSettings::max_pairs was reached: the intersecting pairs found beyond it (not in
+    // DetectSettings::limits.max_pairs was reached: the intersecting pairs found beyond it (not in
     // `pairs`, not in `responses`), and an error (LimitExceeded) that says so. Empty and 0
     // when the result is complete.
     std::uint64_t pairs_left_out = 0;
@@ -528,7 +550,7 @@ enum class WorldState : std::uint8_t {
     Busy,        // a detection failed with Timeout and its GPU work is still running: calls
                  // that would change what that work reads (updateVertices, removeObject)
                  // fail with Timeout, and the next detection first waits for it (within its
-                 // own timeout_ms). Engine buffers given to addGpuMesh stay in use until then.
+                 // own limits.timeout_ms). Engine buffers given to addGpuMesh stay in use until then.
     DeviceLost,  // a detection met a lost device: every later detection fails with
                  // DeviceLost; destroy the world and create a new Context
 };
@@ -597,7 +619,7 @@ public:
     // 4,096 sampled triangles (128 evenly spaced blocks of 32 consecutive ones), on the
     // executor: in this call's own loop while the last detection or resolveSettings()
     // needed them, else at the next one that does (not at all while `direction`,
-    // `resolution` and `open_epsilon` are given).
+    // `resolution` and `peeling.open_epsilon` are given).
     // Cost: about the time to write 12 bytes per vertex twice, once over the bus when the
     // upload buffer is device memory; measuring the shapes adds a little to it. docs/api.md,
     // "Costs", and docs/results.md have the measurements and where the time goes.
@@ -654,7 +676,7 @@ public:
     // removeObject, setSelfCollision and setPairFilter fail with InvalidArgument naming
     // the call (the in-flight work reads what they change).
     // Peeling: submit() peels as many layers as the last detection measured (one
-    // submission; DetectSettings::measure_layers is ignored); when none is known (the first
+    // submission; DetectSettings::peeling.measure_layers is ignored); when none is known (the first
     // detection, or after objects were added or removed) it measures first, with a host
     // wait between two submissions.
     //
@@ -666,7 +688,7 @@ public:
     // queue submissions (peeling with axes 3, or a measuring submission) waits in the first
     // and signals in the last. Timeline waits may be signalled after submit() returns, but
     // not when this submit() measures (above): its host wait would wait for them (up to
-    // timeout_ms). Binary waits follow Vulkan's rule (the signal already submitted).
+    // limits.timeout_ms). Binary waits follow Vulkan's rule (the signal already submitted).
     // If submit() fails, its waits and signals are still submitted (as a batch of only
     // those) so that no engine queue waits forever; except when `sync` itself is invalid
     // (a null semaphore or a 0 stage mask: InvalidArgument, nothing submitted).
@@ -701,7 +723,7 @@ public:
     [[nodiscard]] Result<bool> ready();
     // collect() if ready(), else std::nullopt at once (nothing changed: still in flight).
     [[nodiscard]] Result<std::optional<DetectResult>> tryCollect();
-    // With DetectSettings::device_pairs: the buffers the detection started last (detect(),
+    // With DetectSettings::reliable.device_pairs: the buffers the detection started last (detect(),
     // submit(), record()) writes its pairs into, known as soon as it started, so that the
     // engine can record its reads before collect() (layout, synchronisation and lifetime:
     // "Results on the GPU" above); after its collect() they are DetectResult::device (the

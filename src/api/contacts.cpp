@@ -1,4 +1,4 @@
-// Object-level contacts of one detection (DetectSettings::contacts): the contact stage run
+// Object-level contacts of one detection (DetectSettings::contacts.objects): the contact stage run
 // on the detection's objects (bad engine meshes already left out) along its direction,
 // with the pair filter's answers; its sums turned into ObjectContacts named by ObjectId,
 // each marked contained or not from the detection's triangle pairs.
@@ -52,8 +52,8 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
     passes::ContactInput in;
     in.meshes = meshes;
     in.direction = detected.directions[0];
-    in.resolution = *run.settings.contact_resolution;
-    in.timeout_ns = std::uint64_t{run.settings.timeout_ms} * 1000000;
+    in.resolution = *run.settings.contacts.resolution;
+    in.timeout_ns = std::uint64_t{run.settings.limits.timeout_ms} * 1000000;
     in.deadline = run.deadline;  // what is left of the detection's timeout
     // The filter's answers, as the narrow phase had them (detect.cpp): the kept mask, or
     // the filter itself beyond the mask's object limit.

@@ -79,21 +79,25 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     if (!mask) return mask.error();
     d.broad.pair_mask = *mask;
     const bool filter_on_host_only = pair_filter && !*mask;
-    for (auto ok : {validation::checkSortedOnGpuFilter("device_pairs", s.device_pairs, filter_on_host_only, run.ids.size()),
-                    validation::checkSortedOnGpuFilter("pair_sort Gpu", s.pair_sort == PairSort::Gpu, filter_on_host_only, run.ids.size())})
+    for (auto ok :
+         {validation::checkSortedOnGpuFilter("reliable.device_pairs", s.reliable.device_pairs, filter_on_host_only, run.ids.size()),
+          validation::checkSortedOnGpuFilter("reliable.pair_sort Gpu", s.reliable.pair_sort == PairSort::Gpu, filter_on_host_only,
+                                             run.ids.size())})
         if (!ok) return ok.error();
-    d.broad.device_pairs = s.device_pairs;
-    d.broad.device_pair_capacity = s.device_pair_capacity;
-    d.broad.host_pairs = s.host_pairs;
-    d.broad.sort_on_gpu = !filter_on_host_only && (s.pair_sort == PairSort::Gpu || (s.pair_sort == PairSort::Auto && last_narrow_pairs >= kGpuPairSortFrom));
+    d.broad.device_pairs = s.reliable.device_pairs;
+    d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
+    d.broad.host_pairs = s.reliable.host_pairs;
+    d.broad.sort_on_gpu = !filter_on_host_only && (s.reliable.pair_sort == PairSort::Gpu ||
+                                                   (s.reliable.pair_sort == PairSort::Auto && last_narrow_pairs >= kGpuPairSortFrom));
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();
-    if (s.contact_geometry)
+    if (s.contacts.geometry)
         for (ObjectId id : run.ids)
             if (!objects[id].host)
-                return named(id, Error(ErrorCode::UnsupportedFeature, "contact_geometry reads the triangles' vertices on the host; "
-                                                                      "engine meshes (addGpuMesh) are not supported"));
+                return named(id, Error(ErrorCode::UnsupportedFeature,
+                                       "contacts.geometry reads the triangles' vertices on the host; "
+                                       "engine meshes (addGpuMesh) are not supported"));
     if (s.proximity.distance > 0 && pair_filter && !*mask)
         return Error(ErrorCode::InvalidArgument, "proximity with a pair filter over " + std::to_string(run.ids.size()) +
                                                      " objects: the filter is applied on the host only beyond " +
@@ -102,33 +106,33 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.proximity_capacity = s.proximity.capacity;
     d.broad.resolution = *s.resolution;
     d.broad.direction = *s.direction;
-    d.broad.layer_cap = s.layer_cap;
-    d.broad.dual = s.dual;
-    d.broad.packing = s.packing;
-    d.broad.backend = s.backend;
-    d.broad.open_epsilon = *s.open_epsilon;
-    d.broad.closed_epsilon = s.closed_epsilon;
+    d.broad.layer_cap = s.peeling.layer_cap;
+    d.broad.dual = s.peeling.dual;
+    d.broad.packing = s.peeling.packing;
+    d.broad.backend = s.peeling.backend;
+    d.broad.open_epsilon = *s.peeling.open_epsilon;
+    d.broad.closed_epsilon = s.peeling.closed_epsilon;
     // resolve() turned Best into Conservative or Dilate. The reliable method samples no
     // rays and ignores coverage (checkSettings does not check it then): Centre, so that a
     // Conservative it was given on a device without conservative rasterisation does not
     // break the broad phase's precondition.
-    d.broad.coverage = s.method == DetectMethod::Reliable ? Coverage::Centre : s.coverage;
+    d.broad.coverage = s.method == DetectMethod::Reliable ? Coverage::Centre : s.peeling.coverage;
     d.broad.region = s.region;
     // One clock for the whole detection: every submission, rerun and wait ends by it.
-    d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
-    run.deadline = run.start + std::chrono::milliseconds(s.timeout_ms);
+    d.broad.timeout_ns = std::uint64_t{s.limits.timeout_ms} * 1000000;
+    run.deadline = run.start + std::chrono::milliseconds(s.limits.timeout_ms);
     d.broad.deadline = run.deadline;
-    d.broad.poll_ns = std::uint64_t{s.wait_poll_us} * 1000;
+    d.broad.poll_ns = std::uint64_t{s.limits.wait_poll_us} * 1000;
     // While the wait polls, keep the narrow phase's workers awake as many as a detection
     // like the last one will use: they then take its first loops at once instead of
     // 0.1-0.2 ms later, when the kernel has woken the last of them (docs/narrow_phase.md).
     if (const unsigned wake = narrow::threadsToWake(last_narrow_pairs, executor->threadCount()))
         d.broad.poll_hook = [ex = executor, wake] { ex->prepare(wake); };
-    d.broad.depth_aware = s.depth_aware;
-    d.broad.keep_ray_image = s.collision_rays;  // peeling only (validation)
-    d.broad.max_candidate_pairs = s.max_candidate_pairs;  // the reliable method's GPU budget
-    d.broad.exact_on_gpu = s.exact != ExactDecision::Cpu;  // Gpu was checked against the device
-    d.axes = s.axes;
+    d.broad.depth_aware = s.peeling.depth_aware;
+    d.broad.keep_ray_image = s.peeling.collision_rays;  // peeling only (validation)
+    d.broad.max_candidate_pairs = s.limits.max_candidate_pairs;  // the reliable method's GPU budget
+    d.broad.exact_on_gpu = s.reliable.exact != ExactDecision::Cpu;  // Gpu was checked against the device
+    d.axes = s.peeling.axes;
     d.bad_objects = s.bad_objects;
     run.settings_ms = msSince(run.start);
     if (auto ok = run.detection->start(meshes, d, measure, target); !ok) return noted(describeFailure(run, ok.error()));
@@ -141,7 +145,7 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock,
     run.in_flight = false;
     const auto t0 = Clock::now();
     if (restart_clock) {
-        run.deadline = t0 + std::chrono::milliseconds(run.settings.timeout_ms);
+        run.deadline = t0 + std::chrono::milliseconds(run.settings.limits.timeout_ms);
         run.detection->setDeadline(run.deadline);
     }
     auto r = run.detection->collect();
@@ -177,9 +181,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.method = run_settings.method;
     st.resolution = *run_settings.resolution;
     st.direction = detected.directions[0];
-    st.dual = run_settings.dual;
+    st.dual = run_settings.peeling.dual;
     st.axes = static_cast<std::uint32_t>(broad.size());
-    st.coverage = run_settings.coverage;
+    st.coverage = run_settings.peeling.coverage;
     st.settings_note = run.note;
     for (std::size_t i = 0; i < run_ids.size(); ++i)
         if (const Object& o = objects[run_ids[i]]; o.host && !o.options.open) {
@@ -193,7 +197,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     for (std::uint32_t k = 1; k < broad.size(); ++k)
         if (broad[k].backend != broad[0].backend)
             st.backend_reason += "; axis " + std::to_string(k) + ": " + toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
-    const std::uint32_t cap = run_settings.layer_cap;
+    const std::uint32_t cap = run_settings.peeling.layer_cap;
     for (std::uint32_t k = 0; k < broad.size(); ++k) {
         const passes::BroadPhaseResult& b = broad[k];
         st.triangles = b.triangles;
@@ -226,7 +230,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.submissions += b.host.submissions;
         st.reused_submissions += b.host.reused;
     }
-    if (run_settings.collision_rays) out.collision_rays = collisionRays(broad, st.resolution);
+    if (run_settings.peeling.collision_rays) out.collision_rays = collisionRays(broad, st.resolution);
     if (detected.hasPairs()) {
         const passes::CellStageStats& c = broad[0].cells;
         st.cells = {c.entries,   c.max_cell,      c.deep_cells, c.candidate_cells, c.candidates, c.duplicates,  c.filtered,
@@ -240,8 +244,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     options.may_collide = {};
     // As the objects were at start() (they may have moved since: pipelining).
     for (std::uint32_t i : detected.objects) options.self_collision.push_back(run.meshes[i].self_collision);
-    options.max_pairs = run_settings.max_pairs;
-    options.max_box_pairs = run_settings.max_candidate_pairs;
+    options.max_pairs = run_settings.limits.max_pairs;
+    options.max_box_pairs = run_settings.limits.max_candidate_pairs;
     options.pairs_decided = detected.hasPairs() && broad[0].cells.exact_ran;
     // The filter's kept answers (indices of the live objects the mask was built over), or
     // the filter itself beyond the mask's object limit. The filter must not throw
@@ -304,10 +308,11 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (!narrow) return narrow.error();
     if (narrow->pairs_left_out > 0) {
         out.pairs_left_out = narrow->pairs_left_out;
-        out.incomplete = Error(ErrorCode::LimitExceeded,
-                               "found " + std::to_string(narrow->pairs.size() + narrow->pairs_left_out) +
-                                   " intersecting pairs, more than DetectSettings::max_pairs (" + std::to_string(run_settings.max_pairs) +
-                                   "): kept " + std::to_string(narrow->pairs.size()) + ", left out " + std::to_string(narrow->pairs_left_out));
+        out.incomplete =
+            Error(ErrorCode::LimitExceeded,
+                  "found " + std::to_string(narrow->pairs.size() + narrow->pairs_left_out) +
+                      " intersecting pairs, more than DetectSettings::limits.max_pairs (" + std::to_string(run_settings.limits.max_pairs) +
+                      "): kept " + std::to_string(narrow->pairs.size()) + ", left out " + std::to_string(narrow->pairs_left_out));
     }
     st.narrow_threads = executor->threadCount();
     st.narrow = narrow->stats;
@@ -324,9 +329,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
     if (broad[0].scene_box) measured_box = broad[0].scene_box;
-    if (run.settings.contacts)
+    if (run.settings.contacts.objects)
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
-    if (run.settings.contact_geometry) {
+    if (run.settings.contacts.geometry) {
         if (auto ok = addPairContacts(run, detected, ids, out); !ok) return ok.error();
     } else {
         out.pair_contacts.clear();

@@ -82,7 +82,7 @@ Result<DetectResult> CollisionWorld::Impl::detectCall(const DetectSettings& sett
     auto scope = guard.enter("CollisionWorld::detect");
     if (!scope) return scope.error();
     if (pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
-    if (auto ok = begin(settings, settings.measure_layers, nullptr); !ok) return ok.error();
+    if (auto ok = begin(settings, settings.peeling.measure_layers, nullptr); !ok) return ok.error();
     Run& run = runs[oldest];
     return hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, false, reuse_memory); });
 }
@@ -167,8 +167,9 @@ Result<std::optional<DetectResult>> CollisionWorld::tryCollect() {
 
 Result<DevicePairs> CollisionWorld::devicePairs() const {
     if (!impl_->last_device_pairs)
-        return Error(ErrorCode::InvalidArgument,
-                     "devicePairs: the detection started last did not ask for them (DetectSettings::device_pairs), or none started");
+        return Error(
+            ErrorCode::InvalidArgument,
+            "devicePairs: the detection started last did not ask for them (DetectSettings::reliable.device_pairs), or none started");
     return *impl_->last_device_pairs;
 }
 

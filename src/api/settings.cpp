@@ -96,7 +96,7 @@ void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positi
 // threads once per detection, not once per mesh.
 void CollisionWorld::Impl::measureShapes(const DetectSettings& in) const {
     shapes_wanted_all = !in.direction || !in.resolution;
-    shapes_wanted_open = !in.open_epsilon;
+    shapes_wanted_open = !in.peeling.open_epsilon;
     std::vector<const Object*> stale;
     std::vector<vertex_scans::ShapeMesh> meshes;
     for (const Object& o : objects) {
@@ -201,8 +201,8 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         s.direction = d;
         append(why, buf);
     }
-    if (reliable && s.axes == 3) {  // any other count stays, for the check to name it
-        s.axes = 1;
+    if (reliable && s.peeling.axes == 3) {  // any other count stays, for the check to name it
+        s.peeling.axes = 1;
         append(why, "axes 1 (the reliable method's one grid finds every pair)");
     }
     const double typical_edge = edge_triangles > 0 ? edge_weighted / edge_triangles : 0;
@@ -255,17 +255,17 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         }
         append(why, buf);
     }
-    if (!s.open_epsilon) {
-        s.open_epsilon = open_triangles > 0 ? static_cast<float>(kOpenEpsilonPerEdge * open_edge / open_triangles) : 0.0f;
+    if (!s.peeling.open_epsilon) {
+        s.peeling.open_epsilon = open_triangles > 0 ? static_cast<float>(kOpenEpsilonPerEdge * open_edge / open_triangles) : 0.0f;
         if (open_triangles > 0 && !reliable) append(why, "open epsilon half the open objects' typical edge");
     }
-    if (s.coverage == Coverage::Best) {
-        s.coverage = device().conservative_rasterization ? Coverage::Conservative : Coverage::Dilate;
+    if (s.peeling.coverage == Coverage::Best) {
+        s.peeling.coverage = device().conservative_rasterization ? Coverage::Conservative : Coverage::Dilate;
         if (!reliable)
-            append(why, s.coverage == Coverage::Conservative ? "coverage conservative (the device rasterises conservatively)"
-                                                             : "coverage dilate (no conservative rasterisation on this device)");
+            append(why, s.peeling.coverage == Coverage::Conservative ? "coverage conservative (the device rasterises conservatively)"
+                                                                     : "coverage dilate (no conservative rasterisation on this device)");
     }
-    if (s.contacts && !s.contact_resolution) s.contact_resolution = gpu::kDefaultContactResolution;
+    if (s.contacts.objects && !s.contacts.resolution) s.contacts.resolution = gpu::kDefaultContactResolution;
     if (note) *note = why;
     return s;
 }

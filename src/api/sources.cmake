@@ -4,7 +4,7 @@ list(APPEND VKCOLLIDE_HOST_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/mesh_checks.cpp  # closed meshes: holes and inside-out (no Vulkan)
 )
 list(APPEND VKCOLLIDE_GPU_SOURCES
-  ${CMAKE_CURRENT_LIST_DIR}/collision_rays.cpp  # DetectSettings::collision_rays: ray images to world segments
+  ${CMAKE_CURRENT_LIST_DIR}/collision_rays.cpp  # DetectSettings::peeling.collision_rays: ray images to world segments
   ${CMAKE_CURRENT_LIST_DIR}/contacts.cpp
   ${CMAKE_CURRENT_LIST_DIR}/detect.cpp
   ${CMAKE_CURRENT_LIST_DIR}/engine_mesh.cpp

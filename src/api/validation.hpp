@@ -51,7 +51,7 @@ VkDeviceSize indexBytes(const GpuMeshDesc& desc);
 // (per method), direction, epsilons, region, and (peeling) coverage and backend against
 // each other and the device.
 Result<void> checkSettings(const DetectSettings& resolved, const vk::Device& device);
-// DetectSettings::device_pairs and pair_sort Gpu: the reliable method, the exact decision on
+// DetectSettings::reliable.device_pairs and pair_sort Gpu: the reliable method, the exact decision on
 // the GPU (shaderFloat64), a capacity within kMaxDevicePairCapacity; host_pairs = false only
 // with device_pairs and without contacts (checkSettings calls it).
 Result<void> checkDevicePairs(const DetectSettings& resolved, const vk::Device& device);

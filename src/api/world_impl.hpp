@@ -96,7 +96,7 @@ struct CollisionWorld::Impl {
         DetectSettings settings;
         std::string note;
         std::chrono::steady_clock::time_point start;
-        // When every wait of its GPU work ends (DetectSettings::timeout_ms): start + the
+        // When every wait of its GPU work ends (DetectSettings::limits.timeout_ms): start + the
         // timeout for detect(); submit() and record() restart it at collect().
         std::chrono::steady_clock::time_point deadline;
         double start_ms = 0, wait_ms = 0;  // host: start() (settings, record, submit); collect's wait and readback
@@ -144,7 +144,7 @@ struct CollisionWorld::Impl {
     DevicePairs devicePairsOf(const passes::DevicePairsView& v, const Run& run) const {
         return {v.pairs, v.pairs_address, v.header, v.header_address, v.capacity, static_cast<std::uint32_t>(&run - runs.data())};
     }
-    // Object-level contacts (DetectSettings::contacts), created at the first detection
+    // Object-level contacts (DetectSettings::contacts.objects), created at the first detection
     // that asks for them; used by collect(), one at a time.
     std::unique_ptr<passes::ContactStage> contact_stage;
 

@@ -127,7 +127,7 @@ struct BroadPhaseSettings {
     // outlive the run (until collect); its object count is the run's.
     const ObjectPairMask* pair_mask = nullptr;
     // Methods that form pairs on the GPU: their budget (CellStageSettings::max_candidate_pairs;
-    // DetectSettings::max_candidate_pairs in a detection). Past it the run fails with
+    // DetectSettings::limits.max_candidate_pairs in a detection). Past it the run fails with
     // LimitExceeded.
     std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
     // Methods that form pairs on the GPU: decide them exactly there where the device can

@@ -1,5 +1,5 @@
 // The contact stage: object-level contacts of closed objects from parallel rays
-// (DetectSettings::contacts, docs/contacts.md). It runs after a detection's broad phase on
+// (DetectSettings::contacts.objects, docs/contacts.md). It runs after a detection's broad phase on
 // its own executor, with its own rays, because it needs what the broad phase does not
 // keep: every hit of every closed object along a ray, sorted, at a resolution of the
 // region where objects overlap (not of the scene).

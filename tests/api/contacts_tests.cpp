@@ -1,4 +1,4 @@
-// Object-level contacts (DetectSettings::contacts) through the public API, validation on,
+// Object-level contacts (DetectSettings::contacts.objects) through the public API, validation on,
 // against closed forms: two overlapping spheres (lens volume, centroid, normal along the
 // centre line, depth r1 + r2 - d), a box inside a box (containment, the inner box's
 // volume), a sphere half sunk into a box (half the sphere mesh's volume, the face's
@@ -228,7 +228,7 @@ TEST_CASE("contacts: nested spheres grow the ray lists and every pair is contain
         REQUIRE(id);
         ids.push_back(*id);
     }
-    auto r = world->detect({.contacts = true, .contact_resolution = 64});
+    auto r = world->detect({.contacts = {.objects = true, .resolution = 64}});
     REQUIRE(r);
     CHECK(r->stats.contact_runs >= 2);
     CHECK(r->stats.contact_layers >= 18);
@@ -252,10 +252,10 @@ TEST_CASE("contacts: bad settings are named, no closed object gives no contact",
     REQUIRE(none);
     CHECK(none->contacts.empty());
     for (std::uint32_t bad : {0u, 15u, 4097u}) {
-        auto r = world->detect({.contacts = true, .contact_resolution = bad});
+        auto r = world->detect({.contacts = {.objects = true, .resolution = bad}});
         REQUIRE_FALSE(r);
         CHECK(r.error().code() == ErrorCode::InvalidArgument);
-        CHECK(r.error().message().find("contact_resolution") != std::string::npos);
+        CHECK(r.error().message().find("contacts.resolution") != std::string::npos);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -178,7 +178,7 @@ TEST_CASE("record() puts the detection into the engine's command buffer, where i
         REQUIRE_FALSE(refused);
         CHECK(mentions(refused.error(), "record: the peeling method measures the depth complexity first"));
         DetectSettings three = peeling();
-        three.axes = 3;
+        three.peeling.axes = 3;
         auto axes = world->record({engine.cmd, timeline->handle(), 2}, three);
         REQUIRE_FALSE(axes);
         CHECK(mentions(axes.error(), "three sampling directions make three submissions"));

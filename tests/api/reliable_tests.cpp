@@ -308,14 +308,14 @@ TEST_CASE("reliable: self-collision and automatic settings", "[api][gpu][reliabl
     REQUIRE(s);
     REQUIRE(fs);
     CHECK(*s->direction == std::array<float, 3>{0, 0, 1});  // the cloth faces z
-    CHECK(s->axes == 1);
+    CHECK(s->peeling.axes == 1);
     const double ratio = double(*fs->resolution) / double(*s->resolution);
     CHECK(ratio > 1.8);
     CHECK(ratio < 2.2);
-    auto three = coarse_world->resolveSettings({.axes = 3});
+    auto three = coarse_world->resolveSettings({.peeling = {.axes = 3}});
     REQUIRE(three);
-    CHECK(three->axes == 1);  // one grid finds everything
-    auto r = coarse_world->detect({.axes = 3});
+    CHECK(three->peeling.axes == 1);  // one grid finds everything
+    auto r = coarse_world->detect({.peeling = {.axes = 3}});
     REQUIRE(r);
     CHECK(r->stats.axes == 1);
     CHECK(mentions(r->stats.settings_note, "axes 1"));

@@ -90,7 +90,7 @@ TEST_CASE("collision_rays returns the peeling detection's collision rays as worl
     CHECK_FALSE(plain->collision_rays);
 
     DetectSettings s = fixedSettings(128);
-    s.collision_rays = true;
+    s.peeling.collision_rays = true;
     auto result = world->detect(s);
     REQUIRE(result);
     CHECK(result->pairs == plain->pairs);  // the rays are read back, nothing else changes
@@ -112,7 +112,7 @@ TEST_CASE("collision_rays returns the peeling detection's collision rays as worl
 
     // The reliable method samples no rays: refused by name.
     DetectSettings reliable;
-    reliable.collision_rays = true;
+    reliable.peeling.collision_rays = true;
     auto refused = world->detect(reliable);
     REQUIRE_FALSE(refused);
     CHECK(refused.error().code() == ErrorCode::InvalidArgument);
@@ -360,7 +360,7 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     CHECK(*s->direction == std::array<float, 3>{0, 0, 1});
     REQUIRE(s->resolution);
     CHECK(*s->resolution == 256);
-    CHECK(*s->open_epsilon > 0);
+    CHECK(*s->peeling.open_epsilon > 0);
     // Finer meshes ask for more rays.
     auto fine = clothThroughSphere(2.0f);
     REQUIRE(fine);
@@ -387,7 +387,7 @@ TEST_CASE("a world used after its Context is destroyed: every call works as befo
     // An engine mesh made before the Context goes (its buffers keep the device alive too).
     EngineMesh engine = engineCopy(ctx.device(), scene->objects[0].mesh);
     DetectSettings peeling = fixedSettings(128);
-    peeling.coverage = Coverage::Best;  // resolved from the device's features
+    peeling.peeling.coverage = Coverage::Best;  // resolved from the device's features
     const auto reliable_before = world->detect({});
     REQUIRE(reliable_before);
     const auto peeling_before = world->detect(peeling);
@@ -397,7 +397,7 @@ TEST_CASE("a world used after its Context is destroyed: every call works as befo
     ctx.destroyContext();
     auto resolved = world->resolveSettings(peeling);
     REQUIRE(resolved);
-    CHECK(resolved->coverage != Coverage::Best);
+    CHECK(resolved->peeling.coverage != Coverage::Best);
     auto reliable_after = world->detect({});
     REQUIRE(reliable_after);
     CHECK(reliable_after->pairs == reliable_before->pairs);

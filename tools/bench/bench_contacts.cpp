@@ -126,7 +126,7 @@ int main(int argc, char** argv) {
             if (auto id = (*world)->addMesh(mesh, {.transform = at}); !id) return std::fprintf(stderr, "%s\n", id.error().message().c_str()), 1;
         for (const char* dir : {"auto", "diagonal"})
             for (std::uint32_t res : resolutions) {
-                DetectSettings s{.contacts = true, .contact_resolution = res};
+                DetectSettings s{.contacts = {.objects = true, .resolution = res}};
                 if (std::string(dir) == "diagonal") s.direction = std::array<float, 3>{0.577f, -0.577f, 0.577f};
                 double gpu = 0, stage = 0, total = 0;
                 std::optional<DetectResult> last;

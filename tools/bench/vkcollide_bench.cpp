@@ -298,7 +298,7 @@ int main(int argc, char** argv) {
                     if (ref.crossing[k]) found_crossing += std::binary_search(r.pairs.begin(), r.pairs.end(), ref.pairs[k]);
                 const std::size_t crossing = ref.crossingCount();
                 std::size_t found_pairs = r.pairs.size();
-                if (!settings.host_pairs) {
+                if (!settings.reliable.host_pairs) {
                     // The pairs stayed on the GPU: their count against the reference's.
                     const double n = st.device_pairs_found, m = double(ref.pairs.size());
                     found_pairs = st.device_pairs_found;
@@ -316,7 +316,7 @@ int main(int argc, char** argv) {
                               "%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.6f,%.2f,%.1f,%u,%.3f,%d,",
                               device.c_str(), setName(scene->set), scene->name.c_str(), motionName(scene->motion), triangles, ids.size(), gpu_objects,
                               opt.scale, v.name.c_str(), f, toString(st.backend), st.resolution, st.direction[0], st.direction[1], st.direction[2],
-                              st.axes, toString(st.coverage), st.dual ? 1 : 0, settings.layer_cap, settings.packing == PackingMethod::Paper ? "paper" : "scan",
+                              st.axes, toString(st.coverage), st.dual ? 1 : 0, settings.peeling.layer_cap, settings.peeling.packing == PackingMethod::Paper ? "paper" : "scan",
                               v.open ? 1 : 0, v.pipelined ? 2 : v.async ? 1 : 0, st.depth_complexity, st.layers, st.peel_passes, st.sampling_ms, st.merging_ms,
                               st.separation_ms, st.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms, update_ms, total_ms, st.collision_rays,
                               st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, st.positive_tests, found_pairs,
@@ -338,7 +338,7 @@ int main(int argc, char** argv) {
                 sum.backend = st.method == DetectMethod::Reliable ? "cells" : toString(st.backend);
                 sum.resolution = st.resolution;
                 ++sum.frames;
-                sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += settings.host_pairs ? cmp.true_positives : std::min(found_pairs, ref.pairs.size()), sum.reference += ref.pairs.size();
+                sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += settings.reliable.host_pairs ? cmp.true_positives : std::min(found_pairs, ref.pairs.size()), sum.reference += ref.pairs.size();
                 sum.downloaded += st.triangles_downloaded;
                 sum.total_ms += total_ms, sum.gpu_ms += gpu_ms, sum.narrow_ms += st.narrow_ms;
                 sum.precision_min = std::min(sum.precision_min, cmp.precision);

@@ -159,7 +159,7 @@ int runDetect(const CommandLine& line) {
         const double read_ms = render::msSince(read_start);
         // --rays: the frames that are drawn also return where their collision rays were.
         vkcollide::DetectSettings frame_settings = line.settings;
-        frame_settings.collision_rays = line.rays && picture && (line.sequence || f + 1 == frames);
+        frame_settings.peeling.collision_rays = line.rays && picture && (line.sequence || f + 1 == frames);
         result = (*world)->detect(frame_settings);
         if (!result) return fail(nameSettingOptions(line, result.error().message()));
         total_pairs += result->pairs.size();

@@ -83,9 +83,9 @@ int main(int argc, char** argv) {
                     st.objects, st.triangles, st.resolution, static_cast<unsigned long long>(st.cells.entries),
                     static_cast<unsigned long long>(st.cells.candidates), static_cast<unsigned long long>(st.cells.survivors));
     } else {
-        std::printf("method: peeling; sampling backend: %s (%s)\n", toString(st.backend), st.backend_reason.c_str());
+        std::printf("method: peeling; sampling backend: %s (%s)\n", toString(st.peeling.backend), st.peeling.backend_reason.c_str());
         std::printf("scene: %u objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u peeling passes%s\n",
-                    st.objects, st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
+                    st.objects, st.triangles, st.resolution, st.peeling.depth_complexity, st.peeling.layers, st.peeling.peel_passes, st.peeling.dual ? " (dual)" : "");
     }
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
@@ -95,10 +95,10 @@ int main(int argc, char** argv) {
     for (const auto& p : st.gpu_passes) std::printf(" %s %.3f;", p.name.c_str(), p.gpu_ms);
     if (st.method == DetectMethod::Reliable)
         std::printf("\nstages (ms): footprints %.3f, pairing %.3f, filtering %.3f (GPU), readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
-                    st.footprints_ms, st.pairing_ms, st.filtering_ms, st.readback_ms, st.narrow_ms, st.narrow_threads, st.total_ms);
+                    st.reliable.footprints_ms, st.reliable.pairing_ms, st.reliable.filtering_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads, st.total_ms);
     else
         std::printf("\nstages (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f, readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
-                    st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
+                    st.sampling_ms, st.peeling.merging_ms, st.peeling.separation_ms, st.peeling.packing_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads,
                     st.total_ms);
     return result->pairs.empty() ? fail("expected collisions in the bundled scene, found none") : 0;
 }

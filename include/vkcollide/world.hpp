@@ -355,7 +355,78 @@ struct MeshWarning {
     std::string message;  // names the object, the problem and the fix
 };
 
+// Filled by the peeling method. The reliable method samples no rays (backend_reason says
+// so): it peels nothing, and dual and coverage echo its settings.
+struct PeelingStats {
+    std::uint32_t depth_complexity = 0;  // measured by this detection, over the rays that are peeled
+    std::uint32_t layers = 0;            // layers peeled
+    std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
+    // Rays with more than 1,024 surfaces along them (gpu::kMaxRayFragments): collision rays
+    // at once, without peeling (their triangles go to the exact narrow phase), and left out
+    // of depth_complexity. Bounds the peeling passes of pathological scenes.
+    std::uint32_t deep_rays = 0;
+    bool dual = false;
+    bool layers_short = false;           // some rays had more layers than were peeled (no cap asked), or deep rays
+    std::uint32_t axes = 1;              // sampling directions run (the counts of DetectStats are summed over
+                                         // them, depth complexity and layers are their maximum)
+    Coverage coverage = Coverage::Centre;  // that ran: Centre, Dilate or Conservative (never Best)
+    SamplingBackend backend = SamplingBackend::Raster;  // object sampling that ran (never Auto); toString names it
+    std::string backend_reason;          // why (Auto's rule, or "asked for"; reliable: none sampled)
+    // GPU, per stage after the sampling (DetectStats::sampling_ms).
+    double merging_ms = 0, separation_ms = 0, packing_ms = 0;
+};
+
+// Filled by the reliable method: its GPU times by stage (the front: DetectStats::sampling_ms)
+// and where its pairs went. Its cell stage's counters are DetectStats::cells.
+struct ReliableStats {
+    double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;  // GPU, per stage
+    double sorting_ms = 0;             // device_pairs: the GPU's sort of the pairs
+    bool pairs_sorted_on_gpu = false;  // DetectSettings::reliable.pair_sort: the GPU ordered the host result's pairs
+    // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
+    // as DetectResult::pairs would have held) and `count` (those the buffer holds).
+    std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
+};
+
+// DetectSettings::contacts. With objects on: the stage's host wall time (both submissions,
+// the waits and the reading) and GPU time, its rays (width x height), the most hits on one
+// ray (layers), the candidate object pairs (closed, allowed, boxes overlapping), rays inside
+// more than 16 objects at once (those extra objects ignored there) and its submissions.
+struct ContactStats {
+    double host_ms = 0, gpu_ms = 0;
+    std::uint32_t rays_x = 0, rays_y = 0, layers = 0;
+    std::uint32_t candidate_pairs = 0, nested_rays = 0, runs = 0;
+    double geometry_ms = 0;  // with geometry on: its host wall time
+};
+
+// Host wall time of a detection's parts: start (settings, recording, queue submission) and
+// the broad phase's collection (waiting for the GPU, reading the results back); the narrow
+// phase is DetectStats::narrow_ms.
+struct HostStats {
+    double start_ms = 0, collect_ms = 0;
+    // Where the host time of start and collection goes beyond the GPU passes (ms, host wall
+    // clock; summed over the detection's queue submissions and sampling directions):
+    double settings_ms = 0;  // the live objects, automatic settings (shapes measured
+                             // when stale), validation, the pair filter's mask
+    double upload_ms = 0;    // the broad phase's per-run inputs: waiting for earlier
+                             // work, buffers sized, objects, frame and the method's inputs written
+    double declare_ms = 0;   // the render graph declared (its passes and resources)
+    double compile_ms = 0;   // the render graph compiled (order, barriers), or its last plan reused
+    double record_ms = 0;    // transient resources, timestamp queries, the command buffer recorded
+    double submit_ms = 0;    // the command buffer ended and handed to the queue
+    double wait_ms = 0;      // waiting for the GPU to finish (fences)
+    // From each queue submission's return to the host's waking up after it, less its GPU
+    // span: queue launch latency, GPU time outside the timestamps, wake-up latency. With
+    // submit() and collect() apart it also counts the host's work in between.
+    double launch_wake_ms = 0;
+    // Of DetectStats::submissions, those whose command buffer was submitted again instead
+    // of recorded: the commands equalled the last recording's and nothing they use was
+    // destroyed since.
+    std::uint32_t reused_submissions = 0;
+    unsigned narrow_threads = 0;  // the executor's threads the narrow phase could use
+};
+
 struct DetectStats {
+    // Both methods.
     // The paper's Table 1. Peeling as in the paper. Reliable, the closest meaning:
     //   collision rays        -> cells where the sweep found a candidate pair
     //   triangles downloaded  -> distinct triangles named by the pairs read back (their ids
@@ -370,84 +441,39 @@ struct DetectStats {
     std::size_t positive_tests = 0;                   // "# pos. tests"
     std::size_t gpu_exact_tests = 0;  // of the tests, decided on the GPU (reliable, DetectSettings::reliable.exact)
     std::size_t cpu_exact_tests = 0;  // of the tests, decided on the CPU
-    // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
-    // as DetectResult::pairs would have held) and `count` (those the buffer holds).
-    std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
-    bool pairs_sorted_on_gpu = false;  // DetectSettings::reliable.pair_sort: the GPU ordered the host result's pairs
-    double contact_geometry_ms = 0;    // DetectSettings::contacts.geometry: host wall time
     NarrowStats narrow;                               // every narrow-phase counter
     NarrowTimings narrow_timings;                     // the narrow phase's stages (host wall clock)
-    CellStats cells;                                  // reliable only
     // What ran.
     DetectMethod method = DetectMethod::Reliable;
     std::uint32_t objects = 0;
     std::uint32_t resolution = 0;        // rays (peeling) or cells (reliable) per side
     std::array<float, 3> direction{};
-    std::uint32_t depth_complexity = 0;  // peeling: measured by this detection, over the rays that are peeled
-    std::uint32_t layers = 0;            // peeling: layers peeled
-    std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
-    // Rays with more than 1,024 surfaces along them (gpu::kMaxRayFragments): collision rays
-    // at once, without peeling (their triangles go to the exact narrow phase), and left out
-    // of depth_complexity. Bounds the peeling passes of pathological scenes.
-    std::uint32_t deep_rays = 0;
-    bool dual = false;
-    bool layers_short = false;           // some rays had more layers than were peeled (no cap asked), or deep rays
-    std::uint32_t axes = 1;              // sampling directions run (counts above are summed over them,
-                                         // depth complexity and layers are their maximum)
-    Coverage coverage = Coverage::Centre;  // peeling: that ran: Centre, Dilate or Conservative (never Best)
-    SamplingBackend backend = SamplingBackend::Raster;  // peeling: object sampling that ran (never Auto); toString names it
-    std::string backend_reason;          // why (Auto's rule, or "asked for"; reliable: none sampled)
     std::string settings_note;           // how automatic settings were chosen
     std::vector<MeshWarning> mesh_warnings;  // closed objects that are inside out or holed, by id
     // Times.
     std::vector<PassTime> gpu_passes;    // GPU timestamps of every pass, in order
-    // GPU, per stage. sampling_ms includes the front (clear, GPU input checks, bounds, fit),
-    // which is all of it for the reliable method.
-    double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0;  // peeling
-    double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;                 // reliable
-    double sorting_ms = 0;               // reliable, device_pairs: the GPU's sort of the pairs
+    // GPU: the front (clear, GPU input checks, bounds, fit) and, peeling, the object
+    // sampling: all of the reliable method's GPU time before its footprints. The other
+    // stages: peeling.merging_ms .. packing_ms, reliable.footprints_ms .. sorting_ms.
+    double sampling_ms = 0;
     double readback_ms = 0;              // host: reading the header and the records or pairs
     double narrow_ms = 0;                // host: the CPU narrow phase
-    // Contacts (DetectSettings::contacts.objects): the stage's host wall time (both submissions,
-    // waits and reading), its GPU time, and its rays (width x height), the most hits on one
-    // ray, the candidate object pairs (closed, allowed, boxes overlapping), rays inside
-    // more than 16 objects at once (those extra objects ignored there) and submissions.
-    double contacts_ms = 0, contacts_gpu_ms = 0;
-    ProximityStats proximity;  // DetectSettings::proximity
-    std::uint32_t contact_rays_x = 0, contact_rays_y = 0, contact_layers = 0;
-    std::uint32_t contact_candidate_pairs = 0, contact_nested_rays = 0, contact_runs = 0;
     double total_ms = 0;                 // host wall time from submit to result
-    // Host wall time of its parts: start (settings, recording, queue submission) and the
-    // broad phase's collection (waiting for the GPU, reading the results back); the
-    // narrow phase is narrow_ms.
-    double host_start_ms = 0, host_collect_ms = 0;
-    // Where the host time of start and collection goes beyond the GPU passes (ms, host wall
-    // clock; summed over the detection's queue submissions and sampling directions):
-    double host_settings_ms = 0;  // the live objects, automatic settings (shapes measured
-                                  // when stale), validation, the pair filter's mask
-    double host_upload_ms = 0;    // the broad phase's per-run inputs: waiting for earlier
-                                  // work, buffers sized, objects, frame and the method's inputs written
-    double host_declare_ms = 0;   // the render graph declared (its passes and resources)
-    double host_compile_ms = 0;   // the render graph compiled (order, barriers), or its last plan reused
-    double host_record_ms = 0;    // transient resources, timestamp queries, the command buffer recorded
-    double host_submit_ms = 0;    // the command buffer ended and handed to the queue
-    double host_wait_ms = 0;      // waiting for the GPU to finish (fences)
-    double gpu_span_ms = 0;       // the GPU's own span: first pass's start to last pass's end
-                                  // (timestamps; barriers and gaps between passes included)
-    // From each queue submission's return to the host's waking up after it, less its GPU
-    // span: queue launch latency, GPU time outside the timestamps, wake-up latency. With
-    // submit() and collect() apart it also counts the host's work in between.
-    double launch_wake_ms = 0;
-    std::uint32_t submissions = 0;  // queue submissions the broad phase made
-    // Of them, those whose command buffer was submitted again instead of recorded: the
-    // commands equalled the last recording's and nothing they use was destroyed since.
-    std::uint32_t reused_submissions = 0;
-    unsigned narrow_threads = 0;
+    double gpu_span_ms = 0;              // the GPU's own span: first pass's start to last pass's end
+                                         // (timestamps; barriers and gaps between passes included)
+    std::uint32_t submissions = 0;       // queue submissions the broad phase made
     // Memory: device memory held by the world, in Context::deviceMemoryInUse()'s unit (the
     // memory requirements' sizes): uploaded meshes, the broad phases' buffers, images and
     // cached transients, both slots when two detections were in flight. With one world on a
     // Context this is deviceMemoryInUse(). Engine-owned buffers are not counted.
     std::uint64_t gpu_memory_bytes = 0;
+
+    PeelingStats peeling;      // the peeling method's
+    ReliableStats reliable;    // the reliable method's times and where its pairs went
+    CellStats cells;           // the reliable method's cell stage, counted on the GPU
+    ContactStats contacts;     // DetectSettings::contacts
+    ProximityStats proximity;  // DetectSettings::proximity
+    HostStats host;            // where the host's time goes beyond the narrow phase
 };
 
 // A colliding pair; objects are ObjectIds, triangles index the object's triangle list.

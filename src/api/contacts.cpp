@@ -34,7 +34,7 @@ Result<void> CollisionWorld::Impl::addPairContacts(const Run& run, const passes:
         return v;
     };
     contacts::pairContacts(out.pairs, lookup, *executor, out.pair_contacts, out.pair_contact_totals);
-    out.stats.contact_geometry_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.stats.contacts.geometry_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return {};
 }
 
@@ -115,15 +115,15 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
               [](const ObjectContact& x, const ObjectContact& y) { return x.object_a < y.object_a || (x.object_a == y.object_a && x.object_b < y.object_b); });
 
     DetectStats& st = out.stats;
-    st.contacts_gpu_ms = r->gpu_ms;
+    st.contacts.gpu_ms = r->gpu_ms;
     st.gpu_passes.push_back({"contacts", r->gpu_ms});  // both submissions, so GPU sums over passes include them
-    st.contact_rays_x = r->width;
-    st.contact_rays_y = r->height;
-    st.contact_layers = r->layers;
-    st.contact_candidate_pairs = static_cast<std::uint32_t>(r->candidates.size());
-    st.contact_nested_rays = r->nested_rays;
-    st.contact_runs = r->runs;
-    st.contacts_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    st.contacts.rays_x = r->width;
+    st.contacts.rays_y = r->height;
+    st.contacts.layers = r->layers;
+    st.contacts.candidate_pairs = static_cast<std::uint32_t>(r->candidates.size());
+    st.contacts.nested_rays = r->nested_rays;
+    st.contacts.runs = r->runs;
+    st.contacts.host_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return {};
 }
 

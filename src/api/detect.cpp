@@ -181,9 +181,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.method = run_settings.method;
     st.resolution = *run_settings.resolution;
     st.direction = detected.directions[0];
-    st.dual = run_settings.peeling.dual;
-    st.axes = static_cast<std::uint32_t>(broad.size());
-    st.coverage = run_settings.peeling.coverage;
+    st.peeling.dual = run_settings.peeling.dual;
+    st.peeling.axes = static_cast<std::uint32_t>(broad.size());
+    st.peeling.coverage = run_settings.peeling.coverage;
     st.settings_note = run.note;
     for (std::size_t i = 0; i < run_ids.size(); ++i)
         if (const Object& o = objects[run_ids[i]]; o.host && !o.options.open) {
@@ -192,43 +192,45 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
                 st.mesh_warnings.push_back({run_ids[i], inside_out, o.boundary_edges,
                                             who(run_ids[i], o.name) + ": " + mesh_checks::describe(inside_out, o.boundary_edges)});
         }
-    st.backend = broad[0].backend;
-    st.backend_reason = broad[0].backend_reason;
+    st.peeling.backend = broad[0].backend;
+    st.peeling.backend_reason = broad[0].backend_reason;
     for (std::uint32_t k = 1; k < broad.size(); ++k)
         if (broad[k].backend != broad[0].backend)
-            st.backend_reason += "; axis " + std::to_string(k) + ": " + toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
+            st.peeling.backend_reason +=
+                "; axis " + std::to_string(k) + ": " + toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
     const std::uint32_t cap = run_settings.peeling.layer_cap;
     for (std::uint32_t k = 0; k < broad.size(); ++k) {
         const passes::BroadPhaseResult& b = broad[k];
         st.triangles = b.triangles;
         st.collision_rays += b.collision_rays;
         st.triangles_downloaded += b.records.size();
-        st.depth_complexity = std::max(st.depth_complexity, b.depth_complexity);
-        st.layers = std::max(st.layers, b.layers);
-        st.peel_passes += b.peel_steps;
-        st.deep_rays += b.deep_rays;
-        st.layers_short = st.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap)) || b.deep_rays > 0;
+        st.peeling.depth_complexity = std::max(st.peeling.depth_complexity, b.depth_complexity);
+        st.peeling.layers = std::max(st.peeling.layers, b.layers);
+        st.peeling.peel_passes += b.peel_steps;
+        st.peeling.deep_rays += b.deep_rays;
+        st.peeling.layers_short =
+            st.peeling.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap)) || b.deep_rays > 0;
         const std::string prefix = broad.size() > 1 ? "axis " + std::to_string(k) + ": " : "";
         for (const auto& p : b.passes) st.gpu_passes.push_back({prefix + p.name, p.gpu_ms});
         st.sampling_ms += b.sampling_ms;
-        st.merging_ms += b.merging_ms;
-        st.separation_ms += b.separation_ms;
-        st.packing_ms += b.packing_ms;
-        st.footprints_ms += b.footprints_ms;
-        st.pairing_ms += b.pairing_ms;
-        st.filtering_ms += b.filtering_ms;
-        st.sorting_ms += b.sorting_ms;
+        st.peeling.merging_ms += b.merging_ms;
+        st.peeling.separation_ms += b.separation_ms;
+        st.peeling.packing_ms += b.packing_ms;
+        st.reliable.footprints_ms += b.footprints_ms;
+        st.reliable.pairing_ms += b.pairing_ms;
+        st.reliable.filtering_ms += b.filtering_ms;
+        st.reliable.sorting_ms += b.sorting_ms;
         st.readback_ms += b.readback_ms;
-        st.host_upload_ms += b.host.upload_ms;
-        st.host_declare_ms += b.host.declare_ms;
-        st.host_compile_ms += b.host.compile_ms;
-        st.host_record_ms += b.host.record_ms;
-        st.host_submit_ms += b.host.submit_ms;
-        st.host_wait_ms += b.host.wait_ms;
+        st.host.upload_ms += b.host.upload_ms;
+        st.host.declare_ms += b.host.declare_ms;
+        st.host.compile_ms += b.host.compile_ms;
+        st.host.record_ms += b.host.record_ms;
+        st.host.submit_ms += b.host.submit_ms;
+        st.host.wait_ms += b.host.wait_ms;
         st.gpu_span_ms += b.host.gpu_span_ms;
-        st.launch_wake_ms += b.host.launch_wake_ms;
+        st.host.launch_wake_ms += b.host.launch_wake_ms;
         st.submissions += b.host.submissions;
-        st.reused_submissions += b.host.reused;
+        st.host.reused_submissions += b.host.reused;
     }
     if (run_settings.peeling.collision_rays) out.collision_rays = collisionRays(broad, st.resolution);
     if (detected.hasPairs()) {
@@ -236,7 +238,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.cells = {c.entries,   c.max_cell,      c.deep_cells, c.candidate_cells, c.candidates, c.duplicates,  c.filtered,
                     c.survivors, c.gpu_triangles, c.runs,       c.filter_ran,      c.exact_ran,  c.exact_tests, c.exact_neighbours};
         st.collision_rays = c.candidate_cells;
-        st.backend_reason = "none: the reliable method samples no rays";
+        st.peeling.backend_reason = "none: the reliable method samples no rays";
     }
 
     NarrowOptions& options = narrow_options;
@@ -270,8 +272,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (detected.hasPairs() && broad[0].device_header) {
         // The pairs stay on the GPU (host_pairs off): nothing to read, test or respond to.
         narrow = NarrowResult{};
-        st.device_pairs_found = broad[0].device_header->needed;
-        st.device_pairs_written = broad[0].device_header->count;
+        st.reliable.device_pairs_found = broad[0].device_header->needed;
+        st.reliable.device_pairs_written = broad[0].device_header->count;
         last_narrow_pairs = 0;
     } else if (detected.hasPairs()) {
         // Reliable: the pairs sorted on the GPU (runSortedPairs), or the survivors straight
@@ -292,7 +294,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
             narrow = narrow::runSortedPairs(broad[0].sorted_pairs, source, options, *executor, narrow_workspace, std::move(pair_memory),
                                             std::move(response_memory));
             last_narrow_pairs = broad[0].sorted_pairs.size();
-            st.pairs_sorted_on_gpu = true;
+            st.reliable.pairs_sorted_on_gpu = true;
         } else {
             narrow = runPairNarrowPhase(broad[0].pairs, source, options, *executor, narrow_workspace);
             last_narrow_pairs = broad[0].pairs.size();
@@ -314,7 +316,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
                       " intersecting pairs, more than DetectSettings::limits.max_pairs (" + std::to_string(run_settings.limits.max_pairs) +
                       "): kept " + std::to_string(narrow->pairs.size()) + ", left out " + std::to_string(narrow->pairs_left_out));
     }
-    st.narrow_threads = executor->threadCount();
+    st.host.narrow_threads = executor->threadCount();
     st.narrow = narrow->stats;
     st.narrow_timings = narrow->timings;
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;
@@ -365,9 +367,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         for (const Object::VertexCopy& c : o.copies) st.gpu_memory_bytes += c.upload.memoryBytes();
     }
     st.total_ms = msSince(run.start);
-    st.host_start_ms = run.start_ms;
-    st.host_collect_ms = run.wait_ms;
-    st.host_settings_ms = run.settings_ms;
+    st.host.start_ms = run.start_ms;
+    st.host.collect_ms = run.wait_ms;
+    st.host.settings_ms = run.settings_ms;
     return out;
 }
 

@@ -100,7 +100,7 @@ struct CollisionWorld::Impl {
         // timeout for detect(); submit() and record() restart it at collect().
         std::chrono::steady_clock::time_point deadline;
         double start_ms = 0, wait_ms = 0;  // host: start() (settings, record, submit); collect's wait and readback
-        double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host_settings_ms)
+        double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host.settings_ms)
     };
 
     UseGuard guard{"CollisionWorld"};

@@ -107,7 +107,7 @@ TEST_CASE("contacts: two spheres give the lens volume, centroid, centre-line nor
     CHECK(c.object_a == *a);
     CHECK(c.object_b == *b);
     CHECK_FALSE(c.contained);
-    CHECK(r->stats.contact_rays_x > 0);
+    CHECK(r->stats.contacts.rays_x > 0);
     INFO("volume " << c.volume << " vs " << L.volume << ", depth " << c.depth << " vs " << L.depth);
     CHECK(std::fabs(c.volume - L.volume) < 0.02 * L.volume);
     // From a (sphere 1) into b: along +axis.
@@ -230,8 +230,8 @@ TEST_CASE("contacts: nested spheres grow the ray lists and every pair is contain
     }
     auto r = world->detect({.contacts = {.objects = true, .resolution = 64}});
     REQUIRE(r);
-    CHECK(r->stats.contact_runs >= 2);
-    CHECK(r->stats.contact_layers >= 18);
+    CHECK(r->stats.contacts.runs >= 2);
+    CHECK(r->stats.contacts.layers >= 18);
     REQUIRE(r->contacts.size() == 36);
     for (const ObjectContact& c : r->contacts) {
         CHECK(c.contained);

@@ -112,7 +112,7 @@ TEST_CASE("device pairs: the GPU's sorted pairs equal DetectResult::pairs on eve
         auto last = world->devicePairs();
         REQUIRE(last);
         CHECK(last->pairs == r->device->pairs);
-        CHECK(r->stats.sorting_ms >= 0);
+        CHECK(r->stats.reliable.sorting_ms >= 0);
         // Ids as the API returns them: remove the first object, so ids no longer equal indices.
         if (scene.objects.size() < 3) continue;
         REQUIRE(world->removeObject(0));
@@ -267,8 +267,8 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
         CHECK(only->pairs.empty());
         CHECK(only->responses.empty());
         CHECK(only->stats.cpu_exact_tests == 0);
-        CHECK(only->stats.device_pairs_found == host->pairs.size());
-        CHECK(only->stats.device_pairs_written == host->pairs.size());
+        CHECK(only->stats.reliable.device_pairs_found == host->pairs.size());
+        CHECK(only->stats.reliable.device_pairs_written == host->pairs.size());
         REQUIRE(only->device);
         const DeviceCopy d = readBack(ctx.device(), *only->device);
         CHECK(d.header.flags == 0);
@@ -292,10 +292,10 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
         auto only = world->detect(gpu_only);
         REQUIRE(only);
         CHECK(only->stats.cells.runs > 1);
-        CHECK(only->stats.device_pairs_found > 4096);
+        CHECK(only->stats.reliable.device_pairs_found > 4096);
         REQUIRE(only->device);
         const DeviceCopy d = readBack(ctx.device(), *only->device);
-        CHECK(d.header.needed == only->stats.device_pairs_found);
+        CHECK(d.header.needed == only->stats.reliable.device_pairs_found);
         const auto host_pairs = same(*world, "coincident grids");
         CHECK(d.pairs == host_pairs);
     }
@@ -321,8 +321,8 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
         shorter.reliable.device_pair_capacity = 7;
         auto r = world->detect(shorter);
         REQUIRE(r);
-        CHECK(r->stats.device_pairs_written == 7);
-        CHECK(r->stats.device_pairs_found > 7);
+        CHECK(r->stats.reliable.device_pairs_written == 7);
+        CHECK(r->stats.reliable.device_pairs_found > 7);
     }
     // Refused by name: nowhere to keep the pairs, or contacts that need them on the host.
     auto world = sceneWorld(ctx, restingStack());

@@ -375,7 +375,7 @@ TEST_CASE("calls that change what work in flight reads fail by name, so do calls
     auto watched = world->detect();
     REQUIRE(watched);
     CHECK(watched->pairs == plain->pairs);
-    CHECK(watched->stats.narrow_threads == 4);  // the engine's executor ran the narrow phase
+    CHECK(watched->stats.host.narrow_threads == 4);  // the engine's executor ran the narrow phase
     REQUIRE(refusals.size() == 2);
     CHECK(mentions(refusals[0], "CollisionWorld::setTransform was called from inside CollisionWorld::detect on the same thread"));
     CHECK(mentions(refusals[1], "CollisionWorld::detect was called on thread"));

@@ -235,8 +235,8 @@ Both sortedBoth(CollisionWorld& world, DetectSettings settings = {}) {
 
 void requireSameSorted(const Both& r, const std::string& what) {
     INFO(what << ": GPU-sorted " << r.gpu.pairs.size() << " pairs, CPU-sorted " << r.cpu.pairs.size());
-    CHECK(r.gpu.stats.pairs_sorted_on_gpu);
-    CHECK_FALSE(r.cpu.stats.pairs_sorted_on_gpu);
+    CHECK(r.gpu.stats.reliable.pairs_sorted_on_gpu);
+    CHECK_FALSE(r.cpu.stats.reliable.pairs_sorted_on_gpu);
     CHECK(r.gpu.pairs == r.cpu.pairs);
     CHECK(sameResponses(r.gpu.responses, r.cpu.responses));
     CHECK(r.gpu.pairs_left_out == r.cpu.pairs_left_out);
@@ -307,17 +307,17 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     auto a1 = automatic->detect();
     REQUIRE(a1);
     REQUIRE(a1->pairs.size() >= kGpuPairSortFrom);
-    CHECK_FALSE(a1->stats.pairs_sorted_on_gpu);  // nothing known before the first
+    CHECK_FALSE(a1->stats.reliable.pairs_sorted_on_gpu);  // nothing known before the first
     auto a2 = automatic->detect();
     REQUIRE(a2);
-    CHECK(a2->stats.pairs_sorted_on_gpu);
+    CHECK(a2->stats.reliable.pairs_sorted_on_gpu);
     CHECK(a2->pairs == a1->pairs);
     auto small = sceneWorld(ctx, resting);
     for (int k = 0; k < 2; ++k) {
         auto r = small->detect();
         REQUIRE(r);
         REQUIRE(r->pairs.size() < kGpuPairSortFrom);
-        CHECK_FALSE(r->stats.pairs_sorted_on_gpu);
+        CHECK_FALSE(r->stats.reliable.pairs_sorted_on_gpu);
     }
     // Refused by name where the GPU cannot sort.
     const auto refused = [&](DetectSettings s, const char* words) {

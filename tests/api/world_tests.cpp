@@ -62,8 +62,8 @@ TEST_CASE("detect() finds only exact pairs and reports the paper's statistics", 
     CHECK(st.triangles_downloaded >= st.potentially_colliding_triangles);
     CHECK(st.triangles_downloaded < st.triangles);  // the far sphere and most surfaces are culled
     CHECK(st.collision_rays > 0);
-    CHECK(st.layers == st.depth_complexity);
-    CHECK_FALSE(st.layers_short);
+    CHECK(st.peeling.layers == st.peeling.depth_complexity);
+    CHECK_FALSE(st.peeling.layers_short);
     CHECK(st.resolution == 256);
     CHECK_FALSE(st.gpu_passes.empty());
     CHECK(st.sampling_ms > 0);
@@ -169,10 +169,10 @@ TEST_CASE("a steady scene's later detections submit their command buffer again, 
     for (const auto& r : runs) {
         REQUIRE(r);
         CHECK(r->pairs == runs[0]->pairs);
-        CHECK(r->stats.reused_submissions <= r->stats.submissions);
+        CHECK(r->stats.host.reused_submissions <= r->stats.submissions);
     }
-    CHECK(runs[0]->stats.reused_submissions == 0u);  // nothing recorded before
-    CHECK(runs[3]->stats.reused_submissions == runs[3]->stats.submissions);
+    CHECK(runs[0]->stats.host.reused_submissions == 0u);  // nothing recorded before
+    CHECK(runs[3]->stats.host.reused_submissions == runs[3]->stats.submissions);
     CHECK(comparePairs(runs[3]->pairs, referencePairs(*scene)).recall == 1.0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
@@ -202,7 +202,7 @@ TEST_CASE("submit()/collect() gives detect()'s pairs and guards the objects in f
         auto async = world->collect();
         REQUIRE(async);
         CHECK(async->pairs == sync->pairs);
-        CHECK(async->stats.layers == sync->stats.depth_complexity);  // the layers measured last time
+        CHECK(async->stats.peeling.layers == sync->stats.peeling.depth_complexity);  // the layers measured last time
     }
     CHECK_FALSE(world->pending());
     CHECK_FALSE(world->collect());
@@ -229,12 +229,12 @@ TEST_CASE("a deeper scene than predicted stays conservative and is reported", "[
     REQUIRE(world->submit(fixedSettings(64)));  // predicts 2, the scene has 4
     auto r = world->collect();
     REQUIRE(r);
-    CHECK(r->stats.layers == 2);
-    CHECK(r->stats.depth_complexity == 4);
-    CHECK(r->stats.layers_short);
+    CHECK(r->stats.peeling.layers == 2);
+    CHECK(r->stats.peeling.depth_complexity == 4);
+    CHECK(r->stats.peeling.layers_short);
     auto exact = world->detect(fixedSettings(64));
     REQUIRE(exact);
-    CHECK_FALSE(exact->stats.layers_short);
+    CHECK_FALSE(exact->stats.peeling.layers_short);
     // Conservative: every pair the exact layers find is found with too few layers too.
     for (const auto& p : exact->pairs) CHECK(std::binary_search(r->pairs.begin(), r->pairs.end(), p));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

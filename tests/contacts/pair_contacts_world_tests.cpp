@@ -88,7 +88,7 @@ TEST_CASE("contact geometry: every pair of the test scenes gets a contact on bot
             CHECK(r->pairs == plain->pairs);
             CHECK(plain->pair_contacts.empty());
             CHECK(plain->pair_contact_totals.empty());
-            CHECK(r->stats.contact_geometry_ms >= 0);
+            CHECK(r->stats.contacts.geometry_ms >= 0);
             requireContacts(*r, tri, scene.name);
             if (threads == 1) {
                 first = std::move(*r);

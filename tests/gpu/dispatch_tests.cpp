@@ -57,7 +57,7 @@ TEST_CASE("dispatches forced into rows of three workgroups give the same results
             CHECK((rows->pairs == wide->pairs));
             CHECK(rows->stats.collision_rays == wide->stats.collision_rays);
             CHECK(rows->stats.triangles_downloaded == wide->stats.triangles_downloaded);
-            CHECK(rows->stats.depth_complexity == wide->stats.depth_complexity);
+            CHECK(rows->stats.peeling.depth_complexity == wide->stats.peeling.depth_complexity);
             CHECK_FALSE(rows->pairs.empty());
         }
     }
@@ -129,8 +129,8 @@ TEST_CASE("a resolution past the framebuffer limit samples in compute or is refu
     CHECK(raster.error().code() == ErrorCode::UnsupportedFeature);
     CHECK(raster.error().message().find("largest framebuffer") != std::string::npos);
     REQUIRE(automatic);
-    CHECK(automatic->stats.backend == SamplingBackend::Compute);
-    CHECK(automatic->stats.backend_reason.find("framebuffer") != std::string::npos);
+    CHECK(automatic->stats.peeling.backend == SamplingBackend::Compute);
+    CHECK(automatic->stats.peeling.backend_reason.find("framebuffer") != std::string::npos);
     CHECK((automatic->pairs == *c->reference));
     REQUIRE_FALSE(dilated);
     CHECK(dilated.error().code() == ErrorCode::UnsupportedFeature);

@@ -77,7 +77,7 @@ TEST_CASE("reliable: after a timeout the destructor waits for at most one chunk 
     const auto t0 = Clock::now();
     world.reset();
     const double waited = secondsSince(t0);
-    INFO("the destructor waited " << waited << " s; the pair pass takes " << warm->stats.filtering_ms << " ms");
+    INFO("the destructor waited " << waited << " s; the pair pass takes " << warm->stats.reliable.filtering_ms << " ms");
     CHECK(waited < 1.0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

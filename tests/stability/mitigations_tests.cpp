@@ -62,7 +62,7 @@ TEST_CASE("three axes test at least what three one-axis detections would, each p
     three.peeling.axes = 3;
     auto r = world->detect(three);
     REQUIRE(r);
-    CHECK(r->stats.axes == 3);
+    CHECK(r->stats.peeling.axes == 3);
     CHECK(contains(r->pairs, united));
     std::printf("axes: union of three detections %zu pairs in %zu tests; axes = 3: %zu pairs in %zu tests\n", united.size(),
                 tests_of_three, r->pairs.size(), r->stats.triangle_tests);
@@ -175,7 +175,7 @@ TEST_CASE("mitigation settings are checked and reported", "[stability][gpu]") {
     auto conservative = world->detect(s);
     if (hardware) {
         REQUIRE(conservative);
-        CHECK(conservative->stats.coverage == Coverage::Conservative);
+        CHECK(conservative->stats.peeling.coverage == Coverage::Conservative);
     } else {  // lavapipe: no VK_EXT_conservative_rasterization
         REQUIRE_FALSE(conservative);
         CHECK(conservative.error().code() == ErrorCode::UnsupportedFeature);
@@ -184,7 +184,7 @@ TEST_CASE("mitigation settings are checked and reported", "[stability][gpu]") {
     s.peeling.coverage = Coverage::Best;
     auto best = world->detect(s);
     REQUIRE(best);
-    CHECK(best->stats.coverage == (hardware ? Coverage::Conservative : Coverage::Dilate));
+    CHECK(best->stats.peeling.coverage == (hardware ? Coverage::Conservative : Coverage::Dilate));
     CHECK(best->stats.settings_note.find("coverage") != std::string::npos);
     // Thin-triangle coverage is drawn on the raster backend: Auto falls back to it, an
     // explicit Compute is refused.
@@ -197,11 +197,11 @@ TEST_CASE("mitigation settings are checked and reported", "[stability][gpu]") {
     s.peeling.backend = SamplingBackend::Auto;
     auto auto_dilate = world->detect(s);
     REQUIRE(auto_dilate);
-    CHECK(auto_dilate->stats.backend == SamplingBackend::Raster);
+    CHECK(auto_dilate->stats.peeling.backend == SamplingBackend::Raster);
     // The world is still usable after the refused settings.
     auto plain = world->detect(coarse());
     REQUIRE(plain);
-    CHECK(plain->stats.coverage == Coverage::Centre);
-    CHECK(plain->stats.axes == 1);
+    CHECK(plain->stats.peeling.coverage == Coverage::Centre);
+    CHECK(plain->stats.peeling.axes == 1);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -40,10 +40,10 @@ TEST_CASE("one triangle repeated past the deepest peeled ray gives every pair, o
             auto r = detectWith(*world, deep->settings, backend);
             REQUIRE(r);
             checkExact(r->pairs, *deep->reference);
-            CHECK(r->stats.deep_rays > 0);
-            CHECK(r->stats.layers_short);
-            CHECK(r->stats.depth_complexity <= gpu::kMaxRayFragments);
-            CHECK(r->stats.peel_passes <= gpu::kMaxRayFragments);
+            CHECK(r->stats.peeling.deep_rays > 0);
+            CHECK(r->stats.peeling.layers_short);
+            CHECK(r->stats.peeling.depth_complexity <= gpu::kMaxRayFragments);
+            CHECK(r->stats.peeling.peel_passes <= gpu::kMaxRayFragments);
         }
     }
     // Below the limit the same stack is peeled ray by ray: the same pairs, no deep ray.
@@ -54,8 +54,8 @@ TEST_CASE("one triangle repeated past the deepest peeled ray gives every pair, o
         auto r = detectWith(*world, peeled->settings, backend);
         REQUIRE(r);
         checkExact(r->pairs, *peeled->reference);
-        CHECK(r->stats.deep_rays == 0);
-        CHECK(r->stats.depth_complexity >= 300);
+        CHECK(r->stats.peeling.deep_rays == 0);
+        CHECK(r->stats.peeling.depth_complexity >= 300);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
@@ -157,7 +157,7 @@ TEST_CASE("two tetrahedra under thousands of slabs find every pair, on both back
             INFO((r ? std::string() : r.error().message()));
             REQUIRE(r);
             checkExact(r->pairs, *c->reference);
-            CHECK((r->stats.deep_rays > 0) == (slabs > 1000));
+            CHECK((r->stats.peeling.deep_rays > 0) == (slabs > 1000));
         }
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

@@ -307,7 +307,7 @@ std::string describe(const std::string& case_name, const std::string& variant, c
     char buf[360];
     std::snprintf(buf, sizeof buf, "%-34s %-10s recall %.3f (%zu of %zu) precision %.3f | rays %zu, downloaded %zu, tests %zu | %.1f ms %s",
                   case_name.c_str(), variant.c_str(), m.cmp.recall, m.cmp.true_positives, m.reference, m.cmp.precision,
-                  m.stats.collision_rays, m.stats.triangles_downloaded, m.stats.triangle_tests, m.stats.total_ms, toString(m.stats.backend));
+                  m.stats.collision_rays, m.stats.triangles_downloaded, m.stats.triangle_tests, m.stats.total_ms, toString(m.stats.peeling.backend));
     return buf;
 }
 

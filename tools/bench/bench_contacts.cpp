@@ -133,7 +133,7 @@ int main(int argc, char** argv) {
                 for (int k = 0; k < repeat + 1; ++k) {  // the first run warms up
                     auto r = (*world)->detect(s);
                     if (!r) return std::fprintf(stderr, "%s\n", r.error().message().c_str()), 1;
-                    if (k > 0) gpu += r->stats.contacts_gpu_ms, stage += r->stats.contacts_ms, total += r->stats.total_ms;
+                    if (k > 0) gpu += r->stats.contacts.gpu_ms, stage += r->stats.contacts.host_ms, total += r->stats.total_ms;
                     last = std::move(*r);
                 }
                 if (last->contacts.size() != 1) {
@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
                                                   (oc.point.y - c.centroid[1]) * (oc.point.y - c.centroid[1]) +
                                                   (oc.point.z - c.centroid[2]) * (oc.point.z - c.centroid[2])) / c.length;
                 std::printf("%-20s %-9s %5u %9u %+9.3f %9.3f %+9.3f %9.3f %9.3f %9.3f %9.3f\n", c.name.c_str(), dir, res,
-                            last->stats.contact_rays_x * last->stats.contact_rays_y, dv, dn, dd, dc, gpu / repeat, stage / repeat, total / repeat);
+                            last->stats.contacts.rays_x * last->stats.contacts.rays_y, dv, dn, dd, dc, gpu / repeat, stage / repeat, total / repeat);
             }
     }
     return 0;

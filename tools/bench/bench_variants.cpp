@@ -53,7 +53,7 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"contacts", "contacts", [](S& s) { s.contacts.objects = true; }},
         {"contacts-256", "contacts", [](S& s) { s.contacts.objects = true, s.contacts.resolution = 256u; }},
         // Contact geometry of the intersecting pairs (DetectSettings::contacts.geometry): its
-        // cost is the difference to "default" (DetectStats::contact_geometry_ms).
+        // cost is the difference to "default" (DetectStats::contacts.geometry_ms).
         {"contact-geometry", "contacts", [](S& s) { s.contacts.geometry = true; }},
     };
     Variant into{"into", "modes", [](S&) {}};  // the default through detectInto(), one result kept

@@ -27,7 +27,7 @@ Result<void> CollisionWorld::Impl::addPairContacts(const Run& run, const passes:
     const auto lookup = [&](std::uint32_t id, std::uint32_t triangle) {
         const std::uint32_t k = mesh_of[id];
         const std::span<const Float3> positions = run.positions[k];
-        const std::vector<std::uint32_t>& indices = objects[id].host_indices;
+        const std::vector<std::uint32_t>& indices = registry.objects[id].host_indices;
         const Transform3x4& m = run.meshes[k].transform;
         std::array<Float3, 3> v;
         for (int c = 0; c < 3; ++c) v[c] = narrow::toWorld(m, positions[indices[3 * std::size_t{triangle} + c]]);
@@ -58,14 +58,15 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
     // The filter's answers, as the narrow phase had them (detect.cpp): the kept mask, or
     // the filter itself beyond the mask's object limit.
     std::optional<Error> filter_threw;
-    const passes::ObjectPairMask* mask = pair_filter && pair_mask.objects == run.ids.size() && !pair_mask_dirty ? &pair_mask : nullptr;
+    const passes::ObjectPairMask* mask =
+        registry.pair_filter && registry.pair_mask.objects == run.ids.size() && !registry.pair_mask_dirty ? &registry.pair_mask : nullptr;
     const std::vector<std::uint32_t>& live = detected.objects;
     if (mask) {
         in.may_collide = [mask, &live](std::uint32_t a, std::uint32_t b) { return mask->allows(live[a], live[b]); };
-    } else if (pair_filter) {
+    } else if (registry.pair_filter) {
         in.may_collide = [this, ids, &filter_threw](std::uint32_t a, std::uint32_t b) {
             if (filter_threw) return false;
-            auto answer = callPairFilter(ids[a], ids[b]);
+            auto answer = registry.callPairFilter(ids[a], ids[b]);
             if (answer) return *answer;
             filter_threw = answer.error();
             return false;
@@ -101,7 +102,7 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
     for (const auto& pair : touching) {
         // Not a structured binding: clang before 16 cannot capture one in the lambda below.
         const ObjectId a = pair[0], b = pair[1];
-        if (objects[a].options.open || objects[b].options.open) continue;
+        if (registry.objects[a].options.open || registry.objects[b].options.open) continue;
         if (std::any_of(contacts.begin(), contacts.end(), [&](const ObjectContact& c) { return c.object_a == a && c.object_b == b; })) continue;
         ObjectContact oc;
         oc.object_a = a;

@@ -9,7 +9,6 @@
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
-#include "broad/cells/reliable_method.hpp"
 #include "narrow/exact_stage.hpp"
 #include "narrow/sorted_pairs.hpp"
 #include "proximity/ownership.hpp"
@@ -32,12 +31,8 @@ Error CollisionWorld::Impl::describeFailure(const Run& run, const Error& e) cons
     if (f.faults.empty()) return e;
     const passes::ObjectFault& first = f.faults.front();
     const ObjectId id = run.ids.at(first.object);
-    const std::string named_fault = who(id, objects.at(id).name) + ": " + passes::describe(first);
+    const std::string named_fault = registry.who(id, registry.objects.at(id).name) + ": " + passes::describe(first);
     return Error(e.code(), f.none_left ? "no object left to test: " + named_fault : named_fault, e.vkResult());
-}
-
-passes::MethodFactory CollisionWorld::Impl::methodFactory(DetectMethod method) {
-    return method == DetectMethod::Reliable ? passes::ReliableMethod::create : passes::PeelingMethod::create;
 }
 
 // Proximity: each live object's owned primitives (computed once per host mesh), named
@@ -48,11 +43,11 @@ Result<void> CollisionWorld::Impl::prepareProximity(Run& run) {
         run.meshes[i].proximity_owned = {};
         if (!on) continue;
         const ObjectId id = run.ids[i];
-        Object& o = objects[id];
+        Object& o = registry.objects[id];
         if (!o.host)
-            return named(id, Error(ErrorCode::UnsupportedFeature,
-                                   "proximity needs the object's indices on the host to tell neighbouring primitives apart; "
-                                   "engine meshes (addGpuMesh) are not supported yet"));
+            return registry.named(id, Error(ErrorCode::UnsupportedFeature,
+                                            "proximity needs the object's indices on the host to tell neighbouring primitives apart; "
+                                            "engine meshes (addGpuMesh) are not supported yet"));
         if (o.proximity_owned.size() != o.host_indices.size() / 3)
             o.proximity_owned = proximity::ownedPrimitives(o.host_indices, static_cast<std::uint32_t>(o.host_positions.size()));
         run.meshes[i].proximity_owned = o.proximity_owned;
@@ -63,22 +58,23 @@ Result<void> CollisionWorld::Impl::prepareProximity(Run& run) {
 Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
     run.start = Clock::now();
     std::vector<passes::GpuMesh>& meshes = run.meshes;  // kept: no allocation per detection
-    liveMeshes(meshes, run.ids);
+    registry.liveMeshes(meshes, run.ids);
     run.positions.clear();
-    for (ObjectId id : run.ids) run.positions.push_back(objects[id].host_positions);  // GPU meshes: empty
+    for (ObjectId id : run.ids) run.positions.push_back(registry.objects[id].host_positions);  // GPU meshes: empty
     run.settings = resolve(settings, &run.note);
     for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, device())})
         if (!ok) return ok.error();
     const DetectSettings& s = run.settings;
     if (s.method == DetectMethod::Reliable)
         for (ObjectId id : run.ids)
-            if (auto ok = validation::checkReliableObject(objects[id].options.transform, objects[id].max_abs); !ok) return named(id, ok.error());
+            if (auto ok = validation::checkReliableObject(registry.objects[id].options.transform, registry.objects[id].max_abs); !ok)
+                return registry.named(id, ok.error());
     passes::DetectionSettings d;
-    d.method = methodFactory(s.method);
-    auto mask = pairMask(run.ids);
+    d.method = DetectionsInFlight::methodFactory(s.method);
+    auto mask = registry.pairMask(run.ids);
     if (!mask) return mask.error();
     d.broad.pair_mask = *mask;
-    const bool filter_on_host_only = pair_filter && !*mask;
+    const bool filter_on_host_only = registry.pair_filter && !*mask;
     for (auto ok :
          {validation::checkSortedOnGpuFilter("reliable.device_pairs", s.reliable.device_pairs, filter_on_host_only, run.ids.size()),
           validation::checkSortedOnGpuFilter("reliable.pair_sort Gpu", s.reliable.pair_sort == PairSort::Gpu, filter_on_host_only,
@@ -94,11 +90,11 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     if (auto ok = prepareProximity(run); !ok) return ok.error();
     if (s.contacts.geometry)
         for (ObjectId id : run.ids)
-            if (!objects[id].host)
-                return named(id, Error(ErrorCode::UnsupportedFeature,
-                                       "contacts.geometry reads the triangles' vertices on the host; "
-                                       "engine meshes (addGpuMesh) are not supported"));
-    if (s.proximity.distance > 0 && pair_filter && !*mask)
+            if (!registry.objects[id].host)
+                return registry.named(id, Error(ErrorCode::UnsupportedFeature,
+                                                "contacts.geometry reads the triangles' vertices on the host; "
+                                                "engine meshes (addGpuMesh) are not supported"));
+    if (s.proximity.distance > 0 && registry.pair_filter && !*mask)
         return Error(ErrorCode::InvalidArgument, "proximity with a pair filter over " + std::to_string(run.ids.size()) +
                                                      " objects: the filter is applied on the host only beyond " +
                                                      std::to_string(gpu::kMaxFilterMaskObjects) + " objects, the proximity pass needs it on the GPU");
@@ -174,7 +170,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     }
     for (const passes::ObjectFault& f : detected.excluded) {
         const ObjectId id = run_ids[f.object];
-        out.excluded.push_back({id, named(id, Error(ErrorCode::InvalidMesh, passes::describe(f)))});
+        out.excluded.push_back({id, registry.named(id, Error(ErrorCode::InvalidMesh, passes::describe(f)))});
     }
     DetectStats& st = out.stats;
     st.objects = static_cast<std::uint32_t>(ids.size());
@@ -186,11 +182,11 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.peeling.coverage = run_settings.peeling.coverage;
     st.settings_note = run.note;
     for (std::size_t i = 0; i < run_ids.size(); ++i)
-        if (const Object& o = objects[run_ids[i]]; o.host && !o.options.open) {
+        if (const Object& o = registry.objects[run_ids[i]]; o.host && !o.options.open) {
             const bool inside_out = o.boundary_edges == 0 && o.volume6 * mesh_checks::determinant(run.meshes[i].transform) < 0;
             if (inside_out || o.boundary_edges > 0)
                 st.mesh_warnings.push_back({run_ids[i], inside_out, o.boundary_edges,
-                                            who(run_ids[i], o.name) + ": " + mesh_checks::describe(inside_out, o.boundary_edges)});
+                                            registry.who(run_ids[i], o.name) + ": " + mesh_checks::describe(inside_out, o.boundary_edges)});
         }
     st.peeling.backend = broad[0].backend;
     st.peeling.backend_reason = broad[0].backend_reason;
@@ -254,14 +250,15 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     // (world.hpp); if it does, the exception stops here, the narrow phase sees "may not
     // collide" from then on, and the detection fails naming it.
     std::optional<Error> filter_threw;
-    const passes::ObjectPairMask* mask = pair_filter && pair_mask.objects == run_ids.size() && !pair_mask_dirty ? &pair_mask : nullptr;
+    const passes::ObjectPairMask* mask =
+        registry.pair_filter && registry.pair_mask.objects == run_ids.size() && !registry.pair_mask_dirty ? &registry.pair_mask : nullptr;
     const std::vector<std::uint32_t>& live = detected.objects;
     if (mask) {
         options.may_collide = [mask, &live](std::uint32_t a, std::uint32_t b) { return mask->allows(live[a], live[b]); };
-    } else if (pair_filter) {
+    } else if (registry.pair_filter) {
         options.may_collide = [this, &ids, &filter_threw](std::uint32_t a, std::uint32_t b) {
             if (filter_threw) return false;
-            auto answer = callPairFilter(ids[a], ids[b]);
+            auto answer = registry.callPairFilter(ids[a], ids[b]);
             if (answer) return *answer;
             filter_threw = answer.error();
             return false;
@@ -279,27 +276,28 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         // Reliable: the pairs sorted on the GPU (runSortedPairs), or the survivors straight
         // from the GPU's memory (deduplicated and sorted in parallel by the narrow phase);
         // host meshes from the world's source, engine meshes' triangles from the download.
-        if (auto ok = syncSource(ids); !ok) return ok.error();
+        if (auto ok = registry.syncSource(ids); !ok) return ok.error();
         // As the objects were at start(): transforms, and the positions (updateVertices may
         // have made another copy current since: pipelining).
         for (std::uint32_t i : detected.objects)
-            if (const Object& o = objects[run_ids[i]]; o.host && o.source_index != kNoSource) {
-                if (auto ok = source.setTransform(o.source_index, run.meshes[i].transform); !ok) return named(run_ids[i], ok.error());
-                if (source.objects()[o.source_index].positions.data() != run.positions[i].data())
-                    if (auto ok = source.setHostGeometry(o.source_index, run.positions[i], o.host_indices); !ok)
-                        return named(run_ids[i], ok.error());
+            if (const Object& o = registry.objects[run_ids[i]]; o.host && o.source_index != kNoSource) {
+                if (auto ok = registry.source.setTransform(o.source_index, run.meshes[i].transform); !ok)
+                    return registry.named(run_ids[i], ok.error());
+                if (registry.source.objects()[o.source_index].positions.data() != run.positions[i].data())
+                    if (auto ok = registry.source.setHostGeometry(o.source_index, run.positions[i], o.host_indices); !ok)
+                        return registry.named(run_ids[i], ok.error());
             }
-        source.setGpuTriangles(broad[0].gpu_triangles);
+        registry.source.setGpuTriangles(broad[0].gpu_triangles);
         if (broad[0].has_sorted_pairs) {
-            narrow = narrow::runSortedPairs(broad[0].sorted_pairs, source, options, *executor, narrow_workspace, std::move(pair_memory),
-                                            std::move(response_memory));
+            narrow = narrow::runSortedPairs(broad[0].sorted_pairs, registry.source, options, *executor, narrow_workspace,
+                                            std::move(pair_memory), std::move(response_memory));
             last_narrow_pairs = broad[0].sorted_pairs.size();
             st.reliable.pairs_sorted_on_gpu = true;
         } else {
-            narrow = runPairNarrowPhase(broad[0].pairs, source, options, *executor, narrow_workspace);
+            narrow = runPairNarrowPhase(broad[0].pairs, registry.source, options, *executor, narrow_workspace);
             last_narrow_pairs = broad[0].pairs.size();
         }
-        source.setGpuTriangles({});  // the download is overwritten by the next run
+        registry.source.setGpuTriangles({});  // the download is overwritten by the next run
     } else {
         narrow = runNarrowPhase(detected.candidates(), options, *executor, narrow_workspace);
         last_narrow_pairs = 0;  // the record path prepares no threads of its own
@@ -330,7 +328,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     for (TrianglePair& p : out.pairs) p.object_a = ids[p.object_a], p.object_b = ids[p.object_b];
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
-    if (broad[0].scene_box) measured_box = broad[0].scene_box;
+    if (broad[0].scene_box) auto_settings.measured_box = broad[0].scene_box;
     if (run.settings.contacts.objects)
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
     if (run.settings.contacts.geometry) {
@@ -354,15 +352,16 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.proximity.host_ms = msSince(p0);
     }
     if (auto view = run.detection->devicePairs()) {
-        out.device = devicePairsOf(*view, run);
+        out.device = detections.devicePairsOf(*view, run);
         // collect() may have grown the buffers (a repeated run): devicePairs() names them now.
-        if (last_device_pairs && last_device_pairs->slot == out.device->slot) last_device_pairs = out.device;
+        if (detections.last_device_pairs && detections.last_device_pairs->slot == out.device->slot)
+            detections.last_device_pairs = out.device;
     }
     // Everything the world holds: both slots' broad phases (with their cached transients and
     // the methods' own buffers) and the uploaded meshes, in Context::deviceMemoryInUse's unit.
-    for (const Run& r : runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;
+    for (const Run& r : detections.runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;
     st.gpu_memory_bytes += contact_stage ? contact_stage->memoryBytes() : 0;
-    for (const Object& o : objects) {
+    for (const Object& o : registry.objects) {
         st.gpu_memory_bytes += o.vertices.memoryBytes() + o.indices.memoryBytes();
         for (const Object::VertexCopy& c : o.copies) st.gpu_memory_bytes += c.upload.memoryBytes();
     }

@@ -3,7 +3,7 @@
 // instead of checking them again.
 //
 // Each check returns the broken rule as an Error whose message does not name the object;
-// the world prefixes "object <id> ('<name>'): " once (CollisionWorld::Impl::who).
+// the world prefixes "object <id> ('<name>'): " once (ObjectRegistry::who).
 #pragma once
 
 #include <array>

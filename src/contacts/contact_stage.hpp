@@ -81,7 +81,7 @@ class ContactStage {
 public:
     static Result<std::unique_ptr<ContactStage>> create(vk::Device& device);
     // Runs both submissions and waits. Errors: InvalidArgument (resolution out of range,
-    // naming contact_resolution), OutOfMemory (ray lists beyond the device's memory),
+    // naming contacts.resolution), OutOfMemory (ray lists beyond the device's memory),
     // Timeout, DeviceLost.
     [[nodiscard]] Result<ContactStageResult> run(const ContactInput& input);
     std::uint64_t memoryBytes() const noexcept;

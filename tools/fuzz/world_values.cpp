@@ -128,7 +128,7 @@ std::string describe(const DetectSettings& s) {
     add(s.peeling.open_epsilon.has_value(), "open_epsilon " + (s.peeling.open_epsilon ? std::to_string(*s.peeling.open_epsilon) : std::string()));
     add(s.peeling.closed_epsilon != d.peeling.closed_epsilon, "closed_epsilon " + std::to_string(s.peeling.closed_epsilon));
     add(s.contacts.resolution.has_value(),
-        "contact_resolution " + (s.contacts.resolution ? std::to_string(*s.contacts.resolution) : std::string()));
+        "contacts.resolution " + (s.contacts.resolution ? std::to_string(*s.contacts.resolution) : std::string()));
     add(s.peeling.axes != d.peeling.axes, "axes " + std::to_string(s.peeling.axes));
     add(s.peeling.layer_cap != d.peeling.layer_cap, "layer_cap " + std::to_string(s.peeling.layer_cap));
     add(s.limits.timeout_ms != d.limits.timeout_ms, "timeout_ms " + std::to_string(s.limits.timeout_ms));

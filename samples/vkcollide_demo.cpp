@@ -39,16 +39,16 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         if (a == "--resolution" && i + 1 < argc) settings.resolution = static_cast<std::uint32_t>(std::atoi(argv[++i]));
-        else if (a == "--cap" && i + 1 < argc) settings.layer_cap = static_cast<std::uint32_t>(std::atoi(argv[++i]));
+        else if (a == "--cap" && i + 1 < argc) settings.peeling.layer_cap = static_cast<std::uint32_t>(std::atoi(argv[++i]));
         else if (a == "--frames" && i + 1 < argc) frames = std::max(1, std::atoi(argv[++i]));
         else if (a == "--backend" && i + 1 < argc) {
             const std::string b = argv[++i];
-            if (b == "raster") settings.backend = SamplingBackend::Raster;
-            else if (b == "compute") settings.backend = SamplingBackend::Compute;
-            else if (b == "auto") settings.backend = SamplingBackend::Auto;
+            if (b == "raster") settings.peeling.backend = SamplingBackend::Raster;
+            else if (b == "compute") settings.peeling.backend = SamplingBackend::Compute;
+            else if (b == "auto") settings.peeling.backend = SamplingBackend::Auto;
             else return fail("--backend takes raster, compute or auto");
-        } else if (a == "--dual") settings.dual = true;
-        else if (a == "--paper-packing") settings.packing = PackingMethod::Paper;
+        } else if (a == "--dual") settings.peeling.dual = true;
+        else if (a == "--paper-packing") settings.peeling.packing = PackingMethod::Paper;
         else return fail("unknown argument " + a + " (use --resolution N, --dual, --paper-packing, --cap L, --frames K, --backend B)");
     }
 
@@ -83,9 +83,9 @@ int main(int argc, char** argv) {
                     st.objects, st.triangles, st.resolution, static_cast<unsigned long long>(st.cells.entries),
                     static_cast<unsigned long long>(st.cells.candidates), static_cast<unsigned long long>(st.cells.survivors));
     } else {
-        std::printf("method: peeling; sampling backend: %s (%s)\n", toString(st.backend), st.backend_reason.c_str());
+        std::printf("method: peeling; sampling backend: %s (%s)\n", toString(st.peeling.backend), st.peeling.backend_reason.c_str());
         std::printf("scene: %u objects, %zu triangles; resolution %u, depth complexity %u, %u layers in %u peeling passes%s\n",
-                    st.objects, st.triangles, st.resolution, st.depth_complexity, st.layers, st.peel_passes, st.dual ? " (dual)" : "");
+                    st.objects, st.triangles, st.resolution, st.peeling.depth_complexity, st.peeling.layers, st.peeling.peel_passes, st.peeling.dual ? " (dual)" : "");
     }
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
@@ -95,10 +95,10 @@ int main(int argc, char** argv) {
     for (const auto& p : st.gpu_passes) std::printf(" %s %.3f;", p.name.c_str(), p.gpu_ms);
     if (st.method == DetectMethod::Reliable)
         std::printf("\nstages (ms): footprints %.3f, pairing %.3f, filtering %.3f (GPU), readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
-                    st.footprints_ms, st.pairing_ms, st.filtering_ms, st.readback_ms, st.narrow_ms, st.narrow_threads, st.total_ms);
+                    st.reliable.footprints_ms, st.reliable.pairing_ms, st.reliable.filtering_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads, st.total_ms);
     else
         std::printf("\nstages (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f, readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
-                    st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms, st.narrow_threads,
+                    st.sampling_ms, st.peeling.merging_ms, st.peeling.separation_ms, st.peeling.packing_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads,
                     st.total_ms);
     return result->pairs.empty() ? fail("expected collisions in the bundled scene, found none") : 0;
 }

@@ -1,4 +1,4 @@
-// vkcollide: object-level contacts (DetectSettings::contacts; docs/contacts.md).
+// vkcollide: object-level contacts (DetectSettings::contacts.objects; docs/contacts.md).
 //
 // For every pair of closed objects whose volumes overlap, what an engine's response needs:
 // how much they overlap, along which direction to separate them, how far, and where.
@@ -43,7 +43,7 @@ struct ObjectContact {
     bool contained = false;
 };
 
-// Where two intersecting triangles meet (DetectSettings::contact_geometry): one per
+// Where two intersecting triangles meet (DetectSettings::contacts.geometry): one per
 // DetectResult::pairs entry, at the same index. World units. Open surfaces included.
 enum class ContactShape : std::uint8_t {
     Segment,   // the triangles cross (or touch along an edge): start..end is the intersection

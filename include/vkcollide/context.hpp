@@ -28,7 +28,7 @@
 //            execution mode: VUID-RuntimeSpirv-LocalSizeId-06434).
 //  Queue     a family with GRAPHICS and COMPUTE and timestampValidBits > 0 (stage timings).
 //  Extensions none required. Used where enabled:
-//              VK_EXT_conservative_rasterization  DetectSettings::coverage = Conservative/Best
+//              VK_EXT_conservative_rasterization  DetectSettings::peeling.coverage = Conservative/Best
 //              VK_KHR_push_descriptor             descriptor-based pipelines (only vkcollide's
 //                                                 own tests have any; detection does not)
 //              VK_EXT_robustness2                 robustBufferAccess2 (see Robustness)

@@ -259,8 +259,8 @@ struct NarrowResult {
 
 // Scratch memory that the narrow phase keeps between calls. Passing the same workspace
 // every frame reuses its arrays instead of allocating them anew, which for large arrays
-// also means new pages from the system: 20-30 % of the narrow phase's time on the demo's
-// candidates, more at a million (docs/narrow_phase.md). Holds no results; its size follows
+// also means new pages from the system: a sizeable share of the narrow phase's time
+// (docs/narrow_phase.md measures it). Holds no results; its size follows
 // the largest call. Any entry may use any workspace.
 // Thread safety: one call at a time per workspace.
 class VKCOLLIDE_API NarrowWorkspace {

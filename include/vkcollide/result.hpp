@@ -24,8 +24,8 @@ enum class ErrorCode : std::uint32_t {
     DeviceLost,          // the device was lost; create a new Context
     OutOfMemory,         // host or device memory ran out
     GraphError,          // a render graph is malformed (cycle, undeclared resource, ...)
-    Timeout,             // GPU work did not finish within the wait allowed (DetectSettings::timeout_ms)
-    LimitExceeded,       // a documented limit was reached (DetectSettings::max_pairs, the sampling range)
+    Timeout,             // GPU work did not finish within the wait allowed (DetectSettings::limits.timeout_ms)
+    LimitExceeded,       // a documented limit was reached (DetectSettings::limits.max_pairs, the sampling range)
 };
 
 VKCOLLIDE_API const char* toString(ErrorCode code) noexcept;

@@ -42,7 +42,7 @@ public:
     // waking them now, so that the first loop that needs them does not wait for them. The
     // narrow phase calls it on entry when its input is large enough, and a world every
     // 50 microseconds while it polls for a detection's GPU work (DetectSettings::
-    // wait_poll_us) when the last detection's narrow phase was. Never required for
+    // limits.wait_poll_us) when the last detection's narrow phase was. Never required for
     // correctness; the default does nothing. Same thread rules as parallelFor.
     virtual void prepare(unsigned threads) noexcept { static_cast<void>(threads); }
 };

@@ -47,8 +47,8 @@ enum class BadObjectPolicy {
 
 // How object sampling (paper §4) runs: depth peeling on the graphics pipeline, or the
 // same rays and keys computed by compute shaders (edge functions with the rasterizer's
-// coverage rule). Auto (settings only) chooses per device and scene; DetectStats says
-// which ran and why.
+// coverage rule). Auto (settings only) chooses per device and scene; DetectStats::peeling
+// says which ran and why.
 enum class SamplingBackend { Auto, Raster, Compute };
 
 // How a detection's broad phase finds what the exact narrow phase tests (DetectSettings::
@@ -59,16 +59,16 @@ enum class DetectMethod {
     Peeling,   // the paper: depth peeling along rays, the kept triangles read back
 };
 
-// Where the reliable method's exact triangle-triangle decision runs (DetectSettings::exact).
-// Both give the same pairs: the GPU's test is the CPU's, predicate for predicate, in exact
-// arithmetic (docs/exact_gpu.md).
+// Where the reliable method's exact triangle-triangle decision runs
+// (DetectSettings::reliable.exact). Both give the same pairs: the GPU's test is the CPU's,
+// predicate for predicate, in exact arithmetic (docs/exact_gpu.md).
 enum class ExactDecision {
     Auto,  // on the GPU where the device has shaderFloat64, else on the CPU
     Gpu,  // on the GPU; a device without shaderFloat64 is refused (UnsupportedFeature)
     Cpu,  // on the CPU: every pair the GPU filter keeps is read back and tested there
 };
 
-// Where the host result's pairs are put in order (DetectSettings::pair_sort) when the exact
+// Where the host result's pairs are put in order (DetectSettings::reliable.pair_sort) when the exact
 // decision ran on the GPU. Both give the same pairs and responses to the bit.
 enum class PairSort {
     Auto,  // on the GPU when the world's last detection had at least kGpuPairSortFrom pairs

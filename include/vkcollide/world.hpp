@@ -79,7 +79,7 @@ struct ObjectOptions {
 
 // Every field left empty is chosen from the scene (DetectStats::settings_note says how).
 //
-// The method (DetectSettings::method):
+// The method (DetectSettings::method), and what it reads:
 //
 // Reliable (the default). A grid of N x N cells across the image plane of `direction`
 // (the grid's square fitted to the scene, or `region`; cells on its border reach to
@@ -98,19 +98,187 @@ struct ObjectOptions {
 // candidate pair (the filter); about 100 bytes per triangle, 20 per footprint (2 to 10 per
 // triangle at the automatic resolution) and 12 per candidate of device memory; on the
 // host only the surviving pairs (within a few per cent of the intersecting ones for
-// different objects; more for self-collision) are read, in place, and tested. H200,
-// stage alone: 2.56M triangles overlapping deeply 3.8 ms, a pile of 60 meshes (610K)
-// 0.8 ms, a deforming 100K pair 0.2 ms. One submission; nothing is measured first.
-// It uses resolution (cells per side), direction, region and bad_objects; it ignores
-// layer_cap, dual, packing, backend, coverage, open_epsilon, closed_epsilon and
-// measure_layers (they shape the sampling of rays, which it does not do), and runs
-// axes = 3 as 1 (one grid finds everything; the note says so).
+// different objects; more for self-collision) are read, in place, and tested. One
+// submission; nothing is measured first (measured times: docs/results.md).
+// It reads the top-level fields (resolution: cells per side), `reliable`, `contacts`,
+// `proximity` and `limits`; it ignores `peeling` (it shapes the sampling of rays, which
+// it does not do), except that it runs peeling.axes = 3 as 1 (one grid finds everything;
+// the note says so).
 //
 // Peeling (the paper). Depth peeling along N x N parallel rays, the triangles near rays
 // that cross two surfaces read back and paired on the host. Misses what no ray centre
 // sees (sub-pixel, sliver and edge-on triangles, touching contacts: docs/stability.md
-// measures each case and the settings that mitigate it); every field below applies.
+// measures each case and the settings that mitigate it). It reads the top-level fields
+// (resolution: rays per side), `peeling`, `contacts` and `limits`; `reliable` and
+// `proximity` belong to the reliable method (what they ask for is refused by name here).
+
+// Read only by the peeling method (DetectMethod::Peeling).
+struct PeelingSettings {
+    // Most layers to peel; rays deeper than this count as collision rays (conservative).
+    // 0: as many as the scene's depth complexity (measured), no more.
+    std::uint32_t layer_cap = 0;
+    bool dual = false;  // peel from the front and the back at once (half the passes)
+    PackingMethod packing = PackingMethod::Scan;
+    SamplingBackend backend = SamplingBackend::Auto;
+    // Open surfaces: two hits closer than this along a ray (world units) may collide.
+    // Automatic: half the typical edge length of the open objects.
+    std::optional<float> open_epsilon;
+    // detect() only: measure the depth complexity before peeling (one extra host wait,
+    // exactly the layers needed). Off, and always in submit(): peel as many layers as the
+    // last detection measured (rays that need more become collision rays and the
+    // statistics say so); the first detection of a world measures.
+    bool measure_layers = true;
+
+    // Beyond the paper (docs/stability.md measures each on the failure cases):
+    // Sampling directions: 1 (the paper), or 3: also the two directions perpendicular to
+    // `direction`; each triangle's candidates from the three are united (their kept
+    // regions mapped back to world boxes) and tested once. About 3x the GPU time.
+    // The reliable method runs 3 as 1 (resolveSettings says so).
+    std::uint32_t axes = 1;
+    Coverage coverage = Coverage::Centre;
+    // Depth-epsilon policy for closed surfaces (world units): leaving one closed surface
+    // and entering the next across a gap of at most this along a ray counts as touching
+    // (a collision ray). 0: only exact depth ties, ordered front before back, do.
+    float closed_epsilon = 0;
+    // Depth-aware separation (docs/broadphase.md): rays also record where two consecutive
+    // hits may collide (triangles of different objects, or of one self-colliding object and
+    // not neighbours, whose surfaces come within a pixel of each other in depth), and a
+    // triangle is downloaded only where its own (x, y, depth) box meets those of the rays
+    // around it; records then carry the kept depth range. Off: the paper's separation,
+    // which keeps every triangle under a collision ray whatever its depth. The collision
+    // rays are the same either way. On by default: on the bench set it never found fewer
+    // pairs than the paper's separation and downloads 2-30x fewer triangles where meshes
+    // overlap deeply (about as many on coarse piles). Costs 48 bytes per triangle and 19
+    // per ray of GPU memory, and a little GPU time per peeling step.
+    bool depth_aware = true;
+    // Also return where the collision rays were (DetectResult::collision_rays), as
+    // world-space segments, for pictures and debugging. Costs a 4-byte-per-ray readback and
+    // a host pass over the ray image. The reliable method samples no rays: refused there.
+    bool collision_rays = false;
+};
+
+// Read only by the reliable method (DetectMethod::Reliable, the default); the peeling
+// method refuses by name what it cannot do (exact Gpu, pair_sort Gpu, device_pairs).
+struct ReliableSettings {
+    // Where the exact triangle-triangle test decides the pairs the GPU's filter keeps
+    // (docs/exact_gpu.md). Gpu (Auto where the device has shaderFloat64): the pair pass
+    // decides every candidate exactly in double-precision expansion arithmetic and applies
+    // the neighbour rule, so only intersecting pairs are read back and the CPU computes
+    // their responses alone. Cpu: the filter's survivors are read back and the CPU narrow
+    // phase tests them (the reference path, and the only one without shaderFloat64). The
+    // pairs are the same either way; DetectStats::gpu_exact_tests and ::cpu_exact_tests say
+    // which ran. Peeling decides on the CPU: Gpu is refused there.
+    ExactDecision exact = ExactDecision::Auto;
+    // Exact decision on the GPU, no device_pairs: where the host result's pairs are put in
+    // order (PairSort; docs/exact_gpu.md). Gpu: sorted on the GPU and read back in order, so
+    // the CPU only computes the responses; Cpu: the narrow phase sorts them (the reference
+    // path). Same pairs and responses either way; DetectStats::reliable.pairs_sorted_on_gpu
+    // says which ran. Gpu is refused where device_pairs would be (peeling, exact Cpu, no
+    // shaderFloat64, a pair filter the world applies on the host only); Auto then sorts on
+    // the CPU. With engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
+    PairSort pair_sort = PairSort::Auto;
+
+    // With the exact decision on the GPU (exact Auto or Gpu, a device with shaderFloat64):
+    // the detection also leaves its pairs on the GPU, in buffers the world owns, sorted as
+    // DetectResult::pairs, for the engine's next command buffer (DevicePairs below;
+    // docs/api.md, "Results on the GPU"). Refused by name with the peeling method, with
+    // exact Cpu, without shaderFloat64 (UnsupportedFeature), and with a pair filter the
+    // world applies on the host only (more than kMaxFilterMaskObjects live objects). The
+    // host result is unchanged. Costs GPU passes over the survivors and the triangles
+    // (DetectStats::reliable.sorting_ms) and 16 bytes per pair of capacity plus 12 per
+    // triangle and 4 per survivor of capacity of device memory.
+    bool device_pairs = false;
+    // Pairs the device buffer holds. 0: automatic, the reliable method's survivor capacity
+    // (it grows with the scene and holds every pair of a complete run: no overflow). A
+    // smaller one: the first `device_pair_capacity` pairs in order are written and the
+    // header says kDevicePairsOverflow with the count needed (never a silent drop); at most
+    // kMaxDevicePairCapacity.
+    std::uint32_t device_pair_capacity = 0;
+    // With device_pairs: false leaves the pairs on the GPU only, for an engine that reads
+    // them there. Nothing is read back and no host narrow phase runs: DetectResult::pairs
+    // and ::responses stay empty, DetectStats::reliable.device_pairs_found says how many
+    // pairs the buffers hold, and the survivors stay in device-local memory. Refused without
+    // device_pairs and with contacts.objects (they are built from the host's pairs).
+    bool host_pairs = true;
+};
+
+// Contacts beyond the triangle pairs (vkcollide/contacts.hpp, docs/contacts.md). Either
+// method; the contacts are the same whatever the method.
+struct ContactSettings {
+    // Object-level contacts: for every pair of closed objects whose volumes overlap, the
+    // intersection volume, a contact normal, the penetration depth along it and the
+    // centroid, in DetectResult::contacts. Off by default: it is a second GPU stage after
+    // the broad phase (two short submissions, waited for in detect() or collect(): the
+    // first measures the objects' boxes), which draws the closed objects whose boxes
+    // overlap another's along `resolution`^2 rays across the region where those boxes
+    // overlap, sorts each ray's hits and walks them. Cost: GPU time about one sampling pass
+    // of those objects at that resolution, 72 bytes per triangle and 4 + 8 x (most hits on
+    // one ray) bytes per ray of GPU memory (docs/contacts.md measures it).
+    bool objects = false;
+    // Contact geometry of the intersecting pairs: where each pair meets (a segment, a point
+    // or a coplanar overlap, open surfaces included) and a normal, in
+    // DetectResult::pair_contacts, and per pair of objects the total length, area and normal
+    // in ::pair_contact_totals. Host meshes only (their vertices are on the host; engine
+    // meshes are refused by name). Off by default: computed on the host after the narrow
+    // phase (DetectStats::contacts.geometry_ms).
+    bool geometry = false;
+    // Object-level contacts: rays across the longer side of the region where closed
+    // objects' boxes overlap, an integer in [kMinContactResolution, kMaxContactResolution]
+    // (16 .. 4096). The error of the volume shrinks about linearly with it
+    // (docs/contacts.md). Automatic: kDefaultContactResolution (spirv/contacts/contacts.h; 128).
+    std::optional<std::uint32_t> resolution;
+};
+
+// Bounds on a detection's time, memory and result (docs/stability.md, "Limits"). Both
+// methods.
+struct LimitSettings {
+    // Longest wait for all of the detection's GPU work together, in milliseconds: every
+    // submission, the reliable method's reruns after a buffer grew, each direction, the
+    // runs without bad engine meshes and the contacts' submissions share it, and nothing
+    // new is submitted after it ran out. detect() counts from its call; submit() and
+    // record() count their own waits (measuring, an earlier timed-out detection's work)
+    // from the call and start the clock again at collect(). Beyond it the detection fails
+    // with ErrorCode::Timeout naming this setting; the GPU work already submitted goes on
+    // and the world is WorldState::Busy until it ends (CollisionWorld::state()). The
+    // world's destructor waits for that work without a limit (docs/stability.md, "Time").
+    std::uint32_t timeout_ms = 60000;
+    // How the thread that collects a detection waits for its GPU work: it sleeps until
+    // shortly (0.15 ms) before the work's expected end (the submission time plus the last
+    // detection's GPU time), then polls the GPU's fence for up to wait_poll_us
+    // microseconds, then sleeps for the rest of timeout_ms. A sleeping wait alone may wake
+    // the thread well after the GPU finishes (docs/results.md measures it); polling wakes
+    // it at once, and keeps one core busy for at most about wait_poll_us + 150
+    // microseconds per detection. While it polls, the world calls its executor's prepare()
+    // (WorldOptions::executor's, or its own pool's: that one keeps as many workers awake as
+    // the last detection's narrow phase used, when it had 256 pairs or more, and those
+    // cores spin for the same time), so they start on the pairs at once. 0: sleep only.
+    std::uint32_t wait_poll_us = 500;
+    // Most colliding pairs a detection returns. When the exact phase finds more, the
+    // result holds max_pairs of them (the same ones for the same input, not necessarily
+    // the smallest) with their responses, and DetectResult::pairs_left_out and
+    // ::incomplete say so. The result costs about 40 bytes per pair kept (pairs,
+    // responses, the narrow phase's hits); found pairs beyond the budget are counted, not
+    // kept.
+    std::uint64_t max_pairs = std::uint64_t{1} << 24;
+    // The candidate budget: past it the detection stops and fails with LimitExceeded,
+    // naming the count it needed and this setting (an error, nothing partial: unlike
+    // max_pairs). Bounds time and memory where candidates pile up in one place: k copies of
+    // one triangle give k^2/2 pairs. Either way the world stays usable after the error.
+    // Peeling: the pairs of candidate triangles whose boxes overlap, which the narrow phase
+    // sweeps (DetectStats::narrow.sap_pairs, up to 8 bytes each). Real scenes make about 9
+    // per candidate (8.7M for 1M candidates; docs/narrow_phase.md measures the sweep's time).
+    // Reliable: the GPU cell stage's work and memory (docs/stability.md, "Limits"): the
+    // cells of the triangles' footprint boxes (each footprint costs 20 bytes of GPU memory)
+    // and the candidate pairs the cells form (12 bytes each, DetectStats::cells.candidates)
+    // at most this many each, the pairs of footprints sharing a cell (what the cells'
+    // sweep compares) at most 64 times it; no GPU buffer grows beyond it. Two 1.28M-triangle
+    // spheres overlapping deeply need 15.6M box cells, 5.2e8 comparisons and 181K
+    // candidates at the automatic resolution.
+    std::uint64_t max_candidate_pairs = std::uint64_t{1} << 27;
+};
+
 struct DetectSettings {
+    // Both methods.
     DetectMethod method = DetectMethod::Reliable;
     // Reliable: cells per side, any integer in [1, 16384]. Automatic: about
     // kCellsPerEdge (spirv/common/config.h; 2) cells per typical projected triangle edge across
@@ -128,170 +296,21 @@ struct DetectSettings {
     // last measured scene box), so a flat cloth is seen face-on, not edge-on. Ties: z,
     // then y, then x.
     std::optional<std::array<float, 3>> direction;
-    // Peeling: most layers to peel; rays deeper than this count as collision rays
-    // (conservative). 0: as many as the scene's depth complexity (measured), no more.
-    std::uint32_t layer_cap = 0;
-    bool dual = false;  // peeling: peel from the front and the back at once (half the passes)
-    PackingMethod packing = PackingMethod::Scan;       // peeling
-    SamplingBackend backend = SamplingBackend::Auto;  // peeling
-    // Peeling, open surfaces: two hits closer than this along a ray (world units) may
-    // collide. Automatic: half the typical edge length of the open objects.
-    std::optional<float> open_epsilon;
     // Sample only this world box (min x, y, z, max x, y, z); default: fit to the scene.
     // Reliable: the grid's square spans this box's extent; what lies outside falls into
     // the border cells (slower, never missed).
     std::optional<std::array<float, 6>> region;
-    // Peeling, detect() only: measure the depth complexity before peeling (one extra host
-    // wait, exactly the layers needed). Off, and always in submit(): peel as many layers
-    // as the last detection measured (rays that need more become collision rays and the
-    // statistics say so); the first detection of a world measures.
-    bool measure_layers = true;
-
-    // Peeling, beyond the paper (docs/stability.md measures each on the failure cases):
-    // Sampling directions: 1 (the paper), or 3: also the two directions perpendicular to
-    // `direction`; each triangle's candidates from the three are united (their kept
-    // regions mapped back to world boxes) and tested once. About 3x the GPU time.
-    std::uint32_t axes = 1;
-    Coverage coverage = Coverage::Centre;
-    // Depth-epsilon policy for closed surfaces (world units): leaving one closed surface
-    // and entering the next across a gap of at most this along a ray counts as touching
-    // (a collision ray). 0: only exact depth ties, ordered front before back, do.
-    float closed_epsilon = 0;
     BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
-    // Depth-aware separation (docs/broadphase.md): rays also record where two consecutive
-    // hits may collide (triangles of different objects, or of one self-colliding object and
-    // not neighbours, whose surfaces come within a pixel of each other in depth), and a
-    // triangle is downloaded only where its own (x, y, depth) box meets those of the rays
-    // around it; records then carry the kept depth range. Off: the paper's separation,
-    // which keeps every triangle under a collision ray whatever its depth. The collision
-    // rays are the same either way. On by default: on the bench set it never found fewer
-    // pairs than the paper's separation and downloads 2-30x fewer triangles where meshes
-    // overlap deeply (about as many on coarse piles). Costs 48 bytes per triangle and 19
-    // per ray of GPU memory, and a little GPU time per peeling step.
-    bool depth_aware = true;
-    // Peeling: also return where the collision rays were (DetectResult::collision_rays), as
-    // world-space segments, for pictures and debugging. Costs a 4-byte-per-ray readback and
-    // a host pass over the ray image. The reliable method samples no rays: refused there.
-    bool collision_rays = false;
 
-    // Limits (docs/stability.md, "Limits"):
-    // Longest wait for all of the detection's GPU work together, in milliseconds: every
-    // submission, the reliable method's reruns after a buffer grew, each direction, the
-    // runs without bad engine meshes and the contacts' submissions share it, and nothing
-    // new is submitted after it ran out. detect() counts from its call; submit() and
-    // record() count their own waits (measuring, an earlier timed-out detection's work)
-    // from the call and start the clock again at collect(). Beyond it the detection fails
-    // with ErrorCode::Timeout naming this setting; the GPU work already submitted goes on
-    // and the world is WorldState::Busy until it ends (CollisionWorld::state()). The
-    // world's destructor waits for that work without a limit (docs/stability.md, "Time").
-    std::uint32_t timeout_ms = 60000;
-    // How the thread that collects a detection waits for its GPU work: it sleeps until
-    // shortly (0.15 ms) before the work's expected end (the submission time plus the last
-    // detection's GPU time), then polls the GPU's fence for up to wait_poll_us
-    // microseconds, then sleeps for the rest of timeout_ms. A sleeping wait alone wakes
-    // the thread 0.05-0.2 ms after the GPU finishes (NVIDIA's driver on an H200,
-    // docs/results.md); polling wakes it at once, and keeps one core busy for at most about
-    // wait_poll_us + 150 microseconds per detection. While it polls, the world calls its
-    // executor's prepare() (WorldOptions::executor's, or its own pool's: that one keeps as
-    // many workers awake as the last detection's narrow phase used, when it had 256 pairs
-    // or more, and those cores spin for the same time), so they start on the pairs at once.
-    // 0: sleep only.
-    std::uint32_t wait_poll_us = 500;
-    // Most colliding pairs a detection returns. When the exact phase finds more, the
-    // result holds max_pairs of them (the same ones for the same input, not necessarily
-    // the smallest) with their responses, and DetectResult::pairs_left_out and
-    // ::incomplete say so. The result costs about 40 bytes per pair kept (pairs,
-    // responses, the narrow phase's hits); found pairs beyond the budget are counted, not
-    // kept.
-    std::uint64_t max_pairs = std::uint64_t{1} << 24;
-    // The candidate budget: past it the detection stops and fails with LimitExceeded,
-    // naming the count it needed and this setting (an error, nothing partial: unlike
-    // max_pairs). Bounds time and memory where candidates pile up in one place: k copies of
-    // one triangle give k^2/2 pairs. Either way the world stays usable after the error.
-    // Peeling: the pairs of candidate triangles whose boxes overlap, which the narrow phase
-    // sweeps (DetectStats::narrow.sap_pairs, up to 8 bytes each). Real scenes make about 9
-    // per candidate (8.7M for 1M candidates, docs/narrow_phase.md); 2^27 = 134M takes
-    // about a second to sweep on two cores.
-    // Reliable: the GPU cell stage's work and memory (docs/stability.md, "Limits"): the
-    // cells of the triangles' footprint boxes (each footprint costs 20 bytes of GPU memory)
-    // and the candidate pairs the cells form (12 bytes each, DetectStats::cells.candidates)
-    // at most this many each, the pairs of footprints sharing a cell (what the cells'
-    // sweep compares) at most 64 times it; no GPU buffer grows beyond it. Two 1.28M-triangle
-    // spheres overlapping deeply need 15.6M box cells, 5.2e8 comparisons and 181K
-    // candidates at the automatic resolution.
-    std::uint64_t max_candidate_pairs = std::uint64_t{1} << 27;
-
-    // Object-level contacts (vkcollide/contacts.hpp, docs/contacts.md): for every pair of
-    // closed objects whose volumes overlap, the intersection volume, a contact normal, the
-    // penetration depth along it and the centroid, in DetectResult::contacts. Either
-    // method; the contacts are the same whatever the method. Off by default: it is a
-    // second GPU stage after the broad phase (two short submissions, waited for in
-    // detect() or collect(): the first measures the objects' boxes), which draws the
-    // closed objects whose boxes overlap another's along contact_resolution^2 rays across
-    // the region where those boxes overlap, sorts each ray's hits and walks them. Cost:
-    // GPU time about one sampling pass of those objects at that resolution, 72 bytes per
-    // triangle and 4 + 8 x (most hits on one ray) bytes per ray of GPU memory
-    // (docs/contacts.md measures it: on lavapipe it adds 3-60 % to a detection).
-    bool contacts = false;
-    // Contact geometry of the intersecting pairs (vkcollide/contacts.hpp, docs/contacts.md):
-    // where each pair meets (a segment, a point or a coplanar overlap, open surfaces
-    // included) and a normal, in DetectResult::pair_contacts, and per pair of objects the
-    // total length, area and normal in ::pair_contact_totals. Either method; host meshes only
-    // (their vertices are on the host; engine meshes are refused by name). Off by default:
-    // computed on the host after the narrow phase (DetectStats::contact_geometry_ms).
-    bool contact_geometry = false;
-    // Rays across the longer side of the region where closed objects' boxes overlap, an
-    // integer in [kMinContactResolution, kMaxContactResolution] (16 .. 4096). The error of
-    // the volume shrinks about linearly with it (docs/contacts.md). Automatic:
-    // kDefaultContactResolution (spirv/contacts/contacts.h; 128).
-    std::optional<std::uint32_t> contact_resolution;
-
-    // Reliable: where the exact triangle-triangle test decides the pairs the GPU's filter
-    // keeps (docs/exact_gpu.md). Gpu (Auto where the device has shaderFloat64): the pair
-    // pass decides every candidate exactly in double-precision expansion arithmetic and
-    // applies the neighbour rule, so only intersecting pairs are read back and the CPU
-    // computes their responses alone. Cpu: the filter's survivors are read back and the
-    // CPU narrow phase tests them (the reference path, and the only one without
-    // shaderFloat64). The pairs are the same either way; DetectStats::gpu_exact_tests and
-    // ::cpu_exact_tests say which ran. Peeling decides on the CPU: Gpu is refused there.
-    ExactDecision exact = ExactDecision::Auto;
-    // Reliable, exact decision on the GPU, no device_pairs: where the host result's pairs are
-    // put in order (PairSort; docs/exact_gpu.md). Gpu: sorted on the GPU and read back in
-    // order, so the CPU only computes the responses; Cpu: the narrow phase sorts them (the
-    // reference path). Same pairs and responses either way; DetectStats::pairs_sorted_on_gpu
-    // says which ran. Gpu is refused where device_pairs would be (peeling, exact Cpu, no
-    // shaderFloat64, a pair filter the world applies on the host only); Auto then sorts on
-    // the CPU. With engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
-    PairSort pair_sort = PairSort::Auto;
-
-    // Reliable, with the exact decision on the GPU (exact Auto or Gpu, a device with
-    // shaderFloat64): the detection also leaves its pairs on the GPU, in buffers the world
-    // owns, sorted as DetectResult::pairs, for the engine's next command buffer (DevicePairs
-    // below; docs/api.md, "Results on the GPU"). Refused by name with the peeling method,
-    // with exact Cpu, without shaderFloat64 (UnsupportedFeature), and with a pair filter
-    // the world applies on the host only (more than kMaxFilterMaskObjects live objects).
-    // The host result is unchanged. Costs GPU passes over the survivors and the triangles
-    // (DetectStats::sorting_ms) and 16 bytes per pair of capacity plus 12 per triangle and
-    // 4 per survivor of capacity of device memory.
-    bool device_pairs = false;
-    // Pairs the device buffer holds. 0: automatic, the reliable method's survivor capacity
-    // (it grows with the scene and holds every pair of a complete run: no overflow). A
-    // smaller one: the first `device_pair_capacity` pairs in order are written and the
-    // header says kDevicePairsOverflow with the count needed (never a silent drop); at most
-    // kMaxDevicePairCapacity.
-    std::uint32_t device_pair_capacity = 0;
-    // With device_pairs: false leaves the pairs on the GPU only, for an engine that reads
-    // them there. Nothing is read back and no host narrow phase runs: DetectResult::pairs
-    // and ::responses stay empty, DetectStats::device_pairs_found says how many pairs the
-    // buffers hold, and the survivors stay in device-local memory. Refused without
-    // device_pairs and with contacts (they are built from the host's pairs).
-    bool host_pairs = true;
-
+    PeelingSettings peeling;    // the peeling method only
+    ReliableSettings reliable;  // the reliable method only
+    ContactSettings contacts;   // either method
     // Reliable: also every vertex-triangle and edge-edge pair within a distance, with its
     // distance, closest points and normal, in DetectResult::proximity (vkcollide/
     // proximity.hpp, docs/proximity.md). Off (distance 0) by default. Host meshes only (their
     // indices say which primitives neighbour each other); needs shaderFloat64.
     ProximitySettings proximity;
+    LimitSettings limits;  // either method
 };
 inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
 // PairSort::Auto sorts on the GPU from this many pairs in the world's last detection: below
@@ -316,16 +335,16 @@ struct CellStats {
     std::uint64_t gpu_triangles = 0;    // engine meshes' triangles read back with their vertices (52 bytes each)
     std::uint32_t runs = 1;             // submissions (more after a buffer grew)
     bool filter_ran = false;            // the device has shaderFloat64
-    bool exact_ran = false;  // the pair pass decided exactly (DetectSettings::exact)
+    bool exact_ran = false;  // the pair pass decided exactly (DetectSettings::reliable.exact)
     std::uint64_t exact_tests = 0;  // candidates the GPU's exact test decided (after the filter)
     std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (a bit-identical vertex)
 };
 
 // A host mesh declared closed (ObjectOptions::open false) that is not a closed surface
 // facing outwards. Closed objects are told apart by inside and outside: an inside-out one
-// gets contact volume 0 (DetectSettings::contacts) and, under the peeling method, collision
-// rays wherever a ray crosses it; a holed one has no inside. The pairs of the reliable
-// method do not depend on it. Checked on the host when the mesh is added (holes: its
+// gets contact volume 0 (DetectSettings::contacts.objects) and, under the peeling method,
+// collision rays wherever a ray crosses it; a holed one has no inside. The pairs of the
+// reliable method do not depend on it. Checked on the host when the mesh is added (holes: its
 // topology; inside out: the sign of its volume, one pass over its triangles on the world's
 // executor, then counted under each detection's transform); updateVertices does not
 // re-check, and engine meshes are not checked.
@@ -336,7 +355,78 @@ struct MeshWarning {
     std::string message;  // names the object, the problem and the fix
 };
 
+// Filled by the peeling method. The reliable method samples no rays (backend_reason says
+// so): it peels nothing, and dual and coverage echo its settings.
+struct PeelingStats {
+    std::uint32_t depth_complexity = 0;  // measured by this detection, over the rays that are peeled
+    std::uint32_t layers = 0;            // layers peeled
+    std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
+    // Rays with more than 1,024 surfaces along them (gpu::kMaxRayFragments): collision rays
+    // at once, without peeling (their triangles go to the exact narrow phase), and left out
+    // of depth_complexity. Bounds the peeling passes of pathological scenes.
+    std::uint32_t deep_rays = 0;
+    bool dual = false;
+    bool layers_short = false;           // some rays had more layers than were peeled (no cap asked), or deep rays
+    std::uint32_t axes = 1;              // sampling directions run (the counts of DetectStats are summed over
+                                         // them, depth complexity and layers are their maximum)
+    Coverage coverage = Coverage::Centre;  // that ran: Centre, Dilate or Conservative (never Best)
+    SamplingBackend backend = SamplingBackend::Raster;  // object sampling that ran (never Auto); toString names it
+    std::string backend_reason;          // why (Auto's rule, or "asked for"; reliable: none sampled)
+    // GPU, per stage after the sampling (DetectStats::sampling_ms).
+    double merging_ms = 0, separation_ms = 0, packing_ms = 0;
+};
+
+// Filled by the reliable method: its GPU times by stage (the front: DetectStats::sampling_ms)
+// and where its pairs went. Its cell stage's counters are DetectStats::cells.
+struct ReliableStats {
+    double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;  // GPU, per stage
+    double sorting_ms = 0;             // device_pairs: the GPU's sort of the pairs
+    bool pairs_sorted_on_gpu = false;  // DetectSettings::reliable.pair_sort: the GPU ordered the host result's pairs
+    // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
+    // as DetectResult::pairs would have held) and `count` (those the buffer holds).
+    std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
+};
+
+// DetectSettings::contacts. With objects on: the stage's host wall time (both submissions,
+// the waits and the reading) and GPU time, its rays (width x height), the most hits on one
+// ray (layers), the candidate object pairs (closed, allowed, boxes overlapping), rays inside
+// more than 16 objects at once (those extra objects ignored there) and its submissions.
+struct ContactStats {
+    double host_ms = 0, gpu_ms = 0;
+    std::uint32_t rays_x = 0, rays_y = 0, layers = 0;
+    std::uint32_t candidate_pairs = 0, nested_rays = 0, runs = 0;
+    double geometry_ms = 0;  // with geometry on: its host wall time
+};
+
+// Host wall time of a detection's parts: start (settings, recording, queue submission) and
+// the broad phase's collection (waiting for the GPU, reading the results back); the narrow
+// phase is DetectStats::narrow_ms.
+struct HostStats {
+    double start_ms = 0, collect_ms = 0;
+    // Where the host time of start and collection goes beyond the GPU passes (ms, host wall
+    // clock; summed over the detection's queue submissions and sampling directions):
+    double settings_ms = 0;  // the live objects, automatic settings (shapes measured
+                             // when stale), validation, the pair filter's mask
+    double upload_ms = 0;    // the broad phase's per-run inputs: waiting for earlier
+                             // work, buffers sized, objects, frame and the method's inputs written
+    double declare_ms = 0;   // the render graph declared (its passes and resources)
+    double compile_ms = 0;   // the render graph compiled (order, barriers), or its last plan reused
+    double record_ms = 0;    // transient resources, timestamp queries, the command buffer recorded
+    double submit_ms = 0;    // the command buffer ended and handed to the queue
+    double wait_ms = 0;      // waiting for the GPU to finish (fences)
+    // From each queue submission's return to the host's waking up after it, less its GPU
+    // span: queue launch latency, GPU time outside the timestamps, wake-up latency. With
+    // submit() and collect() apart it also counts the host's work in between.
+    double launch_wake_ms = 0;
+    // Of DetectStats::submissions, those whose command buffer was submitted again instead
+    // of recorded: the commands equalled the last recording's and nothing they use was
+    // destroyed since.
+    std::uint32_t reused_submissions = 0;
+    unsigned narrow_threads = 0;  // the executor's threads the narrow phase could use
+};
+
 struct DetectStats {
+    // Both methods.
     // The paper's Table 1. Peeling as in the paper. Reliable, the closest meaning:
     //   collision rays        -> cells where the sweep found a candidate pair
     //   triangles downloaded  -> distinct triangles named by the pairs read back (their ids
@@ -349,86 +439,41 @@ struct DetectStats {
     std::size_t potentially_colliding_triangles = 0;  // "# pot. coll. tri's"
     std::size_t triangle_tests = 0;                   // "# tri-tri tests"
     std::size_t positive_tests = 0;                   // "# pos. tests"
-    std::size_t gpu_exact_tests = 0;  // of the tests, decided on the GPU (reliable, DetectSettings::exact)
+    std::size_t gpu_exact_tests = 0;  // of the tests, decided on the GPU (reliable, DetectSettings::reliable.exact)
     std::size_t cpu_exact_tests = 0;  // of the tests, decided on the CPU
-    // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
-    // as DetectResult::pairs would have held) and `count` (those the buffer holds).
-    std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
-    bool pairs_sorted_on_gpu = false;  // DetectSettings::pair_sort: the GPU ordered the host result's pairs
-    double contact_geometry_ms = 0;    // DetectSettings::contact_geometry: host wall time
     NarrowStats narrow;                               // every narrow-phase counter
     NarrowTimings narrow_timings;                     // the narrow phase's stages (host wall clock)
-    CellStats cells;                                  // reliable only
     // What ran.
     DetectMethod method = DetectMethod::Reliable;
     std::uint32_t objects = 0;
     std::uint32_t resolution = 0;        // rays (peeling) or cells (reliable) per side
     std::array<float, 3> direction{};
-    std::uint32_t depth_complexity = 0;  // peeling: measured by this detection, over the rays that are peeled
-    std::uint32_t layers = 0;            // peeling: layers peeled
-    std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
-    // Rays with more than 1,024 surfaces along them (gpu::kMaxRayFragments): collision rays
-    // at once, without peeling (their triangles go to the exact narrow phase), and left out
-    // of depth_complexity. Bounds the peeling passes of pathological scenes.
-    std::uint32_t deep_rays = 0;
-    bool dual = false;
-    bool layers_short = false;           // some rays had more layers than were peeled (no cap asked), or deep rays
-    std::uint32_t axes = 1;              // sampling directions run (counts above are summed over them,
-                                         // depth complexity and layers are their maximum)
-    Coverage coverage = Coverage::Centre;  // peeling: that ran: Centre, Dilate or Conservative (never Best)
-    SamplingBackend backend = SamplingBackend::Raster;  // peeling: object sampling that ran (never Auto); toString names it
-    std::string backend_reason;          // why (Auto's rule, or "asked for"; reliable: none sampled)
     std::string settings_note;           // how automatic settings were chosen
     std::vector<MeshWarning> mesh_warnings;  // closed objects that are inside out or holed, by id
     // Times.
     std::vector<PassTime> gpu_passes;    // GPU timestamps of every pass, in order
-    // GPU, per stage. sampling_ms includes the front (clear, GPU input checks, bounds, fit),
-    // which is all of it for the reliable method.
-    double sampling_ms = 0, merging_ms = 0, separation_ms = 0, packing_ms = 0;  // peeling
-    double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;                 // reliable
-    double sorting_ms = 0;               // reliable, device_pairs: the GPU's sort of the pairs
+    // GPU: the front (clear, GPU input checks, bounds, fit) and, peeling, the object
+    // sampling: all of the reliable method's GPU time before its footprints. The other
+    // stages: peeling.merging_ms .. packing_ms, reliable.footprints_ms .. sorting_ms.
+    double sampling_ms = 0;
     double readback_ms = 0;              // host: reading the header and the records or pairs
     double narrow_ms = 0;                // host: the CPU narrow phase
-    // Contacts (DetectSettings::contacts): the stage's host wall time (both submissions,
-    // waits and reading), its GPU time, and its rays (width x height), the most hits on one
-    // ray, the candidate object pairs (closed, allowed, boxes overlapping), rays inside
-    // more than 16 objects at once (those extra objects ignored there) and submissions.
-    double contacts_ms = 0, contacts_gpu_ms = 0;
-    ProximityStats proximity;  // DetectSettings::proximity
-    std::uint32_t contact_rays_x = 0, contact_rays_y = 0, contact_layers = 0;
-    std::uint32_t contact_candidate_pairs = 0, contact_nested_rays = 0, contact_runs = 0;
     double total_ms = 0;                 // host wall time from submit to result
-    // Host wall time of its parts: start (settings, recording, queue submission) and the
-    // broad phase's collection (waiting for the GPU, reading the results back); the
-    // narrow phase is narrow_ms.
-    double host_start_ms = 0, host_collect_ms = 0;
-    // Where the host time of start and collection goes beyond the GPU passes (ms, host wall
-    // clock; summed over the detection's queue submissions and sampling directions):
-    double host_settings_ms = 0;  // the live objects, automatic settings (shapes measured
-                                  // when stale), validation, the pair filter's mask
-    double host_upload_ms = 0;    // the broad phase's per-run inputs: waiting for earlier
-                                  // work, buffers sized, objects, frame and the method's inputs written
-    double host_declare_ms = 0;   // the render graph declared (its passes and resources)
-    double host_compile_ms = 0;   // the render graph compiled (order, barriers), or its last plan reused
-    double host_record_ms = 0;    // transient resources, timestamp queries, the command buffer recorded
-    double host_submit_ms = 0;    // the command buffer ended and handed to the queue
-    double host_wait_ms = 0;      // waiting for the GPU to finish (fences)
-    double gpu_span_ms = 0;       // the GPU's own span: first pass's start to last pass's end
-                                  // (timestamps; barriers and gaps between passes included)
-    // From each queue submission's return to the host's waking up after it, less its GPU
-    // span: queue launch latency, GPU time outside the timestamps, wake-up latency. With
-    // submit() and collect() apart it also counts the host's work in between.
-    double launch_wake_ms = 0;
-    std::uint32_t submissions = 0;  // queue submissions the broad phase made
-    // Of them, those whose command buffer was submitted again instead of recorded: the
-    // commands equalled the last recording's and nothing they use was destroyed since.
-    std::uint32_t reused_submissions = 0;
-    unsigned narrow_threads = 0;
+    double gpu_span_ms = 0;              // the GPU's own span: first pass's start to last pass's end
+                                         // (timestamps; barriers and gaps between passes included)
+    std::uint32_t submissions = 0;       // queue submissions the broad phase made
     // Memory: device memory held by the world, in Context::deviceMemoryInUse()'s unit (the
     // memory requirements' sizes): uploaded meshes, the broad phases' buffers, images and
     // cached transients, both slots when two detections were in flight. With one world on a
     // Context this is deviceMemoryInUse(). Engine-owned buffers are not counted.
     std::uint64_t gpu_memory_bytes = 0;
+
+    PeelingStats peeling;      // the peeling method's
+    ReliableStats reliable;    // the reliable method's times and where its pairs went
+    CellStats cells;           // the reliable method's cell stage, counted on the GPU
+    ContactStats contacts;     // DetectSettings::contacts
+    ProximityStats proximity;  // DetectSettings::proximity
+    HostStats host;            // where the host's time goes beyond the narrow phase
 };
 
 // A colliding pair; objects are ObjectIds, triangles index the object's triangle list.
@@ -439,7 +484,7 @@ struct ExcludedObject {
     Error error{ErrorCode::InvalidMesh, {}};  // names the object, a bad triangle and the problem
 };
 
-// ---- Results on the GPU (DetectSettings::device_pairs; docs/api.md) ---------------------
+// ---- Results on the GPU (DetectSettings::reliable.device_pairs; docs/api.md) ------------
 //
 // Layout. `pairs`: TrianglePair records (four uint32: object_a, triangle_a, object_b,
 // triangle_b; 16 bytes, tightly packed) at offset 0, `capacity` of them; the first
@@ -487,7 +532,7 @@ struct DevicePairs {
     std::uint32_t slot = 0;            // the detection slot (0 or 1) whose buffers these are
 };
 
-// The collision rays of a peeling detection (DetectSettings::collision_rays): each ray from
+// The collision rays of a peeling detection (DetectSettings::peeling.collision_rays): each ray from
 // where the sampled box begins along its direction to where it ends, in world space.
 struct CollisionRays {
     std::vector<std::array<Float3, 2>> segments;  // every direction's rays, the first direction's first
@@ -497,15 +542,15 @@ struct CollisionRays {
 
 struct DetectResult {
     std::vector<TrianglePair> pairs;
-    // With DetectSettings::device_pairs: where the same pairs are on the GPU (above).
+    // With DetectSettings::reliable.device_pairs: where the same pairs are on the GPU (above).
     std::optional<DevicePairs> device;
     std::vector<TriangleResponse> responses;  // one per colliding triangle, world space
     std::vector<ExcludedObject> excluded;     // engine meshes that failed the GPU check this time
-    // With DetectSettings::contacts: one per pair of closed objects whose volumes overlap
+    // With DetectSettings::contacts.objects: one per pair of closed objects whose volumes overlap
     // or whose triangles intersect (filtered pairs and excluded objects have none), sorted
     // by (object_a, object_b). Empty otherwise.
     std::vector<ObjectContact> contacts;
-    // With DetectSettings::contact_geometry: one per `pairs` entry, same index; and per pair
+    // With DetectSettings::contacts.geometry: one per `pairs` entry, same index; and per pair
     // of objects with intersecting triangles, their sums, sorted by (object_a, object_b).
     std::vector<PairContact> pair_contacts;
     std::vector<ObjectPairContact> pair_contact_totals;
@@ -514,10 +559,10 @@ struct DetectResult {
     std::vector<ProximityPair> proximity;
     // With DetectSettings::proximity: the same pairs on the GPU (vkcollide/proximity.hpp).
     std::optional<DeviceProximity> device_proximity;
-    // With DetectSettings::collision_rays (peeling): where the collision rays were.
+    // With DetectSettings::peeling.collision_rays: where the collision rays were.
     std::optional<CollisionRays> collision_rays;
     DetectStats stats;
-    // DetectSettings::max_pairs was reached: the intersecting pairs found beyond it (not in
+    // DetectSettings::limits.max_pairs was reached: the intersecting pairs found beyond it (not in
     // `pairs`, not in `responses`), and an error (LimitExceeded) that says so. Empty and 0
     // when the result is complete.
     std::uint64_t pairs_left_out = 0;
@@ -531,7 +576,7 @@ enum class WorldState : std::uint8_t {
     Busy,        // a detection failed with Timeout and its GPU work is still running: calls
                  // that would change what that work reads (updateVertices, removeObject)
                  // fail with Timeout, and the next detection first waits for it (within its
-                 // own timeout_ms). Engine buffers given to addGpuMesh stay in use until then.
+                 // own limits.timeout_ms). Engine buffers given to addGpuMesh stay in use until then.
     DeviceLost,  // a detection met a lost device: every later detection fails with
                  // DeviceLost; destroy the world and create a new Context
 };
@@ -600,12 +645,10 @@ public:
     // 4,096 sampled triangles (128 evenly spaced blocks of 32 consecutive ones), on the
     // executor: in this call's own loop while the last detection or resolveSettings()
     // needed them, else at the next one that does (not at all while `direction`,
-    // `resolution` and `open_epsilon` are given).
+    // `resolution` and `peeling.open_epsilon` are given).
     // Cost: about the time to write 12 bytes per vertex twice, once over the bus when the
-    // upload buffer is device memory: 0.6-0.9 ms per million vertices on two cores with the
-    // upload buffer in host memory (lavapipe); docs/api.md, "Costs", has the measurements
-    // and where the time goes. Measuring the shapes added 0-0.045 ms to a frame's updates
-    // of two deforming 50K-500K-triangle meshes (an H200 host, 16 threads; docs/results.md).
+    // upload buffer is device memory; measuring the shapes adds a little to it. docs/api.md,
+    // "Costs", and docs/results.md have the measurements and where the time goes.
     // The inside-out check of DetectStats::mesh_warnings is made by addMesh, not here: a
     // deformation rarely turns a mesh inside out, and a pass over its triangles per frame
     // would cost a deforming mesh about as much as this call's own copy.
@@ -642,8 +685,8 @@ public:
     [[nodiscard]] Result<DetectResult> detect(const DetectSettings& settings = {});
     // detect() into a result the caller keeps from frame to frame: the memory of its pairs,
     // responses and pair contacts is reused, so a loop that passes the same DetectResult every frame asks
-    // the system for fresh pages only when they outgrow it (1.7M pairs: filling a fresh
-    // 27 MB vector costs more than sorting it; docs/results.md). Every field is overwritten
+    // the system for fresh pages only when they outgrow it (filling fresh pages can cost
+    // more than sorting the pairs: docs/results.md). Every field is overwritten
     // with what detect() would return; on failure io_result holds no result (its pairs and
     // responses may be empty) and the error is returned. collectInto() is collect()'s form.
     [[nodiscard]] Result<void> detectInto(DetectResult& io_result, const DetectSettings& settings = {});
@@ -659,7 +702,7 @@ public:
     // removeObject, setSelfCollision and setPairFilter fail with InvalidArgument naming
     // the call (the in-flight work reads what they change).
     // Peeling: submit() peels as many layers as the last detection measured (one
-    // submission; DetectSettings::measure_layers is ignored); when none is known (the first
+    // submission; DetectSettings::peeling.measure_layers is ignored); when none is known (the first
     // detection, or after objects were added or removed) it measures first, with a host
     // wait between two submissions.
     //
@@ -671,7 +714,7 @@ public:
     // queue submissions (peeling with axes 3, or a measuring submission) waits in the first
     // and signals in the last. Timeline waits may be signalled after submit() returns, but
     // not when this submit() measures (above): its host wait would wait for them (up to
-    // timeout_ms). Binary waits follow Vulkan's rule (the signal already submitted).
+    // limits.timeout_ms). Binary waits follow Vulkan's rule (the signal already submitted).
     // If submit() fails, its waits and signals are still submitted (as a batch of only
     // those) so that no engine queue waits forever; except when `sync` itself is invalid
     // (a null semaphore or a 0 stage mask: InvalidArgument, nothing submitted).
@@ -706,7 +749,7 @@ public:
     [[nodiscard]] Result<bool> ready();
     // collect() if ready(), else std::nullopt at once (nothing changed: still in flight).
     [[nodiscard]] Result<std::optional<DetectResult>> tryCollect();
-    // With DetectSettings::device_pairs: the buffers the detection started last (detect(),
+    // With DetectSettings::reliable.device_pairs: the buffers the detection started last (detect(),
     // submit(), record()) writes its pairs into, known as soon as it started, so that the
     // engine can record its reads before collect() (layout, synchronisation and lifetime:
     // "Results on the GPU" above); after its collect() they are DetectResult::device (the

@@ -141,15 +141,15 @@ vkcollide::DetectSettings CommonOptions::detectSettings() const {
     // Passed on as given: under the peeling method a count that is not a power of two
     // fails the first detection with the API's message.
     if (resolution) s.resolution = resolution;
-    s.layer_cap = layer_cap;
-    s.dual = dual;
-    s.axes = axes;
-    if (backend == "raster") s.backend = vkcollide::SamplingBackend::Raster;
-    else if (backend == "compute") s.backend = vkcollide::SamplingBackend::Compute;
+    s.peeling.layer_cap = layer_cap;
+    s.peeling.dual = dual;
+    s.peeling.axes = axes;
+    if (backend == "raster") s.peeling.backend = vkcollide::SamplingBackend::Raster;
+    else if (backend == "compute") s.peeling.backend = vkcollide::SamplingBackend::Compute;
     else if (backend != "auto") die("--backend takes auto, raster or compute");
-    if (coverage == "dilate") s.coverage = vkcollide::Coverage::Dilate;
-    else if (coverage == "conservative") s.coverage = vkcollide::Coverage::Conservative;
-    else if (coverage == "best") s.coverage = vkcollide::Coverage::Best;
+    if (coverage == "dilate") s.peeling.coverage = vkcollide::Coverage::Dilate;
+    else if (coverage == "conservative") s.peeling.coverage = vkcollide::Coverage::Conservative;
+    else if (coverage == "best") s.peeling.coverage = vkcollide::Coverage::Best;
     else if (coverage != "centre") die("--coverage takes centre, dilate, conservative or best");
     return s;
 }

@@ -227,7 +227,7 @@ struct CellsParams {
     uint pair_chunk;
 };
 
-// ---- Device pairs (DetectSettings::device_pairs; src/broad/cells/device_pairs.cpp) -------
+// ---- Device pairs (DetectSettings::reliable.device_pairs; src/broad/cells/device_pairs.cpp) ---
 // The survivors of an exact run, sorted on the GPU into the host result's order: bucketed
 // by the lower triangle id (count, scan, scatter), each bucket sorted by the higher id with
 // repeats dropped, a second scan, then written as DevicePair records.

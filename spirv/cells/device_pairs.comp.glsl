@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Device pairs (DetectSettings::device_pairs): the exact run's survivors (global ids a < b,
-// unsorted, a rare pair twice) sorted on the GPU into the host result's order, as
+// Device pairs (DetectSettings::reliable.device_pairs): the exact run's survivors (global ids
+// a < b, unsorted, a rare pair twice) sorted on the GPU into the host result's order, as
 // DevicePair records (object ids as the API returns them, triangles within the object).
 // Global ids grow with (object, triangle) and run objects with their ids, so that order is
 // the order of (a, b). The order comes from the data alone, never from atomics: the

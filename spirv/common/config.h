@@ -136,7 +136,7 @@ inline constexpr std::uint32_t kMinResolution = 4, kMaxResolution = 16384;
 // Relative margin of the automatic fit on each side of the image, so triangles on the
 // scene's silhouette do not sit on the image border.
 inline constexpr float kFitMargin = 1.0f / 64.0f;
-// Multi-axis union (DetectSettings::axes = 3): kept boxes mapped back to world space are
+// Multi-axis union (DetectSettings::peeling.axes = 3): kept boxes mapped back to world space are
 // padded by this fraction of the image width against rounding.
 inline constexpr double kKeptBoxPad = 1e-4;
 

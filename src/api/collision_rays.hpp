@@ -1,4 +1,4 @@
-// DetectSettings::collision_rays: the peeling method's collision-ray images, mapped back to
+// DetectSettings::peeling.collision_rays: the peeling method's collision-ray images, mapped back to
 // world-space segments through the projection each direction sampled with.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Object-level contacts of one detection (DetectSettings::contacts): the contact stage run
+// Object-level contacts of one detection (DetectSettings::contacts.objects): the contact stage run
 // on the detection's objects (bad engine meshes already left out) along its direction,
 // with the pair filter's answers; its sums turned into ObjectContacts named by ObjectId,
 // each marked contained or not from the detection's triangle pairs.
@@ -27,14 +27,14 @@ Result<void> CollisionWorld::Impl::addPairContacts(const Run& run, const passes:
     const auto lookup = [&](std::uint32_t id, std::uint32_t triangle) {
         const std::uint32_t k = mesh_of[id];
         const std::span<const Float3> positions = run.positions[k];
-        const std::vector<std::uint32_t>& indices = objects[id].host_indices;
+        const std::vector<std::uint32_t>& indices = registry.objects[id].host_indices;
         const Transform3x4& m = run.meshes[k].transform;
         std::array<Float3, 3> v;
         for (int c = 0; c < 3; ++c) v[c] = narrow::toWorld(m, positions[indices[3 * std::size_t{triangle} + c]]);
         return v;
     };
     contacts::pairContacts(out.pairs, lookup, *executor, out.pair_contacts, out.pair_contact_totals);
-    out.stats.contact_geometry_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.stats.contacts.geometry_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return {};
 }
 
@@ -52,20 +52,21 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
     passes::ContactInput in;
     in.meshes = meshes;
     in.direction = detected.directions[0];
-    in.resolution = *run.settings.contact_resolution;
-    in.timeout_ns = std::uint64_t{run.settings.timeout_ms} * 1000000;
+    in.resolution = *run.settings.contacts.resolution;
+    in.timeout_ns = std::uint64_t{run.settings.limits.timeout_ms} * 1000000;
     in.deadline = run.deadline;  // what is left of the detection's timeout
     // The filter's answers, as the narrow phase had them (detect.cpp): the kept mask, or
     // the filter itself beyond the mask's object limit.
     std::optional<Error> filter_threw;
-    const passes::ObjectPairMask* mask = pair_filter && pair_mask.objects == run.ids.size() && !pair_mask_dirty ? &pair_mask : nullptr;
+    const passes::ObjectPairMask* mask =
+        registry.pair_filter && registry.pair_mask.objects == run.ids.size() && !registry.pair_mask_dirty ? &registry.pair_mask : nullptr;
     const std::vector<std::uint32_t>& live = detected.objects;
     if (mask) {
         in.may_collide = [mask, &live](std::uint32_t a, std::uint32_t b) { return mask->allows(live[a], live[b]); };
-    } else if (pair_filter) {
+    } else if (registry.pair_filter) {
         in.may_collide = [this, ids, &filter_threw](std::uint32_t a, std::uint32_t b) {
             if (filter_threw) return false;
-            auto answer = callPairFilter(ids[a], ids[b]);
+            auto answer = registry.callPairFilter(ids[a], ids[b]);
             if (answer) return *answer;
             filter_threw = answer.error();
             return false;
@@ -101,7 +102,7 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
     for (const auto& pair : touching) {
         // Not a structured binding: clang before 16 cannot capture one in the lambda below.
         const ObjectId a = pair[0], b = pair[1];
-        if (objects[a].options.open || objects[b].options.open) continue;
+        if (registry.objects[a].options.open || registry.objects[b].options.open) continue;
         if (std::any_of(contacts.begin(), contacts.end(), [&](const ObjectContact& c) { return c.object_a == a && c.object_b == b; })) continue;
         ObjectContact oc;
         oc.object_a = a;
@@ -115,15 +116,15 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
               [](const ObjectContact& x, const ObjectContact& y) { return x.object_a < y.object_a || (x.object_a == y.object_a && x.object_b < y.object_b); });
 
     DetectStats& st = out.stats;
-    st.contacts_gpu_ms = r->gpu_ms;
+    st.contacts.gpu_ms = r->gpu_ms;
     st.gpu_passes.push_back({"contacts", r->gpu_ms});  // both submissions, so GPU sums over passes include them
-    st.contact_rays_x = r->width;
-    st.contact_rays_y = r->height;
-    st.contact_layers = r->layers;
-    st.contact_candidate_pairs = static_cast<std::uint32_t>(r->candidates.size());
-    st.contact_nested_rays = r->nested_rays;
-    st.contact_runs = r->runs;
-    st.contacts_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    st.contacts.rays_x = r->width;
+    st.contacts.rays_y = r->height;
+    st.contacts.layers = r->layers;
+    st.contacts.candidate_pairs = static_cast<std::uint32_t>(r->candidates.size());
+    st.contacts.nested_rays = r->nested_rays;
+    st.contacts.runs = r->runs;
+    st.contacts.host_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return {};
 }
 

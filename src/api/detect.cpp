@@ -9,7 +9,6 @@
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
-#include "broad/cells/reliable_method.hpp"
 #include "narrow/exact_stage.hpp"
 #include "narrow/sorted_pairs.hpp"
 #include "proximity/ownership.hpp"
@@ -32,12 +31,8 @@ Error CollisionWorld::Impl::describeFailure(const Run& run, const Error& e) cons
     if (f.faults.empty()) return e;
     const passes::ObjectFault& first = f.faults.front();
     const ObjectId id = run.ids.at(first.object);
-    const std::string named_fault = who(id, objects.at(id).name) + ": " + passes::describe(first);
+    const std::string named_fault = registry.who(id, registry.objects.at(id).name) + ": " + passes::describe(first);
     return Error(e.code(), f.none_left ? "no object left to test: " + named_fault : named_fault, e.vkResult());
-}
-
-passes::MethodFactory CollisionWorld::Impl::methodFactory(DetectMethod method) {
-    return method == DetectMethod::Reliable ? passes::ReliableMethod::create : passes::PeelingMethod::create;
 }
 
 // Proximity: each live object's owned primitives (computed once per host mesh), named
@@ -48,11 +43,11 @@ Result<void> CollisionWorld::Impl::prepareProximity(Run& run) {
         run.meshes[i].proximity_owned = {};
         if (!on) continue;
         const ObjectId id = run.ids[i];
-        Object& o = objects[id];
+        Object& o = registry.objects[id];
         if (!o.host)
-            return named(id, Error(ErrorCode::UnsupportedFeature,
-                                   "proximity needs the object's indices on the host to tell neighbouring primitives apart; "
-                                   "engine meshes (addGpuMesh) are not supported yet"));
+            return registry.named(id, Error(ErrorCode::UnsupportedFeature,
+                                            "proximity needs the object's indices on the host to tell neighbouring primitives apart; "
+                                            "engine meshes (addGpuMesh) are not supported yet"));
         if (o.proximity_owned.size() != o.host_indices.size() / 3)
             o.proximity_owned = proximity::ownedPrimitives(o.host_indices, static_cast<std::uint32_t>(o.host_positions.size()));
         run.meshes[i].proximity_owned = o.proximity_owned;
@@ -63,38 +58,43 @@ Result<void> CollisionWorld::Impl::prepareProximity(Run& run) {
 Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
     run.start = Clock::now();
     std::vector<passes::GpuMesh>& meshes = run.meshes;  // kept: no allocation per detection
-    liveMeshes(meshes, run.ids);
+    registry.liveMeshes(meshes, run.ids);
     run.positions.clear();
-    for (ObjectId id : run.ids) run.positions.push_back(objects[id].host_positions);  // GPU meshes: empty
+    for (ObjectId id : run.ids) run.positions.push_back(registry.objects[id].host_positions);  // GPU meshes: empty
     run.settings = resolve(settings, &run.note);
     for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, device())})
         if (!ok) return ok.error();
     const DetectSettings& s = run.settings;
     if (s.method == DetectMethod::Reliable)
         for (ObjectId id : run.ids)
-            if (auto ok = validation::checkReliableObject(objects[id].options.transform, objects[id].max_abs); !ok) return named(id, ok.error());
+            if (auto ok = validation::checkReliableObject(registry.objects[id].options.transform, registry.objects[id].max_abs); !ok)
+                return registry.named(id, ok.error());
     passes::DetectionSettings d;
-    d.method = methodFactory(s.method);
-    auto mask = pairMask(run.ids);
+    d.method = DetectionsInFlight::methodFactory(s.method);
+    auto mask = registry.pairMask(run.ids);
     if (!mask) return mask.error();
     d.broad.pair_mask = *mask;
-    const bool filter_on_host_only = pair_filter && !*mask;
-    for (auto ok : {validation::checkSortedOnGpuFilter("device_pairs", s.device_pairs, filter_on_host_only, run.ids.size()),
-                    validation::checkSortedOnGpuFilter("pair_sort Gpu", s.pair_sort == PairSort::Gpu, filter_on_host_only, run.ids.size())})
+    const bool filter_on_host_only = registry.pair_filter && !*mask;
+    for (auto ok :
+         {validation::checkSortedOnGpuFilter("reliable.device_pairs", s.reliable.device_pairs, filter_on_host_only, run.ids.size()),
+          validation::checkSortedOnGpuFilter("reliable.pair_sort Gpu", s.reliable.pair_sort == PairSort::Gpu, filter_on_host_only,
+                                             run.ids.size())})
         if (!ok) return ok.error();
-    d.broad.device_pairs = s.device_pairs;
-    d.broad.device_pair_capacity = s.device_pair_capacity;
-    d.broad.host_pairs = s.host_pairs;
-    d.broad.sort_on_gpu = !filter_on_host_only && (s.pair_sort == PairSort::Gpu || (s.pair_sort == PairSort::Auto && last_narrow_pairs >= kGpuPairSortFrom));
+    d.broad.device_pairs = s.reliable.device_pairs;
+    d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
+    d.broad.host_pairs = s.reliable.host_pairs;
+    d.broad.sort_on_gpu = !filter_on_host_only && (s.reliable.pair_sort == PairSort::Gpu ||
+                                                   (s.reliable.pair_sort == PairSort::Auto && last_narrow_pairs >= kGpuPairSortFrom));
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();
-    if (s.contact_geometry)
+    if (s.contacts.geometry)
         for (ObjectId id : run.ids)
-            if (!objects[id].host)
-                return named(id, Error(ErrorCode::UnsupportedFeature, "contact_geometry reads the triangles' vertices on the host; "
-                                                                      "engine meshes (addGpuMesh) are not supported"));
-    if (s.proximity.distance > 0 && pair_filter && !*mask)
+            if (!registry.objects[id].host)
+                return registry.named(id, Error(ErrorCode::UnsupportedFeature,
+                                                "contacts.geometry reads the triangles' vertices on the host; "
+                                                "engine meshes (addGpuMesh) are not supported"));
+    if (s.proximity.distance > 0 && registry.pair_filter && !*mask)
         return Error(ErrorCode::InvalidArgument, "proximity with a pair filter over " + std::to_string(run.ids.size()) +
                                                      " objects: the filter is applied on the host only beyond " +
                                                      std::to_string(gpu::kMaxFilterMaskObjects) + " objects, the proximity pass needs it on the GPU");
@@ -102,33 +102,33 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.proximity_capacity = s.proximity.capacity;
     d.broad.resolution = *s.resolution;
     d.broad.direction = *s.direction;
-    d.broad.layer_cap = s.layer_cap;
-    d.broad.dual = s.dual;
-    d.broad.packing = s.packing;
-    d.broad.backend = s.backend;
-    d.broad.open_epsilon = *s.open_epsilon;
-    d.broad.closed_epsilon = s.closed_epsilon;
+    d.broad.layer_cap = s.peeling.layer_cap;
+    d.broad.dual = s.peeling.dual;
+    d.broad.packing = s.peeling.packing;
+    d.broad.backend = s.peeling.backend;
+    d.broad.open_epsilon = *s.peeling.open_epsilon;
+    d.broad.closed_epsilon = s.peeling.closed_epsilon;
     // resolve() turned Best into Conservative or Dilate. The reliable method samples no
     // rays and ignores coverage (checkSettings does not check it then): Centre, so that a
     // Conservative it was given on a device without conservative rasterisation does not
     // break the broad phase's precondition.
-    d.broad.coverage = s.method == DetectMethod::Reliable ? Coverage::Centre : s.coverage;
+    d.broad.coverage = s.method == DetectMethod::Reliable ? Coverage::Centre : s.peeling.coverage;
     d.broad.region = s.region;
     // One clock for the whole detection: every submission, rerun and wait ends by it.
-    d.broad.timeout_ns = std::uint64_t{s.timeout_ms} * 1000000;
-    run.deadline = run.start + std::chrono::milliseconds(s.timeout_ms);
+    d.broad.timeout_ns = std::uint64_t{s.limits.timeout_ms} * 1000000;
+    run.deadline = run.start + std::chrono::milliseconds(s.limits.timeout_ms);
     d.broad.deadline = run.deadline;
-    d.broad.poll_ns = std::uint64_t{s.wait_poll_us} * 1000;
+    d.broad.poll_ns = std::uint64_t{s.limits.wait_poll_us} * 1000;
     // While the wait polls, keep the narrow phase's workers awake as many as a detection
     // like the last one will use: they then take its first loops at once instead of
     // 0.1-0.2 ms later, when the kernel has woken the last of them (docs/narrow_phase.md).
     if (const unsigned wake = narrow::threadsToWake(last_narrow_pairs, executor->threadCount()))
         d.broad.poll_hook = [ex = executor, wake] { ex->prepare(wake); };
-    d.broad.depth_aware = s.depth_aware;
-    d.broad.keep_ray_image = s.collision_rays;  // peeling only (validation)
-    d.broad.max_candidate_pairs = s.max_candidate_pairs;  // the reliable method's GPU budget
-    d.broad.exact_on_gpu = s.exact != ExactDecision::Cpu;  // Gpu was checked against the device
-    d.axes = s.axes;
+    d.broad.depth_aware = s.peeling.depth_aware;
+    d.broad.keep_ray_image = s.peeling.collision_rays;  // peeling only (validation)
+    d.broad.max_candidate_pairs = s.limits.max_candidate_pairs;  // the reliable method's GPU budget
+    d.broad.exact_on_gpu = s.reliable.exact != ExactDecision::Cpu;  // Gpu was checked against the device
+    d.axes = s.peeling.axes;
     d.bad_objects = s.bad_objects;
     run.settings_ms = msSince(run.start);
     if (auto ok = run.detection->start(meshes, d, measure, target); !ok) return noted(describeFailure(run, ok.error()));
@@ -141,7 +141,7 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock,
     run.in_flight = false;
     const auto t0 = Clock::now();
     if (restart_clock) {
-        run.deadline = t0 + std::chrono::milliseconds(run.settings.timeout_ms);
+        run.deadline = t0 + std::chrono::milliseconds(run.settings.limits.timeout_ms);
         run.detection->setDeadline(run.deadline);
     }
     auto r = run.detection->collect();
@@ -170,69 +170,71 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     }
     for (const passes::ObjectFault& f : detected.excluded) {
         const ObjectId id = run_ids[f.object];
-        out.excluded.push_back({id, named(id, Error(ErrorCode::InvalidMesh, passes::describe(f)))});
+        out.excluded.push_back({id, registry.named(id, Error(ErrorCode::InvalidMesh, passes::describe(f)))});
     }
     DetectStats& st = out.stats;
     st.objects = static_cast<std::uint32_t>(ids.size());
     st.method = run_settings.method;
     st.resolution = *run_settings.resolution;
     st.direction = detected.directions[0];
-    st.dual = run_settings.dual;
-    st.axes = static_cast<std::uint32_t>(broad.size());
-    st.coverage = run_settings.coverage;
+    st.peeling.dual = run_settings.peeling.dual;
+    st.peeling.axes = static_cast<std::uint32_t>(broad.size());
+    st.peeling.coverage = run_settings.peeling.coverage;
     st.settings_note = run.note;
     for (std::size_t i = 0; i < run_ids.size(); ++i)
-        if (const Object& o = objects[run_ids[i]]; o.host && !o.options.open) {
+        if (const Object& o = registry.objects[run_ids[i]]; o.host && !o.options.open) {
             const bool inside_out = o.boundary_edges == 0 && o.volume6 * mesh_checks::determinant(run.meshes[i].transform) < 0;
             if (inside_out || o.boundary_edges > 0)
                 st.mesh_warnings.push_back({run_ids[i], inside_out, o.boundary_edges,
-                                            who(run_ids[i], o.name) + ": " + mesh_checks::describe(inside_out, o.boundary_edges)});
+                                            registry.who(run_ids[i], o.name) + ": " + mesh_checks::describe(inside_out, o.boundary_edges)});
         }
-    st.backend = broad[0].backend;
-    st.backend_reason = broad[0].backend_reason;
+    st.peeling.backend = broad[0].backend;
+    st.peeling.backend_reason = broad[0].backend_reason;
     for (std::uint32_t k = 1; k < broad.size(); ++k)
         if (broad[k].backend != broad[0].backend)
-            st.backend_reason += "; axis " + std::to_string(k) + ": " + toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
-    const std::uint32_t cap = run_settings.layer_cap;
+            st.peeling.backend_reason +=
+                "; axis " + std::to_string(k) + ": " + toString(broad[k].backend) + " (" + broad[k].backend_reason + ")";
+    const std::uint32_t cap = run_settings.peeling.layer_cap;
     for (std::uint32_t k = 0; k < broad.size(); ++k) {
         const passes::BroadPhaseResult& b = broad[k];
         st.triangles = b.triangles;
         st.collision_rays += b.collision_rays;
         st.triangles_downloaded += b.records.size();
-        st.depth_complexity = std::max(st.depth_complexity, b.depth_complexity);
-        st.layers = std::max(st.layers, b.layers);
-        st.peel_passes += b.peel_steps;
-        st.deep_rays += b.deep_rays;
-        st.layers_short = st.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap)) || b.deep_rays > 0;
+        st.peeling.depth_complexity = std::max(st.peeling.depth_complexity, b.depth_complexity);
+        st.peeling.layers = std::max(st.peeling.layers, b.layers);
+        st.peeling.peel_passes += b.peel_steps;
+        st.peeling.deep_rays += b.deep_rays;
+        st.peeling.layers_short =
+            st.peeling.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap)) || b.deep_rays > 0;
         const std::string prefix = broad.size() > 1 ? "axis " + std::to_string(k) + ": " : "";
         for (const auto& p : b.passes) st.gpu_passes.push_back({prefix + p.name, p.gpu_ms});
         st.sampling_ms += b.sampling_ms;
-        st.merging_ms += b.merging_ms;
-        st.separation_ms += b.separation_ms;
-        st.packing_ms += b.packing_ms;
-        st.footprints_ms += b.footprints_ms;
-        st.pairing_ms += b.pairing_ms;
-        st.filtering_ms += b.filtering_ms;
-        st.sorting_ms += b.sorting_ms;
+        st.peeling.merging_ms += b.merging_ms;
+        st.peeling.separation_ms += b.separation_ms;
+        st.peeling.packing_ms += b.packing_ms;
+        st.reliable.footprints_ms += b.footprints_ms;
+        st.reliable.pairing_ms += b.pairing_ms;
+        st.reliable.filtering_ms += b.filtering_ms;
+        st.reliable.sorting_ms += b.sorting_ms;
         st.readback_ms += b.readback_ms;
-        st.host_upload_ms += b.host.upload_ms;
-        st.host_declare_ms += b.host.declare_ms;
-        st.host_compile_ms += b.host.compile_ms;
-        st.host_record_ms += b.host.record_ms;
-        st.host_submit_ms += b.host.submit_ms;
-        st.host_wait_ms += b.host.wait_ms;
+        st.host.upload_ms += b.host.upload_ms;
+        st.host.declare_ms += b.host.declare_ms;
+        st.host.compile_ms += b.host.compile_ms;
+        st.host.record_ms += b.host.record_ms;
+        st.host.submit_ms += b.host.submit_ms;
+        st.host.wait_ms += b.host.wait_ms;
         st.gpu_span_ms += b.host.gpu_span_ms;
-        st.launch_wake_ms += b.host.launch_wake_ms;
+        st.host.launch_wake_ms += b.host.launch_wake_ms;
         st.submissions += b.host.submissions;
-        st.reused_submissions += b.host.reused;
+        st.host.reused_submissions += b.host.reused;
     }
-    if (run_settings.collision_rays) out.collision_rays = collisionRays(broad, st.resolution);
+    if (run_settings.peeling.collision_rays) out.collision_rays = collisionRays(broad, st.resolution);
     if (detected.hasPairs()) {
         const passes::CellStageStats& c = broad[0].cells;
         st.cells = {c.entries,   c.max_cell,      c.deep_cells, c.candidate_cells, c.candidates, c.duplicates,  c.filtered,
                     c.survivors, c.gpu_triangles, c.runs,       c.filter_ran,      c.exact_ran,  c.exact_tests, c.exact_neighbours};
         st.collision_rays = c.candidate_cells;
-        st.backend_reason = "none: the reliable method samples no rays";
+        st.peeling.backend_reason = "none: the reliable method samples no rays";
     }
 
     NarrowOptions& options = narrow_options;
@@ -240,22 +242,23 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     options.may_collide = {};
     // As the objects were at start() (they may have moved since: pipelining).
     for (std::uint32_t i : detected.objects) options.self_collision.push_back(run.meshes[i].self_collision);
-    options.max_pairs = run_settings.max_pairs;
-    options.max_box_pairs = run_settings.max_candidate_pairs;
+    options.max_pairs = run_settings.limits.max_pairs;
+    options.max_box_pairs = run_settings.limits.max_candidate_pairs;
     options.pairs_decided = detected.hasPairs() && broad[0].cells.exact_ran;
     // The filter's kept answers (indices of the live objects the mask was built over), or
     // the filter itself beyond the mask's object limit. The filter must not throw
     // (world.hpp); if it does, the exception stops here, the narrow phase sees "may not
     // collide" from then on, and the detection fails naming it.
     std::optional<Error> filter_threw;
-    const passes::ObjectPairMask* mask = pair_filter && pair_mask.objects == run_ids.size() && !pair_mask_dirty ? &pair_mask : nullptr;
+    const passes::ObjectPairMask* mask =
+        registry.pair_filter && registry.pair_mask.objects == run_ids.size() && !registry.pair_mask_dirty ? &registry.pair_mask : nullptr;
     const std::vector<std::uint32_t>& live = detected.objects;
     if (mask) {
         options.may_collide = [mask, &live](std::uint32_t a, std::uint32_t b) { return mask->allows(live[a], live[b]); };
-    } else if (pair_filter) {
+    } else if (registry.pair_filter) {
         options.may_collide = [this, &ids, &filter_threw](std::uint32_t a, std::uint32_t b) {
             if (filter_threw) return false;
-            auto answer = callPairFilter(ids[a], ids[b]);
+            auto answer = registry.callPairFilter(ids[a], ids[b]);
             if (answer) return *answer;
             filter_threw = answer.error();
             return false;
@@ -266,34 +269,35 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (detected.hasPairs() && broad[0].device_header) {
         // The pairs stay on the GPU (host_pairs off): nothing to read, test or respond to.
         narrow = NarrowResult{};
-        st.device_pairs_found = broad[0].device_header->needed;
-        st.device_pairs_written = broad[0].device_header->count;
+        st.reliable.device_pairs_found = broad[0].device_header->needed;
+        st.reliable.device_pairs_written = broad[0].device_header->count;
         last_narrow_pairs = 0;
     } else if (detected.hasPairs()) {
         // Reliable: the pairs sorted on the GPU (runSortedPairs), or the survivors straight
         // from the GPU's memory (deduplicated and sorted in parallel by the narrow phase);
         // host meshes from the world's source, engine meshes' triangles from the download.
-        if (auto ok = syncSource(ids); !ok) return ok.error();
+        if (auto ok = registry.syncSource(ids); !ok) return ok.error();
         // As the objects were at start(): transforms, and the positions (updateVertices may
         // have made another copy current since: pipelining).
         for (std::uint32_t i : detected.objects)
-            if (const Object& o = objects[run_ids[i]]; o.host && o.source_index != kNoSource) {
-                if (auto ok = source.setTransform(o.source_index, run.meshes[i].transform); !ok) return named(run_ids[i], ok.error());
-                if (source.objects()[o.source_index].positions.data() != run.positions[i].data())
-                    if (auto ok = source.setHostGeometry(o.source_index, run.positions[i], o.host_indices); !ok)
-                        return named(run_ids[i], ok.error());
+            if (const Object& o = registry.objects[run_ids[i]]; o.host && o.source_index != kNoSource) {
+                if (auto ok = registry.source.setTransform(o.source_index, run.meshes[i].transform); !ok)
+                    return registry.named(run_ids[i], ok.error());
+                if (registry.source.objects()[o.source_index].positions.data() != run.positions[i].data())
+                    if (auto ok = registry.source.setHostGeometry(o.source_index, run.positions[i], o.host_indices); !ok)
+                        return registry.named(run_ids[i], ok.error());
             }
-        source.setGpuTriangles(broad[0].gpu_triangles);
+        registry.source.setGpuTriangles(broad[0].gpu_triangles);
         if (broad[0].has_sorted_pairs) {
-            narrow = narrow::runSortedPairs(broad[0].sorted_pairs, source, options, *executor, narrow_workspace, std::move(pair_memory),
-                                            std::move(response_memory));
+            narrow = narrow::runSortedPairs(broad[0].sorted_pairs, registry.source, options, *executor, narrow_workspace,
+                                            std::move(pair_memory), std::move(response_memory));
             last_narrow_pairs = broad[0].sorted_pairs.size();
-            st.pairs_sorted_on_gpu = true;
+            st.reliable.pairs_sorted_on_gpu = true;
         } else {
-            narrow = runPairNarrowPhase(broad[0].pairs, source, options, *executor, narrow_workspace);
+            narrow = runPairNarrowPhase(broad[0].pairs, registry.source, options, *executor, narrow_workspace);
             last_narrow_pairs = broad[0].pairs.size();
         }
-        source.setGpuTriangles({});  // the download is overwritten by the next run
+        registry.source.setGpuTriangles({});  // the download is overwritten by the next run
     } else {
         narrow = runNarrowPhase(detected.candidates(), options, *executor, narrow_workspace);
         last_narrow_pairs = 0;  // the record path prepares no threads of its own
@@ -304,12 +308,13 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (!narrow) return narrow.error();
     if (narrow->pairs_left_out > 0) {
         out.pairs_left_out = narrow->pairs_left_out;
-        out.incomplete = Error(ErrorCode::LimitExceeded,
-                               "found " + std::to_string(narrow->pairs.size() + narrow->pairs_left_out) +
-                                   " intersecting pairs, more than DetectSettings::max_pairs (" + std::to_string(run_settings.max_pairs) +
-                                   "): kept " + std::to_string(narrow->pairs.size()) + ", left out " + std::to_string(narrow->pairs_left_out));
+        out.incomplete =
+            Error(ErrorCode::LimitExceeded,
+                  "found " + std::to_string(narrow->pairs.size() + narrow->pairs_left_out) +
+                      " intersecting pairs, more than DetectSettings::limits.max_pairs (" + std::to_string(run_settings.limits.max_pairs) +
+                      "): kept " + std::to_string(narrow->pairs.size()) + ", left out " + std::to_string(narrow->pairs_left_out));
     }
-    st.narrow_threads = executor->threadCount();
+    st.host.narrow_threads = executor->threadCount();
     st.narrow = narrow->stats;
     st.narrow_timings = narrow->timings;
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;
@@ -323,10 +328,10 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     for (TrianglePair& p : out.pairs) p.object_a = ids[p.object_a], p.object_b = ids[p.object_b];
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
-    if (broad[0].scene_box) measured_box = broad[0].scene_box;
-    if (run.settings.contacts)
+    if (broad[0].scene_box) auto_settings.measured_box = broad[0].scene_box;
+    if (run.settings.contacts.objects)
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
-    if (run.settings.contact_geometry) {
+    if (run.settings.contacts.geometry) {
         if (auto ok = addPairContacts(run, detected, ids, out); !ok) return ok.error();
     } else {
         out.pair_contacts.clear();
@@ -347,22 +352,23 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.proximity.host_ms = msSince(p0);
     }
     if (auto view = run.detection->devicePairs()) {
-        out.device = devicePairsOf(*view, run);
+        out.device = detections.devicePairsOf(*view, run);
         // collect() may have grown the buffers (a repeated run): devicePairs() names them now.
-        if (last_device_pairs && last_device_pairs->slot == out.device->slot) last_device_pairs = out.device;
+        if (detections.last_device_pairs && detections.last_device_pairs->slot == out.device->slot)
+            detections.last_device_pairs = out.device;
     }
     // Everything the world holds: both slots' broad phases (with their cached transients and
     // the methods' own buffers) and the uploaded meshes, in Context::deviceMemoryInUse's unit.
-    for (const Run& r : runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;
+    for (const Run& r : detections.runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;
     st.gpu_memory_bytes += contact_stage ? contact_stage->memoryBytes() : 0;
-    for (const Object& o : objects) {
+    for (const Object& o : registry.objects) {
         st.gpu_memory_bytes += o.vertices.memoryBytes() + o.indices.memoryBytes();
         for (const Object::VertexCopy& c : o.copies) st.gpu_memory_bytes += c.upload.memoryBytes();
     }
     st.total_ms = msSince(run.start);
-    st.host_start_ms = run.start_ms;
-    st.host_collect_ms = run.wait_ms;
-    st.host_settings_ms = run.settings_ms;
+    st.host.start_ms = run.start_ms;
+    st.host.collect_ms = run.wait_ms;
+    st.host.settings_ms = run.settings_ms;
     return out;
 }
 

@@ -10,8 +10,8 @@ namespace vkcollide {
 
 Result<passes::GpuMesh> CollisionWorld::Impl::describeEngineMesh(ObjectId id, const std::string& name, const GpuMeshDesc& d,
                                                                  bool open) const {
-    if (auto ok = validation::checkGpuMeshDesc(d); !ok) return named(id, name, ok.error());
-    const std::string prefix = who(id, name) + ": ";
+    if (auto ok = validation::checkGpuMeshDesc(d); !ok) return registry.named(id, name, ok.error());
+    const std::string prefix = registry.who(id, name) + ": ";
     auto vertices = vk::checkEngineBuffer(
         device(), {d.vertex_buffer, d.vertex_usage, d.vertex_buffer_size, d.vertex_offset, validation::vertexBytes(d)},
         prefix + "vertex buffer");
@@ -26,17 +26,17 @@ Result<ObjectId> CollisionWorld::addGpuMesh(const GpuMeshDesc& d, const ObjectOp
     Impl& w = *impl_;
     auto scope = w.guard.enter("CollisionWorld::addGpuMesh");
     if (!scope) return scope.error();
-    if (auto ok = w.notPending("addGpuMesh"); !ok) return ok.error();
+    if (auto ok = w.detections.notPending("addGpuMesh"); !ok) return ok.error();
     Impl::Object o;
-    const ObjectId id = w.newId(options, o);
+    const ObjectId id = w.registry.newId(options, o);
     for (auto ok : {validation::checkTransform(options.transform), validation::checkTypicalEdge(options.typical_edge_length)})
-        if (!ok) return Impl::named(id, o.name, ok.error());
+        if (!ok) return ObjectRegistry::named(id, o.name, ok.error());
     auto mesh = w.describeEngineMesh(id, o.name, d, options.open);
     if (!mesh) return mesh.error();
     o.gpu = *mesh;
     o.engine_desc = d;
     o.edge_length = options.typical_edge_length;
-    w.objects.push_back(std::move(o));
+    w.registry.objects.push_back(std::move(o));
     w.objectsChanged();
     return id;
 }
@@ -49,12 +49,13 @@ Result<void> CollisionWorld::setGpuMeshBuffers(ObjectId id, const GpuMeshDesc& d
     Impl& w = *impl_;
     auto scope = w.guard.enter("CollisionWorld::setGpuMeshBuffers");
     if (!scope) return scope.error();
-    auto found = w.find(id, "setGpuMeshBuffers");
+    auto found = w.registry.find(id, "setGpuMeshBuffers");
     if (!found) return found.error();
     Impl::Object& o = **found;
     if (o.host)
-        return w.named(id, Error(ErrorCode::InvalidArgument, "setGpuMeshBuffers: is a host mesh (added by addMesh): use updateVertices"));
-    if (auto ok = validation::checkSameTopology(o.engine_desc, d); !ok) return w.named(id, ok.error());
+        return w.registry.named(
+            id, Error(ErrorCode::InvalidArgument, "setGpuMeshBuffers: is a host mesh (added by addMesh): use updateVertices"));
+    if (auto ok = validation::checkSameTopology(o.engine_desc, d); !ok) return w.registry.named(id, ok.error());
     auto mesh = w.describeEngineMesh(id, o.name, d, o.options.open);
     if (!mesh) return mesh.error();
     o.gpu = *mesh;

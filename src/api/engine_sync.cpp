@@ -1,6 +1,6 @@
 // Detections from start to result: detect(), submit() with the engine's semaphores,
-// record() into the engine's command buffer, polling (ready, tryCollect), and two
-// detections in flight (pipelining; docs/api.md, "Engines: synchronisation and latency").
+// record() into the engine's command buffer, polling (ready, tryCollect); the two slots they
+// run in are in_flight.* (pipelining; docs/api.md, "Engines: synchronisation and latency").
 #include <new>
 #include <stdexcept>
 
@@ -41,38 +41,15 @@ Result<void> checkSync(const SubmitSync& sync) {
 
 }  // namespace
 
-// The slot the next detection goes into: slot 0 when none is in flight (a world that never
-// pipelines never allocates the second), else the other one (created on first use; it
-// predicts from the first's measured depth).
-Result<CollisionWorld::Impl::Run*> CollisionWorld::Impl::freeRun() {
-    if (inFlight() == runs.size())
-        return Error(ErrorCode::InvalidArgument, "submit while " + std::to_string(runs.size()) +
-                                                     " detections are in flight (CollisionWorld::kMaxInFlight): collect() one first");
-    if (inFlight() == 0) oldest = 0;
-    const std::uint32_t k = runs[oldest].in_flight ? 1 - oldest : oldest;
-    Run& run = runs[k];
-    if (!run.detection) {
-        Result<std::unique_ptr<passes::Detection>> created = Error(ErrorCode::OutOfMemory, "host memory ran out creating the second slot");
-        try {
-            created = passes::Detection::create(device(), methodFactory(DetectSettings{}.method));
-        } catch (const std::bad_alloc&) {
-        }
-        if (!created) return created.error();
-        run.detection = std::move(*created);
-        run.detection->shareDepth(*runs[1 - k].detection);
-    }
-    return &run;
-}
-
 Result<void> CollisionWorld::Impl::begin(const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
     if (device_lost)
         return Error(ErrorCode::DeviceLost, "the device was lost in an earlier detection: destroy the world and create a new Context");
-    last_device_pairs.reset();
-    auto run = freeRun();
+    detections.last_device_pairs.reset();
+    auto run = detections.freeRun(device());
     if (!run) return run.error();
     auto started = hostGuarded(*(*run)->detection, (*run)->in_flight, [&] { return start(**run, settings, measure, target); });
     if (started)
-        if (auto view = (*run)->detection->devicePairs()) last_device_pairs = devicePairsOf(*view, **run);
+        if (auto view = (*run)->detection->devicePairs()) detections.last_device_pairs = detections.devicePairsOf(*view, **run);
     return started;
 }
 
@@ -81,9 +58,9 @@ Result<DetectResult> CollisionWorld::detect(const DetectSettings& settings) { re
 Result<DetectResult> CollisionWorld::Impl::detectCall(const DetectSettings& settings, DetectResult* reuse_memory) {
     auto scope = guard.enter("CollisionWorld::detect");
     if (!scope) return scope.error();
-    if (pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
-    if (auto ok = begin(settings, settings.measure_layers, nullptr); !ok) return ok.error();
-    Run& run = runs[oldest];
+    if (detections.pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
+    if (auto ok = begin(settings, settings.peeling.measure_layers, nullptr); !ok) return ok.error();
+    Run& run = detections.runs[detections.oldest];
     return hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, false, reuse_memory); });
 }
 
@@ -111,12 +88,12 @@ Result<void> CollisionWorld::submit(const DetectSettings& settings, const Submit
     if (!started && !target.signals_submitted && !(sync.wait.empty() && sync.signal.empty())) {
         // Keep the promise made to the engine's queues: its waits consumed and its
         // signals made, after whatever of this detection was submitted.
-        if (!w.sync_only.valid())
-            if (auto s = vk::Submission::create(w.device(), "sync-only submission")) w.sync_only = std::move(*s);
-        if (w.sync_only.valid()) {
+        if (!w.detections.sync_only.valid())
+            if (auto s = vk::Submission::create(w.device(), "sync-only submission")) w.detections.sync_only = std::move(*s);
+        if (w.detections.sync_only.valid()) {
             SubmitSync rest = sync;
             if (target.waits_submitted) rest.wait = {};
-            (void)w.sync_only.submitSyncOnly(rest);  // a failure here is the device's, reported by the next call
+            (void)w.detections.sync_only.submitSyncOnly(rest);  // a failure here is the device's, reported by the next call
         }
     }
     return started;
@@ -140,9 +117,9 @@ Result<DetectResult> CollisionWorld::collect() { return impl_->collectCall(nullp
 Result<DetectResult> CollisionWorld::Impl::collectCall(DetectResult* reuse_memory) {
     auto scope = guard.enter("CollisionWorld::collect");
     if (!scope) return scope.error();
-    if (!pending()) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
-    Run& run = runs[oldest];
-    oldest = 1 - oldest;  // the other slot, in flight or not, is the oldest now
+    if (!detections.pending()) return Error(ErrorCode::InvalidArgument, "collect without a detection in flight: submit() first");
+    Run& run = detections.runs[detections.oldest];
+    detections.oldest = 1 - detections.oldest;  // the other slot, in flight or not, is the oldest now
     return hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, true, reuse_memory); });
 }
 
@@ -150,8 +127,8 @@ Result<bool> CollisionWorld::ready() {
     Impl& w = *impl_;
     auto scope = w.guard.enter("CollisionWorld::ready");
     if (!scope) return scope.error();
-    if (!w.pending()) return Error(ErrorCode::InvalidArgument, "ready without a detection in flight: submit() first");
-    auto done = w.runs[w.oldest].detection->ready();
+    if (!w.detections.pending()) return Error(ErrorCode::InvalidArgument, "ready without a detection in flight: submit() first");
+    auto done = w.detections.runs[w.detections.oldest].detection->ready();
     if (!done) return w.noted(done.error());
     return *done;
 }
@@ -166,18 +143,19 @@ Result<std::optional<DetectResult>> CollisionWorld::tryCollect() {
 }
 
 Result<DevicePairs> CollisionWorld::devicePairs() const {
-    if (!impl_->last_device_pairs)
-        return Error(ErrorCode::InvalidArgument,
-                     "devicePairs: the detection started last did not ask for them (DetectSettings::device_pairs), or none started");
-    return *impl_->last_device_pairs;
+    if (!impl_->detections.last_device_pairs)
+        return Error(
+            ErrorCode::InvalidArgument,
+            "devicePairs: the detection started last did not ask for them (DetectSettings::reliable.device_pairs), or none started");
+    return *impl_->detections.last_device_pairs;
 }
 
-bool CollisionWorld::pending() const noexcept { return impl_->pending(); }
-std::uint32_t CollisionWorld::inFlight() const noexcept { return impl_->inFlight(); }
+bool CollisionWorld::pending() const noexcept { return impl_->detections.pending(); }
+std::uint32_t CollisionWorld::inFlight() const noexcept { return impl_->detections.inFlight(); }
 
 WorldState CollisionWorld::state() const {
     if (impl_->device_lost) return WorldState::DeviceLost;
-    return impl_->busy() ? WorldState::Busy : WorldState::Ready;
+    return impl_->detections.busy() ? WorldState::Busy : WorldState::Ready;
 }
 
 }  // namespace vkcollide

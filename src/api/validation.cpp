@@ -139,7 +139,7 @@ namespace {
 Result<void> checkSortedOnGpu(const std::string& what, const DetectSettings& s, const vk::Device& device) {
     if (s.method != DetectMethod::Reliable)
         return invalid(what + " belongs to the reliable method (the peeling method forms its pairs on the host)");
-    if (s.exact == ExactDecision::Cpu)
+    if (s.reliable.exact == ExactDecision::Cpu)
         return invalid(what + " needs the exact decision on the GPU (exact Auto or Gpu, not Cpu: the CPU decides its pairs on the host)");
     if (!device.shader_float64)
         return Error(ErrorCode::UnsupportedFeature, what + " needs the exact decision on the GPU, so shaderFloat64, which " +
@@ -150,16 +150,16 @@ Result<void> checkSortedOnGpu(const std::string& what, const DetectSettings& s, 
 }  // namespace
 
 Result<void> checkDevicePairs(const DetectSettings& s, const vk::Device& device) {
-    if (!s.host_pairs && !s.device_pairs)
-        return invalid("host_pairs = false needs device_pairs = true: the pairs would be kept nowhere");
-    if (!s.host_pairs && s.contacts)
-        return invalid("host_pairs = false with contacts: object contacts are built from the host's pairs");
-    if (s.pair_sort == PairSort::Gpu)
-        if (auto ok = checkSortedOnGpu("pair_sort Gpu", s, device); !ok) return ok;
-    if (!s.device_pairs) return {};
-    if (auto ok = checkSortedOnGpu("device_pairs", s, device); !ok) return ok;
-    if (s.device_pair_capacity > kMaxDevicePairCapacity)
-        return invalid("device_pairs: device_pair_capacity " + std::to_string(s.device_pair_capacity) +
+    if (!s.reliable.host_pairs && !s.reliable.device_pairs)
+        return invalid("reliable.host_pairs = false needs reliable.device_pairs = true: the pairs would be kept nowhere");
+    if (!s.reliable.host_pairs && s.contacts.objects)
+        return invalid("reliable.host_pairs = false with contacts.objects: object contacts are built from the host's pairs");
+    if (s.reliable.pair_sort == PairSort::Gpu)
+        if (auto ok = checkSortedOnGpu("reliable.pair_sort Gpu", s, device); !ok) return ok;
+    if (!s.reliable.device_pairs) return {};
+    if (auto ok = checkSortedOnGpu("reliable.device_pairs", s, device); !ok) return ok;
+    if (s.reliable.device_pair_capacity > kMaxDevicePairCapacity)
+        return invalid("reliable.device_pair_capacity " + std::to_string(s.reliable.device_pair_capacity) +
                        " is more than kMaxDevicePairCapacity (" + std::to_string(kMaxDevicePairCapacity) + ")");
     return {};
 }
@@ -197,31 +197,33 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     };
     if (s.method != DetectMethod::Reliable && s.method != DetectMethod::Peeling)
         return outside("method", int(s.method), "DetectMethod", "Reliable or Peeling");
-    if (s.packing != PackingMethod::Scan && s.packing != PackingMethod::Paper)
-        return outside("packing", int(s.packing), "PackingMethod", "Scan or Paper");
-    if (s.backend != SamplingBackend::Auto && s.backend != SamplingBackend::Raster && s.backend != SamplingBackend::Compute)
-        return outside("backend", int(s.backend), "SamplingBackend", "Auto, Raster or Compute");
-    if (s.coverage != Coverage::Centre && s.coverage != Coverage::Dilate && s.coverage != Coverage::Conservative &&
-        s.coverage != Coverage::Best)
-        return outside("coverage", int(s.coverage), "Coverage", "Centre, Dilate, Conservative or Best");
+    if (s.peeling.packing != PackingMethod::Scan && s.peeling.packing != PackingMethod::Paper)
+        return outside("peeling.packing", int(s.peeling.packing), "PackingMethod", "Scan or Paper");
+    if (s.peeling.backend != SamplingBackend::Auto && s.peeling.backend != SamplingBackend::Raster &&
+        s.peeling.backend != SamplingBackend::Compute)
+        return outside("peeling.backend", int(s.peeling.backend), "SamplingBackend", "Auto, Raster or Compute");
+    if (s.peeling.coverage != Coverage::Centre && s.peeling.coverage != Coverage::Dilate && s.peeling.coverage != Coverage::Conservative &&
+        s.peeling.coverage != Coverage::Best)
+        return outside("peeling.coverage", int(s.peeling.coverage), "Coverage", "Centre, Dilate, Conservative or Best");
     if (s.bad_objects != BadObjectPolicy::Exclude && s.bad_objects != BadObjectPolicy::Fail)
         return outside("bad_objects", int(s.bad_objects), "BadObjectPolicy", "Exclude or Fail");
-    if (s.exact != ExactDecision::Auto && s.exact != ExactDecision::Gpu && s.exact != ExactDecision::Cpu)
-        return outside("exact", int(s.exact), "ExactDecision", "Auto, Gpu or Cpu");
-    if (s.pair_sort != PairSort::Auto && s.pair_sort != PairSort::Gpu && s.pair_sort != PairSort::Cpu)
-        return outside("pair_sort", int(s.pair_sort), "PairSort", "Auto, Gpu or Cpu");
+    if (s.reliable.exact != ExactDecision::Auto && s.reliable.exact != ExactDecision::Gpu && s.reliable.exact != ExactDecision::Cpu)
+        return outside("reliable.exact", int(s.reliable.exact), "ExactDecision", "Auto, Gpu or Cpu");
+    if (s.reliable.pair_sort != PairSort::Auto && s.reliable.pair_sort != PairSort::Gpu && s.reliable.pair_sort != PairSort::Cpu)
+        return outside("reliable.pair_sort", int(s.reliable.pair_sort), "PairSort", "Auto, Gpu or Cpu");
     const bool reliable = s.method == DetectMethod::Reliable;
-    if (s.exact == ExactDecision::Gpu && !reliable)
+    if (s.reliable.exact == ExactDecision::Gpu && !reliable)
         return invalid("exact decision on the GPU belongs to the reliable method (the peeling method decides on the CPU)");
-    if (s.exact == ExactDecision::Gpu && !device.shader_float64)
+    if (s.reliable.exact == ExactDecision::Gpu && !device.shader_float64)
         return Error(ErrorCode::UnsupportedFeature, "exact decision on the GPU needs shaderFloat64, which " + device.info.name +
                                                         " lacks (or the adopted device did not enable): use ExactDecision::Auto or Cpu");
     if (auto ok = checkDevicePairs(s, device); !ok) return ok;
     if (auto ok = checkProximity(s, device); !ok) return ok;
-    if (s.axes != 1 && s.axes != 3) return invalid("axes must be 1 or 3, not " + std::to_string(s.axes));
-    if (reliable && s.collision_rays)
-        return invalid("collision_rays belongs to the peeling method (--method peeling): the reliable method samples no rays");
-    if (reliable && s.axes != 1) return invalid("the reliable method runs along one direction (axes 1; resolveSettings sets it)");
+    if (s.peeling.axes != 1 && s.peeling.axes != 3) return invalid("peeling.axes must be 1 or 3, not " + std::to_string(s.peeling.axes));
+    if (reliable && s.peeling.collision_rays)
+        return invalid("peeling.collision_rays belongs to the peeling method (--method peeling): the reliable method samples no rays");
+    if (reliable && s.peeling.axes != 1)
+        return invalid("the reliable method runs along one direction (peeling.axes 1; resolveSettings sets it)");
     const std::uint32_t n = s.resolution.value_or(0);
     if (reliable) {
         if (n < 1 || n > gpu::kCellsMaxResolution)
@@ -235,8 +237,8 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     const auto& d = *s.direction;
     const float dl = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     if (!(dl > 0) || !std::isfinite(dl)) return invalid("projection direction must be finite and non-zero");
-    if (!finiteNonNegative(s.open_epsilon.value_or(0))) return invalid("open_epsilon must be finite and >= 0");
-    if (!finiteNonNegative(s.closed_epsilon)) return invalid("closed_epsilon must be finite and >= 0");
+    if (!finiteNonNegative(s.peeling.open_epsilon.value_or(0))) return invalid("peeling.open_epsilon must be finite and >= 0");
+    if (!finiteNonNegative(s.peeling.closed_epsilon)) return invalid("peeling.closed_epsilon must be finite and >= 0");
     if (s.region) {
         const auto& r = *s.region;
         float widest = 0;
@@ -250,17 +252,17 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         if (!(widest >= gpu::kMinSamplingExtent))
             return Error(ErrorCode::LimitExceeded, "sampling region is narrower than the smallest extent vkcollide can sample (1e-30 world units)");
     }
-    if (s.contact_resolution &&
-        (*s.contact_resolution < gpu::kMinContactResolution || *s.contact_resolution > gpu::kMaxContactResolution))
-        return invalid("contact_resolution " + std::to_string(*s.contact_resolution) + " is not in [" +
+    if (s.contacts.resolution &&
+        (*s.contacts.resolution < gpu::kMinContactResolution || *s.contacts.resolution > gpu::kMaxContactResolution))
+        return invalid("contacts.resolution " + std::to_string(*s.contacts.resolution) + " is not in [" +
                        std::to_string(gpu::kMinContactResolution) + ", " + std::to_string(gpu::kMaxContactResolution) + "]");
     if (reliable) return {};  // coverage and backend shape ray sampling, which it does not do
-    if (s.coverage == Coverage::Conservative && !device.conservative_rasterization)
+    if (s.peeling.coverage == Coverage::Conservative && !device.conservative_rasterization)
         return Error(ErrorCode::UnsupportedFeature, "conservative coverage needs VK_EXT_conservative_rasterization, which " +
                                                         device.info.name + " lacks (or the adopted device did not enable): use dilation");
     // Thin-triangle coverage is drawn by sample.vert (or a conservative pipeline): raster
     // only. Auto falls back to raster; an explicit Compute is refused.
-    if (s.coverage != Coverage::Centre && s.backend == SamplingBackend::Compute)
+    if (s.peeling.coverage != Coverage::Centre && s.peeling.backend == SamplingBackend::Compute)
         return Error(ErrorCode::UnsupportedFeature, "thin-triangle coverage (dilate or conservative) needs the raster sampling backend");
     return {};
 }

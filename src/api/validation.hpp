@@ -3,7 +3,7 @@
 // instead of checking them again.
 //
 // Each check returns the broken rule as an Error whose message does not name the object;
-// the world prefixes "object <id> ('<name>'): " once (CollisionWorld::Impl::who).
+// the world prefixes "object <id> ('<name>'): " once (ObjectRegistry::who).
 #pragma once
 
 #include <array>
@@ -51,7 +51,7 @@ VkDeviceSize indexBytes(const GpuMeshDesc& desc);
 // (per method), direction, epsilons, region, and (peeling) coverage and backend against
 // each other and the device.
 Result<void> checkSettings(const DetectSettings& resolved, const vk::Device& device);
-// DetectSettings::device_pairs and pair_sort Gpu: the reliable method, the exact decision on
+// DetectSettings::reliable.device_pairs and pair_sort Gpu: the reliable method, the exact decision on
 // the GPU (shaderFloat64), a capacity within kMaxDevicePairCapacity; host_pairs = false only
 // with device_pairs and without contacts (checkSettings calls it).
 Result<void> checkDevicePairs(const DetectSettings& resolved, const vk::Device& device);

@@ -112,7 +112,7 @@ struct BroadPhaseSettings {
     // When set, one clock for the whole run instead: every wait (an earlier timed-out run's
     // work, each submission, a method's reruns) ends by then, and no new submission starts
     // after it; timeout_ns is then the length it stands for, named in the error. A
-    // detection sets it so that all of its GPU work shares DetectSettings::timeout_ms.
+    // detection sets it so that all of its GPU work shares DetectSettings::limits.timeout_ms.
     std::optional<std::chrono::steady_clock::time_point> deadline;
     // How collect() waits for the GPU (graph::Executor::setWaitPolling): 0 sleeps only.
     std::uint64_t poll_ns = 0;
@@ -127,7 +127,7 @@ struct BroadPhaseSettings {
     // outlive the run (until collect); its object count is the run's.
     const ObjectPairMask* pair_mask = nullptr;
     // Methods that form pairs on the GPU: their budget (CellStageSettings::max_candidate_pairs;
-    // DetectSettings::max_candidate_pairs in a detection). Past it the run fails with
+    // DetectSettings::limits.max_candidate_pairs in a detection). Past it the run fails with
     // LimitExceeded.
     std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
     // Methods that form pairs on the GPU: decide them exactly there where the device can

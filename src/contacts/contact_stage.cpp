@@ -21,7 +21,7 @@ using graph::Use;
 static_assert(sizeof(gpu::ContactsParams) == 176 && sizeof(gpu::ContactsHeader) == 32);
 static_assert(sizeof(gpu::CtTriangle) == 72 && sizeof(gpu::ContactsPair) == 80);
 
-// Ray lists beyond this are refused (OutOfMemory naming contact_resolution): the stage
+// Ray lists beyond this are refused (OutOfMemory naming contacts.resolution): the stage
 // must not take the memory the engine and the broad phase need.
 constexpr VkDeviceSize kMaxListBytes = VkDeviceSize(1) << 30;
 constexpr std::uint32_t kMaxRuns = 6;
@@ -197,7 +197,7 @@ void ContactStage::recordMain(graph::Graph& g) {
 
 Result<ContactStageResult> ContactStage::run(const ContactInput& in) {
     if (in.resolution < gpu::kMinContactResolution || in.resolution > gpu::kMaxContactResolution)
-        return Error(ErrorCode::InvalidArgument, "contact_resolution " + std::to_string(in.resolution) + " is not in [" +
+        return Error(ErrorCode::InvalidArgument, "contacts.resolution " + std::to_string(in.resolution) + " is not in [" +
                                                      std::to_string(gpu::kMinContactResolution) + ", " +
                                                      std::to_string(gpu::kMaxContactResolution) + "]");
     ContactStageResult out;
@@ -276,7 +276,7 @@ Result<ContactStageResult> ContactStage::run(const ContactInput& in) {
         if (list_bytes > kMaxListBytes)
             return Error(ErrorCode::OutOfMemory, "contacts: " + std::to_string(rays) + " rays with up to " + std::to_string(layers_) +
                                                      " hits each need " + mib(list_bytes) + " of ray lists (more than " +
-                                                     mib(kMaxListBytes) + "); lower contact_resolution");
+                                                     mib(kMaxListBytes) + "); lower contacts.resolution");
         for (auto r : {ensure(buf_.entries, list_bytes, MemoryKind::DeviceLocal, "contacts-entries"),
                        ensure(buf_.items, VkDeviceSize(item_capacity_) * 8, MemoryKind::DeviceLocal, "contacts-items")})
             if (!r) return r.error();

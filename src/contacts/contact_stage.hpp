@@ -1,5 +1,5 @@
 // The contact stage: object-level contacts of closed objects from parallel rays
-// (DetectSettings::contacts, docs/contacts.md). It runs after a detection's broad phase on
+// (DetectSettings::contacts.objects, docs/contacts.md). It runs after a detection's broad phase on
 // its own executor, with its own rays, because it needs what the broad phase does not
 // keep: every hit of every closed object along a ray, sorted, at a resolution of the
 // region where objects overlap (not of the scene).
@@ -81,7 +81,7 @@ class ContactStage {
 public:
     static Result<std::unique_ptr<ContactStage>> create(vk::Device& device);
     // Runs both submissions and waits. Errors: InvalidArgument (resolution out of range,
-    // naming contact_resolution), OutOfMemory (ray lists beyond the device's memory),
+    // naming contacts.resolution), OutOfMemory (ray lists beyond the device's memory),
     // Timeout, DeviceLost.
     [[nodiscard]] Result<ContactStageResult> run(const ContactInput& input);
     std::uint64_t memoryBytes() const noexcept;

@@ -1,4 +1,4 @@
-// Contact geometry of intersecting triangle pairs (DetectSettings::contact_geometry): where
+// Contact geometry of intersecting triangle pairs (DetectSettings::contacts.geometry): where
 // two triangles meet — a segment, a point or a coplanar overlap — and a normal, and the sums
 // per pair of objects (vkcollide/contacts.hpp). Host only: it runs after the narrow phase
 // over the pairs it found.

@@ -1,4 +1,4 @@
-// The candidates of several sampling directions (DetectSettings::axes = 3) as one list for
+// The candidates of several sampling directions (DetectSettings::peeling.axes = 3) as one list for
 // the narrow phase: one record per triangle, its box the union over the directions that
 // kept it of the kept region mapped back to world space (a box in one direction's image
 // space would mean nothing next to another's). A pair that any one direction would test has

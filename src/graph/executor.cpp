@@ -16,7 +16,7 @@ Error timeoutOfDetection(std::uint64_t timeout_ns, bool has_deadline, Error e) {
     if (e.code() != ErrorCode::Timeout || !has_deadline) return e;
     return Error(ErrorCode::Timeout,
                  "the detection's GPU work did not finish within " + std::to_string(timeout_ns / 1000000) +
-                     " ms (its timeout, DetectSettings::timeout_ms, for every submission and rerun together)",
+                     " ms (its timeout, DetectSettings::limits.timeout_ms, for every submission and rerun together)",
                  e.vkResult());
 }
 

@@ -1,4 +1,4 @@
-// The host result from pairs the GPU decided exactly and sorted (DetectSettings::pair_sort):
+// The host result from pairs the GPU decided exactly and sorted (DetectSettings::reliable.pair_sort):
 // they are already final — distinct, in DetectResult::pairs' order, neighbours and the
 // object-pair filter applied — so the host neither sorts nor tests. It keeps the first
 // max_pairs, numbers the distinct triangles (slots), gathers their world vertices and

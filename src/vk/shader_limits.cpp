@@ -20,7 +20,7 @@ struct Layout {
     std::uint64_t size = 0, align = 1;
 };
 
-std::uint64_t roundUp(std::uint64_t x, std::uint64_t a) { return (x + a - 1) / a * a; }
+std::uint64_t alignUp(std::uint64_t x, std::uint64_t a) { return (x + a - 1) / a * a; }
 
 }  // namespace
 
@@ -68,7 +68,7 @@ Result<ComputeNeeds> readComputeNeeds(std::span<const std::uint32_t> spirv) {
                     auto length = constants.find(w[3]);
                     if (length == constants.end())
                         return Error(ErrorCode::InvalidArgument, "SPIR-V array type %" + std::to_string(w[1]) + " has a length that is not a constant");
-                    types[w[1]] = {roundUp(e->size, e->align) * length->second, e->align};
+                    types[w[1]] = {alignUp(e->size, e->align) * length->second, e->align};
                 }
                 break;
             case kOpTypeStruct: {
@@ -80,10 +80,10 @@ Result<ComputeNeeds> readComputeNeeds(std::span<const std::uint32_t> spirv) {
                         all = false;
                         break;
                     }
-                    s.size = roundUp(s.size, e->align) + e->size;
+                    s.size = alignUp(s.size, e->align) + e->size;
                     s.align = std::max(s.align, e->align);
                 }
-                if (all) types[w[1]] = {roundUp(s.size, s.align), s.align};
+                if (all) types[w[1]] = {alignUp(s.size, s.align), s.align};
                 break;
             }
             case kOpTypePointer:
@@ -100,7 +100,7 @@ Result<ComputeNeeds> readComputeNeeds(std::span<const std::uint32_t> spirv) {
                     if (!t)
                         return Error(ErrorCode::InvalidArgument,
                                      "SPIR-V workgroup variable %" + std::to_string(w[2]) + " has a type whose size is not read here");
-                    needs.shared_bytes = roundUp(needs.shared_bytes, t->align) + t->size;
+                    needs.shared_bytes = alignUp(needs.shared_bytes, t->align) + t->size;
                 }
                 break;
             default:

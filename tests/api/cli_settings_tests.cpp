@@ -327,7 +327,7 @@ TEST_CASE("vkcollide detect: --max-pairs keeps that many and says the rest were 
     // The reliable method (the default) checks the budget on the GPU, before the narrow phase.
     const Run few = runCli("detect " + s.plain_files + " --max-candidate-pairs 1");
     CHECK(few.status != 0);
-    CHECK(few.err.find("max_candidate_pairs (1)") != std::string::npos);
+    CHECK(few.err.find("limits.max_candidate_pairs (1)") != std::string::npos);
     const Run few_peeling = runCli("detect " + s.plain_files + " --method peeling --max-candidate-pairs 1");
     CHECK(few_peeling.status != 0);
     CHECK(few_peeling.err.find("max_box_pairs") != std::string::npos);

@@ -1,4 +1,4 @@
-// Object-level contacts (DetectSettings::contacts) through the public API, validation on,
+// Object-level contacts (DetectSettings::contacts.objects) through the public API, validation on,
 // against closed forms: two overlapping spheres (lens volume, centroid, normal along the
 // centre line, depth r1 + r2 - d), a box inside a box (containment, the inner box's
 // volume), a sphere half sunk into a box (half the sphere mesh's volume, the face's
@@ -102,7 +102,7 @@ TEST_CASE("contacts: two spheres give the lens volume, centroid, centre-line nor
     CHECK(c.object_a == *a);
     CHECK(c.object_b == *b);
     CHECK_FALSE(c.contained);
-    CHECK(r->stats.contact_rays_x > 0);
+    CHECK(r->stats.contacts.rays_x > 0);
     INFO("volume " << c.volume << " vs " << L.volume << ", depth " << c.depth << " vs " << L.depth);
     CHECK(std::fabs(c.volume - L.volume) < 0.02 * L.volume);
     // From a (sphere 1) into b: along +axis.
@@ -223,10 +223,10 @@ TEST_CASE("contacts: nested spheres grow the ray lists and every pair is contain
         REQUIRE(id);
         ids.push_back(*id);
     }
-    auto r = world->detect({.contacts = true, .contact_resolution = 64});
+    auto r = world->detect({.contacts = {.objects = true, .resolution = 64}});
     REQUIRE(r);
-    CHECK(r->stats.contact_runs >= 2);
-    CHECK(r->stats.contact_layers >= 18);
+    CHECK(r->stats.contacts.runs >= 2);
+    CHECK(r->stats.contacts.layers >= 18);
     REQUIRE(r->contacts.size() == 36);
     for (const ObjectContact& c : r->contacts) {
         CHECK(c.contained);
@@ -247,10 +247,10 @@ TEST_CASE("contacts: bad settings are named, no closed object gives no contact",
     REQUIRE(none);
     CHECK(none->contacts.empty());
     for (std::uint32_t bad : {0u, 15u, 4097u}) {
-        auto r = world->detect({.contacts = true, .contact_resolution = bad});
+        auto r = world->detect({.contacts = {.objects = true, .resolution = bad}});
         REQUIRE_FALSE(r);
         CHECK(r.error().code() == ErrorCode::InvalidArgument);
-        CHECK(r.error().message().find("contact_resolution") != std::string::npos);
+        CHECK(r.error().message().find("contacts.resolution") != std::string::npos);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -1,4 +1,4 @@
-// Results on the GPU (DetectSettings::device_pairs, docs/api.md): the pairs the detection
+// Results on the GPU (DetectSettings::reliable.device_pairs, docs/api.md): the pairs the detection
 // leaves in device buffers, copied back here as an engine would read them, equal
 // DetectResult::pairs exactly (content and order) on the test scenes, the stability cases,
 // a resting stack, many objects, self-collision, a pair filter, a run whose survivors
@@ -96,7 +96,7 @@ TEST_CASE("device pairs: the GPU's sorted pairs equal DetectResult::pairs on eve
         return;
     }
     DetectSettings on;
-    on.device_pairs = true;
+    on.reliable.device_pairs = true;
     std::vector<TestScene> scenes;
     auto all = allTestScenes();
     REQUIRE(all);
@@ -112,7 +112,7 @@ TEST_CASE("device pairs: the GPU's sorted pairs equal DetectResult::pairs on eve
         auto last = world->devicePairs();
         REQUIRE(last);
         CHECK(last->pairs == r->device->pairs);
-        CHECK(r->stats.sorting_ms >= 0);
+        CHECK(r->stats.reliable.sorting_ms >= 0);
         // Ids as the API returns them: remove the first object, so ids no longer equal indices.
         if (scene.objects.size() < 3) continue;
         REQUIRE(world->removeObject(0));
@@ -137,7 +137,7 @@ TEST_CASE("device pairs: pair filter, the final run after an overflow, pipelined
     ValidatedContext ctx;
     if (!ctx.device().shader_float64) return;
     DetectSettings on;
-    on.device_pairs = true;
+    on.reliable.device_pairs = true;
     {
         const TestScene scene = manySpheres();
         auto world = sceneWorld(ctx, scene);
@@ -197,8 +197,8 @@ TEST_CASE("device pairs: a short capacity says overflow and the count needed", "
     REQUIRE(all);
     auto world = sceneWorld(ctx, all->front());
     DetectSettings s;
-    s.device_pairs = true;
-    s.device_pair_capacity = 5;
+    s.reliable.device_pairs = true;
+    s.reliable.device_pair_capacity = 5;
     auto r = world->detect(s);
     REQUIRE(r);
     REQUIRE(r->pairs.size() > 5);
@@ -219,11 +219,11 @@ TEST_CASE("device pairs: refused by name without the GPU's exact decision", "[ap
     REQUIRE(all);
     auto world = sceneWorld(ctx, all->front());
     const auto refused = [&](DetectSettings s, ErrorCode code, const char* words) {
-        s.device_pairs = true;
+        s.reliable.device_pairs = true;
         auto r = world->detect(s);
         REQUIRE_FALSE(r);
         CHECK(r.error().code() == code);
-        CHECK_THAT(r.error().message(), Catch::Contains("device_pairs") && Catch::Contains(words));
+        CHECK_THAT(r.error().message(), Catch::Contains("reliable.device_pair") && Catch::Contains(words));
         CHECK_FALSE(world->resolveSettings(s));
         CHECK_FALSE(world->devicePairs());
     };
@@ -234,10 +234,10 @@ TEST_CASE("device pairs: refused by name without the GPU's exact decision", "[ap
     }
     refused({.method = DetectMethod::Peeling}, ErrorCode::InvalidArgument, "reliable method");
     DetectSettings cpu;
-    cpu.exact = ExactDecision::Cpu;
+    cpu.reliable.exact = ExactDecision::Cpu;
     refused(cpu, ErrorCode::InvalidArgument, "exact decision on the GPU");
     DetectSettings big;
-    big.device_pair_capacity = kMaxDevicePairCapacity + 1;
+    big.reliable.device_pair_capacity = kMaxDevicePairCapacity + 1;
     refused(big, ErrorCode::InvalidArgument, "kMaxDevicePairCapacity");
     // Without the setting a detection has none, and devicePairs() says so.
     auto plain = world->detect();
@@ -253,9 +253,9 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
     ValidatedContext ctx;
     if (!ctx.device().shader_float64) return;
     DetectSettings with_host;
-    with_host.device_pairs = true;
+    with_host.reliable.device_pairs = true;
     DetectSettings gpu_only = with_host;
-    gpu_only.host_pairs = false;
+    gpu_only.reliable.host_pairs = false;
     // The pairs of a host run, then the device-only run's buffers against them.
     const auto same = [&](CollisionWorld& world, const std::string& what) {
         INFO(what);
@@ -267,8 +267,8 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
         CHECK(only->pairs.empty());
         CHECK(only->responses.empty());
         CHECK(only->stats.cpu_exact_tests == 0);
-        CHECK(only->stats.device_pairs_found == host->pairs.size());
-        CHECK(only->stats.device_pairs_written == host->pairs.size());
+        CHECK(only->stats.reliable.device_pairs_found == host->pairs.size());
+        CHECK(only->stats.reliable.device_pairs_written == host->pairs.size());
         REQUIRE(only->device);
         const DeviceCopy d = readBack(ctx.device(), *only->device);
         CHECK(d.header.flags == 0);
@@ -292,10 +292,10 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
         auto only = world->detect(gpu_only);
         REQUIRE(only);
         CHECK(only->stats.cells.runs > 1);
-        CHECK(only->stats.device_pairs_found > 4096);
+        CHECK(only->stats.reliable.device_pairs_found > 4096);
         REQUIRE(only->device);
         const DeviceCopy d = readBack(ctx.device(), *only->device);
-        CHECK(d.header.needed == only->stats.device_pairs_found);
+        CHECK(d.header.needed == only->stats.reliable.device_pairs_found);
         const auto host_pairs = same(*world, "coincident grids");
         CHECK(d.pairs == host_pairs);
     }
@@ -318,23 +318,23 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
     {
         auto world = sceneWorld(ctx, restingStack());
         DetectSettings shorter = gpu_only;
-        shorter.device_pair_capacity = 7;
+        shorter.reliable.device_pair_capacity = 7;
         auto r = world->detect(shorter);
         REQUIRE(r);
-        CHECK(r->stats.device_pairs_written == 7);
-        CHECK(r->stats.device_pairs_found > 7);
+        CHECK(r->stats.reliable.device_pairs_written == 7);
+        CHECK(r->stats.reliable.device_pairs_found > 7);
     }
     // Refused by name: nowhere to keep the pairs, or contacts that need them on the host.
     auto world = sceneWorld(ctx, restingStack());
     DetectSettings nowhere;
-    nowhere.host_pairs = false;
+    nowhere.reliable.host_pairs = false;
     auto r = world->detect(nowhere);
     REQUIRE_FALSE(r);
-    CHECK_THAT(r.error().message(), Catch::Contains("host_pairs") && Catch::Contains("device_pairs"));
+    CHECK_THAT(r.error().message(), Catch::Contains("reliable.host_pairs") && Catch::Contains("reliable.device_pairs"));
     DetectSettings contacts = gpu_only;
-    contacts.contacts = true;
+    contacts.contacts.objects = true;
     r = world->detect(contacts);
     REQUIRE_FALSE(r);
-    CHECK_THAT(r.error().message(), Catch::Contains("host_pairs") && Catch::Contains("contacts"));
+    CHECK_THAT(r.error().message(), Catch::Contains("reliable.host_pairs") && Catch::Contains("contacts.objects"));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

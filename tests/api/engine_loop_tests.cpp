@@ -10,7 +10,7 @@
 //    waits for it before it overwrites that frame's buffers two frames later);
 //  * detect(), then submit()/collect(), then a pipelined loop (frame f submitted before
 //    frame f - 1 is collected);
-//  * the pairs on the GPU (DetectSettings::device_pairs): after each submit() the engine
+//  * the pairs on the GPU (DetectSettings::reliable.device_pairs): after each submit() the engine
 //    submits its own compute pass (tests/shaders/engine_pairs_check.comp.glsl) that waits
 //    for the world's signal and reads the pairs through their device addresses, before it
 //    collects anything; what it wrote agrees with the host result of that frame, and, in a
@@ -400,8 +400,8 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
         // on the CPU); 3. pipelined: frame g submitted before frame g - 1 is collected.
         // Each detection also leaves its pairs on the GPU, which the engine reads at once.
         DetectSettings on_gpu;
-        on_gpu.device_pairs = (*context)->deviceInfo().shader_float64;
-        if (!on_gpu.device_pairs) WARN("no shaderFloat64: the engine reads no pairs on the GPU");
+        on_gpu.reliable.device_pairs = (*context)->deviceInfo().shader_float64;
+        if (!on_gpu.reliable.device_pairs) WARN("no shaderFloat64: the engine reads no pairs on the GPU");
         std::vector<DetectResult> results(kChecks);  // by g, kept for the comparison below
         int g = 0;  // frames with semaphores, over both loops
         for (bool pipelined : {false, true}) {
@@ -415,7 +415,7 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
                 auto submitted = w.submit(on_gpu, {.wait = wait, .signal = signal});
                 INFO((submitted ? std::string() : submitted.error().message()));
                 REQUIRE(submitted);
-                if (on_gpu.device_pairs) {
+                if (on_gpu.reliable.device_pairs) {
                     auto pairs = w.devicePairs();
                     REQUIRE(pairs);
                     engine.check(g, g, *pairs);
@@ -438,8 +438,8 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
         // 4. The pairs on the GPU only (host_pairs = false): nothing is read back, and the
         // engine's pass is the only reader of each frame's pairs.
         DetectSettings gpu_only = on_gpu;
-        gpu_only.host_pairs = false;
-        for (int f = 0; f < kFrames && on_gpu.device_pairs; ++f, ++g) {
+        gpu_only.reliable.host_pairs = false;
+        for (int f = 0; f < kFrames && on_gpu.reliable.device_pairs; ++f, ++g) {
             INFO("pairs on the GPU only, frame " << f);
             engine.deform(g, f, true);
             repoint(g);
@@ -450,14 +450,14 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
             auto r = w.collect();
             REQUIRE(r);
             CHECK(r->pairs.empty());
-            CHECK(r->stats.device_pairs_found == expected[f].size());
+            CHECK(r->stats.reliable.device_pairs_found == expected[f].size());
             results[g] = std::move(*r);
         }
         engine.idle();
         // What the engine's pass read at the signal is the host result of that frame (the
         // exact reference's, for the frames without one).
         int compared = 0;
-        for (int k = 0; k < kChecks && on_gpu.device_pairs; ++k) {
+        for (int k = 0; k < kChecks && on_gpu.reliable.device_pairs; ++k) {
             INFO("check " << k);
             const DetectResult& r = results[k];
             const std::vector<TrianglePair>& want = k < 2 * kFrames ? r.pairs : expected[k - 2 * kFrames];
@@ -481,7 +481,7 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
             ++compared;
         }
         // Reruns happen only while the buffers grow (the second slot's first frames).
-        if (on_gpu.device_pairs) CHECK(compared >= kChecks - 2);
+        if (on_gpu.reliable.device_pairs) CHECK(compared >= kChecks - 2);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(validated);
 }

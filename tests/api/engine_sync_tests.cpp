@@ -179,7 +179,7 @@ TEST_CASE("record() puts the detection into the engine's command buffer, where i
         REQUIRE_FALSE(refused);
         CHECK(mentions(refused.error(), "record: the peeling method measures the depth complexity first"));
         DetectSettings three = peeling();
-        three.axes = 3;
+        three.peeling.axes = 3;
         auto axes = world->record({engine.cmd, timeline->handle(), 2}, three);
         REQUIRE_FALSE(axes);
         CHECK(mentions(axes.error(), "three sampling directions make three submissions"));
@@ -376,7 +376,7 @@ TEST_CASE("calls that change what work in flight reads fail by name, so do calls
     auto watched = world->detect();
     REQUIRE(watched);
     CHECK(watched->pairs == plain->pairs);
-    CHECK(watched->stats.narrow_threads == 4);  // the engine's executor ran the narrow phase
+    CHECK(watched->stats.host.narrow_threads == 4);  // the engine's executor ran the narrow phase
     REQUIRE(refusals.size() == 2);
     CHECK(mentions(refusals[0], "CollisionWorld::setTransform was called from inside CollisionWorld::detect on the same thread"));
     CHECK(mentions(refusals[1], "CollisionWorld::detect was called on thread"));

@@ -1,4 +1,4 @@
-// Where the reliable method's exact decision runs (DetectSettings::exact): the GPU's pair
+// Where the reliable method's exact decision runs (DetectSettings::reliable.exact): the GPU's pair
 // pass (exact arithmetic in double) and the CPU narrow phase give the same pairs and
 // responses on every scene, touching and coplanar contacts above all, and the statistics
 // say which one decided. Validation layer on.
@@ -82,10 +82,10 @@ Both detectBoth(ValidatedContext& ctx, const TestScene& scene, DetectSettings se
     auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
     REQUIRE(world);
     for (const SceneObject& o : scene.objects) REQUIRE((*world)->addMesh(o.mesh, o.options));
-    settings.exact = ExactDecision::Gpu;
+    settings.reliable.exact = ExactDecision::Gpu;
     auto gpu = (*world)->detect(settings);
     REQUIRE(gpu);
-    settings.exact = ExactDecision::Cpu;
+    settings.reliable.exact = ExactDecision::Cpu;
     auto cpu = (*world)->detect(settings);
     REQUIRE(cpu);
     return {std::move(*gpu), std::move(*cpu)};
@@ -189,19 +189,19 @@ TEST_CASE("exact decision: Auto decides on the GPU where it can, and bad setting
 
     DetectSettings peeling;
     peeling.method = DetectMethod::Peeling;
-    peeling.exact = ExactDecision::Gpu;
+    peeling.reliable.exact = ExactDecision::Gpu;
     auto refused = (*world)->detect(peeling);
     REQUIRE_FALSE(refused);
     CHECK(refused.error().code() == ErrorCode::InvalidArgument);
     CHECK_THAT(refused.error().message(), Catch::Contains("reliable method"));
-    peeling.exact = ExactDecision::Auto;  // the peeling method decides on the CPU
+    peeling.reliable.exact = ExactDecision::Auto;  // the peeling method decides on the CPU
     auto on_cpu = (*world)->detect(peeling);
     REQUIRE(on_cpu);
     CHECK(on_cpu->stats.gpu_exact_tests == 0);
     CHECK(on_cpu->stats.cpu_exact_tests == on_cpu->stats.triangle_tests);
 
     DetectSettings bad;
-    bad.exact = static_cast<ExactDecision>(7);
+    bad.reliable.exact = static_cast<ExactDecision>(7);
     auto out_of_range = (*world)->detect(bad);
     REQUIRE_FALSE(out_of_range);
     CHECK(out_of_range.error().code() == ErrorCode::InvalidArgument);
@@ -224,10 +224,10 @@ namespace {
 
 // One world, the same settings twice: pairs sorted on the GPU, then on the CPU.
 Both sortedBoth(CollisionWorld& world, DetectSettings settings = {}) {
-    settings.pair_sort = PairSort::Gpu;
+    settings.reliable.pair_sort = PairSort::Gpu;
     auto gpu = world.detect(settings);
     REQUIRE(gpu);
-    settings.pair_sort = PairSort::Cpu;
+    settings.reliable.pair_sort = PairSort::Cpu;
     auto cpu = world.detect(settings);
     REQUIRE(cpu);
     return {std::move(*gpu), std::move(*cpu)};
@@ -235,8 +235,8 @@ Both sortedBoth(CollisionWorld& world, DetectSettings settings = {}) {
 
 void requireSameSorted(const Both& r, const std::string& what) {
     INFO(what << ": GPU-sorted " << r.gpu.pairs.size() << " pairs, CPU-sorted " << r.cpu.pairs.size());
-    CHECK(r.gpu.stats.pairs_sorted_on_gpu);
-    CHECK_FALSE(r.cpu.stats.pairs_sorted_on_gpu);
+    CHECK(r.gpu.stats.reliable.pairs_sorted_on_gpu);
+    CHECK_FALSE(r.cpu.stats.reliable.pairs_sorted_on_gpu);
     CHECK(r.gpu.pairs == r.cpu.pairs);
     CHECK(sameResponses(r.gpu.responses, r.cpu.responses));
     CHECK(r.gpu.pairs_left_out == r.cpu.pairs_left_out);
@@ -270,7 +270,7 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     }
     // max_pairs: both keep the first pairs in order and count the rest.
     DetectSettings few;
-    few.max_pairs = 37;
+    few.limits.max_pairs = 37;
     const Both cut = sortedBoth(*resting_world, few);
     CHECK(cut.gpu.pairs.size() == 37);
     CHECK(cut.gpu.pairs_left_out > 0);
@@ -292,7 +292,7 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     REQUIRE(resting_world->setPairFilter([](ObjectId a, ObjectId b) { return (a + b) % 2 == 0; }));
     requireSameSorted(sortedBoth(*resting_world), "resting scene, filtered");
     DetectSettings gpu_sort;
-    gpu_sort.pair_sort = PairSort::Gpu;
+    gpu_sort.reliable.pair_sort = PairSort::Gpu;
     REQUIRE(grid_world->submit(gpu_sort));
     REQUIRE(grid_world->submit(gpu_sort));
     auto first = grid_world->collect();
@@ -307,27 +307,27 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     auto a1 = automatic->detect();
     REQUIRE(a1);
     REQUIRE(a1->pairs.size() >= kGpuPairSortFrom);
-    CHECK_FALSE(a1->stats.pairs_sorted_on_gpu);  // nothing known before the first
+    CHECK_FALSE(a1->stats.reliable.pairs_sorted_on_gpu);  // nothing known before the first
     auto a2 = automatic->detect();
     REQUIRE(a2);
-    CHECK(a2->stats.pairs_sorted_on_gpu);
+    CHECK(a2->stats.reliable.pairs_sorted_on_gpu);
     CHECK(a2->pairs == a1->pairs);
     auto small = sceneWorld(ctx, resting);
     for (int k = 0; k < 2; ++k) {
         auto r = small->detect();
         REQUIRE(r);
         REQUIRE(r->pairs.size() < kGpuPairSortFrom);
-        CHECK_FALSE(r->stats.pairs_sorted_on_gpu);
+        CHECK_FALSE(r->stats.reliable.pairs_sorted_on_gpu);
     }
     // Refused by name where the GPU cannot sort.
     const auto refused = [&](DetectSettings s, const char* words) {
         auto r = small->detect(s);
         REQUIRE_FALSE(r);
-        CHECK_THAT(r.error().message(), Catch::Contains("pair_sort") && Catch::Contains(words));
+        CHECK_THAT(r.error().message(), Catch::Contains("reliable.pair_sort") && Catch::Contains(words));
     };
-    refused({.method = DetectMethod::Peeling, .pair_sort = PairSort::Gpu}, "reliable method");
-    refused({.exact = ExactDecision::Cpu, .pair_sort = PairSort::Gpu}, "exact decision on the GPU");
-    refused({.pair_sort = PairSort(9)}, "PairSort");
+    refused({.method = DetectMethod::Peeling, .reliable = {.pair_sort = PairSort::Gpu}}, "reliable method");
+    refused({.reliable = {.exact = ExactDecision::Cpu, .pair_sort = PairSort::Gpu}}, "exact decision on the GPU");
+    refused({.reliable = {.pair_sort = PairSort(9)}}, "PairSort");
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
@@ -344,7 +344,7 @@ TEST_CASE("detectInto and collectInto give detect()'s result in the caller's mem
     DetectResult kept;
     const TrianglePair* memory = nullptr;
     DetectSettings gpu_sort;
-    if (ctx.device().shader_float64) gpu_sort.pair_sort = PairSort::Gpu;
+    if (ctx.device().shader_float64) gpu_sort.reliable.pair_sort = PairSort::Gpu;
     for (int frame = 0; frame < 3; ++frame) {
         REQUIRE(world->detectInto(kept, gpu_sort));
         CHECK(kept.pairs == fresh->pairs);

@@ -83,10 +83,10 @@ TEST_CASE("reliable: every pair of the test scenes at any resolution and directi
         CHECK(st.triangles_downloaded == st.narrow.candidates);
         CHECK(st.positive_tests == automatic->pairs.size());
         CHECK(st.cells.gpu_triangles == 0);  // host meshes only
-        CHECK(st.footprints_ms > 0);
-        CHECK(st.pairing_ms > 0);
-        CHECK(st.filtering_ms > 0);
-        CHECK(st.depth_complexity == 0);
+        CHECK(st.reliable.footprints_ms > 0);
+        CHECK(st.reliable.pairing_ms > 0);
+        CHECK(st.reliable.filtering_ms > 0);
+        CHECK(st.peeling.depth_complexity == 0);
         for (std::uint32_t n : {1u, 7u, 100u}) {
             DetectSettings s;
             s.resolution = n;
@@ -304,16 +304,16 @@ TEST_CASE("reliable: self-collision and automatic settings", "[api][gpu][reliabl
     REQUIRE(s);
     REQUIRE(fs);
     CHECK(*s->direction == std::array<float, 3>{0, 0, 1});  // the cloth faces z
-    CHECK(s->axes == 1);
+    CHECK(s->peeling.axes == 1);
     const double ratio = double(*fs->resolution) / double(*s->resolution);
     CHECK(ratio > 1.8);
     CHECK(ratio < 2.2);
-    auto three = coarse_world->resolveSettings({.axes = 3});
+    auto three = coarse_world->resolveSettings({.peeling = {.axes = 3}});
     REQUIRE(three);
-    CHECK(three->axes == 1);  // one grid finds everything
-    auto r = coarse_world->detect({.axes = 3});
+    CHECK(three->peeling.axes == 1);  // one grid finds everything
+    auto r = coarse_world->detect({.peeling = {.axes = 3}});
     REQUIRE(r);
-    CHECK(r->stats.axes == 1);
+    CHECK(r->stats.peeling.axes == 1);
     CHECK(mentions(r->stats.settings_note, "axes 1"));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

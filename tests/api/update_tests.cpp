@@ -46,7 +46,7 @@ std::unique_ptr<CollisionWorld> worldOf(ValidatedContext& ctx, const HostMesh& b
 void requireSameSettings(const DetectSettings& a, const DetectSettings& b) {
     CHECK(a.direction == b.direction);
     CHECK(a.resolution == b.resolution);
-    CHECK(a.open_epsilon == b.open_epsilon);
+    CHECK(a.peeling.open_epsilon == b.peeling.open_epsilon);
 }
 
 }  // namespace
@@ -144,15 +144,15 @@ TEST_CASE("shapes are measured when automatic settings need them, also after det
     given.method = DetectMethod::Peeling;
     given.direction = std::array<float, 3>{0, 0, 1};
     given.resolution = 256;
-    given.open_epsilon = 0.001f;
+    given.peeling.open_epsilon = 0.001f;
     REQUIRE(world->detect(given));
     DetectSettings open_auto = given;  // the open epsilon alone automatic
-    open_auto.open_epsilon.reset();
+    open_auto.peeling.open_epsilon.reset();
     auto want = fresh->resolveSettings(open_auto), got = world->resolveSettings(open_auto);
     REQUIRE(want);
     REQUIRE(got);
-    CHECK(*got->open_epsilon == *want->open_epsilon);
-    CHECK(*got->open_epsilon > 0);
+    CHECK(*got->peeling.open_epsilon == *want->peeling.open_epsilon);
+    CHECK(*got->peeling.open_epsilon > 0);
     // Everything automatic (the closed object's shape too, which the open epsilon did not
     // need): the same as a world that saw these positions from the start.
     for (const DetectSettings& s : {DetectSettings{}, DetectSettings{.method = DetectMethod::Peeling}}) {
@@ -173,7 +173,7 @@ TEST_CASE("shapes measured with the vertex update (automatic settings last time)
     DetectSettings given;               // nothing automatic: the next updates leave shapes stale
     given.direction = std::array<float, 3>{0, 0, 1};
     given.resolution = 64;
-    given.open_epsilon = 0.001f;
+    given.peeling.open_epsilon = 0.001f;
     REQUIRE(lazy->resolveSettings(given));
     // Stretched along x and squashed along z: another typical edge and facing.
     HostMesh big = scene.big, small = scene.small;

@@ -166,13 +166,13 @@ TEST_CASE("detection settings are refused at the API, naming the rule", "[api][g
         {"direction", [](DetectSettings& s) { s.direction = std::array<float, 3>{0, 0, 0}; }, ErrorCode::InvalidArgument, "direction"},
         {"direction NaN", [](DetectSettings& s) { s.direction = std::array<float, 3>{std::nanf(""), 0, 1}; }, ErrorCode::InvalidArgument,
          "direction"},
-        {"open epsilon", [](DetectSettings& s) { s.open_epsilon = -1.0f; }, ErrorCode::InvalidArgument, "open_epsilon"},
-        {"closed epsilon", [](DetectSettings& s) { s.closed_epsilon = std::numeric_limits<float>::infinity(); },
+        {"open epsilon", [](DetectSettings& s) { s.peeling.open_epsilon = -1.0f; }, ErrorCode::InvalidArgument, "open_epsilon"},
+        {"closed epsilon", [](DetectSettings& s) { s.peeling.closed_epsilon = std::numeric_limits<float>::infinity(); },
          ErrorCode::InvalidArgument, "closed_epsilon"},
         {"region", [](DetectSettings& s) { s.region = std::array<float, 6>{1, 0, 0, 0, 1, 1}; }, ErrorCode::InvalidArgument,
          "min <= max"},
-        {"axes", [](DetectSettings& s) { s.axes = 2; }, ErrorCode::InvalidArgument, "axes must be 1 or 3"},
-        {"compute with dilation", [](DetectSettings& s) { s.coverage = Coverage::Dilate, s.backend = SamplingBackend::Compute; },
+        {"axes", [](DetectSettings& s) { s.peeling.axes = 2; }, ErrorCode::InvalidArgument, "axes must be 1 or 3"},
+        {"compute with dilation", [](DetectSettings& s) { s.peeling.coverage = Coverage::Dilate, s.peeling.backend = SamplingBackend::Compute; },
          ErrorCode::UnsupportedFeature, "raster sampling backend"},
         // The reliable method: cells per side, any count in [1, 16384].
         {"cells", [](DetectSettings& s) { s.method = DetectMethod::Reliable, s.resolution = 0; }, ErrorCode::InvalidArgument,
@@ -202,8 +202,8 @@ TEST_CASE("detection settings are refused at the API, naming the rule", "[api][g
     // What only shapes the paper's ray sampling does not concern the reliable method.
     DetectSettings reliable;
     reliable.resolution = 100;
-    reliable.coverage = Coverage::Dilate;
-    reliable.backend = SamplingBackend::Compute;
+    reliable.peeling.coverage = Coverage::Dilate;
+    reliable.peeling.backend = SamplingBackend::Compute;
     CHECK((*world)->detect(reliable));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
@@ -225,9 +225,9 @@ TEST_CASE("enum values out of range are refused at the API, naming the field", "
     };
     const Bad bad[] = {
         {"method", [](DetectSettings& s, int v) { s.method = static_cast<DetectMethod>(v); }},
-        {"coverage", [](DetectSettings& s, int v) { s.coverage = static_cast<Coverage>(v); }},
-        {"backend", [](DetectSettings& s, int v) { s.backend = static_cast<SamplingBackend>(v); }},
-        {"packing", [](DetectSettings& s, int v) { s.packing = static_cast<PackingMethod>(v); }},
+        {"peeling.coverage", [](DetectSettings& s, int v) { s.peeling.coverage = static_cast<Coverage>(v); }},
+        {"peeling.backend", [](DetectSettings& s, int v) { s.peeling.backend = static_cast<SamplingBackend>(v); }},
+        {"peeling.packing", [](DetectSettings& s, int v) { s.peeling.packing = static_cast<PackingMethod>(v); }},
         {"bad_objects", [](DetectSettings& s, int v) { s.bad_objects = static_cast<BadObjectPolicy>(v); }},
     };
     const char* types[] = {"DetectMethod", "Coverage", "SamplingBackend", "PackingMethod", "BadObjectPolicy"};
@@ -251,14 +251,14 @@ TEST_CASE("enum values out of range are refused at the API, naming the field", "
     // The last value of each enum is still accepted (the paper's method reads them all).
     DetectSettings last;
     last.method = DetectMethod::Peeling;
-    last.coverage = Coverage::Best;
-    last.packing = PackingMethod::Paper;
+    last.peeling.coverage = Coverage::Best;
+    last.peeling.packing = PackingMethod::Paper;
     last.bad_objects = BadObjectPolicy::Fail;
-    last.backend = SamplingBackend::Raster;
+    last.peeling.backend = SamplingBackend::Raster;
     auto r = (*world)->detect(last);
     REQUIRE(r);
-    last.backend = SamplingBackend::Compute;
-    last.coverage = Coverage::Centre;
+    last.peeling.backend = SamplingBackend::Compute;
+    last.peeling.coverage = Coverage::Centre;
     CHECK((*world)->detect(last));
     CHECK((*world)->detect());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

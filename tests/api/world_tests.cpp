@@ -63,8 +63,8 @@ TEST_CASE("detect() finds only exact pairs and reports the paper's statistics", 
     CHECK(st.triangles_downloaded >= st.potentially_colliding_triangles);
     CHECK(st.triangles_downloaded < st.triangles);  // the far sphere and most surfaces are culled
     CHECK(st.collision_rays > 0);
-    CHECK(st.layers == st.depth_complexity);
-    CHECK_FALSE(st.layers_short);
+    CHECK(st.peeling.layers == st.peeling.depth_complexity);
+    CHECK_FALSE(st.peeling.layers_short);
     CHECK(st.resolution == 256);
     CHECK_FALSE(st.gpu_passes.empty());
     CHECK(st.sampling_ms > 0);
@@ -91,7 +91,7 @@ TEST_CASE("collision_rays returns the peeling detection's collision rays as worl
     CHECK_FALSE(plain->collision_rays);
 
     DetectSettings s = fixedSettings(128);
-    s.collision_rays = true;
+    s.peeling.collision_rays = true;
     auto result = world->detect(s);
     REQUIRE(result);
     CHECK(result->pairs == plain->pairs);  // the rays are read back, nothing else changes
@@ -113,7 +113,7 @@ TEST_CASE("collision_rays returns the peeling detection's collision rays as worl
 
     // The reliable method samples no rays: refused by name.
     DetectSettings reliable;
-    reliable.collision_rays = true;
+    reliable.peeling.collision_rays = true;
     auto refused = world->detect(reliable);
     REQUIRE_FALSE(refused);
     CHECK(refused.error().code() == ErrorCode::InvalidArgument);
@@ -170,10 +170,10 @@ TEST_CASE("a steady scene's later detections submit their command buffer again, 
     for (const auto& r : runs) {
         REQUIRE(r);
         CHECK(r->pairs == runs[0]->pairs);
-        CHECK(r->stats.reused_submissions <= r->stats.submissions);
+        CHECK(r->stats.host.reused_submissions <= r->stats.submissions);
     }
-    CHECK(runs[0]->stats.reused_submissions == 0u);  // nothing recorded before
-    CHECK(runs[3]->stats.reused_submissions == runs[3]->stats.submissions);
+    CHECK(runs[0]->stats.host.reused_submissions == 0u);  // nothing recorded before
+    CHECK(runs[3]->stats.host.reused_submissions == runs[3]->stats.submissions);
     CHECK(comparePairs(runs[3]->pairs, referencePairs(*scene)).recall == 1.0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
@@ -203,7 +203,7 @@ TEST_CASE("submit()/collect() gives detect()'s pairs and guards the objects in f
         auto async = world->collect();
         REQUIRE(async);
         CHECK(async->pairs == sync->pairs);
-        CHECK(async->stats.layers == sync->stats.depth_complexity);  // the layers measured last time
+        CHECK(async->stats.peeling.layers == sync->stats.peeling.depth_complexity);  // the layers measured last time
     }
     CHECK_FALSE(world->pending());
     CHECK_FALSE(world->collect());
@@ -230,12 +230,12 @@ TEST_CASE("a deeper scene than predicted stays conservative and is reported", "[
     REQUIRE(world->submit(fixedSettings(64)));  // predicts 2, the scene has 4
     auto r = world->collect();
     REQUIRE(r);
-    CHECK(r->stats.layers == 2);
-    CHECK(r->stats.depth_complexity == 4);
-    CHECK(r->stats.layers_short);
+    CHECK(r->stats.peeling.layers == 2);
+    CHECK(r->stats.peeling.depth_complexity == 4);
+    CHECK(r->stats.peeling.layers_short);
     auto exact = world->detect(fixedSettings(64));
     REQUIRE(exact);
-    CHECK_FALSE(exact->stats.layers_short);
+    CHECK_FALSE(exact->stats.peeling.layers_short);
     // Conservative: every pair the exact layers find is found with too few layers too.
     for (const auto& p : exact->pairs) CHECK(std::binary_search(r->pairs.begin(), r->pairs.end(), p));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
@@ -361,7 +361,7 @@ TEST_CASE("automatic settings follow the scene", "[api][gpu]") {
     CHECK(*s->direction == std::array<float, 3>{0, 0, 1});
     REQUIRE(s->resolution);
     CHECK(*s->resolution == 256);
-    CHECK(*s->open_epsilon > 0);
+    CHECK(*s->peeling.open_epsilon > 0);
     // Finer meshes ask for more rays.
     auto fine = clothThroughSphere(2.0f);
     REQUIRE(fine);
@@ -388,7 +388,7 @@ TEST_CASE("a world used after its Context is destroyed: every call works as befo
     // An engine mesh made before the Context goes (its buffers keep the device alive too).
     EngineMesh engine = engineCopy(ctx.device(), scene->objects[0].mesh);
     DetectSettings peeling = fixedSettings(128);
-    peeling.coverage = Coverage::Best;  // resolved from the device's features
+    peeling.peeling.coverage = Coverage::Best;  // resolved from the device's features
     const auto reliable_before = world->detect({});
     REQUIRE(reliable_before);
     const auto peeling_before = world->detect(peeling);
@@ -398,7 +398,7 @@ TEST_CASE("a world used after its Context is destroyed: every call works as befo
     ctx.destroyContext();
     auto resolved = world->resolveSettings(peeling);
     REQUIRE(resolved);
-    CHECK(resolved->coverage != Coverage::Best);
+    CHECK(resolved->peeling.coverage != Coverage::Best);
     auto reliable_after = world->detect({});
     REQUIRE(reliable_after);
     CHECK(reliable_after->pairs == reliable_before->pairs);

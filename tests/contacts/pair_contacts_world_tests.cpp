@@ -1,4 +1,4 @@
-// DetectSettings::contact_geometry through a world: one contact per pair whose end points lie
+// DetectSettings::contacts.geometry through a world: one contact per pair whose end points lie
 // on both triangles, per-object-pair sums that add up, the pairs unchanged, the same under
 // either method and any thread count. Validation layer on.
 #include <catch2/catch.hpp>
@@ -75,7 +75,7 @@ TEST_CASE("contact geometry: every pair of the test scenes gets a contact on bot
     auto scenes = allTestScenes(0.5f);
     REQUIRE(scenes);
     DetectSettings on;
-    on.contact_geometry = true;
+    on.contacts.geometry = true;
     for (const TestScene& scene : *scenes) {
         const WorldTriangles tri = worldTriangles(scene);
         DetectResult first;
@@ -88,7 +88,7 @@ TEST_CASE("contact geometry: every pair of the test scenes gets a contact on bot
             CHECK(r->pairs == plain->pairs);
             CHECK(plain->pair_contacts.empty());
             CHECK(plain->pair_contact_totals.empty());
-            CHECK(r->stats.contact_geometry_ms >= 0);
+            CHECK(r->stats.contacts.geometry_ms >= 0);
             requireContacts(*r, tri, scene.name);
             if (threads == 1) {
                 first = std::move(*r);
@@ -126,7 +126,7 @@ TEST_CASE("contact geometry: resting boxes touch along segments and coplanar fac
     }
     auto world = sceneWorld(ctx, s);
     DetectSettings on;
-    on.contact_geometry = true;
+    on.contacts.geometry = true;
     auto r = world->detect(on);
     REQUIRE(r);
     requireContacts(*r, worldTriangles(s), s.name);

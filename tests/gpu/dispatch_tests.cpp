@@ -45,8 +45,8 @@ TEST_CASE("dispatches forced into rows of three workgroups give the same results
             INFO(toString(backend) << ", " << (packing == PackingMethod::Scan ? "scan" : "paper") << " packing");
             DetectSettings s;
             s.resolution = 64;  // 16 workgroups per pixel pass: 6 rows of 3, the last with 2 over
-            s.backend = backend;
-            s.packing = packing;
+            s.peeling.backend = backend;
+            s.peeling.packing = packing;
             limit[0] = real;
             auto wide = (*world)->detect(s);
             limit[0] = 3;
@@ -57,7 +57,7 @@ TEST_CASE("dispatches forced into rows of three workgroups give the same results
             CHECK((rows->pairs == wide->pairs));
             CHECK(rows->stats.collision_rays == wide->stats.collision_rays);
             CHECK(rows->stats.triangles_downloaded == wide->stats.triangles_downloaded);
-            CHECK(rows->stats.depth_complexity == wide->stats.depth_complexity);
+            CHECK(rows->stats.peeling.depth_complexity == wide->stats.peeling.depth_complexity);
             CHECK_FALSE(rows->pairs.empty());
         }
     }
@@ -90,13 +90,13 @@ TEST_CASE("the largest resolution this device holds runs with the validation lay
     s.resolution = largest;
     // One timeout covers a detection's submissions: lavapipe on two busy cores takes about
     // a minute for one detection at 4096, past the default. This test is about validation.
-    s.timeout_ms = 600000;
+    s.limits.timeout_ms = 600000;
     auto objects = scene->reference();
     auto reference = computeReferencePairs(objects);
     REQUIRE(reference);
     for (SamplingBackend backend : {SamplingBackend::Raster, SamplingBackend::Compute}) {
         INFO("resolution " << largest << ", " << toString(backend));
-        s.backend = backend;
+        s.peeling.backend = backend;
         auto r = (*world)->detect(s);
         if (!r) FAIL(r.error().message());
         const PairComparison cmp = comparePairs(r->pairs, *reference);
@@ -118,19 +118,19 @@ TEST_CASE("a resolution past the framebuffer limit samples in compute or is refu
     limits.maxFramebufferWidth = 32;  // as if the device rendered at most 32 x 32
     DetectSettings s = c->settings;   // resolution 64
     s.method = DetectMethod::Peeling;  // the reliable method rasterises nothing
-    s.backend = SamplingBackend::Raster;
+    s.peeling.backend = SamplingBackend::Raster;
     auto raster = (*world)->detect(s);
-    s.backend = SamplingBackend::Auto;
+    s.peeling.backend = SamplingBackend::Auto;
     auto automatic = (*world)->detect(s);
-    s.coverage = Coverage::Dilate;
+    s.peeling.coverage = Coverage::Dilate;
     auto dilated = (*world)->detect(s);
     limits = real;
     REQUIRE_FALSE(raster);
     CHECK(raster.error().code() == ErrorCode::UnsupportedFeature);
     CHECK(raster.error().message().find("largest framebuffer") != std::string::npos);
     REQUIRE(automatic);
-    CHECK(automatic->stats.backend == SamplingBackend::Compute);
-    CHECK(automatic->stats.backend_reason.find("framebuffer") != std::string::npos);
+    CHECK(automatic->stats.peeling.backend == SamplingBackend::Compute);
+    CHECK(automatic->stats.peeling.backend_reason.find("framebuffer") != std::string::npos);
     CHECK((automatic->pairs == *c->reference));
     REQUIRE_FALSE(dilated);
     CHECK(dilated.error().code() == ErrorCode::UnsupportedFeature);

@@ -2,7 +2,7 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 // The engine's own reader of vkcollide's device pairs in tests/api/engine_loop_tests.cpp
-// (DetectSettings::device_pairs): submitted after the world's signal, it reads the header
+// (DetectSettings::reliable.device_pairs): submitted after the world's signal, it reads the header
 // and the pairs through their device addresses and writes what the host checks against
 // DetectResult::pairs: out[0] count, [1] flags, [2] needed, [3] an order-sensitive checksum
 // (the sum over i of mix(i, pair i)), [4] the pairs between two different objects.

@@ -20,7 +20,7 @@ double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>
 }  // namespace
 
 // The reliable method's reruns after a buffer overflowed ran with a hard-coded 60 s each
-// (up to 8 of them), whatever DetectSettings::timeout_ms said. 600 crossing triangles in a
+// (up to 8 of them), whatever DetectSettings::limits.timeout_ms said. 600 crossing triangles in a
 // fresh world take several submissions (the buffers grow, the pair pass runs in chunks),
 // about 1.6 s on lavapipe: with a timeout of 0.3 s the detection fails with Timeout at
 // 0.3 s, and the world, once the work in flight ended, detects the exact pairs.
@@ -31,7 +31,7 @@ TEST_CASE("reliable: one timeout covers every rerun of a detection, and the worl
     REQUIRE(c);
     auto world = worldOf(ctx, *c);
     DetectSettings s;  // the reliable method
-    s.timeout_ms = 300;
+    s.limits.timeout_ms = 300;
     const auto t0 = Clock::now();
     auto r = world->detect(s);
     const double took = secondsSince(t0);
@@ -70,14 +70,14 @@ TEST_CASE("reliable: after a timeout the destructor waits for at most one chunk 
     REQUIRE(warm);
     checkExact(warm->pairs, *c->reference);
     DetectSettings s;
-    s.timeout_ms = 1000;
+    s.limits.timeout_ms = 1000;
     auto r = world->detect(s);
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::Timeout);
     const auto t0 = Clock::now();
     world.reset();
     const double waited = secondsSince(t0);
-    INFO("the destructor waited " << waited << " s; the pair pass takes " << warm->stats.filtering_ms << " ms");
+    INFO("the destructor waited " << waited << " s; the pair pass takes " << warm->stats.reliable.filtering_ms << " ms");
     CHECK(waited < 1.0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

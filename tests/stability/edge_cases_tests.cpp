@@ -107,13 +107,13 @@ TEST_CASE("depth complexity above the layer cap: deeper rays collide, recall onl
     const StabilityCase all_layers = make(deepStack(0)), capped = make(deepStack(4));
     REQUIRE(all_layers.reference.size() == 80);
     const Measured full = run(ctx, all_layers, "paper"), cap = run(ctx, capped, "paper");
-    CHECK(full.stats.depth_complexity == 10);
+    CHECK(full.stats.peeling.depth_complexity == 10);
     CHECK(full.cmp.true_positives >= 78);
-    CHECK(cap.stats.layers == 4);
+    CHECK(cap.stats.peeling.layers == 4);
     CHECK(cap.cmp.recall == 1.0);
     CHECK(cap.stats.collision_rays > 10 * full.stats.collision_rays);  // every ray through the four plates
     CHECK(cap.stats.triangle_tests >= full.stats.triangle_tests);
-    CHECK_FALSE(cap.stats.layers_short);  // a cap was asked for: not "short"
+    CHECK_FALSE(cap.stats.peeling.layers_short);  // a cap was asked for: not "short"
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

@@ -42,7 +42,7 @@ WorldState settled(CollisionWorld& w) {
 // one at a time).
 struct Injected {
     static inline PFN_vkWaitForFences wait = nullptr;
-    static inline PFN_vkGetFenceStatus status = nullptr;  // polled waits (DetectSettings::wait_poll_us)
+    static inline PFN_vkGetFenceStatus status = nullptr;  // polled waits (DetectSettings::limits.wait_poll_us)
     static inline PFN_vkQueueSubmit2 submit = nullptr;
     static inline PFN_vkAllocateMemory allocate = nullptr;
     static inline std::atomic<bool> lose_device{false};
@@ -105,7 +105,7 @@ TEST_CASE("a detection that runs out of time fails with Timeout, the world is Bu
     REQUIRE(c);
     auto world = worldOf(ctx.context(), c->scene);
     DetectSettings impatient = c->settings;
-    impatient.timeout_ms = 0;
+    impatient.limits.timeout_ms = 0;
 
     SECTION("the measuring submission runs out: Timeout, and the world settles") {
         auto r = world->detect(impatient);
@@ -119,7 +119,7 @@ TEST_CASE("a detection that runs out of time fails with Timeout, the world is Bu
     // Once the depth is known a detection is one submission of all 304 peeling steps
     // (about a second on lavapipe), so the world is still Busy when the wait gives up.
     REQUIRE(world->detect(c->settings));
-    impatient.measure_layers = false;
+    impatient.peeling.measure_layers = false;
     SECTION("detect(): Busy refuses what the running work reads, settled the pairs are right") {
         auto r = world->detect(impatient);
         REQUIRE_FALSE(r);
@@ -176,16 +176,16 @@ TEST_CASE("a polling wait finds the same pairs and still honours the timeout", "
     for (std::uint32_t poll : {0u, 500u, 2'000'000u}) {
         INFO("wait_poll_us " << poll);
         DetectSettings s = c->settings;
-        s.wait_poll_us = poll;
+        s.limits.wait_poll_us = poll;
         auto r = world->detect(s);
         REQUIRE(r);
         CHECK((r->pairs == *c->reference));
     }
     // Polling for up to two seconds does not outlast a 1 ms timeout.
     DetectSettings impatient = c->settings;
-    impatient.measure_layers = false;
-    impatient.timeout_ms = 1;
-    impatient.wait_poll_us = 2'000'000;
+    impatient.peeling.measure_layers = false;
+    impatient.limits.timeout_ms = 1;
+    impatient.limits.wait_poll_us = 2'000'000;
     const auto t0 = std::chrono::steady_clock::now();
     auto r = world->detect(impatient);
     const double waited_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -254,7 +254,7 @@ TEST_CASE("device memory running out mid-detection is OutOfMemory, and the world
     // Every buffer the larger run needs beyond what the first made fails to allocate.
     Injected::fail_above = 64 * 64 * 64;
     for (SamplingBackend backend : {SamplingBackend::Raster, SamplingBackend::Compute}) {
-        large.backend = backend;
+        large.peeling.backend = backend;
         INFO(toString(backend));
         auto r = world->detect(large);
         REQUIRE_FALSE(r);

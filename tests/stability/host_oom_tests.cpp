@@ -22,7 +22,7 @@ TEST_CASE("host memory running out in a detection is OutOfMemory, and the world 
     auto crossing = crossingTriangles(600);
     REQUIRE(slabs);
     REQUIRE(crossing);
-    crossing->settings.layer_cap = 8;
+    crossing->settings.peeling.layer_cap = 8;
     for (const PathologicalCase* c : {&*slabs, &*crossing}) {
         INFO(c->name);
         auto world = CollisionWorld::create(**ctx, {.threads = 2});

@@ -1,4 +1,4 @@
-// The mitigations beyond the paper (DetectSettings::axes, coverage, closed_epsilon): what
+// The mitigations beyond the paper (DetectSettings::peeling.axes, coverage, closed_epsilon): what
 // each guarantees (they only add pairs; three axes test at least what three separate
 // detections would, once each), their errors, the asynchronous path, and their recall on
 // the recall guard's scenes at the coarse resolution where the paper misses pairs.
@@ -59,10 +59,10 @@ TEST_CASE("three axes test at least what three one-axis detections would, each p
     std::sort(united.begin(), united.end());
     united.erase(std::unique(united.begin(), united.end()), united.end());
     DetectSettings three = one;
-    three.axes = 3;
+    three.peeling.axes = 3;
     auto r = world->detect(three);
     REQUIRE(r);
-    CHECK(r->stats.axes == 3);
+    CHECK(r->stats.peeling.axes == 3);
     CHECK(contains(r->pairs, united));
     std::printf("axes: union of three detections %zu pairs in %zu tests; axes = 3: %zu pairs in %zu tests\n", united.size(),
                 tests_of_three, r->pairs.size(), r->stats.triangle_tests);
@@ -84,7 +84,7 @@ TEST_CASE("every mitigation only adds pairs to the paper's", "[stability][gpu]")
     for (const TestScene& scene : *scenes) {
         auto world = worldWith(ctx, scene);
         DetectSettings paper_settings = coarse();
-        paper_settings.depth_aware = false;  // the paper's separation, as the variants use
+        paper_settings.peeling.depth_aware = false;  // the paper's separation, as the variants use
         auto paper = world->detect(paper_settings);
         REQUIRE(paper);
         for (const Variant& v : mitigationVariants()) {
@@ -111,9 +111,9 @@ TEST_CASE("depth-aware separation finds every pair the paper's separation finds,
         for (std::uint32_t resolution : {64u, 256u}) {
             DetectSettings s = coarse();
             s.resolution = resolution;
-            s.depth_aware = false;
+            s.peeling.depth_aware = false;
             auto paper = world->detect(s);
-            s.depth_aware = true;
+            s.peeling.depth_aware = true;
             auto depth = world->detect(s);
             REQUIRE(paper);
             REQUIRE(depth);
@@ -158,50 +158,50 @@ TEST_CASE("mitigation settings are checked and reported", "[stability][gpu]") {
     REQUIRE(scene);
     auto world = worldWith(ctx, *scene);
     DetectSettings s = coarse();
-    s.axes = 2;
+    s.peeling.axes = 2;
     auto bad_axes = world->detect(s);
     REQUIRE_FALSE(bad_axes);
     CHECK(bad_axes.error().code() == ErrorCode::InvalidArgument);
-    CHECK(bad_axes.error().message().find("axes must be 1 or 3") != std::string::npos);
+    CHECK(bad_axes.error().message().find("peeling.axes must be 1 or 3") != std::string::npos);
     s = coarse();
-    s.closed_epsilon = -1;
+    s.peeling.closed_epsilon = -1;
     auto bad_eps = world->detect(s);
     REQUIRE_FALSE(bad_eps);
-    CHECK(bad_eps.error().message().find("closed_epsilon") != std::string::npos);
+    CHECK(bad_eps.error().message().find("peeling.closed_epsilon") != std::string::npos);
 
     const bool hardware = ctx.context().deviceInfo().conservative_rasterization;
     s = coarse();
-    s.coverage = Coverage::Conservative;
+    s.peeling.coverage = Coverage::Conservative;
     auto conservative = world->detect(s);
     if (hardware) {
         REQUIRE(conservative);
-        CHECK(conservative->stats.coverage == Coverage::Conservative);
+        CHECK(conservative->stats.peeling.coverage == Coverage::Conservative);
     } else {  // lavapipe: no VK_EXT_conservative_rasterization
         REQUIRE_FALSE(conservative);
         CHECK(conservative.error().code() == ErrorCode::UnsupportedFeature);
         CHECK(conservative.error().message().find("use dilation") != std::string::npos);
     }
-    s.coverage = Coverage::Best;
+    s.peeling.coverage = Coverage::Best;
     auto best = world->detect(s);
     REQUIRE(best);
-    CHECK(best->stats.coverage == (hardware ? Coverage::Conservative : Coverage::Dilate));
+    CHECK(best->stats.peeling.coverage == (hardware ? Coverage::Conservative : Coverage::Dilate));
     CHECK(best->stats.settings_note.find("coverage") != std::string::npos);
     // Thin-triangle coverage is drawn on the raster backend: Auto falls back to it, an
     // explicit Compute is refused.
     s = coarse();
-    s.coverage = Coverage::Dilate;
-    s.backend = SamplingBackend::Compute;
+    s.peeling.coverage = Coverage::Dilate;
+    s.peeling.backend = SamplingBackend::Compute;
     auto compute_dilate = world->detect(s);
     REQUIRE_FALSE(compute_dilate);
     CHECK(compute_dilate.error().code() == ErrorCode::UnsupportedFeature);
-    s.backend = SamplingBackend::Auto;
+    s.peeling.backend = SamplingBackend::Auto;
     auto auto_dilate = world->detect(s);
     REQUIRE(auto_dilate);
-    CHECK(auto_dilate->stats.backend == SamplingBackend::Raster);
+    CHECK(auto_dilate->stats.peeling.backend == SamplingBackend::Raster);
     // The world is still usable after the refused settings.
     auto plain = world->detect(coarse());
     REQUIRE(plain);
-    CHECK(plain->stats.coverage == Coverage::Centre);
-    CHECK(plain->stats.axes == 1);
+    CHECK(plain->stats.peeling.coverage == Coverage::Centre);
+    CHECK(plain->stats.peeling.axes == 1);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -20,7 +20,7 @@ using namespace vkcollide::test;
 namespace {
 
 Result<DetectResult> detectWith(CollisionWorld& w, DetectSettings s, SamplingBackend backend) {
-    s.backend = backend;
+    s.peeling.backend = backend;
     return w.detect(s);
 }
 
@@ -40,10 +40,10 @@ TEST_CASE("one triangle repeated past the deepest peeled ray gives every pair, o
             auto r = detectWith(*world, deep->settings, backend);
             REQUIRE(r);
             checkExact(r->pairs, *deep->reference);
-            CHECK(r->stats.deep_rays > 0);
-            CHECK(r->stats.layers_short);
-            CHECK(r->stats.depth_complexity <= gpu::kMaxRayFragments);
-            CHECK(r->stats.peel_passes <= gpu::kMaxRayFragments);
+            CHECK(r->stats.peeling.deep_rays > 0);
+            CHECK(r->stats.peeling.layers_short);
+            CHECK(r->stats.peeling.depth_complexity <= gpu::kMaxRayFragments);
+            CHECK(r->stats.peeling.peel_passes <= gpu::kMaxRayFragments);
         }
     }
     // Below the limit the same stack is peeled ray by ray: the same pairs, no deep ray.
@@ -54,8 +54,8 @@ TEST_CASE("one triangle repeated past the deepest peeled ray gives every pair, o
         auto r = detectWith(*world, peeled->settings, backend);
         REQUIRE(r);
         checkExact(r->pairs, *peeled->reference);
-        CHECK(r->stats.deep_rays == 0);
-        CHECK(r->stats.depth_complexity >= 300);
+        CHECK(r->stats.peeling.deep_rays == 0);
+        CHECK(r->stats.peeling.depth_complexity >= 300);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
@@ -157,7 +157,7 @@ TEST_CASE("two tetrahedra under thousands of slabs find every pair, on both back
             INFO((r ? std::string() : r.error().message()));
             REQUIRE(r);
             checkExact(r->pairs, *c->reference);
-            CHECK((r->stats.deep_rays > 0) == (slabs > 1000));
+            CHECK((r->stats.peeling.deep_rays > 0) == (slabs > 1000));
         }
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
@@ -176,7 +176,7 @@ TEST_CASE("a thousand objects give the exact reference's pairs", "[stability][gp
     checkExact(dilated->pairs, *c->reference);
     CHECK(dilated->stats.objects == 1000);
     DetectSettings centres = c->settings;
-    centres.coverage = Coverage::Centre;
+    centres.peeling.coverage = Coverage::Centre;
     auto sampled = detectWith(*world, centres, SamplingBackend::Compute);
     REQUIRE(sampled);
     const PairComparison cmp = comparePairs(sampled->pairs, *c->reference);
@@ -194,7 +194,7 @@ TEST_CASE("mutually crossing triangles: the pair budget keeps max_pairs, counts 
     REQUIRE(c->reference->size() == all);
     // Rays near the axis cross up to 600 triangles: a layer cap keeps the peeling short
     // (those rays collide, as they would anyway).
-    c->settings.layer_cap = 8;
+    c->settings.peeling.layer_cap = 8;
     auto world = worldOf(ctx, *c);
     // Unbounded: every pair.
     auto full = world->detect(c->settings);
@@ -204,7 +204,7 @@ TEST_CASE("mutually crossing triangles: the pair budget keeps max_pairs, counts 
     CHECK_FALSE(full->incomplete);
 
     DetectSettings capped = c->settings;
-    capped.max_pairs = 20000;
+    capped.limits.max_pairs = 20000;
     std::vector<TrianglePair> kept_before;
     for (unsigned threads : {1u, 2u}) {
         auto w = CollisionWorld::create(ctx.context(), {.threads = threads});
@@ -228,7 +228,7 @@ TEST_CASE("mutually crossing triangles: the pair budget keeps max_pairs, counts 
     }
     // The box-pair budget: the sweep stops and names it.
     DetectSettings tight = c->settings;
-    tight.max_candidate_pairs = 10000;
+    tight.limits.max_candidate_pairs = 10000;
     auto stopped = world->detect(tight);
     REQUIRE_FALSE(stopped);
     CHECK(stopped.error().code() == ErrorCode::LimitExceeded);

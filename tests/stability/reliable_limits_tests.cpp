@@ -1,6 +1,6 @@
 // Pathological scenes under the reliable method, the default: each ends in the
 // exact pairs or a named error (LimitExceeded naming the count and
-// DetectSettings::max_candidate_pairs, or the extent), in bounded time, with the validation
+// DetectSettings::limits.max_candidate_pairs, or the extent), in bounded time, with the validation
 // layer quiet, and the world goes on after the error. The same scenes under the peeling
 // method: pathological_tests.cpp. docs/stability.md, "Pathological scenes", has the
 // numbers.
@@ -77,7 +77,7 @@ TEST_CASE("reliable: after LimitExceeded the world detects again, with a larger 
     REQUIRE(c);
     auto world = worldOf(ctx, *c);
     DetectSettings tight = reliable();
-    tight.max_candidate_pairs = 10000;
+    tight.limits.max_candidate_pairs = 10000;
     for (int round = 0; round < 2; ++round) {
         INFO("round " << round);
         checkBudgetError(world->detect(tight), "max_candidate_pairs (10000)");
@@ -151,7 +151,7 @@ TEST_CASE("reliable: mutually crossing triangles: max_candidate_pairs and max_pa
     REQUIRE(huge);
     auto world = worldOf(ctx, *huge);
     DetectSettings s = reliable();
-    s.max_candidate_pairs = std::uint64_t{1} << 22;
+    s.limits.max_candidate_pairs = std::uint64_t{1} << 22;
     auto r = world->detect(s);
     checkBudgetError(r, "max_candidate_pairs (4194304)");
     CHECK(mentions(r.error(), "10000 footprints in one cell"));
@@ -169,13 +169,13 @@ TEST_CASE("reliable: mutually crossing triangles: max_candidate_pairs and max_pa
     const std::uint64_t candidates = full->stats.cells.candidates;
     REQUIRE(candidates > 100000);
     DetectSettings tight = reliable();
-    tight.max_candidate_pairs = 100000;
+    tight.limits.max_candidate_pairs = 100000;
     auto stopped = fits->detect(tight);
     checkBudgetError(stopped, std::to_string(candidates) + " candidate pairs");
     CHECK(fits->state() == WorldState::Ready);
 
     DetectSettings capped = reliable();
-    capped.max_pairs = 20000;
+    capped.limits.max_pairs = 20000;
     std::vector<TrianglePair> kept_before;
     for (unsigned threads : {1u, 2u}) {
         INFO(threads << " threads");

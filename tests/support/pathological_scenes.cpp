@@ -136,7 +136,7 @@ Result<PathologicalCase> manyObjects(std::uint32_t count) {
     }
     c.settings.resolution = 256;
     c.settings.direction = std::array<float, 3>{0.2f, 0.3f, 1.0f};
-    c.settings.coverage = Coverage::Dilate;  // grazing contacts between neighbours are thin
+    c.settings.peeling.coverage = Coverage::Dilate;  // grazing contacts between neighbours are thin
     return withReference(std::move(c));
 }
 

@@ -119,7 +119,7 @@ Result<StabilityCase> zeroAreaTriangle() {
 Result<StabilityCase> deepStack(std::uint32_t layer_cap) {
     StabilityCase c{"depth complexity above the cap", {"stack", {}}, onGrid(kZ), {}};
     c.name += " (cap " + std::to_string(layer_cap) + ")";
-    c.settings.layer_cap = layer_cap;
+    c.settings.peeling.layer_cap = layer_cap;
     const char* names[] = {"plate-0", "plate-1", "plate-2", "plate-3"};
     for (int i = 0; i < 4; ++i)
         if (auto r = addObject(c.scene, box({1.0f, 1.0f, 0.05f}, 4), named(names[i], at(0, 0, -0.9f + 0.45f * static_cast<float>(i + 1)))); !r)
@@ -301,7 +301,7 @@ std::string describe(const std::string& case_name, const std::string& variant, c
     char buf[360];
     std::snprintf(buf, sizeof buf, "%-34s %-10s recall %.3f (%zu of %zu) precision %.3f | rays %zu, downloaded %zu, tests %zu | %.1f ms %s",
                   case_name.c_str(), variant.c_str(), m.cmp.recall, m.cmp.true_positives, m.reference, m.cmp.precision,
-                  m.stats.collision_rays, m.stats.triangles_downloaded, m.stats.triangle_tests, m.stats.total_ms, toString(m.stats.backend));
+                  m.stats.collision_rays, m.stats.triangles_downloaded, m.stats.triangle_tests, m.stats.total_ms, toString(m.stats.peeling.backend));
     return buf;
 }
 
@@ -309,15 +309,15 @@ std::vector<Variant> mitigationVariants() {
     // The paper's separation throughout (depth_aware off): the cases document where the
     // paper's sampling fails and what each mitigation adds to it.
     return {
-        {"paper", [](DetectSettings& s, const StabilityCase&) { s.depth_aware = false; }},
-        {"axes=3", [](DetectSettings& s, const StabilityCase&) { s.depth_aware = false, s.axes = 3; }},
-        {"dilate", [](DetectSettings& s, const StabilityCase&) { s.depth_aware = false, s.coverage = Coverage::Dilate; }},
-        {"eps=2px", [](DetectSettings& s, const StabilityCase& c) { s.depth_aware = false, s.closed_epsilon = 2 * c.pixel; }},
+        {"paper", [](DetectSettings& s, const StabilityCase&) { s.peeling.depth_aware = false; }},
+        {"axes=3", [](DetectSettings& s, const StabilityCase&) { s.peeling.depth_aware = false, s.peeling.axes = 3; }},
+        {"dilate", [](DetectSettings& s, const StabilityCase&) { s.peeling.depth_aware = false, s.peeling.coverage = Coverage::Dilate; }},
+        {"eps=2px", [](DetectSettings& s, const StabilityCase& c) { s.peeling.depth_aware = false, s.peeling.closed_epsilon = 2 * c.pixel; }},
         {"all", [](DetectSettings& s, const StabilityCase& c) {
-             s.depth_aware = false;
-             s.axes = 3;
-             s.coverage = Coverage::Dilate;
-             s.closed_epsilon = 2 * c.pixel;
+             s.peeling.depth_aware = false;
+             s.peeling.axes = 3;
+             s.peeling.coverage = Coverage::Dilate;
+             s.peeling.closed_epsilon = 2 * c.pixel;
          }},
     };
 }

@@ -72,7 +72,7 @@ Result<Measured> measureScene(Context& context, const TestScene& scene, const st
 std::string describe(const std::string& case_name, const std::string& variant, const Measured& m);
 
 // The variants every case is measured under: the paper, then each mitigation alone, then all
-// (all with the paper's separation: DetectSettings::depth_aware off).
+// (all with the paper's separation: DetectSettings::peeling.depth_aware off).
 struct Variant {
     std::string name;
     std::function<void(DetectSettings&, const StabilityCase&)> apply;

@@ -125,14 +125,14 @@ int main(int argc, char** argv) {
             if (auto id = (*world)->addMesh(mesh, {.transform = at}); !id) return std::fprintf(stderr, "%s\n", id.error().message().c_str()), 1;
         for (const char* dir : {"auto", "diagonal"})
             for (std::uint32_t res : resolutions) {
-                DetectSettings s{.contacts = true, .contact_resolution = res};
+                DetectSettings s{.contacts = {.objects = true, .resolution = res}};
                 if (std::string(dir) == "diagonal") s.direction = std::array<float, 3>{0.577f, -0.577f, 0.577f};
                 double gpu = 0, stage = 0, total = 0;
                 std::optional<DetectResult> last;
                 for (int k = 0; k < repeat + 1; ++k) {  // the first run warms up
                     auto r = (*world)->detect(s);
                     if (!r) return std::fprintf(stderr, "%s\n", r.error().message().c_str()), 1;
-                    if (k > 0) gpu += r->stats.contacts_gpu_ms, stage += r->stats.contacts_ms, total += r->stats.total_ms;
+                    if (k > 0) gpu += r->stats.contacts.gpu_ms, stage += r->stats.contacts.host_ms, total += r->stats.total_ms;
                     last = std::move(*r);
                 }
                 if (last->contacts.size() != 1) {
@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
                                                   (oc.point.y - c.centroid[1]) * (oc.point.y - c.centroid[1]) +
                                                   (oc.point.z - c.centroid[2]) * (oc.point.z - c.centroid[2])) / c.length;
                 std::printf("%-20s %-9s %5u %9u %+9.3f %9.3f %+9.3f %9.3f %9.3f %9.3f %9.3f\n", c.name.c_str(), dir, res,
-                            last->stats.contact_rays_x * last->stats.contact_rays_y, dv, dn, dd, dc, gpu / repeat, stage / repeat, total / repeat);
+                            last->stats.contacts.rays_x * last->stats.contacts.rays_y, dv, dn, dd, dc, gpu / repeat, stage / repeat, total / repeat);
             }
     }
     return 0;

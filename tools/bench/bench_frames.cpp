@@ -254,8 +254,8 @@ int main(int argc, char** argv) {
             auto record = [&](const Result<DetectResult>& r, double ms) {
                 if (!r) die(r.error().message());
                 frame_ms.push_back(ms);
-                gpu_ms.push_back(r->stats.sampling_ms + r->stats.merging_ms + r->stats.separation_ms + r->stats.packing_ms +
-                                 r->stats.footprints_ms + r->stats.pairing_ms + r->stats.filtering_ms);
+                gpu_ms.push_back(r->stats.sampling_ms + r->stats.peeling.merging_ms + r->stats.peeling.separation_ms + r->stats.peeling.packing_ms +
+                                 r->stats.reliable.footprints_ms + r->stats.reliable.pairing_ms + r->stats.reliable.filtering_ms);
                 narrow_ms.push_back(r->stats.narrow_ms);
                 total_ms.push_back(r->stats.total_ms);
                 readback_ms.push_back(r->stats.readback_ms);

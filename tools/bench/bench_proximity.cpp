@@ -344,9 +344,9 @@ int main(int argc, char** argv) {
                 if (!r) return std::fprintf(stderr, "%s: %s\n", name.c_str(), r.error().message().c_str()), 1;
                 det.push_back(r->stats.total_ms);
                 span.push_back(r->stats.gpu_span_ms);
-                fp.push_back(r->stats.footprints_ms);
-                pr.push_back(r->stats.pairing_ms);
-                fi.push_back(r->stats.filtering_ms);
+                fp.push_back(r->stats.reliable.footprints_ms);
+                pr.push_back(r->stats.reliable.pairing_ms);
+                fi.push_back(r->stats.reliable.filtering_ms);
                 px.push_back(r->stats.proximity.gpu_ms);
                 hs.push_back(r->stats.proximity.host_ms);
                 double pairs_ms = 0, sort_ms = 0;

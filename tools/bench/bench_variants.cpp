@@ -21,45 +21,45 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"default", "default", [](S&) {}},
         {"reliable", "modes", [](S& s) { s.method = DetectMethod::Reliable; }},
         {"peeling", "modes", paper([](S&) {})},  // the default before the reliable method
-        {"axes3", "mitigations", paper([](S& s) { s.axes = 3; })},
-        {"best", "mitigations", paper([](S& s) { s.coverage = Coverage::Best; })},
-        {"axes3-best", "mitigations", paper([](S& s) { s.axes = 3, s.coverage = Coverage::Best; })},
-        {"dual", "mitigations", paper([](S& s) { s.dual = true; })},
-        {"raster", "backends", paper([](S& s) { s.backend = SamplingBackend::Raster; })},
-        {"compute", "backends", paper([](S& s) { s.backend = SamplingBackend::Compute; })},
-        {"cap2", "paper", paper([](S& s) { s.layer_cap = 2; })},
-        {"cap4", "paper", paper([](S& s) { s.layer_cap = 4; })},
-        {"paper-packing", "paper", paper([](S& s) { s.packing = PackingMethod::Paper; })},
+        {"axes3", "mitigations", paper([](S& s) { s.peeling.axes = 3; })},
+        {"best", "mitigations", paper([](S& s) { s.peeling.coverage = Coverage::Best; })},
+        {"axes3-best", "mitigations", paper([](S& s) { s.peeling.axes = 3, s.peeling.coverage = Coverage::Best; })},
+        {"dual", "mitigations", paper([](S& s) { s.peeling.dual = true; })},
+        {"raster", "backends", paper([](S& s) { s.peeling.backend = SamplingBackend::Raster; })},
+        {"compute", "backends", paper([](S& s) { s.peeling.backend = SamplingBackend::Compute; })},
+        {"cap2", "paper", paper([](S& s) { s.peeling.layer_cap = 2; })},
+        {"cap4", "paper", paper([](S& s) { s.peeling.layer_cap = 4; })},
+        {"paper-packing", "paper", paper([](S& s) { s.peeling.packing = PackingMethod::Paper; })},
         {"open", "paper", paper([](S&) {}), true},
         {"async", "paper", paper([](S&) {}), false, true},
         {"reliable-async", "modes", [](S& s) { s.method = DetectMethod::Reliable; }, false, true},
         // The reliable method with the exact decision on the CPU (the reference path): its
         // difference to "default" is what deciding on the GPU saves (docs/exact_gpu.md).
-        {"exact-cpu", "modes", [](S& s) { s.exact = ExactDecision::Cpu; }},
+        {"exact-cpu", "modes", [](S& s) { s.reliable.exact = ExactDecision::Cpu; }},
         // The host result's pairs sorted on the GPU always, or on the CPU always (the default,
         // PairSort::Auto, sorts on the GPU from kGpuPairSortFrom pairs).
-        {"sort-gpu", "modes", [](S& s) { s.pair_sort = PairSort::Gpu; }},
-        {"sort-cpu", "modes", [](S& s) { s.pair_sort = PairSort::Cpu; }},
-        // The pairs also sorted on the GPU (DetectSettings::device_pairs): its cost is
+        {"sort-gpu", "modes", [](S& s) { s.reliable.pair_sort = PairSort::Gpu; }},
+        {"sort-cpu", "modes", [](S& s) { s.reliable.pair_sort = PairSort::Cpu; }},
+        // The pairs also sorted on the GPU (DetectSettings::reliable.device_pairs): its cost is
         // sorting_ms, the difference to "default".
-        {"device-pairs", "modes", [](S& s) { s.device_pairs = true; }},
+        {"device-pairs", "modes", [](S& s) { s.reliable.device_pairs = true; }},
         // The pairs left on the GPU only (host_pairs off): a frame as a GPU solver sees it,
         // nothing read back, no host narrow phase. Its recall is the pairs' count against
         // the reference's (tests/api/device_pairs_tests.cpp compares the content).
-        {"device-only", "modes", [](S& s) { s.device_pairs = true, s.host_pairs = false; }},
-        {"depth-sep", "modes", paper([](S& s) { s.depth_aware = true; })},  // peeling, depth-aware separation on
-        {"paper-sep", "modes", paper([](S& s) { s.depth_aware = false; })},  // peeling, the paper's separation (the old default)
+        {"device-only", "modes", [](S& s) { s.reliable.device_pairs = true, s.reliable.host_pairs = false; }},
+        {"depth-sep", "modes", paper([](S& s) { s.peeling.depth_aware = true; })},  // peeling, depth-aware separation on
+        {"paper-sep", "modes", paper([](S& s) { s.peeling.depth_aware = false; })},  // peeling, the paper's separation (the old default)
         // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".
-        {"contacts", "contacts", [](S& s) { s.contacts = true; }},
-        {"contacts-256", "contacts", [](S& s) { s.contacts = true, s.contact_resolution = 256u; }},
-        // Contact geometry of the intersecting pairs (DetectSettings::contact_geometry): its
-        // cost is the difference to "default" (DetectStats::contact_geometry_ms).
-        {"contact-geometry", "contacts", [](S& s) { s.contact_geometry = true; }},
+        {"contacts", "contacts", [](S& s) { s.contacts.objects = true; }},
+        {"contacts-256", "contacts", [](S& s) { s.contacts.objects = true, s.contacts.resolution = 256u; }},
+        // Contact geometry of the intersecting pairs (DetectSettings::contacts.geometry): its
+        // cost is the difference to "default" (DetectStats::contacts.geometry_ms).
+        {"contact-geometry", "contacts", [](S& s) { s.contacts.geometry = true; }},
     };
     Variant into{"into", "modes", [](S&) {}};  // the default through detectInto(), one result kept
     into.into = true;
     v.push_back(into);
-    Variant geometry_into{"contact-geometry-into", "contacts", [](S& s) { s.contact_geometry = true; }};  // and its memory kept
+    Variant geometry_into{"contact-geometry-into", "contacts", [](S& s) { s.contacts.geometry = true; }};  // and its memory kept
     geometry_into.into = true;
     v.push_back(std::move(geometry_into));
     Variant pipelined{"pipelined", "modes", [](S&) {}, false, true};  // the default, one frame late, back to back

@@ -107,28 +107,28 @@ void writeProfile(std::ofstream& out, const std::string& prefix, const DetectSta
     row("narrow", "sort", n.sort_ms);
     row("narrow", "response", n.response_ms);
     row("narrow", "total", n.total_ms);
-    row("host", "start", st.host_start_ms);
-    row("host", "collect", st.host_collect_ms);
+    row("host", "start", st.host.start_ms);
+    row("host", "collect", st.host.collect_ms);
     row("host", "readback", st.readback_ms);
     row("host", "narrow", st.narrow_ms);
-    if (st.contact_geometry_ms > 0) row("host", "contact-geometry", st.contact_geometry_ms);
+    if (st.contacts.geometry_ms > 0) row("host", "contact-geometry", st.contacts.geometry_ms);
     row("host", "update", update_ms);
     row("host", "total", total_ms);
     // The host parts of the detection beyond the GPU and the narrow phase (DetectStats);
     // "rest": the detection's wall time (total_ms) not in any part named here.
-    row("detect", "settings", st.host_settings_ms);
-    row("detect", "upload", st.host_upload_ms);
-    row("detect", "declare", st.host_declare_ms);
-    row("detect", "compile", st.host_compile_ms);
-    row("detect", "record", st.host_record_ms);
-    row("detect", "submit", st.host_submit_ms);
-    row("detect", "wait", st.host_wait_ms);
+    row("detect", "settings", st.host.settings_ms);
+    row("detect", "upload", st.host.upload_ms);
+    row("detect", "declare", st.host.declare_ms);
+    row("detect", "compile", st.host.compile_ms);
+    row("detect", "record", st.host.record_ms);
+    row("detect", "submit", st.host.submit_ms);
+    row("detect", "wait", st.host.wait_ms);
     row("detect", "gpu-span", st.gpu_span_ms);
-    row("detect", "launch-wake", st.launch_wake_ms);
-    const double named = st.host_settings_ms + st.host_upload_ms + st.host_declare_ms + st.host_compile_ms + st.host_record_ms +
-                         st.host_submit_ms + st.host_wait_ms + st.readback_ms + st.narrow_ms + st.contact_geometry_ms;
+    row("detect", "launch-wake", st.host.launch_wake_ms);
+    const double named = st.host.settings_ms + st.host.upload_ms + st.host.declare_ms + st.host.compile_ms + st.host.record_ms +
+                         st.host.submit_ms + st.host.wait_ms + st.readback_ms + st.narrow_ms + st.contacts.geometry_ms;
     row("detect", "rest", st.total_ms - named);
-    row("detect", "reused", st.reused_submissions);  // a count, not ms: submissions submitted again, not recorded
+    row("detect", "reused", st.host.reused_submissions);  // a count, not ms: submissions submitted again, not recorded
     out.flush();
 }
 
@@ -298,10 +298,10 @@ int main(int argc, char** argv) {
                     if (ref.crossing[k]) found_crossing += std::binary_search(r.pairs.begin(), r.pairs.end(), ref.pairs[k]);
                 const std::size_t crossing = ref.crossingCount();
                 std::size_t found_pairs = r.pairs.size();
-                if (!settings.host_pairs) {
+                if (!settings.reliable.host_pairs) {
                     // The pairs stayed on the GPU: their count against the reference's.
-                    const double n = st.device_pairs_found, m = double(ref.pairs.size());
-                    found_pairs = st.device_pairs_found;
+                    const double n = st.reliable.device_pairs_found, m = double(ref.pairs.size());
+                    found_pairs = st.reliable.device_pairs_found;
                     cmp.recall = m > 0 ? std::min(n, m) / m : 1.0;
                     cmp.precision = n > 0 ? std::min(n, m) / n : 1.0;
                     found_crossing = found_pairs == ref.pairs.size() ? crossing : 0;
@@ -315,30 +315,30 @@ int main(int argc, char** argv) {
                               "%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,"
                               "%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.6f,%.6f,%.6f,%.2f,%.1f,%u,%.3f,%d,",
                               device.c_str(), setName(scene->set), scene->name.c_str(), motionName(scene->motion), triangles, ids.size(), gpu_objects,
-                              opt.scale, v.name.c_str(), f, toString(st.backend), st.resolution, st.direction[0], st.direction[1], st.direction[2],
-                              st.axes, toString(st.coverage), st.dual ? 1 : 0, settings.layer_cap, settings.packing == PackingMethod::Paper ? "paper" : "scan",
-                              v.open ? 1 : 0, v.pipelined ? 2 : v.async ? 1 : 0, st.depth_complexity, st.layers, st.peel_passes, st.sampling_ms, st.merging_ms,
-                              st.separation_ms, st.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms, update_ms, total_ms, st.collision_rays,
+                              opt.scale, v.name.c_str(), f, toString(st.peeling.backend), st.resolution, st.direction[0], st.direction[1], st.direction[2],
+                              st.peeling.axes, toString(st.peeling.coverage), st.peeling.dual ? 1 : 0, settings.peeling.layer_cap, settings.peeling.packing == PackingMethod::Paper ? "paper" : "scan",
+                              v.open ? 1 : 0, v.pipelined ? 2 : v.async ? 1 : 0, st.peeling.depth_complexity, st.peeling.layers, st.peeling.peel_passes, st.sampling_ms, st.peeling.merging_ms,
+                              st.peeling.separation_ms, st.peeling.packing_ms, gpu_ms, st.readback_ms, st.narrow_ms, update_ms, total_ms, st.collision_rays,
                               st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests, st.positive_tests, found_pairs,
                               ref.pairs.size(), crossing, found_crossing, cmp.recall, recall_crossing, cmp.precision,
-                              double(st.gpu_memory_bytes) / (1024.0 * 1024.0), peakHostMiB(), st.narrow_threads, ref.seconds, ref.from_cache ? 1 : 0);
+                              double(st.gpu_memory_bytes) / (1024.0 * 1024.0), peakHostMiB(), st.host.narrow_threads, ref.seconds, ref.from_cache ? 1 : 0);
                 char cells[256];
-                std::snprintf(cells, sizeof cells, "%s,%.4f,%.4f,%.4f,%llu,%llu,", toString(st.method), st.footprints_ms, st.pairing_ms,
-                              st.filtering_ms, (unsigned long long)st.cells.candidates, (unsigned long long)st.cells.survivors);
+                std::snprintf(cells, sizeof cells, "%s,%.4f,%.4f,%.4f,%llu,%llu,", toString(st.method), st.reliable.footprints_ms, st.reliable.pairing_ms,
+                              st.reliable.filtering_ms, (unsigned long long)st.cells.candidates, (unsigned long long)st.cells.survivors);
                 // The cell stage's own counts (docs/reliable.md), after the note so that the
                 // earlier columns keep their places.
                 char counts[256];
                 std::snprintf(counts, sizeof counts, ",%llu,%llu,%llu,%llu,%llu,%zu,%zu,%.4f,%.4f", (unsigned long long)st.cells.entries,
                               (unsigned long long)st.cells.duplicates, (unsigned long long)st.cells.filtered,
                               (unsigned long long)st.cells.deep_cells, (unsigned long long)st.cells.max_cell, st.gpu_exact_tests,
-                              st.cpu_exact_tests, st.gpu_span_ms, st.sorting_ms);
+                              st.cpu_exact_tests, st.gpu_span_ms, st.reliable.sorting_ms);
                 csv << row << cells << csvField(st.settings_note) << counts << '\n';
                 csv.flush();
                 if (profile.is_open()) writeProfile(profile, device + ',' + scene->name + ',' + v.name + ',' + std::to_string(f), st, update_ms, total_ms);
-                sum.backend = st.method == DetectMethod::Reliable ? "cells" : toString(st.backend);
+                sum.backend = st.method == DetectMethod::Reliable ? "cells" : toString(st.peeling.backend);
                 sum.resolution = st.resolution;
                 ++sum.frames;
-                sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += settings.host_pairs ? cmp.true_positives : std::min(found_pairs, ref.pairs.size()), sum.reference += ref.pairs.size();
+                sum.found_crossing += found_crossing, sum.crossing += crossing, sum.found += settings.reliable.host_pairs ? cmp.true_positives : std::min(found_pairs, ref.pairs.size()), sum.reference += ref.pairs.size();
                 sum.downloaded += st.triangles_downloaded;
                 sum.total_ms += total_ms, sum.gpu_ms += gpu_ms, sum.narrow_ms += st.narrow_ms;
                 sum.precision_min = std::min(sum.precision_min, cmp.precision);

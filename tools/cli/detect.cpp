@@ -49,11 +49,11 @@ void printSummary(const std::string& device, const Scene& scene, const vkcollide
         if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
     } else {
         std::printf("scene: %s; method peeling, resolution %u, depth complexity %u, %s in %s%s%s\n", objects.c_str(), st.resolution,
-                    st.depth_complexity, counted(st.layers, "layer", "layers").c_str(), counted(st.peel_passes, "pass", "passes").c_str(),
-                    st.dual ? " (dual)" : "", st.axes > 1 ? ", 3 directions" : "");
+                    st.peeling.depth_complexity, counted(st.peeling.layers, "layer", "layers").c_str(), counted(st.peeling.peel_passes, "pass", "passes").c_str(),
+                    st.peeling.dual ? " (dual)" : "", st.peeling.axes > 1 ? ", 3 directions" : "");
         if (!st.settings_note.empty()) std::printf("automatic settings: %s\n", st.settings_note.c_str());
-        std::printf("sampling backend: %s (%s), coverage %s\n", vkcollide::toString(st.backend), st.backend_reason.c_str(),
-                    vkcollide::toString(st.coverage));
+        std::printf("sampling backend: %s (%s), coverage %s\n", vkcollide::toString(st.peeling.backend), st.peeling.backend_reason.c_str(),
+                    vkcollide::toString(st.peeling.coverage));
     }
     std::printf("Table 1: # tri's %zu | # coll. rays %zu | # tri's downl. %zu | # pot. coll. tri's %zu | # tri-tri tests %zu | # pos. tests %zu\n",
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
@@ -63,25 +63,25 @@ void printSummary(const std::string& device, const Scene& scene, const vkcollide
         std::printf("contact %s - %s: volume %.6g, normal (%.4f, %.4f, %.4f), depth %.6g, at (%.6g, %.6g, %.6g)%s\n",
                     scene.objects.at(c.object_a).options.name.c_str(), scene.objects.at(c.object_b).options.name.c_str(), c.volume,
                     c.normal.x, c.normal.y, c.normal.z, c.depth, c.point.x, c.point.y, c.point.z, c.contained ? ", contained" : "");
-    if (st.contact_rays_x)
-        std::printf("contacts: %u x %u rays, %u candidate object pairs, %.3f ms (GPU %.3f)\n", st.contact_rays_x, st.contact_rays_y,
-                    st.contact_candidate_pairs, st.contacts_ms, st.contacts_gpu_ms);
-    if (st.deep_rays) std::printf("deep rays (more surfaces than the peeling range, collision rays without peeling): %u\n", st.deep_rays);
+    if (st.contacts.rays_x)
+        std::printf("contacts: %u x %u rays, %u candidate object pairs, %.3f ms (GPU %.3f)\n", st.contacts.rays_x, st.contacts.rays_y,
+                    st.contacts.candidate_pairs, st.contacts.host_ms, st.contacts.gpu_ms);
+    if (st.peeling.deep_rays) std::printf("deep rays (more surfaces than the peeling range, collision rays without peeling): %u\n", st.peeling.deep_rays);
     if (r.incomplete) std::printf("incomplete: %s\n", r.incomplete->message().c_str());
     for (const vkcollide::ExcludedObject& e : r.excluded) std::printf("excluded: %s\n", e.error.message().c_str());
     // The GPU figure is the method's own stages (render::gpuMs, as in the lines and --csv).
-    const std::string threads = counted(st.narrow_threads, "thread", "threads");
+    const std::string threads = counted(st.host.narrow_threads, "thread", "threads");
     if (st.method == vkcollide::DetectMethod::Reliable)
         std::printf(
             "times (ms): GPU %.3f = front %.3f + footprints %.3f + pairing %.3f + filtering %.3f; readback %.3f, narrow phase %.3f (%s), "
             "total %.3f\n",
-            render::gpuMs(st), st.sampling_ms, st.footprints_ms, st.pairing_ms, st.filtering_ms, st.readback_ms, st.narrow_ms,
+            render::gpuMs(st), st.sampling_ms, st.reliable.footprints_ms, st.reliable.pairing_ms, st.reliable.filtering_ms, st.readback_ms, st.narrow_ms,
             threads.c_str(), st.total_ms);
     else
         std::printf(
             "times (ms): GPU %.3f = sampling %.3f + merging %.3f + separation %.3f, packing %.3f (GPU); readback %.3f, narrow phase "
             "%.3f (%s), total %.3f\n",
-            render::gpuMs(st), st.sampling_ms, st.merging_ms, st.separation_ms, st.packing_ms, st.readback_ms, st.narrow_ms,
+            render::gpuMs(st), st.sampling_ms, st.peeling.merging_ms, st.peeling.separation_ms, st.peeling.packing_ms, st.readback_ms, st.narrow_ms,
             threads.c_str(), st.total_ms);
     std::printf("GPU memory: %.1f MiB\n", static_cast<double>(st.gpu_memory_bytes) / (1024.0 * 1024.0));
 }
@@ -159,7 +159,7 @@ int runDetect(const CommandLine& line) {
         const double read_ms = render::msSince(read_start);
         // --rays: the frames that are drawn also return where their collision rays were.
         vkcollide::DetectSettings frame_settings = line.settings;
-        frame_settings.collision_rays = line.rays && picture && (line.sequence || f + 1 == frames);
+        frame_settings.peeling.collision_rays = line.rays && picture && (line.sequence || f + 1 == frames);
         result = (*world)->detect(frame_settings);
         if (!result) return fail(nameSettingOptions(line, result.error().message()));
         total_pairs += result->pairs.size();

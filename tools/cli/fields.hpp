@@ -70,23 +70,31 @@ std::string jsonOf(const T& v) {
     }
 }
 
+// A settings field by its path of members: &DetectSettings::region, or a grouped one,
+// &DetectSettings::peeling, &PeelingSettings::dual.
+template <auto First, auto... Rest>
+constexpr auto& at(auto& s) {
+    if constexpr (sizeof...(Rest) == 0) return s.*First;
+    else return at<Rest...>(s.*First);
+}
+
 // The option's setter and the field's JSON, for the table (options.cpp).
-template <auto Field>
+template <auto... Path>
 Result<void> setting(CommandLine& c, std::string_view text) {
-    using T = std::remove_cvref_t<decltype(c.settings.*Field)>;
+    using T = std::remove_cvref_t<decltype(at<Path...>(c.settings))>;
     auto v = parseAs<T>(text);
     if (!v) return v.error();
-    c.settings.*Field = std::move(*v);
+    at<Path...>(c.settings) = std::move(*v);
     return {};
 }
-template <auto Field, bool kValue>
+template <bool kValue, auto... Path>
 Result<void> settingFlag(CommandLine& c, std::string_view) {
-    c.settings.*Field = kValue;
+    at<Path...>(c.settings) = kValue;
     return {};
 }
-template <auto Field>
+template <auto... Path>
 std::string show(const vkcollide::DetectSettings& s) {
-    return jsonOf(s.*Field);
+    return jsonOf(at<Path...>(s));
 }
 
 }  // namespace cli::fields

@@ -106,6 +106,8 @@ void JsonWriter::raw(std::string_view json) {
 
 void JsonWriter::finish() { std::fputc('\n', out_); }
 
+// Keyed by DetectStats' names from before its groups ("layers", not "peeling.layers";
+// docs/api_changes.md), so that scripts that read the JSON keep working.
 void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pair_count, const std::vector<std::string>& names) {
     auto count = [&](const char* k, std::size_t v) { j.member(k, [&] { j.integer(v); }); };
     auto ms = [&](const char* k, double v) { j.member(k, [&] { j.number(v); }); };
@@ -123,8 +125,8 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("positive_tests", st.positive_tests);
     count("gpu_exact_tests", st.gpu_exact_tests);
     count("cpu_exact_tests", st.cpu_exact_tests);
-    j.member("pairs_sorted_on_gpu", [&] { j.boolean(st.pairs_sorted_on_gpu); });
-    if (st.contact_geometry_ms > 0) j.member("contact_geometry_ms", [&] { j.number(st.contact_geometry_ms); });
+    j.member("pairs_sorted_on_gpu", [&] { j.boolean(st.reliable.pairs_sorted_on_gpu); });
+    if (st.contacts.geometry_ms > 0) j.member("contact_geometry_ms", [&] { j.number(st.contacts.geometry_ms); });
     count("pairs", pair_count);
     if (st.proximity.ran) {
         const vkcollide::ProximityStats& p = st.proximity;
@@ -164,18 +166,18 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("cell_entries", st.cells.entries);
     count("cell_candidates", st.cells.candidates);
     count("cell_survivors", st.cells.survivors);
-    count("deep_rays", st.deep_rays);
-    count("axes", st.axes);
-    count("depth_complexity", st.depth_complexity);
-    count("layers", st.layers);
-    count("peel_passes", st.peel_passes);
-    j.member("dual", [&] { j.boolean(st.dual); });
-    j.member("layers_short", [&] { j.boolean(st.layers_short); });
+    count("deep_rays", st.peeling.deep_rays);
+    count("axes", st.peeling.axes);
+    count("depth_complexity", st.peeling.depth_complexity);
+    count("layers", st.peeling.layers);
+    count("peel_passes", st.peeling.peel_passes);
+    j.member("dual", [&] { j.boolean(st.peeling.dual); });
+    j.member("layers_short", [&] { j.boolean(st.peeling.layers_short); });
     // The reliable method samples no rays: no coverage, no backend.
     const bool reliable = st.method == vkcollide::DetectMethod::Reliable;
-    j.member("coverage", [&] { j.string(reliable ? "none" : vkcollide::toString(st.coverage)); });
-    j.member("backend", [&] { j.string(reliable ? "none" : vkcollide::toString(st.backend)); });
-    j.member("backend_reason", [&] { j.string(st.backend_reason); });
+    j.member("coverage", [&] { j.string(reliable ? "none" : vkcollide::toString(st.peeling.coverage)); });
+    j.member("backend", [&] { j.string(reliable ? "none" : vkcollide::toString(st.peeling.backend)); });
+    j.member("backend_reason", [&] { j.string(st.peeling.backend_reason); });
     j.member("settings_note", [&] { j.string(st.settings_note); });
     j.key("mesh_warnings");
     j.beginArray();
@@ -190,20 +192,20 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     j.endArray();
     // Times (GPU stages from timestamps; the rest host wall time).
     ms("sampling_ms", st.sampling_ms);
-    ms("merging_ms", st.merging_ms);
-    ms("separation_ms", st.separation_ms);
-    ms("packing_ms", st.packing_ms);
-    ms("footprints_ms", st.footprints_ms);
-    ms("pairing_ms", st.pairing_ms);
-    ms("filtering_ms", st.filtering_ms);
+    ms("merging_ms", st.peeling.merging_ms);
+    ms("separation_ms", st.peeling.separation_ms);
+    ms("packing_ms", st.peeling.packing_ms);
+    ms("footprints_ms", st.reliable.footprints_ms);
+    ms("pairing_ms", st.reliable.pairing_ms);
+    ms("filtering_ms", st.reliable.filtering_ms);
     ms("readback_ms", st.readback_ms);
     ms("narrow_ms", st.narrow_ms);
-    ms("contacts_ms", st.contacts_ms);
-    ms("contacts_gpu_ms", st.contacts_gpu_ms);
-    count("contact_rays_x", st.contact_rays_x);
-    count("contact_rays_y", st.contact_rays_y);
-    count("contact_candidate_pairs", st.contact_candidate_pairs);
-    count("narrow_threads", st.narrow_threads);
+    ms("contacts_ms", st.contacts.host_ms);
+    ms("contacts_gpu_ms", st.contacts.gpu_ms);
+    count("contact_rays_x", st.contacts.rays_x);
+    count("contact_rays_y", st.contacts.rays_y);
+    count("contact_candidate_pairs", st.contacts.candidate_pairs);
+    count("narrow_threads", st.host.narrow_threads);
     ms("total_ms", st.total_ms);
     count("gpu_memory_bytes", st.gpu_memory_bytes);
     j.key("gpu_passes");

@@ -1,6 +1,7 @@
 #include "cli/options.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <optional>
 
 #include "cli/fields.hpp"
@@ -9,7 +10,16 @@
 namespace cli {
 namespace {
 
+using vkcollide::ContactSettings;
 using vkcollide::DetectSettings;
+using vkcollide::LimitSettings;
+using vkcollide::PeelingSettings;
+using vkcollide::ReliableSettings;
+// DetectSettings' groups, the first member of a grouped field's path.
+constexpr auto kPeeling = &DetectSettings::peeling;
+constexpr auto kReliable = &DetectSettings::reliable;
+constexpr auto kContacts = &DetectSettings::contacts;
+constexpr auto kLimits = &DetectSettings::limits;
 using fields::setting;
 using fields::settingFlag;
 using fields::show;
@@ -40,7 +50,8 @@ struct Option {
     const char* help;
     const char* cost;
     Setter set = nullptr;          // Takes::Nothing or Value
-    const char* field = nullptr;   // the DetectSettings field it sets (JSON key; names the option in library errors)
+    const char* field = nullptr;   // the DetectSettings field it sets: its JSON key (its name before the groups)
+    const char* path = nullptr;    // its path ("peeling.dual"); either names the option in library errors
     Shower show = nullptr;         // that field as JSON
     SlotSetter set_slot = nullptr; // Takes::Files or FileValue: applied to each file named
     Takes takes = Takes::Value;
@@ -60,11 +71,11 @@ Option reliable(Option o) {
 }
 
 Option flag(const char* name, Section section, const char* help, const char* cost, Setter set, const char* field = nullptr,
-            Shower show = nullptr) {
-    return {name, "", section, help, cost, set, field, show, nullptr, Takes::Nothing};
+            const char* path = nullptr, Shower show = nullptr) {
+    return {name, "", section, help, cost, set, field, path, show, nullptr, Takes::Nothing};
 }
 Option perFile(const char* name, const char* arg, const char* help, const char* cost, SlotSetter set, Takes takes) {
-    return {name, arg, Section::Objects, help, cost, nullptr, nullptr, nullptr, set, takes};
+    return {name, arg, Section::Objects, help, cost, nullptr, nullptr, nullptr, nullptr, set, takes};
 }
 
 template <std::string CommandLine::*kPath>
@@ -74,91 +85,91 @@ Result<void> path(CommandLine& c, std::string_view text) {
     return {};
 }
 
-// The table. Settings first, in DetectSettings' order; every field of DetectSettings and
-// ObjectOptions has its option.
+// The table. Settings first, in the order DetectSettings had before its groups (the JSON's
+// order); every field of DetectSettings and ObjectOptions has its option.
 const std::vector<Option>& options() {
     static const std::vector<Option> table = {
         {"--method", "M", Section::Settings, "reliable (default: every intersecting pair, cells and pairs on the GPU) or peeling (the paper's depth peeling)",
          "reliable: GPU passes over triangles, cells and candidate pairs; peeling: faster on some scenes, may miss pairs (docs/stability.md)",
-         setting<&DetectSettings::method>, "method", show<&DetectSettings::method>},
+         setting<&DetectSettings::method>, "method", "method", show<&DetectSettings::method>},
         {"--resolution", "N", Section::Settings, "reliable: cells per side, 1 to 16384; peeling: rays per image side, a power of two in [4, 16384] (default: from the typical triangle edge)",
          "GPU time and memory grow with N^2; a larger N resolves thinner contacts and downloads fewer triangles",
-         setting<&DetectSettings::resolution>, "resolution", show<&DetectSettings::resolution>},
+         setting<&DetectSettings::resolution>, "resolution", "resolution", show<&DetectSettings::resolution>},
         {"--direction", "x,y,z", Section::Settings, "projection direction (default: chosen from the scene)",
-         "free; a direction along which the scene is deep peels more layers", setting<&DetectSettings::direction>, "direction",
+         "free; a direction along which the scene is deep peels more layers", setting<&DetectSettings::direction>, "direction", "direction",
          show<&DetectSettings::direction>},
         peeling({"--cap", "L", Section::Settings, "peel at most L layers; deeper rays count as collision rays (0: as many as the scene needs)",
          "saves peeling passes on deep scenes; rays past the cap send all their triangles to the CPU",
-         setting<&DetectSettings::layer_cap>, "layer_cap", show<&DetectSettings::layer_cap>}),
+         setting<kPeeling, &PeelingSettings::layer_cap>, "layer_cap", "peeling.layer_cap", show<kPeeling, &PeelingSettings::layer_cap>}),
         peeling(flag("--dual", Section::Settings, "peel from the front and the back at once", "half the peeling passes, a second key buffer",
-             settingFlag<&DetectSettings::dual, true>, "dual", show<&DetectSettings::dual>)),
+             settingFlag<true, kPeeling, &PeelingSettings::dual>, "dual", "peeling.dual", show<kPeeling, &PeelingSettings::dual>)),
         peeling({"--packing", "M", Section::Settings, "compaction before the readback: scan, or the paper's count/shift/move (same records)",
-         "paper: more passes and a packing texture; for comparison only", setting<&DetectSettings::packing>, "packing",
-         show<&DetectSettings::packing>}),
+         "paper: more passes and a packing texture; for comparison only", setting<kPeeling, &PeelingSettings::packing>, "packing", "peeling.packing",
+         show<kPeeling, &PeelingSettings::packing>}),
         peeling({"--backend", "B", Section::Settings, "object sampling: auto, raster or compute (default: chosen per device and scene)",
-         "same rays and records; only the speed differs by device", setting<&DetectSettings::backend>, "backend",
-         show<&DetectSettings::backend>}),
+         "same rays and records; only the speed differs by device", setting<kPeeling, &PeelingSettings::backend>, "backend", "peeling.backend",
+         show<kPeeling, &PeelingSettings::backend>}),
         peeling({"--open-epsilon", "E", Section::Settings, "open surfaces: hits closer than E along a ray may collide (world units; default: half their typical edge)",
          "a larger E downloads more triangles near open surfaces; a smaller one may miss grazing contacts",
-         setting<&DetectSettings::open_epsilon>, "open_epsilon", show<&DetectSettings::open_epsilon>}),
+         setting<kPeeling, &PeelingSettings::open_epsilon>, "open_epsilon", "peeling.open_epsilon", show<kPeeling, &PeelingSettings::open_epsilon>}),
         {"--region", "x0,y0,z0,x1,y1,z1", Section::Settings,
          "the world box the image covers (default: fitted to the scene); reliable: the grid's square spans it, what lies outside "
          "falls into the border cells and is still found; peeling: only this box is sampled",
          "reliable: the same cells on a smaller box see finer detail, the border cells cost time; peeling: contacts outside the box are not found",
-         setting<&DetectSettings::region>, "region", show<&DetectSettings::region>},
+         setting<&DetectSettings::region>, "region", "region", show<&DetectSettings::region>},
         peeling(flag("--no-measure-layers", Section::Settings, "peel as many layers as the last detection measured instead of measuring first",
              "saves one host wait per frame (--frames, --sequence); rays that need more layers become collision rays",
-             settingFlag<&DetectSettings::measure_layers, false>, "measure_layers", show<&DetectSettings::measure_layers>)),
+             settingFlag<false, kPeeling, &PeelingSettings::measure_layers>, "measure_layers", "peeling.measure_layers", show<kPeeling, &PeelingSettings::measure_layers>)),
         peeling({"--axes", "1|3", Section::Settings, "sampling directions: 1 (the paper) or 3 (also the two perpendicular ones, candidates united)",
-         "3: about 3x the GPU time; finds contacts one direction sees edge-on", setting<&DetectSettings::axes>, "axes",
-         show<&DetectSettings::axes>}),
+         "3: about 3x the GPU time; finds contacts one direction sees edge-on", setting<kPeeling, &PeelingSettings::axes>, "axes", "peeling.axes",
+         show<kPeeling, &PeelingSettings::axes>}),
         peeling({"--coverage", "C", Section::Settings, "thin triangles: centre (the paper), dilate, conservative or best (conservative where the device has it, else dilate)",
          "dilate/conservative: more collision rays and downloads, no missed slivers; need the raster backend",
-         setting<&DetectSettings::coverage>, "coverage", show<&DetectSettings::coverage>}),
+         setting<kPeeling, &PeelingSettings::coverage>, "coverage", "peeling.coverage", show<kPeeling, &PeelingSettings::coverage>}),
         peeling({"--closed-epsilon", "E", Section::Settings, "closed surfaces this close along a ray (world units) count as touching (default 0: exact ties only)",
-         "a larger E finds near-contacts as candidates and downloads more triangles", setting<&DetectSettings::closed_epsilon>,
-         "closed_epsilon", show<&DetectSettings::closed_epsilon>}),
+         "a larger E finds near-contacts as candidates and downloads more triangles", setting<kPeeling, &PeelingSettings::closed_epsilon>,
+         "closed_epsilon", "peeling.closed_epsilon", show<kPeeling, &PeelingSettings::closed_epsilon>}),
         {"--bad-objects", "P", Section::Settings, "a --gpu-mesh that fails the GPU check: exclude (detect the rest, name it) or fail",
-         "exclude: one more GPU run per bad object that frame", setting<&DetectSettings::bad_objects>, "bad_objects",
+         "exclude: one more GPU run per bad object that frame", setting<&DetectSettings::bad_objects>, "bad_objects", "bad_objects",
          show<&DetectSettings::bad_objects>},
         peeling(flag("--no-depth-aware", Section::Settings,
                      "the paper's separation: keep every triangle under a collision ray whatever its depth (default: depth-aware)",
                      "downloads 2-30x more triangles where meshes overlap deeply; saves 48 bytes per triangle and 19 per ray of GPU memory",
-                     settingFlag<&DetectSettings::depth_aware, false>, "depth_aware", show<&DetectSettings::depth_aware>)),
+                     settingFlag<false, kPeeling, &PeelingSettings::depth_aware>, "depth_aware", "peeling.depth_aware", show<kPeeling, &PeelingSettings::depth_aware>)),
         {"--timeout", "MS", Section::Settings, "longest wait for one GPU submission, milliseconds (default 60000); beyond it the detection fails",
-         "free; a detection past it fails with Timeout and its GPU work goes on", setting<&DetectSettings::timeout_ms>, "timeout_ms",
-         show<&DetectSettings::timeout_ms>},
+         "free; a detection past it fails with Timeout and its GPU work goes on", setting<kLimits, &LimitSettings::timeout_ms>, "timeout_ms", "limits.timeout_ms",
+         show<kLimits, &LimitSettings::timeout_ms>},
         {"--wait-poll", "US", Section::Settings, "microseconds the waiting thread polls the GPU's fence around the work's expected end before it sleeps (default 500; 0: sleep only)",
-         "a core busy up to US + 150 microseconds per detection; sleeping wakes 0.05-0.2 ms late on an H200", setting<&DetectSettings::wait_poll_us>,
-         "wait_poll_us", show<&DetectSettings::wait_poll_us>},
+         "a core busy up to US + 150 microseconds per detection; sleeping wakes 0.05-0.2 ms late on an H200", setting<kLimits, &LimitSettings::wait_poll_us>,
+         "wait_poll_us", "limits.wait_poll_us", show<kLimits, &LimitSettings::wait_poll_us>},
         {"--max-pairs", "N", Section::Settings, "most colliding pairs to keep (default 16777216); more are counted and reported",
-         "about 40 bytes per pair kept", setting<&DetectSettings::max_pairs>, "max_pairs", show<&DetectSettings::max_pairs>},
+         "about 40 bytes per pair kept", setting<kLimits, &LimitSettings::max_pairs>, "max_pairs", "limits.max_pairs", show<kLimits, &LimitSettings::max_pairs>},
         {"--max-candidate-pairs", "N", Section::Settings,
          "the candidate budget (default 134217728): reliable: footprint box cells and GPU candidate pairs, 64x as many "
          "comparisons; peeling: box pairs the narrow phase sweeps; past it the detection fails",
-         "bounds time and memory: reliable 20 bytes per footprint and 12 per candidate on the GPU, peeling up to 8 bytes per pair", setting<&DetectSettings::max_candidate_pairs>,
-         "max_candidate_pairs", show<&DetectSettings::max_candidate_pairs>},
+         "bounds time and memory: reliable 20 bytes per footprint and 12 per candidate on the GPU, peeling up to 8 bytes per pair", setting<kLimits, &LimitSettings::max_candidate_pairs>,
+         "max_candidate_pairs", "limits.max_candidate_pairs", show<kLimits, &LimitSettings::max_candidate_pairs>},
         flag("--contacts", Section::Settings,
              "object-level contacts of closed objects: intersection volume, normal, depth and centroid per overlapping pair (docs/contacts.md)",
              "a second GPU stage: rays over where closed objects' boxes overlap, 72 bytes per triangle; about 3-60 % of a detection on lavapipe",
-             settingFlag<&DetectSettings::contacts, true>, "contacts", show<&DetectSettings::contacts>),
+             settingFlag<true, kContacts, &ContactSettings::objects>, "contacts", "contacts.objects", show<kContacts, &ContactSettings::objects>),
         flag("--contact-geometry", Section::Settings,
              "where each intersecting pair meets (a segment, a point or a coplanar overlap) with a normal, and per object pair the "
              "totals; in the JSON (docs/contacts.md)",
              "host work after the narrow phase, in parallel: 0.4-0.7 microseconds of one thread a pair (25-45 ns on 16 threads)",
-             settingFlag<&DetectSettings::contact_geometry, true>, "contact_geometry", show<&DetectSettings::contact_geometry>),
+             settingFlag<true, kContacts, &ContactSettings::geometry>, "contact_geometry", "contacts.geometry", show<kContacts, &ContactSettings::geometry>),
         {"--contact-resolution", "N", Section::Settings, "--contacts: rays across the region where closed objects' boxes overlap, 16 to 4096 (default 128)",
-         "GPU time grows with N^2; the volume error shrinks about as 1/N", setting<&DetectSettings::contact_resolution>,
-         "contact_resolution", show<&DetectSettings::contact_resolution>},
+         "GPU time grows with N^2; the volume error shrinks about as 1/N", setting<kContacts, &ContactSettings::resolution>,
+         "contact_resolution", "contacts.resolution", show<kContacts, &ContactSettings::resolution>},
         reliable({"--exact", "WHERE", Section::Settings,
                   "where the exact triangle test decides the candidates: auto (the GPU where it has 64-bit floats), gpu or cpu (the reference path)",
                   "gpu: only intersecting pairs are read back and the CPU computes responses alone; cpu: every pair the GPU filter keeps is tested on the CPU; same pairs",
-                  setting<&DetectSettings::exact>, "exact", show<&DetectSettings::exact>}),
+                  setting<kReliable, &ReliableSettings::exact>, "exact", "reliable.exact", show<kReliable, &ReliableSettings::exact>}),
         reliable({"--pair-sort", "WHERE", Section::Settings,
                   "where the exact decision's pairs are put in order: auto (the GPU from 4096 pairs in the last detection), gpu or cpu "
                   "(the narrow phase; docs/exact_gpu.md)",
                   "gpu: two GPU passes and one copy, the host only computes responses; cpu: the host sorts; same pairs and responses",
-                  setting<&DetectSettings::pair_sort>, "pair_sort", show<&DetectSettings::pair_sort>}),
+                  setting<kReliable, &ReliableSettings::pair_sort>, "pair_sort", "reliable.pair_sort", show<kReliable, &ReliableSettings::pair_sort>}),
         reliable({"--proximity", "D", Section::Settings,
                   "also every vertex-triangle and edge-edge pair within distance D (world units) with its distance, closest points "
                   "and normal (docs/proximity.md; host meshes, 64-bit floats on the GPU)",
@@ -169,7 +180,7 @@ const std::vector<Option>& options() {
                       c.settings.proximity.distance = *d;
                       return {};
                   },
-                  "proximity", [](const DetectSettings& s) { return fields::jsonNumber(s.proximity.distance); }}),
+                  "proximity", "proximity.distance", [](const DetectSettings& s) { return fields::jsonNumber(s.proximity.distance); }}),
         reliable({"--proximity-capacity", "N", Section::Settings,
                   "--proximity: pairs the GPU buffer holds; a detection finding more fails naming the count (default 0: grows as needed)",
                   "64 bytes per pair of device-visible host memory",
@@ -179,10 +190,10 @@ const std::vector<Option>& options() {
                       c.settings.proximity.capacity = *n;
                       return {};
                   },
-                  "proximity_capacity", [](const DetectSettings& s) { return fields::jsonOf(s.proximity.capacity); }}),
+                  "proximity_capacity", "proximity.capacity", [](const DetectSettings& s) { return fields::jsonOf(s.proximity.capacity); }}),
         peeling(flag("--paper-packing", Section::Settings, "the same as --packing paper", "as --packing paper",
              [](CommandLine& c, std::string_view) -> Result<void> {
-                 c.settings.packing = vkcollide::PackingMethod::Paper;
+                 c.settings.peeling.packing = vkcollide::PackingMethod::Paper;
                  return {};
              })),
 
@@ -448,14 +459,33 @@ Parsed parseDetect(std::span<const char* const> args) {
     return p;
 }
 
+namespace {
+
+// Whether `message` names `name` as a whole: "peeling.axes" names the path, not "axes" or
+// "peeling"; "contacts.geometry" does not name "contacts".
+bool names(const std::string& message, const std::string& name) {
+    const auto part = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = message.find(name); at != std::string::npos; at = message.find(name, at + 1)) {
+        const std::size_t end = at + name.size();
+        const bool starts = at == 0 || (!part(message[at - 1]) && message[at - 1] != '.');
+        const bool member_follows = end + 1 < message.size() && message[end] == '.' && part(message[end + 1]);
+        const bool ends = end == message.size() || (!part(message[end]) && !member_follows);
+        if (starts && ends) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
 std::string nameSettingOptions(const CommandLine& line, const std::string& message) {
     std::string named;
     for (const Option& o : options()) {
         if (!o.field) continue;
-        // The library words its rules with the field's name ("open_epsilon") or its words ("open epsilon").
+        // The library words its rules with the field's path ("peeling.open_epsilon"), its name
+        // ("open_epsilon") or its words ("open epsilon").
         std::string words = o.field;
         std::replace(words.begin(), words.end(), '_', ' ');
-        if (message.find(o.field) == std::string::npos && message.find(words) == std::string::npos) continue;
+        if (!(o.path && names(message, o.path)) && !names(message, o.field) && !names(message, words)) continue;
         for (const auto& [name, value] : line.given)
             if (name == o.name) named += (named.empty() ? "" : ", ") + name + (value.empty() ? "" : " " + value);
     }

@@ -2,10 +2,11 @@
 // options that parsing, --help, the error messages and the JSON's settings all read.
 //
 // Adding a DetectSettings field to the tool is one line in the table (options.cpp):
-//   {"--name", "ARG", Section::Settings, "what it does", "what it costs", setting<&DetectSettings::field>, "field",
-//    show<&DetectSettings::field>},
-// for a field of type uint32, float, bool (a flag: settingFlag), std::array<float, N>,
-// std::optional of those, or an enum with toString (values.hpp).
+//   {"--name", "ARG", Section::Settings, "what it does", "what it costs", setting<&DetectSettings::group, &Group::field>,
+//    "field", "group.field", show<&DetectSettings::group, &Group::field>},
+// (a top-level field: setting<&DetectSettings::field>), for a field of type uint32, float,
+// bool (a flag: settingFlag), std::array<float, N>, std::optional of those, or an enum with
+// toString (values.hpp). "field" is its JSON key, "group.field" its path.
 #pragma once
 
 #include <array>

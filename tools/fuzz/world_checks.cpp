@@ -71,7 +71,7 @@ void checkResult(const DetectResult& r, const Snapshot& snap, const char* call) 
           std::to_string(r.contacts.size()) + " contacts" + (r.incomplete ? ", incomplete" : "") + ", method " + toString(r.stats.method) +
           ", resolution " + std::to_string(r.stats.resolution));
     const auto where = [&](const std::string& what) { fail(std::string(call) + ": " + what); };
-    if (r.pairs.size() > snap.settings.max_pairs) where("more pairs than max_pairs");
+    if (r.pairs.size() > snap.settings.limits.max_pairs) where("more pairs than max_pairs");
     if (r.pairs_left_out > 0 && (!r.incomplete || r.incomplete->code() != ErrorCode::LimitExceeded))
         where("pairs left out without a LimitExceeded error");
     if (r.incomplete && r.incomplete->message().empty()) where("incomplete with an empty message");

@@ -146,7 +146,7 @@ inline void writeTransform(ProgramWriter& out, const TransformCode& t) {
 //            5 region given, 6 contacts, 7 depth-aware off
 //   1 flags: bits 0-1 backend (auto, raster, compute, auto), bits 2-3 coverage (centre,
 //            dilate, conservative, best), 4 bad objects fail, 5 measure_layers off,
-//            6 open_epsilon given, 7 contact_resolution given
+//            6 open_epsilon given, 7 contacts.resolution given
 //   2 resolution code, 3 direction code, 4 axes code, 5 layer cap code, 6 timeout code
 //   (13, 14, 15 mod 16: 0, 1, 5 ms; else the default), 7 max_pairs code, 8
 //   max_candidate_pairs code, 9 epsilon code (open, closed), 10 region code, 11 contact

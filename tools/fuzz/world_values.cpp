@@ -77,34 +77,34 @@ DetectSettings decodeSettings(const SettingsBytes& b) {
     s.method = (b[0] & 1) ? DetectMethod::Peeling : DetectMethod::Reliable;
     if (b[0] & 2) s.resolution = kResolutions[b[2] % kResolutions.size()];
     if (b[0] & 4) s.direction = kDirections[b[3] % kDirections.size()];
-    s.dual = (b[0] & 8) != 0;
-    s.packing = (b[0] & 16) ? PackingMethod::Paper : PackingMethod::Scan;
+    s.peeling.dual = (b[0] & 8) != 0;
+    s.peeling.packing = (b[0] & 16) ? PackingMethod::Paper : PackingMethod::Scan;
     if (b[0] & 32) s.region = kRegions[b[10] % kRegions.size()];
-    s.contacts = (b[0] & 64) != 0;
-    s.depth_aware = (b[0] & 128) == 0;
+    s.contacts.objects = (b[0] & 64) != 0;
+    s.peeling.depth_aware = (b[0] & 128) == 0;
     constexpr std::array<SamplingBackend, 4> kBackends = {SamplingBackend::Auto, SamplingBackend::Raster, SamplingBackend::Compute,
                                                           SamplingBackend::Auto};
     constexpr std::array<Coverage, 4> kCoverages = {Coverage::Centre, Coverage::Dilate, Coverage::Conservative, Coverage::Best};
-    s.backend = kBackends[b[1] & 3];
-    s.coverage = kCoverages[(b[1] >> 2) & 3];
+    s.peeling.backend = kBackends[b[1] & 3];
+    s.peeling.coverage = kCoverages[(b[1] >> 2) & 3];
     s.bad_objects = (b[1] & 16) ? BadObjectPolicy::Fail : BadObjectPolicy::Exclude;
-    s.measure_layers = (b[1] & 32) == 0;
-    if (b[1] & 64) s.open_epsilon = kEpsilons[b[9] % kEpsilons.size()];
-    s.closed_epsilon = kEpsilons[(b[9] / 8) % kEpsilons.size()];
-    if (b[1] & 128) s.contact_resolution = kContactResolutions[b[11] % kContactResolutions.size()];
-    s.axes = kAxes[b[4] % kAxes.size()];
-    s.layer_cap = kLayerCaps[b[5] % kLayerCaps.size()];
+    s.peeling.measure_layers = (b[1] & 32) == 0;
+    if (b[1] & 64) s.peeling.open_epsilon = kEpsilons[b[9] % kEpsilons.size()];
+    s.peeling.closed_epsilon = kEpsilons[(b[9] / 8) % kEpsilons.size()];
+    if (b[1] & 128) s.contacts.resolution = kContactResolutions[b[11] % kContactResolutions.size()];
+    s.peeling.axes = kAxes[b[4] % kAxes.size()];
+    s.peeling.layer_cap = kLayerCaps[b[5] % kLayerCaps.size()];
     switch (b[6] % 16) {
-        case 13: s.timeout_ms = 0; break;
-        case 14: s.timeout_ms = 1; break;
-        case 15: s.timeout_ms = 5; break;
+        case 13: s.limits.timeout_ms = 0; break;
+        case 14: s.limits.timeout_ms = 1; break;
+        case 15: s.limits.timeout_ms = 5; break;
         default: break;  // the default: a minute
     }
-    if (b[6] & 16) s.wait_poll_us = (b[6] & 32) ? 0 : 1u << 20;  // sleep only, or poll up to a second
+    if (b[6] & 16) s.limits.wait_poll_us = (b[6] & 32) ? 0 : 1u << 20;  // sleep only, or poll up to a second
     constexpr std::array<std::uint64_t, 4> kMaxPairs = {std::uint64_t{1} << 24, 0, 1, 3};
-    s.max_pairs = kMaxPairs[b[7] % kMaxPairs.size()];
+    s.limits.max_pairs = kMaxPairs[b[7] % kMaxPairs.size()];
     constexpr std::array<std::uint64_t, 4> kMaxCandidatePairs = {std::uint64_t{1} << 27, 0, 1, 10};
-    s.max_candidate_pairs = kMaxCandidatePairs[b[8] % kMaxCandidatePairs.size()];
+    s.limits.max_candidate_pairs = kMaxCandidatePairs[b[8] % kMaxCandidatePairs.size()];
     return s;
 }
 
@@ -116,25 +116,25 @@ std::string describe(const DetectSettings& s) {
     };
     add(s.resolution.has_value(), "resolution " + (s.resolution ? std::to_string(*s.resolution) : std::string()));
     add(s.direction.has_value(), "direction given");
-    add(s.dual, "dual");
-    add(s.packing != d.packing, std::string("packing ") + toString(s.packing));
+    add(s.peeling.dual, "dual");
+    add(s.peeling.packing != d.peeling.packing, std::string("packing ") + toString(s.peeling.packing));
     add(s.region.has_value(), "region given");
-    add(s.contacts, "contacts");
-    add(!s.depth_aware, "depth-aware off");
-    add(s.backend != d.backend, std::string("backend ") + toString(s.backend));
-    add(s.coverage != d.coverage, std::string("coverage ") + toString(s.coverage));
+    add(s.contacts.objects, "contacts");
+    add(!s.peeling.depth_aware, "depth-aware off");
+    add(s.peeling.backend != d.peeling.backend, std::string("backend ") + toString(s.peeling.backend));
+    add(s.peeling.coverage != d.peeling.coverage, std::string("coverage ") + toString(s.peeling.coverage));
     add(s.bad_objects != d.bad_objects, "bad objects fail");
-    add(!s.measure_layers, "measure_layers off");
-    add(s.open_epsilon.has_value(), "open_epsilon " + (s.open_epsilon ? std::to_string(*s.open_epsilon) : std::string()));
-    add(s.closed_epsilon != d.closed_epsilon, "closed_epsilon " + std::to_string(s.closed_epsilon));
-    add(s.contact_resolution.has_value(),
-        "contact_resolution " + (s.contact_resolution ? std::to_string(*s.contact_resolution) : std::string()));
-    add(s.axes != d.axes, "axes " + std::to_string(s.axes));
-    add(s.layer_cap != d.layer_cap, "layer_cap " + std::to_string(s.layer_cap));
-    add(s.timeout_ms != d.timeout_ms, "timeout_ms " + std::to_string(s.timeout_ms));
-    add(s.wait_poll_us != d.wait_poll_us, "wait_poll_us " + std::to_string(s.wait_poll_us));
-    add(s.max_pairs != d.max_pairs, "max_pairs " + std::to_string(s.max_pairs));
-    add(s.max_candidate_pairs != d.max_candidate_pairs, "max_candidate_pairs " + std::to_string(s.max_candidate_pairs));
+    add(!s.peeling.measure_layers, "measure_layers off");
+    add(s.peeling.open_epsilon.has_value(), "open_epsilon " + (s.peeling.open_epsilon ? std::to_string(*s.peeling.open_epsilon) : std::string()));
+    add(s.peeling.closed_epsilon != d.peeling.closed_epsilon, "closed_epsilon " + std::to_string(s.peeling.closed_epsilon));
+    add(s.contacts.resolution.has_value(),
+        "contacts.resolution " + (s.contacts.resolution ? std::to_string(*s.contacts.resolution) : std::string()));
+    add(s.peeling.axes != d.peeling.axes, "axes " + std::to_string(s.peeling.axes));
+    add(s.peeling.layer_cap != d.peeling.layer_cap, "layer_cap " + std::to_string(s.peeling.layer_cap));
+    add(s.limits.timeout_ms != d.limits.timeout_ms, "timeout_ms " + std::to_string(s.limits.timeout_ms));
+    add(s.limits.wait_poll_us != d.limits.wait_poll_us, "wait_poll_us " + std::to_string(s.limits.wait_poll_us));
+    add(s.limits.max_pairs != d.limits.max_pairs, "max_pairs " + std::to_string(s.limits.max_pairs));
+    add(s.limits.max_candidate_pairs != d.limits.max_candidate_pairs, "max_candidate_pairs " + std::to_string(s.limits.max_candidate_pairs));
     return out;
 }
 

@@ -182,7 +182,7 @@ std::unique_ptr<Engine> Engine::create(const EngineOptions& options) {
     VkPhysicalDeviceFeatures available{};
     vkGetPhysicalDeviceFeatures(e->physical_, &available);
     f.core.features.shaderFloat64 = available.shaderFloat64;
-    // Optional: lets DetectSettings::coverage use the hardware (Coverage::Best).
+    // Optional: lets DetectSettings::peeling.coverage use the hardware (Coverage::Best).
     if (hasExtension(e->physical_, VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME))
         e->extensions_.push_back(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};

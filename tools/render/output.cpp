@@ -26,13 +26,13 @@ std::string count(double v) {
 // (sampling_ms) + footprints + pairing + filtering, Reduce = the readback of the pairs.
 // CPU = the narrow phase.
 double gpuMs(const vkcollide::DetectStats& s) {
-    if (s.method == vkcollide::DetectMethod::Reliable) return s.sampling_ms + s.footprints_ms + s.pairing_ms + s.filtering_ms;
-    return s.sampling_ms + s.merging_ms + s.separation_ms;
+    if (s.method == vkcollide::DetectMethod::Reliable) return s.sampling_ms + s.reliable.footprints_ms + s.reliable.pairing_ms + s.reliable.filtering_ms;
+    return s.sampling_ms + s.peeling.merging_ms + s.peeling.separation_ms;
 }
-double reduceMs(const vkcollide::DetectStats& s) { return s.packing_ms + s.readback_ms; }
+double reduceMs(const vkcollide::DetectStats& s) { return s.peeling.packing_ms + s.readback_ms; }
 
 const char* backendName(const vkcollide::DetectStats& s) {
-    return s.method == vkcollide::DetectMethod::Reliable ? "none" : vkcollide::toString(s.backend);
+    return s.method == vkcollide::DetectMethod::Reliable ? "none" : vkcollide::toString(s.peeling.backend);
 }
 
 bool writePng(const std::string& path, std::uint32_t width, std::uint32_t height, const std::vector<std::uint8_t>& rgba) {
@@ -90,9 +90,9 @@ void FrameLog::record(int frame, const vkcollide::DetectResult& r, std::span<con
                      "%d,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%u,%u,%u,%u,%d,%s,%s,%.3f,%.3f,"
                      "%.3f,%.3f,%.3f",
                      frame, s.triangles, s.collision_rays, s.triangles_downloaded, s.potentially_colliding_triangles, s.triangle_tests,
-                     s.positive_tests, r.pairs.size(), gpuMs(s), reduceMs(s), s.narrow_ms, s.total_ms, s.sampling_ms, s.merging_ms,
-                     s.separation_ms, s.packing_ms, s.readback_ms, s.narrow_ms, s.resolution, s.depth_complexity, s.layers, s.peel_passes,
-                     s.layers_short ? 1 : 0, backendName(s), vkcollide::toString(s.method), s.footprints_ms, s.pairing_ms, s.filtering_ms,
+                     s.positive_tests, r.pairs.size(), gpuMs(s), reduceMs(s), s.narrow_ms, s.total_ms, s.sampling_ms, s.peeling.merging_ms,
+                     s.peeling.separation_ms, s.peeling.packing_ms, s.readback_ms, s.narrow_ms, s.resolution, s.peeling.depth_complexity, s.peeling.layers, s.peeling.peel_passes,
+                     s.peeling.layers_short ? 1 : 0, backendName(s), vkcollide::toString(s.method), s.reliable.footprints_ms, s.reliable.pairing_ms, s.reliable.filtering_ms,
                      first_ms, second_ms);
         for (double v : scene_values) std::fprintf(csv_, ",%g", v);
         std::fprintf(csv_, "\n");

@@ -113,9 +113,9 @@ int main(int argc, char** argv) {
 
         DetectSettings s;
         s.resolution = 64;
-        s.axes = frame % 50 == 7 ? 3 : 1;
-        s.coverage = frame % 50 == 21 ? Coverage::Dilate : Coverage::Centre;
-        s.closed_epsilon = frame % 2 ? 0.01f : 0.0f;
+        s.peeling.axes = frame % 50 == 7 ? 3 : 1;
+        s.peeling.coverage = frame % 50 == 21 ? Coverage::Dilate : Coverage::Centre;
+        s.peeling.closed_epsilon = frame % 2 ? 0.01f : 0.0f;
         if (frame % 250 == 100) {  // refused before anything is allocated
             DetectSettings huge = s;
             huge.resolution = 16384;

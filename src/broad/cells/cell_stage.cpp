@@ -251,19 +251,19 @@ Result<void> CellStage::checkFailure(const gpu::CellsHeader& h) {
 // cell's pairs, and candidates are only counted by a sweep that ran in full.
 Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
     const std::string budget = asked_budget_ > budget_ ? "the stage's limit of " + std::to_string(budget_) + " (32-bit buffer indices)"
-                                                       : "max_candidate_pairs (" + std::to_string(budget_) + ")";
+                                                       : "limits.max_candidate_pairs (" + std::to_string(budget_) + ")";
     const std::string where = " at resolution " + std::to_string(resolution_) + " (" + std::to_string(triangles_) + " triangles)";
     if (h.box_cells > budget_)
         return Error(ErrorCode::LimitExceeded, "cell stage: the triangles' footprint boxes span " + std::to_string(h.box_cells) +
                                                    " cells" + where + ", more than " + budget +
-                                                   ": lower the resolution or raise max_candidate_pairs");
+                                                   ": lower the resolution or raise limits.max_candidate_pairs");
     const std::uint64_t comparisons = std::uint64_t{budget_} * gpu::kCellsComparisonsPerBudget;
     if (h.comparisons > comparisons)
         return Error(ErrorCode::LimitExceeded,
                      "cell stage: " + std::to_string(h.comparisons) + " pairs of footprints share a cell" + where + " (up to " +
                          std::to_string(h.max_cell) + " footprints in one cell), more than " +
                          std::to_string(gpu::kCellsComparisonsPerBudget) + " x " + budget + " = " + std::to_string(comparisons) +
-                         " the sweep may compare: stacked or repeated triangles? Lower the resolution or raise max_candidate_pairs");
+                         " the sweep may compare: stacked or repeated triangles? Lower the resolution or raise limits.max_candidate_pairs");
     if (h.candidates > budget_)
         return Error(ErrorCode::LimitExceeded, "cell stage: " + std::to_string(h.candidates) + " candidate pairs" + where +
                                                    " (triangles that may collide, with overlapping depth in a cell), more than " +

@@ -93,7 +93,7 @@ struct CellStageSettings {
     // shaderFloat64; docs/exact_gpu.md) and leave out neighbours (a bit-identical world
     // vertex): the survivors are then exactly the intersecting pairs.
     bool exact = false;
-    // The budget of a run (DetectSettings::max_candidate_pairs in a detection; the stage's
+    // The budget of a run (DetectSettings::limits.max_candidate_pairs in a detection; the stage's
     // own limit is 2^31 - 1, its buffers' 32-bit indices): the cells of the triangles'
     // clamped footprint boxes (so the footprints, 20 bytes each, and the count pass's work)
     // and the candidate pairs (12 bytes each) at most this many each, and the pairs of

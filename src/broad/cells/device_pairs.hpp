@@ -1,4 +1,4 @@
-// Device pairs (DetectSettings::device_pairs, docs/api.md "Results on the GPU"): the cell
+// Device pairs (DetectSettings::reliable.device_pairs, docs/api.md "Results on the GPU"): the cell
 // stage's exact survivors sorted on the GPU into the host result's order and written as
 // TrianglePair records (spirv/cells/device_pairs.comp.glsl has the passes), in buffers the stage
 // owns, so that an engine's next command buffer can read them after the world's signal.

@@ -3,12 +3,13 @@
 // engines give for GPU meshes, and the scene box the last detection measured on the GPU)
 // turned into a direction, a resolution, an open epsilon and a coverage, with a note saying
 // how each was chosen. The tunables are in spirv/common/config.h.
+#include "api/auto_settings.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "api/vertex_scans.hpp"
-#include "api/world_impl.hpp"
 #include "common/broadphase.h"
 #include "contacts/contacts.h"
 #include "vk/device.hpp"
@@ -72,7 +73,7 @@ void append(std::string& note, const std::string& part) { note += (note.empty() 
 }  // namespace
 
 // A host mesh's object-space box and largest |coordinate|: one pass over its vertices.
-void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positions) {
+void AutoSettings::measureHost(Object& o, std::span<const Float3> positions) {
     float lo[3] = {positions[0].x, positions[0].y, positions[0].z}, hi[3] = {lo[0], lo[1], lo[2]};
     float max_abs = 0;
     for (const Float3& p : positions) {
@@ -94,19 +95,19 @@ void CollisionWorld::Impl::measureHost(Object& o, std::span<const Float3> positi
 // only open objects'.
 // All of them in one parallel loop: a scene of deforming meshes starts the executor's
 // threads once per detection, not once per mesh.
-void CollisionWorld::Impl::measureShapes(const DetectSettings& in) const {
+void AutoSettings::measureShapes(const DetectSettings& in, const ObjectRegistry& registry, Executor& executor) const {
     shapes_wanted_all = !in.direction || !in.resolution;
-    shapes_wanted_open = !in.open_epsilon;
+    shapes_wanted_open = !in.peeling.open_epsilon;
     std::vector<const Object*> stale;
     std::vector<vertex_scans::ShapeMesh> meshes;
-    for (const Object& o : objects) {
+    for (const Object& o : registry.objects) {
         if (!o.alive || !o.host || !o.shape_stale || !wantsShape(o)) continue;
         stale.push_back(&o);
         meshes.push_back({o.host_positions, o.host_indices});
     }
     if (stale.empty()) return;
     std::vector<vertex_scans::Shape> shapes(stale.size());
-    vertex_scans::measureShapes(*executor, meshes, shapes);
+    vertex_scans::measureShapes(executor, meshes, shapes);
     for (std::size_t i = 0; i < stale.size(); ++i) {
         stale[i]->edge_length = shapes[i].edge_length;
         stale[i]->area_moment = shapes[i].area_moment;
@@ -115,8 +116,9 @@ void CollisionWorld::Impl::measureShapes(const DetectSettings& in) const {
 }
 
 // Fills every automatic field from the host's knowledge of the scene.
-DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::string* note) const {
-    measureShapes(in);
+DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegistry& registry, const vk::Device& device, Executor& executor,
+                                     std::string* note) const {
+    measureShapes(in, registry, executor);
     DetectSettings s = in;
     const bool reliable = s.method == DetectMethod::Reliable;
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
@@ -125,7 +127,7 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
     std::uint64_t triangles = 0;
     Vec3 facing{};
     bool any_box = false, any_gpu = false;
-    for (const Object& o : objects) {
+    for (const Object& o : registry.objects) {
         if (!o.alive) continue;
         const Transform3x4& t = o.options.transform;
         const double n = o.gpu.triangle_count, scale = maxScale(t);
@@ -201,8 +203,8 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         s.direction = d;
         append(why, buf);
     }
-    if (reliable && s.axes == 3) {  // any other count stays, for the check to name it
-        s.axes = 1;
+    if (reliable && s.peeling.axes == 3) {  // any other count stays, for the check to name it
+        s.peeling.axes = 1;
         append(why, "axes 1 (the reliable method's one grid finds every pair)");
     }
     const double typical_edge = edge_triangles > 0 ? edge_weighted / edge_triangles : 0;
@@ -255,17 +257,17 @@ DetectSettings CollisionWorld::Impl::resolve(const DetectSettings& in, std::stri
         }
         append(why, buf);
     }
-    if (!s.open_epsilon) {
-        s.open_epsilon = open_triangles > 0 ? static_cast<float>(kOpenEpsilonPerEdge * open_edge / open_triangles) : 0.0f;
+    if (!s.peeling.open_epsilon) {
+        s.peeling.open_epsilon = open_triangles > 0 ? static_cast<float>(kOpenEpsilonPerEdge * open_edge / open_triangles) : 0.0f;
         if (open_triangles > 0 && !reliable) append(why, "open epsilon half the open objects' typical edge");
     }
-    if (s.coverage == Coverage::Best) {
-        s.coverage = device().conservative_rasterization ? Coverage::Conservative : Coverage::Dilate;
+    if (s.peeling.coverage == Coverage::Best) {
+        s.peeling.coverage = device.conservative_rasterization ? Coverage::Conservative : Coverage::Dilate;
         if (!reliable)
-            append(why, s.coverage == Coverage::Conservative ? "coverage conservative (the device rasterises conservatively)"
-                                                             : "coverage dilate (no conservative rasterisation on this device)");
+            append(why, s.peeling.coverage == Coverage::Conservative ? "coverage conservative (the device rasterises conservatively)"
+                                                                     : "coverage dilate (no conservative rasterisation on this device)");
     }
-    if (s.contacts && !s.contact_resolution) s.contact_resolution = gpu::kDefaultContactResolution;
+    if (s.contacts.objects && !s.contacts.resolution) s.contacts.resolution = gpu::kDefaultContactResolution;
     if (note) *note = why;
     return s;
 }

@@ -1,0 +1,44 @@
+// Automatic settings: every field a DetectSettings leaves empty, filled in from what the
+// world knows about its scene on the host (auto_settings.cpp), and what that knowledge
+// costs to keep: the host meshes' shapes are measured only while a setting that uses them
+// is automatic.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+
+#include "api/object_registry.hpp"
+#include "vkcollide/thread_pool.hpp"
+#include "vkcollide/world.hpp"
+
+namespace vkcollide {
+
+struct AutoSettings {
+    using Object = ObjectRegistry::Object;
+
+    // The scene box the last detection measured on the GPU (engine meshes included), for
+    // the automatic settings of scenes with GPU meshes.
+    std::optional<std::array<float, 6>> measured_box;
+    // Whether the last resolve() needed the shapes of all host meshes (automatic direction
+    // or resolution) or of open ones (automatic open epsilon): updateVertices then measures
+    // them with its copy (the same shape, bit for bit, as a later measureShapes).
+    mutable bool shapes_wanted_all = true, shapes_wanted_open = true;
+    // Whether the last resolve() needed this object's shape (measureShapes and
+    // updateVertices ask the same question).
+    bool wantsShape(const Object& o) const { return shapes_wanted_all || (shapes_wanted_open && o.options.open); }
+
+    // Every automatic field of `in` filled in for the live objects of `registry`
+    // (validation::checkSettings checks the result); stale shapes are measured first, on
+    // `executor`, when an automatic field needs them (measureShapes).
+    DetectSettings resolve(const DetectSettings& in, const ObjectRegistry& registry, const vk::Device& device, Executor& executor,
+                           std::string* note) const;
+    // A new host mesh's box and largest |coordinate|; its shape is left to measureShapes.
+    static void measureHost(Object& o, std::span<const Float3> positions);
+    // Measures the shape of every live host mesh whose geometry changed since it was last
+    // measured, on the executor, if `in` leaves a setting automatic that uses shapes.
+    void measureShapes(const DetectSettings& in, const ObjectRegistry& registry, Executor& executor) const;
+};
+
+}  // namespace vkcollide

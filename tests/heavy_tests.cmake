@@ -36,12 +36,11 @@ set(VKCOLLIDE_RELEASE_ONLY_TESTS
 # and `runs_in`, release or sanitized; release for the tests listed above) and, for those
 # in VKCOLLIDE_TEST_COSTS, its COST.
 function(vkcollide_write_test_properties target script labels runs_in)
-  list(JOIN labels ";" joined)
   set(body "foreach(t IN LISTS ${target}_TESTS)\n  set(runs_in ${runs_in})\n")
   foreach(name ${VKCOLLIDE_RELEASE_ONLY_TESTS})
     string(APPEND body "  if(t STREQUAL \"${name}\")\n    set(runs_in release)\n  endif()\n")
   endforeach()
-  string(APPEND body "  set_tests_properties(\"\${t}\" PROPERTIES LABELS \"${joined};\${runs_in}\")\n")
+  string(APPEND body "  set_tests_properties(\"\${t}\" PROPERTIES LABELS \"${labels};\${runs_in}\")\n")
   foreach(entry ${VKCOLLIDE_TEST_COSTS})
     string(FIND "${entry}" "=" at REVERSE)
     string(SUBSTRING "${entry}" 0 ${at} name)

@@ -5,10 +5,10 @@
 #   1. Release: the library, the command-line tool, the samples and the benchmarks (built,
 #      not run) at -O3, then the tests labelled `release`: every GPU test but the sanitized
 #      build's (lavapipe, Khronos validation layer and synchronization validation on: any
-#      message fails a test), the samples' smoke tests, vkcollide_bench on a user's meshes and frontier.sh's input checks, and
-#      the installed package (an engine-like consumer against the static install and
-#      against a shared libvkcollide configured and built from scratch; the consumer cannot
-#      link a sanitized library).
+#      message fails a test), the samples' smoke tests, vkcollide_bench on a user's meshes
+#      and frontier.sh's input checks, and the installed package (an engine-like consumer
+#      against the static install and against a shared libvkcollide configured and built
+#      from scratch; the consumer cannot link a sanitized library).
 #   2. Under AddressSanitizer + UndefinedBehaviorSanitizer (Debug, -O1, so that assertions
 #      are on and the host's share of the GPU tests stays fast; -g1: the line tables the
 #      sanitizers' stack traces need, without -g's variables, which cost a third of the

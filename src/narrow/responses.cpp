@@ -1,7 +1,6 @@
 #include "narrow/responses.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <vector>
 

@@ -91,6 +91,9 @@
 //  Pipelines  every pipeline vkcollide creates goes through one VkPipelineCache: the
 //             engine's (AdoptedDevice::pipeline_cache) or one the Context creates, filled
 //             from pipeline_cache_data and read back by Context::pipelineCacheData().
+//             The worlds of a Context share its pipelines, and the Context keeps each one
+//             it has made until it is destroyed: a world created later, or a stage a world
+//             turns on later (another method, proximity, device pairs), creates none.
 //
 // ---- Captures (RenderDoc, Nsight Graphics) ----------------------------------------------
 //

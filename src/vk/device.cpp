@@ -187,8 +187,22 @@ const char* toString(VkPhysicalDeviceType type) noexcept {
     }
 }
 
-Context::Context(std::shared_ptr<vk::Device> device) : device_(std::move(device)) {}
-Context::~Context() = default;
+Context::Context(std::shared_ptr<vk::Device> device) : device_(std::move(device)) {
+    std::lock_guard lock(device_->pipelines_mutex);
+    device_->keep_pipelines = true;
+}
+
+Context::~Context() {
+    std::vector<std::shared_ptr<const vk::PipelineHandles>> kept;
+    {
+        std::lock_guard lock(device_->pipelines_mutex);
+        device_->keep_pipelines = false;
+        kept.swap(device_->kept_pipelines);
+    }
+    // Released outside the lock: the last release of a pipeline destroys it (and may be the
+    // last DeviceRef, destroying the device and its mutex).
+    kept.clear();
+}
 const DeviceInfo& Context::deviceInfo() const noexcept { return device_->info; }
 bool Context::ownsDevice() const noexcept { return device_->owns_device; }
 std::uint64_t Context::validationMessageCount() const noexcept { return device_->validation_messages.load(); }

@@ -16,6 +16,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "vk/dispatch.hpp"
 #include "vk/features.hpp"
@@ -68,9 +69,16 @@ struct Device : std::enable_shared_from_this<Device> {
     bool owns_pipeline_cache = false;
     // Every pipeline alive on this device, by what it was made from (Pipeline::createCompute
     // and createRaster): the worlds of one Context share one set instead of building their own
-    // 12-24 each. Weak: a pipeline dies with the last world that holds it.
+    // 12-24 each. Weak: a pipeline dies with the last holder; while the Context lives it is
+    // one (kept_pipelines), so that a world created later, or a stage a world turns on
+    // later, finds its pipelines made. Creation is the expensive part of a first detection
+    // (a driver compiles each program: about 0.6 s for one method's set on lavapipe).
+    // ~Context turns keeping off and drops the kept ones, which breaks the cycle (each
+    // pipeline holds a DeviceRef); a Device without a Context keeps nothing.
     std::mutex pipelines_mutex;
     std::map<std::string, std::weak_ptr<const PipelineHandles>> pipelines;
+    std::vector<std::shared_ptr<const PipelineHandles>> kept_pipelines;  // under pipelines_mutex
+    bool keep_pipelines = false;                                         // under pipelines_mutex
     std::uint64_t pipelines_created = 0;  // under pipelines_mutex; for tests
     // Serialise what several worlds on several threads share: the queue (every submission
     // goes through queueSubmit) and the engine's memory hooks.

@@ -110,6 +110,7 @@ Result<Pipeline> Pipeline::share(Device& device, const std::string& key, const M
     if (auto ok = make(*h); !ok) return ok.error();  // h destroys what was made
     ++device.pipelines_created;
     slot = h;
+    if (device.keep_pipelines) device.kept_pipelines.push_back(h);
     return Pipeline(std::move(h));
 }
 

@@ -157,6 +157,14 @@ TEST_CASE("worlds on one Context share their pipelines", "[api][gpu]") {
     REQUIRE(again);
     CHECK(again->pairs == first->pairs);
     CHECK(created() == after_peeling);
+
+    // With no world left the Context still holds them: a new world creates none.
+    a.reset();
+    auto c = sceneWorld(ctx, *scene);
+    auto later = c->detect({});
+    REQUIRE(later);
+    CHECK(later->pairs == first->pairs);
+    CHECK(created() == after_peeling);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

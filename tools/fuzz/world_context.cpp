@@ -13,10 +13,9 @@
 namespace vkcollide::fuzz {
 namespace {
 
-// Renewed every kInputsPerContext inputs because lavapipe keeps about 16 MB of host
-// memory per world created on a device (allocated inside libvulkan_lvp.so when the world
-// compiles its pipelines) until the device is destroyed: without renewal a long run
-// reaches libFuzzer's memory limit.
+// Renewed every kInputsPerContext inputs, so that a long run also creates Contexts (and
+// their pipelines, which a Context keeps until it goes) and lavapipe's host memory per
+// device (about 16 MB for each set of pipelines it compiles) stays within libFuzzer's limit.
 
 constexpr int kInputsPerContext = 32;
 

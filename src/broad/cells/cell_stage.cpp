@@ -59,11 +59,14 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device) {
     for (auto r : {compute(P.setup, shaders::cells_setup_comp, "cells-setup"), compute(P.big, shaders::cells_big_comp, "cells-big"),
                    compute(P.scan, shaders::cells_scan_comp, "cells-scan"), compute(P.fill, shaders::cells_fill_comp, "cells-fill"),
                    compute(P.sweep, shaders::cells_sweep_comp, "cells-sweep"), compute(P.deep, shaders::cells_deep_comp, "cells-deep"),
-                   compute(P.args, shaders::cells_args_comp, "cells-args"),
-                   compute(P.pairs, shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64")})
+                   compute(P.args, shaders::cells_args_comp, "cells-args")})
         if (!r) return r.error();
-    if (device.shader_float64)
-        if (auto r = compute(cp->filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs"); !r) return r.error();
+    // One pair pass: with the float filter and the exact decision where the device has
+    // float64, else the one without them (record: filterSupported()).
+    if (auto r = device.shader_float64 ? compute(cp->filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs")
+                                       : compute(P.pairs, shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64");
+        !r)
+        return r.error();
     return cp;
 }
 

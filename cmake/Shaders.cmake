@@ -1,10 +1,21 @@
 # GLSL in <dir>/[<room>/]<name>.<stage>.glsl -> glslangValidator (Vulkan 1.3) -> spirv-val ->
 # spirv-opt -> a generated header with one typed constant per program
 # (vkcollide::shaders::<name>_<stage>), embedded in the binary that includes it: nothing is
-# read from disk at run time. A compile error fails the build with glslang's file:line message.
+# read from disk at run time. cmake/CompileShader.cmake compiles one program; a compile
+# error fails the build with glslang's file:line message.
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 find_program(SPIRV_VAL spirv-val REQUIRED)
 find_program(SPIRV_OPT spirv-opt REQUIRED)
+# Builds that share a folder here (or in the environment variable of the same name) compile
+# each program once between them (cmake/CompileShader.cmake says how it is keyed).
+set(VKCOLLIDE_SHADER_CACHE_DIR "$ENV{VKCOLLIDE_SHADER_CACHE_DIR}" CACHE PATH
+    "A folder of compiled shader headers shared between builds (empty: none)")
+set(vkcollide_shader_tools_key "")
+foreach(tool ${GLSLANG_VALIDATOR} ${SPIRV_VAL} ${SPIRV_OPT})
+  execute_process(COMMAND ${tool} --version OUTPUT_VARIABLE version ERROR_VARIABLE version)
+  string(APPEND vkcollide_shader_tools_key "${tool} ${version}")
+endforeach()
+string(SHA256 vkcollide_shader_tools_key "${vkcollide_shader_tools_key}")
 
 # vkcollide_embed_shaders(<target> SOURCE_DIR <dir> HEADER_DIR <name> SHADERS [<room>/]<name.stage>...)
 #   Adds the custom target <target> that compiles every program (<dir>/[<room>/]<name.stage>.glsl)
@@ -33,14 +44,13 @@ function(vkcollide_embed_shaders target)
     set(src ${ARG_SOURCE_DIR}/${shader}.glsl)
     set(spv ${out_dir}/${ident}.spv)
     set(hdr ${out_dir}/${ident}.hpp)
+    string(REPLACE ";" "|" deps "${headers}")
     add_custom_command(OUTPUT ${hdr}
-      COMMAND ${GLSLANG_VALIDATOR} --quiet -V --target-env vulkan1.3 -S ${stage} -I${ARG_SOURCE_DIR}
-              -I${PROJECT_SOURCE_DIR}/spirv -o ${spv}.raw ${src}
-      COMMAND ${SPIRV_VAL} --target-env vulkan1.3 --scalar-block-layout ${spv}.raw
-      COMMAND ${SPIRV_OPT} -O --target-env=vulkan1.3 ${spv}.raw -o ${spv}
-      COMMAND ${SPIRV_VAL} --target-env vulkan1.3 --scalar-block-layout ${spv}
-      COMMAND ${CMAKE_COMMAND} -DSPV=${spv} -DOUT=${hdr} -DIDENT=${ident} -P ${PROJECT_SOURCE_DIR}/cmake/EmbedSpirv.cmake
-      DEPENDS ${src} ${headers} ${PROJECT_SOURCE_DIR}/cmake/EmbedSpirv.cmake
+      COMMAND ${CMAKE_COMMAND} -DGLSLANG=${GLSLANG_VALIDATOR} -DSPIRV_VAL=${SPIRV_VAL} -DSPIRV_OPT=${SPIRV_OPT}
+              -DTOOLS_KEY=${vkcollide_shader_tools_key} -DSRC=${src} -DSTAGE=${stage}
+              "-DINCLUDES=${ARG_SOURCE_DIR}|${PROJECT_SOURCE_DIR}/spirv" "-DDEPS=${deps}" -DSPV=${spv} -DOUT=${hdr}
+              -DIDENT=${ident} -DCACHE_DIR=${VKCOLLIDE_SHADER_CACHE_DIR} -P ${PROJECT_SOURCE_DIR}/cmake/CompileShader.cmake
+      DEPENDS ${src} ${headers} ${PROJECT_SOURCE_DIR}/cmake/CompileShader.cmake
       COMMENT "SPIR-V ${shader}"
       VERBATIM)
     list(APPEND embedded_headers ${hdr})

@@ -24,7 +24,9 @@
 # Everything compiles in batches (CMake unity builds: about a third of the compiling), the
 # tests' own sources at -O1 (Release) and -O0 (sanitized; the library and the tests'
 # references keep their optimisation); a compiler cache for this run (ccache, in
-# BUILD_ROOT/build-ccache) builds the shared package from build 1's objects.
+# BUILD_ROOT/build-ccache) builds the shared package from build 1's objects, and the shader
+# cache beside it (build-ccache/shaders, cmake/CompileShader.cmake) compiles each GLSL
+# program once for all three builds.
 # Minutes from a fresh clone on an idle two-core machine: docs/stability.md, "CI coverage".
 #
 #   tools/test.sh [BUILD_ROOT]   the folder the build folders go in (or VKCOLLIDE_BUILD_ROOT;
@@ -44,6 +46,7 @@ elapsed() { echo "($(( $(date +%s) - start )) s so far)"; }
 CCACHE_BASEDIR="$src"
 while [[ "$PWD/" != "$CCACHE_BASEDIR/"* && "$CCACHE_BASEDIR" != / ]]; do CCACHE_BASEDIR="$(dirname "$CCACHE_BASEDIR")"; done
 export CCACHE_BASEDIR CCACHE_DIR="$PWD/build-ccache" CCACHE_NOHASHDIR=1
+export VKCOLLIDE_SHADER_CACHE_DIR="$PWD/build-ccache/shaders"
 export CMAKE_C_COMPILER_LAUNCHER=ccache CMAKE_CXX_COMPILER_LAUNCHER=ccache
 unity=(-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 -DVKCOLLIDE_UNITY_LIBRARY=ON)
 

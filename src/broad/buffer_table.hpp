@@ -4,11 +4,16 @@
 // memory check before a run, the allocation, the graph imports and the frame's addresses.
 //
 // The broad phase adds the rows every method needs (frame, objects, projection, header);
-// a method adds its own when it is created (PeelingMethod::addRows). Buffers only grow:
-// a run that needs less keeps the bigger buffer.
+// a method adds its own when it is created (PeelingMethod::addRows). A stage whose sizes
+// come from what the GPU counted (the cell stage's capacities, grown after an overflow)
+// adds rows it sizes itself (BufferRow::size null) and reserves them when it knows them;
+// the memory check covers every row either way. Buffers only grow: a run that needs less
+// keeps the bigger buffer. A row's buffer stays where it is for the table's life.
 #pragma once
 
 #include <cstdint>
+#include <deque>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,7 +37,8 @@ struct RunShape {
 struct BufferRow {
     const char* name;  // the buffer's debug name and its graph resource name
     vk::MemoryKind kind;
-    // Bytes this run needs; 0: not used this run (not allocated, address 0).
+    // Bytes this run needs; 0: not used this run (not allocated, address 0). Null: the
+    // row's owner sizes it (reserve() with RowSize) and imports it into its graphs itself.
     VkDeviceSize (*size)(const RunShape& shape);
     // The gpu::Frame field that holds its address, or null.
     std::uint64_t gpu::Frame::*frame_slot = nullptr;
@@ -40,6 +46,16 @@ struct BufferRow {
     bool host_readback = false;
     // Zeroed at the start of every run (the front stage's clear pass), over the run's size.
     bool cleared = false;
+    // Usage beyond storage, transfer and device address (e.g. indirect dispatch arguments).
+    VkBufferUsageFlags usage = 0;
+};
+
+// What an owner-sized row needs for the run: its bytes and, where that changes between
+// runs, its memory (a buffer in the other kind is made again).
+struct RowSize {
+    BufferId id;
+    VkDeviceSize bytes;
+    vk::MemoryKind kind;
 };
 
 class BufferTable {
@@ -50,8 +66,13 @@ public:
     std::vector<VkDeviceSize> plan(const RunShape& shape) const;
     VkDeviceSize planBytes(const RunShape& shape) const;
     // Refuses (OutOfMemory) what the device cannot hold before allocating anything, then
-    // makes every buffer this run uses at least its planned size.
+    // makes every buffer this run uses at least its planned size. The owner-sized rows
+    // count with what they last reserved.
     [[nodiscard]] Result<void> reserve(vk::Device& device, const RunShape& shape);
+    // The same for owner-sized rows: `sizes` replaces what they need, every other row
+    // counts with its last plan; errors begin with `what` ("cell stage: resolution 64 with
+    // 120 triangles").
+    [[nodiscard]] Result<void> reserve(vk::Device& device, std::span<const RowSize> sizes, const std::string& what);
     // The run's addresses into their frame fields (0 for rows this run does not use).
     void fillFrame(gpu::Frame& io_frame) const;
     // Imports every buffer this run uses into `g`.
@@ -70,8 +91,13 @@ private:
         BufferRow row;
         vk::Buffer buffer;
         VkDeviceSize run_size = 0;  // the last reserve()'s plan
+        vk::MemoryKind kind;        // where the buffer lives (the row's, or its RowSize's)
     };
-    std::vector<Entry> entries_;
+    // Refuses what the device cannot hold: a buffer above its largest, or more on a heap than it has.
+    Result<void> checkFits(const vk::Device& device, const std::vector<VkDeviceSize>& sizes, const std::string& what) const;
+    // Makes entry i's buffer at least `bytes` in its kind (freeing the smaller one first).
+    Result<void> grow(vk::Device& device, std::size_t i, VkDeviceSize bytes);
+    std::deque<Entry> entries_;  // a deque: rows added later leave the others' buffers in place
 };
 
 }  // namespace vkcollide::passes

@@ -36,7 +36,7 @@ bool moderate(float x) { return std::isfinite(x) && std::fabs(x) < 4.61168601842
 
 }  // namespace
 
-Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device) {
+Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferTable* table) {
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
     VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
     props.pNext = &subgroup;
@@ -48,6 +48,12 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device) {
                      "the cell stage needs subgroup basic, ballot and arithmetic operations in compute shaders, which " +
                          device.info.name + " lacks");
     std::unique_ptr<CellStage> cp(new CellStage(device));
+    if (!table) {
+        cp->own_table_ = std::make_unique<BufferTable>();
+        table = cp->own_table_.get();
+    }
+    cp->table_ = table;
+    cp->addRows();
     const std::span<const vk::Pipeline::Binding> none;
     auto compute = [&](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) -> Result<void> {
         auto p = vk::Pipeline::createCompute(device, code, none, sizeof(gpu::Push), name);
@@ -157,30 +163,30 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     if (auto ok = ensureBuffers(); !ok) return ok.error();
 
     // Per-run uploads: objects, object flags, the pair mask and the projection.
-    std::memcpy(buf_.objects.mapped(), objects_.data(), objects_.size() * sizeof(gpu::ObjectGpu));
-    buf_.objects.flush();
+    std::memcpy(buf_.objects->mapped(), objects_.data(), objects_.size() * sizeof(gpu::ObjectGpu));
+    buf_.objects->flush();
     if (has_self_ || has_download_) {
-        auto* flags = static_cast<std::uint32_t*>(buf_.object_flags.mapped());
+        auto* flags = static_cast<std::uint32_t*>(buf_.object_flags->mapped());
         for (std::size_t i = 0; i < objects_.size(); ++i)
             flags[i] = (has_self_ && in.self_collision[i] ? gpu::kCellsObjectSelf : 0u) |
                        (has_download_ && in.download[i] ? gpu::kCellsObjectDownload : 0u);
-        buf_.object_flags.flush();
+        buf_.object_flags->flush();
     }
     if (!in.pair_mask.empty()) {
-        std::memcpy(buf_.pair_mask.mapped(), in.pair_mask.data(), in.pair_mask.size_bytes());
-        buf_.pair_mask.flush();
+        std::memcpy(buf_.pair_mask->mapped(), in.pair_mask.data(), in.pair_mask.size_bytes());
+        buf_.pair_mask->flush();
     } else if (has_pair_mask_) {
         const std::uint64_t n = objects_.size();
-        auto* bits = static_cast<std::uint32_t*>(buf_.pair_mask.mapped());
+        auto* bits = static_cast<std::uint32_t*>(buf_.pair_mask->mapped());
         std::memset(bits, 0, (n * n + 31) / 32 * 4);
         for (std::uint32_t a = 0; a < n; ++a)
             for (std::uint32_t b = a + 1; b < n; ++b)
                 if (in.may_collide(a, b)) bits[(a * n + b) >> 5] |= 1u << ((a * n + b) & 31);
-        buf_.pair_mask.flush();
+        buf_.pair_mask->flush();
     }
     if (in.projection) {
-        std::memcpy(buf_.projection.mapped(), &*in.projection, sizeof(gpu::Projection));
-        buf_.projection.flush();
+        std::memcpy(buf_.projection->mapped(), &*in.projection, sizeof(gpu::Projection));
+        buf_.projection->flush();
     }
     writeParams();
     return {};
@@ -188,25 +194,25 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
 
 void CellStage::writeParams() {
     gpu::CellsParams p{};
-    p.objects = buf_.objects.address();
-    p.object_flags = has_self_ || has_download_ ? buf_.object_flags.address() : 0;
-    p.pair_mask = has_pair_mask_ ? buf_.pair_mask.address() : 0;
-    p.projection = projection_address_ ? projection_address_ : buf_.projection.address();
-    p.header = buf_.header.address();
-    p.triangles = buf_.triangles.address();
-    p.geometry = buf_.geometry.address();
-    p.counts = buf_.counts.address();
-    p.offsets = buf_.offsets.address();
-    p.block_sums = buf_.block_sums.address();
-    p.entries = buf_.entries.address();
-    p.entry_cells = buf_.entry_cells.address();
-    p.big_items = buf_.big_items.address();
-    p.deep_items = buf_.deep_items.address();
-    p.candidates = buf_.candidates.address();
-    p.survivors = buf_.survivors.address();
-    p.args = buf_.args.address();
-    p.gpu_triangles = has_download_ ? buf_.gpu_triangles.address() : 0;
-    p.marks = has_download_ ? buf_.marks.address() : 0;
+    p.objects = buf_.objects->address();
+    p.object_flags = has_self_ || has_download_ ? buf_.object_flags->address() : 0;
+    p.pair_mask = has_pair_mask_ ? buf_.pair_mask->address() : 0;
+    p.projection = projection_address_ ? projection_address_ : buf_.projection->address();
+    p.header = buf_.header->address();
+    p.triangles = buf_.triangles->address();
+    p.geometry = buf_.geometry->address();
+    p.counts = buf_.counts->address();
+    p.offsets = buf_.offsets->address();
+    p.block_sums = buf_.block_sums->address();
+    p.entries = buf_.entries->address();
+    p.entry_cells = buf_.entry_cells->address();
+    p.big_items = buf_.big_items->address();
+    p.deep_items = buf_.deep_items->address();
+    p.candidates = buf_.candidates->address();
+    p.survivors = buf_.survivors->address();
+    p.args = buf_.args->address();
+    p.gpu_triangles = has_download_ ? buf_.gpu_triangles->address() : 0;
+    p.marks = has_download_ ? buf_.marks->address() : 0;
     p.gpu_triangle_capacity = has_download_ ? capacity_.gpu_triangles : 0;
     p.resolution = resolution_;
     p.cell_count = resolution_ * resolution_;
@@ -214,7 +220,7 @@ void CellStage::writeParams() {
     p.triangle_count = triangles_;
     p.entry_capacity = capacity_.entries;
     p.item_capacity = capacity_.items;
-    p.deep_capacity = static_cast<std::uint32_t>(buf_.deep_items.size() / 8);
+    p.deep_capacity = static_cast<std::uint32_t>(buf_.deep_items->size() / 8);
     p.candidate_capacity = capacity_.candidates;
     p.survivor_capacity = capacity_.survivors;
     p.block_count = (p.cell_count + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
@@ -225,8 +231,8 @@ void CellStage::writeParams() {
     p.keep_neighbours = proximity_pad_ > 0 ? 1u : 0u;
     p.proximity_pad = proximity_pad_;
     p.pair_chunk = pair_chunk_;
-    std::memcpy(buf_.params.mapped(), &p, sizeof p);
-    buf_.params.flush();
+    std::memcpy(buf_.params->mapped(), &p, sizeof p);
+    buf_.params->flush();
 }
 
 Result<void> CellStage::checkFailure(const gpu::CellsHeader& h) {
@@ -278,9 +284,9 @@ Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
 
 Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     survivor_count_ = gpu_triangle_count_ = 0;
-    buf_.header_rb.invalidate();
+    buf_.header_rb->invalidate();
     gpu::CellsHeader h;
-    std::memcpy(&h, buf_.header_rb.mapped(), sizeof h);
+    std::memcpy(&h, buf_.header_rb->mapped(), sizeof h);
     if (auto ok = checkFailure(h); !ok) return ok.error();
     if (auto ok = checkBudget(h); !ok) return ok.error();
     if (h.flags & gpu::kCellsOverflowMask) {
@@ -331,19 +337,19 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.exact_neighbours = h.exact_neighbours;
     survivor_count_ = h.survivors;
     gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;
-    if (survivor_count_ && !survivors_on_device_) buf_.survivors.invalidate(0, VkDeviceSize(survivor_count_) * 8);
-    if (gpu_triangle_count_) buf_.gpu_triangles.invalidate(0, VkDeviceSize(gpu_triangle_count_) * sizeof(GpuTriangle));
+    if (survivor_count_ && !survivors_on_device_) buf_.survivors->invalidate(0, VkDeviceSize(survivor_count_) * 8);
+    if (gpu_triangle_count_) buf_.gpu_triangles->invalidate(0, VkDeviceSize(gpu_triangle_count_) * sizeof(GpuTriangle));
     return Outcome::Complete;
 }
 
 std::span<const CandidatePair> CellStage::survivors() const noexcept {
     if (!survivor_count_ || survivors_on_device_) return {};
-    return {static_cast<const CandidatePair*>(buf_.survivors.mapped()), survivor_count_};
+    return {static_cast<const CandidatePair*>(buf_.survivors->mapped()), survivor_count_};
 }
 
 std::span<const GpuTriangle> CellStage::gpuTriangles() const noexcept {
     if (!gpu_triangle_count_) return {};
-    return {static_cast<const GpuTriangle*>(buf_.gpu_triangles.mapped()), gpu_triangle_count_};
+    return {static_cast<const GpuTriangle*>(buf_.gpu_triangles->mapped()), gpu_triangle_count_};
 }
 
 Result<CellStage::Outcome> CellStage::finish(CellStageResult& out) {
@@ -413,11 +419,11 @@ void CellStage::notePairPassTime(std::span<const graph::PassTiming> passes, std:
 
 std::uint64_t CellStage::memoryBytes() const noexcept {
     std::uint64_t total = 0;
-    for (const vk::Buffer* b : {&buf_.params, &buf_.objects, &buf_.object_flags, &buf_.pair_mask, &buf_.projection, &buf_.header,
-                                &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,
-                                &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.candidates,
-                                &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks})
-        total += b->memoryBytes();
+    for (const Row* r : {&buf_.params, &buf_.objects, &buf_.object_flags, &buf_.pair_mask, &buf_.projection, &buf_.header,
+                         &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,
+                         &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.candidates,
+                         &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks})
+        total += (*r)->memoryBytes();
     return total;
 }
 

@@ -27,8 +27,10 @@
 // gpuTriangles()); after an overflow record() and run the stage again (the broad phase's
 // Again submission). It submits nothing itself.
 //
-// Not thread-safe; one instance per user (it owns its buffers). Buffers are kept between
-// runs and only grow, so a steady scene allocates nothing per run.
+// Not thread-safe; one instance per user. Its buffers are rows of a BufferTable (the
+// broad phase's, or one of its own), sized by the stage for each run and after each
+// overflow; they are kept between runs and only grow, so a steady scene allocates nothing
+// per run.
 #pragma once
 
 #include <array>
@@ -40,6 +42,7 @@
 #include <span>
 #include <vector>
 
+#include "broad/buffer_table.hpp"
 #include "broad/cell_stage_stats.hpp"
 #include "cells/cells.h"
 #include "graph/executor.hpp"
@@ -140,8 +143,10 @@ struct CellStageResult {
 
 class CellStage {
 public:
-    // Needs subgroup basic, ballot and arithmetic operations in compute shaders.
-    static Result<std::unique_ptr<CellStage>> create(vk::Device& device);
+    // Needs subgroup basic, ballot and arithmetic operations in compute shaders. Its
+    // buffers become rows of `table` (ReliableMethod: the broad phase's), which must
+    // outlive the stage; without one, of a table the stage owns.
+    static Result<std::unique_ptr<CellStage>> create(vk::Device& device, BufferTable* table = nullptr);
 
     // Whether the double-precision filter can run (shaderFloat64 enabled on the device).
     bool filterSupported() const noexcept { return filter_pipeline_.handle() != VK_NULL_HANDLE; }
@@ -166,10 +171,10 @@ public:
     }
     // The indirect dispatches the stage writes (kCellsArgs* slots of 12 bytes): the pair
     // pass's serves any later pass over the candidates.
-    VkBuffer argsBuffer() const noexcept { return buf_.args.handle(); }
+    VkBuffer argsBuffer() const noexcept { return buf_.args->handle(); }
     // The prepared run as later GPU stages see it: the parameters' address (CellsParams),
     // its triangles and the dispatch row limit.
-    VkDeviceAddress paramsAddress() const noexcept { return buf_.params.address(); }
+    VkDeviceAddress paramsAddress() const noexcept { return buf_.params->address(); }
     std::uint32_t triangleCount() const noexcept { return triangles_; }
     std::uint32_t maxGroupsX() const noexcept { return max_groups_x_; }
     // After the recorded graph ran: reads the header. Complete: `out` holds the pairs
@@ -232,10 +237,20 @@ private:
         vk::Pipeline setup, big, scan, fill, sweep, deep, args, pairs;
     } pipes_;
     vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
+    // A row of table_: its id and its buffer (which stays in place while the table lives).
+    struct Row {
+        BufferId id = 0;
+        vk::Buffer* buffer = nullptr;
+        vk::Buffer* operator->() const noexcept { return buffer; }
+        operator vk::Buffer&() const noexcept { return *buffer; }
+    };
+    void addRows();
+    std::unique_ptr<BufferTable> own_table_;  // without a caller's table
+    BufferTable* table_ = nullptr;
     struct Buffers {
-        vk::Buffer params, objects, object_flags, pair_mask, projection, header, header_rb;
-        vk::Buffer triangles, geometry, counts, offsets, block_sums, entries, entry_cells;
-        vk::Buffer big_items, deep_items, candidates, survivors, args, gpu_triangles, marks;
+        Row params, objects, object_flags, pair_mask, projection, header, header_rb;
+        Row triangles, geometry, counts, offsets, block_sums, entries, entry_cells;
+        Row big_items, deep_items, candidates, survivors, args, gpu_triangles, marks;
     } buf_;
     // The prepared run.
     std::vector<gpu::ObjectGpu> objects_;
@@ -243,7 +258,6 @@ private:
     VkDeviceAddress projection_address_ = 0;
     float proximity_pad_ = 0;
     bool survivors_on_device_ = false;
-    vk::MemoryKind survivors_in_ = vk::MemoryKind::Readback;  // where buf_.survivors lives
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish

@@ -26,13 +26,13 @@ graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage 
 
 CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projection) {
     survivor_count_ = gpu_triangle_count_ = 0;  // until this recording's finish()
-    const VkDeviceAddress params = buf_.params.address();
+    const VkDeviceAddress params = buf_.params->address();
     // The count buffer is cleared and scanned over its capacity while that is within a
     // quarter of this run's cells (the shaders stop at the params' cell and block counts):
     // a deforming scene whose resolution moves by a few cells records the same commands,
     // so the executor submits its command buffer again instead of recording it.
     const std::uint64_t exact_cells = std::uint64_t(resolution_) * resolution_;
-    const std::uint64_t capacity_cells = buf_.counts.size() / 4;
+    const std::uint64_t capacity_cells = buf_.counts->size() / 4;
     const std::uint64_t cells = capacity_cells <= exact_cells + exact_cells / 4 ? capacity_cells : exact_cells;
     const std::uint64_t blocks = (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const std::uint64_t tri_groups = groupsFor(triangles_);
@@ -52,11 +52,11 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
     const auto args = g.importBuffer("cells-args", buf_.args);
     const auto gpu_triangles = g.importBuffer("cells-gpu-triangles", buf_.gpu_triangles, true);
     const auto marks = g.importBuffer("cells-marks", buf_.marks);
-    const VkBuffer marks_buffer = has_download_ ? buf_.marks.handle() : VK_NULL_HANDLE;
+    const VkBuffer marks_buffer = has_download_ ? buf_.marks->handle() : VK_NULL_HANDLE;
     const VkDeviceSize marks_bytes = (VkDeviceSize(std::max(triangles_, 1u)) + 31) / 32 * 4;
-    const VkBuffer args_buffer = buf_.args.handle();
-    const VkBuffer header_buffer = buf_.header.handle();
-    const VkBuffer counts_buffer = buf_.counts.handle();
+    const VkBuffer args_buffer = buf_.args->handle();
+    const VkBuffer header_buffer = buf_.header->handle();
+    const VkBuffer counts_buffer = buf_.counts->handle();
     const auto& P = pipes_;
     const std::uint32_t max_x = max_groups_x_;
 
@@ -153,9 +153,9 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
 // The pair pass over chunk `chunk` of the candidates (its arguments first), then the header
 // to the host: the last passes of a run, and all of a later chunk's submission.
 void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint32_t chunk) {
-    const VkDeviceAddress params = buf_.params.address();
-    const VkBuffer args_buffer = buf_.args.handle();
-    const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
+    const VkDeviceAddress params = buf_.params->address();
+    const VkBuffer args_buffer = buf_.args->handle();
+    const VkBuffer header_buffer = buf_.header->handle(), header_rb_buffer = buf_.header_rb->handle();
     const auto& P = pipes_;
     // The double-precision variant wherever the device has it (P.use_filter switches the
     // filter): it also computes download objects' world vertices as the CPU does.

@@ -7,7 +7,7 @@
 namespace vkcollide::passes {
 
 Result<std::unique_ptr<BroadPhaseMethod>> ReliableMethod::create(vk::Device& device, BufferTable& table, const CoreBuffers& core) {
-    auto cells = CellStage::create(device);
+    auto cells = CellStage::create(device, &table);  // its buffers: rows of the broad phase's table
     if (!cells) return cells.error();
     return std::unique_ptr<BroadPhaseMethod>(new ReliableMethod(device, table, core, std::move(*cells)));
 }

@@ -19,6 +19,13 @@ BufferId BufferTable::add(const BufferRow& row) {
     return static_cast<BufferId>(entries_.size() - 1);
 }
 
+TableRow BufferTable::addOwned(const char* name, vk::MemoryKind kind, VkBufferUsageFlags usage) {
+    BufferRow row{name, kind, nullptr};
+    row.usage = usage;
+    const BufferId id = add(row);
+    return {id, &entries_[id].buffer};
+}
+
 std::vector<VkDeviceSize> BufferTable::plan(const RunShape& shape) const {
     std::vector<VkDeviceSize> sizes;
     for (const Entry& e : entries_) sizes.push_back(e.row.size ? e.row.size(shape) : e.run_size);

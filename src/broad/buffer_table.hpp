@@ -58,9 +58,20 @@ struct RowSize {
     vk::MemoryKind kind;
 };
 
+// An owner-sized row as its owner holds it: the id, and the buffer, which stays in place
+// while the table lives.
+struct TableRow {
+    BufferId id = 0;
+    vk::Buffer* buffer = nullptr;
+    vk::Buffer* operator->() const noexcept { return buffer; }
+    operator vk::Buffer&() const noexcept { return *buffer; }
+};
+
 class BufferTable {
 public:
     BufferId add(const BufferRow& row);
+    // A row its owner sizes (reserve() with RowSize) and imports itself.
+    TableRow addOwned(const char* name, vk::MemoryKind kind, VkBufferUsageFlags usage = 0);
 
     // Bytes each row needs for `shape`, in row order.
     std::vector<VkDeviceSize> plan(const RunShape& shape) const;

@@ -30,11 +30,26 @@ static_assert(gpu::kProximityOverflow == kDeviceProximityOverflow && gpu::kProxi
 
 }  // namespace
 
-Result<std::unique_ptr<ProximityStage>> ProximityStage::create(vk::Device& device) {
+Result<std::unique_ptr<ProximityStage>> ProximityStage::create(vk::Device& device, passes::BufferTable& table) {
     if (!device.shader_float64)
         return Error(ErrorCode::UnsupportedFeature,
                      "proximity computes distances in double on the GPU and needs shaderFloat64, which " + device.info.name + " lacks");
-    std::unique_ptr<ProximityStage> stage(new ProximityStage(device));
+    std::unique_ptr<ProximityStage> stage(new ProximityStage(device, table));
+    using vk::MemoryKind;
+    Buffers& b = stage->buf_;
+    b.params = table.addOwned("proximity-params", MemoryKind::Upload);
+    b.owned = table.addOwned("proximity-owned", MemoryKind::Upload);
+    b.object_ids = table.addOwned("proximity-object-ids", MemoryKind::Upload);
+    b.vertex_base = table.addOwned("proximity-vertex-base", MemoryKind::Upload);
+    b.header = table.addOwned("proximity-header", MemoryKind::DeviceLocal);
+    b.header_rb = table.addOwned("proximity-header-readback", MemoryKind::Readback);
+    b.records = table.addOwned("proximity-records", MemoryKind::DeviceLocal);
+    b.sorted = table.addOwned("proximity-sorted", MemoryKind::Readback);
+    b.order = table.addOwned("proximity-order", MemoryKind::DeviceLocal);
+    b.counts = table.addOwned("proximity-counts", MemoryKind::DeviceLocal);
+    b.offsets = table.addOwned("proximity-offsets", MemoryKind::DeviceLocal);
+    b.block_sums = table.addOwned("proximity-block-sums", MemoryKind::DeviceLocal);
+    b.args = table.addOwned("proximity-args", MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     auto p = vk::Pipeline::createCompute(device, shaders::proximity_pairs_comp, {}, sizeof(gpu::Push), "proximity-pairs");
     if (!p) return p.error();
     stage->pipeline_ = std::move(*p);
@@ -44,15 +59,10 @@ Result<std::unique_ptr<ProximityStage>> ProximityStage::create(vk::Device& devic
     return stage;
 }
 
-Result<void> ProximityStage::grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name) {
-    size = std::max<VkDeviceSize>(size, 16);
-    if (buffer.valid() && buffer.size() >= size) return {};
-    buffer.reset();
-    const VkBufferUsageFlags usage = &buffer == &buf_.args ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0;
-    auto made = vk::Buffer::create(*device_, size, usage, kind, name);
-    if (!made) return made.error();
-    buffer = std::move(*made);
-    return {};
+// A row at least `size` bytes (16 at least: every buffer exists), by the table's memory check.
+Result<void> ProximityStage::grow(const Row& row, VkDeviceSize size, vk::MemoryKind kind) {
+    const passes::RowSize want{row.id, std::max<VkDeviceSize>(size, 16), kind};
+    return table_->reserve(*device_, std::span(&want, 1), "proximity");
 }
 
 Result<void> ProximityStage::prepare(const passes::CellStage& cells, std::span<const passes::GpuMesh> meshes, double distance,
@@ -75,21 +85,21 @@ Result<void> ProximityStage::prepare(const passes::CellStage& cells, std::span<c
     objects_ = static_cast<std::uint32_t>(meshes.size());
     buckets_ = static_cast<std::uint32_t>(2 * vertices);
     const VkDeviceSize blocks = (VkDeviceSize(buckets_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
-    for (auto ok : {grow(buf_.params, sizeof(gpu::ProximityParams), MemoryKind::Upload, "proximity-params"),
-                    grow(buf_.owned, (tris + 3) / 4 * 4, MemoryKind::Upload, "proximity-owned"),
-                    grow(buf_.object_ids, meshes.size() * 4, MemoryKind::Upload, "proximity-object-ids"),
-                    grow(buf_.vertex_base, meshes.size() * 4, MemoryKind::Upload, "proximity-vertex-base"),
-                    grow(buf_.header, sizeof(gpu::ProximityHeader), MemoryKind::DeviceLocal, "proximity-header"),
-                    grow(buf_.header_rb, sizeof(gpu::ProximityHeader), MemoryKind::Readback, "proximity-header-readback"),
-                    grow(buf_.counts, VkDeviceSize(buckets_) * 4, MemoryKind::DeviceLocal, "proximity-counts"),
-                    grow(buf_.offsets, (VkDeviceSize(buckets_) + 1) * 4, MemoryKind::DeviceLocal, "proximity-offsets"),
-                    grow(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal, "proximity-block-sums"),
-                    grow(buf_.args, 12, MemoryKind::DeviceLocal, "proximity-args")})
+    for (auto ok : {grow(buf_.params, sizeof(gpu::ProximityParams), MemoryKind::Upload),
+                    grow(buf_.owned, (tris + 3) / 4 * 4, MemoryKind::Upload),
+                    grow(buf_.object_ids, meshes.size() * 4, MemoryKind::Upload),
+                    grow(buf_.vertex_base, meshes.size() * 4, MemoryKind::Upload),
+                    grow(buf_.header, sizeof(gpu::ProximityHeader), MemoryKind::DeviceLocal),
+                    grow(buf_.header_rb, sizeof(gpu::ProximityHeader), MemoryKind::Readback),
+                    grow(buf_.counts, VkDeviceSize(buckets_) * 4, MemoryKind::DeviceLocal),
+                    grow(buf_.offsets, (VkDeviceSize(buckets_) + 1) * 4, MemoryKind::DeviceLocal),
+                    grow(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal),
+                    grow(buf_.args, 12, MemoryKind::DeviceLocal)})
         if (!ok) return ok.error();
     if (auto ok = growRecords(); !ok) return ok.error();
-    auto* owned = static_cast<std::uint8_t*>(buf_.owned.mapped());
-    auto* ids = static_cast<std::uint32_t*>(buf_.object_ids.mapped());
-    auto* bases = static_cast<std::uint32_t*>(buf_.vertex_base.mapped());
+    auto* owned = static_cast<std::uint8_t*>(buf_.owned->mapped());
+    auto* ids = static_cast<std::uint32_t*>(buf_.object_ids->mapped());
+    auto* bases = static_cast<std::uint32_t*>(buf_.vertex_base->mapped());
     std::uint64_t at = 0, vertex_at = 0;
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const passes::GpuMesh& m = meshes[i];
@@ -105,10 +115,10 @@ Result<void> ProximityStage::prepare(const passes::CellStage& cells, std::span<c
         bases[i] = static_cast<std::uint32_t>(vertex_at);
         vertex_at += m.vertex_count;
     }
-    buf_.vertex_base.flush();
+    buf_.vertex_base->flush();
     if (at != triangles_) return Error(ErrorCode::InvalidArgument, "proximity: the meshes' triangles are not the cell stage's");
-    buf_.owned.flush();
-    buf_.object_ids.flush();
+    buf_.owned->flush();
+    buf_.object_ids->flush();
     writeParams(cells);
     return {};
 }
@@ -116,25 +126,25 @@ Result<void> ProximityStage::prepare(const passes::CellStage& cells, std::span<c
 void ProximityStage::writeParams(const passes::CellStage& cells) {
     gpu::ProximityParams p{};
     p.cells = cells.paramsAddress();
-    p.owned = buf_.owned.address();
-    p.object_ids = buf_.object_ids.address();
-    p.vertex_base = buf_.vertex_base.address();
-    p.header = buf_.header.address();
-    p.records = buf_.records.address();
-    p.sorted = buf_.sorted.address();
-    p.order = buf_.order.address();
-    p.counts = buf_.counts.address();
-    p.offsets = buf_.offsets.address();
-    p.block_sums = buf_.block_sums.address();
-    p.args = buf_.args.address();
+    p.owned = buf_.owned->address();
+    p.object_ids = buf_.object_ids->address();
+    p.vertex_base = buf_.vertex_base->address();
+    p.header = buf_.header->address();
+    p.records = buf_.records->address();
+    p.sorted = buf_.sorted->address();
+    p.order = buf_.order->address();
+    p.counts = buf_.counts->address();
+    p.offsets = buf_.offsets->address();
+    p.block_sums = buf_.block_sums->address();
+    p.args = buf_.args->address();
     p.distance = distance_;
     p.capacity = capacity_;
     p.object_count = objects_;
     p.bucket_count = buckets_;
     p.block_count = static_cast<std::uint32_t>((std::uint64_t(buckets_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock);
     p.max_groups_x = max_groups_x_;
-    std::memcpy(buf_.params.mapped(), &p, sizeof p);
-    buf_.params.flush();
+    std::memcpy(buf_.params->mapped(), &p, sizeof p);
+    buf_.params->flush();
 }
 
 void ProximityStage::record(graph::Graph& g, const passes::CellStage::Resources& cells) {
@@ -146,12 +156,12 @@ void ProximityStage::record(graph::Graph& g, const passes::CellStage::Resources&
     const auto counts = g.importBuffer("proximity-counts", buf_.counts);
     const auto offsets = g.importBuffer("proximity-offsets", buf_.offsets);
     const auto sums = g.importBuffer("proximity-block-sums", buf_.block_sums);
-    const VkBuffer header_buffer = buf_.header.handle(), header_rb_buffer = buf_.header_rb.handle();
-    const VkBuffer counts_buffer = buf_.counts.handle(), sort_args = buf_.args.handle();
+    const VkBuffer header_buffer = buf_.header->handle(), header_rb_buffer = buf_.header_rb->handle();
+    const VkBuffer counts_buffer = buf_.counts->handle(), sort_args = buf_.args->handle();
     const auto args = g.importBuffer("proximity-args", buf_.args);
     const VkDeviceSize count_bytes = VkDeviceSize(std::max<std::uint32_t>(buckets_, 1)) * 4;
     const VkBuffer args_buffer = cells_args_;
-    const VkDeviceAddress params = buf_.params.address();
+    const VkDeviceAddress params = buf_.params->address();
     const vk::Pipeline* pipe = &pipeline_;
     passes::addPass(g, "proximity-clear", graph::PassKind::Transfer, passes::Stage::Proximity)
         .use(header, graph::Use::TransferDst)
@@ -218,8 +228,8 @@ void ProximityStage::record(graph::Graph& g, const passes::CellStage::Resources&
 Result<ProximityStage::Outcome> ProximityStage::finish() {
     ++runs_;
     count_ = 0;
-    buf_.header_rb.invalidate();
-    std::memcpy(&header_, buf_.header_rb.mapped(), sizeof header_);
+    buf_.header_rb->invalidate();
+    std::memcpy(&header_, buf_.header_rb->mapped(), sizeof header_);
     if (header_.flags & gpu::kProximityIncomplete)
         return Error(ErrorCode::VulkanError, "proximity: the cell stage's run did not complete (internal error: it must run again first)");
     if (header_.flags & gpu::kProximityOverflow) {
@@ -237,20 +247,20 @@ Result<ProximityStage::Outcome> ProximityStage::finish() {
         return Outcome::Rerun;
     }
     count_ = header_.count;
-    if (count_) buf_.sorted.invalidate(0, VkDeviceSize(count_) * sizeof(gpu::ProximityRecord));
+    if (count_) buf_.sorted->invalidate(0, VkDeviceSize(count_) * sizeof(gpu::ProximityRecord));
     return Outcome::Complete;
 }
 
 Result<void> ProximityStage::growRecords() {
     const VkDeviceSize n = std::max<std::uint32_t>(capacity_, 1);
-    for (auto ok : {grow(buf_.records, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::DeviceLocal, "proximity-records"),
-                    grow(buf_.sorted, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::Readback, "proximity-sorted"),
-                    grow(buf_.order, n * 16, vk::MemoryKind::DeviceLocal, "proximity-order")})
+    for (auto ok : {grow(buf_.records, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::DeviceLocal),
+                    grow(buf_.sorted, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::Readback),
+                    grow(buf_.order, n * 16, vk::MemoryKind::DeviceLocal)})
         if (!ok) return ok.error();
     // The sort loads and stores its keys as 16-byte vectors (proximity_sort.comp).
-    if (buf_.order.address() % 16 != 0)
+    if (buf_.order->address() % 16 != 0)
         return Error(ErrorCode::UnsupportedFeature, "proximity: the device placed 'proximity-order' at address " +
-                                                        std::to_string(buf_.order.address()) + ", not a multiple of 16 bytes");
+                                                        std::to_string(buf_.order->address()) + ", not a multiple of 16 bytes");
     return {};
 }
 
@@ -261,18 +271,18 @@ void ProximityStage::refresh(const passes::CellStage& cells) {
 
 std::span<const gpu::ProximityRecord> ProximityStage::records() const noexcept {
     if (!count_) return {};
-    return {static_cast<const gpu::ProximityRecord*>(buf_.sorted.mapped()), count_};
+    return {static_cast<const gpu::ProximityRecord*>(buf_.sorted->mapped()), count_};
 }
 
 DeviceProximity ProximityStage::view() const noexcept {
-    return {buf_.sorted.handle(), buf_.sorted.address(), buf_.header.handle(), buf_.header.address(), capacity_};
+    return {buf_.sorted->handle(), buf_.sorted->address(), buf_.header->handle(), buf_.header->address(), capacity_};
 }
 
 std::uint64_t ProximityStage::memoryBytes() const noexcept {
     std::uint64_t total = 0;
-    for (const vk::Buffer* b : {&buf_.params, &buf_.owned, &buf_.object_ids, &buf_.vertex_base, &buf_.header, &buf_.header_rb,
-                                &buf_.records, &buf_.sorted, &buf_.order, &buf_.counts, &buf_.offsets, &buf_.block_sums, &buf_.args})
-        total += b->memoryBytes();
+    for (const Row* r : {&buf_.params, &buf_.owned, &buf_.object_ids, &buf_.vertex_base, &buf_.header, &buf_.header_rb, &buf_.records,
+                         &buf_.sorted, &buf_.order, &buf_.counts, &buf_.offsets, &buf_.block_sums, &buf_.args})
+        total += (*r)->memoryBytes();
     return total;
 }
 

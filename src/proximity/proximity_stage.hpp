@@ -33,8 +33,9 @@ namespace vkcollide::proximity {
 
 class ProximityStage {
 public:
-    // Needs shaderFloat64 (UnsupportedFeature otherwise, naming the device).
-    static Result<std::unique_ptr<ProximityStage>> create(vk::Device& device);
+    // Needs shaderFloat64 (UnsupportedFeature otherwise, naming the device). Its buffers
+    // are rows of `table` (the broad phase's, which must outlive the stage).
+    static Result<std::unique_ptr<ProximityStage>> create(vk::Device& device, passes::BufferTable& table);
 
     // After CellStage::prepare(): the run's meshes (each with its owned primitives, one per
     // triangle: InvalidArgument naming the mesh otherwise), the distance (world units) and
@@ -63,15 +64,17 @@ public:
     std::uint64_t memoryBytes() const noexcept;
 
 private:
-    explicit ProximityStage(vk::Device& device) : device_(&device) {}
-    Result<void> grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name);
+    ProximityStage(vk::Device& device, passes::BufferTable& table) : device_(&device), table_(&table) {}
+    using Row = passes::TableRow;
+    Result<void> grow(const Row& row, VkDeviceSize size, vk::MemoryKind kind);
     Result<void> growRecords();  // records, sorted and order for capacity_
     void writeParams(const passes::CellStage& cells);
 
     vk::Device* device_;
     vk::Pipeline pipeline_, sort_pipeline_;
-    struct Buffers {
-        vk::Buffer params, owned, object_ids, vertex_base, header, header_rb, records, sorted, order, counts, offsets, block_sums, args;
+    passes::BufferTable* table_;
+    struct Buffers {  // rows of table_
+        Row params, owned, object_ids, vertex_base, header, header_rb, records, sorted, order, counts, offsets, block_sums, args;
     } buf_;
     std::uint32_t objects_ = 0, buckets_ = 0;
     double distance_ = 0;

@@ -237,13 +237,7 @@ private:
         vk::Pipeline setup, big, scan, fill, sweep, deep, args, pairs;
     } pipes_;
     vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
-    // A row of table_: its id and its buffer (which stays in place while the table lives).
-    struct Row {
-        BufferId id = 0;
-        vk::Buffer* buffer = nullptr;
-        vk::Buffer* operator->() const noexcept { return buffer; }
-        operator vk::Buffer&() const noexcept { return *buffer; }
-    };
+    using Row = TableRow;  // rows of table_
     void addRows();
     std::unique_ptr<BufferTable> own_table_;  // without a caller's table
     BufferTable* table_ = nullptr;

@@ -12,10 +12,7 @@ namespace vkcollide::passes {
 void CellStage::addRows() {
     using vk::MemoryKind;
     auto row = [this](Row& out, const char* name, MemoryKind kind, VkBufferUsageFlags usage = 0) {
-        BufferRow r{name, kind, nullptr};
-        r.usage = usage;
-        out.id = table_->add(r);
-        out.buffer = &table_->buffer(out.id);
+        out = table_->addOwned(name, kind, usage);
     };
     row(buf_.params, "cells-params", MemoryKind::Upload);
     row(buf_.objects, "cells-objects", MemoryKind::Upload);

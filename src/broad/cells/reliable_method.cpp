@@ -59,7 +59,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     if (auto ok = cells_->prepare(in, settings); !ok) return ok;
     if (proximity_on_) {
         if (!proximity_) {
-            auto made = proximity::ProximityStage::create(*device_);
+            auto made = proximity::ProximityStage::create(*device_, *table_);  // its buffers: rows of the table
             if (!made) return made.error();
             proximity_ = std::move(*made);
         }

@@ -67,6 +67,12 @@ struct TableRow {
     operator vk::Buffer&() const noexcept { return *buffer; }
 };
 
+// What an owner-sized row needs, at least 16 bytes: every such buffer exists, so its
+// address is valid in a run that does not use it.
+inline RowSize rowSize(const TableRow& row, VkDeviceSize bytes, vk::MemoryKind kind) {
+    return {row.id, bytes < 16 ? VkDeviceSize(16) : bytes, kind};
+}
+
 class BufferTable {
 public:
     BufferId add(const BufferRow& row);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstring>
+#include <iterator>
+#include <span>
 #include <string>
 
 #include "broad/dispatch.hpp"
@@ -59,15 +61,8 @@ Result<std::unique_ptr<ProximityStage>> ProximityStage::create(vk::Device& devic
     return stage;
 }
 
-// A row at least `size` bytes (16 at least: every buffer exists), by the table's memory check.
-Result<void> ProximityStage::grow(const Row& row, VkDeviceSize size, vk::MemoryKind kind) {
-    const passes::RowSize want{row.id, std::max<VkDeviceSize>(size, 16), kind};
-    return table_->reserve(*device_, std::span(&want, 1), "proximity");
-}
-
 Result<void> ProximityStage::prepare(const passes::CellStage& cells, std::span<const passes::GpuMesh> meshes, double distance,
                                      std::uint32_t capacity) {
-    using vk::MemoryKind;
     distance_ = distance;
     triangles_ = cells.triangleCount();
     max_groups_x_ = cells.maxGroupsX();
@@ -77,26 +72,13 @@ Result<void> ProximityStage::prepare(const passes::CellStage& cells, std::span<c
     const std::uint64_t automatic = std::min<std::uint64_t>(kMaxProximityCapacity, std::max<std::uint64_t>(8ull * triangles_, 4096));
     capacity_ = fixed_capacity_ ? capacity : std::max(capacity_, static_cast<std::uint32_t>(automatic));
     cells_args_ = cells.argsBuffer();
-    const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
     std::uint64_t vertices = 0;
     for (const passes::GpuMesh& m : meshes) vertices += m.vertex_count;
     if (2 * vertices + 1 >= 0x7FFFFFFFull)
         return Error(ErrorCode::InvalidArgument, "proximity: " + std::to_string(vertices) + " vertices, more than 2^30 - 1");
     objects_ = static_cast<std::uint32_t>(meshes.size());
     buckets_ = static_cast<std::uint32_t>(2 * vertices);
-    const VkDeviceSize blocks = (VkDeviceSize(buckets_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
-    for (auto ok : {grow(buf_.params, sizeof(gpu::ProximityParams), MemoryKind::Upload),
-                    grow(buf_.owned, (tris + 3) / 4 * 4, MemoryKind::Upload),
-                    grow(buf_.object_ids, meshes.size() * 4, MemoryKind::Upload),
-                    grow(buf_.vertex_base, meshes.size() * 4, MemoryKind::Upload),
-                    grow(buf_.header, sizeof(gpu::ProximityHeader), MemoryKind::DeviceLocal),
-                    grow(buf_.header_rb, sizeof(gpu::ProximityHeader), MemoryKind::Readback),
-                    grow(buf_.counts, VkDeviceSize(buckets_) * 4, MemoryKind::DeviceLocal),
-                    grow(buf_.offsets, (VkDeviceSize(buckets_) + 1) * 4, MemoryKind::DeviceLocal),
-                    grow(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal),
-                    grow(buf_.args, 12, MemoryKind::DeviceLocal)})
-        if (!ok) return ok.error();
-    if (auto ok = growRecords(); !ok) return ok.error();
+    if (auto ok = reserveRows(false); !ok) return ok.error();
     auto* owned = static_cast<std::uint8_t*>(buf_.owned->mapped());
     auto* ids = static_cast<std::uint32_t*>(buf_.object_ids->mapped());
     auto* bases = static_cast<std::uint32_t*>(buf_.vertex_base->mapped());
@@ -243,7 +225,7 @@ Result<ProximityStage::Outcome> ProximityStage::finish() {
                                                        std::to_string(kMaxProximityCapacity) + "): lower the distance");
         const std::uint64_t grown = std::uint64_t(header_.needed) + header_.needed / 4 + 1024;
         capacity_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(grown, kMaxProximityCapacity));
-        if (auto ok = growRecords(); !ok) return ok.error();
+        if (auto ok = reserveRows(true); !ok) return ok.error();
         return Outcome::Rerun;
     }
     count_ = header_.count;
@@ -251,12 +233,30 @@ Result<ProximityStage::Outcome> ProximityStage::finish() {
     return Outcome::Complete;
 }
 
-Result<void> ProximityStage::growRecords() {
+Result<void> ProximityStage::reserveRows(bool records_only) {
+    using passes::rowSize;
+    using vk::MemoryKind;
     const VkDeviceSize n = std::max<std::uint32_t>(capacity_, 1);
-    for (auto ok : {grow(buf_.records, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::DeviceLocal),
-                    grow(buf_.sorted, n * sizeof(gpu::ProximityRecord), vk::MemoryKind::Readback),
-                    grow(buf_.order, n * 16, vk::MemoryKind::DeviceLocal)})
-        if (!ok) return ok.error();
+    const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
+    const VkDeviceSize blocks = (VkDeviceSize(buckets_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
+    const passes::RowSize rows[] = {
+        rowSize(buf_.records, n * sizeof(gpu::ProximityRecord), MemoryKind::DeviceLocal),
+        rowSize(buf_.sorted, n * sizeof(gpu::ProximityRecord), MemoryKind::Readback),
+        rowSize(buf_.order, n * 16, MemoryKind::DeviceLocal),
+        // The rest only with the run (records_only: left as they are).
+        rowSize(buf_.params, sizeof(gpu::ProximityParams), MemoryKind::Upload),
+        rowSize(buf_.owned, (tris + 3) / 4 * 4, MemoryKind::Upload),
+        rowSize(buf_.object_ids, VkDeviceSize(objects_) * 4, MemoryKind::Upload),
+        rowSize(buf_.vertex_base, VkDeviceSize(objects_) * 4, MemoryKind::Upload),
+        rowSize(buf_.header, sizeof(gpu::ProximityHeader), MemoryKind::DeviceLocal),
+        rowSize(buf_.header_rb, sizeof(gpu::ProximityHeader), MemoryKind::Readback),
+        rowSize(buf_.counts, VkDeviceSize(buckets_) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.offsets, (VkDeviceSize(buckets_) + 1) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.args, 12, MemoryKind::DeviceLocal),
+    };
+    const std::string what = "proximity: " + std::to_string(capacity_) + " records for " + std::to_string(triangles_) + " triangles";
+    if (auto ok = table_->reserve(*device_, std::span(rows, records_only ? 3 : std::size(rows)), what); !ok) return ok;
     // The sort loads and stores its keys as 16-byte vectors (proximity_sort.comp).
     if (buf_.order->address() % 16 != 0)
         return Error(ErrorCode::UnsupportedFeature, "proximity: the device placed 'proximity-order' at address " +

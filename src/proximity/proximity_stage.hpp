@@ -66,8 +66,9 @@ public:
 private:
     ProximityStage(vk::Device& device, passes::BufferTable& table) : device_(&device), table_(&table) {}
     using Row = passes::TableRow;
-    Result<void> grow(const Row& row, VkDeviceSize size, vk::MemoryKind kind);
-    Result<void> growRecords();  // records, sorted and order for capacity_
+    // The rows for the prepared run through the table's one memory check; records_only:
+    // the records, sorted and order for capacity_ (after an overflow).
+    Result<void> reserveRows(bool records_only);
     void writeParams(const passes::CellStage& cells);
 
     vk::Device* device_;

@@ -52,31 +52,28 @@ Result<void> CellStage::ensureBuffers() {
     static_assert(gpu::kCellsDeepShared >= 4 * gpu::kCellsGroupSize && gpu::kCellsSmallCell >= gpu::kCellsGroupSize);
     const VkDeviceSize deep = 2 * VkDeviceSize(capacity_.entries) / gpu::kCellsSmallCell + 1;
     const MemoryKind survivors_kind = survivors_on_device_ ? MemoryKind::DeviceLocal : MemoryKind::Readback;
-    const auto sized = [](const Row& r, VkDeviceSize bytes, MemoryKind kind) {
-        return RowSize{r.id, std::max<VkDeviceSize>(bytes, 16), kind};  // every buffer exists (16 bytes when unused)
-    };
     const RowSize plan[] = {
-        sized(buf_.params, sizeof(gpu::CellsParams), MemoryKind::Upload),
-        sized(buf_.objects, objects * sizeof(gpu::ObjectGpu), MemoryKind::Upload),
-        sized(buf_.object_flags, objects * 4, MemoryKind::Upload),
-        sized(buf_.pair_mask, (objects * objects + 31) / 32 * 4, MemoryKind::Upload),
-        sized(buf_.projection, sizeof(gpu::Projection), MemoryKind::Upload),
-        sized(buf_.header, sizeof(gpu::CellsHeader), MemoryKind::DeviceLocal),
-        sized(buf_.header_rb, sizeof(gpu::CellsHeader), MemoryKind::Readback),
-        sized(buf_.triangles, tris * sizeof(gpu::CellsTriangle), MemoryKind::DeviceLocal),
-        sized(buf_.geometry, tris * sizeof(gpu::CellsGeometry), MemoryKind::DeviceLocal),
-        sized(buf_.counts, cells * 4, MemoryKind::DeviceLocal),
-        sized(buf_.offsets, (cells + 1) * 4, MemoryKind::DeviceLocal),
-        sized(buf_.block_sums, (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock * 4, MemoryKind::DeviceLocal),
-        sized(buf_.entries, VkDeviceSize(capacity_.entries) * sizeof(gpu::CellsEntry), MemoryKind::DeviceLocal),
-        sized(buf_.entry_cells, VkDeviceSize(capacity_.entries) * 4, MemoryKind::DeviceLocal),
-        sized(buf_.big_items, VkDeviceSize(capacity_.items) * 8, MemoryKind::DeviceLocal),
-        sized(buf_.deep_items, deep * 8, MemoryKind::DeviceLocal),
-        sized(buf_.candidates, VkDeviceSize(capacity_.candidates) * sizeof(gpu::CellsCandidate), MemoryKind::DeviceLocal),
-        sized(buf_.survivors, VkDeviceSize(capacity_.survivors) * 8, survivors_kind),
-        sized(buf_.args, gpu::kCellsArgsCount * 12, MemoryKind::DeviceLocal),
-        sized(buf_.gpu_triangles, has_download_ ? VkDeviceSize(capacity_.gpu_triangles) * sizeof(GpuTriangle) : 0, MemoryKind::Readback),
-        sized(buf_.marks, has_download_ ? (tris + 31) / 32 * 4 : 0, MemoryKind::DeviceLocal),
+        rowSize(buf_.params, sizeof(gpu::CellsParams), MemoryKind::Upload),
+        rowSize(buf_.objects, objects * sizeof(gpu::ObjectGpu), MemoryKind::Upload),
+        rowSize(buf_.object_flags, objects * 4, MemoryKind::Upload),
+        rowSize(buf_.pair_mask, (objects * objects + 31) / 32 * 4, MemoryKind::Upload),
+        rowSize(buf_.projection, sizeof(gpu::Projection), MemoryKind::Upload),
+        rowSize(buf_.header, sizeof(gpu::CellsHeader), MemoryKind::DeviceLocal),
+        rowSize(buf_.header_rb, sizeof(gpu::CellsHeader), MemoryKind::Readback),
+        rowSize(buf_.triangles, tris * sizeof(gpu::CellsTriangle), MemoryKind::DeviceLocal),
+        rowSize(buf_.geometry, tris * sizeof(gpu::CellsGeometry), MemoryKind::DeviceLocal),
+        rowSize(buf_.counts, cells * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.offsets, (cells + 1) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.block_sums, (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.entries, VkDeviceSize(capacity_.entries) * sizeof(gpu::CellsEntry), MemoryKind::DeviceLocal),
+        rowSize(buf_.entry_cells, VkDeviceSize(capacity_.entries) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.big_items, VkDeviceSize(capacity_.items) * 8, MemoryKind::DeviceLocal),
+        rowSize(buf_.deep_items, deep * 8, MemoryKind::DeviceLocal),
+        rowSize(buf_.candidates, VkDeviceSize(capacity_.candidates) * sizeof(gpu::CellsCandidate), MemoryKind::DeviceLocal),
+        rowSize(buf_.survivors, VkDeviceSize(capacity_.survivors) * 8, survivors_kind),
+        rowSize(buf_.args, gpu::kCellsArgsCount * 12, MemoryKind::DeviceLocal),
+        rowSize(buf_.gpu_triangles, has_download_ ? VkDeviceSize(capacity_.gpu_triangles) * sizeof(GpuTriangle) : 0, MemoryKind::Readback),
+        rowSize(buf_.marks, has_download_ ? (tris + 31) / 32 * 4 : 0, MemoryKind::DeviceLocal),
     };
     const std::string what = "cell stage: resolution " + std::to_string(resolution_) + " with " + std::to_string(triangles_) + " triangles";
     if (auto ok = table_->reserve(*device_, plan, what); !ok) return ok;

@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "api/world_impl.hpp"
+#include "contacts/contact_stage.hpp"
 #include "contacts/pair_contacts.hpp"
 #include "narrow/slots.hpp"
 
@@ -41,20 +42,14 @@ Result<void> CollisionWorld::Impl::addPairContacts(const Run& run, const passes:
 Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::DetectionResult& detected, std::span<const ObjectId> ids,
                                                DetectResult& out) {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!contact_stage) {
-        auto cs = passes::ContactStage::create(device());
-        if (!cs) return cs.error();
-        contact_stage = std::move(*cs);
-    }
-    std::vector<passes::GpuMesh> meshes;
-    meshes.reserve(detected.objects.size());
-    for (std::uint32_t i : detected.objects) meshes.push_back(run.meshes[i]);
+    // A follow-up of the slot's detection: on the objects it tested, within what is left of
+    // its deadline, on its executor and buffer table.
+    auto stage = run.detection->followUp(passes::ContactStage::create);
+    if (!stage) return stage.error();
+    auto& contact_stage = static_cast<passes::ContactStage&>(**stage);  // what ContactStage::create makes
     passes::ContactInput in;
-    in.meshes = meshes;
     in.direction = detected.directions[0];
     in.resolution = *run.settings.contacts.resolution;
-    in.timeout_ns = std::uint64_t{run.settings.limits.timeout_ms} * 1000000;
-    in.deadline = run.deadline;  // what is left of the detection's timeout
     // The filter's answers, as the narrow phase had them (detect.cpp): the kept mask, or
     // the filter itself beyond the mask's object limit.
     std::optional<Error> filter_threw;
@@ -72,9 +67,11 @@ Result<void> CollisionWorld::Impl::addContacts(const Run& run, const passes::Det
             return false;
         };
     }
-    auto r = contact_stage->run(in);
+    contact_stage.setInput(std::move(in));
+    auto ran = run.detection->runFollowUp(contact_stage);
     if (filter_threw) return *filter_threw;
-    if (!r) return r.error();
+    if (!ran) return ran.error();
+    const passes::ContactStageResult* r = &contact_stage.result();
 
     // Object pairs with intersecting triangles (ObjectIds, a < b): not contained.
     std::vector<std::array<ObjectId, 2>> touching;

@@ -357,10 +357,10 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         if (detections.last_device_pairs && detections.last_device_pairs->slot == out.device->slot)
             detections.last_device_pairs = out.device;
     }
-    // Everything the world holds: both slots' broad phases (with their cached transients and
-    // the methods' own buffers) and the uploaded meshes, in Context::deviceMemoryInUse's unit.
+    // Everything the world holds: both slots' broad phases (their tables, with every method's,
+    // stage's and the contact stage's rows, and the graph's cached transients) and the
+    // uploaded meshes, in Context::deviceMemoryInUse's unit.
     for (const Run& r : detections.runs) st.gpu_memory_bytes += r.detection ? r.detection->memoryBytes() : 0;
-    st.gpu_memory_bytes += contact_stage ? contact_stage->memoryBytes() : 0;
     for (const Object& o : registry.objects) {
         st.gpu_memory_bytes += o.vertices.memoryBytes() + o.indices.memoryBytes();
         for (const Object::VertexCopy& c : o.copies) st.gpu_memory_bytes += c.upload.memoryBytes();

@@ -16,7 +16,6 @@
 #include "api/auto_settings.hpp"
 #include "api/in_flight.hpp"
 #include "api/object_registry.hpp"
-#include "contacts/contact_stage.hpp"
 #include "core/use_guard.hpp"
 #include "vkcollide/thread_pool.hpp"
 #include "vkcollide/world.hpp"
@@ -42,9 +41,6 @@ struct CollisionWorld::Impl {
     // Declared after the objects: destroyed first, the detections wait for their work in
     // flight before the objects' buffers are freed.
     DetectionsInFlight detections;
-    // Object-level contacts (DetectSettings::contacts.objects), created at the first detection
-    // that asks for them; used by collect(), one at a time.
-    std::unique_ptr<passes::ContactStage> contact_stage;
 
     // A detection met a lost device (WorldState::DeviceLost): every later one fails at once.
     bool device_lost = false;

@@ -207,12 +207,20 @@ Result<void> BroadPhase::prepareRun(std::span<const GpuMesh> meshes, const Broad
 }
 
 RunView BroadPhase::view() const {
-    return {run_.settings, run_.meshes, run_.frame, table_.buffer(core_.frame).address(), run_.any_gpu_check, run_.objects};
+    return {run_.settings, run_.meshes, run_.frame, table_.buffer(core_.frame).address(), run_.any_gpu_check, run_.objects,
+            table_.buffer(core_.objects).address()};
 }
 
-void BroadPhase::record(graph::Graph& g, Recording what) {
+void BroadPhase::record(graph::Graph& g, Recording what, FollowUpStage* follow_up) {
     const Clock::time_point t0 = Clock::now();
     const RunView run = view();
+    if (what == Recording::FollowUp) {
+        // Its own rows only: what the run wrote stays, and the stage reads none of it but
+        // the objects (uploaded by the host).
+        follow_up->record(g, run);
+        run_.host.declare_ms += msSince(t0);
+        return;
+    }
     const GraphBuffers buffers = table_.import(g);
     method_->import(g);
     if (what == Recording::Again) {
@@ -336,17 +344,39 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     return {};
 }
 
-// The method's Again passes, on the same executor within what is left of the run's
-// deadline (nothing starts after it ends); their times join the run's.
-Result<void> BroadPhase::runAgain(BroadPhaseResult& io_result) {
+Result<graph::ExecutionReport> BroadPhase::runMore(Recording what, FollowUpStage* follow_up, const char* what_runs) {
     const BroadPhaseSettings& s = run_.settings;
     if (s.deadline && waitNs(s) == 0)
-        return timeoutOfRun(s, Error(ErrorCode::Timeout, "deadline passed before the method's passes could run again"));
+        return timeoutOfRun(s, Error(ErrorCode::Timeout, std::string("deadline passed before ") + what_runs + " could run"));
     graph::Graph g;
-    record(g, Recording::Again);
+    record(g, what, follow_up);
     auto report = executor_.run(g, waitNs(s));
     if (!report) return timeoutOfRun(s, report.error());
-    addTimings(io_result, *report);
+    return report;
+}
+
+Result<FollowUpStage*> BroadPhase::followUp(FollowUpFactory factory) {
+    for (auto& [made_by, stage] : follow_ups_)
+        if (made_by == factory) return stage.get();
+    auto stage = factory(*device_, table_);
+    if (!stage) return stage.error();
+    follow_ups_.emplace_back(factory, std::move(*stage));
+    return follow_ups_.back().second.get();
+}
+
+Result<void> BroadPhase::runFollowUp(FollowUpStage& stage) {
+    if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it before a follow-up stage");
+    const RunView run = view();
+    auto step = stage.begin(run);
+    for (std::uint32_t submissions = 0; step && *step == Collected::Again; ++submissions) {
+        if (submissions > kMaxMethodAgains)
+            return Error(ErrorCode::VulkanError, std::string(stage.name()) + " asked for more than " + std::to_string(kMaxMethodAgains) +
+                                                     " submissions (internal error)");
+        auto report = runMore(Recording::FollowUp, &stage, stage.name());
+        if (!report) return report.error();
+        step = stage.collect(run, *report);
+    }
+    if (!step) return step.error();
     return {};
 }
 
@@ -386,7 +416,10 @@ Result<BroadPhaseResult> BroadPhase::collect() {
         if (agains == kMaxMethodAgains)
             return Error(ErrorCode::VulkanError, "the broad phase's method asked for more than " + std::to_string(kMaxMethodAgains) +
                                                      " submissions after the first (internal error)");
-        if (auto ok = runAgain(result); !ok) return ok.error();
+        // Its times join the run's.
+        auto more = runMore(Recording::Again, nullptr, "the method's passes");
+        if (!more) return more.error();
+        addTimings(result, *more);
     }
     result.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return result;

@@ -24,6 +24,7 @@
 #include "broad/broad_phase_types.hpp"
 #include "broad/buffer_table.hpp"
 #include "broad/common_stages.hpp"
+#include "broad/follow_up.hpp"
 #include "broad/method.hpp"
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
@@ -80,9 +81,17 @@ public:
     // indices); at most one per kind of problem, so other objects may be bad too.
     const std::vector<ObjectFault>& faults() const noexcept { return faults_; }
     // Bytes of the GPU buffers the broad phase holds (its own, not the meshes').
-    std::uint64_t memoryBytes() const noexcept { return table_.bytes() + method_->memoryBytes() + executor_.memoryBytes(); }
+    // Every buffer is a row of its table (the methods', their stages' and the follow-ups').
+    std::uint64_t memoryBytes() const noexcept { return table_.bytes() + executor_.memoryBytes(); }
     // The method's device pairs (BroadPhaseSettings::device_pairs) of the run started last.
     std::optional<DevicePairsView> devicePairs() const { return method_->devicePairs(); }
+    // The follow-up stage `factory` makes (broad/follow_up.hpp), created on first use with
+    // its rows in this broad phase's table and kept while the broad phase lives.
+    [[nodiscard]] Result<FollowUpStage*> followUp(FollowUpFactory factory);
+    // Runs `stage` after the last run was collected: its submissions on this executor,
+    // each within what is left of that run's deadline (timeout_ns without one), until it
+    // answers Done. A Timeout leaves its work in flight (busy()), like a run's.
+    [[nodiscard]] Result<void> runFollowUp(FollowUpStage& stage);
     // The projection the last run sampled with, as the GPU holds it (the fit's output, or
     // the caller's region as uploaded). For tests: BroadPhaseResult::projection is the host's.
     gpu::Projection gpuProjection() const;
@@ -97,10 +106,13 @@ private:
     // The one recording path (timed into run_.host.declare_ms): front and the method's
     // measuring passes, its main passes, then the header readback; or the method's Again
     // passes alone.
-    enum class Recording { Measure, Main, Whole, Again };
-    void record(graph::Graph& g, Recording what);
-    // After the method's collect() answered Again: records and runs its Again passes.
-    Result<void> runAgain(BroadPhaseResult& io_result);
+    // or a follow-up stage's next submission.
+    enum class Recording { Measure, Main, Whole, Again, FollowUp };
+    void record(graph::Graph& g, Recording what, FollowUpStage* follow_up = nullptr);
+    // One more submission after a collect() (Recording::Again or FollowUp), run and waited
+    // for within what is left of the run's deadline; nothing starts after it ends.
+    // `what` names it in the error.
+    Result<graph::ExecutionReport> runMore(Recording what, FollowUpStage* follow_up, const char* what_runs);
     gpu::Header readHeader() const;
     Result<void> checkInputs(const gpu::Header& header);
     Result<void> checkExtent(const gpu::Header& header) const;
@@ -111,6 +123,8 @@ private:
     CoreBuffers core_{};
     std::unique_ptr<CommonStages> common_;
     std::unique_ptr<BroadPhaseMethod> method_;
+    // Follow-up stages by the factory that made them (their rows are in table_).
+    std::vector<std::pair<FollowUpFactory, std::unique_ptr<FollowUpStage>>> follow_ups_;
     bool pending_ = false;
     std::vector<ObjectFault> faults_;
     // The run being recorded or in flight (RunView refers to it).

@@ -19,9 +19,10 @@ BufferId BufferTable::add(const BufferRow& row) {
     return static_cast<BufferId>(entries_.size() - 1);
 }
 
-TableRow BufferTable::addOwned(const char* name, vk::MemoryKind kind, VkBufferUsageFlags usage) {
+TableRow BufferTable::addOwned(const char* name, vk::MemoryKind kind, VkBufferUsageFlags usage, bool engine_reads) {
     BufferRow row{name, kind, nullptr};
     row.usage = usage;
+    row.engine_reads = engine_reads;
     const BufferId id = add(row);
     return {id, &entries_[id].buffer};
 }
@@ -69,11 +70,21 @@ Result<void> BufferTable::grow(vk::Device& device, std::size_t i, VkDeviceSize b
     Entry& e = entries_[i];
     e.run_size = bytes;
     if (bytes == 0 || (e.buffer.valid() && e.buffer.size() >= bytes)) return {};
-    e.buffer.reset();  // free the smaller one first: peak memory is the new size, not both
+    drop(e);  // free the smaller one first: peak memory is the new size, not both
     auto r = vk::Buffer::create(device, bytes, e.row.usage, e.kind, e.row.name);
     if (!r) return r.error();
     e.buffer = std::move(*r);
     return {};
+}
+
+void BufferTable::drop(Entry& e) {
+    if (e.row.engine_reads && e.buffer.valid()) replaced_new_.push_back(std::move(e.buffer));
+    e.buffer.reset();
+}
+
+void BufferTable::retire() {
+    replaced_old_ = std::move(replaced_new_);
+    replaced_new_.clear();
 }
 
 Result<void> BufferTable::reserve(vk::Device& device, const RunShape& shape) {
@@ -92,7 +103,7 @@ Result<void> BufferTable::reserve(vk::Device& device, std::span<const RowSize> r
     for (const RowSize& r : rows) {
         Entry& e = entries_.at(r.id);
         if (e.kind != r.kind) {
-            e.buffer.reset();  // a buffer in the other kind of memory is made again
+            drop(e);  // a buffer in the other kind of memory is made again
             e.kind = r.kind;
         }
         sizes[r.id] = r.bytes;
@@ -128,6 +139,8 @@ std::vector<std::pair<BufferId, VkDeviceSize>> BufferTable::cleared() const {
 std::uint64_t BufferTable::bytes() const noexcept {
     std::uint64_t n = 0;
     for (const Entry& e : entries_) n += e.buffer.valid() ? e.buffer.memoryBytes() : 0;
+    for (const auto* list : {&replaced_new_, &replaced_old_})
+        for (const vk::Buffer& b : *list) n += b.memoryBytes();
     return n;
 }
 

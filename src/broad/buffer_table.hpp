@@ -8,7 +8,8 @@
 // come from what the GPU counted (the cell stage's capacities, grown after an overflow)
 // adds rows it sizes itself (BufferRow::size null) and reserves them when it knows them;
 // the memory check covers every row either way. Buffers only grow: a run that needs less
-// keeps the bigger buffer. A row's buffer stays where it is for the table's life.
+// keeps the bigger buffer. A row's buffer stays where it is for the table's life, except
+// that a grown row the engine reads (device pairs) keeps its old buffer until retire().
 #pragma once
 
 #include <cstdint>
@@ -48,6 +49,9 @@ struct BufferRow {
     bool cleared = false;
     // Usage beyond storage, transfer and device address (e.g. indirect dispatch arguments).
     VkBufferUsageFlags usage = 0;
+    // The engine reads it after a run (device pairs): a buffer it replaces is kept until
+    // retire() was called twice more, instead of being freed at once.
+    bool engine_reads = false;
 };
 
 // What an owner-sized row needs for the run: its bytes and, where that changes between
@@ -77,7 +81,10 @@ class BufferTable {
 public:
     BufferId add(const BufferRow& row);
     // A row its owner sizes (reserve() with RowSize) and imports itself.
-    TableRow addOwned(const char* name, vk::MemoryKind kind, VkBufferUsageFlags usage = 0);
+    TableRow addOwned(const char* name, vk::MemoryKind kind, VkBufferUsageFlags usage = 0, bool engine_reads = false);
+    // At a detection's start: frees the engine-read buffers replaced before the last call,
+    // so reads the engine ordered before the next detection never meet a freed buffer.
+    void retire();
 
     // Bytes each row needs for `shape`, in row order.
     std::vector<VkDeviceSize> plan(const RunShape& shape) const;
@@ -100,7 +107,7 @@ public:
     vk::Buffer& buffer(BufferId id) { return entries_.at(id).buffer; }
     const vk::Buffer& buffer(BufferId id) const { return entries_.at(id).buffer; }
     bool used(BufferId id) const { return entries_.at(id).run_size > 0; }
-    // Bytes of every buffer held (not only this run's).
+    // Bytes of every buffer held (not only this run's; replaced engine-read ones too).
     std::uint64_t bytes() const noexcept;
 
 private:
@@ -114,7 +121,11 @@ private:
     Result<void> checkFits(const vk::Device& device, const std::vector<VkDeviceSize>& sizes, const std::string& what) const;
     // Makes entry i's buffer at least `bytes` in its kind (freeing the smaller one first).
     Result<void> grow(vk::Device& device, std::size_t i, VkDeviceSize bytes);
+    // Replaces entry i's buffer (freed, or kept for retire() when the engine reads it).
+    void drop(Entry& e);
     std::deque<Entry> entries_;  // a deque: rows added later leave the others' buffers in place
+    // Engine-read buffers replaced since the last retire(), and before it.
+    std::vector<vk::Buffer> replaced_new_, replaced_old_;
 };
 
 }  // namespace vkcollide::passes

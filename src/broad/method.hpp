@@ -11,7 +11,9 @@
 // buffers overflowed grows them and answers Again, and the broad phase records
 // Phase::Again and submits it on the same executor, within the same deadline, until the
 // method answers Done. BroadPhase::record is the one recording path for all of them, and
-// the broad phase's executor the one that submits: a method owns no submissions.
+// the broad phase's executor the one that submits: a method owns no submissions. A stage
+// that runs after a collected run (broad/follow_up.hpp: the contact stage) takes the same
+// path.
 //
 // PeelingMethod (the paper: sampling, merging, separation, packing) returns triangle
 // records; ReliableMethod (broad/cells/: the cell stage) measures nothing, runs in one
@@ -77,7 +79,8 @@ public:
     // submission, or null in submit(), where `predicted_layers` is the caller's prediction
     // of the depth (what the last run measured).
     [[nodiscard]] virtual Result<void> begin(const RunView& run, const gpu::Header* measured, std::uint32_t predicted_layers) = 0;
-    // Its own resources (outside the table) into a graph about to be recorded.
+    // The rows it sizes itself (BufferTable::addOwned, which import() skips) into a graph
+    // about to be recorded.
     virtual void import(graph::Graph& g) = 0;
     // Its passes of `phase` (a method without measuring passes records nothing for Measure).
     virtual void record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const = 0;
@@ -87,8 +90,6 @@ public:
     // After collect() failed with InvalidMesh: the object (run index) the method's own
     // input checks blamed, if any (the broad phase adds it to its ObjectFaults).
     virtual std::optional<ObjectFault> fault() const { return std::nullopt; }
-    // Bytes of GPU memory the method holds outside the table.
-    virtual std::uint64_t memoryBytes() const noexcept { return 0; }
     // With BroadPhaseSettings::device_pairs: where the run started last writes its sorted
     // pairs on the GPU (valid from begin() on); nullopt when it writes none.
     virtual std::optional<DevicePairsView> devicePairs() const { return std::nullopt; }

@@ -29,6 +29,7 @@ struct RunView {
     VkDeviceAddress frame_address = 0;
     bool any_gpu_check = false;  // some mesh has check_on_gpu
     std::span<const gpu::ObjectGpu> objects;  // the meshes as uploaded (triangle bases, transforms)
+    VkDeviceAddress objects_address = 0;      // where the GPU reads them (gpu::Frame::objects)
 };
 
 // The table's buffers as resources of one graph (BufferTable::import); invalid ids for

@@ -1,7 +1,7 @@
 // The contact stage's host geometry: which object pairs are candidates (closed, allowed,
 // world boxes overlapping), the grid of rays over where their boxes overlap, the fixed-
 // point scale of the GPU sums, and the sums turned back into world-space contacts.
-// Host only (no device); contact_stage.cpp uses it between its two submissions.
+// Host only (no device); contact_stage.cpp uses it between its two submissions and after.
 #pragma once
 
 #include <array>
@@ -11,10 +11,18 @@
 #include <vector>
 
 #include "broad/projection.hpp"
-#include "contacts/contact_stage.hpp"
 #include "contacts/contacts.h"
 
 namespace vkcollide::passes {
+
+// One candidate pair's sums, in world units.
+struct StageContact {
+    std::uint32_t a = 0, b = 0;      // run indices, a < b
+    double volume = 0;
+    std::array<double, 3> normal{};  // unit, from a into b; zero when undefined
+    double depth = 0;
+    std::array<double, 3> point{};   // centroid (volume > 0) or the middle of the boxes' overlap
+};
 
 struct ContactCandidates {
     std::vector<std::array<std::uint32_t, 2>> pairs;  // a < b, sorted

@@ -37,55 +37,54 @@ std::uint32_t contactPairHash(std::uint32_t a, std::uint32_t b) {
     return h ^ (h >> 15);
 }
 
-Result<std::unique_ptr<ContactStage>> ContactStage::create(vk::Device& device) {
-    std::unique_ptr<ContactStage> cs(new ContactStage(device));
+Result<std::unique_ptr<FollowUpStage>> ContactStage::create(vk::Device& device, BufferTable& table) {
+    std::unique_ptr<ContactStage> cs(new ContactStage(device, table));
     auto& P = cs->pipes_;
     for (auto r : {makeCompute(device, P.bounds, shaders::contacts_bounds_comp, "contacts-bounds"),
                    makeCompute(device, P.setup, shaders::contacts_setup_comp, "contacts-setup"),
                    makeCompute(device, P.tiles, shaders::contacts_tiles_comp, "contacts-tiles"),
                    makeCompute(device, P.walk, shaders::contacts_walk_comp, "contacts-walk")})
         if (!r) return r.error();
-    return cs;
+    cs->addRows();
+    return std::unique_ptr<FollowUpStage>(std::move(cs));
 }
 
-Result<void> ContactStage::ensure(vk::Buffer& b, VkDeviceSize bytes, vk::MemoryKind kind, const char* name) {
-    bytes = std::max<VkDeviceSize>(bytes, 16);
-    if (b.valid() && b.size() >= bytes) return {};
-    b.reset();  // free before allocating the bigger one
-    auto r = vk::Buffer::create(*device_, bytes, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, kind, name);
-    if (!r) return r.error();
-    b = std::move(*r);
-    return {};
+void ContactStage::addRows() {
+    using vk::MemoryKind;
+    Rows& r = rows_;
+    r.params = table_->addOwned("contacts-params", MemoryKind::Upload);
+    r.active = table_->addOwned("contacts-active", MemoryKind::Upload);
+    r.bounds = table_->addOwned("contacts-bounds", MemoryKind::DeviceLocal);
+    r.bounds_rb = table_->addOwned("contacts-bounds-readback", MemoryKind::Readback);
+    r.triangles = table_->addOwned("contacts-triangles", MemoryKind::DeviceLocal);
+    r.items = table_->addOwned("contacts-items", MemoryKind::DeviceLocal);
+    r.counts = table_->addOwned("contacts-counts", MemoryKind::DeviceLocal);
+    r.entries = table_->addOwned("contacts-entries", MemoryKind::DeviceLocal);
+    r.table_init = table_->addOwned("contacts-table-init", MemoryKind::Upload);
+    r.table = table_->addOwned("contacts-table", MemoryKind::DeviceLocal);
+    r.header = table_->addOwned("contacts-header", MemoryKind::DeviceLocal);
+    r.args = table_->addOwned("contacts-args", MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    r.readback = table_->addOwned("contacts-readback", MemoryKind::Readback);
 }
 
-std::uint64_t ContactStage::memoryBytes() const noexcept {
-    std::uint64_t n = 0;
-    for (const vk::Buffer* b : {&buf_.params, &buf_.objects, &buf_.active, &buf_.bounds, &buf_.bounds_rb, &buf_.triangles,
-                                &buf_.items, &buf_.counts, &buf_.entries, &buf_.table_init, &buf_.table, &buf_.header, &buf_.args,
-                                &buf_.readback})
-        n += b->size();
-    return n;
+// Rows sized by what this step knows; the others keep their size.
+Result<void> ContactStage::reserve(std::initializer_list<RowSize> sizes) {
+    return table_->reserve(*device_, std::span<const RowSize>(sizes.begin(), sizes.size()),
+                           "contacts: " + std::to_string(objects_) + " objects with " + std::to_string(params_.triangle_count) +
+                               " triangles");
 }
 
 // Submission 1: every closed object's world box.
-Result<std::vector<std::array<float, 6>>> ContactStage::measureBoxes(const ContactInput& in) {
-    const std::uint32_t n = static_cast<std::uint32_t>(in.meshes.size());
-    std::vector<std::uint32_t> active(n);
-    for (std::uint32_t i = 0; i < n; ++i) active[i] = in.meshes[i].open ? 0u : 1u;
-    std::memcpy(buf_.active.mapped(), active.data(), n * 4);
-    buf_.active.flush();
-    std::memcpy(buf_.params.mapped(), &params_, sizeof params_);
-    buf_.params.flush();
-    graph::Graph g;
-    const auto bounds = g.importBuffer("contacts-bounds", buf_.bounds);
-    const auto bounds_rb = g.importBuffer("contacts-bounds-readback", buf_.bounds_rb, true);
-    const VkBuffer bounds_buffer = buf_.bounds.handle(), rb_buffer = buf_.bounds_rb.handle();
-    const VkDeviceSize half = VkDeviceSize(n) * 12;
+void ContactStage::recordBounds(graph::Graph& g) {
+    const auto bounds = g.importBuffer("contacts-bounds", rows_.bounds);
+    const auto bounds_rb = g.importBuffer("contacts-bounds-readback", rows_.bounds_rb, true);
+    const VkBuffer bounds_buffer = rows_.bounds->handle(), rb_buffer = rows_.bounds_rb->handle();
+    const VkDeviceSize half = VkDeviceSize(objects_) * 12;
     addPass(g, "contacts-bounds-clear", PassKind::Transfer, Stage::None).use(bounds, Use::TransferDst).record([=](PassContext& pc) {
         pc.fillBuffer(bounds_buffer, 0, half, 0xFFFFFFFFu);
         pc.fillBuffer(bounds_buffer, half, half, 0u);
     });
-    const VkDeviceAddress params = buf_.params.address();
+    const VkDeviceAddress params = rows_.params->address();
     const std::uint64_t tri_groups = groupsFor(params_.triangle_count);
     const std::uint32_t max_x = params_.max_groups_x;
     addPass(g, "contacts-bounds", PassKind::Compute, Stage::None).readWrite(bounds).record([this, params, tri_groups, max_x](PassContext& pc) {
@@ -99,16 +98,16 @@ Result<std::vector<std::array<float, 6>>> ContactStage::measureBoxes(const Conta
             VkBufferCopy copy{0, 0, 2 * half};
             pc.copyBuffer(bounds_buffer, rb_buffer, copy);
         });
-    auto report = executor_.run(g, in.waitNs());
-    if (!report) return in.timeoutOf(report.error());
-    last_gpu_ms_ = report->total_gpu_ms;
-    buf_.bounds_rb.invalidate(0, 2 * half);
-    const auto* words = static_cast<const std::uint32_t*>(buf_.bounds_rb.mapped());
+}
+
+std::vector<std::array<float, 6>> ContactStage::readBoxes() const {
+    const std::uint32_t n = objects_;
+    rows_.bounds_rb->invalidate(0, VkDeviceSize(n) * 24);
+    const auto* words = static_cast<const std::uint32_t*>(rows_.bounds_rb->mapped());
     std::vector<std::array<float, 6>> boxes(n);
     for (std::uint32_t i = 0; i < n; ++i)
         for (int k = 0; k < 3; ++k) {
             const std::uint32_t lo = words[i * 3 + k], hi = words[(n + i) * 3 + k];
-            // Untouched minima stay 0xFFFFFFFF (NaN as a float): no box.
             // Untouched entries keep their clear values: no box (min > max).
             boxes[i][k] = lo == 0xFFFFFFFFu ? INFINITY : orderedToFloat(lo);
             boxes[i][3 + k] = hi == 0u ? -INFINITY : orderedToFloat(hi);
@@ -118,20 +117,20 @@ Result<std::vector<std::array<float, 6>>> ContactStage::measureBoxes(const Conta
 
 // Submission 2: clear, setup (+ small triangles), tiles, walk (sums, then extents), readback.
 void ContactStage::recordMain(graph::Graph& g) {
-    const auto counts = g.importBuffer("contacts-counts", buf_.counts);
-    const auto header = g.importBuffer("contacts-header", buf_.header);
-    const auto table = g.importBuffer("contacts-table", buf_.table);
-    const auto table_init = g.importBuffer("contacts-table-init", buf_.table_init);
-    const auto tris = g.importBuffer("contacts-triangles", buf_.triangles);
-    const auto items = g.importBuffer("contacts-items", buf_.items);
-    const auto entries = g.importBuffer("contacts-entries", buf_.entries);
-    const auto args = g.importBuffer("contacts-args", buf_.args);
-    const auto readback = g.importBuffer("contacts-readback", buf_.readback, true);
-    const VkBuffer counts_b = buf_.counts.handle(), header_b = buf_.header.handle(), table_b = buf_.table.handle();
-    const VkBuffer init_b = buf_.table_init.handle(), args_b = buf_.args.handle(), rb_b = buf_.readback.handle();
+    const auto counts = g.importBuffer("contacts-counts", rows_.counts);
+    const auto header = g.importBuffer("contacts-header", rows_.header);
+    const auto table = g.importBuffer("contacts-table", rows_.table);
+    const auto table_init = g.importBuffer("contacts-table-init", rows_.table_init);
+    const auto tris = g.importBuffer("contacts-triangles", rows_.triangles);
+    const auto items = g.importBuffer("contacts-items", rows_.items);
+    const auto entries = g.importBuffer("contacts-entries", rows_.entries);
+    const auto args = g.importBuffer("contacts-args", rows_.args);
+    const auto readback = g.importBuffer("contacts-readback", rows_.readback, true);
+    const VkBuffer counts_b = rows_.counts->handle(), header_b = rows_.header->handle(), table_b = rows_.table->handle();
+    const VkBuffer init_b = rows_.table_init->handle(), args_b = rows_.args->handle(), rb_b = rows_.readback->handle();
     const VkDeviceSize rays = VkDeviceSize(params_.width) * params_.height;
     const VkDeviceSize table_bytes = VkDeviceSize(table_size_) * sizeof(gpu::ContactsPair);
-    const VkDeviceAddress params = buf_.params.address();
+    const VkDeviceAddress params = rows_.params->address();
     const std::uint32_t max_x = params_.max_groups_x;
     const std::uint64_t tri_groups = groupsFor(params_.triangle_count), ray_groups = groupsFor(rays);
 
@@ -195,72 +194,107 @@ void ContactStage::recordMain(graph::Graph& g) {
         });
 }
 
-Result<ContactStageResult> ContactStage::run(const ContactInput& in) {
-    if (in.resolution < gpu::kMinContactResolution || in.resolution > gpu::kMaxContactResolution)
-        return Error(ErrorCode::InvalidArgument, "contacts.resolution " + std::to_string(in.resolution) + " is not in [" +
+void ContactStage::record(graph::Graph& g, const RunView&) {
+    if (step_ == Step::Bounds)
+        recordBounds(g);
+    else
+        recordMain(g);
+}
+
+Result<Collected> ContactStage::begin(const RunView& run) {
+    out_ = ContactStageResult{};
+    step_ = Step::Bounds;
+    if (in_.resolution < gpu::kMinContactResolution || in_.resolution > gpu::kMaxContactResolution)
+        return Error(ErrorCode::InvalidArgument, "contacts.resolution " + std::to_string(in_.resolution) + " is not in [" +
                                                      std::to_string(gpu::kMinContactResolution) + ", " +
                                                      std::to_string(gpu::kMaxContactResolution) + "]");
-    ContactStageResult out;
-    const std::uint32_t n = static_cast<std::uint32_t>(in.meshes.size());
+    const std::uint32_t n = static_cast<std::uint32_t>(run.meshes.size());
     std::uint64_t total = 0;
     bool any_closed = false;
-    objects_.resize(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const GpuMesh& m = in.meshes[i];
-        objects_[i] = objectGpu(m, static_cast<std::uint32_t>(total));
+    for (const GpuMesh& m : run.meshes) {
         total += m.triangle_count;
         any_closed = any_closed || (!m.open && m.triangle_count > 0);
     }
     // No closed object, or fewer than two: no contact (not an error).
-    if (!any_closed || n < 2 || total == 0 || total > gpu::kMaxTriangles) return out;
-    using vk::MemoryKind;
-    for (auto r : {ensure(buf_.params, sizeof(gpu::ContactsParams), MemoryKind::Upload, "contacts-params"),
-                   ensure(buf_.objects, VkDeviceSize(n) * sizeof(gpu::ObjectGpu), MemoryKind::Upload, "contacts-objects"),
-                   ensure(buf_.active, VkDeviceSize(n) * 4, MemoryKind::Upload, "contacts-active"),
-                   ensure(buf_.bounds, VkDeviceSize(n) * 24, MemoryKind::DeviceLocal, "contacts-bounds"),
-                   ensure(buf_.bounds_rb, VkDeviceSize(n) * 24, MemoryKind::Readback, "contacts-bounds-readback")})
-        if (!r) return r.error();
-    std::memcpy(buf_.objects.mapped(), objects_.data(), n * sizeof(gpu::ObjectGpu));
-    buf_.objects.flush();
+    if (!any_closed || n < 2 || total == 0 || total > gpu::kMaxTriangles) return Collected::Done;
+    objects_ = n;
     params_ = {};
-    params_.objects = buf_.objects.address();
-    params_.object_active = buf_.active.address();
-    params_.bounds = buf_.bounds.address();
     params_.triangle_count = static_cast<std::uint32_t>(total);
+    using vk::MemoryKind;
+    if (auto ok = reserve({rowSize(rows_.params, sizeof(gpu::ContactsParams), MemoryKind::Upload),
+                           rowSize(rows_.active, VkDeviceSize(n) * 4, MemoryKind::Upload),
+                           rowSize(rows_.bounds, VkDeviceSize(n) * 24, MemoryKind::DeviceLocal),
+                           rowSize(rows_.bounds_rb, VkDeviceSize(n) * 24, MemoryKind::Readback)});
+        !ok)
+        return ok.error();
+    // The broad phase's objects as it uploaded them: the same triangle bases and transforms.
+    params_.objects = run.objects_address;
+    params_.object_active = rows_.active->address();
+    params_.bounds = rows_.bounds->address();
     params_.object_count = n;
     params_.max_groups_x = device_->properties.limits.maxComputeWorkGroupCount[0];
     params_.max_weight = gpu::kContactMaxWeight;
+    auto* active = static_cast<std::uint32_t*>(rows_.active->mapped());
+    for (std::uint32_t i = 0; i < n; ++i) active[i] = run.meshes[i].open ? 0u : 1u;
+    rows_.active->flush();
+    std::memcpy(rows_.params->mapped(), &params_, sizeof params_);
+    rows_.params->flush();
+    return Collected::Again;
+}
 
-    auto boxes = measureBoxes(in);
-    if (!boxes) return boxes.error();
-    out.gpu_ms = last_gpu_ms_;
+Result<Collected> ContactStage::collect(const RunView& run, const graph::ExecutionReport& report) {
+    out_.gpu_ms += report.total_gpu_ms;
+    if (step_ == Step::Bounds) return afterBounds(run);
+    ++out_.runs;
+    rows_.readback->invalidate(0, sizeof(gpu::ContactsHeader) + VkDeviceSize(table_size_) * sizeof(gpu::ContactsPair));
+    gpu::ContactsHeader h;
+    std::memcpy(&h, rows_.readback->mapped(), sizeof h);
+    if (h.flags == 0) {
+        readContacts(h);
+        return Collected::Done;
+    }
+    if (h.flags & gpu::kContactsOverflowLayers) layers_ = std::max(layers_ + 1, h.max_fragments + h.max_fragments / 4);
+    if (h.flags & gpu::kContactsOverflowItems) item_capacity_ = std::max(item_capacity_ + 1, h.items_needed + h.items_needed / 4);
+    if (out_.runs == kMaxRuns)
+        return Error(ErrorCode::OutOfMemory, "contacts: ray lists still overflowed after " + std::to_string(kMaxRuns) + " runs (" +
+                                                 std::to_string(layers_) + " hits per ray)");
+    if (auto ok = prepareMain(); !ok) return ok.error();
+    return Collected::Again;
+}
+
+Result<Collected> ContactStage::afterBounds(const RunView& run) {
+    const std::uint32_t n = objects_;
+    const std::vector<std::array<float, 6>> boxes = readBoxes();
     std::vector<std::uint8_t> closed(n);
-    for (std::uint32_t i = 0; i < n; ++i) closed[i] = in.meshes[i].open ? 0 : 1;
-    ContactCandidates cand = findContactCandidates(*boxes, closed, in.may_collide);
-    out.candidates = cand.pairs;
-    out.candidate_middles = cand.middles;
-    if (cand.pairs.empty()) return out;
-    const ContactGrid grid = fitContactGrid(in.direction, cand.region, in.resolution);
+    for (std::uint32_t i = 0; i < n; ++i) closed[i] = run.meshes[i].open ? 0 : 1;
+    ContactCandidates cand = findContactCandidates(boxes, closed, in_.may_collide);
+    out_.candidates = cand.pairs;
+    out_.candidate_middles = cand.middles;
+    if (cand.pairs.empty()) return Collected::Done;
+    grid_ = fitContactGrid(in_.direction, cand.region, in_.resolution);
+    step_ = Step::Main;
 
     // Objects drawn: those in a candidate pair.
-    std::vector<std::uint32_t> active(n, 0u);
+    auto* active = static_cast<std::uint32_t*>(rows_.active->mapped());
+    std::fill(active, active + n, 0u);
     for (const auto& [a, b] : cand.pairs) active[a] = active[b] = 1u;
-    std::memcpy(buf_.active.mapped(), active.data(), n * 4);
-    buf_.active.flush();
+    rows_.active->flush();
     // The table: keys written here, never full (at most half the slots used).
     table_size_ = 16;
     while (table_size_ < 2 * cand.pairs.size()) table_size_ *= 2;
     const VkDeviceSize table_bytes = VkDeviceSize(table_size_) * sizeof(gpu::ContactsPair);
-    const VkDeviceSize rays = VkDeviceSize(grid.width) * grid.height;
-    for (auto r : {ensure(buf_.table_init, table_bytes, MemoryKind::Upload, "contacts-table-init"),
-                   ensure(buf_.table, table_bytes, MemoryKind::DeviceLocal, "contacts-table"),
-                   ensure(buf_.header, sizeof(gpu::ContactsHeader), MemoryKind::DeviceLocal, "contacts-header"),
-                   ensure(buf_.readback, sizeof(gpu::ContactsHeader) + table_bytes, MemoryKind::Readback, "contacts-readback"),
-                   ensure(buf_.args, 16, MemoryKind::DeviceLocal, "contacts-args"),
-                   ensure(buf_.triangles, total * sizeof(gpu::CtTriangle), MemoryKind::DeviceLocal, "contacts-triangles"),
-                   ensure(buf_.counts, rays * 4, MemoryKind::DeviceLocal, "contacts-counts")})
-        if (!r) return r.error();
-    auto* init = static_cast<gpu::ContactsPair*>(buf_.table_init.mapped());
+    const VkDeviceSize rays = VkDeviceSize(grid_.width) * grid_.height;
+    using vk::MemoryKind;
+    if (auto ok = reserve({rowSize(rows_.table_init, table_bytes, MemoryKind::Upload),
+                           rowSize(rows_.table, table_bytes, MemoryKind::DeviceLocal),
+                           rowSize(rows_.header, sizeof(gpu::ContactsHeader), MemoryKind::DeviceLocal),
+                           rowSize(rows_.readback, sizeof(gpu::ContactsHeader) + table_bytes, MemoryKind::Readback),
+                           rowSize(rows_.args, 16, MemoryKind::DeviceLocal),
+                           rowSize(rows_.triangles, VkDeviceSize(params_.triangle_count) * sizeof(gpu::CtTriangle), MemoryKind::DeviceLocal),
+                           rowSize(rows_.counts, rays * 4, MemoryKind::DeviceLocal)});
+        !ok)
+        return ok.error();
+    auto* init = static_cast<gpu::ContactsPair*>(rows_.table_init->mapped());
     std::memset(init, 0, table_bytes);
     for (const auto& [a, b] : cand.pairs) {
         std::uint32_t s = contactPairHash(a, b) & (table_size_ - 1);
@@ -269,63 +303,57 @@ Result<ContactStageResult> ContactStage::run(const ContactInput& in) {
         init[s].b_plus_one = b + 1;
     }
     for (std::uint32_t s = 0; s < table_size_; ++s) init[s].extent_min = 0xFFFFFFFFu;  // empty interval: min > max
-    buf_.table_init.flush();
+    rows_.table_init->flush();
+    if (auto ok = prepareMain(); !ok) return ok.error();
+    return Collected::Again;
+}
 
-    for (std::uint32_t attempt = 0; attempt < kMaxRuns; ++attempt) {
-        const VkDeviceSize list_bytes = rays * layers_ * 8;
-        if (list_bytes > kMaxListBytes)
-            return Error(ErrorCode::OutOfMemory, "contacts: " + std::to_string(rays) + " rays with up to " + std::to_string(layers_) +
-                                                     " hits each need " + mib(list_bytes) + " of ray lists (more than " +
-                                                     mib(kMaxListBytes) + "); lower contacts.resolution");
-        for (auto r : {ensure(buf_.entries, list_bytes, MemoryKind::DeviceLocal, "contacts-entries"),
-                       ensure(buf_.items, VkDeviceSize(item_capacity_) * 8, MemoryKind::DeviceLocal, "contacts-items")})
-            if (!r) return r.error();
-        params_.triangles = buf_.triangles.address();
-        params_.items = buf_.items.address();
-        params_.counts = buf_.counts.address();
-        params_.entries = buf_.entries.address();
-        params_.table = buf_.table.address();
-        params_.header = buf_.header.address();
-        params_.args = buf_.args.address();
-        params_.layers = layers_;
-        params_.item_capacity = item_capacity_;
-        params_.table_mask = table_size_ - 1;
-        writeGridParams(grid, layers_, params_);
-        std::memcpy(buf_.params.mapped(), &params_, sizeof params_);
-        buf_.params.flush();
-        graph::Graph g;
-        recordMain(g);
-        auto report = executor_.run(g, in.waitNs());
-        if (!report) return in.timeoutOf(report.error());
-        out.gpu_ms += report->total_gpu_ms;
-        ++out.runs;
-        buf_.readback.invalidate(0, sizeof(gpu::ContactsHeader) + table_bytes);
-        gpu::ContactsHeader h;
-        std::memcpy(&h, buf_.readback.mapped(), sizeof h);
-        if (h.flags & gpu::kContactsOverflowLayers) layers_ = std::max(layers_ + 1, h.max_fragments + h.max_fragments / 4);
-        if (h.flags & gpu::kContactsOverflowItems) item_capacity_ = std::max(item_capacity_ + 1, h.items_needed + h.items_needed / 4);
-        if (h.flags != 0) continue;
-        out.width = grid.width;
-        out.height = grid.height;
-        out.layers = layers_;
-        out.nested_rays = h.nested_rays;
-        out.overlap_rays = h.overlap_rays;
-        out.fragments = h.fragments;
-        const auto* pairs = reinterpret_cast<const gpu::ContactsPair*>(static_cast<const char*>(buf_.readback.mapped()) + sizeof h);
-        for (std::uint32_t s = 0; s < table_size_; ++s) {
-            if (pairs[s].b_plus_one == 0) continue;
-            StageContact c;
-            c.a = pairs[s].a;
-            c.b = pairs[s].b_plus_one - 1;
-            if (contactFromSums(pairs[s], grid, params_.fixed_scale, c)) out.contacts.push_back(c);
-        }
-        std::sort(out.contacts.begin(), out.contacts.end(), [](const StageContact& x, const StageContact& y) {
-            return x.a < y.a || (x.a == y.a && x.b < y.b);
-        });
-        return out;
+Result<void> ContactStage::prepareMain() {
+    const VkDeviceSize rays = VkDeviceSize(grid_.width) * grid_.height;
+    const VkDeviceSize list_bytes = rays * layers_ * 8;
+    if (list_bytes > kMaxListBytes)
+        return Error(ErrorCode::OutOfMemory, "contacts: " + std::to_string(rays) + " rays with up to " + std::to_string(layers_) +
+                                                 " hits each need " + mib(list_bytes) + " of ray lists (more than " +
+                                                 mib(kMaxListBytes) + "); lower contacts.resolution");
+    using vk::MemoryKind;
+    if (auto ok = reserve({rowSize(rows_.entries, list_bytes, MemoryKind::DeviceLocal),
+                           rowSize(rows_.items, VkDeviceSize(item_capacity_) * 8, MemoryKind::DeviceLocal)});
+        !ok)
+        return ok;
+    params_.triangles = rows_.triangles->address();
+    params_.items = rows_.items->address();
+    params_.counts = rows_.counts->address();
+    params_.entries = rows_.entries->address();
+    params_.table = rows_.table->address();
+    params_.header = rows_.header->address();
+    params_.args = rows_.args->address();
+    params_.layers = layers_;
+    params_.item_capacity = item_capacity_;
+    params_.table_mask = table_size_ - 1;
+    writeGridParams(grid_, layers_, params_);
+    std::memcpy(rows_.params->mapped(), &params_, sizeof params_);
+    rows_.params->flush();
+    return {};
+}
+
+void ContactStage::readContacts(const gpu::ContactsHeader& h) {
+    out_.width = grid_.width;
+    out_.height = grid_.height;
+    out_.layers = layers_;
+    out_.nested_rays = h.nested_rays;
+    out_.overlap_rays = h.overlap_rays;
+    out_.fragments = h.fragments;
+    const auto* pairs = reinterpret_cast<const gpu::ContactsPair*>(static_cast<const char*>(rows_.readback->mapped()) + sizeof h);
+    for (std::uint32_t s = 0; s < table_size_; ++s) {
+        if (pairs[s].b_plus_one == 0) continue;
+        StageContact c;
+        c.a = pairs[s].a;
+        c.b = pairs[s].b_plus_one - 1;
+        if (contactFromSums(pairs[s], grid_, params_.fixed_scale, c)) out_.contacts.push_back(c);
     }
-    return Error(ErrorCode::OutOfMemory, "contacts: ray lists still overflowed after " + std::to_string(kMaxRuns) + " runs (" +
-                                             std::to_string(layers_) + " hits per ray)");
+    std::sort(out_.contacts.begin(), out_.contacts.end(), [](const StageContact& x, const StageContact& y) {
+        return x.a < y.a || (x.a == y.a && x.b < y.b);
+    });
 }
 
 }  // namespace vkcollide::passes

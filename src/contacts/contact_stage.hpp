@@ -1,8 +1,10 @@
 // The contact stage: object-level contacts of closed objects from parallel rays
-// (DetectSettings::contacts.objects, docs/contacts.md). It runs after a detection's broad phase on
-// its own executor, with its own rays, because it needs what the broad phase does not
-// keep: every hit of every closed object along a ray, sorted, at a resolution of the
-// region where objects overlap (not of the scene).
+// (DetectSettings::contacts.objects, docs/contacts.md). A follow-up stage of a detection's
+// broad phase (broad/follow_up.hpp): it runs after the broad phase was collected, on that
+// run's objects as uploaded, on its executor, its buffers rows of its table, with rays of
+// its own, because it needs what the broad phase does not keep: every hit of every closed
+// object along a ray, sorted, at a resolution of the region where objects overlap (not of
+// the scene).
 //
 // Why not the compute sampling backend's fragment lists: they are built at the broad
 // phase's resolution over the whole scene, hold 64-bit keys (depth bits and triangle id,
@@ -23,45 +25,29 @@
 // A ray list or the tile list too small: the GPU flags it with the size needed, the host
 // grows the buffer and runs submission 2 again (never an access out of bounds).
 //
-// Not thread-safe; one instance per detection. Buffers only grow.
+// Not thread-safe; one per broad phase (BroadPhase::followUp). Buffers only grow.
 #pragma once
 
 #include <array>
-#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <optional>
 #include <span>
 #include <vector>
 
 #include "broad/broad_phase_types.hpp"
+#include "broad/follow_up.hpp"
+#include "contacts/contact_grid.hpp"
 #include "contacts/contacts.h"
-#include "graph/executor.hpp"
-#include "vk/resources.hpp"
 
 namespace vkcollide::passes {
 
+// What a run needs beside the broad phase's objects (open ones are skipped).
 struct ContactInput {
-    std::span<const GpuMesh> meshes;         // the run's objects (open ones are skipped)
     std::array<float, 3> direction{0, 0, 1}; // of the rays (any length > 0)
     std::uint32_t resolution = gpu::kDefaultContactResolution;  // rays across the region's longer side
-    // Whether objects a < b (indices in meshes) may collide; empty: all may.
+    // Whether objects a < b (run indices) may collide; empty: all may.
     std::function<bool(std::uint32_t a, std::uint32_t b)> may_collide;
-    std::uint64_t timeout_ns = graph::kDefaultTimeoutNs;  // each submission's longest wait
-    // When set, every submission's wait ends by then instead (a detection's timeout_ms).
-    std::optional<std::chrono::steady_clock::time_point> deadline;
-    std::uint64_t waitNs() const { return graph::waitNs(timeout_ns, deadline); }
-    Error timeoutOf(Error e) const { return graph::timeoutOfDetection(timeout_ns, deadline.has_value(), std::move(e)); }
-};
-
-// One candidate pair's sums, in world units.
-struct StageContact {
-    std::uint32_t a = 0, b = 0;      // indices in meshes, a < b
-    double volume = 0;
-    std::array<double, 3> normal{};  // unit, from a into b; zero when undefined
-    double depth = 0;
-    std::array<double, 3> point{};   // centroid (volume > 0) or the middle of the boxes' overlap
 };
 
 struct ContactStageResult {
@@ -77,36 +63,53 @@ struct ContactStageResult {
     double gpu_ms = 0;                    // both submissions (timestamps)
 };
 
-class ContactStage {
+class ContactStage final : public FollowUpStage {
 public:
-    static Result<std::unique_ptr<ContactStage>> create(vk::Device& device);
-    // Runs both submissions and waits. Errors: InvalidArgument (resolution out of range,
-    // naming contacts.resolution), OutOfMemory (ray lists beyond the device's memory),
-    // Timeout, DeviceLost.
-    [[nodiscard]] Result<ContactStageResult> run(const ContactInput& input);
-    std::uint64_t memoryBytes() const noexcept;
+    // The factory BroadPhase::followUp takes.
+    static Result<std::unique_ptr<FollowUpStage>> create(vk::Device& device, BufferTable& io_table);
+    // The next run's input; the run is BroadPhase::runFollowUp's. Its errors:
+    // InvalidArgument (resolution out of range, naming contacts.resolution), OutOfMemory
+    // (ray lists beyond the device's memory or kMaxListBytes), Timeout, DeviceLost.
+    void setInput(ContactInput input) { in_ = std::move(input); }
+    // The last run's result.
+    const ContactStageResult& result() const noexcept { return out_; }
+
+    const char* name() const noexcept override { return "the contact stage"; }
+    Result<Collected> begin(const RunView& run) override;
+    void record(graph::Graph& g, const RunView& run) override;
+    Result<Collected> collect(const RunView& run, const graph::ExecutionReport& report) override;
 
 private:
-    explicit ContactStage(vk::Device& device) : device_(&device), executor_(device) {}
-    Result<void> ensure(vk::Buffer& b, VkDeviceSize bytes, vk::MemoryKind kind, const char* name);
-    Result<std::vector<std::array<float, 6>>> measureBoxes(const ContactInput& in);
+    ContactStage(vk::Device& device, BufferTable& table) : device_(&device), table_(&table) {}
+    void addRows();
+    Result<void> reserve(std::initializer_list<RowSize> sizes);
+    void recordBounds(graph::Graph& g);
     void recordMain(graph::Graph& g);
+    std::vector<std::array<float, 6>> readBoxes() const;
+    // After submission 1: candidates, grid, pair table; Done when no pair is a candidate.
+    Result<Collected> afterBounds(const RunView& run);
+    // Sizes the ray lists and the tile list for the next submission 2.
+    Result<void> prepareMain();
+    void readContacts(const gpu::ContactsHeader& header);
 
     vk::Device* device_;
+    BufferTable* table_;
     struct Pipelines {
         vk::Pipeline bounds, setup, tiles, walk;
     } pipes_;
-    struct Buffers {
-        vk::Buffer params, objects, active, bounds, bounds_rb, triangles, items, counts, entries;
-        vk::Buffer table_init, table, header, args, readback;
-    } buf_;
-    std::vector<gpu::ObjectGpu> objects_;
+    struct Rows {
+        TableRow params, active, bounds, bounds_rb, triangles, items, counts, entries;
+        TableRow table_init, table, header, args, readback;
+    } rows_;
+    ContactInput in_;
+    ContactStageResult out_;
+    enum class Step { Bounds, Main } step_ = Step::Bounds;
+    ContactGrid grid_;
     gpu::ContactsParams params_{};
+    std::uint32_t objects_ = 0;
     std::uint32_t table_size_ = 0;
     std::uint32_t layers_ = 16;          // slots per ray (grows, kept between runs)
     std::uint32_t item_capacity_ = 4096; // tile items (grows)
-    double last_gpu_ms_ = 0;
-    graph::Executor executor_;           // last: destroyed first, waits for work in flight
 };
 
 // The open-addressing hash of an object pair, as the shaders compute it (findPair).

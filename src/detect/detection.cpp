@@ -42,6 +42,16 @@ std::uint64_t Detection::memoryBytes() const noexcept {
     return n;
 }
 
+Result<FollowUpStage*> Detection::followUp(FollowUpFactory factory) {
+    if (!broads_[0]) return Error(ErrorCode::InvalidArgument, "no detection ran yet: nothing to follow up");
+    return broads_[0]->followUp(factory);
+}
+
+Result<void> Detection::runFollowUp(FollowUpStage& stage) {
+    if (pending_ || !broads_[0]) return Error(ErrorCode::InvalidArgument, "a follow-up stage runs after a detection was collected");
+    return broads_[0]->runFollowUp(stage);
+}
+
 // The objects of this run: every one given that this detection has not excluded.
 void Detection::selectRunObjects() {
     run_meshes_.clear();
@@ -235,7 +245,7 @@ Result<void> Detection::start(std::span<const GpuMesh> meshes, const DetectionSe
 void Detection::setDeadline(std::chrono::steady_clock::time_point deadline) {
     settings_.broad.deadline = deadline;
     for (std::uint32_t k = 0; k < broads_.size(); ++k)
-        if (axis_pending_[k] && broads_[k]) broads_[k]->setDeadline(deadline);
+        if (broads_[k] && (axis_pending_[k] || !pending_)) broads_[k]->setDeadline(deadline);
 }
 
 Result<DetectionResult> Detection::collect() {

@@ -68,7 +68,8 @@ public:
     // Waits for every direction, leaving out bad engine meshes and running again as needed.
     [[nodiscard]] Result<DetectionResult> collect();
     // Moves the deadline of the detection in flight (BroadPhaseSettings::deadline): its
-    // collect(), reruns and runs without bad objects all end by then.
+    // collect(), reruns and runs without bad objects all end by then. After collect(), that
+    // of its follow-up stages.
     void setDeadline(std::chrono::steady_clock::time_point deadline);
     bool pending() const noexcept { return pending_; }
     // Whether collect() would find the GPU work done (it may still run GPU work again: a
@@ -95,6 +96,13 @@ public:
     // The first direction's device pairs (BroadPhaseSettings::device_pairs) of the detection
     // started last; nullopt without.
     std::optional<DevicePairsView> devicePairs() const { return broads_[0] ? broads_[0]->devicePairs() : std::nullopt; }
+
+    // A follow-up stage (broad/follow_up.hpp) on the first direction's broad phase, made by
+    // `factory` on first use, and its run after collect() succeeded: on the objects that
+    // detection tested (excluded ones left out, run indices as DetectionResult::objects),
+    // within what is left of its deadline.
+    [[nodiscard]] Result<FollowUpStage*> followUp(FollowUpFactory factory);
+    [[nodiscard]] Result<void> runFollowUp(FollowUpStage& stage);
 
     // After start() or collect() failed with InvalidMesh: the GPU check's findings (objects
     // as indices in start()'s meshes), and whether every object had been left out. Empty

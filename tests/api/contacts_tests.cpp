@@ -254,3 +254,30 @@ TEST_CASE("contacts: bad settings are named, no closed object gives no contact",
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+// Each detection slot runs the stage after its own broad phase, on its buffers: two
+// detections in flight give the contacts detect() gives, and the stage's buffers count in
+// the world's memory.
+TEST_CASE("contacts: two detections in flight each get them, on their slot's buffers", "[contacts][gpu]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    const TwoSpheres s = twoSpheres();
+    REQUIRE(world->addMesh(s.s1, {.name = "one"}));
+    REQUIRE(world->addMesh(s.s2, {.name = "two", .transform = s.at2()}));
+    auto plain = world->detect();
+    REQUIRE(plain);
+    auto one = world->detect({.contacts = true});
+    REQUIRE(one);
+    REQUIRE(one->contacts.size() == 1);
+    CHECK(one->stats.gpu_memory_bytes > plain->stats.gpu_memory_bytes);
+    REQUIRE(world->submit({.contacts = true}));
+    REQUIRE(world->submit({.contacts = true}));
+    for (int k = 0; k < 2; ++k) {
+        auto r = world->collect();
+        REQUIRE(r);
+        REQUIRE(r->contacts.size() == 1);
+        CHECK(r->contacts[0].volume == one->contacts[0].volume);
+        CHECK(r->contacts[0].depth == one->contacts[0].depth);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -1,13 +1,15 @@
 // passes::Detection without CollisionWorld: one or three directions, measured or predicted,
-// and engine meshes that fail the GPU check left out (or failing the detection), with the
-// findings as data.
+// engine meshes that fail the GPU check left out (or failing the detection), with the
+// findings as data, and a follow-up stage (the contact stage) after it.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
 #include "broad/projection.hpp"
+#include "contacts/contact_stage.hpp"
 #include "detect/detection.hpp"
 #include "mesh/mesh_upload.hpp"
 #include "support/gpu_fixture.hpp"
@@ -182,5 +184,48 @@ TEST_CASE("a detection leaves out a mesh the GPU check refuses, or fails with th
     CHECK(d.failure().none_left);
     REQUIRE(d.failure().faults.size() == 1);
     CHECK(d.failure().faults[0].object == 0);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// The contact stage is a follow-up of the first direction's broad phase: made once, its
+// buffers rows of that broad phase's table (counted in memoryBytes), its submissions on
+// that executor within the detection's deadline, and only after collect().
+TEST_CASE("a follow-up stage runs on the detection's executor and table, within its deadline", "[gpu][detection]") {
+    test::ValidatedContext ctx;
+    Row row = makeRow(ctx.device());
+    auto det = Detection::create(ctx.device());
+    REQUIRE(det);
+    Detection& d = **det;
+    REQUIRE(d.start(row.up.meshes, settings(1), true));
+    auto made_early = d.followUp(ContactStage::create);
+    REQUIRE(made_early);
+    auto* contacts = static_cast<ContactStage*>(*made_early);
+    contacts->setInput({.direction = {0.15f, -0.2f, 1.0f}, .resolution = 64});
+    auto early = d.runFollowUp(*contacts);  // the detection is still in flight
+    REQUIRE_FALSE(early);
+    CHECK(early.error().code() == ErrorCode::InvalidArgument);
+    REQUIRE(d.collect());
+
+    const std::uint64_t before = d.memoryBytes();
+    REQUIRE(d.runFollowUp(*contacts));
+    const ContactStageResult& r = contacts->result();
+    // a-b and b-c overlap (centres 1.5 apart, radius 1); a and c do not.
+    REQUIRE(r.contacts.size() == 2);
+    CHECK((r.contacts[0].a == 0 && r.contacts[0].b == 1));
+    CHECK((r.contacts[1].a == 1 && r.contacts[1].b == 2));
+    for (const StageContact& c : r.contacts) CHECK(c.volume > 0);
+    CHECK(r.runs == 1);
+    CHECK(d.memoryBytes() > before);  // its rows are the broad phase's
+    auto again = d.followUp(ContactStage::create);
+    REQUIRE(again);
+    CHECK(*again == *made_early);
+
+    // A deadline that has passed: nothing is submitted, the error is the detection's timeout.
+    d.setDeadline(std::chrono::steady_clock::now() - std::chrono::milliseconds(1));
+    auto late = d.runFollowUp(*contacts);
+    REQUIRE_FALSE(late);
+    CHECK(late.error().code() == ErrorCode::Timeout);
+    CHECK(late.error().message().find("timeout_ms") != std::string::npos);
+    CHECK_FALSE(d.busy());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

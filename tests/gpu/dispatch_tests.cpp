@@ -88,6 +88,8 @@ TEST_CASE("the largest resolution this device holds runs with the validation lay
     if (largest < 4096) WARN("this device holds at most resolution " << largest << ": the 65,536-group case is not reached");
     DetectSettings s = c->settings;
     s.resolution = largest;
+    // At 4096 on lavapipe's 2 GiB heap the compute backend's fragment lists do not fit beside
+    // the peeling buffers: that run's steps draw instead (ComputeSampler::prepare).
     // One timeout covers a detection's submissions: lavapipe on two busy cores takes about
     // a minute for one detection at 4096, past the default. This test is about validation.
     s.limits.timeout_ms = 600000;

@@ -25,31 +25,30 @@ static_assert(sizeof(gpu::DevicePairsParams) == 11 * 8 + 4 * 4);
 
 }  // namespace
 
-Result<std::unique_ptr<DevicePairStage>> DevicePairStage::create(vk::Device& device) {
-    std::unique_ptr<DevicePairStage> stage(new DevicePairStage(device));
+Result<std::unique_ptr<DevicePairStage>> DevicePairStage::create(vk::Device& device, BufferTable& table) {
+    std::unique_ptr<DevicePairStage> stage(new DevicePairStage(device, table));
     auto p = vk::Pipeline::createCompute(device, shaders::device_pairs_comp, {}, sizeof(gpu::Push), "device-pairs");
     if (!p) return p.error();
     stage->pipeline_ = std::move(*p);
+    using vk::MemoryKind;
+    Buffers& b = stage->buf_;
+    b.params = table.addOwned("device-pairs-params", MemoryKind::Upload);
+    b.object_ids = table.addOwned("device-pairs-object-ids", MemoryKind::Upload);
+    b.counts = table.addOwned("device-pairs-counts", MemoryKind::DeviceLocal);
+    b.offsets = table.addOwned("device-pairs-offsets", MemoryKind::DeviceLocal);
+    b.out_offsets = table.addOwned("device-pairs-out-offsets", MemoryKind::DeviceLocal);
+    b.block_sums = table.addOwned("device-pairs-block-sums", MemoryKind::DeviceLocal);
+    b.partners = table.addOwned("device-pairs-partners", MemoryKind::DeviceLocal);
+    b.args = table.addOwned("device-pairs-args", MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    // The two the engine reads: a grown one keeps the old buffer for two more starts.
+    b.header = table.addOwned("device-pairs-header", MemoryKind::DeviceLocal, 0, true);
+    b.pairs = table.addOwned("device-pairs", MemoryKind::DeviceLocal, 0, true);
+    b.header_rb = table.addOwned("device-pairs-header-readback", MemoryKind::Readback);
+    b.host_pairs = table.addOwned("device-pairs-host", MemoryKind::Readback);
     return stage;
 }
 
-void DevicePairStage::retire() {
-    retired_old_ = std::move(retired_new_);
-    retired_new_.clear();
-}
-
-Result<void> DevicePairStage::grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name, bool keep_old) {
-    size = std::max<VkDeviceSize>(size, 16);
-    if (buffer.valid() && buffer.size() >= size) return {};
-    if (keep_old && buffer.valid()) retired_new_.push_back(std::move(buffer));
-    buffer.reset();
-    // Usage beyond what every buffer has (storage, device address, transfer): the args.
-    const VkBufferUsageFlags usage = &buffer == &buf_.args ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0;
-    auto made = vk::Buffer::create(*device_, size, usage, kind, name);
-    if (!made) return made.error();
-    buffer = std::move(*made);
-    return {};
-}
+void DevicePairStage::retire() { table_->retire(); }
 
 Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
                                       VkDeviceAddress fault_header, bool header_to_host, bool for_host) {
@@ -63,43 +62,46 @@ Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const st
     capacity_ = capacity ? capacity : survivors;
     const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
     const VkDeviceSize blocks = (tris + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
-    for (auto ok : {grow(buf_.params, sizeof(gpu::DevicePairsParams), MemoryKind::Upload, "device-pairs-params", false),
-                    grow(buf_.object_ids, object_ids.size_bytes(), MemoryKind::Upload, "device-pairs-object-ids", false),
-                    grow(buf_.counts, tris * 4, MemoryKind::DeviceLocal, "device-pairs-counts", false),
-                    grow(buf_.offsets, (tris + 1) * 4, MemoryKind::DeviceLocal, "device-pairs-offsets", false),
-                    grow(buf_.out_offsets, (tris + 1) * 4, MemoryKind::DeviceLocal, "device-pairs-out-offsets", false),
-                    grow(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal, "device-pairs-block-sums", false),
-                    grow(buf_.partners, VkDeviceSize(survivors) * 4, MemoryKind::DeviceLocal, "device-pairs-partners", false),
-                    grow(buf_.args, 12, MemoryKind::DeviceLocal, "device-pairs-args", false),
-                    grow(buf_.header, sizeof(gpu::DevicePairsHeader), MemoryKind::DeviceLocal, "device-pairs-header", true),
-                    grow(buf_.header_rb, header_to_host ? sizeof(gpu::DevicePairsHeader) : 0, MemoryKind::Readback,
-                         "device-pairs-header-readback", false),
-                    grow(buf_.pairs, VkDeviceSize(capacity_) * sizeof(gpu::DevicePair), MemoryKind::DeviceLocal, "device-pairs", true),
-                    grow(buf_.host_pairs, for_host ? VkDeviceSize(capacity_) * sizeof(gpu::DevicePair) : 0, MemoryKind::Readback,
-                         "device-pairs-host", false)})
-        if (!ok) return ok.error();
+    const RowSize plan[] = {
+        rowSize(buf_.params, sizeof(gpu::DevicePairsParams), MemoryKind::Upload),
+        rowSize(buf_.object_ids, object_ids.size_bytes(), MemoryKind::Upload),
+        rowSize(buf_.counts, tris * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.offsets, (tris + 1) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.out_offsets, (tris + 1) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.block_sums, blocks * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.partners, VkDeviceSize(survivors) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.args, 12, MemoryKind::DeviceLocal),
+        rowSize(buf_.header, sizeof(gpu::DevicePairsHeader), MemoryKind::DeviceLocal),
+        rowSize(buf_.header_rb, header_to_host ? sizeof(gpu::DevicePairsHeader) : 0, MemoryKind::Readback),
+        rowSize(buf_.pairs, VkDeviceSize(capacity_) * sizeof(gpu::DevicePair), MemoryKind::DeviceLocal),
+        rowSize(buf_.host_pairs, for_host ? VkDeviceSize(capacity_) * sizeof(gpu::DevicePair) : 0, MemoryKind::Readback),
+    };
+    if (auto ok = table_->reserve(*device_, plan,
+                                  "device pairs: capacity " + std::to_string(capacity_) + " with " + std::to_string(triangles_) + " triangles");
+        !ok)
+        return ok;
     if (!object_ids.empty()) {
-        std::memcpy(buf_.object_ids.mapped(), object_ids.data(), object_ids.size_bytes());
-        buf_.object_ids.flush();
+        std::memcpy(buf_.object_ids->mapped(), object_ids.data(), object_ids.size_bytes());
+        buf_.object_ids->flush();
     }
     gpu::DevicePairsParams p{};
     p.cells = cells.paramsAddress();
     p.fault_header = fault_header;
-    p.object_ids = buf_.object_ids.address();
-    p.counts = buf_.counts.address();
-    p.offsets = buf_.offsets.address();
-    p.out_offsets = buf_.out_offsets.address();
-    p.block_sums = buf_.block_sums.address();
-    p.partners = buf_.partners.address();
-    p.args = buf_.args.address();
-    p.header = buf_.header.address();
-    p.pairs = buf_.pairs.address();
+    p.object_ids = buf_.object_ids->address();
+    p.counts = buf_.counts->address();
+    p.offsets = buf_.offsets->address();
+    p.out_offsets = buf_.out_offsets->address();
+    p.block_sums = buf_.block_sums->address();
+    p.partners = buf_.partners->address();
+    p.args = buf_.args->address();
+    p.header = buf_.header->address();
+    p.pairs = buf_.pairs->address();
     p.triangle_count = triangles_;
     p.block_count = static_cast<std::uint32_t>((VkDeviceSize(triangles_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock);
     p.capacity = capacity_;
     p.max_groups_x = max_groups_x_;
-    std::memcpy(buf_.params.mapped(), &p, sizeof p);
-    buf_.params.flush();
+    std::memcpy(buf_.params->mapped(), &p, sizeof p);
+    buf_.params->flush();
     return {};
 }
 
@@ -113,8 +115,8 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
     const auto sums = g.importBuffer("device-pairs-block-sums", b.block_sums);
     const auto partners = g.importBuffer("device-pairs-partners", b.partners);
     const auto args = g.importBuffer("device-pairs-args", b.args);
-    const VkDeviceAddress params = buf_.params.address();
-    const VkBuffer counts_buffer = buf_.counts.handle(), args_buffer = buf_.args.handle();
+    const VkDeviceAddress params = buf_.params->address();
+    const VkBuffer counts_buffer = buf_.counts->handle(), args_buffer = buf_.args->handle();
     const VkDeviceSize count_bytes = VkDeviceSize(std::max<std::uint32_t>(triangles_, 1)) * 4;
     // Per-triangle passes are sized by the run's triangles; per-survivor ones dispatch
     // indirectly from the count the pair pass left.
@@ -186,7 +188,7 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
         addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback)
             .use(pairs, graph::Use::TransferSrc)
             .use(host_pairs, graph::Use::TransferDst)
-            .record([from = b.pairs.handle(), to = b.host_pairs.handle(), bytes = VkDeviceSize(capacity_) * sizeof(gpu::DevicePair)](
+            .record([from = b.pairs->handle(), to = b.host_pairs->handle(), bytes = VkDeviceSize(capacity_) * sizeof(gpu::DevicePair)](
                         graph::PassContext& pc) {
                 VkBufferCopy copy{0, 0, bytes};
                 pc.copyBuffer(from, to, copy);
@@ -197,7 +199,7 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
     addPass(g, "pairs-header-readback", graph::PassKind::Transfer, Stage::Readback)
         .use(header, graph::Use::TransferSrc)
         .use(header_rb, graph::Use::TransferDst)
-        .record([from = b.header.handle(), to = b.header_rb.handle()](graph::PassContext& pc) {
+        .record([from = b.header->handle(), to = b.header_rb->handle()](graph::PassContext& pc) {
             VkBufferCopy copy{0, 0, sizeof(gpu::DevicePairsHeader)};
             pc.copyBuffer(from, to, copy);
         });
@@ -206,30 +208,20 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
 std::span<const TrianglePair> DevicePairStage::hostPairs(std::uint32_t count) const {
     if (!for_host_ || count == 0) return {};
     count = std::min(count, capacity_);
-    buf_.host_pairs.invalidate(0, VkDeviceSize(count) * sizeof(TrianglePair));
-    return {static_cast<const TrianglePair*>(buf_.host_pairs.mapped()), count};
+    buf_.host_pairs->invalidate(0, VkDeviceSize(count) * sizeof(TrianglePair));
+    return {static_cast<const TrianglePair*>(buf_.host_pairs->mapped()), count};
 }
 
 gpu::DevicePairsHeader DevicePairStage::header() const {
     gpu::DevicePairsHeader h{};
-    if (!header_to_host_ || !buf_.header_rb.valid()) return h;
-    buf_.header_rb.invalidate();
-    std::memcpy(static_cast<void*>(&h), buf_.header_rb.mapped(), sizeof h);
+    if (!header_to_host_ || !buf_.header_rb->valid()) return h;
+    buf_.header_rb->invalidate();
+    std::memcpy(static_cast<void*>(&h), buf_.header_rb->mapped(), sizeof h);
     return h;
 }
 
 DevicePairsView DevicePairStage::view() const noexcept {
-    return {buf_.pairs.handle(), buf_.header.handle(), buf_.pairs.address(), buf_.header.address(), capacity_};
-}
-
-std::uint64_t DevicePairStage::memoryBytes() const noexcept {
-    std::uint64_t total = 0;
-    for (const vk::Buffer* b : {&buf_.params, &buf_.object_ids, &buf_.counts, &buf_.offsets, &buf_.out_offsets, &buf_.block_sums,
-                                &buf_.partners, &buf_.args, &buf_.header, &buf_.pairs, &buf_.header_rb, &buf_.host_pairs})
-        total += b->memoryBytes();
-    for (const auto* list : {&retired_new_, &retired_old_})
-        for (const vk::Buffer& b : *list) total += b.memoryBytes();
-    return total;
+    return {buf_.pairs->handle(), buf_.header->handle(), buf_.pairs->address(), buf_.header->address(), capacity_};
 }
 
 }  // namespace vkcollide::passes

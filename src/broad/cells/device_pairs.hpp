@@ -1,7 +1,8 @@
 // Device pairs (DetectSettings::reliable.device_pairs, docs/api.md "Results on the GPU"): the cell
 // stage's exact survivors sorted on the GPU into the host result's order and written as
-// TrianglePair records (spirv/cells/device_pairs.comp.glsl has the passes), in buffers the stage
-// owns, so that an engine's next command buffer can read them after the world's signal.
+// TrianglePair records (spirv/cells/device_pairs.comp.glsl has the passes), in rows of the
+// broad phase's table, so that an engine's next command buffer can read them after the
+// world's signal.
 //
 //   pairs-args     the header (capacity; Incomplete when the run failed or a mesh failed
 //                  the GPU input check) and the dispatch over the survivors
@@ -16,8 +17,8 @@
 // `capacity` pairs in order are written), never silently.
 //
 // The output buffers are re-created when they grow; the old ones are kept until the start
-// of the second detection after (retire()), so reads the engine ordered before the next
-// detection of this stage never meet a freed buffer.
+// of the second detection after (rows the engine reads, BufferTable::retire()), so reads the
+// engine ordered before the next detection of this stage never meet a freed buffer.
 //
 // Not thread-safe; one per cell stage (ReliableMethod).
 #pragma once
@@ -34,7 +35,8 @@ namespace vkcollide::passes {
 
 class DevicePairStage {
 public:
-    static Result<std::unique_ptr<DevicePairStage>> create(vk::Device& device);
+    // Adds its rows to `io_table`.
+    static Result<std::unique_ptr<DevicePairStage>> create(vk::Device& device, BufferTable& io_table);
 
     // After CellStage::prepare() (and again after it grew its buffers): sizes the buffers for
     // its survivors and triangles and uploads the parameters. `object_ids`: per object of the
@@ -58,21 +60,18 @@ public:
     gpu::DevicePairsHeader header() const;
     // After the GPU work of a run prepared for_host: the first `count` pairs.
     std::span<const TrianglePair> hostPairs(std::uint32_t count) const;
-    std::uint64_t memoryBytes() const noexcept;
 
 private:
-    explicit DevicePairStage(vk::Device& device) : device_(&device) {}
-    Result<void> grow(vk::Buffer& buffer, VkDeviceSize size, vk::MemoryKind kind, const char* name, bool keep_old);
+    DevicePairStage(vk::Device& device, BufferTable& table) : device_(&device), table_(&table) {}
 
     vk::Device* device_;
+    BufferTable* table_;
     vk::Pipeline pipeline_;
     struct Buffers {
-        vk::Buffer params, object_ids, counts, offsets, out_offsets, block_sums, partners, args, header, pairs, header_rb, host_pairs;
+        TableRow params, object_ids, counts, offsets, out_offsets, block_sums, partners, args, header, pairs, header_rb, host_pairs;
     } buf_;
     std::uint32_t triangles_ = 0, capacity_ = 0, max_groups_x_ = 0;
     bool header_to_host_ = false, for_host_ = false;
-    // Output buffers replaced since the last start, and at the start before it.
-    std::vector<vk::Buffer> retired_new_, retired_old_;
 };
 
 }  // namespace vkcollide::passes

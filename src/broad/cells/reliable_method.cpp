@@ -68,7 +68,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     }
     if (!sorting()) return {};
     if (!device_pairs_) {
-        auto made = DevicePairStage::create(*device_);
+        auto made = DevicePairStage::create(*device_, *table_);  // its buffers: rows of the table
         if (!made) return made.error();
         device_pairs_ = std::move(*made);
     }

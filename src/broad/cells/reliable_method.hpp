@@ -44,10 +44,6 @@ public:
     void record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
     Result<Collected> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
     std::optional<ObjectFault> fault() const override { return fault_; }
-    std::uint64_t memoryBytes() const noexcept override {
-        // The cell stage's and proximity's buffers are rows of the broad phase's table, which counts them.
-        return device_pairs_ ? device_pairs_->memoryBytes() : 0;
-    }
     std::optional<DevicePairsView> devicePairs() const override {
         if (!device_pairs_on_) return std::nullopt;  // sorted_for_host_'s buffers are the host's
         return device_pairs_->view();

@@ -58,7 +58,7 @@ Result<std::unique_ptr<BroadPhaseMethod>> PeelingMethod::create(vk::Device& devi
     auto bounds = TriangleBounds::create(device);
     if (!bounds) return bounds.error();
     m->bounds_ = std::move(*bounds);
-    auto sampling = ObjectSampling::create(device);
+    auto sampling = ObjectSampling::create(device, table);
     if (!sampling) return sampling.error();
     m->sampling_ = std::move(*sampling);
     auto merging = Merging::create(device);

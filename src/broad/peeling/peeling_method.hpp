@@ -40,7 +40,6 @@ public:
     // overflows on the GPU, so there is no Again.
     void record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
     Result<Collected> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
-    std::uint64_t memoryBytes() const noexcept override { return sampling_->memoryBytes(); }
 
 private:
     PeelingMethod(BufferTable& table, const CoreBuffers& core) : table_(&table), core_(core) {}

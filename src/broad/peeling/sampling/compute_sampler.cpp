@@ -18,11 +18,11 @@ constexpr std::uint32_t kMesaVendor = 0x10005;  // VK_VENDOR_ID_MESA: llvmpipe
 
 }  // namespace
 
-Result<std::unique_ptr<ComputeSampler>> ComputeSampler::create(vk::Device& device) {
+Result<std::unique_ptr<ComputeSampler>> ComputeSampler::create(vk::Device& device, BufferTable& table) {
     if (!computeSamplingSupported(device))
         return Error(ErrorCode::UnsupportedFeature,
                      "compute sampling needs subgroup ballot and arithmetic in compute shaders and at most 16 sub-pixel bits");
-    std::unique_ptr<ComputeSampler> cs(new ComputeSampler(device));
+    std::unique_ptr<ComputeSampler> cs(new ComputeSampler(device, table));
     for (auto r : {makeCompute(device, cs->setup_, shaders::csample_setup_comp, "csample-setup"),
                    makeCompute(device, cs->bin_, shaders::csample_bin_comp, "csample-bin"),
                    makeCompute(device, cs->args_, shaders::csample_args_comp, "csample-args"),
@@ -31,7 +31,23 @@ Result<std::unique_ptr<ComputeSampler>> ComputeSampler::create(vk::Device& devic
                    makeCompute(device, cs->gather_pipe_, shaders::csample_gather_comp, "csample-gather"),
                    makeCompute(device, cs->pick_, shaders::csample_pick_comp, "csample-pick")})
         if (!r) return r.error();
+    using vk::MemoryKind;
+    cs->frame_ = table.addOwned("csample-frame", MemoryKind::Upload);
+    cs->triangles_ = table.addOwned("csample-triangles", MemoryKind::DeviceLocal);
+    cs->lists_ = table.addOwned("csample-lists", MemoryKind::DeviceLocal);
+    cs->items_ = table.addOwned("csample-items", MemoryKind::DeviceLocal);
+    cs->counters_ = table.addOwned("csample-counters", MemoryKind::DeviceLocal);
+    cs->args_buf_ = table.addOwned("csample-args", MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    cs->fill_ = table.addOwned("csample-fill", MemoryKind::DeviceLocal);
+    cs->fragments_ = table.addOwned("csample-fragments", MemoryKind::DeviceLocal);
     return cs;
+}
+
+// Rows sized by what this step knows (the table refuses what the device cannot hold).
+Result<void> ComputeSampler::reserve(std::initializer_list<RowSize> sizes) const {
+    return table_->reserve(*device_, std::span<const RowSize>(sizes.begin(), sizes.size()),
+                           "compute sampling: resolution " + std::to_string(resolution_) + " with " + std::to_string(triangles_count_) +
+                               " triangles");
 }
 
 Result<VkDeviceAddress> ComputeSampler::prepare(const BroadPhaseSettings& settings, const RunShape& shape) {
@@ -40,22 +56,17 @@ Result<VkDeviceAddress> ComputeSampler::prepare(const BroadPhaseSettings& settin
     const ComputeSamplingTuning& tuning = settings.compute;
     const std::uint32_t bits = device_->properties.limits.subPixelPrecisionBits;
     const std::uint32_t tris = std::max(triangles, 1u);
-    auto make = [&](vk::Buffer& b, VkDeviceSize size, VkBufferUsageFlags usage, MemoryKind kind, const char* name) -> Result<void> {
-        if (b.valid() && b.size() >= size) return {};
-        auto r = vk::Buffer::create(*device_, size, usage, kind, name);
-        if (!r) return r.error();
-        b = std::move(*r);
-        return {};
-    };
     const VkDeviceSize items = VkDeviceSize(tris) + gpu::kCsExtraItems;
-    for (auto r : {make(frame_, sizeof(gpu::CsFrame), 0, MemoryKind::Upload, "csample-frame"),
-                   make(triangles_, VkDeviceSize(tris) * sizeof(gpu::CsTriangle), 0, MemoryKind::DeviceLocal, "csample-triangles"),
-                   make(lists_, VkDeviceSize(tris) * 8, 0, MemoryKind::DeviceLocal, "csample-lists"),
-                   make(items_, items * 8, 0, MemoryKind::DeviceLocal, "csample-items"),
-                   make(counters_, sizeof(gpu::CsCounters), 0, MemoryKind::DeviceLocal, "csample-counters"),
-                   make(args_buf_, 16, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, MemoryKind::DeviceLocal, "csample-args")})
-        if (!r) return r.error();
     resolution_ = resolution;
+    triangles_count_ = triangles;
+    if (auto ok = reserve({rowSize(frame_, sizeof(gpu::CsFrame), MemoryKind::Upload),
+                           rowSize(triangles_, VkDeviceSize(tris) * sizeof(gpu::CsTriangle), MemoryKind::DeviceLocal),
+                           rowSize(lists_, VkDeviceSize(tris) * 8, MemoryKind::DeviceLocal),
+                           rowSize(items_, items * 8, MemoryKind::DeviceLocal),
+                           rowSize(counters_, sizeof(gpu::CsCounters), MemoryKind::DeviceLocal),
+                           rowSize(args_buf_, 16, MemoryKind::DeviceLocal)});
+        !ok)
+        return ok.error();
     list_budget_ = tuning.list_budget_bytes;
     fuse_ = tuning.fuse_first_step && list_budget_ == 0;
     fragment_lists_ = false;
@@ -66,31 +77,36 @@ Result<VkDeviceAddress> ComputeSampler::prepare(const BroadPhaseSettings& settin
     list_layers_ = static_cast<std::uint32_t>(std::min<std::uint64_t>(std::max(next_list_layers_, tuning.list_layers),
                                                                       list_budget_ / layer_bytes));
     if (list_layers_ > 0) {
-        if (auto ok = make(fragments_, layer_bytes * list_layers_, 0, MemoryKind::DeviceLocal, "csample-fragments"); !ok)
-            return ok.error();
+        // The lists are a shortcut: where the device cannot hold them beside the rest, this
+        // run's steps draw instead (the same keys).
+        if (auto ok = reserve({rowSize(fragments_, layer_bytes * list_layers_, MemoryKind::DeviceLocal)}); !ok) {
+            if (ok.error().code() != ErrorCode::OutOfMemory) return ok.error();
+            list_layers_ = 0;
+            list_budget_ = 0;
+        }
     }
     bool snapped = device_->properties.vendorID != kMesaVendor;
     if (tuning.depth_plane != ComputeSamplingTuning::DepthPlane::Device)
         snapped = tuning.depth_plane == ComputeSamplingTuning::DepthPlane::Snapped;
     gpu::CsFrame cf{};
-    cf.triangles = triangles_.address();
-    cf.small = lists_.address();
-    cf.big = lists_.address() + VkDeviceSize(tris) * 4;
-    cf.items = items_.address();
-    cf.counters = counters_.address();
-    cf.args = args_buf_.address();
-    cf.item_capacity = static_cast<std::uint32_t>(items_.size() / 8);
+    cf.triangles = triangles_->address();
+    cf.small = lists_->address();
+    cf.big = lists_->address() + VkDeviceSize(tris) * 4;
+    cf.items = items_->address();
+    cf.counters = counters_->address();
+    cf.args = args_buf_->address();
+    cf.item_capacity = static_cast<std::uint32_t>(items_->size() / 8);
     cf.subpixel_bits = bits;
     cf.small_box = tuning.small_box;
     cf.tie_rule = gpu::kCsTieTopLeft;  // lavapipe and (measured) the H200: see tests
     cf.fuse_first_step = fuse_ ? 1u : 0u;
     cf.depth_snapped = snapped ? 1u : 0u;
     cf.list_layers = list_layers_;
-    cf.list_capacity = list_layers_ > 0 ? static_cast<std::uint32_t>(fragments_.size() / layer_bytes) : 0;
-    cf.fragments = list_layers_ > 0 ? fragments_.address() : 0;
-    std::memcpy(frame_.mapped(), &cf, sizeof(cf));
-    frame_.flush();
-    return frame_.address();
+    cf.list_capacity = list_layers_ > 0 ? static_cast<std::uint32_t>(fragments_->size() / layer_bytes) : 0;
+    cf.fragments = list_layers_ > 0 ? fragments_->address() : 0;
+    std::memcpy(frame_->mapped(), &cf, sizeof(cf));
+    frame_->flush();
+    return frame_->address();
 }
 
 Result<void> ComputeSampler::preparePeeling(std::uint32_t measured_depth) {
@@ -103,25 +119,20 @@ Result<void> ComputeSampler::preparePeeling(std::uint32_t measured_depth) {
     gather_ = fragment_lists_ && depth_complexity > list_layers_;
     if (fragment_lists_) next_list_layers_ = std::max(next_list_layers_, depth_complexity);
     if (!gather_) return {};
-    // Free the old buffers before allocating bigger ones.
-    if (fragments_.size() < bytes) {
-        fragments_.reset();
-        auto r = vk::Buffer::create(*device_, bytes, 0, vk::MemoryKind::DeviceLocal, "csample-fragments");
-        if (!r) return r.error();
-        fragments_ = std::move(*r);
-    }
+    // The table frees a smaller buffer before it allocates the bigger one.
     const VkDeviceSize fill_bytes = VkDeviceSize(resolution_) * resolution_ * 4;
-    if (fill_.size() < fill_bytes) {
-        fill_.reset();
-        auto r = vk::Buffer::create(*device_, fill_bytes, 0, vk::MemoryKind::DeviceLocal, "csample-fill");
-        if (!r) return r.error();
-        fill_ = std::move(*r);
+    if (auto ok = reserve({rowSize(fragments_, bytes, vk::MemoryKind::DeviceLocal), rowSize(fill_, fill_bytes, vk::MemoryKind::DeviceLocal)});
+        !ok) {
+        // Lists the device cannot hold beside the rest: the steps draw (as in prepare()).
+        if (ok.error().code() != ErrorCode::OutOfMemory) return ok;
+        fragment_lists_ = gather_ = false;
+        return {};
     }
-    auto* cf = static_cast<gpu::CsFrame*>(frame_.mapped());
-    cf->fragments = fragments_.address();
-    cf->list_capacity = static_cast<std::uint32_t>(std::min<std::uint64_t>(fragments_.size() / layer_bytes, gpu::kMaxRayFragments));
-    cf->fill = fill_.address();
-    frame_.flush();
+    auto* cf = static_cast<gpu::CsFrame*>(frame_->mapped());
+    cf->fragments = fragments_->address();
+    cf->list_capacity = static_cast<std::uint32_t>(std::min<std::uint64_t>(fragments_->size() / layer_bytes, gpu::kMaxRayFragments));
+    cf->fill = fill_->address();
+    frame_->flush();
     return {};
 }
 
@@ -129,8 +140,8 @@ void ComputeSampler::import(graph::Graph& g) {
     ids_ = {g.importBuffer("csample-triangles", triangles_), g.importBuffer("csample-lists", lists_),
             g.importBuffer("csample-items", items_), g.importBuffer("csample-counters", counters_),
             g.importBuffer("csample-args", args_buf_), {}, {}};
-    if (fill_.valid()) ids_.fill = g.importBuffer("csample-fill", fill_);
-    if (fragments_.valid()) ids_.fragments = g.importBuffer("csample-fragments", fragments_);
+    if (fill_->valid()) ids_.fill = g.importBuffer("csample-fill", fill_);
+    if (fragments_->valid()) ids_.fragments = g.importBuffer("csample-fragments", fragments_);
 }
 
 void ComputeSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, const SamplingBuffers& shared) const {
@@ -163,7 +174,7 @@ void ComputeSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, 
     if (list_layers_ > 0) count.write(ids.fragments);
     count.record([this, frame](PassContext& pc) {
             bindAndPush(pc, count_, frame);
-            pc.dispatchIndirect(args_buf_.handle(), 0);
+            pc.dispatchIndirect(args_buf_->handle(), 0);
         });
 }
 
@@ -187,7 +198,7 @@ void ComputeSampler::recordPeelStep(graph::Graph& g, const RunView& run, const S
                     dispatchGroups(pc, pixel_groups);
                     pc.shaderBarrier();
                     bindAndPush(pc, gather_pipe_, frame);
-                    pc.dispatchIndirect(args_buf_.handle(), 0);
+                    pc.dispatchIndirect(args_buf_->handle(), 0);
                 });
         }
         auto pick = addPass(g, "peel[" + std::to_string(step) + "]", PassKind::Compute, Stage::Sampling);
@@ -206,7 +217,7 @@ void ComputeSampler::recordPeelStep(graph::Graph& g, const RunView& run, const S
     if (dual) peel.readWrite(shared.back);
     peel.record([this, frame, step](PassContext& pc) {
         bindAndPush(pc, peel_, frame, 0, step);
-        pc.dispatchIndirect(args_buf_.handle(), 0);
+        pc.dispatchIndirect(args_buf_->handle(), 0);
     });
 }
 

@@ -27,6 +27,7 @@
 // invocation per pixel), so a big triangle does not serialise on one invocation.
 // docs/broadphase.md ("Sampling backends") has the whole design and its measurements.
 //
+// Its buffers are owner-sized rows of the broad phase's table (added at create()).
 // Not thread-safe; one instance per BroadPhase.
 #pragma once
 
@@ -40,7 +41,7 @@ namespace vkcollide::passes {
 class ComputeSampler final : public Sampler {
 public:
     // UnsupportedFeature where computeSamplingSupported() is false.
-    static Result<std::unique_ptr<ComputeSampler>> create(vk::Device& device);
+    static Result<std::unique_ptr<ComputeSampler>> create(vk::Device& device, BufferTable& io_table);
 
     SamplingBackend backend() const noexcept override { return SamplingBackend::Compute; }
     // Sizes the buffers for the run and writes the CsFrame; returns its address.
@@ -57,22 +58,19 @@ public:
     // "csample-gather" when the lists were too short.
     void recordPeelStep(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t step) const override;
     void report(BroadPhaseResult& io_result) const override { io_result.compute_fragment_lists = fragment_lists_; }
-    std::uint64_t memoryBytes() const noexcept override {
-        std::uint64_t n = 0;
-        for (const vk::Buffer* b : {&frame_, &triangles_, &lists_, &items_, &counters_, &args_buf_, &fill_, &fragments_}) n += b->memoryBytes();
-        return n;
-    }
 
 private:
-    explicit ComputeSampler(vk::Device& device) : device_(&device) {}
+    ComputeSampler(vk::Device& device, BufferTable& table) : device_(&device), table_(&table) {}
+    Result<void> reserve(std::initializer_list<RowSize> sizes) const;
     vk::Device* device_;
+    BufferTable* table_;
     vk::Pipeline setup_, bin_, args_, count_, peel_, gather_pipe_, pick_;
-    vk::Buffer frame_, triangles_, lists_, items_, counters_, args_buf_, fill_, fragments_;
+    TableRow frame_, triangles_, lists_, items_, counters_, args_buf_, fill_, fragments_;
     // This backend's buffers in the graph being recorded.
     struct Ids {
         graph::ResourceId triangles, lists, items, counters, args, fill, fragments;
     } ids_;
-    std::uint32_t resolution_ = 0;
+    std::uint32_t resolution_ = 0, triangles_count_ = 0;
     std::uint64_t list_budget_ = 0;
     std::uint32_t list_layers_ = 0;       // stored by the count pass this run
     std::uint32_t next_list_layers_ = 0;  // what the last run needed

@@ -14,8 +14,8 @@ using graph::PassContext;
 using graph::PassKind;
 using graph::Use;
 
-Result<std::unique_ptr<ObjectSampling>> ObjectSampling::create(vk::Device& device) {
-    std::unique_ptr<ObjectSampling> os(new ObjectSampling(device));
+Result<std::unique_ptr<ObjectSampling>> ObjectSampling::create(vk::Device& device, BufferTable& table) {
+    std::unique_ptr<ObjectSampling> os(new ObjectSampling(device, table));
     auto raster = RasterSampler::create(device);
     if (!raster) return raster.error();
     os->raster_ = std::move(*raster);
@@ -54,7 +54,7 @@ Result<VkDeviceAddress> ObjectSampling::prepare(const BroadPhaseSettings& s, con
     }
     if (choice_.backend == SamplingBackend::Compute) {
         if (!compute_) {
-            auto created = ComputeSampler::create(*device_);
+            auto created = ComputeSampler::create(*device_, *table_);
             if (!created) return created.error();
             compute_ = std::move(*created);
         }

@@ -28,7 +28,8 @@ struct DepthAwareIds {
 
 class ObjectSampling {
 public:
-    static Result<std::unique_ptr<ObjectSampling>> create(vk::Device& device);
+    // The compute backend's rows go into `io_table` when it is first used.
+    static Result<std::unique_ptr<ObjectSampling>> create(vk::Device& device, BufferTable& io_table);
 
     // Chooses the backend for the run (Auto: backend_choice.hpp) and prepares it. Returns
     // the address for gpu::Frame::compute_sampling (0 for raster). Precondition: no
@@ -49,14 +50,11 @@ public:
     // Backend, its reason and the sampling statistics of the run; remembers the scene's
     // fragments per triangle for the next run's Auto choice.
     void report(const gpu::Header& header, std::uint32_t triangles, BroadPhaseResult& io_result);
-    // Bytes of device memory of the backends' own buffers.
-    std::uint64_t memoryBytes() const noexcept {
-        return (raster_ ? raster_->memoryBytes() : 0) + (compute_ ? compute_->memoryBytes() : 0);
-    }
 
 private:
-    explicit ObjectSampling(vk::Device& device) : device_(&device) {}
+    ObjectSampling(vk::Device& device, BufferTable& table) : device_(&device), table_(&table) {}
     vk::Device* device_;
+    BufferTable* table_;
     std::unique_ptr<RasterSampler> raster_;
     std::unique_ptr<ComputeSampler> compute_;  // created on first use
     Sampler* active_ = nullptr;

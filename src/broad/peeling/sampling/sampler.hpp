@@ -44,8 +44,6 @@ public:
     virtual void recordPeelStep(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t step) const = 0;
     // The backend's own statistics.
     virtual void report(BroadPhaseResult& io_result) const = 0;
-    // Bytes of device memory of the backend's own buffers.
-    virtual std::uint64_t memoryBytes() const noexcept { return 0; }
 };
 
 }  // namespace vkcollide::passes

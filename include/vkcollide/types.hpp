@@ -76,14 +76,27 @@ enum class PairSort {
     Cpu,   // on the CPU: the GPU's unsorted pairs are read back, sorted and deduplicated there
 };
 
+// How the reliable method's automatic grid is chosen (DetectSettings::reliable.grid_tuning).
+// The pairs are the same at any grid (the method is exact at every resolution): only the time
+// changes.
+enum class GridTuning {
+    Auto,  // On where the device is a GPU; Off on a CPU implementation (lavapipe), whose
+           // timings do not rank grids as a GPU's do
+    On,    // per scene, from the detections' own GPU times: kCellsPerEdge scaled by steps of
+           // sqrt(2) from 1/4 to 2, the fastest of its neighbours kept (docs/reliable.md, "The
+           // grid per scene")
+    Off,   // kCellsPerEdge (2) cells per typical edge, whatever the scene
+};
+
 // Lower-case names as the command-line options spell them: "scan", "paper"; "centre",
 // "dilate", "conservative", "best"; "auto", "raster", "compute"; "reliable", "peeling";
-// "auto", "gpu", "cpu" (twice).
+// "auto", "gpu", "cpu" (twice); "auto", "on", "off".
 VKCOLLIDE_API const char* toString(PackingMethod method) noexcept;
 VKCOLLIDE_API const char* toString(DetectMethod method) noexcept;
 VKCOLLIDE_API const char* toString(Coverage coverage) noexcept;
 VKCOLLIDE_API const char* toString(SamplingBackend backend) noexcept;
 VKCOLLIDE_API const char* toString(ExactDecision exact) noexcept;
 VKCOLLIDE_API const char* toString(PairSort sort) noexcept;
+VKCOLLIDE_API const char* toString(GridTuning tuning) noexcept;
 
 }  // namespace vkcollide

@@ -177,6 +177,12 @@ struct ReliableSettings {
     // shaderFloat64, a pair filter the world applies on the host only); Auto then sorts on
     // the CPU. With engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
     PairSort pair_sort = PairSort::Auto;
+    // With an automatic resolution: whether the grid is chosen per scene from the
+    // detections' own GPU times (GridTuning). On, the first detections of a scene try the
+    // neighbouring grids (each as exact; some slower) and the world keeps the fastest; the
+    // settings note says which grid ran and why. Auto resolves to On on a GPU, Off on a CPU
+    // implementation. A resolution given by the caller is never changed.
+    GridTuning grid_tuning = GridTuning::Auto;
 
     // With the exact decision on the GPU (exact Auto or Gpu, a device with shaderFloat64):
     // the detection also leaves its pairs on the GPU, in buffers the world owns, sorted as
@@ -282,8 +288,9 @@ struct DetectSettings {
     DetectMethod method = DetectMethod::Reliable;
     // Reliable: cells per side, any integer in [1, 16384]. Automatic: about
     // kCellsPerEdge (spirv/common/config.h; 2) cells per typical projected triangle edge across
-    // the scene's extent, within [kMinAutoCells, kMaxAutoCells] and at most
-    // kMaxCellsPerTriangle cells per triangle.
+    // the scene's extent, scaled per scene where reliable.grid_tuning is On (the default on
+    // a GPU), within [kMinAutoCells, kMaxAutoCells] and at most kMaxCellsPerTriangle cells
+    // per triangle.
     // Peeling: rays per image side, a power of two in [4, 16384]. Automatic: about four
     // pixels per typical triangle edge across the scene's extent, within [64, 2048].
     // Typical edges: measured for host meshes, ObjectOptions::typical_edge_length for GPU

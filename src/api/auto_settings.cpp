@@ -117,10 +117,14 @@ void AutoSettings::measureShapes(const DetectSettings& in, const ObjectRegistry&
 
 // Fills every automatic field from the host's knowledge of the scene.
 DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegistry& registry, const vk::Device& device, Executor& executor,
-                                     std::string* note) const {
+                                     std::string* note, std::optional<GridChoice>* grid_choice) const {
     measureShapes(in, registry, executor);
     DetectSettings s = in;
+    if (grid_choice) grid_choice->reset();
     const bool reliable = s.method == DetectMethod::Reliable;
+    if (s.reliable.grid_tuning == GridTuning::Auto)
+        s.reliable.grid_tuning = device.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? GridTuning::Off : GridTuning::On;
+    std::uint32_t live_objects = 0;
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     double edge_weighted = 0, edge_triangles = 0, open_edge = 0, open_triangles = 0;
     double host_triangles = 0, gpu_known_area = 0, gpu_known_triangles = 0, gpu_unknown_triangles = 0;
@@ -129,6 +133,7 @@ DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegis
     bool any_box = false, any_gpu = false;
     for (const Object& o : registry.objects) {
         if (!o.alive) continue;
+        ++live_objects;
         const Transform3x4& t = o.options.transform;
         const double n = o.gpu.triangle_count, scale = maxScale(t);
         triangles += o.gpu.triangle_count;
@@ -228,8 +233,17 @@ DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegis
         if (any_box)
             for (int a = 0; a < 3; ++a) magnitude = std::max({magnitude, std::fabs(double(lo[a])), std::fabs(double(hi[a]))});
         char buf[200];
+        std::string tuned;  // the grid tuner's reason, after the resolution's
         if (extent > 0 && typical_edge > 0 && reliable) {
-            const double want = gpu::kCellsPerEdge * extent / typical_edge;
+            // The tuned grid: a step of the scene's tuner (GridTuner), or kCellsPerEdge as is.
+            int step = 0;
+            if (s.reliable.grid_tuning == GridTuning::On) {
+                const GridTuner::Scene scene{triangles, live_objects};
+                step = grid.next(scene);
+                if (grid_choice) *grid_choice = GridChoice{scene, step};
+            }
+            const double per_edge = gpu::kCellsPerEdge * GridTuner::scale(step);
+            const double want = per_edge * extent / typical_edge;
             const double budget = std::sqrt(std::max(gpu::kMaxCellsPerTriangle * double(triangles), double(gpu::kMinAutoCells) * gpu::kMinAutoCells));
             const double precise = magnitude > 0 ? extent / (gpu::kMinCellUlps * 0x1p-23 * magnitude) : INFINITY;
             double n = std::min({std::ceil(want), double(gpu::kMaxAutoCells), std::floor(budget)});
@@ -237,10 +251,11 @@ DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegis
             const bool rounding = precise < n;
             if (rounding) n = std::max(1.0, std::floor(precise));
             s.resolution = static_cast<std::uint32_t>(n);
-            std::snprintf(buf, sizeof buf, "resolution %u cells (%.0f per typical edge %.4g across extent %.4g%s)", *s.resolution,
-                          gpu::kCellsPerEdge, typical_edge, extent,
+            std::snprintf(buf, sizeof buf, "resolution %u cells (%.3g per typical edge %.4g across extent %.4g%s)", *s.resolution,
+                          per_edge, typical_edge, extent,
                           rounding ? ", fewer: cells no finer than the coordinates' rounding this far from the origin"
                           : want > budget ? ", capped at 16 cells per triangle" : "");
+            if (s.reliable.grid_tuning == GridTuning::On) tuned = grid.describe(step);
         } else if (extent > 0 && typical_edge > 0) {
             const double want = kPixelsPerEdge * extent / typical_edge;
             s.resolution = std::clamp(nextPowerOfTwo(want), kMinAutoResolution, kMaxAutoResolution);
@@ -256,6 +271,7 @@ DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegis
             std::snprintf(buf, sizeof buf, "resolution %u (no extent or typical edge length to measure)", *s.resolution);
         }
         append(why, buf);
+        if (!tuned.empty()) append(why, tuned);
     }
     if (!s.peeling.open_epsilon) {
         s.peeling.open_epsilon = open_triangles > 0 ? static_cast<float>(kOpenEpsilonPerEdge * open_edge / open_triangles) : 0.0f;

@@ -9,6 +9,7 @@
 #include <span>
 #include <string>
 
+#include "api/grid_tuner.hpp"
 #include "api/object_registry.hpp"
 #include "vkcollide/thread_pool.hpp"
 #include "vkcollide/world.hpp"
@@ -29,11 +30,22 @@ struct AutoSettings {
     // updateVertices ask the same question).
     bool wantsShape(const Object& o) const { return shapes_wanted_all || (shapes_wanted_open && o.options.open); }
 
+    // The reliable method's grid per scene (reliable.grid_tuning On): resolve() asks it for
+    // the step of the next detection, the detection reports its GPU time back (detect.cpp).
+    // Mutable: choosing a step for another scene starts the tuner again.
+    mutable GridTuner grid;
+    // The tuned grid a resolve() chose: the step to report the detection's time against.
+    struct GridChoice {
+        GridTuner::Scene scene;
+        int step = 0;
+    };
+
     // Every automatic field of `in` filled in for the live objects of `registry`
     // (validation::checkSettings checks the result); stale shapes are measured first, on
-    // `executor`, when an automatic field needs them (measureShapes).
+    // `executor`, when an automatic field needs them (measureShapes). `grid_choice`
+    // (optional): set when the resolution came from the tuned grid, else reset.
     DetectSettings resolve(const DetectSettings& in, const ObjectRegistry& registry, const vk::Device& device, Executor& executor,
-                           std::string* note) const;
+                           std::string* note, std::optional<GridChoice>* grid_choice = nullptr) const;
     // A new host mesh's box and largest |coordinate|; its shape is left to measureShapes.
     static void measureHost(Object& o, std::span<const Float3> positions);
     // Measures the shape of every live host mesh whose geometry changed since it was last

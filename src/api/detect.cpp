@@ -61,7 +61,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     registry.liveMeshes(meshes, run.ids);
     run.positions.clear();
     for (ObjectId id : run.ids) run.positions.push_back(registry.objects[id].host_positions);  // GPU meshes: empty
-    run.settings = resolve(settings, &run.note);
+    run.settings = resolve(settings, &run.note, &run.grid);
     for (auto ok : {validation::checkScene(meshes), validation::checkSettings(run.settings, device())})
         if (!ok) return ok.error();
     const DetectSettings& s = run.settings;
@@ -329,6 +329,9 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     out.responses = std::move(narrow->responses);
     for (TriangleResponse& r : out.responses) r.object = ids[r.object];
     if (broad[0].scene_box) auto_settings.measured_box = broad[0].scene_box;
+    // The tuned grid's time: the GPU span of a detection whose cell stage ran once (a run
+    // that grew a buffer is not comparable).
+    if (run.grid && broad.size() == 1 && broad[0].cells.runs == 1) auto_settings.grid.report(run.grid->scene, run.grid->step, st.gpu_span_ms);
     if (run.settings.contacts.objects)
         if (auto ok = addContacts(run, detected, ids, out); !ok) return ok.error();
     if (run.settings.contacts.geometry) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "api/auto_settings.hpp"
 #include "detect/detection.hpp"
 #include "vk/submission.hpp"
 #include "vkcollide/world.hpp"
@@ -34,6 +35,7 @@ struct DetectionsInFlight {
         // the run is in flight (meshes[i].vertices is the upload buffer it reads).
         std::vector<std::span<const Float3>> positions;
         DetectSettings settings;
+        std::optional<AutoSettings::GridChoice> grid;  // the tuned grid it runs (its time goes back to the tuner)
         std::string note;
         std::chrono::steady_clock::time_point start;
         // When every wait of its GPU work ends (DetectSettings::limits.timeout_ms): start + the

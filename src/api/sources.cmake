@@ -2,6 +2,7 @@
 list(APPEND VKCOLLIDE_HOST_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/vertex_scans.cpp  # the world's loops over host positions (no Vulkan)
   ${CMAKE_CURRENT_LIST_DIR}/mesh_checks.cpp  # closed meshes: holes and inside-out (no Vulkan)
+  ${CMAKE_CURRENT_LIST_DIR}/grid_tuner.cpp  # the reliable method's grid per scene, from GPU times (no Vulkan)
 )
 list(APPEND VKCOLLIDE_GPU_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/auto_settings.cpp  # the automatic settings

@@ -211,6 +211,8 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         return outside("reliable.exact", int(s.reliable.exact), "ExactDecision", "Auto, Gpu or Cpu");
     if (s.reliable.pair_sort != PairSort::Auto && s.reliable.pair_sort != PairSort::Gpu && s.reliable.pair_sort != PairSort::Cpu)
         return outside("reliable.pair_sort", int(s.reliable.pair_sort), "PairSort", "Auto, Gpu or Cpu");
+    if (s.reliable.grid_tuning != GridTuning::Auto && s.reliable.grid_tuning != GridTuning::On && s.reliable.grid_tuning != GridTuning::Off)
+        return outside("reliable.grid_tuning", int(s.reliable.grid_tuning), "GridTuning", "Auto, On or Off");
     const bool reliable = s.method == DetectMethod::Reliable;
     if (s.reliable.exact == ExactDecision::Gpu && !reliable)
         return invalid("exact decision on the GPU belongs to the reliable method (the peeling method decides on the CPU)");

@@ -57,8 +57,8 @@ struct CollisionWorld::Impl {
         registry.changed();
     }
     // The settings a detection of the scene as it is now runs with (AutoSettings::resolve).
-    DetectSettings resolve(const DetectSettings& in, std::string* note) const {
-        return auto_settings.resolve(in, registry, device(), *executor, note);
+    DetectSettings resolve(const DetectSettings& in, std::string* note, std::optional<AutoSettings::GridChoice>* grid = nullptr) const {
+        return auto_settings.resolve(in, registry, device(), *executor, note, grid);
     }
 
     // world.cpp: addMesh and updateVertices after their guards (they may throw

@@ -46,6 +46,15 @@ const char* toString(ExactDecision exact) noexcept {
     return "?";
 }
 
+const char* toString(GridTuning tuning) noexcept {
+    switch (tuning) {
+        case GridTuning::Auto: return "auto";
+        case GridTuning::On: return "on";
+        case GridTuning::Off: return "off";
+    }
+    return "?";
+}
+
 const char* toString(PairSort sort) noexcept {
     switch (sort) {
         case PairSort::Auto: return "auto";

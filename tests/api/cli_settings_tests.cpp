@@ -230,7 +230,7 @@ TEST_CASE("vkcollide detect: the JSON's settings are those the method that ran r
     const Json j = detectJson(s.scratch, s.files + " --resolution 64");
     CHECK(j["settings"]["asked"].object().size() == options.all.size() - options.reliable_only.size());
     CHECK(j["settings"]["used"].object().size() == options.all.size() - options.reliable_only.size());
-    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--pair-sort", "--proximity", "--proximity-capacity"});
+    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--pair-sort", "--grid-tuning", "--proximity", "--proximity-capacity"});
     CHECK_FALSE(j["settings"]["used"].has("exact"));
     CHECK(j["settings"]["used"].has("depth_aware"));
     // The reliable method: the fields it reads, and none that only peeling reads.
@@ -398,6 +398,23 @@ TEST_CASE("vkcollide detect: --pair-sort chooses where the pairs are put in orde
     const Run run = runCli("detect " + s.files + " --pair-sort gpu");
     CHECK(run.status == 1);
     CHECK(run.err.find("--pair-sort belongs to the reliable method") != std::string::npos);
+}
+
+// --grid-tuning: on lavapipe auto resolves to off; on, the scene's second detection (what
+// --frames 2 reports) tries the coarser grid, says so, and gives the same pairs.
+TEST_CASE("vkcollide detect: --grid-tuning chooses the grid per scene, same pairs", "[cli][gpu]") {
+    TwoSpheres s(1.0f);
+    const Json plain = detectJson(s.scratch, s.plain_files + " --frames 2");
+    const Json tuned = detectJson(s.scratch, s.plain_files + " --frames 2 --grid-tuning on");
+    CHECK(plain["settings"]["asked"]["grid_tuning"].string() == "auto");
+    CHECK(plain["settings"]["used"]["grid_tuning"].string() == "off");
+    CHECK(tuned["settings"]["used"]["grid_tuning"].string() == "on");
+    CHECK(jsonPairs(tuned["frames"][0]) == jsonPairs(plain["frames"][0]));
+    CHECK(stats(tuned)["resolution"].number() < stats(plain)["resolution"].number());
+    CHECK(stats(tuned)["settings_note"].string().find("grid tuned per scene: trying x0.71") != std::string::npos);
+    const Run run = runCli("detect " + s.files + " --grid-tuning on");
+    CHECK(run.status == 1);
+    CHECK(run.err.find("--grid-tuning belongs to the reliable method") != std::string::npos);
 }
 
 TEST_CASE("vkcollide detect: --contact-geometry writes where each pair meets and the totals", "[cli][gpu]") {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "api/engine_copy.hpp"
 #include "support/error_text.hpp"
@@ -315,5 +316,36 @@ TEST_CASE("reliable: self-collision and automatic settings", "[api][gpu][reliabl
     REQUIRE(r);
     CHECK(r->stats.peeling.axes == 1);
     CHECK(mentions(r->stats.settings_note, "axes 1"));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// The grid per scene (DetectSettings::reliable.grid_tuning): Auto is Off on lavapipe (a CPU
+// implementation); On, a scene's first detections try the neighbouring grids, each giving
+// the exact pairs, the settings note says which grid ran, and a given resolution is kept.
+TEST_CASE("reliable: the grid tuned per scene tries neighbouring grids, every one exact", "[api][gpu][reliable]") {
+    ValidatedContext ctx;
+    auto scene = clothThroughSphere();
+    REQUIRE(scene);
+    auto world = makeWorld(ctx);
+    for (const SceneObject& o : scene->objects) REQUIRE(world->addMesh(o.mesh, o.options));
+    const auto expected = reference(scene->reference());
+    auto plain = world->resolveSettings();
+    REQUIRE(plain);
+    CHECK(plain->reliable.grid_tuning == GridTuning::Off);
+    const DetectSettings tuned{.reliable = {.grid_tuning = GridTuning::On}};
+    std::set<std::uint32_t> resolutions;
+    for (int k = 0; k < 5; ++k) {
+        auto r = world->detect(tuned);
+        REQUIRE(r);
+        requireExact(*r, expected, "cloth through a sphere, tuned grid");
+        resolutions.insert(r->stats.resolution);
+        CHECK(mentions(r->stats.settings_note, "grid tuned per scene"));
+        if (k == 1) CHECK(mentions(r->stats.settings_note, "trying x0.71"));
+    }
+    CHECK(resolutions.size() >= 3);  // x1, then x0.71 and x1.41
+    auto fixed = world->detect({.resolution = 40, .reliable = {.grid_tuning = GridTuning::On}});
+    REQUIRE(fixed);
+    CHECK(fixed->stats.resolution == 40);
+    CHECK_FALSE(mentions(fixed->stats.settings_note, "grid tuned"));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -40,6 +40,10 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // PairSort::Auto, sorts on the GPU from kGpuPairSortFrom pairs).
         {"sort-gpu", "modes", [](S& s) { s.reliable.pair_sort = PairSort::Gpu; }},
         {"sort-cpu", "modes", [](S& s) { s.reliable.pair_sort = PairSort::Cpu; }},
+        // The automatic grid fixed at kCellsPerEdge (the default on a GPU tunes it per scene,
+        // docs/reliable.md "The grid per scene"): its difference to "default" is the tuning's.
+        {"grid-fixed", "modes", [](S& s) { s.reliable.grid_tuning = GridTuning::Off; }},
+        {"grid-tuned", "modes", [](S& s) { s.reliable.grid_tuning = GridTuning::On; }},
         // The pairs also sorted on the GPU (DetectSettings::reliable.device_pairs): its cost is
         // sorting_ms, the difference to "default".
         {"device-pairs", "modes", [](S& s) { s.reliable.device_pairs = true; }},

@@ -170,6 +170,12 @@ const std::vector<Option>& options() {
                   "(the narrow phase; docs/exact_gpu.md)",
                   "gpu: two GPU passes and one copy, the host only computes responses; cpu: the host sorts; same pairs and responses",
                   setting<kReliable, &ReliableSettings::pair_sort>, "pair_sort", "reliable.pair_sort", show<kReliable, &ReliableSettings::pair_sort>}),
+        reliable({"--grid-tuning", "HOW", Section::Settings,
+                  "with an automatic --resolution: auto (on for a GPU, off for lavapipe), on (the grid chosen per scene from the "
+                  "detections' GPU times) or off (2 cells per typical edge)",
+                  "on: a scene's first detections try neighbouring grids, some slower; same pairs at every grid",
+                  setting<kReliable, &ReliableSettings::grid_tuning>, "grid_tuning", "reliable.grid_tuning",
+                  show<kReliable, &ReliableSettings::grid_tuning>}),
         reliable({"--proximity", "D", Section::Settings,
                   "also every vertex-triangle and edge-edge pair within distance D (world units) with its distance, closest points "
                   "and normal (docs/proximity.md; host meshes, 64-bit floats on the GPU)",

@@ -80,8 +80,8 @@ enum class PairSort {
 // The pairs are the same at any grid (the method is exact at every resolution): only the time
 // changes.
 enum class GridTuning {
-    Auto,  // On where the device is a GPU; Off on a CPU implementation (lavapipe), whose
-           // timings do not rank grids as a GPU's do
+    Auto,  // the library's choice: Off until the tuner's effect is measured on a GPU (the
+           // choice may change then; docs/reliable.md, "The grid per scene")
     On,    // per scene, from the detections' own GPU times: kCellsPerEdge scaled by steps of
            // sqrt(2) from 1/4 to 2, the fastest of its neighbours kept (docs/reliable.md, "The
            // grid per scene")

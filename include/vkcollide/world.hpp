@@ -180,8 +180,8 @@ struct ReliableSettings {
     // With an automatic resolution: whether the grid is chosen per scene from the
     // detections' own GPU times (GridTuning). On, the first detections of a scene try the
     // neighbouring grids (each as exact; some slower) and the world keeps the fastest; the
-    // settings note says which grid ran and why. Auto resolves to On on a GPU, Off on a CPU
-    // implementation. A resolution given by the caller is never changed.
+    // settings note says which grid ran and why. Auto resolves to Off for now (the tuner is
+    // not yet measured on a GPU). A resolution given by the caller is never changed.
     GridTuning grid_tuning = GridTuning::Auto;
 
     // With the exact decision on the GPU (exact Auto or Gpu, a device with shaderFloat64):
@@ -288,9 +288,8 @@ struct DetectSettings {
     DetectMethod method = DetectMethod::Reliable;
     // Reliable: cells per side, any integer in [1, 16384]. Automatic: about
     // kCellsPerEdge (spirv/common/config.h; 2) cells per typical projected triangle edge across
-    // the scene's extent, scaled per scene where reliable.grid_tuning is On (the default on
-    // a GPU), within [kMinAutoCells, kMaxAutoCells] and at most kMaxCellsPerTriangle cells
-    // per triangle.
+    // the scene's extent, scaled per scene where reliable.grid_tuning is On, within
+    // [kMinAutoCells, kMaxAutoCells] and at most kMaxCellsPerTriangle cells per triangle.
     // Peeling: rays per image side, a power of two in [4, 16384]. Automatic: about four
     // pixels per typical triangle edge across the scene's extent, within [64, 2048].
     // Typical edges: measured for host meshes, ObjectOptions::typical_edge_length for GPU

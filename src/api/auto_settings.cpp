@@ -122,8 +122,8 @@ DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegis
     DetectSettings s = in;
     if (grid_choice) grid_choice->reset();
     const bool reliable = s.method == DetectMethod::Reliable;
-    if (s.reliable.grid_tuning == GridTuning::Auto)
-        s.reliable.grid_tuning = device.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? GridTuning::Off : GridTuning::On;
+    // Auto: Off until the tuner is measured on a GPU (docs/reliable.md, "The grid per scene").
+    if (s.reliable.grid_tuning == GridTuning::Auto) s.reliable.grid_tuning = GridTuning::Off;
     std::uint32_t live_objects = 0;
     float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     double edge_weighted = 0, edge_triangles = 0, open_edge = 0, open_triangles = 0;

@@ -400,7 +400,7 @@ TEST_CASE("vkcollide detect: --pair-sort chooses where the pairs are put in orde
     CHECK(run.err.find("--pair-sort belongs to the reliable method") != std::string::npos);
 }
 
-// --grid-tuning: on lavapipe auto resolves to off; on, the scene's second detection (what
+// --grid-tuning: auto resolves to off for now; on, the scene's second detection (what
 // --frames 2 reports) tries the coarser grid, says so, and gives the same pairs.
 TEST_CASE("vkcollide detect: --grid-tuning chooses the grid per scene, same pairs", "[cli][gpu]") {
     TwoSpheres s(1.0f);

@@ -319,9 +319,9 @@ TEST_CASE("reliable: self-collision and automatic settings", "[api][gpu][reliabl
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-// The grid per scene (DetectSettings::reliable.grid_tuning): Auto is Off on lavapipe (a CPU
-// implementation); On, a scene's first detections try the neighbouring grids, each giving
-// the exact pairs, the settings note says which grid ran, and a given resolution is kept.
+// The grid per scene (DetectSettings::reliable.grid_tuning): Auto is Off for now; On, a
+// scene's first detections try the neighbouring grids, each giving the exact pairs, the
+// settings note says which grid ran, and a given resolution is kept.
 TEST_CASE("reliable: the grid tuned per scene tries neighbouring grids, every one exact", "[api][gpu][reliable]") {
     ValidatedContext ctx;
     auto scene = clothThroughSphere();

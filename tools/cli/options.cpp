@@ -171,8 +171,8 @@ const std::vector<Option>& options() {
                   "gpu: two GPU passes and one copy, the host only computes responses; cpu: the host sorts; same pairs and responses",
                   setting<kReliable, &ReliableSettings::pair_sort>, "pair_sort", "reliable.pair_sort", show<kReliable, &ReliableSettings::pair_sort>}),
         reliable({"--grid-tuning", "HOW", Section::Settings,
-                  "with an automatic --resolution: auto (on for a GPU, off for lavapipe), on (the grid chosen per scene from the "
-                  "detections' GPU times) or off (2 cells per typical edge)",
+                  "with an automatic --resolution: on (the grid chosen per scene from the detections' GPU times), off (2 cells "
+                  "per typical edge) or auto (the library's choice: off until the tuner is measured on a GPU)",
                   "on: a scene's first detections try neighbouring grids, some slower; same pairs at every grid",
                   setting<kReliable, &ReliableSettings::grid_tuning>, "grid_tuning", "reliable.grid_tuning",
                   show<kReliable, &ReliableSettings::grid_tuning>}),

@@ -5,14 +5,15 @@
 #include <string>
 #include <unordered_map>
 
+#include "scene/mesh_building.hpp"
 #include "vkcollide/scene.hpp"
 
 namespace vkcollide {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-Error invalid(std::string what) { return Error(ErrorCode::InvalidArgument, std::move(what)); }
+using mesh_building::invalid;
+using mesh_building::kPi;
+using mesh_building::pushTriangle;
 
 bool isPositiveFinite(float value) { return std::isfinite(value) && value > 0.0f; }
 
@@ -25,12 +26,6 @@ Result<void> checkTriangleBudget(const char* generator, std::uint64_t triangles)
 
 Float3 toFloat3(double x, double y, double z) {
     return Float3{static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
-}
-
-void pushTriangle(HostMesh& io_mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    io_mesh.indices.push_back(a);
-    io_mesh.indices.push_back(b);
-    io_mesh.indices.push_back(c);
 }
 
 // Quad a, b, c, d (in winding order) as triangles (a, b, c) and (a, c, d).

@@ -3,20 +3,17 @@
 #include <numbers>
 #include <string>
 
+#include "scene/mesh_building.hpp"
 #include "vkcollide/scene.hpp"
 
 namespace vkcollide {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-Error invalid(std::string what) { return Error(ErrorCode::InvalidArgument, std::move(what)); }
+using mesh_building::invalid;
+using mesh_building::kPi;
+using mesh_building::pushTriangle;
 
 bool isFinite(float value) { return std::isfinite(value); }
-
-void pushTriangle(HostMesh& io_mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    io_mesh.indices.insert(io_mesh.indices.end(), {a, b, c});
-}
 
 Float3 scaledTo(const Float3& p, double radius) {
     const double n = std::sqrt(double{p.x} * p.x + double{p.y} * p.y + double{p.z} * p.z);

@@ -6,6 +6,7 @@
 #include <new>
 
 #include "broad/cells/reliable_method.hpp"
+#include "broad/peeling/peeling_method.hpp"
 #include "vk/device.hpp"
 
 namespace vkcollide {

@@ -346,12 +346,17 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
 
 Result<graph::ExecutionReport> BroadPhase::runMore(Recording what, FollowUpStage* follow_up, const char* what_runs) {
     const BroadPhaseSettings& s = run_.settings;
-    if (s.deadline && waitNs(s) == 0)
-        return timeoutOfRun(s, Error(ErrorCode::Timeout, std::string("deadline passed before ") + what_runs + " could run"));
+    // The detection's timeout, saying which part was left when it ran out.
+    const auto timedOut = [&](Error e) {
+        Error out = timeoutOfRun(s, std::move(e));
+        if (out.code() != ErrorCode::Timeout) return out;
+        return Error(ErrorCode::Timeout, out.message() + "; it ran out at " + what_runs, out.vkResult());
+    };
+    if (s.deadline && waitNs(s) == 0) return timedOut(Error(ErrorCode::Timeout, "deadline passed"));
     graph::Graph g;
     record(g, what, follow_up);
     auto report = executor_.run(g, waitNs(s));
-    if (!report) return timeoutOfRun(s, report.error());
+    if (!report) return timedOut(report.error());
     return report;
 }
 

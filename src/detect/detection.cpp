@@ -8,6 +8,7 @@
 namespace vkcollide::passes {
 
 Result<std::unique_ptr<Detection>> Detection::create(vk::Device& device, MethodFactory method) {
+    if (!method) return Error(ErrorCode::InvalidArgument, "Detection::create: no broad-phase method given");
     std::unique_ptr<Detection> d(new Detection(device));
     auto bp = BroadPhase::create(device, method);
     if (!bp) return bp.error();
@@ -207,6 +208,7 @@ Result<bool> Detection::ready() {
 
 Result<void> Detection::start(std::span<const GpuMesh> meshes, const DetectionSettings& s, bool measure, graph::SubmitTarget* target) {
     if (pending_) return Error(ErrorCode::InvalidArgument, "submit while a detection is in flight: collect() it first");
+    if (!s.method) return Error(ErrorCode::InvalidArgument, "DetectionSettings::method names no broad-phase method");
     if (target && target->engine && s.axes > 1)
         return Error(ErrorCode::InvalidArgument, "record: three sampling directions make three submissions; an engine's command "
                                                  "buffer takes one (axes = 1)");

@@ -19,7 +19,6 @@
 #include <vector>
 
 #include "broad/broad_phase.hpp"
-#include "broad/peeling/peeling_method.hpp"
 
 namespace vkcollide::passes {
 
@@ -27,8 +26,10 @@ struct DetectionSettings {
     BroadPhaseSettings broad;  // `direction` is the first direction
     std::uint32_t axes = 1;    // 1, or 3: also the first direction's image axes u and v (record methods only)
     BadObjectPolicy bad_objects = BadObjectPolicy::Exclude;
-    // The broad-phase method every direction runs (a change recreates the broad phases).
-    MethodFactory method = PeelingMethod::create;
+    // The broad-phase method every direction runs (a change recreates the broad phases). No
+    // default: the caller names it (the API: DetectionsInFlight::methodFactory); start()
+    // refuses a null one.
+    MethodFactory method = nullptr;
 };
 
 struct DetectionResult {
@@ -47,8 +48,9 @@ struct DetectionResult {
 
 class Detection {
 public:
-    // Creates the first direction's broad phase (its pipelines) now, with `method`.
-    static Result<std::unique_ptr<Detection>> create(vk::Device& device, MethodFactory method = PeelingMethod::create);
+    // Creates the first direction's broad phase (its pipelines) now, with `method` (no
+    // default, as for DetectionSettings::method).
+    static Result<std::unique_ptr<Detection>> create(vk::Device& device, MethodFactory method);
     ~Detection();
     Detection(const Detection&) = delete;
     Detection& operator=(const Detection&) = delete;

@@ -10,6 +10,7 @@
 
 #include "broad/projection.hpp"
 #include "contacts/contact_stage.hpp"
+#include "broad/peeling/peeling_method.hpp"
 #include "detect/detection.hpp"
 #include "mesh/mesh_upload.hpp"
 #include "support/gpu_fixture.hpp"
@@ -47,8 +48,10 @@ Row makeRow(vk::Device& dev) {
     return row;
 }
 
+// The paper's method: its records are what these tests compare.
 DetectionSettings settings(std::uint32_t axes) {
     DetectionSettings s;
+    s.method = PeelingMethod::create;
     s.broad.resolution = 64;
     s.broad.direction = {0.15f, -0.2f, 1.0f};
     s.axes = axes;
@@ -76,7 +79,7 @@ Result<std::unique_ptr<BroadPhaseMethod>> countingPeeling(vk::Device& device, Bu
 TEST_CASE("a detection runs the method it is given on every direction", "[gpu][detection]") {
     test::ValidatedContext ctx;
     Row row = makeRow(ctx.device());
-    auto det = Detection::create(ctx.device());
+    auto det = Detection::create(ctx.device(), PeelingMethod::create);
     REQUIRE(det);
     REQUIRE((*det)->start(row.up.meshes, settings(1), true));
     auto plain = (*det)->collect();
@@ -92,13 +95,22 @@ TEST_CASE("a detection runs the method it is given on every direction", "[gpu][d
     REQUIRE((*det)->collect());
     CHECK(peeling_made == 3);  // and kept while the method stays
     CHECK(counted->axes[0].records.size() == plain->axes[0].records.size());
+    // No default method: none given is refused by name.
+    auto none = Detection::create(ctx.device(), nullptr);
+    REQUIRE_FALSE(none);
+    CHECK(none.error().code() == ErrorCode::InvalidArgument);
+    DetectionSettings unnamed = settings(1);
+    unnamed.method = nullptr;
+    auto refused = (*det)->start(row.up.meshes, unnamed, true);
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error().message().find("DetectionSettings::method") != std::string::npos);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
 TEST_CASE("a detection runs one or three directions without a world", "[gpu][detection]") {
     test::ValidatedContext ctx;
     Row row = makeRow(ctx.device());
-    auto det = Detection::create(ctx.device());
+    auto det = Detection::create(ctx.device(), PeelingMethod::create);
     REQUIRE(det);
     Detection& d = **det;
 
@@ -139,7 +151,7 @@ TEST_CASE("a detection runs one or three directions without a world", "[gpu][det
 TEST_CASE("a detection leaves out a mesh the GPU check refuses, or fails with the finding", "[gpu][detection]") {
     test::ValidatedContext ctx;
     Row row = makeRow(ctx.device());
-    auto det = Detection::create(ctx.device());
+    auto det = Detection::create(ctx.device(), PeelingMethod::create);
     REQUIRE(det);
     Detection& d = **det;
     REQUIRE(d.start(row.up.meshes, settings(1), true));
@@ -193,7 +205,7 @@ TEST_CASE("a detection leaves out a mesh the GPU check refuses, or fails with th
 TEST_CASE("a follow-up stage runs on the detection's executor and table, within its deadline", "[gpu][detection]") {
     test::ValidatedContext ctx;
     Row row = makeRow(ctx.device());
-    auto det = Detection::create(ctx.device());
+    auto det = Detection::create(ctx.device(), PeelingMethod::create);
     REQUIRE(det);
     Detection& d = **det;
     REQUIRE(d.start(row.up.meshes, settings(1), true));
@@ -220,12 +232,14 @@ TEST_CASE("a follow-up stage runs on the detection's executor and table, within 
     REQUIRE(again);
     CHECK(*again == *made_early);
 
-    // A deadline that has passed: nothing is submitted, the error is the detection's timeout.
+    // A deadline that has passed: nothing is submitted, the error is the detection's timeout
+    // and names the stage it ran out at.
     d.setDeadline(std::chrono::steady_clock::now() - std::chrono::milliseconds(1));
     auto late = d.runFollowUp(*contacts);
     REQUIRE_FALSE(late);
     CHECK(late.error().code() == ErrorCode::Timeout);
     CHECK(late.error().message().find("timeout_ms") != std::string::npos);
+    CHECK(late.error().message().find("it ran out at the contact stage") != std::string::npos);
     CHECK_FALSE(d.busy());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

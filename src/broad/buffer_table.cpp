@@ -24,7 +24,7 @@ TableRow BufferTable::addOwned(const char* name, vk::MemoryKind kind, VkBufferUs
     row.usage = usage;
     row.engine_reads = engine_reads;
     const BufferId id = add(row);
-    return {id, &entries_[id].buffer};
+    return {id, &entries_[id].buffer, name};
 }
 
 std::vector<VkDeviceSize> BufferTable::plan(const RunShape& shape) const {

@@ -62,14 +62,21 @@ struct RowSize {
     vk::MemoryKind kind;
 };
 
-// An owner-sized row as its owner holds it: the id, and the buffer, which stays in place
-// while the table lives.
+// An owner-sized row as its owner holds it: the id, the buffer, which stays in place while
+// the table lives, and the row's name (importRow names the graph resource with it).
 struct TableRow {
     BufferId id = 0;
     vk::Buffer* buffer = nullptr;
+    const char* name = "";
     vk::Buffer* operator->() const noexcept { return buffer; }
     operator vk::Buffer&() const noexcept { return *buffer; }
 };
+
+// An owner-sized row into a graph about to be recorded, under its row's name;
+// `host_readback` as BufferRow's.
+inline graph::ResourceId importRow(graph::Graph& g, const TableRow& row, bool host_readback = false) {
+    return g.importBuffer(row.name, *row.buffer, host_readback);
+}
 
 // What an owner-sized row needs, at least 16 bytes: every such buffer exists, so its
 // address is valid in a run that does not use it.

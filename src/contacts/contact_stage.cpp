@@ -76,8 +76,8 @@ Result<void> ContactStage::reserve(std::initializer_list<RowSize> sizes) {
 
 // Submission 1: every closed object's world box.
 void ContactStage::recordBounds(graph::Graph& g) {
-    const auto bounds = g.importBuffer("contacts-bounds", rows_.bounds);
-    const auto bounds_rb = g.importBuffer("contacts-bounds-readback", rows_.bounds_rb, true);
+    const auto bounds = importRow(g, rows_.bounds);
+    const auto bounds_rb = importRow(g, rows_.bounds_rb, true);
     const VkBuffer bounds_buffer = rows_.bounds->handle(), rb_buffer = rows_.bounds_rb->handle();
     const VkDeviceSize half = VkDeviceSize(objects_) * 12;
     addPass(g, "contacts-bounds-clear", PassKind::Transfer, Stage::None).use(bounds, Use::TransferDst).record([=](PassContext& pc) {
@@ -117,15 +117,15 @@ std::vector<std::array<float, 6>> ContactStage::readBoxes() const {
 
 // Submission 2: clear, setup (+ small triangles), tiles, walk (sums, then extents), readback.
 void ContactStage::recordMain(graph::Graph& g) {
-    const auto counts = g.importBuffer("contacts-counts", rows_.counts);
-    const auto header = g.importBuffer("contacts-header", rows_.header);
-    const auto table = g.importBuffer("contacts-table", rows_.table);
-    const auto table_init = g.importBuffer("contacts-table-init", rows_.table_init);
-    const auto tris = g.importBuffer("contacts-triangles", rows_.triangles);
-    const auto items = g.importBuffer("contacts-items", rows_.items);
-    const auto entries = g.importBuffer("contacts-entries", rows_.entries);
-    const auto args = g.importBuffer("contacts-args", rows_.args);
-    const auto readback = g.importBuffer("contacts-readback", rows_.readback, true);
+    const auto counts = importRow(g, rows_.counts);
+    const auto header = importRow(g, rows_.header);
+    const auto table = importRow(g, rows_.table);
+    const auto table_init = importRow(g, rows_.table_init);
+    const auto tris = importRow(g, rows_.triangles);
+    const auto items = importRow(g, rows_.items);
+    const auto entries = importRow(g, rows_.entries);
+    const auto args = importRow(g, rows_.args);
+    const auto readback = importRow(g, rows_.readback, true);
     const VkBuffer counts_b = rows_.counts->handle(), header_b = rows_.header->handle(), table_b = rows_.table->handle();
     const VkBuffer init_b = rows_.table_init->handle(), args_b = rows_.args->handle(), rb_b = rows_.readback->handle();
     const VkDeviceSize rays = VkDeviceSize(params_.width) * params_.height;

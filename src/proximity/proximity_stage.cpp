@@ -130,17 +130,17 @@ void ProximityStage::writeParams(const passes::CellStage& cells) {
 }
 
 void ProximityStage::record(graph::Graph& g, const passes::CellStage::Resources& cells) {
-    const auto header = g.importBuffer("proximity-header", buf_.header);
-    const auto header_rb = g.importBuffer("proximity-header-readback", buf_.header_rb, true);
-    const auto records = g.importBuffer("proximity-records", buf_.records);
-    const auto sorted = g.importBuffer("proximity-sorted", buf_.sorted, true);
-    const auto order = g.importBuffer("proximity-order", buf_.order);
-    const auto counts = g.importBuffer("proximity-counts", buf_.counts);
-    const auto offsets = g.importBuffer("proximity-offsets", buf_.offsets);
-    const auto sums = g.importBuffer("proximity-block-sums", buf_.block_sums);
+    const auto header = importRow(g, buf_.header);
+    const auto header_rb = importRow(g, buf_.header_rb, true);
+    const auto records = importRow(g, buf_.records);
+    const auto sorted = importRow(g, buf_.sorted, true);
+    const auto order = importRow(g, buf_.order);
+    const auto counts = importRow(g, buf_.counts);
+    const auto offsets = importRow(g, buf_.offsets);
+    const auto sums = importRow(g, buf_.block_sums);
     const VkBuffer header_buffer = buf_.header->handle(), header_rb_buffer = buf_.header_rb->handle();
     const VkBuffer counts_buffer = buf_.counts->handle(), sort_args = buf_.args->handle();
-    const auto args = g.importBuffer("proximity-args", buf_.args);
+    const auto args = importRow(g, buf_.args);
     const VkDeviceSize count_bytes = VkDeviceSize(std::max<std::uint32_t>(buckets_, 1)) * 4;
     const VkBuffer args_buffer = cells_args_;
     const VkDeviceAddress params = buf_.params->address();

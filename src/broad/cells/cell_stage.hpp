@@ -165,9 +165,9 @@ public:
     Resources record(graph::Graph& graph, graph::ResourceId projection = {});
     // Those buffers imported into a graph of their own (a later stage run alone).
     Resources importOutputs(graph::Graph& g) {
-        return {g.importBuffer("cells-header", buf_.header),         g.importBuffer("cells-survivors", buf_.survivors, !survivors_on_device_),
-                g.importBuffer("cells-triangles", buf_.triangles),   g.importBuffer("cells-candidates", buf_.candidates),
-                g.importBuffer("cells-geometry", buf_.geometry),     g.importBuffer("cells-args", buf_.args)};
+        return {importRow(g, buf_.header),         importRow(g, buf_.survivors, !survivors_on_device_),
+                importRow(g, buf_.triangles),   importRow(g, buf_.candidates),
+                importRow(g, buf_.geometry),     importRow(g, buf_.args)};
     }
     // The indirect dispatches the stage writes (kCellsArgs* slots of 12 bytes): the pair
     // pass's serves any later pass over the candidates.

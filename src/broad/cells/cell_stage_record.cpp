@@ -36,22 +36,22 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
     const std::uint64_t cells = capacity_cells <= exact_cells + exact_cells / 4 ? capacity_cells : exact_cells;
     const std::uint64_t blocks = (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const std::uint64_t tri_groups = groupsFor(triangles_);
-    const auto header = g.importBuffer("cells-header", buf_.header);
-    const auto header_rb = g.importBuffer("cells-header-readback", buf_.header_rb, true);
-    const auto tris = g.importBuffer("cells-triangles", buf_.triangles);
-    const auto geometry = g.importBuffer("cells-geometry", buf_.geometry);
-    const auto counts = g.importBuffer("cells-counts", buf_.counts);
-    const auto offsets = g.importBuffer("cells-offsets", buf_.offsets);
-    const auto sums = g.importBuffer("cells-block-sums", buf_.block_sums);
-    const auto entries = g.importBuffer("cells-entries", buf_.entries);
-    const auto entry_cells = g.importBuffer("cells-entry-cells", buf_.entry_cells);
-    const auto big = g.importBuffer("cells-big-items", buf_.big_items);
-    const auto deep = g.importBuffer("cells-deep-items", buf_.deep_items);
-    const auto candidates = g.importBuffer("cells-candidates", buf_.candidates);
-    const auto survivors = g.importBuffer("cells-survivors", buf_.survivors, !survivors_on_device_);
-    const auto args = g.importBuffer("cells-args", buf_.args);
-    const auto gpu_triangles = g.importBuffer("cells-gpu-triangles", buf_.gpu_triangles, true);
-    const auto marks = g.importBuffer("cells-marks", buf_.marks);
+    const auto header = importRow(g, buf_.header);
+    const auto header_rb = importRow(g, buf_.header_rb, true);
+    const auto tris = importRow(g, buf_.triangles);
+    const auto geometry = importRow(g, buf_.geometry);
+    const auto counts = importRow(g, buf_.counts);
+    const auto offsets = importRow(g, buf_.offsets);
+    const auto sums = importRow(g, buf_.block_sums);
+    const auto entries = importRow(g, buf_.entries);
+    const auto entry_cells = importRow(g, buf_.entry_cells);
+    const auto big = importRow(g, buf_.big_items);
+    const auto deep = importRow(g, buf_.deep_items);
+    const auto candidates = importRow(g, buf_.candidates);
+    const auto survivors = importRow(g, buf_.survivors, !survivors_on_device_);
+    const auto args = importRow(g, buf_.args);
+    const auto gpu_triangles = importRow(g, buf_.gpu_triangles, true);
+    const auto marks = importRow(g, buf_.marks);
     const VkBuffer marks_buffer = has_download_ ? buf_.marks->handle() : VK_NULL_HANDLE;
     const VkDeviceSize marks_bytes = (VkDeviceSize(std::max(triangles_, 1u)) + 31) / 32 * 4;
     const VkBuffer args_buffer = buf_.args->handle();
@@ -193,11 +193,11 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
 void CellStage::recordPairChunk(graph::Graph& g) {
     survivor_count_ = gpu_triangle_count_ = 0;
     recordPairPass(g,
-                   {g.importBuffer("cells-header", buf_.header), g.importBuffer("cells-header-readback", buf_.header_rb, true),
-                    g.importBuffer("cells-triangles", buf_.triangles), g.importBuffer("cells-geometry", buf_.geometry),
-                    g.importBuffer("cells-candidates", buf_.candidates),
-                    g.importBuffer("cells-survivors", buf_.survivors, !survivors_on_device_), g.importBuffer("cells-args", buf_.args),
-                    g.importBuffer("cells-gpu-triangles", buf_.gpu_triangles, true), g.importBuffer("cells-marks", buf_.marks)},
+                   {importRow(g, buf_.header), importRow(g, buf_.header_rb, true),
+                    importRow(g, buf_.triangles), importRow(g, buf_.geometry),
+                    importRow(g, buf_.candidates),
+                    importRow(g, buf_.survivors, !survivors_on_device_), importRow(g, buf_.args),
+                    importRow(g, buf_.gpu_triangles, true), importRow(g, buf_.marks)},
                    next_chunk_);
 }
 

@@ -107,14 +107,14 @@ Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const st
 
 void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) {
     Buffers& b = buf_;
-    const auto header = g.importBuffer("device-pairs-header", b.header);
-    const auto pairs = g.importBuffer("device-pairs", b.pairs);
-    const auto counts = g.importBuffer("device-pairs-counts", b.counts);
-    const auto offsets = g.importBuffer("device-pairs-offsets", b.offsets);
-    const auto out_offsets = g.importBuffer("device-pairs-out-offsets", b.out_offsets);
-    const auto sums = g.importBuffer("device-pairs-block-sums", b.block_sums);
-    const auto partners = g.importBuffer("device-pairs-partners", b.partners);
-    const auto args = g.importBuffer("device-pairs-args", b.args);
+    const auto header = importRow(g, b.header);
+    const auto pairs = importRow(g, b.pairs);
+    const auto counts = importRow(g, b.counts);
+    const auto offsets = importRow(g, b.offsets);
+    const auto out_offsets = importRow(g, b.out_offsets);
+    const auto sums = importRow(g, b.block_sums);
+    const auto partners = importRow(g, b.partners);
+    const auto args = importRow(g, b.args);
     const VkDeviceAddress params = buf_.params->address();
     const VkBuffer counts_buffer = buf_.counts->handle(), args_buffer = buf_.args->handle();
     const VkDeviceSize count_bytes = VkDeviceSize(std::max<std::uint32_t>(triangles_, 1)) * 4;
@@ -180,7 +180,7 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
             dispatchGroups(pc, tri_groups, max_x);
         });
     if (for_host_) {
-        const auto host_pairs = g.importBuffer("device-pairs-host", b.host_pairs, true);
+        const auto host_pairs = importRow(g, b.host_pairs, true);
         // A copy by the transfer engine: the shaders' stores to host memory cross the bus
         // 15-20x slower on an H200 (1.7M pairs: 11.7 ms from a coalesced shader, 0.65 ms
         // copied). The whole capacity is copied, so the host's capacity follows the pairs
@@ -195,7 +195,7 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
             });
     }
     if (!header_to_host_) return;
-    const auto header_rb = g.importBuffer("device-pairs-header-readback", b.header_rb, true);
+    const auto header_rb = importRow(g, b.header_rb, true);
     addPass(g, "pairs-header-readback", graph::PassKind::Transfer, Stage::Readback)
         .use(header, graph::Use::TransferSrc)
         .use(header_rb, graph::Use::TransferDst)

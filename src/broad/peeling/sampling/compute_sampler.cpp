@@ -137,11 +137,11 @@ Result<void> ComputeSampler::preparePeeling(std::uint32_t measured_depth) {
 }
 
 void ComputeSampler::import(graph::Graph& g) {
-    ids_ = {g.importBuffer("csample-triangles", triangles_), g.importBuffer("csample-lists", lists_),
-            g.importBuffer("csample-items", items_), g.importBuffer("csample-counters", counters_),
-            g.importBuffer("csample-args", args_buf_), {}, {}};
-    if (fill_->valid()) ids_.fill = g.importBuffer("csample-fill", fill_);
-    if (fragments_->valid()) ids_.fragments = g.importBuffer("csample-fragments", fragments_);
+    ids_ = {importRow(g, triangles_), importRow(g, lists_),
+            importRow(g, items_), importRow(g, counters_),
+            importRow(g, args_buf_), {}, {}};
+    if (fill_->valid()) ids_.fill = importRow(g, fill_);
+    if (fragments_->valid()) ids_.fragments = importRow(g, fragments_);
 }
 
 void ComputeSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, const SamplingBuffers& shared) const {

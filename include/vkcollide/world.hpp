@@ -367,6 +367,10 @@ struct PeelingStats {
     std::uint32_t depth_complexity = 0;  // measured by this detection, over the rays that are peeled
     std::uint32_t layers = 0;            // layers peeled
     std::uint32_t peel_passes = 0;       // peeling passes (half the layers with dual)
+    // Submissions the peeling passes took: more than one per axis where one submission would
+    // run long on this device (about 200 ms each; after a timeout the GPU finishes at most
+    // the one in flight). 1 per axis on a GPU.
+    std::uint32_t peel_submissions = 0;
     // Rays with more than 1,024 surfaces along them (gpu::kMaxRayFragments): collision rays
     // at once, without peeling (their triangles go to the exact narrow phase), and left out
     // of depth_complexity. Bounds the peeling passes of pathological scenes.

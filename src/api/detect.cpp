@@ -203,6 +203,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.peeling.depth_complexity = std::max(st.peeling.depth_complexity, b.depth_complexity);
         st.peeling.layers = std::max(st.peeling.layers, b.layers);
         st.peeling.peel_passes += b.peel_steps;
+        st.peeling.peel_submissions += b.peel_submissions;
         st.peeling.deep_rays += b.deep_rays;
         st.peeling.layers_short =
             st.peeling.layers_short || (b.depth_complexity > b.layers && (cap == 0 || b.layers < cap)) || b.deep_rays > 0;

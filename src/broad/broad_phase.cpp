@@ -232,8 +232,8 @@ void BroadPhase::record(graph::Graph& g, Recording what, FollowUpStage* follow_u
             method_->record(Phase::Measure, g, run, buffers);
         }
         if (what != Recording::Measure) method_->record(Phase::Main, g, run, buffers);
-        common_->recordReadback(g, buffers, core_);
     }
+    common_->recordReadback(g, buffers, core_);
     run_.host.declare_ms += msSince(t0);
 }
 
@@ -317,7 +317,7 @@ Result<BroadPhaseResult> BroadPhase::run(std::span<const GpuMesh> meshes, const 
     const gpu::Header h1 = readHeader();
     if (auto ok = checkInputs(h1); !ok) return ok.error();
     if (auto ok = checkExtent(h1); !ok) return ok.error();
-    if (auto ok = method_->begin(view(), &h1, 0); !ok) return ok.error();
+    if (auto ok = method_->begin(view(), &h1, report1->passes, 0); !ok) return ok.error();
     run_.first = BroadPhaseResult{};
     addTimings(run_.first, *report1);
 
@@ -335,7 +335,7 @@ Result<void> BroadPhase::submit(std::span<const GpuMesh> meshes, const BroadPhas
     if (pending_) return Error(ErrorCode::InvalidArgument, "a broad phase is in flight: collect() it first");
     if (auto ok = prepare(meshes, s); !ok) return ok.error();
     const Clock::time_point t_predict = Clock::now();
-    if (auto ok = method_->begin(view(), nullptr, layers); !ok) return ok.error();
+    if (auto ok = method_->begin(view(), nullptr, {}, layers); !ok) return ok.error();
     run_.host.upload_ms += msSince(t_predict);
     graph::Graph g;
     record(g, Recording::Whole);
@@ -392,7 +392,7 @@ Result<BroadPhaseResult> BroadPhase::collect() {
     if (!report) return timeoutOfRun(run_.settings, report.error());
 
     const auto t0 = std::chrono::steady_clock::now();
-    const gpu::Header h = readHeader();
+    gpu::Header h = readHeader();
     if (auto ok = checkInputs(h); !ok) return ok.error();
     if (auto ok = checkExtent(h); !ok) return ok.error();
     BroadPhaseResult result = std::move(run_.first);
@@ -425,6 +425,7 @@ Result<BroadPhaseResult> BroadPhase::collect() {
         auto more = runMore(Recording::Again, nullptr, "the method's passes");
         if (!more) return more.error();
         addTimings(result, *more);
+        h = readHeader();  // what the method's passes counted in it since
     }
     result.readback_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return result;

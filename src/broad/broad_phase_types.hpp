@@ -155,6 +155,9 @@ struct BroadPhaseSettings {
     // Methods that decide candidates in a pair pass: at most this many per submission (0:
     // automatic, CellStageSettings::pair_chunk); tests set it small.
     std::uint32_t pair_chunk = 0;
+    // The peeling method: at most this many peeling steps per submission (0: automatic,
+    // PeelingMethod's kPeelChunkTargetMs of GPU time); tests set it small.
+    std::uint32_t peel_chunk = 0;
 };
 
 // Where a run writes its sorted pairs on the GPU (BroadPhaseSettings::device_pairs):
@@ -233,6 +236,7 @@ struct BroadPhaseResult {
     std::uint32_t depth_complexity = 0;
     std::uint32_t layers = 0;                // layers peeled: min(depth complexity, cap)
     std::uint32_t peel_steps = 0;            // peeling passes recorded (half with dual)
+    std::uint32_t peel_submissions = 0;      // the submissions they took (BroadPhaseSettings::peel_chunk)
     std::uint32_t collision_rays = 0;
     // Rays with more than gpu::kMaxRayFragments fragments: collision rays without peeling.
     std::uint32_t deep_rays = 0;

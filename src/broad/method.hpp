@@ -16,8 +16,9 @@
 // path.
 //
 // PeelingMethod (the paper: sampling, merging, separation, packing) returns triangle
-// records; ReliableMethod (broad/cells/: the cell stage) measures nothing, runs in one
-// submission (plus one per overflow) and returns candidate pairs
+// records, its peeling steps in chunks of Again submissions where one would run long;
+// ReliableMethod (broad/cells/: the cell stage) measures nothing, runs in one
+// submission (plus one per overflow or pair-pass chunk) and returns candidate pairs
 // (BroadPhaseResult::has_pairs). To add one: a class implementing this interface in its
 // own folder under src/broad/ (with a sources.cmake there), its buffers added as rows of
 // the BufferTable in its factory, its own gpu::Frame extension behind gpu::Frame::method
@@ -54,18 +55,19 @@ struct MethodTraits {
     bool pairs = false;
 };
 
-// Which of its passes a recording asks the method for.
+// Which of its passes a recording asks the method for. Every recording but Measure ends
+// with the header's readback, so collect() reads what the last submission left in it.
 enum class Phase {
     Measure,  // after the front: passes that measure the scene (traits().measures)
     Main,     // the main passes
-    Again,    // after collect() answered Again: what it asked to run again
+    Again,    // after collect() answered Again: what it asked to run (again, or next)
 };
 
 // collect()'s answer.
 enum class Collected {
     Done,   // the outputs are in the result
-    Again,  // a buffer the GPU sized overflowed and was grown: record Phase::Again, run it
-            // and collect again
+    Again,  // record Phase::Again, run it and collect again: a buffer the GPU sized
+            // overflowed and was grown, or the next chunk of work split into submissions
 };
 
 class BroadPhaseMethod {
@@ -76,9 +78,11 @@ public:
     // per-run choices, the method's own resources, and its fields of `io_frame`.
     [[nodiscard]] virtual Result<void> prepare(const BroadPhaseSettings& settings, const RunShape& shape, gpu::Frame& io_frame) = 0;
     // Before Phase::Main is recorded: `measured` is the header of run()'s measuring
-    // submission, or null in submit(), where `predicted_layers` is the caller's prediction
-    // of the depth (what the last run measured).
-    [[nodiscard]] virtual Result<void> begin(const RunView& run, const gpu::Header* measured, std::uint32_t predicted_layers) = 0;
+    // submission and `measured_passes` its passes' GPU times, or null and empty in
+    // submit(), where `predicted_layers` is the caller's prediction of the depth (what the
+    // last run measured).
+    [[nodiscard]] virtual Result<void> begin(const RunView& run, const gpu::Header* measured,
+                                             std::span<const graph::PassTiming> measured_passes, std::uint32_t predicted_layers) = 0;
     // The rows it sizes itself (BufferTable::addOwned, which import() skips) into a graph
     // about to be recorded.
     virtual void import(graph::Graph& g) = 0;

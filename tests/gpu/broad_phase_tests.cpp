@@ -580,3 +580,65 @@ TEST_CASE_METHOD(BroadPhaseFixture, "depth-aware: a box sunk into another, its s
     CHECK(missing(found, expected) == 0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+// The peeling steps in chunks (BroadPhaseSettings::peel_chunk): each chunk is a submission
+// of the broad phase's Again, so that the GPU work a timeout leaves running is at most one
+// chunk. The per-ray state crosses submissions in the table's buffers: the records, rays
+// and depth intervals must be those of one submission, bit for bit, whatever the chunk,
+// on both backends, single and dual, depth-aware or not, measured (run) or predicted
+// (submit).
+TEST_CASE_METHOD(BroadPhaseFixture, "peeling in chunks of steps gives the records, rays and depth intervals of one submission", "[gpu][broadphase]") {
+    // Nested and crossing closed meshes: 3 or more peeling steps along the direction.
+    HostMesh a = placed(makeSphere(1.0f, 20, 10), 0.3f, 1, 0.2f, 0.41f, {-0.3f, 0.07f, 0.03f}, "a");
+    HostMesh b = placed(makeSphere(0.6f, 18, 9), 1, 0.2f, 0.5f, 0.73f, {-0.2f, -0.11f, 0.09f}, "b");
+    HostMesh c = placed(makeBox(0.5f, 3), 0.2f, 0.4f, 1, 1.1f, {0.3f, 0.2f, -0.3f}, "c");
+    HostMesh d = placed(inverted(makeSphere(0.3f)), 0.5f, 0.1f, 1, 0.3f, {0.9f, 0.5f, 0.2f}, "d");
+    auto scene = uploadMeshes(ctx.device(), {&a, &b, &c, &d});
+    REQUIRE(scene);
+    for (SamplingBackend backend : {SamplingBackend::Raster, SamplingBackend::Compute})
+        for (bool dual : {false, true})
+            for (bool depth_aware : {false, true}) {
+                INFO(toString(backend) << (dual ? " dual" : " single") << (depth_aware ? " depth-aware" : ""));
+                BroadPhaseSettings s;
+                s.resolution = 64;
+                s.dual = dual;
+                s.depth_aware = depth_aware;
+                s.backend = backend;
+                s.keep_ray_image = true;
+                s.direction = {0.2f, -0.3f, 1.0f};
+                s.peel_chunk = 1u << 20;  // every step in one submission
+                auto whole = bp.run(scene->meshes, s);
+                INFO((whole ? std::string() : whole.error().message()));
+                REQUIRE(whole);
+                REQUIRE(whole->peel_steps >= 3);
+                CHECK(whole->peel_submissions == 1);
+                CHECK_FALSE(whole->records.empty());
+                for (std::uint32_t chunk : {1u, 2u}) {
+                    INFO(chunk << " steps per submission");
+                    s.peel_chunk = chunk;
+                    for (bool predicted : {false, true}) {
+                        INFO((predicted ? "submit() with the depth predicted" : "run()"));
+                        auto r = [&]() -> Result<BroadPhaseResult> {
+                            if (!predicted) return bp.run(scene->meshes, s);
+                            if (auto ok = bp.submit(scene->meshes, s, whole->layers); !ok) return ok.error();
+                            return bp.collect();
+                        }();
+                        INFO((r ? std::string() : r.error().message()));
+                        REQUIRE(r);
+                        CHECK(r->peel_steps == whole->peel_steps);
+                        CHECK(r->peel_submissions == (whole->peel_steps + chunk - 1) / chunk);
+                        CHECK(r->collision_rays == whole->collision_rays);
+                        CHECK(r->ray_image == whole->ray_image);
+                        CHECK(r->ray_depth == whole->ray_depth);
+                        requireIdenticalRecords(r->records, whole->records);
+                        // Every step's passes ran once, in order, across the submissions.
+                        std::vector<std::string> classify;
+                        for (const auto& p : r->passes)
+                            if (p.name.rfind("classify[", 0) == 0) classify.push_back(p.name);
+                        REQUIRE(classify.size() == r->peel_steps);
+                        for (std::uint32_t i = 0; i < r->peel_steps; ++i) CHECK(classify[i] == "classify[" + std::to_string(i) + "]");
+                    }
+                }
+            }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

@@ -171,6 +171,7 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("depth_complexity", st.peeling.depth_complexity);
     count("layers", st.peeling.layers);
     count("peel_passes", st.peeling.peel_passes);
+    count("peel_submissions", st.peeling.peel_submissions);
     j.member("dual", [&] { j.boolean(st.peeling.dual); });
     j.member("layers_short", [&] { j.boolean(st.peeling.layers_short); });
     // The reliable method samples no rays: no coverage, no backend.

@@ -39,7 +39,9 @@ public:
     MethodTraits traits() const noexcept override { return {false, false, true}; }
     Result<void> prepare(const BroadPhaseSettings&, const RunShape&, gpu::Frame&) override { return {}; }
     // Nothing measured, nothing predicted: the stage sizes its buffers from the scene.
-    Result<void> begin(const RunView& run, const gpu::Header*, std::uint32_t) override { return prepareStage(run); }
+    Result<void> begin(const RunView& run, const gpu::Header*, std::span<const graph::PassTiming>, std::uint32_t) override {
+        return prepareStage(run);
+    }
     void import(graph::Graph&) override {}
     void record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const override;
     Result<Collected> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;

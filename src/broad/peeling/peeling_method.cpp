@@ -54,6 +54,7 @@ PeelingMethod::Buffers PeelingMethod::addRows(BufferTable& t) {
 
 Result<std::unique_ptr<BroadPhaseMethod>> PeelingMethod::create(vk::Device& device, BufferTable& table, const CoreBuffers& core) {
     std::unique_ptr<PeelingMethod> m(new PeelingMethod(table, core));
+    m->device_ = &device;
     m->buf_ = addRows(table);
     auto bounds = TriangleBounds::create(device);
     if (!bounds) return bounds.error();
@@ -100,8 +101,8 @@ SamplingBuffers PeelingMethod::samplingBuffers(const GraphBuffers& b) const {
 void PeelingMethod::record(Phase phase, graph::Graph& g, const RunView& run, const GraphBuffers& buffers) const {
     switch (phase) {
         case Phase::Measure: sampling_->recordMeasure(g, run, samplingBuffers(buffers)); return;
-        case Phase::Main: recordMain(g, run, buffers); return;
-        case Phase::Again: return;  // collect() never asks for it
+        case Phase::Main:
+        case Phase::Again: recordChunk(g, run, buffers); return;
     }
 }
 
@@ -113,7 +114,8 @@ void PeelingMethod::setLayers(const RunView& run, std::uint32_t layers) {
     steps_ = run.settings.dual ? (layers_ + 1) / 2 : layers_;
 }
 
-Result<void> PeelingMethod::begin(const RunView& run, const gpu::Header* measured, std::uint32_t predicted_layers) {
+Result<void> PeelingMethod::begin(const RunView& run, const gpu::Header* measured, std::span<const graph::PassTiming> measured_passes,
+                                  std::uint32_t predicted_layers) {
     // Measured: the compute backend sizes its per-ray fragment lists for that depth.
     // Predicted: the depth is unknown, so the compute backend draws each peeling step
     // (fragment lists could be incomplete if the scene got deeper, and that would not be
@@ -121,14 +123,55 @@ Result<void> PeelingMethod::begin(const RunView& run, const gpu::Header* measure
     const std::uint32_t layers = measured ? measured->depth_complexity : predicted_layers;
     if (auto ok = sampling_->preparePeeling(measured ? layers : 0); !ok) return ok.error();
     setLayers(run, layers);
+    chunk_ = chunkSteps(run, measured_passes);
+    chunk_first_ = 0;
+    chunk_end_ = std::min(steps_, chunk_);
     return {};
 }
 
-void PeelingMethod::recordMain(graph::Graph& g, const RunView& run, const GraphBuffers& b) const {
+double PeelingMethod::countPassMs(std::span<const graph::PassTiming> passes) {
+    double ms = 0;
+    for (const graph::PassTiming& p : passes)
+        if (p.name == "depth-complexity") ms += p.gpu_ms;
+    return ms;
+}
+
+std::uint32_t PeelingMethod::chunkSteps(const RunView& run, std::span<const graph::PassTiming> measured_passes) const {
+    if (run.settings.peel_chunk) return run.settings.peel_chunk;
+    // A peeling step draws the scene once, as the depth-complexity pass did, and classifies
+    // every ray: this run's count pass scaled by the last run's ratio (before any, 1.5),
+    // else the last run's step, else a guess by device type (a CPU implementation such as
+    // lavapipe takes about a microsecond per triangle and 0.1 us per ray; a GPU takes
+    // microseconds for a whole step).
+    const int b = backendIndex();
+    double step_ms = 0;
+    if (const double count_ms = countPassMs(measured_passes); count_ms > 0)
+        step_ms = count_ms * (step_per_count_[b] > 0 ? step_per_count_[b] : 1.5);
+    else if (step_ms_[b] > 0)
+        step_ms = step_ms_[b];
+    else if (device_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU)
+        step_ms = 1e-3 * run.frame.triangle_count + 1e-4 * double(run.frame.resolution) * run.frame.resolution;
+    if (step_ms <= 0) return std::max(steps_, 1u);
+    return static_cast<std::uint32_t>(std::clamp(kPeelChunkTargetMs / step_ms, 1.0, double(std::max(steps_, 1u))));
+}
+
+void PeelingMethod::noteStepTime(std::span<const graph::PassTiming> passes) {
+    double steps_ms = 0;
+    for (const graph::PassTiming& p : passes)
+        if (p.name.starts_with("peel[") || p.name.starts_with("classify[")) steps_ms += p.gpu_ms;
+    if (steps_ == 0 || steps_ms <= 0) return;  // nothing peeled, or no timestamps
+    const int b = backendIndex();
+    step_ms_[b] = steps_ms / steps_;
+    if (const double count_ms = countPassMs(passes); count_ms > 0) step_per_count_[b] = step_ms_[b] / count_ms;
+}
+
+void PeelingMethod::recordChunk(graph::Graph& g, const RunView& run, const GraphBuffers& b) const {
     // Invalid ids (rows of size 0) when depth-aware separation is off.
     const DepthAwareIds depth{b[buf_.tri_bounds], b[buf_.bundle_depth], b[buf_.ray_depth_image], b[buf_.edge_depth]};
-    if (depth.bounds.valid()) bounds_->record(g, run, b[core_.projection], depth.bounds, depth.edge_depth);
-    sampling_->recordPeeling(g, run, samplingBuffers(b), steps_, b[buf_.bundles], b[buf_.ray_image], depth);
+    if (chunk_first_ == 0 && depth.bounds.valid()) bounds_->record(g, run, b[core_.projection], depth.bounds, depth.edge_depth);
+    sampling_->recordPeelSteps(g, run, samplingBuffers(b), chunk_first_, chunk_end_, depth);
+    if (chunk_end_ < steps_) return;  // collect() asks for the next chunk
+    sampling_->recordFinalize(g, run, samplingBuffers(b), b[buf_.bundles], b[buf_.ray_image], depth);
     merging_->record(g, run, b[buf_.bundles], depth.bundle_depth);
     separation_->record(g, run, b[core_.projection], b[buf_.bundles], b[buf_.sparse],
                         {depth.bounds, depth.bundle_depth, b[buf_.sparse_depth]});
@@ -137,10 +180,17 @@ void PeelingMethod::recordMain(graph::Graph& g, const RunView& run, const GraphB
 }
 
 Result<Collected> PeelingMethod::collect(const RunView& run, const gpu::Header& h, BroadPhaseResult& result) {
+    if (chunk_end_ < steps_) {
+        chunk_first_ = chunk_end_;
+        chunk_end_ = std::min(steps_, chunk_end_ + chunk_);
+        return Collected::Again;
+    }
     const std::uint32_t triangles = run.frame.triangle_count, pixels = run.frame.resolution * run.frame.resolution;
     sampling_->report(h, triangles, result);
     result.layers = layers_;
     result.peel_steps = steps_;
+    result.peel_submissions = (std::max(steps_, 1u) + chunk_ - 1) / chunk_;
+    noteStepTime(result.passes);
     result.collision_rays = h.collision_rays;
     result.deep_rays = h.deep_rays;
     if (h.record_count > triangles)

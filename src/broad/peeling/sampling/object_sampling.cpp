@@ -82,22 +82,24 @@ void ObjectSampling::recordMeasure(graph::Graph& g, const RunView& run, const Sa
 
 Result<void> ObjectSampling::preparePeeling(std::uint32_t depth_complexity) { return active_->preparePeeling(depth_complexity); }
 
-void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t steps,
-                                   graph::ResourceId bundles, graph::ResourceId rays, const DepthAwareIds& depth) const {
+void ObjectSampling::recordPeelSteps(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t first,
+                                     std::uint32_t end, const DepthAwareIds& depth) const {
     const std::uint32_t pixels = run.frame.resolution * run.frame.resolution;
     const VkDeviceAddress frame = run.frame_address;
     const bool dual = run.frame.dual != 0;
-    const std::uint32_t done = active_->stepsDoneByCount();
-    addPass(g, "peel-init", PassKind::Compute, Stage::Sampling)
-        .read(b.counts)
-        .write(b.state)
-        .write(b.front)
-        .write(b.back)
-        .record([this, frame, pixels, done](PassContext& pc) {
-            bindAndPush(pc, peel_init_, frame, 0, done);
-            dispatchItems(pc, pixels);
-        });
-    for (std::uint32_t step = 0; step < steps; ++step) {
+    if (first == 0) {
+        const std::uint32_t done = active_->stepsDoneByCount();
+        addPass(g, "peel-init", PassKind::Compute, Stage::Sampling)
+            .read(b.counts)
+            .write(b.state)
+            .write(b.front)
+            .write(b.back)
+            .record([this, frame, pixels, done](PassContext& pc) {
+                bindAndPush(pc, peel_init_, frame, 0, done);
+                dispatchItems(pc, pixels);
+            });
+    }
+    for (std::uint32_t step = first; step < end; ++step) {
         active_->recordPeelStep(g, run, b, step);
         auto classify = addPass(g, "classify[" + std::to_string(step) + "]", PassKind::Compute, Stage::Sampling);
         classify.read(b.counts).read(b.projection).readWrite(b.state).readWrite(b.front);
@@ -108,6 +110,12 @@ void ObjectSampling::recordPeeling(graph::Graph& g, const RunView& run, const Sa
             dispatchItems(pc, pixels);
         });
     }
+}
+
+void ObjectSampling::recordFinalize(graph::Graph& g, const RunView& run, const SamplingBuffers& b, graph::ResourceId bundles,
+                                    graph::ResourceId rays, const DepthAwareIds& depth) const {
+    const std::uint32_t pixels = run.frame.resolution * run.frame.resolution;
+    const VkDeviceAddress frame = run.frame_address;
     auto finalize = addPass(g, "finalize", PassKind::Compute, Stage::Sampling);
     finalize.read(b.state).use(bundles, Use::StorageWrite).readWrite(b.header);
     if (rays.valid()) finalize.write(rays);

@@ -42,14 +42,21 @@ public:
     void recordMeasure(graph::Graph& g, const RunView& run, const SamplingBuffers& b) const;
     // Before the peeling steps: the measured depth complexity, or 0 when predicted.
     [[nodiscard]] Result<void> preparePeeling(std::uint32_t depth_complexity);
-    // "peel-init", `steps` x ("peel[i]", "classify[i]"), then "finalize" into `bundles`
-    // level 0 (and the collision-ray image into `rays` when valid; with depth-aware
-    // separation the rays' depth intervals into `depth`).
-    void recordPeeling(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t steps, graph::ResourceId bundles,
-                       graph::ResourceId rays, const DepthAwareIds& depth) const;
+    // Peeling steps [first, end): "peel[i]" and "classify[i]" each, after "peel-init" when
+    // `first` is 0. A run's steps may be recorded in several graphs (submissions) in
+    // order: the per-ray state stays in the table's buffers between them.
+    void recordPeelSteps(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t first, std::uint32_t end,
+                         const DepthAwareIds& depth) const;
+    // After the last step: "finalize" into `bundles` level 0 (and the collision-ray image
+    // into `rays` when valid; with depth-aware separation the rays' depth intervals into
+    // `depth`).
+    void recordFinalize(graph::Graph& g, const RunView& run, const SamplingBuffers& b, graph::ResourceId bundles, graph::ResourceId rays,
+                        const DepthAwareIds& depth) const;
     // Backend, its reason and the sampling statistics of the run; remembers the scene's
     // fragments per triangle for the next run's Auto choice.
     void report(const gpu::Header& header, std::uint32_t triangles, BroadPhaseResult& io_result);
+    // The run's backend (after prepare()).
+    SamplingBackend backend() const noexcept { return choice_.backend; }
 
 private:
     ObjectSampling(vk::Device& device, BufferTable& table) : device_(&device), table_(&table) {}

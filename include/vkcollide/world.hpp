@@ -334,8 +334,12 @@ struct CellStats {
     std::uint64_t max_cell = 0;         // most triangles in one cell
     std::uint64_t deep_cells = 0;       // cells swept by the deep path (more than 256 entries)
     std::uint64_t candidate_cells = 0;  // cells where the sweep found a candidate
-    std::uint64_t candidates = 0;       // pairs with overlapping depth and boxes in a cell (a pair may repeat across cells)
-    std::uint64_t duplicates = 0;       // of those, dropped: not the pair's first common cell
+    // Pairs with overlapping depth and boxes in a cell, as the sweep wrote them: a pair may
+    // repeat across the cells both footprints share, except where a cell holds 64 entries or
+    // more (kCellsSweepDedupe, docs/reliable.md "Piles"): there the sweep writes it only in
+    // its canonical (first common) cell, and counts the others in `repeats`.
+    std::uint64_t candidates = 0;
+    std::uint64_t duplicates = 0;       // of the candidates, dropped: not the pair's first common cell
     std::uint64_t filtered = 0;         // of those, dropped: proved disjoint by the GPU filter
     std::uint64_t survivors = 0;        // pairs read back (8 bytes each)
     std::uint64_t gpu_triangles = 0;    // engine meshes' triangles read back with their vertices (52 bytes each)
@@ -344,6 +348,10 @@ struct CellStats {
     bool exact_ran = false;  // the pair pass decided exactly (DetectSettings::reliable.exact)
     std::uint64_t exact_tests = 0;  // candidates the GPU's exact test decided (after the filter)
     std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (a bit-identical vertex)
+    // Overlapping pairs the sweep did not write because they repeat a pair of an earlier
+    // cell (cells of 64 entries or more). candidates + repeats is what
+    // limits.max_candidate_pairs bounds.
+    std::uint64_t repeats = 0;
 };
 
 // A host mesh declared closed (ObjectOptions::open false) that is not a closed surface

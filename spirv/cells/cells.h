@@ -35,6 +35,12 @@ VKC_CONST kCellsDeepShared = 1024;
 // The pair pass's canonical-cell check scans at most this many earlier cells of a pair;
 // a pair whose scan runs out is kept (a duplicate the host removes), never dropped.
 VKC_CONST kCellsDedupeBudget = 512;
+// Cells with at least this many entries make the same check in the sweep, before a
+// candidate is written: a pair repeats in every cell both footprints share, and where
+// footprints pile up (stacks, coincident copies, fans along the direction) those repeats
+// were almost all of the candidates (a stack of 2,200 copies: 96.7M candidates, 94.3M
+// duplicates). Shallower cells, every cell of ordinary scenes, leave it to the pair pass.
+VKC_CONST kCellsSweepDedupe = 64;
 // Cells per workgroup of the scan (4 per invocation).
 VKC_CONST kCellsScanBlock = 1024;
 // A deep item whose chunk is this value sorts the whole cell in shared memory.
@@ -175,6 +181,10 @@ struct CellsHeader {
     uint exact_neighbours;  // of those, left out as neighbours: a bit-identical world vertex
     uint pairs_done;        // candidates the pair pass's chunks so far cover (CellsParams.pair_chunk)
     uint header_pad;
+    // Overlapping pairs the sweep dropped as repeats (not their canonical cell,
+    // kCellsSweepDedupe): with `candidates`, every overlapping pair the sweep found, which
+    // the budget bounds.
+    uint64_t repeats;
 };
 
 // Everything the shaders need, uploaded once per run (Push.frame points here).

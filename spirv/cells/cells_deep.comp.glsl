@@ -11,8 +11,16 @@
 // of self-colliding objects' entries are loaded with the cell, so the neighbour rule (most
 // of such a cell's pairs) reads shared memory. Deeper cells come
 // in chunks of kCellsGroupSize entries, each entry scanning the whole cell as the shallow
-// sweep does.
+// sweep does, and keeping a pair only where this cell is its canonical cell
+// (kCellsSweepDedupe): a pile of copies repeats its pairs in every cell it covers. The
+// sorted cells leave that to the pair pass: the same check there, in this shader's sorted
+// loop, gave its count and write passes different answers on llvmpipe (Mesa 22.3), so
+// candidates were lost (docs/reliable.md, "Piles").
+// The canonical-cell rule needs no double precision (cells_candidate.glsl.inc).
+#define CELLS_NO_FLOAT64 1
 #include "cells_common.glsl.inc"
+#include "cells_geometry.glsl.inc"
+#include "cells_candidate.glsl.inc"
 #include "cells_sweep.glsl.inc"
 #include "common/workgroup.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
@@ -138,7 +146,7 @@ void chunkOfCell(CellsParams P, uint cell, uint begin, uint end, uint chunk) {
         me = CellsEntriesRef(P.entries).e[e];
         if ((triangleKeyOf(P, me.key) & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
     }
-    sweepEntry(P, cell, e, me, mine, begin, e < end ? end : begin);
+    sweepEntry(P, cell, e, me, mine, begin, e < end ? end : begin, true);
 }
 
 void main() {

@@ -3,7 +3,11 @@
 // Cell pair stage, sweep of the shallow cells (one invocation per entry of a cell with at
 // most kCellsSmallCell entries): each entry scanned against its cell (cells_sweep.glsl.inc).
 // Deeper cells: cells_deep.comp.
+// The canonical-cell rule needs no double precision (cells_candidate.glsl.inc).
+#define CELLS_NO_FLOAT64 1
 #include "cells_common.glsl.inc"
+#include "cells_geometry.glsl.inc"
+#include "cells_candidate.glsl.inc"
 #include "cells_sweep.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
@@ -27,5 +31,5 @@ void main() {
         me = CellsEntriesRef(P.entries).e[e];
         if ((triangleKeyOf(P, me.key) & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
     }
-    sweepEntry(P, cell, e, me, mine, begin, end);
+    sweepEntry(P, cell, e, me, mine, begin, end, end - begin >= kCellsSweepDedupe);
 }

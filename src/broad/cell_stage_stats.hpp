@@ -16,7 +16,11 @@ struct CellStageStats {
     std::uint64_t deep_cells = 0;     // cells with more than kCellsSmallCell entries
     std::uint64_t max_cell = 0;       // most entries in one cell
     std::uint64_t candidate_cells = 0;  // cells where the sweep found at least one candidate
-    std::uint64_t candidates = 0;     // pairs the sweep found (with duplicates across cells)
+    std::uint64_t candidates = 0;     // pairs the sweep wrote (with duplicates across cells)
+    // Overlapping pairs the sweep found but did not write, as repeats (not their canonical
+    // cell) in cells of kCellsSweepDedupe entries or more. With `candidates`: what the
+    // budget counts.
+    std::uint64_t repeats = 0;
     std::uint64_t neighbours = 0;     // left out by the sweep (not candidates): one object, shared vertex index
     std::uint64_t duplicates = 0;     // dropped: not the pair's canonical cell (an earlier cell qualifies, or
                                       // their unquantised boxes are apart in this one)

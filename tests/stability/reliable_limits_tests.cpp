@@ -166,7 +166,8 @@ TEST_CASE("reliable: mutually crossing triangles: max_candidate_pairs and max_pa
     auto full = fits->detect(reliable());
     REQUIRE(full);
     checkExact(full->pairs, *c->reference);
-    const std::uint64_t candidates = full->stats.cells.candidates;
+    // What the budget counts: the pairs the sweep wrote and the repeats it dropped.
+    const std::uint64_t candidates = full->stats.cells.candidates + full->stats.cells.repeats;
     REQUIRE(candidates > 100000);
     DetectSettings tight = reliable();
     tight.limits.max_candidate_pairs = 100000;
@@ -273,5 +274,50 @@ TEST_CASE("reliable: coordinates from subnormal to 2^62 give the pair or a named
     REQUIRE(r);
     CHECK(r->pairs.empty());
     CHECK(r->excluded.size() == 2);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// Every cell a pile covers holds all of it, so each overlapping pair repeats in every cell
+// its two footprints share: 2,200 copies wrote 96.7M candidates for 2.4M pairs (94.3M
+// repeats dropped later by the pair pass), 52 s on lavapipe. Cells of kCellsSweepDedupe
+// entries or more make the pair pass's canonical-cell check in the sweep (the shallow
+// sweep, and the deep sweep's chunks of cells deeper than kCellsDeepShared), so each pair
+// is written once. 200 copies: shallow cells; 1,100: chunks.
+TEST_CASE("reliable: a pile of copies writes each overlapping pair once, in its canonical cell, and gives every pair",
+          "[stability][gpu][limits][reliable]") {
+    ValidatedContext ctx;
+    for (std::uint32_t copies : {200u, 1100u}) {
+        INFO(copies << " copies");
+        auto c = copiesWithOwnVertices(copies);
+        REQUIRE(c);
+        auto world = worldOf(ctx, *c);
+        auto r = world->detect(reliable());
+        INFO((r ? std::string() : r.error().message()));
+        REQUIRE(r);
+        checkExact(r->pairs, *c->reference);
+        const CellStats& cells = r->stats.cells;
+        INFO("candidates " << cells.candidates << ", repeats " << cells.repeats << ", deepest cell " << cells.max_cell);
+        REQUIRE(cells.max_cell > copies);  // every copy and the crossing triangle in one cell
+        // Overlapping pairs: the copies' among themselves and each copy's with the crossing
+        // triangle; each written once (before: once per shared cell, 30-40 times as many).
+        const std::uint64_t overlapping = std::uint64_t(copies) * (copies - 1) / 2 + copies;
+        CHECK(cells.candidates >= copies);
+        CHECK(cells.candidates <= overlapping);
+        CHECK(cells.repeats > 10 * overlapping);
+        // The budget still counts every overlapping pair the sweep found, repeats included
+        // (the count before the sweep dropped them), so a budget below it fails naming it.
+        if (copies == 1100) {
+            DetectSettings small = reliable();
+            small.limits.max_candidate_pairs = 4 * overlapping;
+            auto refused = world->detect(small);
+            checkBudgetError(refused, "candidate pairs");
+            const std::string text = refused.error().message(), prefix = "cell stage: ";
+            REQUIRE(text.rfind(prefix, 0) == 0);
+            const std::uint64_t counted = std::stoull(text.substr(prefix.size()));
+            CHECK(counted == cells.candidates + cells.repeats);
+            CHECK(counted > 10 * overlapping);
+            CHECK(world->state() == WorldState::Ready);
+        }
+    }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -61,6 +61,25 @@ Result<PathologicalCase> repeatedTriangle(std::uint32_t copies) {
     return c;
 }
 
+Result<PathologicalCase> copiesWithOwnVertices(std::uint32_t copies) {
+    PathologicalCase c{std::to_string(copies) + " copies with their own vertices", {"copies", {}}, {.method = DetectMethod::Reliable}, {}};
+    HostMesh pile{"pile", {}, {}};
+    pile.positions.reserve(std::size_t{copies} * 3);
+    pile.indices.reserve(std::size_t{copies} * 3);
+    for (std::uint32_t k = 0; k < copies; ++k) {
+        pile.positions.insert(pile.positions.end(), {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}});
+        pile.indices.insert(pile.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    HostMesh cross{"cross", {{-0.3f, -0.2f, -0.5f}, {0.3f, -0.2f, -0.5f}, {0.0f, 0.1f, 0.5f}}, {0, 1, 2}};
+    c.scene.objects.push_back({std::move(pile), named("pile", true)});
+    c.scene.objects.push_back({std::move(cross), named("cross")});
+    std::vector<TrianglePair> ref;
+    ref.reserve(copies);
+    for (std::uint32_t k = 0; k < copies; ++k) ref.push_back({0, k, 1, 0});
+    c.reference = std::move(ref);
+    return c;
+}
+
 std::string repeatedCornerFace(std::uint32_t corners) {
     std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
     obj.reserve(obj.size() + std::size_t{corners} * 2 + 2);

@@ -31,6 +31,14 @@ struct PathologicalCase {
 // `copies` fragments.
 Result<PathologicalCase> repeatedTriangle(std::uint32_t copies);
 
+// `copies` copies of one triangle in object 0, each with its own three vertices (bit-
+// identical positions: neighbours of each other under the narrow phase's rule, so no
+// pair among them), self-collision on, and the triangle of repeatedTriangle crossing
+// them (object 1): the pairs are (copy k, the crossing triangle). Every cell the copies
+// cover holds all of them, so each of their k (k - 1) / 2 overlapping pairs repeats in
+// every such cell unless the sweep drops the repeats.
+Result<PathologicalCase> copiesWithOwnVertices(std::uint32_t copies);
+
 // The OBJ text of three vertices and one face of `corners` corners cycling through them
 // ("f 1 2 3 1 2 3 ..."): the reader fans it into corners - 2 triangles, a third of them
 // copies of (1 2 3) and the rest zero-area, all in one place. No pair can collide (every

@@ -165,6 +165,7 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     j.member("method", [&] { j.string(vkcollide::toString(st.method)); });
     count("cell_entries", st.cells.entries);
     count("cell_candidates", st.cells.candidates);
+    count("cell_repeats", st.cells.repeats);
     count("cell_survivors", st.cells.survivors);
     count("deep_rays", st.peeling.deep_rays);
     count("axes", st.peeling.axes);

@@ -15,7 +15,7 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 96 && sizeof(gpu::CellsParams) == 224);
+static_assert(sizeof(gpu::CellsHeader) == 104 && sizeof(gpu::CellsParams) == 224);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
               offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
               offsetof(gpu::CellsHeader, exact_neighbours) == 84);  // kHeaderCandidates, ... in cells_common.glsl.inc
@@ -273,8 +273,9 @@ Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
                          std::to_string(h.max_cell) + " footprints in one cell), more than " +
                          std::to_string(gpu::kCellsComparisonsPerBudget) + " x " + budget + " = " + std::to_string(comparisons) +
                          " the sweep may compare: stacked or repeated triangles? Lower the resolution or raise limits.max_candidate_pairs");
-    if (h.candidates > budget_)
-        return Error(ErrorCode::LimitExceeded, "cell stage: " + std::to_string(h.candidates) + " candidate pairs" + where +
+    // Every overlapping pair the sweep found, written or dropped as a repeat in a deep cell.
+    if (const std::uint64_t overlapping = h.candidates + h.repeats; overlapping > budget_)
+        return Error(ErrorCode::LimitExceeded, "cell stage: " + std::to_string(overlapping) + " candidate pairs" + where +
                                                    " (triangles that may collide, with overlapping depth in a cell), more than " +
                                                    budget + ": stacked or repeated triangles?");
     if (h.flags & gpu::kCellsOverBudget)  // never without one of the counts above
@@ -327,6 +328,7 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.candidates = h.candidates;
     s.neighbours = h.neighbours;
     s.duplicates = h.duplicates;
+    s.repeats = h.repeats;
     s.filtered = h.filtered;
     s.survivors = h.survivors;
     s.gpu_triangles = h.gpu_triangles;

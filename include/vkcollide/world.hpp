@@ -336,8 +336,9 @@ struct CellStats {
     std::uint64_t candidate_cells = 0;  // cells where the sweep found a candidate
     // Pairs with overlapping depth and boxes in a cell, as the sweep wrote them: a pair may
     // repeat across the cells both footprints share, except where a cell holds 64 entries or
-    // more (kCellsSweepDedupe, docs/reliable.md "Piles"): there the sweep writes it only in
-    // its canonical (first common) cell, and counts the others in `repeats`.
+    // more (kCellsSweepDedupe, docs/reliable.md "Piles"): there the sweep does not write it
+    // where the cell to the left or below shows an earlier cell keeps it, and counts those
+    // in `repeats`.
     std::uint64_t candidates = 0;
     std::uint64_t duplicates = 0;       // of the candidates, dropped: not the pair's first common cell
     std::uint64_t filtered = 0;         // of those, dropped: proved disjoint by the GPU filter

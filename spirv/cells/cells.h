@@ -35,11 +35,12 @@ VKC_CONST kCellsDeepShared = 1024;
 // The pair pass's canonical-cell check scans at most this many earlier cells of a pair;
 // a pair whose scan runs out is kept (a duplicate the host removes), never dropped.
 VKC_CONST kCellsDedupeBudget = 512;
-// Cells with at least this many entries make the same check in the sweep, before a
-// candidate is written: a pair repeats in every cell both footprints share, and where
-// footprints pile up (stacks, coincident copies, fans along the direction) those repeats
-// were almost all of the candidates (a stack of 2,200 copies: 96.7M candidates, 94.3M
-// duplicates). Shallower cells, every cell of ordinary scenes, leave it to the pair pass.
+// Cells with at least this many entries make the check's first part in the sweep
+// (repeatsHere: no backward scan), before a candidate is written: a pair repeats in every
+// cell both footprints share, and where footprints pile up (stacks, coincident copies,
+// fans along the direction) those repeats were almost all of the candidates (a stack of
+// 2,200 copies: 96.7M candidates, 94.3M duplicates). Shallower cells leave it to the pair
+// pass.
 VKC_CONST kCellsSweepDedupe = 64;
 // Cells per workgroup of the scan (4 per invocation).
 VKC_CONST kCellsScanBlock = 1024;

@@ -11,11 +11,9 @@
 // of self-colliding objects' entries are loaded with the cell, so the neighbour rule (most
 // of such a cell's pairs) reads shared memory. Deeper cells come
 // in chunks of kCellsGroupSize entries, each entry scanning the whole cell as the shallow
-// sweep does, and keeping a pair only where this cell is its canonical cell
-// (kCellsSweepDedupe): a pile of copies repeats its pairs in every cell it covers. The
-// sorted cells leave that to the pair pass: the same check there, in this shader's sorted
-// loop, gave its count and write passes different answers on llvmpipe (Mesa 22.3), so
-// candidates were lost (docs/reliable.md, "Piles").
+// sweep does. Every deep cell drops the pairs an earlier cell keeps where the cell to the
+// left or below shows it (repeatsHere, kCellsSweepDedupe): a pile repeats its pairs in
+// every cell it covers.
 // The canonical-cell rule needs no double precision (cells_candidate.glsl.inc).
 #define CELLS_NO_FLOAT64 1
 #include "cells_common.glsl.inc"
@@ -88,11 +86,17 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
     if (tid == 0u) s_runs[runs] = k;
     barrier();
 
-    uint n = 0u, neighbours = 0u;
+    // The repeat check is skipped once the overlapping pairs found pass the budget (as in
+    // sweepEntry); decided once, for both passes.
+    const bool dedupe = atomicAdd(Uint64sRef(headerField(P, kHeaderCandidates)).v[0], 0ul) +
+                            atomicAdd(Uint64sRef(headerField(P, kHeaderRepeats)).v[0], 0ul) <=
+                        uint64_t(P.budget);
+    uint n = 0u, neighbours = 0u, repeats = 0u;
     for (uint pass = 0u; pass < 2u; ++pass) {
         uint64_t out_slot = 0ul;
         if (pass == 1u) {
             subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
+            subgroupCount64(headerField(P, kHeaderRepeats), repeats);
             subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
             out_slot = subgroupAppend64(headerField(P, kHeaderCandidates), n);
             if (n == 0u) return;
@@ -104,6 +108,8 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
         for (uint p = tid; p < k; p += kCellsGroupSize) {
             uint a = s_order[p];
             CellsEntry me = CellsEntriesRef(P.entries).e[begin + a];  // its zhi and triangle: read once, not kept in shared memory
+            CellsTriangle mine_t;
+            if (dedupe) mine_t = CellsTrianglesRef(P.triangles).t[me.triangle];
             uint box = boxOf(P, me.key);
             uvec3 mine = (s_key[a] & kCellsKeySelf) != 0u ? s_index[a] : uvec3(~0u);
             for (uint r = 0u; r < runs; ++r) {
@@ -121,15 +127,20 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
                     if (s_zlo[b] > me.zhi) break;
                     // Boxes within the cell: the entry's key from global memory, only for pairs
                     // that meet in depth.
-                    if (!subBoxesMeet(box, boxOf(P, CellsEntriesRef(P.entries).e[begin + b].key))) continue;
+                    CellsEntry other = CellsEntriesRef(P.entries).e[begin + b];
+                    if (!subBoxesMeet(box, boxOf(P, other.key))) continue;
                     // sweepPair's rule, the indices from shared memory.
                     if (!mayCollide(P, s_key[a], s_key[b])) continue;
                     if (s_key[a] == s_key[b] && P.keep_neighbours == 0u && shareIndex(mine, s_index[b])) {
                         if (pass == 0u) ++neighbours;
                         continue;
                     }
+                    if (!keptHere(P, dedupe, mine_t, other, cell)) {
+                        if (pass == 0u) ++repeats;
+                        continue;
+                    }
                     if (pass == 0u) ++n;
-                    else emitCandidate(P, out_slot, me.triangle, CellsEntriesRef(P.entries).e[begin + b].triangle, cell);
+                    else emitCandidate(P, out_slot, me.triangle, other.triangle, cell);
                 }
             }
         }

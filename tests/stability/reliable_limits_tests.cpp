@@ -280,13 +280,14 @@ TEST_CASE("reliable: coordinates from subnormal to 2^62 give the pair or a named
 // Every cell a pile covers holds all of it, so each overlapping pair repeats in every cell
 // its two footprints share: 2,200 copies wrote 96.7M candidates for 2.4M pairs (94.3M
 // repeats dropped later by the pair pass), 52 s on lavapipe. Cells of kCellsSweepDedupe
-// entries or more make the pair pass's canonical-cell check in the sweep (the shallow
-// sweep, and the deep sweep's chunks of cells deeper than kCellsDeepShared), so each pair
-// is written once. 200 copies: shallow cells; 1,100: chunks.
+// entries or more make the first part of the pair pass's canonical-cell check in the
+// sweep (repeatsHere: the cell to the left or below keeps the pair), so each pair is
+// written about once. 200 copies: shallow cells; 600: the deep sweep's sorted cells (where
+// llvmpipe once got the whole check wrong); 1,100: its chunks.
 TEST_CASE("reliable: a pile of copies writes each overlapping pair once, in its canonical cell, and gives every pair",
           "[stability][gpu][limits][reliable]") {
     ValidatedContext ctx;
-    for (std::uint32_t copies : {200u, 1100u}) {
+    for (std::uint32_t copies : {200u, 600u, 1100u}) {
         INFO(copies << " copies");
         auto c = copiesWithOwnVertices(copies);
         REQUIRE(c);

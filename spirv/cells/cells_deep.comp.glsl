@@ -86,11 +86,7 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
     if (tid == 0u) s_runs[runs] = k;
     barrier();
 
-    // The repeat check is skipped once the overlapping pairs found pass the budget (as in
-    // sweepEntry); decided once, for both passes.
-    const bool dedupe = atomicAdd(Uint64sRef(headerField(P, kHeaderCandidates)).v[0], 0ul) +
-                            atomicAdd(Uint64sRef(headerField(P, kHeaderRepeats)).v[0], 0ul) <=
-                        uint64_t(P.budget);
+    const bool dedupe = repeatChecksWithinBudget(P);  // for both passes
     uint n = 0u, neighbours = 0u, repeats = 0u;
     for (uint pass = 0u; pass < 2u; ++pass) {
         uint64_t out_slot = 0ul;

@@ -18,6 +18,20 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// How long `world` stays Busy from now (at most a minute): the GPU work a timeout left.
+double secondsBusy(const CollisionWorld& world) {
+    const auto t0 = Clock::now();
+    while (world.state() == WorldState::Busy && secondsSince(t0) < 60) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return secondsSince(t0);
+}
+
+// How long destroying `world` takes: its destructor waits for the GPU work in flight.
+double secondsToDestroy(std::unique_ptr<CollisionWorld>& world) {
+    const auto t0 = Clock::now();
+    world.reset();
+    return secondsSince(t0);
+}
+
 }  // namespace
 
 // The reliable method's reruns after a buffer overflowed ran with a hard-coded 60 s each
@@ -44,8 +58,7 @@ TEST_CASE("reliable: one timeout covers every rerun of a detection, and the worl
     CHECK(mentions(r.error(), "timeout_ms"));
     CHECK(took < 0.3 + 1.0);
     // The rerun in flight goes on; the world says so, and refuses what would change its input.
-    const auto t1 = Clock::now();
-    while (world->state() == WorldState::Busy && secondsSince(t1) < 60) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    secondsBusy(*world);
     CHECK(world->state() == WorldState::Ready);
     // Its buffers have grown: one run, the exact pairs.
     auto again = world->detect({});
@@ -83,9 +96,7 @@ TEST_CASE("reliable: after a timeout the destructor waits for at most one chunk 
     INFO("timeout " << s.limits.timeout_ms << " ms; the pair pass takes " << times.filtering_ms << " ms");
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::Timeout);
-    const auto t0 = Clock::now();
-    world.reset();
-    const double waited = secondsSince(t0);
+    const double waited = secondsToDestroy(world);
     INFO("the destructor waited " << waited << " s");
     CHECK(waited < 1.0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
@@ -115,9 +126,7 @@ TEST_CASE("peeling: after a timeout the GPU finishes one chunk of peeling steps,
         INFO(r.error().message());
         CHECK(r.error().code() == ErrorCode::Timeout);
         CHECK(took < 1.0 + 1.0);
-        const auto t1 = Clock::now();
-        while (world->state() == WorldState::Busy && secondsSince(t1) < 60) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        const double busy = secondsSince(t1);
+        const double busy = secondsBusy(*world);
         INFO("the world was Busy for " << busy << " s after the timeout");
         CHECK(world->state() == WorldState::Ready);
         CHECK(busy < 1.0);
@@ -131,9 +140,7 @@ TEST_CASE("peeling: after a timeout the GPU finishes one chunk of peeling steps,
     auto r = world->detect(deep);
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::Timeout);
-    const auto t0 = Clock::now();
-    world.reset();
-    const double waited = secondsSince(t0);
+    const double waited = secondsToDestroy(world);
     INFO("the destructor waited " << waited << " s");
     CHECK(waited < 1.0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);

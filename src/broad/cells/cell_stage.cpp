@@ -18,7 +18,8 @@ static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12
 static_assert(sizeof(gpu::CellsHeader) == 104 && sizeof(gpu::CellsParams) == 224);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
               offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
-              offsetof(gpu::CellsHeader, exact_neighbours) == 84);  // kHeaderCandidates, ... in cells_common.glsl.inc
+              offsetof(gpu::CellsHeader, exact_neighbours) == 84 &&
+              offsetof(gpu::CellsHeader, repeats) == 96);  // kHeaderCandidates, ... in cells_common.glsl.inc
 static_assert(sizeof(gpu::CellsGpuTriangle) == sizeof(GpuTriangle) && offsetof(gpu::CellsGpuTriangle, v) == offsetof(GpuTriangle, v));
 static_assert(sizeof(CandidatePair) == 8);
 static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);

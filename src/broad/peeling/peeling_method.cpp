@@ -132,7 +132,7 @@ Result<void> PeelingMethod::begin(const RunView& run, const gpu::Header* measure
 double PeelingMethod::countPassMs(std::span<const graph::PassTiming> passes) {
     double ms = 0;
     for (const graph::PassTiming& p : passes)
-        if (p.name == "depth-complexity") ms += p.gpu_ms;
+        if (p.name == kDepthComplexityPass) ms += p.gpu_ms;
     return ms;
 }
 
@@ -158,7 +158,7 @@ std::uint32_t PeelingMethod::chunkSteps(const RunView& run, std::span<const grap
 void PeelingMethod::noteStepTime(std::span<const graph::PassTiming> passes) {
     double steps_ms = 0;
     for (const graph::PassTiming& p : passes)
-        if (p.name.starts_with("peel[") || p.name.starts_with("classify[")) steps_ms += p.gpu_ms;
+        if (p.name.starts_with(kPeelPassPrefix) || p.name.starts_with(kClassifyPassPrefix)) steps_ms += p.gpu_ms;
     if (steps_ == 0 || steps_ms <= 0) return;  // nothing peeled, or no timestamps
     const int b = backendIndex();
     step_ms_[b] = steps_ms / steps_;

@@ -168,7 +168,7 @@ void ComputeSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, 
             bindAndPush(pc, args_, frame, 0, 1);
             pc.dispatch(1, 1, 1);
         });
-    auto count = addPass(g, "depth-complexity", PassKind::Compute, Stage::Sampling);
+    auto count = addPass(g, std::string(kDepthComplexityPass), PassKind::Compute, Stage::Sampling);
     count.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters).readWrite(shared.fragments);
     if (fuse_) count.readWrite(shared.front).readWrite(shared.back);
     if (list_layers_ > 0) count.write(ids.fragments);
@@ -201,7 +201,7 @@ void ComputeSampler::recordPeelStep(graph::Graph& g, const RunView& run, const S
                     pc.dispatchIndirect(args_buf_->handle(), 0);
                 });
         }
-        auto pick = addPass(g, "peel[" + std::to_string(step) + "]", PassKind::Compute, Stage::Sampling);
+        auto pick = addPass(g, stepPassName(kPeelPassPrefix, step), PassKind::Compute, Stage::Sampling);
         pick.read(ids.fragments).read(shared.counts).read(shared.state).readWrite(shared.front);
         if (dual) pick.readWrite(shared.back);
         pick.record([this, frame, step, pixel_groups](PassContext& pc) {
@@ -211,7 +211,7 @@ void ComputeSampler::recordPeelStep(graph::Graph& g, const RunView& run, const S
         return;
     }
     if (step == 0 && fuse_) return;
-    auto peel = addPass(g, "peel[" + std::to_string(step) + "]", PassKind::Compute, Stage::Sampling);
+    auto peel = addPass(g, stepPassName(kPeelPassPrefix, step), PassKind::Compute, Stage::Sampling);
     peel.indirect(ids.args).read(ids.triangles).read(ids.lists).read(ids.items).read(ids.counters);
     peel.read(shared.state).readWrite(shared.front);
     if (dual) peel.readWrite(shared.back);

@@ -101,7 +101,7 @@ void ObjectSampling::recordPeelSteps(graph::Graph& g, const RunView& run, const 
     }
     for (std::uint32_t step = first; step < end; ++step) {
         active_->recordPeelStep(g, run, b, step);
-        auto classify = addPass(g, "classify[" + std::to_string(step) + "]", PassKind::Compute, Stage::Sampling);
+        auto classify = addPass(g, stepPassName(kClassifyPassPrefix, step), PassKind::Compute, Stage::Sampling);
         classify.read(b.counts).read(b.projection).readWrite(b.state).readWrite(b.front);
         if (dual) classify.readWrite(b.back);
         if (depth.bounds.valid()) classify.read(depth.bounds).readWrite(depth.bundle_depth);

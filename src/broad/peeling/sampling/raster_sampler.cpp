@@ -61,7 +61,7 @@ void RasterSampler::drawObject(const PassContext& pc, const RunView& run, const 
 
 void RasterSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, const SamplingBuffers& b) const {
     const std::uint32_t n = run.frame.resolution;
-    addPass(g, "depth-complexity", PassKind::Raster, Stage::Sampling)
+    addPass(g, std::string(kDepthComplexityPass), PassKind::Raster, Stage::Sampling)
         .renderArea(n, n)
         .read(b.projection)
         .readWrite(b.fragments)
@@ -72,7 +72,7 @@ void RasterSampler::recordDepthComplexity(graph::Graph& g, const RunView& run, c
 
 void RasterSampler::recordPeelStep(graph::Graph& g, const RunView& run, const SamplingBuffers& b, std::uint32_t step) const {
     const std::uint32_t n = run.frame.resolution;
-    auto peel = addPass(g, "peel[" + std::to_string(step) + "]", PassKind::Raster, Stage::Sampling);
+    auto peel = addPass(g, stepPassName(kPeelPassPrefix, step), PassKind::Raster, Stage::Sampling);
     peel.renderArea(n, n).read(b.projection).read(b.state).readWrite(b.front);
     if (run.frame.dual) peel.readWrite(b.back);
     peel.record([this, run, step](PassContext& pc) {

@@ -9,6 +9,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <string_view>
 
 #include "broad/buffer_table.hpp"
 #include "broad/dispatch.hpp"
@@ -17,6 +19,15 @@
 #include "graph/graph.hpp"
 
 namespace vkcollide::passes {
+
+// Pass names every backend uses, which PeelingMethod also reads back from the pass times
+// (its chunks of peeling steps are sized from them).
+inline constexpr std::string_view kDepthComplexityPass = "depth-complexity";
+inline constexpr std::string_view kPeelPassPrefix = "peel[", kClassifyPassPrefix = "classify[";
+// "peel[step]", "classify[step]".
+inline std::string stepPassName(std::string_view prefix, std::uint32_t step) {
+    return std::string(prefix) + std::to_string(step) + "]";
+}
 
 // The broad phase's buffers that sampling reads and writes, in the graph being recorded.
 struct SamplingBuffers {

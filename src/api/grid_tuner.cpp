@@ -1,5 +1,6 @@
 #include "api/grid_tuner.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -39,12 +40,19 @@ int GridTuner::next(const Scene& scene) {
     return current_;
 }
 
+std::uint32_t GridTuner::reprobeAfter() const {
+    return reprobes_ >= 5 ? kReprobe : std::min(kReprobe, kFirstReprobe << reprobes_);
+}
+
 void GridTuner::report(const Scene& scene, int step, double gpu_ms) {
     if (!(scene == scene_) || !(gpu_ms > 0) || step < kCoarsest || step > kFinest) return;
     ms(step) = gpu_ms;
     if (settled_ms_ > 0 && step == current_) {
         ++since_settled_;
-        if (gpu_ms > settled_ms_ * (1 + kDrift) || since_settled_ >= kReprobe) forgetOthers();
+        if (gpu_ms > settled_ms_ * (1 + kDrift) || since_settled_ >= reprobeAfter()) {
+            ++reprobes_;
+            forgetOthers();
+        }
     }
 }
 

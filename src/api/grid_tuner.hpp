@@ -36,6 +36,13 @@ public:
     static constexpr double kBetter = 0.03;            // a neighbour must be 3 % faster to move to it
     static constexpr double kDrift = 0.25;             // the settled scale 25 % slower: measure again
     static constexpr std::uint32_t kReprobe = 200;     // settled: neighbours measured again this often
+    // The first walk runs while an idle GPU's clocks ramp up (a few hundred milliseconds of
+    // work on an H200), so its later steps look faster than its earlier ones and it drifts
+    // towards the side it tried last: the settled tuner measures its neighbours again after
+    // kFirstReprobe detections, then after twice as many each time, up to kReprobe.
+    static constexpr std::uint32_t kFirstReprobe = 8;
+    // The settled detections before the next look at the neighbours.
+    std::uint32_t reprobeAfter() const;
 
     // The step the next detection of `scene` uses (a different scene starts again at 0).
     int next(const Scene& scene);
@@ -59,6 +66,7 @@ private:
     std::array<double, kSteps> ms_{};
     double settled_ms_ = 0;               // the current step's time when it settled (0: exploring)
     std::uint32_t since_settled_ = 0;
+    std::uint32_t reprobes_ = 0;          // looks at the neighbours since the scene's first walk
 };
 
 }  // namespace vkcollide

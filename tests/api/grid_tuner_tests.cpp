@@ -1,8 +1,11 @@
 // GridTuner (src/api/grid_tuner.hpp) fed made-up GPU times: where a scene's time is lowest
-// it settles, it never leaves its ladder, it does not move for less than kBetter, and a new
-// scene, a slower settled grid or kReprobe detections make it measure again.
+// it settles, it never leaves its ladder, it does not move for less than kBetter, a new
+// scene, a slower settled grid or its look-again schedule (kFirstReprobe detections, twice as
+// many each time, up to kReprobe) make it measure again, and a first walk on ramping clocks
+// ends at the fastest grid once warm.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -43,9 +46,15 @@ TEST_CASE("the grid tuner settles where the scene's GPU time is lowest, at most 
         // Exploring: every step between 0 and the best, and one beyond it at most.
         const int lo = std::min(0, best) - 1, hi = std::max(0, best) + 1;
         for (int s : steps) CHECK((s >= lo && s <= hi));
-        // Settled within the walk there and one look at each neighbour.
+        // Settled within the walk there and one look at each neighbour; then, after
+        // kFirstReprobe detections, one more look at each neighbour, warm.
         const std::size_t walk = static_cast<std::size_t>(std::abs(best)) + 4;
-        for (std::size_t i = walk; i < steps.size(); ++i) CHECK(steps[i] == best);
+        std::size_t looks = 0;
+        for (std::size_t i = walk; i < steps.size(); ++i) {
+            CHECK(std::abs(steps[i] - best) <= 1);
+            if (steps[i] != best) ++looks;
+        }
+        CHECK(looks >= 2);  // the first look again, after kFirstReprobe detections
         CHECK(tuner.next(kScene) == best);
         CHECK(GridTuner::scale(best) == Approx(std::exp2(0.5 * best)));
     }
@@ -86,13 +95,44 @@ TEST_CASE("the grid tuner measures again for a new scene, a slower settled grid 
     CHECK(after.front() != -2);
     CHECK(after.back() == -1);
 
-    // Settled and steady: after kReprobe detections it looks at its neighbours once more.
+    // Settled and steady: it looks at its neighbours again after kFirstReprobe settled
+    // detections, then after twice as many each time, then every kReprobe.
     GridTuner steady;
-    const std::vector<int> steps = drive(steady, coarse, 12 + GridTuner::kReprobe + 4);
-    const std::multiset<int> late(steps.begin() + 12, steps.end());  // settled from the sixth on
-    CHECK(late.count(-3) == 1);
-    CHECK(late.count(-1) == 1);
+    const std::vector<int> steps = drive(steady, coarse, 600);
+    std::vector<std::size_t> looks;  // where it tried -3 after its walk (0, -1, 1, -2, -3)
+    for (std::size_t i = 5; i < steps.size(); ++i) {
+        CHECK(std::abs(steps[i] + 2) <= 1);
+        if (steps[i] == -3) looks.push_back(i);
+    }
+    std::vector<std::size_t> expected;
+    std::size_t settled = 5;  // the first settled detection
+    for (std::uint32_t k = 0;; ++k) {
+        const std::size_t at = settled + std::min<std::size_t>(GridTuner::kReprobe, std::size_t{GridTuner::kFirstReprobe} << k);
+        if (at >= steps.size()) break;
+        expected.push_back(at);
+        settled = at + 2;  // -3, then -1, then settled at -2 again
+    }
+    CHECK(looks == expected);
+    CHECK(expected.size() == 6);  // after 8, 16, 32, 64, 128, then kReprobe settled detections
     CHECK(steps.back() == -2);
+}
+
+TEST_CASE("the grid tuner's first walk on a GPU whose clocks ramp up is measured again, warm", "[grid]") {
+    // Each detection of the first dozen runs faster than the one before (clocks ramping), by
+    // more than the grids differ: the first walk moves towards whatever it tried last. The
+    // warm look after kFirstReprobe detections brings it back to the fastest grid.
+    for (int best : {-1, 0, 1}) {
+        INFO("lowest time at step " << best);
+        GridTuner tuner;
+        int detection = 0;
+        const auto cost = [&](int step) {
+            const double ramp = 1.0 + 0.5 * std::max(0, 12 - detection++) / 12.0;
+            return ramp * (1.0 + 0.05 * (step - best) * (step - best));
+        };
+        const std::vector<int> steps = drive(tuner, cost, 60);
+        CHECK(steps.back() == best);
+        CHECK(tuner.next(kScene) == best);
+    }
 }
 
 TEST_CASE("the grid tuner ignores times of another scene, of zero and not a number", "[grid]") {

@@ -181,11 +181,15 @@ struct CellsHeader {
     uint exact_tests;  // candidates the exact test decided (CellsParams.exact)
     uint exact_neighbours;  // of those, left out as neighbours: a bit-identical world vertex
     uint pairs_done;        // candidates the pair pass's chunks so far cover (CellsParams.pair_chunk)
-    uint header_pad;
+    uint sweep_pending;     // 1: entries or deep items are left for the sweep's next chunk
     // Overlapping pairs the sweep dropped as repeats (not their canonical cell,
-    // kCellsSweepDedupe): with `candidates`, every overlapping pair the sweep found, which
-    // the budget bounds.
+    // CellsParams.sweep_dedupe): with `candidates`, every overlapping pair the sweep found,
+    // which the budget bounds.
     uint64_t repeats;
+    // The sweep's current chunk (CellsParams.sweep_work): entries [begin, end) of the
+    // shallow sweep and deep items [begin, end); each chunk starts where the last ended.
+    uint sweep_entries_begin, sweep_entries_end;
+    uint sweep_items_begin, sweep_items_end;
 };
 
 // Everything the shaders need, uploaded once per run (Push.frame points here).
@@ -236,6 +240,14 @@ struct CellsParams {
     // covers [k * pair_chunk, (k + 1) * pair_chunk), so that no submission holds more
     // than about a target time of work (CellStage: the device's measured rate).
     uint pair_chunk;
+    // Cells of at least this many entries drop a pair's repeats in the sweep (repeatsHere,
+    // docs/reliable.md "Piles"; CellStage sets kCellsSweepDedupe).
+    uint sweep_dedupe;
+    // Work of one sweep chunk, in comparisons at most (an entry of the shallow sweep counts
+    // as min(max_cell, kCellsSmallCell), a deep item as kCellsGroupSize * max_cell), so
+    // that no submission holds more than about a target time of it (CellStage: the
+    // device's measured rate); ~0u: the whole sweep in one chunk.
+    uint sweep_work;
 };
 
 // ---- Device pairs (DetectSettings::reliable.device_pairs; src/broad/cells/device_pairs.cpp) ---

@@ -3,9 +3,13 @@
 // Cell pair stage, indirect dispatch arguments (one invocation), from the counters the
 // previous pass left in the header; nothing to do (0 workgroups) once the run failed.
 //   step 0, after setup: big-triangle work items (count and fill);
-//   step 1, after the scan: the sweep (one invocation per entry) and the deep cells;
+//   step 1, after the scan and before each later sweep chunk: the sweep's next chunk (one
+//   invocation per entry of it) and its deep items, from where the last chunk ended (0
+//   after the header's clear), at most CellsParams.sweep_work comparisons; whether
+//   more are left into the header (sweep_pending);
 //   step 2 + k, after the sweep: every candidate (passes after the pair pass) and the pair
 //   pass's chunk k (one invocation per candidate in it); the chunks so far into the header.
+//   Nothing while sweep chunks are pending: the candidates are not all written yet.
 #include "cells_common.glsl.inc"
 layout(local_size_x = 1) in;
 
@@ -18,14 +22,30 @@ void main() {
     if (pc.step == 0u) {
         writeDispatch(P, kCellsArgsBig, failed ? 0u : min(h.items, P.item_capacity));
     } else if (pc.step == 1u) {
-        writeDispatch(P, kCellsArgsSweep, failed ? 0u : groupsFor(h.entries));
-        writeDispatch(P, kCellsArgsDeep, failed ? 0u : min(h.deep_items, P.deep_capacity));
+        // A candidate overflow still sweeps on: the count sizes the rerun's buffer.
+        bool stop = (h.flags & ~kCellsOverflowCandidates) != 0u;
+        uint entries = stop ? 0u : min(h.entries, P.entry_capacity), items = stop ? 0u : min(h.deep_items, P.deep_capacity);
+        uint e0 = min(h.sweep_entries_end, entries), i0 = min(h.sweep_items_end, items);
+        uint e1 = entries, i1 = items;
+        if (P.sweep_work != ~0u) {
+            uint deepest = max(h.max_cell, 1u);
+            e1 = e0 + min(entries - e0, max(kCellsGroupSize, P.sweep_work / min(deepest, kCellsSmallCell)));
+            i1 = i0 + min(items - i0, max(1u, P.sweep_work / (kCellsGroupSize * deepest)));
+        }
+        CellsHeaderRef hr = cellsHeader(P);
+        hr.h.sweep_entries_begin = e0;
+        hr.h.sweep_entries_end = e1;
+        hr.h.sweep_items_begin = i0;
+        hr.h.sweep_items_end = i1;
+        hr.h.sweep_pending = e1 < entries || i1 < items ? 1u : 0u;
+        writeDispatch(P, kCellsArgsSweep, groupsFor(e1 - e0));
+        writeDispatch(P, kCellsArgsDeep, i1 - i0);
     } else {
-        uint total = failed ? 0u : uint(min(h.candidates, uint64_t(P.candidate_capacity)));
+        uint total = failed || h.sweep_pending != 0u ? 0u : uint(min(h.candidates, uint64_t(P.candidate_capacity)));
         uint first = (pc.step - 2u) * P.pair_chunk;  // at most total + pair_chunk < 2^32
         uint n = total > first ? min(total - first, P.pair_chunk) : 0u;
         writeDispatch(P, kCellsArgsPairs, groupsFor(total));
         writeDispatch(P, kCellsArgsPairChunk, groupsFor(n));
-        if (!failed) cellsHeader(P).h.pairs_done = first + n;
+        if (!failed && h.sweep_pending == 0u) cellsHeader(P).h.pairs_done = first + n;
     }
 }

@@ -86,7 +86,8 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
     if (tid == 0u) s_runs[runs] = k;
     barrier();
 
-    const bool dedupe = repeatChecksWithinBudget(P);  // for both passes
+    const bool within = repeatChecksWithinBudget(P);  // every invocation: a subgroup operation
+    const bool dedupe = k >= P.sweep_dedupe && within;  // for both passes
     uint n = 0u, neighbours = 0u, repeats = 0u;
     for (uint pass = 0u; pass < 2u; ++pass) {
         uint64_t out_slot = 0ul;
@@ -153,13 +154,13 @@ void chunkOfCell(CellsParams P, uint cell, uint begin, uint end, uint chunk) {
         me = CellsEntriesRef(P.entries).e[e];
         if ((triangleKeyOf(P, me.key) & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
     }
-    sweepEntry(P, cell, e, me, mine, begin, e < end ? end : begin, true);
+    sweepEntry(P, cell, e, me, mine, begin, e < end ? end : begin, end - begin >= P.sweep_dedupe);
 }
 
 void main() {
     CellsParams P = params();
-    uint item = groupIndex();
-    if (item >= min(cellsHeader(P).h.deep_items, P.deep_capacity)) return;  // whole workgroup
+    uint item = cellsHeader(P).h.sweep_items_begin + groupIndex();  // this chunk's items (cells_args.comp)
+    if (item >= min(cellsHeader(P).h.sweep_items_end, min(cellsHeader(P).h.deep_items, P.deep_capacity))) return;  // whole workgroup
     uvec2 work = Uvec2sRef(P.deep_items).v[item];
     uint begin = UintsRef(P.offsets).v[work.x], end = UintsRef(P.offsets).v[work.x + 1u];
     if (work.y == kCellsSorted) sortedCell(P, work.x, begin, end - begin);

@@ -13,8 +13,9 @@ layout(local_size_x = kCellsGroupSize) in;
 
 void main() {
     CellsParams P = params();
-    uint e = globalIndex();
-    uint total = min(cellsHeader(P).h.entries, P.entry_capacity);
+    // This chunk's entries (cells_args.comp, step 1).
+    uint e = cellsHeader(P).h.sweep_entries_begin + globalIndex();
+    uint total = min(cellsHeader(P).h.sweep_entries_end, min(cellsHeader(P).h.entries, P.entry_capacity));
     uint begin = 0u, end = 0u, cell = 0u;
     CellsEntry me;
     uvec3 mine = uvec3(~0u);
@@ -31,5 +32,5 @@ void main() {
         me = CellsEntriesRef(P.entries).e[e];
         if ((triangleKeyOf(P, me.key) & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
     }
-    sweepEntry(P, cell, e, me, mine, begin, end, end - begin >= kCellsSweepDedupe);
+    sweepEntry(P, cell, e, me, mine, begin, end, end - begin >= P.sweep_dedupe);
 }

@@ -155,6 +155,9 @@ struct BroadPhaseSettings {
     // Methods that decide candidates in a pair pass: at most this many per submission (0:
     // automatic, CellStageSettings::pair_chunk); tests set it small.
     std::uint32_t pair_chunk = 0;
+    // The reliable method's sweep: comparisons per chunk, each its own submission (0:
+    // automatic, CellStageSettings::sweep_work); tests set it small.
+    std::uint32_t sweep_work = 0;
     // The peeling method: at most this many peeling steps per submission (0: automatic,
     // PeelingMethod's kPeelChunkTargetMs of GPU time); tests set it small.
     std::uint32_t peel_chunk = 0;

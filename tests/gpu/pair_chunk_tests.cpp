@@ -1,10 +1,12 @@
-// The reliable method's pair pass in chunks (BroadPhaseSettings::pair_chunk): each chunk is
-// a submission of its own (the broad phase's Again), so that GPU work left running after a
-// timeout is at most one chunk. The passes after the pair pass (the GPU sort, proximity)
-// must see every chunk: the same sorted pairs and proximity records as one pass.
+// The reliable method's sweep and pair pass in chunks (BroadPhaseSettings::sweep_work and
+// pair_chunk): each chunk is a submission of its own (the broad phase's Again), so that GPU
+// work left running after a timeout is at most one chunk. The passes after them (the GPU
+// sort, proximity) must see every chunk: the same sorted pairs and proximity records as one
+// pass, and the sweep's counts unchanged.
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <string_view>
 #include <vector>
 
 #include "broad/broad_phase.hpp"
@@ -27,11 +29,22 @@ HostMesh sphereAt(Float3 t, float radius) {
     return m;
 }
 
+// `copies` copies of one small triangle, each with its own vertices, at `t`.
+HostMesh pileAt(Float3 t, std::uint32_t copies) {
+    HostMesh m{"pile", {}, {}};
+    for (std::uint32_t k = 0; k < copies; ++k) {
+        m.positions.insert(m.positions.end(), {{t.x - 0.1f, t.y - 0.1f, t.z}, {t.x + 0.1f, t.y - 0.1f, t.z}, {t.x, t.y + 0.1f, t.z + 0.05f}});
+        m.indices.insert(m.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    return m;
+}
+
 struct Outputs {
     std::vector<TrianglePair> pairs;
     std::vector<std::uint8_t> proximity;  // the records' bytes
     std::size_t records = 0;
-    std::uint32_t pair_passes = 0;
+    std::uint32_t pair_passes = 0, sweeps = 0;
+    CellStageStats cells;
 };
 
 Outputs run(BroadPhase& bp, std::span<const GpuMesh> meshes, BroadPhaseSettings s) {
@@ -45,7 +58,11 @@ Outputs run(BroadPhase& bp, std::span<const GpuMesh> meshes, BroadPhaseSettings 
     out.records = r->proximity.size();
     out.proximity.resize(r->proximity.size_bytes());
     if (!out.proximity.empty()) std::memcpy(out.proximity.data(), r->proximity.data(), out.proximity.size());
-    for (const graph::PassTiming& p : r->passes) out.pair_passes += p.name == "cells-pairs" ? 1u : 0u;
+    for (const graph::PassTiming& p : r->passes) {
+        out.pair_passes += p.name == std::string_view(kPairPassName) ? 1u : 0u;
+        out.sweeps += p.name == std::string_view(kSweepPassName) ? 1u : 0u;
+    }
+    out.cells = r->cells;
     return out;
 }
 
@@ -86,6 +103,56 @@ TEST_CASE("reliable: the pair pass in chunks gives the sorted pairs and proximit
         CHECK(split.pairs == whole.pairs);
         CHECK(split.records == whole.records);
         CHECK(split.proximity == whole.proximity);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("reliable: the sweep in chunks gives the sorted pairs, proximity records and counts of one sweep", "[gpu][cells][proximity]") {
+    test::ValidatedContext ctx;
+    REQUIRE(ctx.device().shader_float64);
+    // Shallow cells (the spheres), sorted deep cells (300 copies, self-colliding: their
+    // repeats are dropped in the sweep) and deep cells in chunks (1,100 copies).
+    std::vector<HostMesh> meshes{sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f),
+                                 pileAt({0.1f, 0.2f, 0.9f}, 300), pileAt({2.5f, 0.0f, 0.0f}, 1100)};
+    auto up = uploadMeshes(ctx.device(), {&meshes[0], &meshes[1], &meshes[2], &meshes[3]});
+    REQUIRE(up);
+    std::vector<std::vector<std::uint8_t>> owned;
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        owned.push_back(proximity::ownedPrimitives(meshes[i].indices, static_cast<std::uint32_t>(meshes[i].positions.size())));
+        up->meshes[i].proximity_owned = owned.back();
+        up->meshes[i].tag = static_cast<std::uint32_t>(i);
+        up->meshes[i].self_collision = i == 2;
+    }
+    auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
+    REQUIRE(bp);
+    BroadPhaseSettings s;
+    s.resolution = 40;
+    s.direction = {0.1f, 0.2f, 1.0f};
+    s.exact_on_gpu = true;
+    s.sort_on_gpu = true;
+    s.proximity_distance = 0.01;
+    s.sweep_work = ~0u;  // one chunk
+    (void)run(**bp, up->meshes, s);  // the buffers grow to the scene: one run from now on
+    const Outputs whole = run(**bp, up->meshes, s);
+    REQUIRE(whole.pairs.size() > 50);
+    REQUIRE(whole.cells.repeats > 0);  // the sorted deep cells dropped repeats
+    REQUIRE(whole.cells.deep_cells > 0);
+    REQUIRE(whole.cells.max_cell > 1024);  // and some cells came in chunks of entries
+    CHECK(whole.sweeps == 1);
+    for (std::uint32_t work : {1u, 20000u, 300000u}) {
+        INFO("sweep chunks of " << work << " comparisons");
+        s.sweep_work = work;
+        const Outputs split = run(**bp, up->meshes, s);
+        CHECK(split.sweeps > 1);
+        CHECK(split.pairs == whole.pairs);
+        CHECK(split.records == whole.records);
+        CHECK(split.proximity == whole.proximity);
+        CHECK(split.cells.candidates == whole.cells.candidates);
+        CHECK(split.cells.repeats == whole.cells.repeats);
+        CHECK(split.cells.neighbours == whole.cells.neighbours);
+        CHECK(split.cells.candidate_cells == whole.cells.candidate_cells);
+        CHECK(split.cells.survivors == whole.cells.survivors);
+        CHECK(split.cells.runs == 1);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -3,6 +3,7 @@
 // "Limits", lists the bounds.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -99,6 +100,41 @@ TEST_CASE("reliable: after a timeout the destructor waits for at most one chunk 
     const double waited = secondsToDestroy(world);
     INFO("the destructor waited " << waited << " s");
     CHECK(waited < 1.0);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// The sweep of the cells goes in chunks too (CellStageSettings::sweep_work: about 200 ms
+// of comparisons at the rate its last chunk measured). 300 triangles crossing on one axis,
+// seen along (1, 2, 3) at 250 cells, put some 2.9M footprints in cells that share most
+// of their pairs: about 40 s of sweep on lavapipe, which was one dispatch. The process
+// waited that long after a timeout (the issue's 5 MB scene: 60 s, then 215 s to exit).
+// The timeout falls after the first submission (footprints, about a second), in the sweep.
+TEST_CASE("reliable: after a timeout the GPU finishes one chunk of the sweep, not the rest of it",
+          "[stability][gpu][limits][reliable][time]") {
+    ValidatedContext ctx;
+    auto c = crossingTriangles(300);
+    REQUIRE(c);
+    auto world = worldOf(ctx, *c);
+    DetectSettings s;  // the reliable method
+    s.resolution = 250;
+    s.direction = std::array<float, 3>{1.0f, 2.0f, 3.0f};
+    s.limits.timeout_ms = 3000;
+    const auto t0 = Clock::now();
+    auto r = world->detect(s);
+    const double took = secondsSince(t0);
+    INFO("detect took " << took << " s");
+    REQUIRE_FALSE(r);
+    INFO(r.error().message());
+    CHECK(r.error().code() == ErrorCode::Timeout);
+    CHECK(took < 3.0 + 1.0);
+    const double busy = secondsBusy(*world);
+    INFO("the world was Busy for " << busy << " s after the timeout");
+    CHECK(world->state() == WorldState::Ready);
+    CHECK(busy < 1.0);
+    // Usable afterwards: the automatic grid, the exact pairs.
+    auto again = world->detect({});
+    REQUIRE(again);
+    checkExact(again->pairs, *c->reference);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

@@ -15,11 +15,12 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 104 && sizeof(gpu::CellsParams) == 224);
+static_assert(sizeof(gpu::CellsHeader) == 120 && sizeof(gpu::CellsParams) == 232);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
               offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
               offsetof(gpu::CellsHeader, exact_neighbours) == 84 &&
-              offsetof(gpu::CellsHeader, repeats) == 96);  // kHeaderCandidates, ... in cells_common.glsl.inc
+              offsetof(gpu::CellsHeader, repeats) == 96 &&
+              offsetof(gpu::CellsHeader, sweep_entries_begin) == 104);  // kHeaderCandidates, ... in cells_common.glsl.inc
 static_assert(sizeof(gpu::CellsGpuTriangle) == sizeof(GpuTriangle) && offsetof(gpu::CellsGpuTriangle, v) == offsetof(GpuTriangle, v));
 static_assert(sizeof(CandidatePair) == 8);
 static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);
@@ -138,6 +139,10 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     runs_ = 0;
     bad_input_.reset();
     pair_chunk_ = settings.pair_chunk ? settings.pair_chunk : automaticPairChunk();
+    sweep_dedupe_ = gpu::kCellsSweepDedupe;
+    auto_sweep_work_ = settings.sweep_work == 0;
+    sweep_work_ = auto_sweep_work_ ? automaticSweepWork() : settings.sweep_work;
+    sweep_chunks_run_ = 0;
     next_chunk_ = 0;
     asked_budget_ = settings.max_candidate_pairs;
     budget_ = static_cast<std::uint32_t>(std::min(settings.max_candidate_pairs, kMaxElements));
@@ -232,6 +237,8 @@ void CellStage::writeParams() {
     p.keep_neighbours = proximity_pad_ > 0 ? 1u : 0u;
     p.proximity_pad = proximity_pad_;
     p.pair_chunk = pair_chunk_;
+    p.sweep_dedupe = sweep_dedupe_;
+    p.sweep_work = sweep_work_;
     std::memcpy(buf_.params->mapped(), &p, sizeof p);
     buf_.params->flush();
 }
@@ -256,9 +263,10 @@ Result<void> CellStage::checkFailure(const gpu::CellsHeader& h) {
     return Error(ErrorCode::InvalidMesh, "cell stage: " + where + " has a world coordinate not below 2^62");
 }
 
-// Past the budget: the count the run needed, the budget, and what to change. The counts
-// are complete where they are checked: the setup sums every triangle's box, the scan every
-// cell's pairs, and candidates are only counted by a sweep that ran in full.
+// Past the budget: the count the run needed, the budget, and what to change. The setup
+// sums every triangle's box and the scan every cell's pairs; the candidates are counted
+// by the sweep's chunks so far, and no more chunks are swept once they pass the budget
+// (the budget bounds the sweep's time): then the count is a lower bound, and says so.
 Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
     const std::string budget = asked_budget_ > budget_ ? "the stage's limit of " + std::to_string(budget_) + " (32-bit buffer indices)"
                                                        : "limits.max_candidate_pairs (" + std::to_string(budget_) + ")";
@@ -276,7 +284,11 @@ Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
                          " the sweep may compare: stacked or repeated triangles? Lower the resolution or raise limits.max_candidate_pairs");
     // Every overlapping pair the sweep found, written or dropped as a repeat in a deep cell.
     if (const std::uint64_t overlapping = h.candidates + h.repeats; overlapping > budget_)
-        return Error(ErrorCode::LimitExceeded, "cell stage: " + std::to_string(overlapping) + " candidate pairs" + where +
+        return Error(ErrorCode::LimitExceeded, "cell stage: " + std::to_string(overlapping) +
+                                                   (h.sweep_pending ? " or more candidate pairs (counted in " + std::to_string(h.sweep_entries_end) +
+                                                                          " of " + std::to_string(h.entries) + " footprints, where the sweep stopped)"
+                                                                    : std::string(" candidate pairs")) +
+                                                   where +
                                                    " (triangles that may collide, with overlapping depth in a cell), more than " +
                                                    budget + ": stacked or repeated triangles?");
     if (h.flags & gpu::kCellsOverBudget)  // never without one of the counts above
@@ -291,6 +303,13 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     std::memcpy(&h, buf_.header_rb->mapped(), sizeof h);
     if (auto ok = checkFailure(h); !ok) return ok.error();
     if (auto ok = checkBudget(h); !ok) return ok.error();
+    // The chunk just swept (bounds as cells_args.comp sized it), for noteSweepTime().
+    const double deepest = std::max(h.max_cell, 1u);
+    last_sweep_chunk_work_ = double(h.sweep_entries_end - h.sweep_entries_begin) * std::min(deepest, double(gpu::kCellsSmallCell)) +
+                             double(h.sweep_items_end - h.sweep_items_begin) * gpu::kCellsGroupSize * deepest;
+    ++sweep_chunks_run_;
+    // The sweep goes on through a candidate overflow (its count sizes the rerun's buffer).
+    if (h.sweep_pending && (h.flags & ~gpu::kCellsOverflowCandidates) == 0) return Outcome::MoreSweep;
     if (h.flags & gpu::kCellsOverflowMask) {
         // Only the first overflow's count is reliable (later passes did nothing): grow it,
         // and the rerun reports the next one if any. Within the budget every need is at
@@ -313,10 +332,12 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
         if (auto ok = ensureBuffers(); !ok) return ok.error();
         writeParams();
         ++runs_;
+        sweep_chunks_run_ = 0;
         return Outcome::Rerun;
     }
     if (h.pairs_done < std::min<std::uint64_t>(h.candidates, capacity_.candidates)) return Outcome::MorePairs;
     ++runs_;
+    sweep_chunks_ = sweep_chunks_run_;
     s = CellStageStats{};
     s.entries = h.entries;
     s.box_cells = h.box_cells;
@@ -380,6 +401,8 @@ Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStag
         graph::Graph g;
         if (next == Outcome::MorePairs) {
             recordPairChunk(g);
+        } else if (next == Outcome::MoreSweep) {
+            recordSweepChunk(g);
         } else {
             out.passes.clear();  // the run's passes: a rerun starts over
             out.gpu_ms = 0;
@@ -391,6 +414,7 @@ Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStag
         out.gpu_ms += report->total_gpu_ms;
         auto outcome = finish(out);
         if (!outcome) return outcome.error();
+        noteSweepTime(report->passes);
         if (*outcome == Outcome::Complete) {
             notePairPassTime(out.passes, out.stats.candidates);
             return out;
@@ -400,6 +424,39 @@ Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStag
                                                      std::to_string(capacity_.entries) + ", candidates " +
                                                      std::to_string(capacity_.candidates) + ")");
         next = *outcome;
+    }
+}
+
+// What the device sweeps in about kSweepChunkTargetMs at the rate its last sweep chunk
+// measured; before any, on a CPU implementation such as lavapipe (some 10^5 comparisons a
+// millisecond with the repeat checks) about 2 * 10^7, on a GPU the whole sweep.
+std::uint32_t CellStage::automaticSweepWork() const {
+    double rate = sweep_rate_;
+    if (rate <= 0) {
+        if (device_->properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU) return ~0u;
+        rate = 1.0e5;
+    }
+    const double work = rate * kSweepChunkTargetMs;
+    return work >= double(~0u - 1) ? ~0u : static_cast<std::uint32_t>(std::max(work, 4096.0));
+}
+
+void CellStage::noteSweepTime(std::span<const graph::PassTiming> passes) {
+    double gpu_ms = 0;
+    for (auto p = passes.rbegin(); p != passes.rend(); ++p)
+        if (p->name == kSweepPassName) {
+            gpu_ms = p->gpu_ms;
+            break;
+        }
+    // Too little work to time reliably says nothing about the rate.
+    if (gpu_ms > 1.0 && last_sweep_chunk_work_ >= 4096) sweep_rate_ = last_sweep_chunk_work_ / gpu_ms;
+    // The next chunk, of this run or the next, at the new rate: the parameters are read by
+    // the next submission only.
+    if (auto_sweep_work_) {
+        const std::uint32_t work = automaticSweepWork();
+        if (work != sweep_work_) {
+            sweep_work_ = work;
+            writeParams();
+        }
     }
 }
 

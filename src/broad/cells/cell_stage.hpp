@@ -126,10 +126,20 @@ struct CellStageSettings {
     // submission left running after a timeout ends soon. More candidates than that:
     // finish() answers MorePairs until the chunks cover them all.
     std::uint32_t pair_chunk = 0;
+    // Work of one chunk of the sweep, in comparisons at most (gpu::CellsParams::sweep_work;
+    // 0: automatic, what the device sweeps in about kSweepChunkTargetMs at the rate its
+    // last chunk measured, the whole sweep on a GPU until one takes longer), so that a
+    // submission left running after a timeout ends soon. More left: finish() answers
+    // MoreSweep until the chunks cover every entry and deep item.
+    std::uint32_t sweep_work = 0;
 };
 
 // The GPU time an automatic pair-pass chunk aims at (CellStageSettings::pair_chunk).
 inline constexpr double kPairChunkTargetMs = 200.0;
+// The GPU time an automatic sweep chunk aims at (CellStageSettings::sweep_work).
+inline constexpr double kSweepChunkTargetMs = 200.0;
+// The sweep's pass name in the graph (and in the passes' timings).
+inline constexpr const char* kSweepPassName = "cells-sweep";
 // The pair pass's name in the graph (and in the passes' timings).
 inline constexpr const char* kPairPassName = "cells-pairs";
 
@@ -179,14 +189,23 @@ public:
     std::uint32_t maxGroupsX() const noexcept { return max_groups_x_; }
     // After the recorded graph ran: reads the header. Complete: `out` holds the pairs
     // and statistics. Rerun: a buffer overflowed; it has been grown (and the parameters
-    // re-uploaded), so record and run the stage again. MorePairs: the pair pass has
-    // chunks to go (CellStageSettings::pair_chunk): recordPairChunk() and run that. Errors: InvalidMesh or
+    // re-uploaded), so record and run the stage again. MoreSweep: the sweep has chunks to go
+    // (CellStageSettings::sweep_work): recordSweepChunk() and run that. MorePairs: the pair
+    // pass has chunks to go (CellStageSettings::pair_chunk): recordPairChunk() and run that. Errors: InvalidMesh or
     // InvalidArgument for bad input found on the GPU (naming object and triangle);
     // LimitExceeded past the budget (CellStageSettings::max_candidate_pairs), naming the
     // count the run needed. After any error the stage is ready for the next prepare().
-    enum class Outcome { Complete, Rerun, MorePairs };
+    enum class Outcome { Complete, Rerun, MoreSweep, MorePairs };
+    // After MoreSweep: the sweep's next chunk, then the pair pass's first chunk (it does
+    // nothing unless the sweep is complete) and the header readback.
+    void recordSweepChunk(graph::Graph& g);
     // After MorePairs: the pair pass over the next chunk and the header readback.
     void recordPairChunk(graph::Graph& g);
+    // After the submission that swept the chunk finish() last read: its sweep pass's GPU
+    // time, from which the automatic sweep chunk (CellStageSettings::sweep_work) is sized.
+    void noteSweepTime(std::span<const graph::PassTiming> passes);
+    // The sweep chunks the last complete run took (1: one submission's sweep).
+    std::uint32_t sweepChunks() const noexcept { return sweep_chunks_; }
     // After a complete run that decided `candidates`: its passes (one pair-pass chunk or
     // several, among others), whose pair-pass time gives the rate the automatic chunk of
     // later runs is sized from.
@@ -228,6 +247,11 @@ private:
         graph::ResourceId header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks;
     };
     void recordPairPass(graph::Graph& g, const PairPassIds& ids, std::uint32_t chunk);
+    struct SweepIds {
+        graph::ResourceId header, entries, entry_cells, offsets, counts, deep, candidates, args;
+    };
+    void recordSweep(graph::Graph& g, const SweepIds& ids);
+    std::uint32_t automaticSweepWork() const;
     void writeParams();
     Result<void> checkFailure(const gpu::CellsHeader& header);
     Result<void> checkBudget(const gpu::CellsHeader& header) const;
@@ -262,7 +286,16 @@ private:
     CellStageCapacity capacity_;
     std::uint32_t runs_ = 0;
     std::uint32_t pair_chunk_ = 0, next_chunk_ = 0;  // the run's chunk size; the chunk recorded next
+    std::uint32_t sweep_dedupe_ = gpu::kCellsSweepDedupe;  // CellsParams::sweep_dedupe
     double pair_rate_ = 0;  // candidates per GPU ms of the pair pass, measured (0: not yet)
+    // The sweep's chunks: their work (CellsParams::sweep_work), whether it is automatic,
+    // the work of the chunk finish() last read, the chunks of this run and of the last
+    // complete one, and the work per GPU ms measured (0: not yet).
+    std::uint32_t sweep_work_ = ~0u;
+    bool auto_sweep_work_ = true;
+    double last_sweep_chunk_work_ = 0;
+    std::uint32_t sweep_chunks_run_ = 0, sweep_chunks_ = 0;
+    double sweep_rate_ = 0;
 };
 
 }  // namespace vkcollide::passes

@@ -131,23 +131,53 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
         });
 
-    pass(g, "cells-sweep", PassKind::Compute, Stage::Pairing)
-        .indirect(args)
-        .read(entries)
-        .read(entry_cells)
-        .read(offsets)
-        .readWrite(counts)  // kCellsCandidateBit: cells with a candidate
-        .read(deep)
-        .readWrite(header)
-        .write(candidates)
+    recordSweep(g, {header, entries, entry_cells, offsets, counts, deep, candidates, args});
+    recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks}, 0);
+    return {header, survivors, tris, candidates, geometry, args};
+}
+
+// The sweep over the chunk of entries and deep items the arguments hold (the scan's last
+// step, or recordSweepChunk's arguments pass, sized it).
+void CellStage::recordSweep(graph::Graph& g, const SweepIds& id) {
+    const VkDeviceAddress params = buf_.params->address();
+    const VkBuffer args_buffer = buf_.args->handle();
+    const auto& P = pipes_;
+    pass(g, kSweepPassName, PassKind::Compute, Stage::Pairing)
+        .indirect(id.args)
+        .read(id.entries)
+        .read(id.entry_cells)
+        .read(id.offsets)
+        .readWrite(id.counts)  // kCellsCandidateBit: cells with a candidate
+        .read(id.deep)
+        .readWrite(id.header)
+        .write(id.candidates)
         .record([&P, params, args_buffer](PassContext& pc) {
             bindAndPush(pc, P.sweep, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsSweep * 12);
             bindAndPush(pc, P.deep, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsDeep * 12);
         });
-    recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks}, 0);
-    return {header, survivors, tris, candidates, geometry, args};
+}
+
+void CellStage::recordSweepChunk(graph::Graph& g) {
+    survivor_count_ = gpu_triangle_count_ = 0;
+    const VkDeviceAddress params = buf_.params->address();
+    const auto& P = pipes_;
+    const auto header = importRow(g, buf_.header), args = importRow(g, buf_.args), candidates = importRow(g, buf_.candidates);
+    pass(g, "cells-sweep-args", PassKind::Compute, Stage::Pairing)
+        .readWrite(header)  // where the last chunk ended
+        .write(args)
+        .record([&P, params](PassContext& pc) {
+            bindAndPush(pc, P.args, params, 0, 1);
+            pc.dispatch(1, 1, 1);
+        });
+    recordSweep(g, {header, importRow(g, buf_.entries), importRow(g, buf_.entry_cells), importRow(g, buf_.offsets),
+                    importRow(g, buf_.counts), importRow(g, buf_.deep_items), candidates, args});
+    recordPairPass(g,
+                   {header, importRow(g, buf_.header_rb, true), importRow(g, buf_.triangles), importRow(g, buf_.geometry), candidates,
+                    importRow(g, buf_.survivors, !survivors_on_device_), args, importRow(g, buf_.gpu_triangles, true),
+                    importRow(g, buf_.marks)},
+                   0);
 }
 
 // The pair pass over chunk `chunk` of the candidates (its arguments first), then the header

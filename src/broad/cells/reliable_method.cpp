@@ -40,6 +40,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     settings.max_candidate_pairs = run.settings.max_candidate_pairs;
     settings.exact = run.settings.exact_on_gpu;
     settings.pair_chunk = run.settings.pair_chunk;
+    settings.sweep_work = run.settings.sweep_work;
     // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
     device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
     pairs_on_device_only_ = device_pairs_on_ && !run.settings.host_pairs;
@@ -91,6 +92,10 @@ void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const 
     if (phase == Phase::Measure) return;
     if (phase == Phase::Again && again_ == Step::PairChunk) {
         cells_->recordPairChunk(g);
+        return;
+    }
+    if (phase == Phase::Again && again_ == Step::SweepChunk) {
+        cells_->recordSweepChunk(g);
         return;
     }
     if (phase == Phase::Main || again_ == Step::Cells) {
@@ -152,8 +157,15 @@ Result<Collected> ReliableMethod::collectCells(const RunView& run, BroadPhaseRes
                                                      " runs (entries " + std::to_string(cells_->capacity().entries) +
                                                      ", candidates " + std::to_string(cells_->capacity().candidates) + ")");
         // An overflow: the stage alone again, its buffers grown; the projection stays.
+        cells_->noteSweepTime(result.passes);
         cells_resubmitted_ = true;
         return again(Step::Cells);
+    }
+    if (*outcome == CellStage::Outcome::MoreSweep) {
+        // The sweep's next chunk, in a submission of its own (CellStageSettings::sweep_work).
+        cells_->noteSweepTime(result.passes);
+        cells_resubmitted_ = true;
+        return again(Step::SweepChunk);
     }
     if (*outcome == CellStage::Outcome::MorePairs) {
         // The pair pass's next chunk, in a submission of its own (CellStageSettings::pair_chunk).
@@ -161,6 +173,7 @@ Result<Collected> ReliableMethod::collectCells(const RunView& run, BroadPhaseRes
         return again(Step::PairChunk);
     }
     cells_done_ = true;
+    cells_->noteSweepTime(result.passes);
     cells_->notePairPassTime(result.passes, result.cells.candidates);
     // The passes after the stage in the first submission saw it incomplete: again, once.
     proximity_stale_ = proximity_on_ && cells_resubmitted_;

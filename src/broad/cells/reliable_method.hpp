@@ -59,7 +59,7 @@ private:
     Result<Collected> collectCells(const RunView& run, BroadPhaseResult& io_result);
     Result<Collected> collectProximity(BroadPhaseResult& io_result);
     Result<Collected> collectSorted(BroadPhaseResult& io_result);
-    enum class Step { Cells, PairChunk, Sort, Proximity };
+    enum class Step { Cells, SweepChunk, PairChunk, Sort, Proximity };
     Collected again(Step step) {
         again_ = step;
         return Collected::Again;

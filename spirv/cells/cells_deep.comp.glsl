@@ -86,8 +86,8 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
     if (tid == 0u) s_runs[runs] = k;
     barrier();
 
-    const bool within = repeatChecksWithinBudget(P);  // every invocation: a subgroup operation
-    const bool dedupe = k >= P.sweep_dedupe && within;  // for both passes
+    // k is the workgroup's: the subgroup operation runs in all of it or none.
+    const bool dedupe = k >= P.sweep_dedupe && repeatChecksWithinBudget(P);  // for both passes
     uint n = 0u, neighbours = 0u, repeats = 0u;
     for (uint pass = 0u; pass < 2u; ++pass) {
         uint64_t out_slot = 0ul;

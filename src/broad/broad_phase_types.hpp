@@ -158,6 +158,10 @@ struct BroadPhaseSettings {
     // The reliable method's sweep: comparisons per chunk, each its own submission (0:
     // automatic, CellStageSettings::sweep_work); tests set it small.
     std::uint32_t sweep_work = 0;
+    // The reliable method: which cells drop a pair's repeats in the sweep (0: automatic, by
+    // device type; 1: every cell of kCellsSweepDedupe entries or more; 2: only the deep
+    // cells swept in chunks, CellStageSettings::RepeatChecks); tests pick each.
+    std::uint32_t repeat_checks = 0;
     // The peeling method: at most this many peeling steps per submission (0: automatic,
     // PeelingMethod's kPeelChunkTargetMs of GPU time); tests set it small.
     std::uint32_t peel_chunk = 0;

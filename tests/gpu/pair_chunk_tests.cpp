@@ -107,7 +107,7 @@ TEST_CASE("reliable: the pair pass in chunks gives the sorted pairs and proximit
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-TEST_CASE("reliable: the sweep in chunks gives the sorted pairs, proximity records and counts of one sweep", "[gpu][cells][proximity]") {
+TEST_CASE("reliable: the sweep in chunks, or with repeats checked only in deep chunks, gives the sorted pairs, proximity records and counts of one sweep", "[gpu][cells][proximity]") {
     test::ValidatedContext ctx;
     REQUIRE(ctx.device().shader_float64);
     // Shallow cells (the spheres), sorted deep cells (300 copies, self-colliding: their
@@ -153,6 +153,20 @@ TEST_CASE("reliable: the sweep in chunks gives the sorted pairs, proximity recor
         CHECK(split.cells.candidate_cells == whole.cells.candidate_cells);
         CHECK(split.cells.survivors == whole.cells.survivors);
         CHECK(split.cells.runs == 1);
+    }
+    // A GPU's choice (CellStageSettings::RepeatChecks::DeepChunksOnly): the shallow sweep
+    // compiled without the repeat checks, the sorted deep cells without them too; the pair
+    // pass drops those repeats instead. Same pairs and records, more candidates.
+    s.repeat_checks = 2;
+    for (std::uint32_t work : {~0u, 20000u}) {
+        INFO("repeats checked only in the deep cells' chunks, sweep chunks of " << work);
+        s.sweep_work = work;
+        const Outputs plain = run(**bp, up->meshes, s);
+        CHECK(plain.pairs == whole.pairs);
+        CHECK(plain.proximity == whole.proximity);
+        CHECK(plain.cells.repeats < whole.cells.repeats);
+        CHECK(plain.cells.candidates > whole.cells.candidates);
+        CHECK(plain.cells.candidates + plain.cells.repeats == whole.cells.candidates + whole.cells.repeats);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

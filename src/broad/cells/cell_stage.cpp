@@ -66,7 +66,9 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
     auto& P = cp->pipes_;
     for (auto r : {compute(P.setup, shaders::cells_setup_comp, "cells-setup"), compute(P.big, shaders::cells_big_comp, "cells-big"),
                    compute(P.scan, shaders::cells_scan_comp, "cells-scan"), compute(P.fill, shaders::cells_fill_comp, "cells-fill"),
-                   compute(P.sweep, shaders::cells_sweep_comp, "cells-sweep"), compute(P.deep, shaders::cells_deep_comp, "cells-deep"),
+                   compute(P.sweep, shaders::cells_sweep_comp, "cells-sweep"),
+                   compute(P.sweep_plain, shaders::cells_sweep_plain_comp, "cells-sweep-plain"),
+                   compute(P.deep, shaders::cells_deep_comp, "cells-deep"),
                    compute(P.args, shaders::cells_args_comp, "cells-args")})
         if (!r) return r.error();
     // One pair pass: with the float filter and the exact decision where the device has
@@ -139,7 +141,12 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     runs_ = 0;
     bad_input_.reset();
     pair_chunk_ = settings.pair_chunk ? settings.pair_chunk : automaticPairChunk();
-    sweep_dedupe_ = gpu::kCellsSweepDedupe;
+    using Checks = CellStageSettings::RepeatChecks;
+    Checks checks = settings.repeat_checks;
+    if (checks == Checks::Auto)
+        checks = device_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Checks::FromShallow : Checks::DeepChunksOnly;
+    plain_sweep_ = checks == Checks::DeepChunksOnly;
+    sweep_dedupe_ = plain_sweep_ ? gpu::kCellsDeepShared + 1 : gpu::kCellsSweepDedupe;
     auto_sweep_work_ = settings.sweep_work == 0;
     sweep_work_ = auto_sweep_work_ ? automaticSweepWork() : settings.sweep_work;
     sweep_chunks_run_ = 0;
@@ -285,8 +292,10 @@ Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
     // Every overlapping pair the sweep found, written or dropped as a repeat in a deep cell.
     if (const std::uint64_t overlapping = h.candidates + h.repeats; overlapping > budget_)
         return Error(ErrorCode::LimitExceeded, "cell stage: " + std::to_string(overlapping) +
-                                                   (h.sweep_pending ? " or more candidate pairs (counted in " + std::to_string(h.sweep_entries_end) +
-                                                                          " of " + std::to_string(h.entries) + " footprints, where the sweep stopped)"
+                                                   (h.sweep_pending ? " or more candidate pairs (the sweep stopped at the budget, after " +
+                                                                          std::to_string(h.sweep_entries_end) + " of " + std::to_string(h.entries) +
+                                                                          " footprints and " + std::to_string(h.sweep_items_end) + " of " +
+                                                                          std::to_string(h.deep_items) + " deep-cell work items)"
                                                                     : std::string(" candidate pairs")) +
                                                    where +
                                                    " (triangles that may collide, with overlapping depth in a cell), more than " +

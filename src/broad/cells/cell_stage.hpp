@@ -132,6 +132,14 @@ struct CellStageSettings {
     // submission left running after a timeout ends soon. More left: finish() answers
     // MoreSweep until the chunks cover every entry and deep item.
     std::uint32_t sweep_work = 0;
+    // Which cells drop a pair's repeats in the sweep (docs/reliable.md, "Piles"). Auto: on
+    // a CPU implementation every cell of kCellsSweepDedupe entries or more (piles cost
+    // seconds there); on a GPU only the deep cells swept in chunks (more than
+    // kCellsDeepShared entries), with a shallow sweep compiled without the checks: their
+    // state slowed every cell's sweep by up to a half on the H200, and its pair pass drops
+    // repeats faster. The same pairs either way; tests pick each.
+    enum class RepeatChecks { Auto, FromShallow, DeepChunksOnly };
+    RepeatChecks repeat_checks = RepeatChecks::Auto;
 };
 
 // The GPU time an automatic pair-pass chunk aims at (CellStageSettings::pair_chunk).
@@ -258,7 +266,7 @@ private:
 
     vk::Device* device_;
     struct Pipelines {
-        vk::Pipeline setup, big, scan, fill, sweep, deep, args, pairs;
+        vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep, args, pairs;
     } pipes_;
     vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
     using Row = TableRow;  // rows of table_
@@ -287,6 +295,7 @@ private:
     std::uint32_t runs_ = 0;
     std::uint32_t pair_chunk_ = 0, next_chunk_ = 0;  // the run's chunk size; the chunk recorded next
     std::uint32_t sweep_dedupe_ = gpu::kCellsSweepDedupe;  // CellsParams::sweep_dedupe
+    bool plain_sweep_ = false;                              // the shallow sweep without repeat checks
     double pair_rate_ = 0;  // candidates per GPU ms of the pair pass, measured (0: not yet)
     // The sweep's chunks: their work (CellsParams::sweep_work), whether it is automatic,
     // the work of the chunk finish() last read, the chunks of this run and of the last

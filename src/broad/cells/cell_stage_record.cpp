@@ -141,7 +141,8 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
 void CellStage::recordSweep(graph::Graph& g, const SweepIds& id) {
     const VkDeviceAddress params = buf_.params->address();
     const VkBuffer args_buffer = buf_.args->handle();
-    const auto& P = pipes_;
+    const vk::Pipeline* shallow = plain_sweep_ ? &pipes_.sweep_plain : &pipes_.sweep;
+    const vk::Pipeline* deep = &pipes_.deep;
     pass(g, kSweepPassName, PassKind::Compute, Stage::Pairing)
         .indirect(id.args)
         .read(id.entries)
@@ -151,10 +152,10 @@ void CellStage::recordSweep(graph::Graph& g, const SweepIds& id) {
         .read(id.deep)
         .readWrite(id.header)
         .write(id.candidates)
-        .record([&P, params, args_buffer](PassContext& pc) {
-            bindAndPush(pc, P.sweep, params);
+        .record([shallow, deep, params, args_buffer](PassContext& pc) {
+            bindAndPush(pc, *shallow, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsSweep * 12);
-            bindAndPush(pc, P.deep, params);
+            bindAndPush(pc, *deep, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsDeep * 12);
         });
 }

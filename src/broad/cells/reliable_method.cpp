@@ -41,6 +41,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     settings.exact = run.settings.exact_on_gpu;
     settings.pair_chunk = run.settings.pair_chunk;
     settings.sweep_work = run.settings.sweep_work;
+    settings.repeat_checks = static_cast<CellStageSettings::RepeatChecks>(std::min(run.settings.repeat_checks, 2u));
     // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
     device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
     pairs_on_device_only_ = device_pairs_on_ && !run.settings.host_pairs;

@@ -335,10 +335,10 @@ struct CellStats {
     std::uint64_t deep_cells = 0;       // cells swept by the deep path (more than 256 entries)
     std::uint64_t candidate_cells = 0;  // cells where the sweep found a candidate
     // Pairs with overlapping depth and boxes in a cell, as the sweep wrote them: a pair may
-    // repeat across the cells both footprints share, except where a cell holds 64 entries or
-    // more (kCellsSweepDedupe, docs/reliable.md "Piles"): there the sweep does not write it
-    // where the cell to the left or below shows an earlier cell keeps it, and counts those
-    // in `repeats`.
+    // repeat across the cells both footprints share, except in the cells where the sweep
+    // checks repeats (docs/reliable.md "Piles": on a CPU implementation cells of 64 entries
+    // or more, on a GPU cells of more than 1,024): there it does not write a pair where the
+    // cell to the left or below shows an earlier cell keeps it, and counts those in `repeats`.
     std::uint64_t candidates = 0;
     std::uint64_t duplicates = 0;       // of the candidates, dropped: not the pair's first common cell
     std::uint64_t filtered = 0;         // of those, dropped: proved disjoint by the GPU filter
@@ -350,9 +350,14 @@ struct CellStats {
     std::uint64_t exact_tests = 0;  // candidates the GPU's exact test decided (after the filter)
     std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (a bit-identical vertex)
     // Overlapping pairs the sweep did not write because they repeat a pair of an earlier
-    // cell (cells of 64 entries or more). candidates + repeats is what
+    // cell (where it checks, above). candidates + repeats is what
     // limits.max_candidate_pairs bounds.
     std::uint64_t repeats = 0;
+    // Submissions the last run's sweep and pair pass took (0: the reliable method did not
+    // run): more than one each only where one would run longer than about 200 ms on this
+    // device (docs/stability.md, "Time").
+    std::uint32_t sweep_chunks = 0;
+    std::uint32_t pair_chunks = 0;
 };
 
 // A host mesh declared closed (ObjectOptions::open false) that is not a closed surface

@@ -18,8 +18,8 @@ struct CellStageStats {
     std::uint64_t candidate_cells = 0;  // cells where the sweep found at least one candidate
     std::uint64_t candidates = 0;     // pairs the sweep wrote (with duplicates across cells)
     // Overlapping pairs the sweep found but did not write, as repeats (not their canonical
-    // cell) in cells of kCellsSweepDedupe entries or more. With `candidates`: what the
-    // budget counts.
+    // cell) in the cells where it checks (CellsParams::sweep_dedupe entries or more). With
+    // `candidates`: what the budget counts.
     std::uint64_t repeats = 0;
     std::uint64_t neighbours = 0;     // left out by the sweep (not candidates): one object, shared vertex index
     std::uint64_t duplicates = 0;     // dropped: not the pair's canonical cell (an earlier cell qualifies, or
@@ -28,7 +28,9 @@ struct CellStageStats {
     std::uint64_t survivors = 0;
     std::uint64_t gpu_triangles = 0;  // triangles of download objects in a survivor, written with their vertices
     std::uint64_t host_duplicates = 0;  // survivors kept twice (canonical scan out of budget), removed (run() only)
-    std::uint32_t runs = 0;           // submissions this call took (1 without overflow)
+    std::uint32_t runs = 0;           // runs this call took (1 without overflow)
+    std::uint32_t sweep_chunks = 0;   // submissions the last run's sweep took (CellStageSettings::sweep_work)
+    std::uint32_t pair_chunks = 0;    // and its pair pass (CellStageSettings::pair_chunk)
     bool filter_ran = false;
     bool exact_ran = false;  // the pair pass decided exactly: survivors intersect
     std::uint64_t exact_tests = 0;  // candidates the exact test decided

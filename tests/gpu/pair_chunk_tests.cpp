@@ -100,6 +100,7 @@ TEST_CASE("reliable: the pair pass in chunks gives the sorted pairs and proximit
         s.pair_chunk = chunk;
         const Outputs split = run(**bp, up->meshes, s);
         CHECK(split.pair_passes > 1);
+        CHECK(split.cells.pair_chunks == split.pair_passes);
         CHECK(split.pairs == whole.pairs);
         CHECK(split.records == whole.records);
         CHECK(split.proximity == whole.proximity);
@@ -139,11 +140,13 @@ TEST_CASE("reliable: the sweep in chunks, or with repeats checked only in deep c
     REQUIRE(whole.cells.deep_cells > 0);
     REQUIRE(whole.cells.max_cell > 1024);  // and some cells came in chunks of entries
     CHECK(whole.sweeps == 1);
+    CHECK(whole.cells.sweep_chunks == 1);
     for (std::uint32_t work : {1u, 20000u, 300000u}) {
         INFO("sweep chunks of " << work << " comparisons");
         s.sweep_work = work;
         const Outputs split = run(**bp, up->meshes, s);
         CHECK(split.sweeps > 1);
+        CHECK(split.cells.sweep_chunks == split.sweeps);
         CHECK(split.pairs == whole.pairs);
         CHECK(split.records == whole.records);
         CHECK(split.proximity == whole.proximity);

@@ -360,6 +360,8 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.neighbours = h.neighbours;
     s.duplicates = h.duplicates;
     s.repeats = h.repeats;
+    s.sweep_chunks = sweep_chunks_;
+    s.pair_chunks = next_chunk_;
     s.filtered = h.filtered;
     s.survivors = h.survivors;
     s.gpu_triangles = h.gpu_triangles;

@@ -50,6 +50,15 @@ TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "
     CHECK((*fresh)->capacity().entries >= normal.result.stats.entries);
     CHECK((*fresh)->capacity().survivors >= normal.result.stats.survivors);
 
+    // Only the candidates and survivors too small: the sweep counts every candidate
+    // through the overflow, and the survivors are sized for them with it, so one rerun.
+    auto counted = passes::CellStage::create(ctx.device());
+    REQUIRE(counted);
+    opt.settings.initial = {static_cast<std::uint32_t>(normal.result.stats.entries), 4096, 1, 1};
+    const CellRun sized = runCells(ctx, **counted, scene, opt);
+    CHECK(sized.result.stats.runs == 2);
+    CHECK(sized.pairs == normal.pairs);
+
     // The grown buffers stay: the next run needs one submission.
     opt.settings.initial = {};
     const CellRun again = runCells(ctx, **fresh, scene, opt);

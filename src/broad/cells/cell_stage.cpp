@@ -326,7 +326,14 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
         // box has more than 64 cells, an item covers up to 4096), survivors <= candidates.
         if (h.flags & gpu::kCellsOverflowItems) capacity_.items = std::max(capacity_.items, grown(h.items, budget_));
         if (h.flags & gpu::kCellsOverflowEntries) capacity_.entries = std::max(capacity_.entries, grown(h.entries, budget_));
-        if (h.flags & gpu::kCellsOverflowCandidates) capacity_.candidates = std::max(capacity_.candidates, grown(h.candidates, budget_));
+        if (h.flags & gpu::kCellsOverflowCandidates) {
+            capacity_.candidates = std::max(capacity_.candidates, grown(h.candidates, budget_));
+            // The sweep counted every candidate, and each gives at most one survivor: room
+            // for them all now (up to kSurvivorsForCandidates, 8 bytes each), so the rerun
+            // does not overflow the survivors and run the whole stage once more.
+            const std::uint64_t all = std::min<std::uint64_t>({h.candidates, budget_, kSurvivorsForCandidates});
+            capacity_.survivors = std::max(capacity_.survivors, static_cast<std::uint32_t>(all));
+        }
         // A chunk of the pair pass that overflows counts only the survivors so far: size for
         // every candidate (and every download triangle) then, so one rerun is enough.
         const bool chunks_left = h.pairs_done < std::min<std::uint64_t>(h.candidates, capacity_.candidates);

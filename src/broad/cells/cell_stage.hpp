@@ -144,6 +144,9 @@ struct CellStageSettings {
 
 // The GPU time an automatic pair-pass chunk aims at (CellStageSettings::pair_chunk).
 inline constexpr double kPairChunkTargetMs = 200.0;
+// After a candidate overflow the survivors are sized for every candidate up to this many
+// (32 MiB of host-visible memory), so that the rerun does not overflow them too.
+inline constexpr std::uint32_t kSurvivorsForCandidates = 1u << 22;
 // The GPU time an automatic sweep chunk aims at (CellStageSettings::sweep_work).
 inline constexpr double kSweepChunkTargetMs = 200.0;
 // The sweep's pass name in the graph (and in the passes' timings).

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstring>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -66,39 +67,62 @@ Outputs run(BroadPhase& bp, std::span<const GpuMesh> meshes, BroadPhaseSettings 
     return out;
 }
 
+// `meshes` uploaded for the reliable method with proximity: each owns its primitives, is
+// tagged with its index, and only mesh `self` tests itself.
+struct Uploaded {
+    std::vector<HostMesh> meshes;
+    std::vector<std::vector<std::uint8_t>> owned;  // what the uploaded meshes' proximity_owned views
+    UploadedMeshes up;
+};
+
+std::unique_ptr<Uploaded> upload(vk::Device& device, std::vector<HostMesh> meshes, std::size_t self) {
+    auto u = std::make_unique<Uploaded>();
+    u->meshes = std::move(meshes);
+    std::vector<const HostMesh*> ptrs;
+    for (const HostMesh& m : u->meshes) ptrs.push_back(&m);
+    auto up = uploadMeshes(device, ptrs);
+    REQUIRE(up);
+    u->up = std::move(*up);
+    for (std::size_t i = 0; i < u->meshes.size(); ++i) {
+        const HostMesh& m = u->meshes[i];
+        u->owned.push_back(proximity::ownedPrimitives(m.indices, static_cast<std::uint32_t>(m.positions.size())));
+        u->up.meshes[i].proximity_owned = u->owned.back();
+        u->up.meshes[i].tag = static_cast<std::uint32_t>(i);
+        u->up.meshes[i].self_collision = i == self;
+    }
+    return u;
+}
+
+// The exact decision and the sort on the GPU, with proximity within `distance`.
+BroadPhaseSettings exactWithProximity(std::uint32_t resolution, double distance) {
+    BroadPhaseSettings s;
+    s.resolution = resolution;
+    s.direction = {0.1f, 0.2f, 1.0f};
+    s.exact_on_gpu = true;
+    s.sort_on_gpu = true;
+    s.proximity_distance = distance;
+    return s;
+}
+
 }  // namespace
 
 TEST_CASE("reliable: the pair pass in chunks gives the sorted pairs and proximity records of one pass", "[gpu][cells][proximity]") {
     test::ValidatedContext ctx;
     REQUIRE(ctx.device().shader_float64);  // lavapipe and the GPUs we test on have it
-    std::vector<HostMesh> meshes{sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f),
-                                 sphereAt({0.0f, 1.1f, 0.0f}, 0.7f)};
-    auto up = uploadMeshes(ctx.device(), {&meshes[0], &meshes[1], &meshes[2]});
-    REQUIRE(up);
-    std::vector<std::vector<std::uint8_t>> owned;
-    for (std::size_t i = 0; i < meshes.size(); ++i) {
-        owned.push_back(proximity::ownedPrimitives(meshes[i].indices, static_cast<std::uint32_t>(meshes[i].positions.size())));
-        up->meshes[i].proximity_owned = owned.back();
-        up->meshes[i].tag = static_cast<std::uint32_t>(i);
-        up->meshes[i].self_collision = i == 2;
-    }
+    const auto up = upload(ctx.device(),
+                           {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), sphereAt({0.0f, 1.1f, 0.0f}, 0.7f)}, 2);
     auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
     REQUIRE(bp);
-    BroadPhaseSettings s;
-    s.resolution = 48;
-    s.direction = {0.1f, 0.2f, 1.0f};
-    s.exact_on_gpu = true;
-    s.sort_on_gpu = true;
-    s.proximity_distance = 0.02;
-    (void)run(**bp, up->meshes, s);  // the buffers grow to the scene: one run from now on
-    const Outputs whole = run(**bp, up->meshes, s);
+    BroadPhaseSettings s = exactWithProximity(48, 0.02);
+    (void)run(**bp, up->up.meshes, s);  // the buffers grow to the scene: one run from now on
+    const Outputs whole = run(**bp, up->up.meshes, s);
     REQUIRE(whole.pairs.size() > 50);
     REQUIRE(whole.records > 50);
     CHECK(whole.pair_passes == 1);
     for (std::uint32_t chunk : {157u, 1000u}) {
         INFO("chunks of " << chunk << " candidates");
         s.pair_chunk = chunk;
-        const Outputs split = run(**bp, up->meshes, s);
+        const Outputs split = run(**bp, up->up.meshes, s);
         CHECK(split.pair_passes > 1);
         CHECK(split.cells.pair_chunks == split.pair_passes);
         CHECK(split.pairs == whole.pairs);
@@ -113,28 +137,16 @@ TEST_CASE("reliable: the sweep in chunks, or with repeats checked only in deep c
     REQUIRE(ctx.device().shader_float64);
     // Shallow cells (the spheres), sorted deep cells (300 copies, self-colliding: their
     // repeats are dropped in the sweep) and deep cells in chunks (1,100 copies).
-    std::vector<HostMesh> meshes{sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f),
-                                 pileAt({0.1f, 0.2f, 0.9f}, 300), pileAt({2.5f, 0.0f, 0.0f}, 1100)};
-    auto up = uploadMeshes(ctx.device(), {&meshes[0], &meshes[1], &meshes[2], &meshes[3]});
-    REQUIRE(up);
-    std::vector<std::vector<std::uint8_t>> owned;
-    for (std::size_t i = 0; i < meshes.size(); ++i) {
-        owned.push_back(proximity::ownedPrimitives(meshes[i].indices, static_cast<std::uint32_t>(meshes[i].positions.size())));
-        up->meshes[i].proximity_owned = owned.back();
-        up->meshes[i].tag = static_cast<std::uint32_t>(i);
-        up->meshes[i].self_collision = i == 2;
-    }
+    const auto up = upload(ctx.device(),
+                           {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f),
+                            pileAt({0.1f, 0.2f, 0.9f}, 300), pileAt({2.5f, 0.0f, 0.0f}, 1100)},
+                           2);
     auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
     REQUIRE(bp);
-    BroadPhaseSettings s;
-    s.resolution = 40;
-    s.direction = {0.1f, 0.2f, 1.0f};
-    s.exact_on_gpu = true;
-    s.sort_on_gpu = true;
-    s.proximity_distance = 0.01;
+    BroadPhaseSettings s = exactWithProximity(40, 0.01);
     s.sweep_work = ~0u;  // one chunk
-    (void)run(**bp, up->meshes, s);  // the buffers grow to the scene: one run from now on
-    const Outputs whole = run(**bp, up->meshes, s);
+    (void)run(**bp, up->up.meshes, s);  // the buffers grow to the scene: one run from now on
+    const Outputs whole = run(**bp, up->up.meshes, s);
     REQUIRE(whole.pairs.size() > 50);
     REQUIRE(whole.cells.repeats > 0);  // the sorted deep cells dropped repeats
     REQUIRE(whole.cells.deep_cells > 0);
@@ -144,7 +156,7 @@ TEST_CASE("reliable: the sweep in chunks, or with repeats checked only in deep c
     for (std::uint32_t work : {1u, 20000u, 300000u}) {
         INFO("sweep chunks of " << work << " comparisons");
         s.sweep_work = work;
-        const Outputs split = run(**bp, up->meshes, s);
+        const Outputs split = run(**bp, up->up.meshes, s);
         CHECK(split.sweeps > 1);
         CHECK(split.cells.sweep_chunks == split.sweeps);
         CHECK(split.pairs == whole.pairs);
@@ -164,7 +176,7 @@ TEST_CASE("reliable: the sweep in chunks, or with repeats checked only in deep c
     for (std::uint32_t work : {~0u, 20000u}) {
         INFO("repeats checked only in the deep cells' chunks, sweep chunks of " << work);
         s.sweep_work = work;
-        const Outputs plain = run(**bp, up->meshes, s);
+        const Outputs plain = run(**bp, up->up.meshes, s);
         CHECK(plain.pairs == whole.pairs);
         CHECK(plain.proximity == whole.proximity);
         CHECK(plain.cells.repeats < whole.cells.repeats);

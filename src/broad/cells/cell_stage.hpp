@@ -215,8 +215,6 @@ public:
     // After the submission that swept the chunk finish() last read: its sweep pass's GPU
     // time, from which the automatic sweep chunk (CellStageSettings::sweep_work) is sized.
     void noteSweepTime(std::span<const graph::PassTiming> passes);
-    // The sweep chunks the last complete run took (1: one submission's sweep).
-    std::uint32_t sweepChunks() const noexcept { return sweep_chunks_; }
     // After a complete run that decided `candidates`: its passes (one pair-pass chunk or
     // several, among others), whose pair-pass time gives the rate the automatic chunk of
     // later runs is sized from.
@@ -301,12 +299,12 @@ private:
     bool plain_sweep_ = false;                              // the shallow sweep without repeat checks
     double pair_rate_ = 0;  // candidates per GPU ms of the pair pass, measured (0: not yet)
     // The sweep's chunks: their work (CellsParams::sweep_work), whether it is automatic,
-    // the work of the chunk finish() last read, the chunks of this run and of the last
-    // complete one, and the work per GPU ms measured (0: not yet).
+    // the work of the chunk finish() last read, the chunks of this run so far, and the
+    // work per GPU ms measured (0: not yet).
     std::uint32_t sweep_work_ = ~0u;
     bool auto_sweep_work_ = true;
     double last_sweep_chunk_work_ = 0;
-    std::uint32_t sweep_chunks_run_ = 0, sweep_chunks_ = 0;
+    std::uint32_t sweep_chunks_ = 0;
     double sweep_rate_ = 0;
 };
 

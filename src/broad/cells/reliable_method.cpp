@@ -152,19 +152,18 @@ Result<Collected> ReliableMethod::collectCells(const RunView& run, BroadPhaseRes
         }
         return outcome.error();
     }
+    cells_->noteSweepTime(result.passes);  // the next chunk's or run's size
     if (*outcome == CellStage::Outcome::Rerun) {
         if (cells_->runs() >= CellStageSettings{}.max_runs)
             return Error(ErrorCode::OutOfMemory, "cell stage: buffers still overflowed after " + std::to_string(cells_->runs()) +
                                                      " runs (entries " + std::to_string(cells_->capacity().entries) +
                                                      ", candidates " + std::to_string(cells_->capacity().candidates) + ")");
         // An overflow: the stage alone again, its buffers grown; the projection stays.
-        cells_->noteSweepTime(result.passes);
         cells_resubmitted_ = true;
         return again(Step::Cells);
     }
     if (*outcome == CellStage::Outcome::MoreSweep) {
         // The sweep's next chunk, in a submission of its own (CellStageSettings::sweep_work).
-        cells_->noteSweepTime(result.passes);
         cells_resubmitted_ = true;
         return again(Step::SweepChunk);
     }
@@ -174,7 +173,6 @@ Result<Collected> ReliableMethod::collectCells(const RunView& run, BroadPhaseRes
         return again(Step::PairChunk);
     }
     cells_done_ = true;
-    cells_->noteSweepTime(result.passes);
     cells_->notePairPassTime(result.passes, result.cells.candidates);
     // The passes after the stage in the first submission saw it incomplete: again, once.
     proximity_stale_ = proximity_on_ && cells_resubmitted_;

@@ -125,6 +125,7 @@ TEST_CASE("reliable: the pair pass in chunks gives the sorted pairs and proximit
         const Outputs split = run(**bp, up->up.meshes, s);
         CHECK(split.pair_passes > 1);
         CHECK(split.cells.pair_chunks == split.pair_passes);
+        CHECK(split.cells.sweep_chunks == 1);  // the pair pass's chunks swept nothing
         CHECK(split.pairs == whole.pairs);
         CHECK(split.records == whole.records);
         CHECK(split.proximity == whole.proximity);

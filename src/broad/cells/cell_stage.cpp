@@ -149,7 +149,6 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     sweep_dedupe_ = plain_sweep_ ? gpu::kCellsDeepShared + 1 : gpu::kCellsSweepDedupe;
     auto_sweep_work_ = settings.sweep_work == 0;
     sweep_work_ = auto_sweep_work_ ? automaticSweepWork() : settings.sweep_work;
-    sweep_chunks_ = 0;
     next_chunk_ = 0;
     asked_budget_ = settings.max_candidate_pairs;
     budget_ = static_cast<std::uint32_t>(std::min(settings.max_candidate_pairs, kMaxElements));
@@ -316,7 +315,6 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     const double deepest = std::max(h.max_cell, 1u);
     last_sweep_chunk_work_ = double(h.sweep_entries_end - h.sweep_entries_begin) * std::min(deepest, double(gpu::kCellsSmallCell)) +
                              double(h.sweep_items_end - h.sweep_items_begin) * gpu::kCellsGroupSize * deepest;
-    ++sweep_chunks_;
     // The sweep goes on through a candidate overflow (its count sizes the rerun's buffer).
     if (h.sweep_pending && (h.flags & ~gpu::kCellsOverflowCandidates) == 0) return Outcome::MoreSweep;
     if (h.flags & gpu::kCellsOverflowMask) {
@@ -348,7 +346,6 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
         if (auto ok = ensureBuffers(); !ok) return ok.error();
         writeParams();
         ++runs_;
-        sweep_chunks_ = 0;
         return Outcome::Rerun;
     }
     if (h.pairs_done < std::min<std::uint64_t>(h.candidates, capacity_.candidates)) return Outcome::MorePairs;

@@ -299,8 +299,8 @@ private:
     bool plain_sweep_ = false;                              // the shallow sweep without repeat checks
     double pair_rate_ = 0;  // candidates per GPU ms of the pair pass, measured (0: not yet)
     // The sweep's chunks: their work (CellsParams::sweep_work), whether it is automatic,
-    // the work of the chunk finish() last read, the chunks of this run so far, and the
-    // work per GPU ms measured (0: not yet).
+    // the work of the chunk finish() last read, the chunks recorded for this run so far,
+    // and the work per GPU ms measured (0: not yet).
     std::uint32_t sweep_work_ = ~0u;
     bool auto_sweep_work_ = true;
     double last_sweep_chunk_work_ = 0;

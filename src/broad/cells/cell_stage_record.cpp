@@ -132,6 +132,7 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
         });
 
     recordSweep(g, {header, entries, entry_cells, offsets, counts, deep, candidates, args});
+    sweep_chunks_ = 1;  // a run starts its sweep over
     recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks}, 0);
     return {header, survivors, tris, candidates, geometry, args};
 }
@@ -174,6 +175,7 @@ void CellStage::recordSweepChunk(graph::Graph& g) {
         });
     recordSweep(g, {header, importRow(g, buf_.entries), importRow(g, buf_.entry_cells), importRow(g, buf_.offsets),
                     importRow(g, buf_.counts), importRow(g, buf_.deep_items), candidates, args});
+    ++sweep_chunks_;
     recordPairPass(g,
                    {header, importRow(g, buf_.header_rb, true), importRow(g, buf_.triangles), importRow(g, buf_.geometry), candidates,
                     importRow(g, buf_.survivors, !survivors_on_device_), args, importRow(g, buf_.gpu_triangles, true),

@@ -276,8 +276,8 @@ struct LimitSettings {
     // Reliable: the GPU cell stage's work and memory (docs/stability.md, "Limits"): the
     // cells of the triangles' footprint boxes (each footprint costs 20 bytes of GPU memory)
     // and the candidate pairs the cells form (12 bytes each, DetectStats::cells.candidates)
-    // at most this many each, the pairs of footprints sharing a cell (what the cells'
-    // sweep compares) at most 64 times it; no GPU buffer grows beyond it. Two 1.28M-triangle
+    // at most this many each, the sweep's comparisons (CellStats::comparisons) at most 64
+    // times it; no GPU buffer grows beyond it. Two 1.28M-triangle
     // spheres overlapping deeply need 15.6M box cells, 5.2e8 comparisons and 181K
     // candidates at the automatic resolution.
     std::uint64_t max_candidate_pairs = std::uint64_t{1} << 27;
@@ -358,6 +358,14 @@ struct CellStats {
     // device (docs/stability.md, "Time").
     std::uint32_t sweep_chunks = 0;
     std::uint32_t pair_chunks = 0;
+    // Cells of more than 1,024 footprints, sorted in global memory (docs/reliable.md, "Huge
+    // cells"): their sweep skips coincident copies and pairs each footprint with those that
+    // meet it in depth, so a pile costs about its pairs, not its footprints squared.
+    std::uint64_t huge_cells = 0;
+    // The sweep's comparisons, which 64 x limits.max_candidate_pairs bounds: k (k - 1) / 2
+    // in a cell of k <= 1,024 footprints; in a huge cell its sort (k L (L + 1) / 4, L =
+    // ceil(log2 k)), k per object in it and the pairs its sweep visits.
+    std::uint64_t comparisons = 0;
 };
 
 // A host mesh declared closed (ObjectOptions::open false) that is not a closed surface

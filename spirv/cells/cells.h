@@ -28,10 +28,14 @@ VKC_CONST kCellsChunkCells = 4096;
 // Cells with at most kCellsSmallCell entries are swept by one invocation per entry,
 // unsorted (no barriers, every lane busy: cheaper than sorting up to about this depth);
 // deeper cells by a workgroup that sorts them in shared memory (up to kCellsDeepShared
-// entries), or, deeper still, by workgroups of kCellsGroupSize entries that each scan the
-// whole cell.
+// entries); deeper still ("huge" cells), a workgroup sorts the cell in place in global
+// memory (cells_deep_sort.comp) and workgroups of kCellsGroupSize sorted entries sweep it.
 VKC_CONST kCellsSmallCell = 256;
 VKC_CONST kCellsDeepShared = 1024;
+// The scan counts a huge cell deeper than this as every two of its entries (so any budget
+// refuses it, 5.5e11 comparisons): one workgroup sorts a cell, which should end in a
+// fraction of a second, and no invocation's candidates reach 2^20.
+VKC_CONST kCellsHugeMax = 1048576u;
 // The pair pass's canonical-cell check scans at most this many earlier cells of a pair;
 // a pair whose scan runs out is kept (a duplicate the host removes), never dropped.
 VKC_CONST kCellsDedupeBudget = 512;
@@ -72,22 +76,28 @@ VKC_CONST kCellsOverflowCandidates = 4u;
 VKC_CONST kCellsOverflowSurvivors = 8u;
 VKC_CONST kCellsBadIndex = 16u;        // an index >= the object's vertex count
 VKC_CONST kCellsBadPosition = 32u;     // a position or transform entry not finite or >= 2^62
-// (64 is free: projections are made usable by the setup, cells_setup.comp's stageRow)
+// A loop ran into CellsParams.loop_guard (a device that ends long loops silently): the
+// run's result would be incomplete, so it fails naming the limit.
+VKC_CONST kCellsLoopLimit = 64u;
 VKC_CONST kCellsBadWorld = 128u;       // a world coordinate >= 2^62
 VKC_CONST kCellsInconsistent = 256u;   // the fill found more footprints than the count (a bug)
 VKC_CONST kCellsOverflowTriangles = 512u;  // gpu_triangles
-VKC_CONST kCellsOverflowMask = 527u;       // the four overflows above and kCellsOverflowTriangles
+VKC_CONST kCellsOverflowMask = 2575u;      // the four overflows above, kCellsOverflowTriangles and kCellsOverflowSorted
 // Past the budget (CellsParams.budget): the footprint boxes span more cells than the budget
 // (setup), or more pairs of footprints share a cell than kCellsComparisonsPerBudget times
 // it (scan). Later passes do nothing; the host reports LimitExceeded, never grows a buffer
 // for it. (Candidates beyond the budget are found by the host from the header's count.)
 VKC_CONST kCellsOverBudget = 1024u;
+// CellsParams.sorted is smaller than the huge cells' entries reach (CellsHeader.sorted_need).
+VKC_CONST kCellsOverflowSorted = 2048u;
 
 // The budget bounds the stage's memory and time: footprint box cells (so footprints) and
-// candidate pairs at most CellsParams.budget each, and the pairs of footprints that share a
-// cell -- what the sweep compares, k (k - 1) / 2 in a cell of k -- at most this many times
-// the budget (a comparison costs far less than a candidate, which is written, deduplicated
-// and filtered).
+// candidate pairs at most CellsParams.budget each, and the sweep's comparisons at most this
+// many times the budget (a comparison costs far less than a candidate, which is written,
+// deduplicated and filtered). A cell of k <= kCellsDeepShared entries counts k (k - 1) / 2
+// comparisons (scan); a huge cell counts its sort, k L (L + 1) / 4 with L = ceil(log2 k)
+// (scan), k times the objects in it (the sort's runs, cells_deep_sort.comp) and the pairs
+// its sweep visits (cells_deep.comp), so the count of a huge cell grows while it is swept.
 VKC_CONST kCellsComparisonsPerBudget = 64u;
 
 // Per-cell counts after the fill (CellsParams.counts): the sweep sets this bit in a cell's
@@ -104,7 +114,8 @@ VKC_CONST kCellsArgsSweep = 1u;  // one invocation per entry
 VKC_CONST kCellsArgsDeep = 2u;   // deep-cell work items
 VKC_CONST kCellsArgsPairs = 3u;  // one invocation per candidate (passes after the pair pass)
 VKC_CONST kCellsArgsPairChunk = 4u;  // the pair pass: one invocation per candidate of its chunk
-VKC_CONST kCellsArgsCount = 5u;
+VKC_CONST kCellsArgsSort = 5u;  // the deep items again where there are huge cells to sort, else none
+VKC_CONST kCellsArgsCount = 6u;
 
 // One triangle after setup (80 bytes + 4), written once, read by the count, fill and pair
 // passes, so all of them see the same footprint and depth bounds bit for bit.
@@ -190,6 +201,8 @@ struct CellsHeader {
     // shallow sweep and deep items [begin, end); each chunk starts where the last ended.
     uint sweep_entries_begin, sweep_entries_end;
     uint sweep_items_begin, sweep_items_end;
+    uint sorted_need;       // entries CellsParams.sorted must hold: the end of the last huge cell
+    uint huge_cells;        // cells of more than kCellsDeepShared entries (sorted in global memory)
 };
 
 // Everything the shaders need, uploaded once per run (Push.frame points here).
@@ -213,6 +226,10 @@ struct CellsParams {
     VKC_ADDRESS(uint64_t) args;          // uint[3 * kCellsArgsCount]
     VKC_ADDRESS(uint64_t) gpu_triangles; // CellsGpuTriangle[gpu_triangle_capacity] (host-visible), or 0: none
     VKC_ADDRESS(uint64_t) marks;         // uint[ceil(triangle_count / 32)]: downloaded already (cleared per run)
+    // uvec2[sorted_capacity], indexed like `entries`, for huge cells only (cells_deep_sort.comp):
+    // .x the cell's runs (the first sorted position of each object's entries, then k), .y
+    // each sorted position's group end (one past its last coincident copy).
+    VKC_ADDRESS(uint64_t) sorted;
     uint resolution;                     // N
     uint cell_count;                     // N * N
     uint object_count;
@@ -248,6 +265,12 @@ struct CellsParams {
     // that no submission holds more than about a target time of it (CellStage: the
     // device's measured rate); ~0u: the whole sweep in one chunk.
     uint sweep_work;
+    uint sorted_capacity;  // elements of `sorted`
+    // Loop iterations one invocation of the deep sweep or the huge cells' sort may run
+    // (~0u: no limit). llvmpipe ends every loop of a shader invocation once their
+    // iterations together pass 65,535, silently (gallivm's loop limiter); there the host sets
+    // a bound below it, and a cell that needs more raises kCellsLoopLimit.
+    uint loop_guard;
 };
 
 // ---- Device pairs (DetectSettings::reliable.device_pairs; src/broad/cells/device_pairs.cpp) ---

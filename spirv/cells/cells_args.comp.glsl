@@ -5,8 +5,9 @@
 //   step 0, after setup: big-triangle work items (count and fill);
 //   step 1, after the scan and before each later sweep chunk: the sweep's next chunk (one
 //   invocation per entry of it) and its deep items, from where the last chunk ended (0
-//   after the header's clear), at most CellsParams.sweep_work comparisons; whether
-//   more are left into the header (sweep_pending);
+//   after the header's clear), at most CellsParams.sweep_work comparisons (a deep item
+//   counts kCellsGroupSize entries of a sorted cell); whether more are left into the
+//   header (sweep_pending); none once the comparisons passed the budget;
 //   step 2 + k, after the sweep: every candidate (passes after the pair pass) and the pair
 //   pass's chunk k (one invocation per candidate in it); the chunks so far into the header.
 //   Nothing while sweep chunks are pending: the candidates are not all written yet.
@@ -22,7 +23,12 @@ void main() {
     if (pc.step == 0u) {
         writeDispatch(P, kCellsArgsBig, failed ? 0u : min(h.items, P.item_capacity));
     } else if (pc.step == 1u) {
-        // A candidate overflow still sweeps on: the count sizes the rerun's buffer.
+        // A candidate overflow still sweeps on: the count sizes the rerun's buffer. The
+        // comparisons grow while huge cells are swept: past the budget no chunk follows.
+        if (h.comparisons > comparisonBudget(P)) {
+            raiseFlag(P, kCellsOverBudget);
+            h.flags |= kCellsOverBudget;
+        }
         bool stop = (h.flags & ~kCellsOverflowCandidates) != 0u;
         uint entries = stop ? 0u : min(h.entries, P.entry_capacity), items = stop ? 0u : min(h.deep_items, P.deep_capacity);
         uint e0 = min(h.sweep_entries_end, entries), i0 = min(h.sweep_items_end, items);
@@ -30,7 +36,7 @@ void main() {
         if (P.sweep_work != ~0u) {
             uint deepest = max(h.max_cell, 1u);
             e1 = e0 + min(entries - e0, max(kCellsGroupSize, P.sweep_work / min(deepest, kCellsSmallCell)));
-            i1 = i0 + min(items - i0, max(1u, P.sweep_work / (kCellsGroupSize * deepest)));
+            i1 = i0 + min(items - i0, max(1u, P.sweep_work / (kCellsGroupSize * min(deepest, kCellsDeepShared))));
         }
         CellsHeaderRef hr = cellsHeader(P);
         hr.h.sweep_entries_begin = e0;
@@ -40,6 +46,7 @@ void main() {
         hr.h.sweep_pending = e1 < entries || i1 < items ? 1u : 0u;
         writeDispatch(P, kCellsArgsSweep, groupsFor(e1 - e0));
         writeDispatch(P, kCellsArgsDeep, i1 - i0);
+        writeDispatch(P, kCellsArgsSort, h.huge_cells > 0u ? i1 - i0 : 0u);
     } else {
         uint total = failed || h.sweep_pending != 0u ? 0u : uint(min(h.candidates, uint64_t(P.candidate_capacity)));
         uint first = (pc.step - 2u) * P.pair_chunk;  // at most total + pair_chunk < 2^32

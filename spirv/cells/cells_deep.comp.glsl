@@ -9,9 +9,9 @@
 // where one object piles up (silhouettes, fans of slivers around a vertex) costs no more
 // than its pairs and a binary search per run, not its entries squared; the vertex indices
 // of self-colliding objects' entries are loaded with the cell, so the neighbour rule (most
-// of such a cell's pairs) reads shared memory. Deeper cells come
-// in chunks of kCellsGroupSize entries, each entry scanning the whole cell as the shallow
-// sweep does. Every deep cell drops the pairs an earlier cell keeps where the cell to the
+// of such a cell's pairs) reads shared memory. Huge cells (deeper) come sorted in global
+// memory by cells_deep_sort.comp, in chunks of kCellsGroupSize sorted entries, swept the
+// same way (hugeChunk). Every deep cell drops the pairs an earlier cell keeps where the cell to the
 // left or below shows it (repeatsHere, kCellsSweepDedupe): a pile repeats its pairs in
 // every cell it covers.
 // The canonical-cell rule needs no double precision (cells_candidate.glsl.inc).
@@ -36,6 +36,53 @@ uint objectOf(uint a) { return s_key[a] & kCellsKeyObject; }
 bool sweepBefore(uint a, uint b) { return s_zlo[a] < s_zlo[b] || (s_zlo[a] == s_zlo[b] && a < b); }
 // (object, zlo, index) order, the sort's.
 bool orderedBefore(uint a, uint b) { return objectOf(a) < objectOf(b) || (objectOf(a) == objectOf(b) && sweepBefore(a, b)); }
+
+// Between a deep sweep's two passes: its counts into the header and this invocation's slots
+// for its n candidates. Every invocation of the subgroup still running calls it (subgroup
+// operations). False: nothing to write (none found, or none fits: the overflow is flagged
+// and the second pass skipped).
+bool reserveCandidates(CellsParams P, uint cell, uint n, uint neighbours, uint repeats, out uint64_t out_slot) {
+    subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
+    subgroupCount64(headerField(P, kHeaderRepeats), repeats);
+    subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
+    out_slot = subgroupAppend64(headerField(P, kHeaderCandidates), n);
+    if (n == 0u) return false;
+    if (out_slot >= uint64_t(P.candidate_capacity)) {
+        raiseFlag(P, kCellsOverflowCandidates);
+        return false;
+    }
+    return true;
+}
+
+// A pair of the deep sweeps that overlaps in depth and whose boxes meet, and may collide:
+// a neighbour (one object, a shared vertex index) or a repeat (cells_sweep.glsl.inc's
+// keptHere) is counted on the first pass, any other counted, then written on the second.
+void takeOverlapping(CellsParams P, uint pass, bool neighbour, bool dedupe, CellsTriangle mine_t, uint my_triangle,
+                     CellsEntry other, uint cell, inout uint n, inout uint neighbours, inout uint repeats, inout uint64_t out_slot) {
+    if (neighbour) {
+        if (pass == 0u) ++neighbours;
+    } else if (!keptHere(P, dedupe, mine_t, other, cell)) {
+        if (pass == 0u) ++repeats;
+    } else if (pass == 0u) {
+        ++n;
+    } else {
+        emitCandidate(P, out_slot, my_triangle, other.triangle, cell);
+    }
+}
+
+// The loop guard (CellsParams.loop_guard): `iterations` counts a subgroup's loop iterations
+// as a device that limits them does -- a loop runs as long as its longest invocation, so
+// each visit of a run adds the subgroup's largest count (`mine`: this invocation's search
+// steps and visits there, 0 where it skipped the run). Every invocation of the subgroup
+// still in the loop over runs calls it once per run; true once past the guard, after
+// raising kCellsLoopLimit (the run then fails naming it).
+bool pastLoopGuard(CellsParams P, inout uint iterations, uint mine) {
+    if (P.loop_guard == ~0u) return false;
+    iterations += subgroupMax(mine) + 1u;
+    if (iterations <= P.loop_guard) return false;
+    if (subgroupElect()) raiseFlag(P, kCellsLoopLimit);
+    return true;
+}
 
 void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
     const uint tid = gl_LocalInvocationIndex;
@@ -88,20 +135,11 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
 
     // k is the workgroup's: the subgroup operation runs in all of it or none.
     const bool dedupe = k >= P.sweep_dedupe && repeatChecksWithinBudget(P);  // for both passes
-    uint n = 0u, neighbours = 0u, repeats = 0u;
-    for (uint pass = 0u; pass < 2u; ++pass) {
+    uint n = 0u, neighbours = 0u, repeats = 0u, iterations = 0u;
+    bool cut = false;
+    for (uint pass = 0u; pass < 2u && !cut; ++pass) {
         uint64_t out_slot = 0ul;
-        if (pass == 1u) {
-            subgroupCount(headerField(P, kHeaderNeighbours), neighbours);
-            subgroupCount64(headerField(P, kHeaderRepeats), repeats);
-            subgroupCount(headerField(P, kHeaderCandidateCells), markCandidateCell(P, cell, n));
-            out_slot = subgroupAppend64(headerField(P, kHeaderCandidates), n);
-            if (n == 0u) return;
-            if (out_slot >= uint64_t(P.candidate_capacity)) {  // none fits: skip the second scan
-                raiseFlag(P, kCellsOverflowCandidates);
-                return;
-            }
-        }
+        if (pass == 1u && !reserveCandidates(P, cell, n, neighbours, repeats, out_slot)) return;
         for (uint p = tid; p < k; p += kCellsGroupSize) {
             uint a = s_order[p];
             CellsEntry me = CellsEntriesRef(P.entries).e[begin + a];  // its zhi and triangle: read once, not kept in shared memory
@@ -109,17 +147,19 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
             if (dedupe) mine_t = CellsTrianglesRef(P.triangles).t[me.triangle];
             uint box = boxOf(P, me.key);
             uvec3 mine = (s_key[a] & kCellsKeySelf) != 0u ? s_index[a] : uvec3(~0u);
-            for (uint r = 0u; r < runs; ++r) {
-                uint first = s_runs[r], end = s_runs[r + 1u];
-                if (!mayCollide(P, s_key[a], s_key[s_order[first]])) continue;
+            for (uint r = 0u; r < runs && !cut; ++r) {
+                uint first = s_runs[r], end = s_runs[r + 1u], steps = 0u;
+                if (!mayCollide(P, s_key[a], s_key[s_order[first]])) end = first;  // skipped
                 // First position of the run after `a` in (zlo, index) order.
                 uint lo = first, hi = end;
                 while (lo < hi) {
+                    ++steps;
                     uint mid = (lo + hi) / 2u;
                     if (sweepBefore(a, s_order[mid]) || a == s_order[mid]) hi = mid; else lo = mid + 1u;
                 }
                 if (lo < end && s_order[lo] == a) ++lo;
                 for (uint q = lo; q < end; ++q) {
+                    ++steps;
                     uint b = s_order[q];
                     if (s_zlo[b] > me.zhi) break;
                     // Boxes within the cell: the entry's key from global memory, only for pairs
@@ -128,33 +168,92 @@ void sortedCell(CellsParams P, uint cell, uint begin, uint k) {
                     if (!subBoxesMeet(box, boxOf(P, other.key))) continue;
                     // sweepPair's rule, the indices from shared memory.
                     if (!mayCollide(P, s_key[a], s_key[b])) continue;
-                    if (s_key[a] == s_key[b] && P.keep_neighbours == 0u && shareIndex(mine, s_index[b])) {
-                        if (pass == 0u) ++neighbours;
-                        continue;
-                    }
-                    if (!keptHere(P, dedupe, mine_t, other, cell)) {
-                        if (pass == 0u) ++repeats;
-                        continue;
-                    }
-                    if (pass == 0u) ++n;
-                    else emitCandidate(P, out_slot, me.triangle, other.triangle, cell);
+                    bool neighbour = s_key[a] == s_key[b] && P.keep_neighbours == 0u && shareIndex(mine, s_index[b]);
+                    takeOverlapping(P, pass, neighbour, dedupe, mine_t, me.triangle, other, cell, n, neighbours, repeats, out_slot);
                 }
+                cut = pastLoopGuard(P, iterations, steps);
             }
+            if (cut) break;
         }
     }
 }
 
-// Chunk `chunk` of a cell deeper than kCellsDeepShared: kCellsGroupSize of its entries,
-// each scanned against the whole cell as the shallow sweep does.
-void chunkOfCell(CellsParams P, uint cell, uint begin, uint end, uint chunk) {
-    uint e = begin + chunk * kCellsGroupSize + gl_LocalInvocationIndex;
+// Chunk `chunk` of a huge cell, which cells_deep_sort.comp sorted in place (entries by
+// (object, zlo, copy hash, triangle); CellsParams.sorted: its runs in .x, each position's
+// end of coincident copies in .y): kCellsGroupSize sorted positions, each visiting the
+// runs as sortedCell does. In its own run an entry starts after its copies (neighbours:
+// they share every vertex position); in another run at the first entry not below its zlo,
+// and of entries with its zlo takes those of a higher triangle id (the other takes the
+// rest), so each pair is taken once. The pairs it visits count as comparisons.
+const uint kVisitsPerCount = 4096u;  // visits an invocation adds to the comparisons at a time
+
+void hugeChunk(CellsParams P, uint cell, uint begin, uint k, uint chunk) {
+    CellsEntriesRef E = CellsEntriesRef(P.entries + uint64_t(begin) * 16ul);
+    Uvec2sRef A = Uvec2sRef(P.sorted + uint64_t(begin) * 8ul);
+    const uint p = chunk * kCellsGroupSize + gl_LocalInvocationIndex;
+    const bool mine_valid = p < k;
     CellsEntry me;
+    uint my_key = 0u, box = 0u, skip_to = 0u;
     uvec3 mine = uvec3(~0u);
-    if (e < end) {
-        me = CellsEntriesRef(P.entries).e[e];
-        if ((triangleKeyOf(P, me.key) & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
+    if (mine_valid) {
+        me = E.e[p];
+        my_key = triangleKeyOf(P, me.key);
+        box = boxOf(P, me.key);
+        if ((my_key & kCellsKeySelf) != 0u) mine = triangleIndices(P, me.triangle);
+        skip_to = A.v[p].y;
     }
-    sweepEntry(P, cell, e, me, mine, begin, e < end ? end : begin, end - begin >= P.sweep_dedupe);
+    // k is the workgroup's: the subgroup operation runs in all of it or none.
+    const bool dedupe = k >= P.sweep_dedupe && repeatChecksWithinBudget(P);  // for both passes
+    CellsTriangle mine_t;
+    if (dedupe && mine_valid) mine_t = CellsTrianglesRef(P.triangles).t[me.triangle];
+    uint n = 0u, neighbours = 0u, repeats = 0u, visits = 0u, iterations = 0u;
+    bool cut = false;
+    for (uint pass = 0u; pass < 2u && !cut; ++pass) {
+        uint64_t out_slot = 0ul;
+        if (pass == 1u) {
+            if (visits > 0u) atomicAdd(Uint64sRef(headerField(P, kHeaderComparisons)).v[0], uint64_t(visits));
+            if (!reserveCandidates(P, cell, n, neighbours, repeats, out_slot)) return;
+        }
+        if (!mine_valid) continue;
+        for (uint r = 0u; r < k && !cut; ++r) {
+            uint first = A.v[r].x;
+            if (first >= k) break;
+            uint end = r + 1u < k ? A.v[r + 1u].x : k, steps = 0u;
+            if (!mayCollide(P, my_key, triangleKeyOf(P, E.e[first].key))) end = first;  // skipped
+            const bool own = first <= p && p < end;
+            uint q = skip_to;
+            if (!own) {  // first position of the run with zlo not below mine
+                uint lo = first, hi = end;
+                while (lo < hi) {
+                    ++steps;
+                    uint mid = (lo + hi) / 2u;
+                    if (E.e[mid].zlo < me.zlo) lo = mid + 1u; else hi = mid;
+                }
+                q = lo;
+            }
+            for (; q < end; ++q) {
+                ++steps;
+                CellsEntry other = E.e[q];
+                if (other.zlo > me.zhi) break;
+                if (!own && other.zlo == me.zlo && other.triangle < me.triangle) continue;
+                if (pass == 0u && ++visits == kVisitsPerCount) {
+                    // The budget bounds the visits as they happen: a huge cell's pairs are
+                    // known only here (a fan of neighbours around a vertex visits k^2).
+                    visits = 0u;
+                    uint64_t total = atomicAdd(Uint64sRef(headerField(P, kHeaderComparisons)).v[0], uint64_t(kVisitsPerCount));
+                    if (total + uint64_t(kVisitsPerCount) > comparisonBudget(P)) {
+                        raiseFlag(P, kCellsOverBudget);
+                        cut = true;
+                        break;
+                    }
+                }
+                if (!subBoxesMeet(box, boxOf(P, other.key))) continue;
+                bool neighbour = own && P.keep_neighbours == 0u && shareIndex(mine, triangleIndices(P, other.triangle));
+                takeOverlapping(P, pass, neighbour, dedupe, mine_t, me.triangle, other, cell, n, neighbours, repeats, out_slot);
+            }
+            if (pastLoopGuard(P, iterations, steps)) cut = true;
+        }
+    }
 }
 
 void main() {
@@ -164,5 +263,5 @@ void main() {
     uvec2 work = Uvec2sRef(P.deep_items).v[item];
     uint begin = UintsRef(P.offsets).v[work.x], end = UintsRef(P.offsets).v[work.x + 1u];
     if (work.y == kCellsSorted) sortedCell(P, work.x, begin, end - begin);
-    else chunkOfCell(P, work.x, begin, end, work.y);
+    else if ((cellsHeader(P).h.flags & kCellsOverBudget) == 0u) hugeChunk(P, work.x, begin, end - begin, work.y);  // the sort's count
 }

@@ -3,12 +3,13 @@
 // Cell pair stage, scan of the per-cell footprint counts into entry offsets, in three
 // steps (Push.step) with a barrier between them:
 //   0: one workgroup per block of kCellsScanBlock cells: the block's sum, the deepest cell,
-//      the pairs of footprints its cells hold (what the sweep will compare);
+//      what the sweep will compare in its cells (sweepComparisons);
 //   1: one workgroup: exclusive scan of the block sums (in place), the total, checked
 //      against the entry capacity (overflow: flag, and every later pass does nothing), and
 //      the comparisons checked against the budget (kCellsOverBudget: the same);
 //   2: one workgroup per block: each cell's offset, its count reset to 0 (the fill's
-//      cursor), and work items for cells deeper than kCellsSmallCell.
+//      cursor), and work items for cells deeper than kCellsSmallCell; huge cells need
+//      CellsParams.sorted up to their end (kCellsOverflowSorted).
 #include "cells_common.glsl.inc"
 #include "common/workgroup.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
@@ -26,6 +27,15 @@ uint64_t groupReduceAdd64(uint64_t value) {
         barrier();
     }
     return s_wide[0];
+}
+
+// What the sweep compares in a cell of k entries, as far as the count tells: every two
+// entries up to kCellsDeepShared (and beyond kCellsHugeMax: refused); a huge cell's sort (a bitonic network of L (L + 1) / 2
+// steps of k / 2 exchanges, L = ceil(log2 k)) -- its sort and sweep add the rest.
+uint64_t sweepComparisons(uint k) {
+    if (k <= kCellsDeepShared || k > kCellsHugeMax) return k > 1u ? uint64_t(k) * uint64_t(k - 1u) / 2ul : 0ul;
+    uint steps = uint(findMSB(k - 1u)) + 1u;
+    return uint64_t(k) * uint64_t(steps * (steps + 1u)) / 4ul;
 }
 
 void main() {
@@ -64,8 +74,7 @@ void main() {
         // Totals fit in 32 bits: the setup let the scan run, so the footprints are at most
         // the budget's box cells (below 2^31); a cell's pairs need 64.
         uint64_t pairs = 0ul;
-        for (uint k = 0u; k < kPerInvocation; ++k)
-            if (v[k] > 1u) pairs += uint64_t(v[k]) * uint64_t(v[k] - 1u) / 2ul;
+        for (uint k = 0u; k < kPerInvocation; ++k) pairs += sweepComparisons(v[k]);
         uint total = groupReduceAdd(sum);
         uint deepest = groupReduceMax(most);
         uint64_t block_pairs = groupReduceAdd64(pairs);
@@ -77,7 +86,7 @@ void main() {
         return;
     }
     uint running = sums.v[block] + groupInclusiveScan(sum) - sum;
-    uint items = 0u, deep = 0u;
+    uint items = 0u, deep = 0u, huge = 0u, sorted_end = 0u;
     for (uint k = 0u; k < kPerInvocation; ++k) {
         if (first + k >= P.cell_count) break;
         offsets.v[first + k] = running;
@@ -86,9 +95,18 @@ void main() {
         if (v[k] > kCellsSmallCell) {
             ++deep;
             items += v[k] <= kCellsDeepShared ? 1u : (v[k] + kCellsGroupSize - 1u) / kCellsGroupSize;
+            if (v[k] > kCellsDeepShared) {
+                ++huge;
+                sorted_end = running;
+            }
         }
     }
+    if (sorted_end > 0u) {
+        atomicMax(cellsHeader(P).h.sorted_need, sorted_end);
+        if (sorted_end > P.sorted_capacity) raiseFlag(P, kCellsOverflowSorted);
+    }
     subgroupCount(headerField(P, kHeaderDeepCells), deep);
+    subgroupCount(headerField(P, kHeaderHugeCells), huge);
     uint slot = subgroupAppend(headerField(P, kHeaderDeepItems), items);
     Uvec2sRef deep_items = Uvec2sRef(P.deep_items);
     for (uint k = 0u; k < kPerInvocation && deep > 0u; ++k) {

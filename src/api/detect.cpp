@@ -234,7 +234,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         const passes::CellStageStats& c = broad[0].cells;
         st.cells = {c.entries,   c.max_cell,      c.deep_cells, c.candidate_cells, c.candidates,       c.duplicates, c.filtered,
                     c.survivors, c.gpu_triangles, c.runs,       c.filter_ran,      c.exact_ran,        c.exact_tests, c.exact_neighbours,
-                    c.repeats,   c.sweep_chunks,  c.pair_chunks};
+                    c.repeats,   c.sweep_chunks,  c.pair_chunks,  c.huge_cells,      c.comparisons};
         st.collision_rays = c.candidate_cells;
         st.peeling.backend_reason = "none: the reliable method samples no rays";
     }

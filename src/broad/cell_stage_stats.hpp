@@ -10,10 +10,13 @@ namespace vkcollide::passes {
 struct CellStageStats {
     std::uint64_t entries = 0;        // footprints: (triangle, cell) pairs
     std::uint64_t box_cells = 0;      // cells of the footprint boxes (>= entries; the budget's first count)
-    std::uint64_t comparisons = 0;    // pairs of footprints sharing a cell (the budget's second count)
+    // The sweep's comparisons (the budget's second count): pairs of footprints sharing a
+    // cell, in huge cells the sort's work, k per object in the cell and the pairs visited.
+    std::uint64_t comparisons = 0;
     std::uint64_t big_triangles = 0;  // triangles counted and filled in work items
     std::uint64_t items = 0;
     std::uint64_t deep_cells = 0;     // cells with more than kCellsSmallCell entries
+    std::uint64_t huge_cells = 0;     // of those, with more than kCellsDeepShared: sorted in global memory
     std::uint64_t max_cell = 0;       // most entries in one cell
     std::uint64_t candidate_cells = 0;  // cells where the sweep found at least one candidate
     std::uint64_t candidates = 0;     // pairs the sweep wrote (with duplicates across cells)

@@ -183,7 +183,7 @@ TEST_CASE("cells: identical results run to run", "[cells][gpu]") {
     }
 }
 
-TEST_CASE("cells: deep cells (sorted in shared memory and in chunks) and big triangles", "[cells][gpu]") {
+TEST_CASE("cells: deep cells (sorted in shared and in global memory) and big triangles", "[cells][gpu]") {
     ValidatedContext ctx;
     auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
@@ -205,6 +205,67 @@ TEST_CASE("cells: deep cells (sorted in shared memory and in chunks) and big tri
         if (n <= 3) CHECK(run.result.stats.deep_cells > 0);
         if (n == 1) CHECK(run.result.stats.max_cell > gpu::kCellsDeepShared);
         if (n == 512) CHECK(run.result.stats.big_triangles > 0);
+    }
+}
+
+// Huge cells (more than kCellsDeepShared entries) are sorted in global memory, and copies --
+// triangles of one self-testing object with the same three local positions, in any order
+// -- are a run the sweep skips (they share every vertex position: neighbours). What must
+// not be skipped: copies in different objects (pairs), copies in an object that does not
+// test itself (never paired anyway), a copy and a distinct triangle sharing a vertex
+// position (the narrow phase's rule, not the sweep's), triangles crossing the copies.
+// Exact on the GPU: the survivors are the reference's pairs, at one cell (huge), two,
+// and 16 (shallow and shared-memory cells) alike.
+TEST_CASE("cells: huge cells with coincident copies, within one object and across objects, give the exact pairs", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellStage::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(31);
+    const Float3 t0{0.1f, 0.1f, 0.5f}, t1{0.9f, 0.15f, 0.52f}, t2{0.45f, 0.85f, 0.48f};
+    CellScene scene;
+    HostMesh a = soup(rng, 500, 0.0f, 1.0f, 0.04f, "a");
+    for (int k = 0; k < 300; ++k) {
+        if (k % 3 == 0) addTriangle(a, t0, t1, t2);
+        else if (k % 3 == 1) addTriangle(a, t2, t0, t1);  // the same corners, turned
+        else addTriangle(a, t1, t0, t2);                  // and flipped
+    }
+    // 100 copies sharing their indices with the first copy above: index neighbours too.
+    const std::uint32_t first = a.indices[500 * 3];
+    for (int k = 0; k < 100; ++k) a.indices.insert(a.indices.end(), {first, first + 1, first + 2});
+    // A distinct triangle sharing one corner's position with the copies: a neighbour of each.
+    addTriangle(a, t0, {0.3f, 0.7f, 0.9f}, {0.6f, 0.2f, 0.1f});
+    scene.meshes.push_back(std::move(a));
+    HostMesh b = soup(rng, 300, 0.0f, 1.0f, 0.04f, "b");
+    for (int k = 0; k < 200; ++k) addTriangle(b, t0, t1, t2);  // coincident with a's: pairs
+    scene.meshes.push_back(std::move(b));
+    HostMesh c{"c", {}, {}};
+    for (int k = 0; k < 150; ++k) addTriangle(c, t2, t1, t0);  // copies without self-collision
+    scene.meshes.push_back(std::move(c));
+    HostMesh cross{"cross", {}, {}};
+    addTriangle(cross, {0.4f, 0.3f, 0.0f}, {0.5f, 0.3f, 1.0f}, {0.45f, 0.4f, 0.5f});
+    scene.meshes.push_back(std::move(cross));
+    scene.self = {1, 1, 0, 1};
+    const auto reference = referencePairs(scene);
+    REQUIRE(reference.size() > 200 * 400);  // b's copies with a's, and more
+    for (std::uint32_t n : {1u, 2u, 16u}) {
+        INFO("resolution " << n);
+        CellRunOptions opt;
+        opt.resolution = n;
+        opt.direction = {0.2, 0.1, 1.0};
+        opt.settings.exact = true;
+        const CellRun run = runCells(ctx, **stage, scene, opt);
+        INFO("deepest cell " << run.result.stats.max_cell << ", candidates " << run.result.stats.candidates);
+        if (n == 1) {
+            CHECK(run.result.stats.huge_cells == 1);
+            CHECK(run.result.stats.max_cell > gpu::kCellsDeepShared);
+        }
+        if (run.result.stats.exact_ran) {
+            const PairComparison cmp = comparePairs(run.pairs, reference);
+            CHECK(cmp.false_negatives == 0);
+            CHECK(cmp.false_positives == 0);
+        } else {
+            requireAllFound(run, reference);
+        }
     }
 }
 

@@ -108,13 +108,17 @@ TEST_CASE("a face of 999,999 repeated corners ends in a named error within the c
     REQUIRE(world);
     auto face = (*world)->addMesh(meshes->front(), {.name = "face", .self_collision = true});
     REQUIRE(face);
-    // The default method: every triangle in every cell of the face's footprint, 5e12 pairs
-    // of footprints to compare, refused by the GPU stage's budget before the sweep runs.
+    // The default method: every triangle in every cell of the face's footprint, cells of
+    // 999,997 footprints to sort in global memory. On llvmpipe the sort needs more loop
+    // iterations than it runs (a named error); on a GPU it sorts, and the sweep stops at the
+    // comparisons' budget: the triangles fan around one vertex in three shapes, so each
+    // footprint visits the two thirds it is not a copy of (neighbours, 3e11 visits).
     DetectSettings reliable;
     auto r = (*world)->detect(reliable);
     REQUIRE_FALSE(r);
+    INFO(r.error().message());
     CHECK(r.error().code() == ErrorCode::LimitExceeded);
-    CHECK(mentions(r.error(), "max_candidate_pairs"));
+    CHECK((mentions(r.error(), "max_candidate_pairs") || mentions(r.error(), "loop iterations")));
     CHECK(mentions(r.error(), "999997 footprints in one cell"));
     CHECK((*world)->state() == WorldState::Ready);
     // The peeling method: every triangle is a candidate (deep rays), and all of them overlap:

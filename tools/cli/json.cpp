@@ -168,6 +168,8 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("cell_repeats", st.cells.repeats);
     count("cell_sweep_chunks", st.cells.sweep_chunks);
     count("cell_pair_chunks", st.cells.pair_chunks);
+    count("cell_huge_cells", st.cells.huge_cells);
+    count("cell_comparisons", st.cells.comparisons);
     count("cell_survivors", st.cells.survivors);
     count("deep_rays", st.peeling.deep_rays);
     count("axes", st.peeling.axes);

@@ -15,12 +15,13 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 120 && sizeof(gpu::CellsParams) == 232);
+static_assert(sizeof(gpu::CellsHeader) == 128 && sizeof(gpu::CellsParams) == 248);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
               offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
               offsetof(gpu::CellsHeader, exact_neighbours) == 84 &&
               offsetof(gpu::CellsHeader, repeats) == 96 &&
-              offsetof(gpu::CellsHeader, sweep_entries_begin) == 104);  // kHeaderCandidates, ... in cells_common.glsl.inc
+              offsetof(gpu::CellsHeader, sweep_entries_begin) == 104 &&
+              offsetof(gpu::CellsHeader, huge_cells) == 124);  // kHeaderCandidates, ... in cells_common.glsl.inc
 static_assert(sizeof(gpu::CellsGpuTriangle) == sizeof(GpuTriangle) && offsetof(gpu::CellsGpuTriangle, v) == offsetof(GpuTriangle, v));
 static_assert(sizeof(CandidatePair) == 8);
 static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);
@@ -68,6 +69,7 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
                    compute(P.scan, shaders::cells_scan_comp, "cells-scan"), compute(P.fill, shaders::cells_fill_comp, "cells-fill"),
                    compute(P.sweep, shaders::cells_sweep_comp, "cells-sweep"),
                    compute(P.sweep_plain, shaders::cells_sweep_plain_comp, "cells-sweep-plain"),
+                   compute(P.deep_sort, shaders::cells_deep_sort_comp, "cells-deep-sort"),
                    compute(P.deep, shaders::cells_deep_comp, "cells-deep"),
                    compute(P.args, shaders::cells_args_comp, "cells-args")})
         if (!r) return r.error();
@@ -225,6 +227,9 @@ void CellStage::writeParams() {
     p.args = buf_.args->address();
     p.gpu_triangles = has_download_ ? buf_.gpu_triangles->address() : 0;
     p.marks = has_download_ ? buf_.marks->address() : 0;
+    p.sorted = buf_.sorted->address();
+    p.sorted_capacity = static_cast<std::uint32_t>(buf_.sorted->size() / 8);
+    p.loop_guard = loopGuard();
     p.gpu_triangle_capacity = has_download_ ? capacity_.gpu_triangles : 0;
     p.resolution = resolution_;
     p.cell_count = resolution_ * resolution_;
@@ -254,6 +259,14 @@ Result<void> CellStage::checkFailure(const gpu::CellsHeader& h) {
     if (!errors) return {};
     if (errors & gpu::kCellsInconsistent)
         return Error(ErrorCode::VulkanError, "cell stage: the fill found more footprints than the count (internal error)");
+    if (errors & gpu::kCellsLoopLimit)
+        return Error(ErrorCode::LimitExceeded,
+                     "cell stage: a deep cell needs more than " + std::to_string(loopGuard()) +
+                         " loop iterations in one shader invocation at resolution " + std::to_string(resolution_) + " (" +
+                         std::to_string(triangles_) + " triangles) (up to " + std::to_string(h.max_cell) +
+                         " footprints in one cell), and " + device_->info.name +
+                         " ends longer loops silently (65,535 iterations in all, llvmpipe's limit): lower the resolution, or "
+                         "detect on a GPU");
     std::string where = "triangle " + std::to_string(h.bad_triangle);
     for (std::size_t i = objects_.size(); i-- > 0;) {
         if (objects_[i].triangle_base <= h.bad_triangle && objects_[i].triangle_count > 0) {
@@ -282,10 +295,15 @@ Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
                                                    " cells" + where + ", more than " + budget +
                                                    ": lower the resolution or raise limits.max_candidate_pairs");
     const std::uint64_t comparisons = std::uint64_t{budget_} * gpu::kCellsComparisonsPerBudget;
+    // Counted by the scan (nothing swept yet), or grown by the sort and sweep of huge cells.
+    const bool counted_by_scan = h.sweep_items_end == 0 && h.sweep_entries_end == 0;
     if (h.comparisons > comparisons)
         return Error(ErrorCode::LimitExceeded,
-                     "cell stage: " + std::to_string(h.comparisons) + " pairs of footprints share a cell" + where + " (up to " +
-                         std::to_string(h.max_cell) + " footprints in one cell), more than " +
+                     "cell stage: " + std::to_string(h.comparisons) +
+                         (counted_by_scan ? " pairs of footprints share a cell"
+                                          : " or more comparisons of footprints sharing a cell (the sweep stopped at the budget, in cells "
+                                            "of more than " + std::to_string(gpu::kCellsDeepShared) + " footprints)") +
+                         where + " (up to " + std::to_string(h.max_cell) + " footprints in one cell), more than " +
                          std::to_string(gpu::kCellsComparisonsPerBudget) + " x " + budget + " = " + std::to_string(comparisons) +
                          " the sweep may compare: stacked or repeated triangles? Lower the resolution or raise limits.max_candidate_pairs");
     // Every overlapping pair the sweep found, written or dropped as a repeat in a deep cell.
@@ -296,8 +314,9 @@ Result<void> CellStage::checkBudget(const gpu::CellsHeader& h) const {
                                                                           " footprints and " + std::to_string(h.sweep_items_end) + " of " +
                                                                           std::to_string(h.deep_items) + " deep-cell work items)"
                                                                     : std::string(" candidate pairs")) +
-                                                   where +
-                                                   " (triangles that may collide, with overlapping depth in a cell), more than " +
+                                                   where + " (up to " + std::to_string(h.max_cell) +
+                                                   " footprints in one cell; triangles that may collide, with overlapping depth in a "
+                                                   "cell), more than " +
                                                    budget + ": stacked or repeated triangles?");
     if (h.flags & gpu::kCellsOverBudget)  // never without one of the counts above
         return Error(ErrorCode::VulkanError, "cell stage: the budget flag is set but no count exceeds it (internal error)");
@@ -314,7 +333,8 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     // The chunk just swept (bounds as cells_args.comp sized it), for noteSweepTime().
     const double deepest = std::max(h.max_cell, 1u);
     last_sweep_chunk_work_ = double(h.sweep_entries_end - h.sweep_entries_begin) * std::min(deepest, double(gpu::kCellsSmallCell)) +
-                             double(h.sweep_items_end - h.sweep_items_begin) * gpu::kCellsGroupSize * deepest;
+                             double(h.sweep_items_end - h.sweep_items_begin) * gpu::kCellsGroupSize *
+                                 std::min(deepest, double(gpu::kCellsDeepShared));
     // The sweep goes on through a candidate overflow (its count sizes the rerun's buffer).
     if (h.sweep_pending && (h.flags & ~gpu::kCellsOverflowCandidates) == 0) return Outcome::MoreSweep;
     if (h.flags & gpu::kCellsOverflowMask) {
@@ -324,6 +344,8 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
         // box has more than 64 cells, an item covers up to 4096), survivors <= candidates.
         if (h.flags & gpu::kCellsOverflowItems) capacity_.items = std::max(capacity_.items, grown(h.items, budget_));
         if (h.flags & gpu::kCellsOverflowEntries) capacity_.entries = std::max(capacity_.entries, grown(h.entries, budget_));
+        // The huge cells' sort data reaches to the end of the last one (at most the entries).
+        if (h.flags & gpu::kCellsOverflowSorted) capacity_.sorted = std::max(capacity_.sorted, grown(h.sorted_need, budget_));
         if (h.flags & gpu::kCellsOverflowCandidates) {
             capacity_.candidates = std::max(capacity_.candidates, grown(h.candidates, budget_));
             // The sweep counted every candidate, and each gives at most one survivor: room
@@ -357,6 +379,7 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.big_triangles = h.big_triangles;
     s.items = h.items;
     s.deep_cells = h.deep_cells;
+    s.huge_cells = h.huge_cells;
     s.max_cell = h.max_cell;
     s.candidate_cells = h.candidate_cells;
     s.candidates = h.candidates;
@@ -441,6 +464,13 @@ Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStag
     }
 }
 
+// llvmpipe (lavapipe) ends a shader invocation's loops once their iterations together pass
+// 65,535 (gallivm's loop limiter), without an error: the deep sweep and the sort count
+// theirs against a bound below it and fail by name instead. Other devices: no bound.
+std::uint32_t CellStage::loopGuard() const {
+    return device_->info.name.find("llvmpipe") != std::string::npos ? kLlvmpipeLoopGuard : ~0u;
+}
+
 // What the device sweeps in about kSweepChunkTargetMs at the rate its last sweep chunk
 // measured; before any, on a CPU implementation such as lavapipe (some 10^5 comparisons a
 // millisecond with the repeat checks) about 2 * 10^7, on a GPU the whole sweep.
@@ -495,7 +525,7 @@ std::uint64_t CellStage::memoryBytes() const noexcept {
     std::uint64_t total = 0;
     for (const Row* r : {&buf_.params, &buf_.objects, &buf_.object_flags, &buf_.pair_mask, &buf_.projection, &buf_.header,
                          &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,
-                         &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.candidates,
+                         &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.sorted, &buf_.candidates,
                          &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks})
         total += (*r)->memoryBytes();
     return total;

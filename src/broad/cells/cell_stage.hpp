@@ -87,6 +87,7 @@ struct CellStageCapacity {
     std::uint32_t candidates = 0;  // candidate pairs (12 bytes)
     std::uint32_t survivors = 0;   // surviving pairs (8 bytes, host-visible memory)
     std::uint32_t gpu_triangles = 0;  // survivors' triangles of download objects (52 bytes, host-visible)
+    std::uint32_t sorted = 0;  // footprints of huge cells (8 bytes each: their sort's runs and copies)
 };
 
 struct CellStageSettings {
@@ -99,9 +100,9 @@ struct CellStageSettings {
     // The budget of a run (DetectSettings::limits.max_candidate_pairs in a detection; the stage's
     // own limit is 2^31 - 1, its buffers' 32-bit indices): the cells of the triangles'
     // clamped footprint boxes (so the footprints, 20 bytes each, and the count pass's work)
-    // and the candidate pairs (12 bytes each) at most this many each, and the pairs of
-    // footprints sharing a cell (the sweep's comparisons) at most
-    // gpu::kCellsComparisonsPerBudget times it. Past one of them finish() fails with
+    // and the candidate pairs (12 bytes each) at most this many each, and the sweep's
+    // comparisons (CellStageStats::comparisons) at most gpu::kCellsComparisonsPerBudget
+    // times it. Past one of them finish() fails with
     // LimitExceeded naming the count; no buffer ever grows beyond the budget's elements.
     std::uint64_t max_candidate_pairs = std::numeric_limits<std::uint64_t>::max();
     // Capacities of the first run (at most the budget); they grow (to 1.25x what was
@@ -257,17 +258,20 @@ private:
     };
     void recordPairPass(graph::Graph& g, const PairPassIds& ids, std::uint32_t chunk);
     struct SweepIds {
-        graph::ResourceId header, entries, entry_cells, offsets, counts, deep, candidates, args;
+        graph::ResourceId header, entries, entry_cells, offsets, counts, deep, sorted, candidates, args;
     };
     void recordSweep(graph::Graph& g, const SweepIds& ids);
     std::uint32_t automaticSweepWork() const;
+    std::uint32_t loopGuard() const;
+    // Below llvmpipe's 65,535 with room for the loops the count leaves out (a few hundred).
+    static constexpr std::uint32_t kLlvmpipeLoopGuard = 60000;
     void writeParams();
     Result<void> checkFailure(const gpu::CellsHeader& header);
     Result<void> checkBudget(const gpu::CellsHeader& header) const;
 
     vk::Device* device_;
     struct Pipelines {
-        vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep, args, pairs;
+        vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, args, pairs;
     } pipes_;
     vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
     using Row = TableRow;  // rows of table_
@@ -277,7 +281,7 @@ private:
     struct Buffers {
         Row params, objects, object_flags, pair_mask, projection, header, header_rb;
         Row triangles, geometry, counts, offsets, block_sums, entries, entry_cells;
-        Row big_items, deep_items, candidates, survivors, args, gpu_triangles, marks;
+        Row big_items, deep_items, sorted, candidates, survivors, args, gpu_triangles, marks;
     } buf_;
     // The prepared run.
     std::vector<gpu::ObjectGpu> objects_;

@@ -30,6 +30,7 @@ void CellStage::addRows() {
     row(buf_.entry_cells, "cells-entry-cells", MemoryKind::DeviceLocal);
     row(buf_.big_items, "cells-big-items", MemoryKind::DeviceLocal);
     row(buf_.deep_items, "cells-deep-items", MemoryKind::DeviceLocal);
+    row(buf_.sorted, "cells-sorted", MemoryKind::DeviceLocal);
     row(buf_.candidates, "cells-candidates", MemoryKind::DeviceLocal);
     row(buf_.survivors, "cells-survivors", MemoryKind::Readback);  // or DeviceLocal (ensureBuffers)
     row(buf_.args, "cells-args", MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
@@ -69,6 +70,8 @@ Result<void> CellStage::ensureBuffers() {
         rowSize(buf_.entry_cells, VkDeviceSize(capacity_.entries) * 4, MemoryKind::DeviceLocal),
         rowSize(buf_.big_items, VkDeviceSize(capacity_.items) * 8, MemoryKind::DeviceLocal),
         rowSize(buf_.deep_items, deep * 8, MemoryKind::DeviceLocal),
+        // Scenes without huge cells never grow it past its first few elements.
+        rowSize(buf_.sorted, VkDeviceSize(std::max(capacity_.sorted, 16u)) * 8, MemoryKind::DeviceLocal),
         rowSize(buf_.candidates, VkDeviceSize(capacity_.candidates) * sizeof(gpu::CellsCandidate), MemoryKind::DeviceLocal),
         rowSize(buf_.survivors, VkDeviceSize(capacity_.survivors) * 8, survivors_kind),
         rowSize(buf_.args, gpu::kCellsArgsCount * 12, MemoryKind::DeviceLocal),

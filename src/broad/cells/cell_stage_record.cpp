@@ -131,7 +131,7 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
         });
 
-    recordSweep(g, {header, entries, entry_cells, offsets, counts, deep, candidates, args});
+    recordSweep(g, {header, entries, entry_cells, offsets, counts, deep, importRow(g, buf_.sorted), candidates, args});
     sweep_chunks_ = 1;  // a run starts its sweep over
     recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks}, 0);
     return {header, survivors, tris, candidates, geometry, args};
@@ -144,16 +144,23 @@ void CellStage::recordSweep(graph::Graph& g, const SweepIds& id) {
     const VkBuffer args_buffer = buf_.args->handle();
     const vk::Pipeline* shallow = plain_sweep_ ? &pipes_.sweep_plain : &pipes_.sweep;
     const vk::Pipeline* deep = &pipes_.deep;
+    const vk::Pipeline* sort = &pipes_.deep_sort;
     pass(g, kSweepPassName, PassKind::Compute, Stage::Pairing)
         .indirect(id.args)
-        .read(id.entries)
+        .readWrite(id.entries)  // huge cells are sorted in place
         .read(id.entry_cells)
         .read(id.offsets)
         .readWrite(id.counts)  // kCellsCandidateBit: cells with a candidate
         .read(id.deep)
+        .readWrite(id.sorted)
         .readWrite(id.header)
         .write(id.candidates)
-        .record([shallow, deep, params, args_buffer](PassContext& pc) {
+        .record([shallow, deep, sort, params, args_buffer](PassContext& pc) {
+            // The huge cells' sort first, over the deep items where there are huge cells
+            // (every workgroup but a huge cell's first returns at once; none elsewhere).
+            bindAndPush(pc, *sort, params);
+            pc.dispatchIndirect(args_buffer, gpu::kCellsArgsSort * 12);
+            pc.shaderBarrier();
             bindAndPush(pc, *shallow, params);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsSweep * 12);
             bindAndPush(pc, *deep, params);
@@ -174,7 +181,7 @@ void CellStage::recordSweepChunk(graph::Graph& g) {
             pc.dispatch(1, 1, 1);
         });
     recordSweep(g, {header, importRow(g, buf_.entries), importRow(g, buf_.entry_cells), importRow(g, buf_.offsets),
-                    importRow(g, buf_.counts), importRow(g, buf_.deep_items), candidates, args});
+                    importRow(g, buf_.counts), importRow(g, buf_.deep_items), importRow(g, buf_.sorted), candidates, args});
     ++sweep_chunks_;
     recordPairPass(g,
                    {header, importRow(g, buf_.header_rb, true), importRow(g, buf_.triangles), importRow(g, buf_.geometry), candidates,

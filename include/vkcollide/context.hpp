@@ -346,6 +346,11 @@ struct DeviceInfo {
     bool robustness2 = false;                 // VK_EXT_robustness2 with robustBufferAccess2
     bool shader_float64 = false;              // shaderFloat64
     bool timeline_semaphore = false;          // timelineSemaphore
+    // Loop iterations one shader invocation runs before the driver ends its loops without an
+    // error (0: no such limit known). llvmpipe (lavapipe): 65,535, all loops of an
+    // invocation together. vkcollide's long loops count against it and fail by name there
+    // (docs/reliable.md, "Huge cells"); Auto pair sorting stays on the host.
+    std::uint32_t loop_iteration_limit = 0;
     // Empty when the device meets every requirement; otherwise what it lacks.
     std::vector<std::string> missing;
 };

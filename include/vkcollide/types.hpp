@@ -72,6 +72,7 @@ enum class ExactDecision {
 // decision ran on the GPU. Both give the same pairs and responses to the bit.
 enum class PairSort {
     Auto,  // on the GPU when the world's last detection had at least kGpuPairSortFrom pairs
+           // (not where the device ends long loops, DeviceInfo::loop_iteration_limit: llvmpipe)
     Gpu,   // on the GPU: the pairs come back sorted and the CPU only computes the responses
     Cpu,   // on the CPU: the GPU's unsorted pairs are read back, sorted and deduplicated there
 };

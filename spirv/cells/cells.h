@@ -279,6 +279,7 @@ struct CellsParams {
 // repeats dropped, a second scan, then written as DevicePair records.
 // DevicePairsHeader.flags (vkcollide::kDevicePairs* in world.hpp, the same values):
 VKC_CONST kDevicePairsOverflow = 1u;    // needed > capacity: the first `capacity` pairs written
+VKC_CONST kDevicePairsLoopLimit = 4u;   // a bucket needs more loop iterations than CellsParams.loop_guard: failed
 VKC_CONST kDevicePairsIncomplete = 2u;  // the run must be repeated (a buffer overflowed, a mesh
                                         // failed the GPU check): count 0; collect() repeats it
 

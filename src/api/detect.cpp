@@ -83,8 +83,11 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.device_pairs = s.reliable.device_pairs;
     d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
     d.broad.host_pairs = s.reliable.host_pairs;
+    // Auto sorts on the host where the device ends long loops (llvmpipe): a triangle with
+    // thousands of partners would fail the GPU's sort there.
+    const bool auto_gpu_sort = last_narrow_pairs >= kGpuPairSortFrom && device().info.loop_iteration_limit == 0;
     d.broad.sort_on_gpu = !filter_on_host_only && (s.reliable.pair_sort == PairSort::Gpu ||
-                                                   (s.reliable.pair_sort == PairSort::Auto && last_narrow_pairs >= kGpuPairSortFrom));
+                                                   (s.reliable.pair_sort == PairSort::Auto && auto_gpu_sort));
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();

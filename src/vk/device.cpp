@@ -112,6 +112,8 @@ PhysicalDeviceReport describePhysicalDevice(const InstanceFunctions& fns, VkPhys
     info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
     info.timestamp_period_ns = props.properties.limits.timestampPeriod;
     info.subgroup_size = subgroup.subgroupSize;
+    // gallivm's loop limiter (LP_MAX_TGSI_LOOP_ITERATIONS), shared by every loop of a shader.
+    if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) info.loop_iteration_limit = 65535;
 
     if (VK_API_VERSION_MAJOR(info.api_version) == 1 && VK_API_VERSION_MINOR(info.api_version) < 3) {
         info.missing.push_back("Vulkan 1.3 (device reports " + std::to_string(VK_API_VERSION_MAJOR(info.api_version)) +

@@ -302,7 +302,8 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     CHECK(first->pairs == rerun.cpu.pairs);
     CHECK(second->pairs == rerun.cpu.pairs);
     CHECK(sameResponses(second->responses, rerun.cpu.responses));
-    // Auto: the GPU sorts once the world's last detection had kGpuPairSortFrom pairs or more.
+    // Auto: the GPU sorts once the world's last detection had kGpuPairSortFrom pairs or more,
+    // on a device that runs long loops (llvmpipe ends them: there the host sorts).
     auto automatic = sceneWorld(ctx, grids);
     auto a1 = automatic->detect();
     REQUIRE(a1);
@@ -310,7 +311,7 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     CHECK_FALSE(a1->stats.reliable.pairs_sorted_on_gpu);  // nothing known before the first
     auto a2 = automatic->detect();
     REQUIRE(a2);
-    CHECK(a2->stats.reliable.pairs_sorted_on_gpu);
+    CHECK(a2->stats.reliable.pairs_sorted_on_gpu == (ctx.device().info.loop_iteration_limit == 0));
     CHECK(a2->pairs == a1->pairs);
     auto small = sceneWorld(ctx, resting);
     for (int k = 0; k < 2; ++k) {

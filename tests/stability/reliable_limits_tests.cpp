@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstring>
 #include <optional>
+#include <utility>
 #include <string>
 
 #include "cells/cells.h"
@@ -357,6 +358,54 @@ TEST_CASE("reliable: a pile of copies writes each overlapping pair once, in its 
                 CHECK(counted == cells.candidates + cells.repeats);
             CHECK(world->state() == WorldState::Ready);
         }
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// One triangle with 5,000 partners: the GPU's pair sort puts them in order in one
+// invocation (a heap sort, some 100,000 loop iterations). llvmpipe ends a shader
+// invocation's loops past 65,535 iterations without an error, so there the sort fails by
+// name (before: "out of order (internal error)" from the host's check, and device pairs
+// silently out of order); Auto sorts on the host there. Elsewhere, the host's pairs.
+TEST_CASE("reliable: a triangle with 5,000 partners sorts on the GPU as on the host, or on llvmpipe fails naming the loop limit",
+          "[stability][gpu][limits][reliable]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) {
+        SUCCEED("no shaderFloat64: pairs are not sorted on the GPU");
+        return;
+    }
+    auto pile = copiesWithOwnVertices(5000);
+    REQUIRE(pile);
+    // The crossing triangle first, so that it is the lower id of each of its pairs.
+    std::swap(pile->scene.objects[0], pile->scene.objects[1]);
+    auto world = worldOf(ctx, *pile);
+    DetectSettings host = reliable();
+    host.resolution = 2;
+    host.reliable.pair_sort = PairSort::Cpu;
+    auto expected = world->detect(host);
+    REQUIRE(expected);
+    REQUIRE(expected->pairs.size() == 5000);
+    DetectSettings gpu = host;
+    gpu.reliable.pair_sort = PairSort::Gpu;
+    auto sorted = world->detect(gpu);
+    if (ctx.device().info.loop_iteration_limit != 0) {
+        REQUIRE_FALSE(sorted);
+        INFO(sorted.error().message());
+        CHECK(sorted.error().code() == ErrorCode::LimitExceeded);
+        CHECK(mentions(sorted.error(), "sorts in one shader invocation"));
+        CHECK(world->state() == WorldState::Ready);
+        // Auto stays on the host there, even after a detection of 5,000 pairs.
+        DetectSettings automatic = host;
+        automatic.reliable.pair_sort = PairSort::Auto;
+        auto again = world->detect(automatic);
+        REQUIRE(again);
+        CHECK_FALSE(again->stats.reliable.pairs_sorted_on_gpu);
+        CHECK(again->pairs == expected->pairs);
+    } else {
+        INFO((sorted ? std::string() : sorted.error().message()));
+        REQUIRE(sorted);
+        CHECK(sorted->stats.reliable.pairs_sorted_on_gpu);
+        CHECK(sorted->pairs == expected->pairs);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -265,8 +265,8 @@ Result<void> CellStage::checkFailure(const gpu::CellsHeader& h) {
                          " loop iterations in one shader invocation at resolution " + std::to_string(resolution_) + " (" +
                          std::to_string(triangles_) + " triangles) (up to " + std::to_string(h.max_cell) +
                          " footprints in one cell), and " + device_->info.name +
-                         " ends longer loops silently (65,535 iterations in all, llvmpipe's limit): lower the resolution, or "
-                         "detect on a GPU");
+                         " ends longer loops silently (" + std::to_string(device_->info.loop_iteration_limit) +
+                         " iterations in all): lower the resolution, or detect on a GPU");
     std::string where = "triangle " + std::to_string(h.bad_triangle);
     for (std::size_t i = objects_.size(); i-- > 0;) {
         if (objects_[i].triangle_base <= h.bad_triangle && objects_[i].triangle_count > 0) {
@@ -464,11 +464,13 @@ Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStag
     }
 }
 
-// llvmpipe (lavapipe) ends a shader invocation's loops once their iterations together pass
-// 65,535 (gallivm's loop limiter), without an error: the deep sweep and the sort count
-// theirs against a bound below it and fail by name instead. Other devices: no bound.
+// A device that ends a shader invocation's loops past some count without an error
+// (DeviceInfo::loop_iteration_limit: llvmpipe's 65,535 for all of them together): the deep
+// sweep, the sort and the device pairs' sort count theirs against a bound below it and fail
+// by name instead. Other devices: no bound.
 std::uint32_t CellStage::loopGuard() const {
-    return device_->info.name.find("llvmpipe") != std::string::npos ? kLlvmpipeLoopGuard : ~0u;
+    const std::uint32_t limit = device_->info.loop_iteration_limit;
+    return limit == 0 ? ~0u : limit - std::min(limit, kLoopGuardMargin);
 }
 
 // What the device sweeps in about kSweepChunkTargetMs at the rate its last sweep chunk

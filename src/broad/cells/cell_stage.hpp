@@ -262,9 +262,10 @@ private:
     };
     void recordSweep(graph::Graph& g, const SweepIds& ids);
     std::uint32_t automaticSweepWork() const;
+    // CellsParams::loop_guard: ~0u, or below the device's loop iteration limit with room for
+    // the loops the count leaves out (a few hundred).
     std::uint32_t loopGuard() const;
-    // Below llvmpipe's 65,535 with room for the loops the count leaves out (a few hundred).
-    static constexpr std::uint32_t kLlvmpipeLoopGuard = 60000;
+    static constexpr std::uint32_t kLoopGuardMargin = 5535;
     void writeParams();
     Result<void> checkFailure(const gpu::CellsHeader& header);
     Result<void> checkBudget(const gpu::CellsHeader& header) const;

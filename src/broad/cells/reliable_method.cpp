@@ -132,6 +132,7 @@ Result<Collected> ReliableMethod::collect(const RunView& run, const gpu::Header&
     if (sorted_for_host_) return collectSorted(result);
     if (pairs_on_device_only_) {
         const gpu::DevicePairsHeader h = device_pairs_->header();
+        if (h.flags & gpu::kDevicePairsLoopLimit) return loopLimitError("device pairs");
         result.device_header = BroadPhaseResult::DeviceHeader{h.count, h.needed, h.flags, h.capacity};
         return Collected::Done;
     }
@@ -212,8 +213,19 @@ Result<Collected> ReliableMethod::collectProximity(BroadPhaseResult& result) {
     return Collected::Done;
 }
 
+// A triangle with so many partners that one shader invocation cannot sort them on a device
+// that ends long loops silently (DeviceInfo::loop_iteration_limit): named, never misordered.
+Error ReliableMethod::loopLimitError(const char* what) const {
+    return Error(ErrorCode::LimitExceeded,
+                 std::string(what) + ": a triangle has more partners than " + device_->info.name +
+                     " sorts in one shader invocation (it ends loops past " + std::to_string(device_->info.loop_iteration_limit) +
+                     " iterations without an error): sort on the host (DetectSettings::reliable.pair_sort Cpu, no device_pairs), "
+                     "or detect on a GPU");
+}
+
 Result<Collected> ReliableMethod::collectSorted(BroadPhaseResult& result) {
     gpu::DevicePairsHeader h = device_pairs_->header();
+    if (h.flags & gpu::kDevicePairsLoopLimit) return loopLimitError("sorted pairs");
     if (h.flags == gpu::kDevicePairsOverflow && !host_sort_grown_) {
         // More pairs than expected: sort again into a copy that holds them all.
         host_sort_grown_ = true;

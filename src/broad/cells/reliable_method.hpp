@@ -59,6 +59,7 @@ private:
     Result<Collected> collectCells(const RunView& run, BroadPhaseResult& io_result);
     Result<Collected> collectProximity(BroadPhaseResult& io_result);
     Result<Collected> collectSorted(BroadPhaseResult& io_result);
+    Error loopLimitError(const char* what) const;
     enum class Step { Cells, SweepChunk, PairChunk, Sort, Proximity };
     Collected again(Step step) {
         again_ = step;

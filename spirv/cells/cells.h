@@ -36,6 +36,9 @@ VKC_CONST kCellsDeepShared = 1024;
 // refuses it, 5.5e11 comparisons): one workgroup sorts a cell, which should end in a
 // fraction of a second, and no invocation's candidates reach 2^20.
 VKC_CONST kCellsHugeMax = 1048576u;
+// Exchanges of the huge cells' sort per loop iteration (cells_deep_sort.comp): a loop
+// guard counts iterations, not exchanges.
+VKC_CONST kCellsSortExchangesPerIteration = 8u;
 // The pair pass's canonical-cell check scans at most this many earlier cells of a pair;
 // a pair whose scan runs out is kept (a duplicate the host removes), never dropped.
 VKC_CONST kCellsDedupeBudget = 512;

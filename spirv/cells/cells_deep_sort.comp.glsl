@@ -24,8 +24,6 @@ layout(local_size_x = kCellsGroupSize) in;
 layout(buffer_reference, scalar, buffer_reference_align = 16) coherent buffer SortEntriesRef { CellsEntry e[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 8) coherent buffer SortAuxRef { uvec2 v[]; };
 
-const uint kExchangesPerIteration = 8u;
-
 void workgroupSync() {
     memoryBarrierBuffer();
     barrier();
@@ -123,15 +121,6 @@ void exchangeAt(CellsParams P, SortEntriesRef E, SortAuxRef A, uint x, uint span
     if (hi < k) exchange(P, E, A, lo, hi);
 }
 
-// The loop iterations one invocation runs here for a cell of k entries (and its padded
-// size), as CellsParams.loop_guard counts them.
-uint sortIterations(uint k, uint size) {
-    uint steps = uint(findMSB(size)) * (uint(findMSB(size)) + 1u) / 2u;
-    uint per_step = (size / 2u + kExchangesPerIteration * kCellsGroupSize - 1u) / (kExchangesPerIteration * kCellsGroupSize);
-    uint per = (k + kCellsGroupSize - 1u) / kCellsGroupSize;
-    return steps * (per_step + 1u) + 6u * per + 2u * kCellsGroupSize;
-}
-
 shared uint s_first[kCellsGroupSize];  // each invocation's first start of a run of copies, or k
 
 void main() {
@@ -145,8 +134,8 @@ void main() {
     uint size = 1u;
     while (size < k) size <<= 1;
     // Where the device ends long loops silently (llvmpipe), a cell too deep to sort within
-    // its count fails by name instead.
-    if (sortIterations(k, size) > P.loop_guard) {
+    // its count fails by name instead (the scan flags it first: a guard here too).
+    if (hugeSortIterations(k) > P.loop_guard) {
         if (tid == 0u) raiseFlag(P, kCellsLoopLimit);
         return;
     }
@@ -156,9 +145,9 @@ void main() {
 
     for (uint x = tid; x < k; x += kCellsGroupSize) A.v[x].x = copyHash(P, E.e[x]);
     workgroupSync();
-    // Bitonic sort of any k, kExchangesPerIteration exchanges per loop iteration (each
+    // Bitonic sort of any k, kCellsSortExchangesPerIteration exchanges per loop iteration (each
     // iteration counts against a loop guard, the exchanges do not).
-    const uint half_size = size / 2u, stride_x = kExchangesPerIteration * kCellsGroupSize;
+    const uint half_size = size / 2u, stride_x = kCellsSortExchangesPerIteration * kCellsGroupSize;
     for (uint span = 2u; span <= size; span <<= 1) {
         for (uint stride = span >> 1; stride > 0u; stride >>= 1) {
             const bool flip = stride == span >> 1;

@@ -98,6 +98,9 @@ void main() {
             if (v[k] > kCellsDeepShared) {
                 ++huge;
                 sorted_end = running;
+                // A sort the device would cut short (llvmpipe's loop limit): named now,
+                // before the fill.
+                if (v[k] <= kCellsHugeMax && hugeSortIterations(v[k]) > P.loop_guard) raiseFlag(P, kCellsLoopLimit);
             }
         }
     }

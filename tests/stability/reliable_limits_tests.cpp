@@ -50,7 +50,7 @@ TEST_CASE("reliable: a stack of 65,545 copies of a triangle gives every pair (on
     auto sorted = repeatedTriangle(1100);  // deeper than kCellsDeepShared: a huge cell, sorted in global memory
     REQUIRE(deep);
     REQUIRE(sorted);
-    const bool llvmpipe = ctx.device().info.name.find("llvmpipe") != std::string::npos;
+    const bool llvmpipe = ctx.device().info.loop_iteration_limit != 0;
     for (bool engine : {false, true}) {
         INFO((engine ? "engine buffers" : "host meshes"));
         // The automatic resolution for host meshes (8 cells here); a world of engine meshes
@@ -58,6 +58,9 @@ TEST_CASE("reliable: a stack of 65,545 copies of a triangle gives every pair (on
         // where 1,100 copies are 1.9e10 comparisons: beyond the budget too.
         DetectSettings s = reliable();
         if (engine) s.resolution = 8;
+        // On llvmpipe 2 cells: the error is the same, without sorting 64 cells of 65,546 first
+        // (20 s there).
+        if (llvmpipe) s.resolution = 2;
         std::vector<EngineMesh> keep;
         auto world = worldOf(ctx, *deep, engine ? &keep : nullptr);
         // Every copy in every cell it covers, with the crossing triangle: 65,546 deep.

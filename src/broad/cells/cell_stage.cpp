@@ -71,6 +71,7 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
                    compute(P.sweep_plain, shaders::cells_sweep_plain_comp, "cells-sweep-plain"),
                    compute(P.deep_sort, shaders::cells_deep_sort_comp, "cells-deep-sort"),
                    compute(P.deep, shaders::cells_deep_comp, "cells-deep"),
+                   compute(P.deep_guarded, shaders::cells_deep_guarded_comp, "cells-deep-guarded"),
                    compute(P.args, shaders::cells_args_comp, "cells-args")})
         if (!r) return r.error();
     // One pair pass: with the float filter and the exact decision where the device has

@@ -272,7 +272,7 @@ private:
 
     vk::Device* device_;
     struct Pipelines {
-        vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, args, pairs;
+        vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, deep_guarded, args, pairs;
     } pipes_;
     vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
     using Row = TableRow;  // rows of table_

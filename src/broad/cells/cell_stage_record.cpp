@@ -143,7 +143,8 @@ void CellStage::recordSweep(graph::Graph& g, const SweepIds& id) {
     const VkDeviceAddress params = buf_.params->address();
     const VkBuffer args_buffer = buf_.args->handle();
     const vk::Pipeline* shallow = plain_sweep_ ? &pipes_.sweep_plain : &pipes_.sweep;
-    const vk::Pipeline* deep = &pipes_.deep;
+    // The loop counters only where the device ends long loops (llvmpipe).
+    const vk::Pipeline* deep = loopGuard() != ~0u ? &pipes_.deep_guarded : &pipes_.deep;
     const vk::Pipeline* sort = &pipes_.deep_sort;
     pass(g, kSweepPassName, PassKind::Compute, Stage::Pairing)
         .indirect(id.args)

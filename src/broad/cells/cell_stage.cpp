@@ -149,6 +149,7 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     if (checks == Checks::Auto)
         checks = device_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Checks::FromShallow : Checks::DeepChunksOnly;
     plain_sweep_ = checks == Checks::DeepChunksOnly;
+    loop_guard_ = settings.loop_guard;
     sweep_dedupe_ = plain_sweep_ ? gpu::kCellsDeepShared + 1 : gpu::kCellsSweepDedupe;
     auto_sweep_work_ = settings.sweep_work == 0;
     sweep_work_ = auto_sweep_work_ ? automaticSweepWork() : settings.sweep_work;
@@ -471,7 +472,7 @@ Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStag
 // by name instead. Other devices: no bound.
 std::uint32_t CellStage::loopGuard() const {
     const std::uint32_t limit = device_->info.loop_iteration_limit;
-    return limit == 0 ? ~0u : limit - std::min(limit, kLoopGuardMargin);
+    return limit == 0 || !loop_guard_ ? ~0u : limit - std::min(limit, kLoopGuardMargin);
 }
 
 // What the device sweeps in about kSweepChunkTargetMs at the rate its last sweep chunk

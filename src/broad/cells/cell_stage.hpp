@@ -141,6 +141,10 @@ struct CellStageSettings {
     // repeats faster. The same pairs either way; tests pick each.
     enum class RepeatChecks { Auto, FromShallow, DeepChunksOnly };
     RepeatChecks repeat_checks = RepeatChecks::Auto;
+    // Count the deep sweep's and the sorts' loops where the device ends long loops silently
+    // (DeviceInfo::loop_iteration_limit; docs/reliable.md, "Huge cells"). false: never
+    // (tests run a GPU's deep sweep on lavapipe with it, on scenes within that limit).
+    bool loop_guard = true;
 };
 
 // The GPU time an automatic pair-pass chunk aims at (CellStageSettings::pair_chunk).
@@ -302,6 +306,7 @@ private:
     std::uint32_t pair_chunk_ = 0, next_chunk_ = 0;  // the run's chunk size; the chunk recorded next
     std::uint32_t sweep_dedupe_ = gpu::kCellsSweepDedupe;  // CellsParams::sweep_dedupe
     bool plain_sweep_ = false;                              // the shallow sweep without repeat checks
+    bool loop_guard_ = true;                                // CellStageSettings::loop_guard
     double pair_rate_ = 0;  // candidates per GPU ms of the pair pass, measured (0: not yet)
     // The sweep's chunks: their work (CellsParams::sweep_work), whether it is automatic,
     // the work of the chunk finish() last read, the chunks recorded for this run so far,

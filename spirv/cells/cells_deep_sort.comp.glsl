@@ -121,6 +121,9 @@ void exchangeAt(CellsParams P, SortEntriesRef E, SortAuxRef A, uint x, uint span
     if (hi < k) exchange(P, E, A, lo, hi);
 }
 
+// Whether sorted position p starts an object's run.
+bool startsRun(CellsParams P, SortEntriesRef E, uint p) { return p == 0u || objectOf(P, E.e[p]) != objectOf(P, E.e[p - 1u]); }
+
 shared uint s_first[kCellsGroupSize];  // each invocation's first start of a run of copies, or k
 
 void main() {
@@ -198,11 +201,11 @@ void main() {
     // its slots, and .x takes the run starts, then k.
     uint starts = 0u;
     for (uint p = first; p < last; ++p)
-        if (p == 0u || objectOf(P, E.e[p]) != objectOf(P, E.e[p - 1u])) ++starts;
+        if (startsRun(P, E, p)) ++starts;
     uint slot = groupInclusiveScan(starts) - starts;
     uint runs = groupReduceAdd(starts);
     for (uint p = first; p < last; ++p)
-        if (p == 0u || objectOf(P, E.e[p]) != objectOf(P, E.e[p - 1u])) A.v[slot++].x = p;
+        if (startsRun(P, E, p)) A.v[slot++].x = p;
     if (tid == 0u) {
         if (runs < k) A.v[runs].x = k;
         uint64_t total = atomicAdd(Uint64sRef(headerField(P, kHeaderComparisons)).v[0], uint64_t(k) * uint64_t(runs));

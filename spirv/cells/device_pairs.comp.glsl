@@ -123,12 +123,8 @@ void main() {
     uint base = offsets.v[id];
     if (pc.step == 6u) {
         // A device that ends long loops silently (CellsParams.loop_guard): a bucket its
-        // invocation cannot sort fails the run by name (heap sort: about n (1.5 log2 n + 2)
-        // iterations with the repeats' pass, insertion sort n^2 / 2).
-        uint64_t steps = uint64_t(findMSB(n)) + 1ul;
-        uint64_t iterations = n <= kDevicePairsInsertionSort ? uint64_t(n) * uint64_t(n) / 2ul + uint64_t(n)
-                                                             : uint64_t(n) * (3ul * steps / 2ul + 2ul);
-        if (P.loop_guard != ~0u && iterations > uint64_t(P.loop_guard)) {
+        // invocation cannot sort, then pass over for repeats, fails the run by name.
+        if (!bucketSortFits(P, n, kDevicePairsInsertionSort, 1u)) {
             atomicOr(pairsHeader(D).h.flags, kDevicePairsLoopLimit);
             return;
         }

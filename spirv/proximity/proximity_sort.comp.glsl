@@ -116,12 +116,8 @@ void main() {
         if (id >= Q.bucket_count) return;
         uint base = offsets.v[id], n = offsets.v[id + 1u] - base;
         // A device that ends long loops silently (CellsParams.loop_guard): a bucket its
-        // invocation cannot sort (heap sort: about n (1.5 log2 n + 1) iterations, insertion
-        // sort n^2 / 2) fails the pass by name instead of leaving it out of order.
-        uint64_t steps = uint64_t(findMSB(max(n, 1u))) + 1ul;
-        uint64_t iterations = n <= kProximityInsertionSort ? uint64_t(n) * uint64_t(n) / 2ul : uint64_t(n) * (3ul * steps / 2ul + 1ul);
-        uint guard = CellsParamsRef(Q.cells).p.loop_guard;
-        if (guard != ~0u && iterations > uint64_t(guard)) {
+        // invocation cannot sort fails the pass by name instead of leaving it out of order.
+        if (!bucketSortFits(CellsParamsRef(Q.cells).p, n, kProximityInsertionSort, 0u)) {
             atomicOr(ProximityHeaderRef(Q.header).h.flags, kProximityLoopLimit);
             return;
         }

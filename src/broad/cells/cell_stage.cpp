@@ -468,8 +468,8 @@ Result<CellStageResult> CellStage::run(graph::Executor& executor, const CellStag
 
 // A device that ends a shader invocation's loops past some count without an error
 // (DeviceInfo::loop_iteration_limit: llvmpipe's 65,535 for all of them together): the deep
-// sweep, the sort and the device pairs' sort count theirs against a bound below it and fail
-// by name instead. Other devices: no bound.
+// sweep, the huge cells' sort and the device pairs' and proximity records' sorts count theirs
+// against a bound below it and fail by name instead. Other devices: no bound.
 std::uint32_t CellStage::loopGuard() const {
     const std::uint32_t limit = device_->info.loop_iteration_limit;
     return limit == 0 || !loop_guard_ ? ~0u : limit - std::min(limit, kLoopGuardMargin);

@@ -49,7 +49,7 @@ Side sideOf(ProximityParams Q, CellsParams P, uint t, uint key) {
     s.triangle = t - obj.triangle_base;
     CellsGeometry g = CellsGeometryRef(P.geometry).g[t];
     s.index = uvec3(g.index[0], g.index[1], g.index[2]);
-    cpuTriangle(P, g, key, s.w);
+    worldTriangle(g, s.w);
     s.owned = ownedMask(Q, t);
     return s;
 }

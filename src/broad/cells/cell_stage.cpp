@@ -65,7 +65,11 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
         return {};
     };
     auto& P = cp->pipes_;
-    for (auto r : {compute(P.setup, shaders::cells_setup_comp, "cells-setup"), compute(P.big, shaders::cells_big_comp, "cells-big"),
+    // The setup and the pair pass each come with float64 (the CPU's world vertices, the
+    // filter and the exact decision) or without it (record: filterSupported()).
+    for (auto r : {device.shader_float64 ? compute(P.setup, shaders::cells_setup_comp, "cells-setup")
+                                         : compute(P.setup, shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"),
+                   compute(P.big, shaders::cells_big_comp, "cells-big"),
                    compute(P.scan, shaders::cells_scan_comp, "cells-scan"), compute(P.fill, shaders::cells_fill_comp, "cells-fill"),
                    compute(P.sweep, shaders::cells_sweep_comp, "cells-sweep"),
                    compute(P.sweep_plain, shaders::cells_sweep_plain_comp, "cells-sweep-plain"),
@@ -74,8 +78,6 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
                    compute(P.deep_guarded, shaders::cells_deep_guarded_comp, "cells-deep-guarded"),
                    compute(P.args, shaders::cells_args_comp, "cells-args")})
         if (!r) return r.error();
-    // One pair pass: with the float filter and the exact decision where the device has
-    // float64, else the one without them (record: filterSupported()).
     if (auto r = device.shader_float64 ? compute(cp->filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs")
                                        : compute(P.pairs, shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64");
         !r)

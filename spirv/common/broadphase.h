@@ -170,7 +170,8 @@ struct Push {
 // Object sampling without the graphics pipeline: edge-function rasterization in compute
 // with the rasterizer's coverage rule. Triangles whose pixel box is small are drawn by one
 // invocation each; bigger ones are cut into kCsTile x kCsTile pixel tiles, one workgroup
-// (one invocation per pixel) per work item of `tiles_per_item` consecutive tiles. Peeling
+// (one invocation per pixel) per work item of `tiles_per_item` consecutive tiles (more in a
+// triangle that would otherwise take more than kCsMaxTriangleItems items). Peeling
 // either draws the triangles again per step, or (fragment lists) the count pass stores
 // every ray's keys (a gather pass redraws when a ray had more than list_layers) and each
 // step picks the next keys per pixel from them.

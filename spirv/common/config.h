@@ -98,6 +98,13 @@ VKC_CONST kSeparationRefine = 1;
 // (= kCsTile^2) invocations, one per pixel.
 VKC_CONST kCsGroupSize = 64;
 VKC_CONST kCsTile = 8;
+// A big triangle takes at most this many work items; beyond, each item draws more tiles.
+// One invocation of the bin pass writes all of a triangle's items, and llvmpipe ends a
+// shader invocation's loops past 65,535 iterations without an error (DeviceInfo::
+// loop_iteration_limit): a triangle over a 4096^2 image has 262,144 tiles. With 4,096 it
+// draws 64 tiles per item (4,096 workgroups), at 16384^2 1,024; a test at 1024^2 (16,384
+// tiles, 4 per item) runs the path on lavapipe in CI.
+VKC_CONST kCsMaxTriangleItems = 4096;
 
 #ifdef __cplusplus
 // ---- Host only -------------------------------------------------------------------------

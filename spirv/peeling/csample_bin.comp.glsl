@@ -1,8 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Compute sampling, binning: each tiled triangle gets ceil(tiles / tiles_per_item) work
-// items. tiles_per_item is the smallest count that keeps every item within the buffer's
-// capacity: sum(ceil(T_i / g)) <= sum(T_i) / g + big_count <= item_capacity.
+// Compute sampling, binning: each tiled triangle gets ceil(tiles / g_i) work items, with
+// g_i = triangleTilesPerItem(tiles, tiles_per_item) >= tiles_per_item (so that no triangle
+// takes more than kCsMaxTriangleItems items: this loop writes them). tiles_per_item is the
+// smallest count that keeps every item within the buffer's capacity:
+// sum(ceil(T_i / g_i)) <= sum(ceil(T_i / g)) <= sum(T_i) / g + big_count <= item_capacity.
 #include "csample.glsl.inc"
 layout(local_size_x = kGroupSize) in;
 #include "common/dispatch.glsl.inc"
@@ -26,7 +28,8 @@ void main() {
         CsTriangle tri = CsTrianglesRef(cs.triangles).t[id];
         uvec2 box = unpackPixel(tri.box_hi) - unpackPixel(tri.box_lo) + 1u;
         uvec2 tiles = (box + kCsTile - 1u) / kCsTile;
-        items = (tiles.x * tiles.y + per - 1u) / per;
+        uint count = tiles.x * tiles.y, per_item = triangleTilesPerItem(count, per);
+        items = (count + per_item - 1u) / per_item;
     }
     // One atomic per subgroup.
     uint offset = subgroupExclusiveAdd(items), sum = subgroupAdd(items), first = 0u;

@@ -14,6 +14,8 @@
 #include "broad/peeling/peeling_method.hpp"
 #include "broad/peeling/sampling/backend_choice.hpp"
 #include "mesh/mesh_upload.hpp"
+#include "graph/executor.hpp"
+#include "shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vkcollide/scene.hpp"
 
@@ -360,6 +362,113 @@ TEST_CASE_METHOD(Fixture, "fragment lists grow to the depth complexity a run nee
     CHECK_FALSE(drawn->compute_fragment_lists);
     CHECK(drawn->ray_image == first->ray_image);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// The bin pass alone (csample_bin.comp): each big triangle gets ceil(tiles / tiles per item)
+// work items, all written by the invocation that bins it, and tiles per item is 1 while
+// every tile fits the item buffer. A triangle whose pixel box is a whole 4096^2 image has
+// 512^2 = 262,144 tiles: before, that was one loop of 262,144 iterations, and llvmpipe
+// ends a shader invocation's loops past 65,535 iterations without an error
+// (DeviceInfo::loop_iteration_limit): three quarters of the items were never written, and
+// the draw passes read whatever the buffer held instead (a tile drawn twice, tiles never).
+TEST_CASE("compute sampling: the bin pass writes every work item of a triangle with 262,144 tiles", "[gpu][compute-sampling][limits]") {
+    test::ValidatedContext ctx;
+    vk::Device& device = ctx.device();
+    auto pipeline = vk::Pipeline::createCompute(device, shaders::csample_bin_comp, {}, sizeof(gpu::Push), "bin-test");
+    REQUIRE(pipeline);
+    constexpr std::uint32_t kId = 5, kTriangles = kId + 1, kTiles = 512 * 512;
+    constexpr std::uint32_t kCapacity = kTiles + gpu::kCsExtraItems;  // one tile per item fits
+    using vk::MemoryKind;
+    auto frame = vk::Buffer::create(device, sizeof(gpu::Frame), 0, MemoryKind::Upload, "bin-frame");
+    auto cs = vk::Buffer::create(device, sizeof(gpu::CsFrame), 0, MemoryKind::Upload, "bin-cs-frame");
+    auto tris = vk::Buffer::create(device, kTriangles * sizeof(gpu::CsTriangle), 0, MemoryKind::Upload, "bin-triangles");
+    auto big = vk::Buffer::create(device, 4, 0, MemoryKind::Upload, "bin-big");
+    auto counters = vk::Buffer::create(device, sizeof(gpu::CsCounters), 0, MemoryKind::Readback, "bin-counters");
+    auto items = vk::Buffer::create(device, VkDeviceSize(kCapacity) * 8, 0, MemoryKind::Readback, "bin-items");
+    REQUIRE((frame && cs && tris && big && counters && items));
+    auto* t = static_cast<gpu::CsTriangle*>(tris->mapped());
+    std::memset(t, 0, kTriangles * sizeof(gpu::CsTriangle));
+    t[kId].box_lo = 0;
+    t[kId].box_hi = 4095u | (4095u << 16);
+    tris->flush();
+    *static_cast<std::uint32_t*>(big->mapped()) = kId;
+    big->flush();
+    gpu::CsCounters c{};
+    c.big_count = 1;
+    c.tiles_per_item = 1;
+    c.tiles = kTiles;
+    std::memcpy(counters->mapped(), &c, sizeof c);
+    counters->flush();
+    std::memset(items->mapped(), 0xFF, VkDeviceSize(kCapacity) * 8);  // unwritten: (~0, ~0)
+    items->flush();
+    gpu::CsFrame cf{};
+    cf.triangles = tris->address();
+    cf.big = big->address();
+    cf.items = items->address();
+    cf.counters = counters->address();
+    cf.item_capacity = kCapacity;
+    std::memcpy(cs->mapped(), &cf, sizeof cf);
+    cs->flush();
+    gpu::Frame f{};
+    f.compute_sampling = cs->address();
+    std::memcpy(frame->mapped(), &f, sizeof f);
+    frame->flush();
+    graph::Graph g;
+    const auto items_id = g.importBuffer("bin-items", *items, true);
+    const auto counters_id = g.importBuffer("bin-counters", *counters, true);
+    const VkPipeline handle = pipeline->handle();
+    const VkPipelineLayout layout = pipeline->layout();
+    const VkDeviceAddress frame_address = frame->address();
+    g.addPass("bin", graph::PassKind::Compute).readWrite(counters_id).write(items_id).record([=](graph::PassContext& pc) {
+        gpu::Push push{frame_address, 0, 0, 0, 0};
+        pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
+        pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+    });
+    graph::Executor executor(device);
+    REQUIRE(executor.run(g));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+    counters->invalidate();
+    items->invalidate();
+    std::memcpy(&c, counters->mapped(), sizeof c);
+    const auto* out = static_cast<const std::uint32_t*>(items->mapped());
+    REQUIRE(c.item_count >= 1);
+    REQUIRE(c.item_count <= kCapacity);
+    std::uint32_t wrong = 0, first_wrong = ~0u;
+    for (std::uint32_t k = 0; k < c.item_count; ++k)
+        if (out[2 * k] != kId || out[2 * k + 1] != k) {
+            first_wrong = std::min(first_wrong, k);
+            ++wrong;
+        }
+    INFO(c.item_count << " items, the first wrong at " << first_wrong);
+    CHECK(wrong == 0);
+    // Now at most kCsMaxTriangleItems items, which the draw passes read as that many
+    // tiles each (triangleTilesPerItem): every tile in one item.
+    CHECK(c.tiles_per_item == 1);
+    CHECK(c.item_count == gpu::kCsMaxTriangleItems);
+    CHECK(std::uint64_t(c.item_count) * ((kTiles + gpu::kCsMaxTriangleItems - 1) / gpu::kCsMaxTriangleItems) == kTiles);
+}
+
+// The draw passes with more tiles per item than the run's tiles_per_item: a sliver along
+// the diagonal of a 1024^2 image has 128^2 = 16,384 tiles in its pixel box, 4 per item
+// (kCsMaxTriangleItems), and every covered sample is drawn once, as the raster backend does.
+TEST_CASE_METHOD(Fixture, "compute sampling equals raster on a triangle whose box takes several tiles per work item", "[gpu][compute-sampling][limits]") {
+    Scene scene;
+    HostMesh m;
+    m.name = "sliver";
+    m.positions = {{-0.9995f, -0.9991f, 0.0f}, {0.9993f, 0.9996f, 0.0f}, {-0.9991f, -0.9997f, 0.0f}};  // inside the region
+    m.indices = {0, 1, 2};
+    scene.meshes.push_back(std::move(m));
+    scene.open.push_back(true);
+    BroadPhaseSettings s;
+    s.resolution = 1024;
+    s.region = std::array<float, 6>{-1.0f, -1.0f, -1.0f, 1.0f, 1.0f, 1.0f};
+    s.compute.list_budget_bytes = 0;  // draw per step
+    Compared c = compareBackends(ctx, bp, scene, s);
+    CHECK(c.compute.compute_big == 1);
+    CHECK(c.compute.compute_items == gpu::kCsMaxTriangleItems);  // 16,384 tiles, 4 per item
+    CHECK(c.compute.depth_complexity == 1);
+    CHECK(c.raster.fragments > 500);
 }
 
 TEST_CASE("Auto picks compute on GH100 parts, by triangle size elsewhere", "[compute-sampling]") {

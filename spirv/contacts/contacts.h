@@ -34,6 +34,12 @@ VKC_CONST kContactsTile = 8;
 // A triangle whose pixel box has at most this many pixels is drawn by the invocation that
 // set it up; bigger ones are cut into tiles, one workgroup each.
 VKC_CONST kContactsSmallBox = 64;
+// A big triangle takes at most this many work items of the tile pass; beyond, each item
+// draws several consecutive tiles (contactTilesPerItem). The setup pass writes a
+// triangle's items in one loop, and llvmpipe ends a shader invocation's loops past 65,535
+// iterations without an error (DeviceInfo::loop_iteration_limit): a triangle over a
+// 4096^2 ray grid has 262,144 tiles, 64 per item with this.
+VKC_CONST kContactsMaxTriangleItems = 4096;
 // Closed objects a ray may be inside at once; deeper nesting ignores the extra objects on
 // that ray (counted in ContactsHeader::nested_rays).
 VKC_CONST kContactsMaxInside = 16;

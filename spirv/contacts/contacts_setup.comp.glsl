@@ -3,7 +3,8 @@
 // Contact stage, submission 2, pass 1 (one invocation per triangle): the triangle in grid
 // space (CtTriangle: projected vertices, depth plane, unit normal, boundary weight,
 // object and facing); a triangle with a small pixel box is drawn here, a bigger one is
-// queued as one work item per 8x8-pixel tile for contacts_tiles.comp. Triangles of
+// queued as work items of consecutive 8x8-pixel tiles for contacts_tiles.comp (one tile
+// per item, or more past kContactsMaxTriangleItems items). Triangles of
 // inactive objects (open, or in no candidate pair) and triangles with no projected area
 // are skipped.
 #include "contacts_common.glsl.inc"
@@ -62,13 +63,14 @@ void main() {
         return;
     }
     uint tiles = ((w + kContactsTile - 1u) / kContactsTile) * ((h + kContactsTile - 1u) / kContactsTile);
+    uint per_item = contactTilesPerItem(tiles), count = (tiles + per_item - 1u) / per_item;
     ContactsHeaderRef hdr = contactsHeader(P);
-    uint first = atomicAdd(hdr.h.item_count, tiles);
-    if (uint64_t(first) + uint64_t(tiles) > uint64_t(P.item_capacity)) {
+    uint first = atomicAdd(hdr.h.item_count, count);
+    if (uint64_t(first) + uint64_t(count) > uint64_t(P.item_capacity)) {
         atomicOr(hdr.h.flags, kContactsOverflowItems);
-        atomicMax(hdr.h.items_needed, first + tiles);
+        atomicMax(hdr.h.items_needed, first + count);
         return;
     }
     CtUvec2sRef items = CtUvec2sRef(P.items);
-    for (uint k = 0u; k < tiles; ++k) items.v[first + k] = uvec2(t, k);
+    for (uint k = 0u; k < count; ++k) items.v[first + k] = uvec2(t, k);
 }

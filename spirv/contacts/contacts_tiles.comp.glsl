@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Contact stage, submission 2, pass 2 (one workgroup per work item, indirect): one 8x8
-// tile of a big triangle's pixel box, one invocation per pixel. Step 1 (one invocation)
+// Contact stage, submission 2, pass 2 (one workgroup per work item, indirect): the 8x8
+// tiles of a work item of a big triangle's pixel box (one, or contactTilesPerItem past
+// kContactsMaxTriangleItems items), one invocation per pixel of a tile. Step 1 (one invocation)
 // writes this pass's indirect arguments from the item count first.
 #include "contacts_common.glsl.inc"
 layout(local_size_x = kContactsGroupSize) in;
@@ -23,10 +24,15 @@ void main() {
     if (item >= min(hdr.h.item_count, P.item_capacity)) return;
     uvec2 it = CtUvec2sRef(P.items).v[item];
     CtTriangle c = CtTrianglesRef(P.triangles).t[it.x];
-    uint w = uint(c.box[2] - c.box[0] + 1);
+    uint w = uint(c.box[2] - c.box[0] + 1), h = uint(c.box[3] - c.box[1] + 1);
     uint tiles_x = (w + kContactsTile - 1u) / kContactsTile;
-    int px = c.box[0] + int((it.y % tiles_x) * kContactsTile + gl_LocalInvocationIndex % kContactsTile);
-    int py = c.box[1] + int((it.y / tiles_x) * kContactsTile + gl_LocalInvocationIndex / kContactsTile);
-    if (px > c.box[2] || py > c.box[3]) return;
-    drawPixel(P, it.x, c, px, py);
+    uint tiles = tiles_x * ((h + kContactsTile - 1u) / kContactsTile);
+    uint per_item = contactTilesPerItem(tiles);  // as the setup pass counted
+    uint first = it.y * per_item, last = min(first + per_item, tiles);
+    for (uint tile = first; tile < last; ++tile) {
+        int px = c.box[0] + int((tile % tiles_x) * kContactsTile + gl_LocalInvocationIndex % kContactsTile);
+        int py = c.box[1] + int((tile / tiles_x) * kContactsTile + gl_LocalInvocationIndex / kContactsTile);
+        if (px > c.box[2] || py > c.box[3]) continue;
+        drawPixel(P, it.x, c, px, py);
+    }
 }

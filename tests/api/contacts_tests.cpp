@@ -7,9 +7,14 @@
 // bad settings are named.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
+#include "contacts/contacts.h"
+#include "graph/executor.hpp"
+#include "shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/test_scenes.hpp"
 #include "support/world_fixture.hpp"
@@ -279,5 +284,148 @@ TEST_CASE("contacts: two detections in flight each get them, on their slot's buf
         CHECK(r->contacts[0].volume == one->contacts[0].volume);
         CHECK(r->contacts[0].depth == one->contacts[0].depth);
     }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// The setup pass alone (contacts_setup.comp): a triangle whose pixel box is bigger than
+// kContactsSmallBox is queued as work items of the tile pass, all written by the
+// invocation that set it up. Its box here is the whole 4096^2 ray grid: 512^2 = 262,144
+// tiles. Before, one work item per tile, one loop iteration each: llvmpipe ends a shader
+// invocation's loops past 65,535 iterations without an error (DeviceInfo::
+// loop_iteration_limit), so the items past 65,535 were never written and the tile pass drew
+// whatever the buffer held instead (a 4096 x 1229 grid, end to end: volume 0.49996 for 0.6).
+TEST_CASE("contacts: the setup pass queues every tile of a triangle over a 4096^2 ray grid", "[contacts][gpu][limits]") {
+    ValidatedContext ctx;
+    vk::Device& device = ctx.device();
+    auto pipeline = vk::Pipeline::createCompute(device, shaders::contacts_setup_comp, {}, sizeof(gpu::Push), "contacts-setup-test");
+    REQUIRE(pipeline);
+    constexpr std::uint32_t kGrid = 4096, kTiles = (kGrid / gpu::kContactsTile) * (kGrid / gpu::kContactsTile);
+    constexpr std::uint32_t kCapacity = kTiles + 1024;
+    using vk::MemoryKind;
+    auto params = vk::Buffer::create(device, sizeof(gpu::ContactsParams), 0, MemoryKind::Upload, "setup-params");
+    auto objects = vk::Buffer::create(device, sizeof(gpu::ObjectGpu), 0, MemoryKind::Upload, "setup-objects");
+    auto mesh = vk::Buffer::create(device, 64, 0, MemoryKind::Upload, "setup-mesh");  // 3 positions, then 3 indices
+    auto active = vk::Buffer::create(device, 4, 0, MemoryKind::Upload, "setup-active");
+    auto tris = vk::Buffer::create(device, sizeof(gpu::CtTriangle), 0, MemoryKind::Readback, "setup-triangles");
+    auto header = vk::Buffer::create(device, sizeof(gpu::ContactsHeader), 0, MemoryKind::Readback, "setup-header");
+    auto items = vk::Buffer::create(device, VkDeviceSize(kCapacity) * 8, 0, MemoryKind::Readback, "setup-items");
+    REQUIRE((params && objects && mesh && active && tris && header && items));
+    // One triangle in grid units (the grid is the world here), its box past the grid's corners.
+    const float positions[9] = {-10.0f, -10.0f, 0.0f, 9000.0f, -10.0f, 0.0f, -10.0f, 9000.0f, 0.0f};
+    const std::uint32_t indices[3] = {0, 1, 2};
+    std::memcpy(mesh->mapped(), positions, sizeof positions);
+    std::memcpy(static_cast<char*>(mesh->mapped()) + 48, indices, sizeof indices);
+    mesh->flush();
+    gpu::ObjectGpu o{};
+    o.vertices = mesh->address();
+    o.indices = mesh->address() + 48;
+    o.vertex_stride = 12;
+    o.vertex_count = 3;
+    o.triangle_count = 1;
+    o.model[0] = {1, 0, 0, 0};
+    o.model[1] = {0, 1, 0, 0};
+    o.model[2] = {0, 0, 1, 0};
+    std::memcpy(objects->mapped(), &o, sizeof o);
+    objects->flush();
+    *static_cast<std::uint32_t*>(active->mapped()) = 1;
+    active->flush();
+    std::memset(header->mapped(), 0, sizeof(gpu::ContactsHeader));
+    header->flush();
+    std::memset(items->mapped(), 0xFF, VkDeviceSize(kCapacity) * 8);  // unwritten: (~0, ~0)
+    items->flush();
+    gpu::ContactsParams P{};
+    P.objects = objects->address();
+    P.object_active = active->address();
+    P.triangles = tris->address();
+    P.items = items->address();
+    P.header = header->address();
+    P.grid[0] = {1, 0, 0, 0};
+    P.grid[1] = {0, 1, 0, 0};
+    P.grid[2] = {0, 0, 1, 0};
+    P.width = P.height = kGrid;
+    P.layers = 1;
+    P.item_capacity = kCapacity;
+    P.triangle_count = 1;
+    P.object_count = 1;
+    P.max_groups_x = 65535;
+    P.max_weight = gpu::kContactMaxWeight;
+    P.fixed_scale = 1;
+    std::memcpy(params->mapped(), &P, sizeof P);
+    params->flush();
+    graph::Graph g;
+    const auto items_id = g.importBuffer("setup-items", *items, true);
+    const auto header_id = g.importBuffer("setup-header", *header, true);
+    const auto tris_id = g.importBuffer("setup-triangles", *tris, true);
+    const VkPipeline handle = pipeline->handle();
+    const VkPipelineLayout layout = pipeline->layout();
+    const VkDeviceAddress params_address = params->address();
+    g.addPass("setup", graph::PassKind::Compute).readWrite(header_id).write(items_id).write(tris_id).record([=](graph::PassContext& pc) {
+        gpu::Push push{params_address, 0, 0, 0, 0};
+        pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
+        pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+    });
+    graph::Executor executor(device);
+    REQUIRE(executor.run(g));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+    header->invalidate();
+    items->invalidate();
+    tris->invalidate();
+    gpu::ContactsHeader h;
+    std::memcpy(&h, header->mapped(), sizeof h);
+    gpu::CtTriangle t;
+    std::memcpy(&t, tris->mapped(), sizeof t);
+    CHECK(h.flags == 0);
+    CHECK(t.box[0] == 0);
+    CHECK(t.box[1] == 0);
+    CHECK(t.box[2] == int(kGrid) - 1);
+    CHECK(t.box[3] == int(kGrid) - 1);
+    REQUIRE(h.item_count >= 1);
+    REQUIRE(h.item_count <= kCapacity);
+    const auto* out = static_cast<const std::uint32_t*>(items->mapped());
+    std::uint32_t wrong = 0, first_wrong = ~0u;
+    for (std::uint32_t k = 0; k < h.item_count; ++k)
+        if (out[2 * k] != 0 || out[2 * k + 1] != k) {
+            first_wrong = std::min(first_wrong, k);
+            ++wrong;
+        }
+    INFO(h.item_count << " items, the first wrong at " << first_wrong);
+    CHECK(wrong == 0);
+    // Now at most kContactsMaxTriangleItems items, of 64 tiles each here (the tile pass
+    // reads them as such: contactTilesPerItem).
+    CHECK(h.item_count == gpu::kContactsMaxTriangleItems);
+    CHECK(std::uint64_t(h.item_count) * (kTiles / gpu::kContactsMaxTriangleItems) == kTiles);
+}
+
+// The tile pass with several tiles per work item: a face of these boxes covers the whole
+// 1024 x 307 ray grid, 128 x 39 = 4,992 tiles, more than kContactsMaxTriangleItems: two
+// tiles per item, and the overlap is measured in full.
+TEST_CASE("contacts: a face whose tiles take several per work item is drawn in full", "[contacts][gpu][limits]") {
+    ValidatedContext ctx;
+    auto world = makeWorld(ctx);
+    auto a_mesh = box({1, 0.3f, 1}, 1), b_mesh = box({1, 0.3f, 1}, 1);
+    REQUIRE(a_mesh);
+    REQUIRE(b_mesh);
+    auto a = world->addMesh(*a_mesh, {.name = "a"});
+    auto b = world->addMesh(*b_mesh, {.name = "b", .transform = translation(0, 0, 1.5)});
+    REQUIRE(a);
+    REQUIRE(b);
+    DetectSettings s;
+    s.direction = std::array<float, 3>{0, 0, 1};
+    s.contacts.objects = true;
+    s.contacts.resolution = 1024;
+    auto r = world->detect(s);
+    INFO((r ? std::string() : r.error().message()));
+    REQUIRE(r);
+    REQUIRE(r->contacts.size() == 1);
+    const ObjectContact& c = r->contacts[0];
+    const double volume = 2.0 * 0.6 * 0.5;  // the boxes' overlap
+    INFO("volume " << c.volume);
+    CHECK(std::fabs(c.volume - volume) < 0.01 * volume);
+    CHECK(std::fabs(c.depth - 0.5) < 0.01);
+    CHECK(angleDegrees(c.normal, {0, 0, 1}) < 0.5);
+    CHECK(std::max(r->stats.contacts.rays_x, r->stats.contacts.rays_y) == 1024);
+    INFO("rays " << r->stats.contacts.rays_x << " x " << r->stats.contacts.rays_y);
+    CHECK(std::min(r->stats.contacts.rays_x, r->stats.contacts.rays_y) > 4096 / 128 * 8);  // more than 4,096 tiles
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

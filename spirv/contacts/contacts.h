@@ -56,6 +56,8 @@ VKC_CONST kSumCount = 8u;
 // ContactsHeader::flags: a buffer was too small; the host grows it and runs again.
 VKC_CONST kContactsOverflowLayers = 1u;  // a ray had more fragments than `layers`
 VKC_CONST kContactsOverflowItems = 2u;   // more tile work items than `item_capacity`
+// ... and an error: a ray's sort and walk need more loop iterations than `loop_guard`.
+VKC_CONST kContactsLoopLimit = 4u;
 
 // CtTriangle::key
 VKC_CONST kCtKeyObject = 0x7FFFFFFFu;
@@ -83,7 +85,10 @@ struct ContactsParams {
     uint max_groups_x;                    // dispatch rows (maxComputeWorkGroupCount[0])
     float max_weight;                     // cap of 1 / |cos| for a fragment's area
     float fixed_scale;                    // grid-unit sums -> int64 fixed point
-    uint pad0, pad1;
+    // Most loop iterations a subgroup of the walk may run (~0: no bound): set below
+    // DeviceInfo::loop_iteration_limit where the device ends longer loops silently.
+    uint loop_guard;
+    uint pad1;
 };
 
 struct ContactsHeader {

@@ -12,6 +12,15 @@
 // Per ray, sums stay in registers for up to kContactsRayPairs pairs; then lanes that hold
 // the same pair add them with subgroup operations and one lane adds them to the table
 // (fixed point: 64-bit integer atomics, exact and order-independent).
+//
+// One invocation sorts and walks a whole ray: up to n (n - 1) / 2 sort steps for n
+// fragments. llvmpipe ends a shader invocation's loops once their iterations together pass
+// 65,535, without an error (DeviceInfo::loop_iteration_limit); there P.loop_guard bounds
+// them (below that limit; ~0 elsewhere): the sort's before it starts (a loop runs as long
+// as its longest lane, so a subgroup sorts in at most m (m + 1) / 2 iterations for its
+// longest list m), the walk's as it goes (every iteration of the subgroup's is one of some
+// lane's, so at most their sum). Past the guard the run fails by name (kContactsLoopLimit)
+// instead of ending its loops early.
 #include "contacts_common.glsl.inc"
 layout(local_size_x = kContactsGroupSize) in;
 
@@ -21,6 +30,7 @@ float acc[kContactsRayPairs][kSumCount];
 vec3 axis_of[kContactsRayPairs];  // step 1: the pair's unit normal (grid space)
 bool axis_ok[kContactsRayPairs];
 uint local_count = 0u;
+uint steps = 0u;  // this lane's loop iterations in the walk
 
 int64_t toFixed(ContactsParams P, float x) { return int64_t(roundEven(x * P.fixed_scale)); }
 
@@ -38,11 +48,14 @@ bool pairAxis(ContactsParams P, int slot, out vec3 axis) {
 
 // Index of the local sums of table slot `slot` (-1: none free).
 int localOf(ContactsParams P, int slot, uint step) {
-    for (uint k = 0u; k < local_count; ++k)
+    for (uint k = 0u; k < local_count; ++k) {
+        ++steps;
         if (slot_of[k] == slot) return int(k);
+    }
     if (local_count == kContactsRayPairs) return -1;
     uint k = local_count++;
     slot_of[k] = slot;
+    steps += kSumCount;
     for (uint f = 0u; f < kSumCount; ++f) acc[k][f] = 0.0;
     if (step == 1u) {
         acc[k][0] = 3.0e38;
@@ -59,7 +72,7 @@ void addSum(ContactsParams P, int slot, int local, uint f, float v) {
 }
 
 void overlap(ContactsParams P, uint step, uint a, uint b, vec2 xy, float z0, float z1) {
-    int slot = findPair(P, min(a, b), max(a, b));
+    int slot = findPair(P, min(a, b), max(a, b), steps);
     if (slot < 0) return;
     int local = localOf(P, slot, step);
     if (step == 0u) {
@@ -92,10 +105,11 @@ void overlap(ContactsParams P, uint step, uint a, uint b, vec2 xy, float z0, flo
 
 // Boundary of the intersection volume: triangle `c` of object `o`, inside object `other`.
 void boundary(ContactsParams P, uint o, uint other, CtTriangle c) {
-    int slot = findPair(P, min(o, other), max(o, other));
+    int slot = findPair(P, min(o, other), max(o, other), steps);
     if (slot < 0) return;
     int local = localOf(P, slot, 0u);
     float sign = o < other ? 1.0 : -1.0;
+    steps += 3u;
     for (uint k = 0u; k < 3u; ++k) addSum(P, slot, local, kSumNormal + k, sign * c.n[k] * c.weight);
     addSum(P, slot, local, kSumArea, c.weight);
 }
@@ -137,6 +151,17 @@ void main() {
     uint ray = globalIndex();
     bool live = ray < P.width * P.height && hdr.h.flags == 0u;
     uint n = live ? min(UintsRef(P.counts).v[ray], P.layers) : 0u;
+    // The sort's iterations in this subgroup, at most (step 1: none).
+    const bool guarded = P.loop_guard != 0xFFFFFFFFu;
+    uint64_t longest = uint64_t(subgroupMax(n));
+    uint64_t bound = step == 0u ? longest * (longest + 1ul) / 2ul : 0ul;
+    if (guarded && bound > uint64_t(P.loop_guard)) {
+        if (subgroupElect()) {
+            atomicOr(hdr.h.flags, kContactsLoopLimit);
+            atomicMax(hdr.h.max_fragments, uint(longest));  // for the error
+        }
+        n = 0u;
+    }
     // This ray's list (ray-major).
     CtUvec2sRef entries = CtUvec2sRef(P.entries + uint64_t(live ? ray : 0u) * uint64_t(P.layers) * 8ul);
     const uint base = 0u;
@@ -165,6 +190,7 @@ void main() {
     float prev_z = 0.0;
     CtTrianglesRef tris = CtTrianglesRef(P.triangles);
     for (uint i = 0u; i < n; ++i) {
+        ++steps;
         uvec2 e = entries.v[base + i];
         float z = uintBitsToFloat(e.x);
         CtTriangle c = tris.t[e.y];
@@ -172,8 +198,10 @@ void main() {
         // The interval since the last fragment, for every pair inside both.
         if (i > 0u && z > prev_z)
             for (uint p = 0u; p < n_inside; ++p) {
+                ++steps;
                 if (inside_count[p] <= 0) continue;
                 for (uint q = p + 1u; q < n_inside; ++q) {
+                    ++steps;
                     if (inside_count[q] <= 0) continue;
                     overlap(P, step, inside_obj[p], inside_obj[q], xy, prev_z, z);
                     any_overlap = true;
@@ -182,6 +210,7 @@ void main() {
         // This fragment bounds the intersection volume where the ray is inside another object.
         int at = -1;
         for (uint p = 0u; p < n_inside; ++p) {
+            ++steps;
             if (inside_obj[p] == o) at = int(p);
             else if (step == 0u && inside_count[p] > 0) boundary(P, o, inside_obj[p], c);
         }
@@ -201,6 +230,12 @@ void main() {
             nested = true;
         }
         prev_z = z;
+    }
+    // The walk's iterations: every subgroup iteration is one of some lane's. (flush() adds
+    // at most (kContactsRayPairs + 1) (kSumCount + 1) per lane: the guard's margin.)
+    if (guarded && bound + uint64_t(subgroupAdd(steps)) > uint64_t(P.loop_guard) && subgroupElect()) {
+        atomicOr(hdr.h.flags, kContactsLoopLimit);
+        atomicMax(hdr.h.max_fragments, uint(longest));
     }
     flush(P, step);
     if (step == 0u) {

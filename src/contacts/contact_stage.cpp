@@ -25,6 +25,9 @@ static_assert(sizeof(gpu::CtTriangle) == 72 && sizeof(gpu::ContactsPair) == 80);
 // must not take the memory the engine and the broad phase need.
 constexpr VkDeviceSize kMaxListBytes = VkDeviceSize(1) << 30;
 constexpr std::uint32_t kMaxRuns = 6;
+// Loop iterations kept below DeviceInfo::loop_iteration_limit for what the walk does not
+// count (its flush: at most a few hundred a subgroup).
+constexpr std::uint32_t kLoopGuardMargin = 5535;
 
 std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kContactsGroupSize - 1) / gpu::kContactsGroupSize; }
 
@@ -234,6 +237,10 @@ Result<Collected> ContactStage::begin(const RunView& run) {
     params_.object_count = n;
     params_.max_groups_x = device_->properties.limits.maxComputeWorkGroupCount[0];
     params_.max_weight = gpu::kContactMaxWeight;
+    // A device that ends a shader invocation's loops past some count without an error
+    // (llvmpipe): the walk counts its loops against a bound below it and fails by name.
+    const std::uint32_t limit = device_->info.loop_iteration_limit;
+    params_.loop_guard = limit == 0 ? ~0u : limit - std::min(limit, kLoopGuardMargin);
     auto* active = static_cast<std::uint32_t*>(rows_.active->mapped());
     for (std::uint32_t i = 0; i < n; ++i) active[i] = run.meshes[i].open ? 0u : 1u;
     rows_.active->flush();
@@ -253,6 +260,12 @@ Result<Collected> ContactStage::collect(const RunView& run, const graph::Executi
         readContacts(h);
         return Collected::Done;
     }
+    if (h.flags & gpu::kContactsLoopLimit)
+        return Error(ErrorCode::LimitExceeded,
+                     "contacts: a ray crosses more surfaces than " + device_->info.name + " sorts and walks in one shader invocation (" +
+                         std::to_string(h.max_fragments) + " hits on one ray at contacts.resolution " + std::to_string(in_.resolution) +
+                         "; it ends loops past " + std::to_string(device_->info.loop_iteration_limit) +
+                         " iterations without an error): fewer surfaces stacked along the direction, or detect on a GPU");
     if (h.flags & gpu::kContactsOverflowLayers) layers_ = std::max(layers_ + 1, h.max_fragments + h.max_fragments / 4);
     if (h.flags & gpu::kContactsOverflowItems) item_capacity_ = std::max(item_capacity_ + 1, h.items_needed + h.items_needed / 4);
     if (out_.runs == kMaxRuns)

@@ -15,6 +15,7 @@
 #include "contacts/contacts.h"
 #include "graph/executor.hpp"
 #include "shaders/all.hpp"
+#include "support/error_text.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/test_scenes.hpp"
 #include "support/world_fixture.hpp"
@@ -427,5 +428,68 @@ TEST_CASE("contacts: a face whose tiles take several per work item is drawn in f
     CHECK(std::max(r->stats.contacts.rays_x, r->stats.contacts.rays_y) == 1024);
     INFO("rays " << r->stats.contacts.rays_x << " x " << r->stats.contacts.rays_y);
     CHECK(std::min(r->stats.contacts.rays_x, r->stats.contacts.rays_y) > 4096 / 128 * 8);  // more than 4,096 tiles
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+namespace {
+
+// `slabs` thin boxes stacked along z inside one big box, the highest first (the first
+// triangles drawn are the farthest along the rays, so a ray's list starts in reverse
+// depth order: the walk's insertion sort does its most work). Every slab is contained in
+// the big box, with its own volume.
+struct SlabStack {
+    std::unique_ptr<CollisionWorld> world;
+    double slab_volume = 0;
+};
+SlabStack slabStack(ValidatedContext& ctx, int slabs) {
+    SlabStack s{makeWorld(ctx), 0};
+    auto outer = box({1, 1, 1}, 1), slab = box({0.5f, 0.5f, 0.002f}, 1);
+    REQUIRE(outer);
+    REQUIRE(slab);
+    s.slab_volume = meshVolume(*slab);
+    REQUIRE(s.world->addMesh(*outer, {.name = "outer"}));
+    for (int i = 0; i < slabs; ++i)
+        REQUIRE(s.world->addMesh(*slab, {.name = "slab", .transform = translation(0, 0, -0.9 + 1.8 * (i + 0.5) / slabs)}));
+    return s;
+}
+
+}  // namespace
+
+// A ray's fragments are sorted in one shader invocation (insertion sort: up to n (n + 1) / 2
+// loop iterations for n fragments) and walked there. Through 400 slabs in a box a ray has
+// 802 fragments: up to 321,403 iterations, past the 65,535 that llvmpipe runs in one
+// shader invocation before it ends the loops without an error (DeviceInfo::
+// loop_iteration_limit). Before, the detection succeeded there with no contact at all;
+// now it fails naming that limit. On a GPU, and through 60 slabs everywhere, every
+// slab's volume.
+TEST_CASE("contacts: a ray through 400 stacked slabs gives every slab's volume, or on llvmpipe a named loop limit", "[contacts][gpu][limits]") {
+    ValidatedContext ctx;
+    const bool llvmpipe = ctx.device().info.loop_iteration_limit != 0;
+    for (int slabs : {60, 400}) {
+        INFO(slabs << " slabs");
+        SlabStack s = slabStack(ctx, slabs);
+        DetectSettings settings;
+        settings.direction = std::array<float, 3>{0, 0, 1};
+        settings.contacts.objects = true;
+        settings.contacts.resolution = 16;
+        auto r = s.world->detect(settings);
+        if (slabs == 400 && llvmpipe) {
+            REQUIRE_FALSE(r);
+            INFO(r.error().message());
+            CHECK(r.error().code() == ErrorCode::LimitExceeded);
+            CHECK(mentions(r.error(), "loop"));
+            CHECK(mentions(r.error(), "65535"));
+            continue;
+        }
+        INFO((r ? std::string() : r.error().message()));
+        REQUIRE(r);
+        REQUIRE(r->contacts.size() == std::size_t(slabs));
+        std::size_t wrong = 0;
+        for (const ObjectContact& c : r->contacts)
+            if (!c.contained || std::fabs(c.volume - s.slab_volume) > 0.02 * s.slab_volume) ++wrong;
+        INFO("first: volume " << r->contacts[0].volume << " for " << s.slab_volume << (r->contacts[0].contained ? ", contained" : ""));
+        CHECK(wrong == 0);
+        CHECK(r->stats.contacts.layers >= std::uint32_t(2 + 2 * slabs));
+    }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

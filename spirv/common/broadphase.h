@@ -99,6 +99,11 @@ struct PixelState {
     uint flags;
 };
 
+// Header::loop_limit. llvmpipe ends a shader invocation's loops once their iterations
+// together pass 65,535, without an error (DeviceInfo::loop_iteration_limit); a pass whose
+// loops can run that long checks that each ran to its end and sets its bit if not.
+VKC_CONST kLoopLimitSplat = 1u;  // tri_bounds: an edge-on triangle's depth did not reach every ray near it
+
 // Small results the host reads after each submission.
 struct Header {
     uint depth_complexity;  // max fragments on one ray that is peeled (not thin, not deep)
@@ -112,7 +117,7 @@ struct Header {
     uint cs_small;          // compute sampling: triangles drawn by one invocation each
     uint cs_big;            // ... triangles drawn in tiles
     uint cs_items;          // ... tile work items (workgroups) for the big ones
-    uint pad0;
+    uint loop_limit;        // kLoopLimit*: a pass's loops ended early (llvmpipe's loop limit); the run fails
     uint64_t fragments;     // sum over rays of their fragment counts (reduce-max)
     uint deep_rays;         // rays with more than kMaxRayFragments fragments (collision rays, not peeled)
     uint subnormal_vertices;  // vertices with a subnormal coordinate (bounds pass): GPUs flush them to zero

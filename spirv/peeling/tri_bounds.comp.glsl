@@ -16,13 +16,21 @@ layout(local_size_x = kGroupSize) in;
 
 // Every ray whose sample lies within d pixels of the segment a-b (pixel coordinates), and a
 // few more, gets [zlo, zhi]: per row of rays, the x range of the part of the segment
-// within d of the row's height, widened by d.
-void splat(Frame f, vec2 a, vec2 b, float d, float zlo, float zhi) {
+// within d of the row's height, widened by d. About (4 d + 2) x the segment's pixels in
+// x and y: up to some 48,000 loop iterations across a 4096^2 image, twice that at 8192^2,
+// and a subgroup runs each loop as long as its longest lane. Returns false where a loop
+// ended before its range did, which only a device that ends long loops silently does
+// (llvmpipe past 65,535 iterations in one invocation): then rays near the segment lack
+// the depth, and the run must fail (kLoopLimitSplat). Each loop counts its iterations:
+// nothing a compiler can equate with the range without knowing about that limit.
+bool splat(Frame f, vec2 a, vec2 b, float d, float zlo, float zhi) {
     int n = int(f.resolution);
     UintsRef ed = UintsRef(f.edge_depth);
     uint lo_key = ~orderedFromFloat(zlo), hi_key = orderedFromFloat(zhi);
     int row0 = max(int(ceil(min(a.y, b.y) - d - 0.5)), 0), row1 = min(int(floor(max(a.y, b.y) + d - 0.5)), n - 1);
+    int rows_done = 0;
     for (int j = row0; j <= row1; ++j) {
+        ++rows_done;
         float yc = float(j) + 0.5, dy = b.y - a.y;
         float t0 = 0.0, t1 = 1.0;
         if (abs(dy) > 1e-6) {
@@ -32,12 +40,16 @@ void splat(Frame f, vec2 a, vec2 b, float d, float zlo, float zhi) {
         }
         float x0 = a.x + (b.x - a.x) * t0, x1 = a.x + (b.x - a.x) * t1;
         int col0 = max(int(ceil(min(x0, x1) - d - 0.5)), 0), col1 = min(int(floor(max(x0, x1) + d - 0.5)), n - 1);
+        int cols_done = 0;
         for (int i = col0; i <= col1; ++i) {
+            ++cols_done;
             uint p = uint(j * n + i);
             atomicMax(ed.v[2u * p], lo_key);
             atomicMax(ed.v[2u * p + 1u], hi_key);
         }
+        if (cols_done < col1 - col0 + 1) return false;
     }
+    return rows_done >= row1 - row0 + 1;
 }
 
 void main() {
@@ -84,6 +96,6 @@ void main() {
         if (length(e2) > longest) { c = p2; far = p1; longest = length(e2); }
         if (length(e2 - e1) > longest) { a = p1; c = p2; far = p0; longest = length(e2 - e1); }
         float height = longest > 0.0 ? abs(det) / longest : 0.0;
-        splat(f, a, c, height + kNearReachPx, b.zmin, b.zmax);
+        if (!splat(f, a, c, height + kNearReachPx, b.zmin, b.zmax)) atomicOr(HeaderRef(f.header).h.loop_limit, kLoopLimitSplat);
     }
 }

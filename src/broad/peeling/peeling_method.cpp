@@ -186,6 +186,13 @@ Result<Collected> PeelingMethod::collect(const RunView& run, const gpu::Header& 
         return Collected::Again;
     }
     const std::uint32_t triangles = run.frame.triangle_count, pixels = run.frame.resolution * run.frame.resolution;
+    // A pass's loops ended early: only where the device ends long loops without an error.
+    if (h.loop_limit & gpu::kLoopLimitSplat)
+        return Error(ErrorCode::LimitExceeded,
+                     "depth-aware separation: edge-on triangles at resolution " + std::to_string(run.frame.resolution) +
+                         " reach more rays than " + device_->info.name + " marks in one shader invocation (it ends loops past " +
+                         std::to_string(device_->info.loop_iteration_limit) +
+                         " iterations without an error): lower the resolution, set DetectSettings::peeling.depth_aware false, or detect on a GPU");
     sampling_->report(h, triangles, result);
     result.layers = layers_;
     result.peel_steps = steps_;

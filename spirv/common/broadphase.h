@@ -103,6 +103,7 @@ struct PixelState {
 // together pass 65,535, without an error (DeviceInfo::loop_iteration_limit); a pass whose
 // loops can run that long checks that each ran to its end and sets its bit if not.
 VKC_CONST kLoopLimitSplat = 1u;  // tri_bounds: an edge-on triangle's depth did not reach every ray near it
+VKC_CONST kLoopLimitDraw = 2u;   // compute sampling: a work item's tiles were not all drawn
 
 // Small results the host reads after each submission.
 struct Header {

@@ -138,3 +138,95 @@ TEST_CASE("depth-aware bounds: edge-on slivers across a 4096^2 image reach every
         CHECK(ctx.device().info.loop_iteration_limit != 0);
     }
 }
+
+// Compute sampling's draw passes (here the count pass, csample_count.comp): a workgroup per
+// work item, and each invocation loops over the item's tiles. A run's tiles_per_item
+// passes 65,535 only past 4.3e9 tiles (a buffer of at least kCsExtraItems items), beyond
+// any lavapipe run; set here directly: 100,000 tiles of a triangle over a 4096^2 image in
+// one item. On llvmpipe the loop ended after 65,535 tiles (before: silently); now the pass
+// flags kLoopLimitDraw, which the peeling method reports as LimitExceeded.
+TEST_CASE("compute sampling: a work item of 100,000 tiles draws them all, or flags the loop limit", "[gpu][limits][compute-sampling]") {
+    ValidatedContext ctx;
+    vk::Device& device = ctx.device();
+    auto pipeline = vk::Pipeline::createCompute(device, shaders::csample_count_comp, {}, sizeof(gpu::Push), "csample-count-test");
+    REQUIRE(pipeline);
+    constexpr std::uint32_t n = 4096, kPerItem = 100000;
+    const std::uint32_t bits = device.properties.limits.subPixelPrecisionBits;
+    const int far = int((3 * n) << bits);
+    using vk::MemoryKind;
+    const VkDeviceSize ray_bytes = VkDeviceSize(n) * n * 8;
+    auto frame = vk::Buffer::create(device, sizeof(gpu::Frame), 0, MemoryKind::Upload, "cc-frame");
+    auto cs = vk::Buffer::create(device, sizeof(gpu::CsFrame), 0, MemoryKind::Upload, "cc-cs-frame");
+    auto tri = vk::Buffer::create(device, sizeof(gpu::CsTriangle), 0, MemoryKind::Upload, "cc-triangle");
+    auto items = vk::Buffer::create(device, 8, 0, MemoryKind::Upload, "cc-items");
+    auto counters = vk::Buffer::create(device, sizeof(gpu::CsCounters), 0, MemoryKind::Upload, "cc-counters");
+    auto header = vk::Buffer::create(device, sizeof(gpu::Header), 0, MemoryKind::Readback, "cc-header");
+    auto rays = vk::Buffer::create(device, ray_bytes, 0, MemoryKind::Readback, "cc-ray-fragments");
+    REQUIRE((frame && cs && tri && items && counters && header && rays));
+    gpu::CsTriangle t{};
+    t.x[0] = -1000, t.y[0] = -1000, t.x[1] = far, t.y[1] = -1000, t.x[2] = -1000, t.y[2] = far;  // covers the image
+    t.box_lo = 0;
+    t.box_hi = (n - 1) | ((n - 1) << 16);
+    t.z = 0.5f;
+    std::memcpy(tri->mapped(), &t, sizeof t);
+    tri->flush();
+    const std::uint32_t item[2] = {0, 0};
+    std::memcpy(items->mapped(), item, sizeof item);
+    items->flush();
+    gpu::CsCounters c{};
+    c.item_count = 1;
+    c.tiles_per_item = kPerItem;
+    c.total_groups = 1;
+    std::memcpy(counters->mapped(), &c, sizeof c);
+    counters->flush();
+    std::memset(header->mapped(), 0, sizeof(gpu::Header));
+    header->flush();
+    std::memset(rays->mapped(), 0, ray_bytes);
+    rays->flush();
+    gpu::CsFrame cf{};
+    cf.triangles = tri->address();
+    cf.items = items->address();
+    cf.counters = counters->address();
+    cf.item_capacity = 1;
+    cf.subpixel_bits = bits;
+    std::memcpy(cs->mapped(), &cf, sizeof cf);
+    cs->flush();
+    gpu::Frame f{};
+    f.header = header->address();
+    f.compute_sampling = cs->address();
+    f.ray_fragments = rays->address();
+    f.resolution = n;
+    std::memcpy(frame->mapped(), &f, sizeof f);
+    frame->flush();
+    graph::Graph g;
+    const auto rays_id = g.importBuffer("cc-ray-fragments", *rays, true);
+    const auto header_id = g.importBuffer("cc-header", *header, true);
+    const VkPipeline handle = pipeline->handle();
+    const VkPipelineLayout layout = pipeline->layout();
+    const VkDeviceAddress frame_address = frame->address();
+    g.addPass("count", graph::PassKind::Compute).readWrite(rays_id).readWrite(header_id).record([=](graph::PassContext& pc) {
+        gpu::Push push{frame_address, 0, 0, 0, 0};
+        pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
+        pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+    });
+    graph::Executor executor(device);
+    REQUIRE(executor.run(g));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+    header->invalidate();
+    rays->invalidate();
+    gpu::Header h;
+    std::memcpy(&h, header->mapped(), sizeof h);
+    const auto* counts = static_cast<const std::uint64_t*>(rays->mapped());
+    std::uint64_t drawn = 0;
+    for (std::size_t p = 0; p < std::size_t(n) * n; ++p) drawn += counts[p];
+    const std::uint64_t expected = std::uint64_t(kPerItem) * gpu::kCsTile * gpu::kCsTile;  // every tile inside the box, covered
+    INFO(drawn << " samples drawn of " << expected << "; loop limit flag " << h.loop_limit);
+    if (h.loop_limit == 0) {
+        CHECK(drawn == expected);
+        CHECK(ctx.device().info.loop_iteration_limit == 0);  // this input passes llvmpipe's limit
+    } else {
+        CHECK(h.loop_limit == gpu::kLoopLimitDraw);
+        CHECK(ctx.device().info.loop_iteration_limit != 0);
+    }
+}

@@ -44,6 +44,13 @@ set(VKCOLLIDE_RELEASE_ONLY_TESTS
   "compute sampling equals raster: spheres and a box, single and dual, 64 to 256"
   "compute sampling equals raster with depth-aware separation: every scene above"
   "compute sampling equals raster: interlocked tori and a twisted tube"
+  # the loop-limit tests that run whole passes at 1024 to 4096 (their host code is the
+  # other tests'; lavapipe's 128 MiB buffers and 401 objects cost most under ASan)
+  "compute sampling equals raster on a triangle whose box takes several tiles per work item"
+  "contacts: a face whose tiles take several per work item is drawn in full"
+  "contacts: a ray through 400 stacked slabs gives every slab's volume, or on llvmpipe a named loop limit"
+  "depth-aware bounds: edge-on slivers across a 4096^2 image reach every ray, or flag the loop limit"
+  "compute sampling: a work item of 100,000 tiles draws them all, or flags the loop limit"
 )
 
 # Writes `script`: for each test of `target` (once CTest knows them) its labels (`labels`

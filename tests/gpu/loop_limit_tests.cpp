@@ -1,7 +1,7 @@
 // Shaders whose loops can run past DeviceInfo::loop_iteration_limit (llvmpipe ends a shader
 // invocation's loops once their iterations together pass 65,535, without an error), run
 // alone on inputs built to pass it: the result is complete, or the pass says it was cut
-// short so that the run fails by name. docs/broadphase.md, "Loop limits", has the audit.
+// short so that the run fails by name. docs/stability.md, "Loop limits", has the audit.
 #include <catch2/catch.hpp>
 
 #include <cmath>

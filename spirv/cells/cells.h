@@ -120,8 +120,9 @@ VKC_CONST kCellsArgsPairChunk = 4u;  // the pair pass: one invocation per candid
 VKC_CONST kCellsArgsSort = 5u;  // the deep items again where there are huge cells to sort, else none
 VKC_CONST kCellsArgsCount = 6u;
 
-// One triangle after setup (80 bytes + 4), written once, read by the count, fill and pair
-// passes, so all of them see the same footprint and depth bounds bit for bit.
+// One triangle after setup (96 bytes: padded to whole 16-byte words, so that a record
+// loads and stores as six vectors, not 21 scalars), written once, read by the count, fill
+// and pair passes, so all of them see the same footprint and depth bounds bit for bit.
 struct CellsTriangle {
     float x[3];       // vertices in cell units (sampling x times N)
     float y[3];
@@ -136,14 +137,17 @@ struct CellsTriangle {
     uint cells_hi;    // last cell (inclusive)
     uint key;         // object | kCellsKeySelf
     uint mode;        // kCellsEdges | kCellsPlane
+    uint spare[3];    // to 96 bytes
 };
 
-// What the pair pass needs of a triangle: world vertices as the GPU computed them, the
-// bound on their difference from the CPU's (per coordinate) and the vertex indices.
+// What the pair pass needs of a triangle: world vertices (the CPU's where the device has
+// shaderFloat64, else as this GPU computed them), the bound on their difference from the
+// CPU's (per coordinate) and the vertex indices; 64 bytes, four 16-byte words.
 struct CellsGeometry {
     float v[9];
     float eps;
     uint index[3];
+    uint spare[3];
 };
 
 // One footprint: a triangle in a cell with its depth interval there.

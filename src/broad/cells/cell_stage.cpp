@@ -13,7 +13,7 @@
 namespace vkcollide::passes {
 namespace {
 
-static_assert(sizeof(gpu::CellsTriangle) == 84 && sizeof(gpu::CellsGeometry) == 52);
+static_assert(sizeof(gpu::CellsTriangle) == 96 && sizeof(gpu::CellsGeometry) == 64);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
 static_assert(sizeof(gpu::CellsHeader) == 128 && sizeof(gpu::CellsParams) == 248);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&

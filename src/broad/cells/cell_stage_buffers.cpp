@@ -80,12 +80,14 @@ Result<void> CellStage::ensureBuffers() {
     };
     const std::string what = "cell stage: resolution " + std::to_string(resolution_) + " with " + std::to_string(triangles_) + " triangles";
     if (auto ok = table_->reserve(*device_, plan, what); !ok) return ok;
-    // The shaders load and store entries as 16-byte vectors (buffer_reference_align in
-    // cells_common.glsl.inc). Buffers start at the device's storage alignment, which Vulkan
-    // does not bound from below: check.
-    if (buf_.entries->address() % 16 != 0)
-        return Error(ErrorCode::UnsupportedFeature, "cell stage: the device placed 'cells-entries' at address " +
-                                                        std::to_string(buf_.entries->address()) + ", not a multiple of 16 bytes");
+    // The shaders load and store triangles, geometry and entries as 16-byte vectors
+    // (buffer_reference_align in cells_common.glsl.inc). Buffers start at the device's
+    // storage alignment, which Vulkan does not bound from below: check.
+    for (const auto& [buffer, name] : {std::pair{buf_.triangles, "cells-triangles"}, std::pair{buf_.geometry, "cells-geometry"},
+                                       std::pair{buf_.entries, "cells-entries"}})
+        if (buffer->address() % 16 != 0)
+            return Error(ErrorCode::UnsupportedFeature, std::string("cell stage: the device placed '") + name + "' at address " +
+                                                            std::to_string(buffer->address()) + ", not a multiple of 16 bytes");
     return {};
 }
 

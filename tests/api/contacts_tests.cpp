@@ -17,6 +17,7 @@
 #include "shaders/all.hpp"
 #include "support/error_text.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/record_dispatch.hpp"
 #include "support/test_scenes.hpp"
 #include "support/world_fixture.hpp"
 #include "vkcollide/scene.hpp"
@@ -362,9 +363,7 @@ TEST_CASE("contacts: the setup pass queues every tile of a triangle over a 4096^
     const VkDeviceAddress params_address = params->address();
     g.addPass("setup", graph::PassKind::Compute).readWrite(header_id).write(items_id).write(tris_id).record([=](graph::PassContext& pc) {
         gpu::Push push{params_address, 0, 0, 0, 0};
-        pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
-        pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        recordDispatch(pc, handle, layout, push);
     });
     graph::Executor executor(device);
     REQUIRE(executor.run(g));

@@ -13,6 +13,7 @@
 #include "graph/executor.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/record_dispatch.hpp"
 #include "test_shaders/all.hpp"
 
 using namespace vkcollide;
@@ -59,9 +60,7 @@ std::vector<std::uint32_t> runFilter(ValidatedContext& ctx, const std::vector<Ca
     const auto groups = static_cast<std::uint32_t>((n + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize);
     g.addPass("filter", graph::PassKind::Compute).read(in_id).write(out_id).record([=](graph::PassContext& pc) {
         gpu::Push push{params_address, 0, 0, 0, 0};
-        pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
-        pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        pc.fns().vkCmdDispatch(pc.cmd, groups, 1, 1);
+        recordDispatch(pc, handle, layout, push, groups);
     });
     graph::Executor executor(device);
     REQUIRE(executor.run(g));

@@ -17,6 +17,7 @@
 #include "graph/executor.hpp"
 #include "shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/record_dispatch.hpp"
 #include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
@@ -421,9 +422,7 @@ TEST_CASE("compute sampling: the bin pass writes every work item of a triangle w
     const VkDeviceAddress frame_address = frame->address();
     g.addPass("bin", graph::PassKind::Compute).readWrite(counters_id).write(items_id).record([=](graph::PassContext& pc) {
         gpu::Push push{frame_address, 0, 0, 0, 0};
-        pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
-        pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        test::recordDispatch(pc, handle, layout, push);
     });
     graph::Executor executor(device);
     REQUIRE(executor.run(g));

@@ -21,6 +21,7 @@
 #include "narrow/neighbours.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/record_dispatch.hpp"
 #include "test_shaders/all.hpp"
 
 using namespace vkcollide;
@@ -85,9 +86,7 @@ private:
         const ExactPush push{input->address(), output->address(), static_cast<std::uint32_t>(count), mode};
         const auto groups = static_cast<std::uint32_t>((count + kGroupSize - 1) / kGroupSize);
         g.addPass("exact", graph::PassKind::Compute).read(in_id).write(out_id).record([=](graph::PassContext& pc) {
-            pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
-            pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-            pc.fns().vkCmdDispatch(pc.cmd, groups, 1, 1);
+            recordDispatch(pc, handle, layout, push, groups);
         });
         graph::Executor executor(device);
         REQUIRE(executor.run(g));

@@ -12,6 +12,7 @@
 #include "graph/executor.hpp"
 #include "shaders/all.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/record_dispatch.hpp"
 
 using namespace vkcollide;
 using namespace vkcollide::test;
@@ -106,9 +107,7 @@ TEST_CASE("depth-aware bounds: edge-on slivers across a 4096^2 image reach every
     const VkDeviceAddress frame_address = frame->address();
     g.addPass("tri-bounds", graph::PassKind::Compute).readWrite(edge_id).readWrite(header_id).write(bounds_id).record([=](graph::PassContext& pc) {
         gpu::Push push{frame_address, 0, 0, 0, 0};
-        pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
-        pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        recordDispatch(pc, handle, layout, push);
     });
     graph::Executor executor(device);
     REQUIRE(executor.run(g));
@@ -206,9 +205,7 @@ TEST_CASE("compute sampling: a work item of 100,000 tiles draws them all, or fla
     const VkDeviceAddress frame_address = frame->address();
     g.addPass("count", graph::PassKind::Compute).readWrite(rays_id).readWrite(header_id).record([=](graph::PassContext& pc) {
         gpu::Push push{frame_address, 0, 0, 0, 0};
-        pc.fns().vkCmdBindPipeline(pc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, handle);
-        pc.fns().vkCmdPushConstants(pc.cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
-        pc.fns().vkCmdDispatch(pc.cmd, 1, 1, 1);
+        recordDispatch(pc, handle, layout, push);
     });
     graph::Executor executor(device);
     REQUIRE(executor.run(g));

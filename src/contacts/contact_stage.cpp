@@ -262,10 +262,9 @@ Result<Collected> ContactStage::collect(const RunView& run, const graph::Executi
     }
     if (h.flags & gpu::kContactsLoopLimit)
         return Error(ErrorCode::LimitExceeded,
-                     "contacts: a ray crosses more surfaces than " + device_->info.name + " sorts and walks in one shader invocation (" +
-                         std::to_string(h.max_fragments) + " hits on one ray at contacts.resolution " + std::to_string(in_.resolution) +
-                         "; it ends loops past " + std::to_string(device_->info.loop_iteration_limit) +
-                         " iterations without an error): fewer surfaces stacked along the direction, or detect on a GPU");
+                     "contacts: a ray crosses more surfaces (" + std::to_string(h.max_fragments) + " hits on one ray at contacts.resolution " +
+                         std::to_string(in_.resolution) + ") than " + vk::loopLimitPhrase(*device_, "sorts and walks") +
+                         ": fewer surfaces stacked along the direction, or detect on a GPU");
     if (h.flags & gpu::kContactsOverflowLayers) layers_ = std::max(layers_ + 1, h.max_fragments + h.max_fragments / 4);
     if (h.flags & gpu::kContactsOverflowItems) item_capacity_ = std::max(item_capacity_ + 1, h.items_needed + h.items_needed / 4);
     if (out_.runs == kMaxRuns)

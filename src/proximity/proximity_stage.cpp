@@ -214,9 +214,7 @@ Result<ProximityStage::Outcome> ProximityStage::finish() {
     std::memcpy(&header_, buf_.header_rb->mapped(), sizeof header_);
     if (header_.flags & gpu::kProximityLoopLimit)
         return Error(ErrorCode::LimitExceeded, "proximity: a vertex or edge has more pairs within the distance than " +
-                                                   device_->info.name + " sorts in one shader invocation (it ends loops past " +
-                                                   std::to_string(device_->info.loop_iteration_limit) +
-                                                   " iterations without an error): lower the distance, or detect on a GPU");
+                                                   vk::loopLimitPhrase(*device_, "sorts") + ": lower the distance, or detect on a GPU");
     if (header_.flags & gpu::kProximityIncomplete)
         return Error(ErrorCode::VulkanError, "proximity: the cell stage's run did not complete (internal error: it must run again first)");
     if (header_.flags & gpu::kProximityOverflow) {

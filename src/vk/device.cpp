@@ -174,6 +174,11 @@ Result<void> finishDevice(Device& d) {
     return {};
 }
 
+std::string loopLimitPhrase(const Device& device, std::string_view does) {
+    return device.info.name + " " + std::string(does) + " in one shader invocation (it ends loops past " +
+           std::to_string(device.info.loop_iteration_limit) + " iterations without an error)";
+}
+
 }  // namespace vkcollide::vk
 
 namespace vkcollide {

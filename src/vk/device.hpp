@@ -155,4 +155,9 @@ bool pipelineCacheDataMatches(const Device& device, std::span<const std::byte> d
 // True when `name` is in the list of extension names.
 bool listsExtension(std::span<const char* const> names, const char* name) noexcept;
 
+// How an error names a device that ends long shader loops silently
+// (DeviceInfo::loop_iteration_limit): "<device> <does> in one shader invocation (it ends
+// loops past N iterations without an error)".
+std::string loopLimitPhrase(const Device& device, std::string_view does);
+
 }  // namespace vkcollide::vk

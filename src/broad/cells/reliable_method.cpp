@@ -217,9 +217,8 @@ Result<Collected> ReliableMethod::collectProximity(BroadPhaseResult& result) {
 // that ends long loops silently (DeviceInfo::loop_iteration_limit): named, never misordered.
 Error ReliableMethod::loopLimitError(const char* what) const {
     return Error(ErrorCode::LimitExceeded,
-                 std::string(what) + ": a triangle has more partners than " + device_->info.name +
-                     " sorts in one shader invocation (it ends loops past " + std::to_string(device_->info.loop_iteration_limit) +
-                     " iterations without an error): sort on the host (DetectSettings::reliable.pair_sort Cpu, no device_pairs), "
+                 std::string(what) + ": a triangle has more partners than " + vk::loopLimitPhrase(*device_, "sorts") +
+                     ": sort on the host (DetectSettings::reliable.pair_sort Cpu, no device_pairs), "
                      "or detect on a GPU");
 }
 

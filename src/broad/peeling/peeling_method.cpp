@@ -190,15 +190,13 @@ Result<Collected> PeelingMethod::collect(const RunView& run, const gpu::Header& 
     if (h.loop_limit & gpu::kLoopLimitSplat)
         return Error(ErrorCode::LimitExceeded,
                      "depth-aware separation: edge-on triangles at resolution " + std::to_string(run.frame.resolution) +
-                         " reach more rays than " + device_->info.name + " marks in one shader invocation (it ends loops past " +
-                         std::to_string(device_->info.loop_iteration_limit) +
-                         " iterations without an error): lower the resolution, set DetectSettings::peeling.depth_aware false, or detect on a GPU");
+                         " reach more rays than " + vk::loopLimitPhrase(*device_, "marks") +
+                         ": lower the resolution, set DetectSettings::peeling.depth_aware false, or detect on a GPU");
     if (h.loop_limit & gpu::kLoopLimitDraw)
         return Error(ErrorCode::LimitExceeded,
                      "compute sampling: the big triangles' tiles at resolution " + std::to_string(run.frame.resolution) +
-                         " take more per work item than " + device_->info.name + " draws in one shader invocation (it ends loops past " +
-                         std::to_string(device_->info.loop_iteration_limit) +
-                         " iterations without an error): lower the resolution, or detect on a GPU");
+                         " take more per work item than " + vk::loopLimitPhrase(*device_, "draws") +
+                         ": lower the resolution, or detect on a GPU");
     sampling_->report(h, triangles, result);
     result.layers = layers_;
     result.peel_steps = steps_;

@@ -16,7 +16,6 @@
 #include "cells/cells_common.glsl.inc"
 #include "cells/cells_geometry.glsl.inc"
 #include "cells/cells_candidate.glsl.inc"
-#include "cells/cells_group_counters.glsl.inc"
 #include "proximity.h"
 #include "proximity_distance.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
@@ -161,8 +160,9 @@ void boxOf(Side s, out dvec3 lo, out dvec3 hi) {
     hi = dvec3(max(s.w[0], max(s.w[1], s.w[2])));
 }
 
-// Header fields (ProximityHeader, 4-byte words) for the workgroup counters.
+// Header fields (ProximityHeader, 4-byte words) for the subgroup helpers.
 const uint kProxNeeded = 1u, kProxPairsTested = 4u, kProxDistances = 5u, kProxNeighbours = 6u, kProxInBand = 7u;
+uint64_t qfield(ProximityParams Q, uint word) { return Q.header + uint64_t(word) * 4ul; }
 
 void main() {
     ProximityParams Q = qparams();
@@ -186,10 +186,8 @@ void main() {
         args.v[2] = 1u;
         return;
     }
-    // A failed run (an overflow, bad input) is repeated or reported by the host. The same
-    // for every invocation: the workgroup returns whole (the counters' barriers follow).
+    // A failed run (an overflow, bad input) is repeated or reported by the host.
     if (cellsHeader(P).h.flags != 0u) return;
-    groupCountersBegin();
     uint id = globalIndex();
     uint total = uint(min(cellsHeader(P).h.candidates, uint64_t(P.candidate_capacity)));
     bool live = id < total;
@@ -268,13 +266,11 @@ void main() {
             }
         }
     }
-    groupCount(0u, kProxPairsTested, live ? 1u : 0u);
-    groupCount(1u, kProxDistances, distances);
-    groupCount(2u, kProxNeighbours, neighbours);
-    groupCount(3u, kProxInBand, in_band);
-    uint slot = groupAppend(4u, kProxNeeded, bitCount(within_mask));
-    groupCountersFlush(Q.header, 5u);
-    slot = groupSlot(4u, slot);
+    subgroupCount(qfield(Q, kProxPairsTested), live ? 1u : 0u);
+    subgroupCount(qfield(Q, kProxDistances), distances);
+    subgroupCount(qfield(Q, kProxNeighbours), neighbours);
+    subgroupCount(qfield(Q, kProxInBand), in_band);
+    uint slot = subgroupAppend(qfield(Q, kProxNeeded), bitCount(within_mask));
     if (within_mask == 0u) return;
     // The records, recomputed for the few primitive pairs within d.
     [[unroll]] for (uint k = 0u; k < 3u; ++k) {

@@ -5,7 +5,7 @@
 #                       (5a14ad1), the proximity sweep takes neighbours in their vertex cell
 #   build-carry/        6dd498a: and CellsTriangle / CellsGeometry padded to 16-byte words
 #                       (this build's CLI and test executables too)
-#   build-carry/wg/     6dd498a + 0f9ee16 (branch wg-counters, landed as 2607f87): the pair and proximity
+#   build-carry/wg/     6dd498a + 0f9ee16 (branch wg-counters; landed as 2607f87, reverted in 444da6b): the pair and proximity
 #                       passes' header counters summed per workgroup in shared memory
 #   build-carry/nocount/ an experiment, never committed: 6dd498a with subgroupCount and
 #                       subgroupCount64 (the header's statistics counters) compiled empty,

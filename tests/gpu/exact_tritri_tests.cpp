@@ -5,10 +5,7 @@
 // (coplanar, touching, shared vertices and edges, offsets of 2^-20 .. 2^-60, coordinates
 // from 1e-30 to 1e30 and subnormal, mixed magnitudes whose differences are not exact in
 // double, degenerate triangles, grids), and each predicate's sign against the CPU's. Each
-// adversarial family must reach the exact fallback, so a test cannot pass on filters alone,
-// and the families whose differences are not exact in double must reach its expansion
-// (stage 2; the others are mostly settled in registers, stage 1), which the point cases
-// also check alone against the CPU's exact orient3d.
+// adversarial family must reach the exact fallback, so a test cannot pass on filters alone.
 // The tallies are printed with -s.
 #include <catch2/catch.hpp>
 
@@ -123,7 +120,7 @@ std::string show(const Float3& p) {
 std::string show(const Tri& t) { return show(t[0]) + " " + show(t[1]) + " " + show(t[2]); }
 
 struct PairTally {
-    std::size_t cases = 0, hits = 0, neighbours = 0, fallback_cases = 0, expansion_cases = 0, mismatches = 0;
+    std::size_t cases = 0, hits = 0, neighbours = 0, fallback_cases = 0, mismatches = 0;
 };
 
 // Runs one family of pairs on the GPU and compares with the CPU.
@@ -149,8 +146,7 @@ PairTally checkPairs(ExactRunner& runner, const char* family, const std::vector<
         const bool gpu_hit = (gpu[i] & 1u) != 0, gpu_neighbours = (gpu[i] & 2u) != 0;
         t.hits += hit;
         t.neighbours += neighbours;
-        t.fallback_cases += ((gpu[i] >> 8) & 0xffffu) != 0;
-        t.expansion_cases += (gpu[i] >> 24) != 0;
+        t.fallback_cases += (gpu[i] >> 8) != 0;
         if (hit != gpu_hit || neighbours != gpu_neighbours) {
             if (t.mismatches < 8) {
                 UNSCOPED_INFO(family << " case " << i << ": CPU " << hit << "/" << neighbours << " GPU " << gpu_hit << "/" << gpu_neighbours
@@ -159,15 +155,14 @@ PairTally checkPairs(ExactRunner& runner, const char* family, const std::vector<
             ++t.mismatches;
         }
     }
-    std::printf("exact pairs %-22s %8zu cases  %8zu intersecting  %7zu neighbours  %8zu reached the exact path (%zu its expansion)  %zu "
-                "mismatches\n",
-                family, t.cases, t.hits, t.neighbours, t.fallback_cases, t.expansion_cases, t.mismatches);
+    std::printf("exact pairs %-22s %8zu cases  %8zu intersecting  %7zu neighbours  %8zu reached the exact path  %zu mismatches\n", family,
+                t.cases, t.hits, t.neighbours, t.fallback_cases, t.mismatches);
     CHECK(t.mismatches == 0);
     return t;
 }
 
 struct PointTally {
-    std::size_t cases = 0, fallback_cases = 0, expansion_cases = 0, mismatches = 0, zeros = 0;
+    std::size_t cases = 0, fallback_cases = 0, mismatches = 0, zeros = 0;
 };
 
 narrow::Float2 xy(const Float3& p) { return {p.x, p.y}; }
@@ -195,20 +190,18 @@ PointTally checkPoints(ExactRunner& runner, const char* family, const std::vecto
                               narrow::orient2dExact(yz(p[1]), yz(p[2]), yz(p[3]))};
         std::uint32_t expected = plane.certainlyNotCollinear() ? (1u << 14) : 0u;
         for (int k = 0; k < 7; ++k) expected |= static_cast<std::uint32_t>(signs[k] + 1) << (2 * k);
-        expected |= static_cast<std::uint32_t>(signs[1] + 1) << 16;  // the expansion alone: the exact sign
         t.zeros += signs[0] == 0;
-        t.fallback_cases += ((gpu[i] >> 18) & 0x3fu) != 0;
-        t.expansion_cases += (gpu[i] >> 24) != 0;
-        if ((gpu[i] & 0x3ffffu) != expected) {
+        t.fallback_cases += (gpu[i] >> 16) != 0;
+        if ((gpu[i] & 0xffffu) != expected) {
             if (t.mismatches < 8) {
-                UNSCOPED_INFO(family << " case " << i << ": CPU bits " << expected << " GPU " << (gpu[i] & 0x3ffffu) << "  " << show(p[0])
+                UNSCOPED_INFO(family << " case " << i << ": CPU bits " << expected << " GPU " << (gpu[i] & 0xffffu) << "  " << show(p[0])
                                      << " " << show(p[1]) << " " << show(p[2]) << " " << show(p[3]));
             }
             ++t.mismatches;
         }
     }
-    std::printf("exact points %-21s %8zu cases  %8zu coplanar  %8zu reached the exact path (%zu its expansion)  %zu mismatches\n", family,
-                t.cases, t.zeros, t.fallback_cases, t.expansion_cases, t.mismatches);
+    std::printf("exact points %-21s %8zu cases  %8zu coplanar  %8zu reached the exact path  %zu mismatches\n", family, t.cases, t.zeros,
+                t.fallback_cases, t.mismatches);
     CHECK(t.mismatches == 0);
     return t;
 }
@@ -477,18 +470,18 @@ TEST_CASE("exact GPU triangle pairs decide as the CPU on random and adversarial 
         const char* name;
         std::size_t count;
         std::function<PairCase(Rng&)> make;
-        bool transform, must_fall_back, all_touch, must_expand;
+        bool transform, must_fall_back, all_touch;
     };
     const Family families[] = {
-        {"random", 400000, randomPair, false, false, false, false},
-        {"coplanar", 300000, coplanarPair, true, true, false, false},
-        {"touching", 300000, touchingPair, true, true, true, false},  // touching by construction
-        {"offsets 2^-20..2^-60", 200000, offsetPair, false, true, false, false},
-        {"mixed magnitudes", 200000, mixedPair, false, true, false, true},  // differences not exact in double
-        {"degenerate", 200000, degeneratePair, true, true, false, false},
-        {"grid", 300000, gridPair, true, true, false, false},
-        {"subnormal", 50000, subnormalPair, false, true, false, false},
-        {"neighbours", 50000, neighbourPair, false, false, false, false},
+        {"random", 400000, randomPair, false, false, false},
+        {"coplanar", 300000, coplanarPair, true, true, false},
+        {"touching", 300000, touchingPair, true, true, true},  // touching by construction
+        {"offsets 2^-20..2^-60", 200000, offsetPair, false, true, false},
+        {"mixed magnitudes", 200000, mixedPair, false, true, false},
+        {"degenerate", 200000, degeneratePair, true, true, false},
+        {"grid", 300000, gridPair, true, true, false},
+        {"subnormal", 50000, subnormalPair, false, true, false},
+        {"neighbours", 50000, neighbourPair, false, false, false},
     };
     std::size_t total = 0, fallbacks = 0;
     std::uint64_t seed = 1;
@@ -499,10 +492,6 @@ TEST_CASE("exact GPU triangle pairs decide as the CPU on random and adversarial 
         if (f.must_fall_back) {
             INFO(f.name << ": cases that reached the exact path");
             CHECK(t.fallback_cases > t.cases / 1000);
-        }
-        if (f.must_expand) {
-            INFO(f.name << ": cases that reached the exact path's expansion");
-            CHECK(t.expansion_cases > t.cases / 1000);
         }
         if (std::strcmp(f.name, "neighbours") == 0) CHECK(t.neighbours > t.cases / 4);
         CHECK(t.hits > 0);
@@ -582,10 +571,6 @@ TEST_CASE("exact GPU predicates return the CPU's signs", "[gpu][exact]") {
         if (f.must_fall_back) {
             INFO(f.name << ": cases whose filtered predicates reached the exact path");
             CHECK(t.fallback_cases > t.cases / 10);
-        }
-        if (f.cases == &mixed) {
-            INFO(f.name << ": cases whose filtered predicates reached the expansion (differences not exact in double)");
-            CHECK(t.expansion_cases > t.cases / 10);
         }
     }
     std::printf("exact points: %zu cases (7 predicates each, 3 of them exact arithmetic alone), %.2f s\n", total, secondsSince(start));

@@ -5,16 +5,13 @@
 // The exact triangle-triangle test and its predicates alone, for their unit tests
 // (tests/gpu/exact_tritri_tests.cpp), one case per invocation:
 //  mode 0 (pairs, 24 words: a's 9 floats, b's 9 floats, a's 3 indices, b's 3 indices):
-//    bit 0 exactTrianglesIntersect(a, b), bit 1 exactNeighbours, bits 8..23 the number of
-//    exact fallbacks the decision ran (saturated), bits 24..31 how many of them reached the
-//    expansion (stage 2; saturated);
+//    bit 0 exactTrianglesIntersect(a, b), bit 1 exactNeighbours, bits 8.. the number of
+//    exact fallbacks the decision ran (saturated at 2^24 - 1);
 //  mode 1 (predicates, 12 words: points a, b, c, d): two bits (sign + 1) each, from bit 0:
 //    orient3d(a,b,c,d), orient3dExact(a,b,c,d), the plane (a,b,c)'s side of d,
 //    orient2d(a.xy,b.xy,c.xy), orient2dExact(same), orient2d(b.yz,c.yz,d.yz),
-//    orient2dExact(same); bit 14 the plane's certainlyNotCollinear; bits 16..17 the sign of
-//    orient3d(a,b,c,d) by the expansion alone (stage 2, skipping stage 1); bits 18..23 the
-//    exact fallbacks of the filtered predicates (the first, third, fourth and sixth), bits
-//    24..31 how many of those reached the expansion (both saturated).
+//    orient2dExact(same); bit 14 the plane's certainlyNotCollinear; bits 16.. the exact
+//    fallbacks of the filtered predicates (the first, third, fourth and sixth).
 #include "cells/exact_predicates.glsl.inc"
 #include "cells/tritri_exact.glsl.inc"
 layout(local_size_x = 64) in;
@@ -47,8 +44,8 @@ void main() {
         uvec3 index_a = uvec3(pc.cases.w[base + 18u], pc.cases.w[base + 19u], pc.cases.w[base + 20u]);
         uvec3 index_b = uvec3(pc.cases.w[base + 21u], pc.cases.w[base + 22u], pc.cases.w[base + 23u]);
         bool hit = exactTrianglesIntersect(a, b);
-        uint fallbacks = min(exactFallbacks, 0xffffu), expansions = min(exactExpansions, 0xffu);
-        pc.results.r[id] = (hit ? 1u : 0u) | (exactNeighbours(index_a, a, index_b, b) ? 2u : 0u) | (fallbacks << 8) | (expansions << 24);
+        uint fallbacks = min(exactFallbacks, 0xffffffu);
+        pc.results.r[id] = (hit ? 1u : 0u) | (exactNeighbours(index_a, a, index_b, b) ? 2u : 0u) | (fallbacks << 8);
         return;
     }
     uint base = 12u * id;
@@ -58,15 +55,10 @@ void main() {
     r |= signBits(exactPlaneSide(plane, exactDouble3(d)), 4u);
     r |= signBits(exactOrient2d(a.xy, b.xy, c.xy), 6u);
     r |= signBits(exactOrient2d(b.yz, c.yz, d.yz), 10u);
-    uint fallbacks = min(exactFallbacks, 0x3fu), expansions = min(exactExpansions, 0xffu);
+    uint fallbacks = min(exactFallbacks, 0xffffu);
     r |= signBits(exactOrient3dExact(a, b, c, d), 2u);
-    {
-        dvec3 da = exactDouble3(a), db = exactDouble3(b), dc = exactDouble3(c), dd = exactDouble3(d), u, v, w;
-        bool exact = exactDifferences3(da, db, dc, dd, u, v, w);
-        r |= signBits(exactOrient3dExpansion(da, db, dc, dd, exact, u, v, w), 16u);
-    }
     r |= signBits(exactOrient2dExact(a.xy, b.xy, c.xy), 8u);
     r |= signBits(exactOrient2dExact(b.yz, c.yz, d.yz), 12u);
     r |= exactPlaneCertainlyNotCollinear(plane) ? (1u << 14) : 0u;
-    pc.results.r[id] = r | (fallbacks << 18) | (expansions << 24);
+    pc.results.r[id] = r | (fallbacks << 16);
 }

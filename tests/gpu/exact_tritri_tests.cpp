@@ -356,6 +356,46 @@ PairCase gridPair(Rng& rng) {
     return c;
 }
 
+// Mating plates as the bench's cad-mating has them: two plates stacked face to face, turned
+// about a random axis, world vertices M p in double rounded once to float (the CPU's), so
+// the mating faces are coplanar in exact arithmetic but only nearly after rounding. a is a
+// triangle of the lower plate's top face, b one of the upper plate's bottom face in the same
+// or a neighbouring lattice cell (either diagonal): mostly touching or overlapping, every
+// test decided by a hair.
+PairCase matingPlatesPair(Rng& rng) {
+    double axis[3] = {uniformFloat(rng, -1, 1), uniformFloat(rng, -1, 1), uniformFloat(rng, -1, 1)};
+    const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]) + 1e-9;
+    for (double& x : axis) x /= length;
+    const double angle = uniformFloat(rng, 0.05f, 3.0f), c = std::cos(angle), sn = std::sin(angle), t = 1 - c;
+    const double x = axis[0], y = axis[1], z = axis[2];
+    const double r[3][3] = {{t * x * x + c, t * x * y - sn * z, t * x * z + sn * y},
+                            {t * x * y + sn * z, t * y * y + c, t * y * z - sn * x},
+                            {t * x * z - sn * y, t * y * z + sn * x, t * z * z + c}};
+    const int n = 9;
+    const float plate = float(uniformInt(rng, 0, 7));  // the lower plate's place in the stack
+    auto world = [&](int i, int j, float local_z, float stack) {
+        const float q[3] = {-0.5f + 1.0f * float(i) / float(n), -0.25f + 0.5f * float(j) / float(n), local_z};
+        float out[3];
+        for (int row = 0; row < 3; ++row) {
+            const float m[4] = {float(r[row][0]), float(r[row][1]), float(r[row][2]), float(r[row][2] * 0.25 * stack)};
+            const double w = ((double(m[0]) * q[0] + double(m[1]) * q[1]) + double(m[2]) * q[2]) + double(m[3]);
+            out[row] = float(w);
+        }
+        return Float3{out[0], out[1], out[2]};
+    };
+    auto triangle = [&](int i, int j, float local_z, float stack, int half, int diagonal) {
+        const Float3 p00 = world(i, j, local_z, stack), p10 = world(i + 1, j, local_z, stack), p01 = world(i, j + 1, local_z, stack),
+                     p11 = world(i + 1, j + 1, local_z, stack);
+        if (diagonal == 0) return half == 0 ? Tri{p00, p10, p11} : Tri{p00, p11, p01};
+        return half == 0 ? Tri{p00, p10, p01} : Tri{p10, p11, p01};
+    };
+    PairCase pc;
+    const int i = uniformInt(rng, 1, n - 2), j = uniformInt(rng, 1, n - 2);
+    pc.a = triangle(i, j, 0.125f, plate, uniformInt(rng, 0, 1), uniformInt(rng, 0, 1));
+    pc.b = triangle(i + uniformInt(rng, -1, 1), j + uniformInt(rng, -1, 1), -0.125f, plate + 1, uniformInt(rng, 0, 1), uniformInt(rng, 0, 1));
+    return pc;
+}
+
 // A touching or coplanar configuration moved to the origin (its contact point at 0), then one
 // vertex of b displaced by +-2^-k, k from 20 to 60, relative to coordinates of order 1: the
 // displaced coordinates are exact and tiny, so the differences to the others are not exact
@@ -482,6 +522,7 @@ TEST_CASE("exact GPU triangle pairs decide as the CPU on random and adversarial 
         {"grid", 300000, gridPair, true, true, false},
         {"subnormal", 50000, subnormalPair, false, true, false},
         {"neighbours", 50000, neighbourPair, false, false, false},
+        {"mating plates", 300000, matingPlatesPair, false, true, false},
     };
     std::size_t total = 0, fallbacks = 0;
     std::uint64_t seed = 1;

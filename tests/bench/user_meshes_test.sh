@@ -5,6 +5,9 @@
 #       file but the one asked for, a chart when gnuplot is installed, and the readers' errors
 #       (missing file, no triangle, a NaN vertex) named with the file
 #   user_meshes_test.sh frontier FRONTIER_SH                an empty CSV: exit 1, the file named
+#   user_meshes_test.sh obj VKCOLLIDE_BENCH VKCOLLIDE_CLI   --write-obj: a built-in scene (the touching stack,
+#       scaled down) written as OBJ, which the CLI reads and detects with exactly the pairs of the
+#       bench's exact reference; a folder it cannot create is named
 #   user_meshes_test.sh peers FRONTIER_SH                   a vkcollide_peer_bench CSV charted beside a
 #       vkcollide_bench one (both written here): the peers' series in the data gnuplot gets, on
 #       the user's panel; the drawing only where gnuplot is installed; peer CSVs without rows
@@ -28,6 +31,21 @@ if [ "$mode" = frontier ]; then
   echo "device,set,scene,variant,frame" > "$dir/header.csv"
   expectError "bash '$frontier' '$dir/chart.png' '$dir/header.csv'" "$dir/header.csv" "lacks the column(s) total_ms"
   [ ! -e "$dir/chart.png" ] || fail "a chart was written from an empty CSV"
+  exit 0
+fi
+
+if [ "$mode" = obj ]; then
+  bench="$2"; cli="$3"
+  "$bench" --scenes stack-touching --scale 0.1 --write-obj "$dir/scenes" > "$dir/out.txt" || fail "--write-obj failed"
+  [ -s "$dir/scenes/stack-touching.obj" ] || fail "no $dir/scenes/stack-touching.obj"
+  objects=$(grep -c '^o ' "$dir/scenes/stack-touching.obj")
+  grep -qF "stack-touching.obj: $objects objects" "$dir/out.txt" || { cat "$dir/out.txt"; fail "the objects written are not the ones reported"; }
+  want=$("$bench" --scenes stack-touching --scale 0.1 --reference-only --no-cache | awk '$2 == "stack-touching" { print $6 }')
+  got=$("$cli" detect "$dir/scenes/stack-touching.obj" --quiet | awk -F': ' '/^colliding triangle pairs/ { print $2 }')
+  echo "stack-touching at scale 0.1: $objects objects, reference $want pairs, the CLI on the OBJ $got"
+  [ -n "$want" ] && [ "$want" -gt 0 ] && [ "$got" = "$want" ] || fail "the CLI found $got pairs in the OBJ, the reference has $want"
+  : > "$dir/file"
+  expectError "'$bench' --scenes stack-touching --scale 0.1 --write-obj '$dir/file/sub'" "--write-obj" "$dir/file/sub"
   exit 0
 fi
 

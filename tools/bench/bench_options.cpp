@@ -27,7 +27,7 @@ bool number(std::string_view text, T& out) {
 void printUsage(std::FILE* out) {
     std::fprintf(out, "usage: vkcollide_bench [--set tuning|held-out|all] [--scenes a,b] [--mesh FILE[:x,y,z]]... "
                       "[--variants names|groups|all] [--resolutions 512,1024] [--scale S] [--frames K] [--threads N] [--data DIR] "
-                      "[--cache DIR | --no-cache] [--csv FILE] [--profile FILE] [--warmup-ms MS] [--list] [--reference-only] [--help]\n");
+                      "[--cache DIR | --no-cache] [--csv FILE] [--profile FILE] [--warmup-ms MS] [--list] [--reference-only] [--write-obj DIR] [--help]\n");
 }
 
 void printHelp() {
@@ -56,6 +56,9 @@ void printHelp() {
         "  --warmup-ms MS       untimed detections for MS before each scene and variant (warm GPU clocks)\n"
         "  --list               list the scenes and variants and exit\n"
         "  --reference-only     build the scenes and their exact references only (no GPU)\n"
+        "  --write-obj DIR      write each chosen scene as DIR/<scene>.obj (moving scenes: <scene>_<frame>.obj), every\n"
+        "                       object an o group of its world vertices as the detection sees them, for the CLI\n"
+        "                       (vkcollide detect DIR/<scene>.obj finds the scene's exact pairs); no GPU\n"
         "  -h, --help           this help\n");
 }
 
@@ -98,6 +101,7 @@ std::optional<Options> parseOptions(int argc, char** argv) {
             else if (a == "--csv") opt.csv = v, csv_given = true;
             else if (a == "--profile") opt.profile = v;
             else if (a == "--warmup-ms") ok = number(v, opt.warmup_ms) && opt.warmup_ms >= 0;
+            else if (a == "--write-obj") opt.write_obj = v;
             else return bad("unknown option " + a);
             if (!ok) return bad(a + ": bad value '" + v + "'");
         }

@@ -26,6 +26,7 @@ struct Options {
     unsigned threads = 0;
     bool list = false;
     bool reference_only = false;
+    std::string write_obj;  // --write-obj DIR: the chosen scenes as OBJ files of world vertices, nothing else
     bool help = false;
 };
 

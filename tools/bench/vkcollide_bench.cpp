@@ -3,7 +3,7 @@
 //   vkcollide_bench [--set tuning|held-out|all] [--scenes a,b,...] [--mesh FILE[:x,y,z]]...
 //                   [--variants default,mitigations,...] [--resolutions 512,1024,...] [--scale S] [--frames K]
 //                   [--threads N] [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--profile FILE]
-//                   [--warmup-ms MS] [--list] [--reference-only] [--help]
+//                   [--warmup-ms MS] [--list] [--reference-only] [--write-obj DIR] [--help]
 //
 // --mesh runs the user's own files as one more scene (set "user"; user_scene.hpp), the same
 // way; bench_options.cpp has every option's default.
@@ -31,6 +31,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -44,6 +45,7 @@
 #include "reference_cache.hpp"
 #include "support/exact_reference.hpp"
 #include "vkcollide/context.hpp"
+#include "vkcollide/io.hpp"
 #include "vkcollide/world.hpp"
 
 using namespace vkcollide;
@@ -166,6 +168,27 @@ int main(int argc, char** argv) {
         if (std::none_of(all.begin(), all.end(), [&](const SceneSpec& s) { return s.name == n; }))
             return std::fprintf(stderr, "vkcollide_bench: unknown scene '%s' (--list)\n", n.c_str()), 2;
 
+    if (!opt.write_obj.empty()) {
+        // The scenes for the CLI or another library: world vertices (transforms baked as the
+        // detection computes them), written so they read back bit for bit.
+        std::error_code ec;
+        std::filesystem::create_directories(opt.write_obj, ec);
+        if (ec) return std::fprintf(stderr, "vkcollide_bench: --write-obj %s: %s\n", opt.write_obj.c_str(), ec.message().c_str()), 1;
+        for (const SceneSpec* scene : chosen)
+            for (int f = 0; f < scene->frames; ++f) {
+                auto objects = scene->build(f);
+                if (!objects) return std::fprintf(stderr, "vkcollide_bench: %s: %s\n", scene->name.c_str(), objects.error().message().c_str()), 1;
+                if (auto ok = bakeTransforms(*objects); !ok) return std::fprintf(stderr, "vkcollide_bench: %s\n", ok.error().message().c_str()), 1;
+                std::vector<HostMesh> meshes;
+                for (const BenchObject& o : *objects) meshes.push_back(o.mesh);
+                const std::string path = opt.write_obj + "/" + scene->name + (scene->frames > 1 ? "_" + std::to_string(f) : "") + ".obj";
+                std::ofstream out(path, std::ios::binary);
+                out << writeObj(meshes);
+                if (!out) return std::fprintf(stderr, "vkcollide_bench: --write-obj: cannot write %s\n", path.c_str()), 1;
+                std::printf("%s: %zu objects\n", path.c_str(), meshes.size());
+            }
+        return 0;
+    }
     if (opt.reference_only) {
         std::printf("%-9s %-24s %5s %10s %8s %12s %12s %9s %s\n", "set", "scene", "frame", "triangles", "objects", "exact pairs", "crossing",
                     "seconds", "cached");

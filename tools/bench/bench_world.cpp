@@ -65,6 +65,13 @@ Result<void> bakeTransforms(std::vector<BenchObject>& objects) {
     return {};
 }
 
+Result<std::vector<BenchObject>> buildFrame(const SceneSpec& scene, int frame, bool bake_moving) {
+    Result<std::vector<BenchObject>> objects = scene.build(frame);
+    if (objects && (scene.motion != Motion::Moving || bake_moving))
+        if (Result<void> ok = bakeTransforms(*objects); !ok) return ok.error();
+    return objects;
+}
+
 Result<SceneInWorld> addToWorld(CollisionWorld& world, Context& context, const std::vector<BenchObject>& objects, bool all_open) {
     SceneInWorld s;
     s.engine.resize(objects.size());

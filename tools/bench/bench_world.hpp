@@ -17,6 +17,10 @@ namespace vkcollide::bench {
 // floats; moving scenes keep their transforms. Scales typical_edge_length with the transform.
 Result<void> bakeTransforms(std::vector<BenchObject>& objects);
 
+// Frame `frame` of `scene` as the bench measures it: transforms baked into the vertices,
+// except a moving scene's (it keeps them for setTransform) unless bake_moving.
+Result<std::vector<BenchObject>> buildFrame(const SceneSpec& scene, int frame, bool bake_moving = false);
+
 // An engine mesh: positions (stride 12 or 16) and indices (32 or 16 bit) in host-visible
 // buffers owned here.
 struct EngineMesh {

@@ -176,9 +176,8 @@ int main(int argc, char** argv) {
         if (ec) return std::fprintf(stderr, "vkcollide_bench: --write-obj %s: %s\n", opt.write_obj.c_str(), ec.message().c_str()), 1;
         for (const SceneSpec* scene : chosen)
             for (int f = 0; f < scene->frames; ++f) {
-                auto objects = scene->build(f);
+                auto objects = buildFrame(*scene, f, true);
                 if (!objects) return std::fprintf(stderr, "vkcollide_bench: %s: %s\n", scene->name.c_str(), objects.error().message().c_str()), 1;
-                if (auto ok = bakeTransforms(*objects); !ok) return std::fprintf(stderr, "vkcollide_bench: %s\n", ok.error().message().c_str()), 1;
                 std::vector<HostMesh> meshes;
                 for (const BenchObject& o : *objects) meshes.push_back(o.mesh);
                 const std::string path = opt.write_obj + "/" + scene->name + (scene->frames > 1 ? "_" + std::to_string(f) : "") + ".obj";
@@ -194,10 +193,8 @@ int main(int argc, char** argv) {
                     "seconds", "cached");
         for (const SceneSpec* scene : chosen)
             for (int f = 0; f < scene->frames; ++f) {
-                auto objects = scene->build(f);
+                auto objects = buildFrame(*scene, f);
                 if (!objects) return std::fprintf(stderr, "vkcollide_bench: %s: %s\n", scene->name.c_str(), objects.error().message().c_str()), 1;
-                if (scene->motion != Motion::Moving)
-                    if (auto ok = bakeTransforms(*objects); !ok) return std::fprintf(stderr, "vkcollide_bench: %s\n", ok.error().message().c_str()), 1;
                 auto ref = referenceFor(*objects, opt.cache, opt.threads);
                 if (!ref) return std::fprintf(stderr, "vkcollide_bench: %s: %s\n", scene->name.c_str(), ref.error().message().c_str()), 1;
                 std::size_t triangles = 0;
@@ -251,9 +248,7 @@ int main(int argc, char** argv) {
         std::vector<FrameReference> refs;
         for (int f = 0; f < scene->frames; ++f) {
             progress(scene->name + ": building frame " + std::to_string(f) + " and its exact reference");
-            auto objects = scene->build(f);
-            if (objects && scene->motion != Motion::Moving)
-                if (auto ok = bakeTransforms(*objects); !ok) objects = ok.error();
+            auto objects = buildFrame(*scene, f);
             if (!objects) {
                 failed(scene->name, objects.error());
                 break;

@@ -118,7 +118,10 @@ VKC_CONST kCellsArgsDeep = 2u;   // deep-cell work items
 VKC_CONST kCellsArgsPairs = 3u;  // one invocation per candidate (passes after the pair pass)
 VKC_CONST kCellsArgsPairChunk = 4u;  // the pair pass: one invocation per candidate of its chunk
 VKC_CONST kCellsArgsSort = 5u;  // the deep items again where there are huge cells to sort, else none
-VKC_CONST kCellsArgsCount = 6u;
+VKC_CONST kCellsArgsExact = 6u;  // the exact pass: one invocation per queued candidate of the chunk
+VKC_CONST kCellsArgsCount = 7u;
+// cells_args.comp's step for kCellsArgsExact (the others: 0, 1 and 2 + the pair chunk).
+VKC_CONST kCellsArgsStepExact = 0xFFFFFFFFu;
 
 // One triangle after setup (96 bytes: padded to whole 16-byte words, so that a record
 // loads and stores as six vectors, not 21 scalars), written once, read by the count, fill
@@ -210,6 +213,10 @@ struct CellsHeader {
     uint sweep_items_begin, sweep_items_end;
     uint sorted_need;       // entries CellsParams.sorted must hold: the end of the last huge cell
     uint huge_cells;        // cells of more than kCellsDeepShared entries (sorted in global memory)
+    // Candidates of the current pair chunk the filter left for the exact pass
+    // (CellsParams.exact_queue; cleared with each chunk's arguments).
+    uint exact_queued;
+    uint spare;
 };
 
 // Everything the shaders need, uploaded once per run (Push.frame points here).
@@ -237,6 +244,9 @@ struct CellsParams {
     // .x the cell's runs (the first sorted position of each object's entries, then k), .y
     // each sorted position's group end (one past its last coincident copy).
     VKC_ADDRESS(uint64_t) sorted;
+    // uvec2[exact_queue_capacity]: with `exact`, the pair pass's candidates that the filter
+    // did not prove disjoint, (a, b), for the exact pass (cells_exact.comp); 0 otherwise.
+    VKC_ADDRESS(uint64_t) exact_queue;
     uint resolution;                     // N
     uint cell_count;                     // N * N
     uint object_count;
@@ -278,6 +288,7 @@ struct CellsParams {
     // iterations together pass 65,535, silently (gallivm's loop limiter); there the host sets
     // a bound below it, and a cell that needs more raises kCellsLoopLimit.
     uint loop_guard;
+    uint exact_queue_capacity;  // at least one pair chunk's candidates: it never overflows
 };
 
 // ---- Device pairs (DetectSettings::reliable.device_pairs; src/broad/cells/device_pairs.cpp) ---

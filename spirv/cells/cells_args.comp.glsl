@@ -10,7 +10,10 @@
 //   header (sweep_pending); none once the comparisons passed the budget;
 //   step 2 + k, after the sweep: every candidate (passes after the pair pass) and the pair
 //   pass's chunk k (one invocation per candidate in it); the chunks so far into the header.
-//   Nothing while sweep chunks are pending: the candidates are not all written yet.
+//   Nothing while sweep chunks are pending: the candidates are not all written yet. The
+//   chunk's exact queue starts empty;
+//   step kCellsArgsStepExact, after the pair pass's chunk: the exact pass over the
+//   candidates it queued.
 #include "cells_common.glsl.inc"
 layout(local_size_x = 1) in;
 
@@ -20,7 +23,9 @@ void main() {
     CellsParams P = params();
     CellsHeader h = cellsHeader(P).h;
     bool failed = h.flags != 0u;
-    if (pc.step == 0u) {
+    if (pc.step == kCellsArgsStepExact) {
+        writeDispatch(P, kCellsArgsExact, failed ? 0u : groupsFor(min(h.exact_queued, P.exact_queue_capacity)));
+    } else if (pc.step == 0u) {
         writeDispatch(P, kCellsArgsBig, failed ? 0u : min(h.items, P.item_capacity));
     } else if (pc.step == 1u) {
         // A candidate overflow still sweeps on: the count sizes the rerun's buffer. The
@@ -54,5 +59,6 @@ void main() {
         writeDispatch(P, kCellsArgsPairs, groupsFor(total));
         writeDispatch(P, kCellsArgsPairChunk, groupsFor(n));
         if (!failed && h.sweep_pending == 0u) cellsHeader(P).h.pairs_done = first + n;
+        cellsHeader(P).h.exact_queued = 0u;
     }
 }

@@ -15,13 +15,13 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 96 && sizeof(gpu::CellsGeometry) == 64);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-static_assert(sizeof(gpu::CellsHeader) == 128 && sizeof(gpu::CellsParams) == 248);
+static_assert(sizeof(gpu::CellsHeader) == 136 && sizeof(gpu::CellsParams) == 264);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&
               offsetof(gpu::CellsHeader, comparisons) == 72 && offsetof(gpu::CellsHeader, exact_tests) == 80 &&
               offsetof(gpu::CellsHeader, exact_neighbours) == 84 &&
               offsetof(gpu::CellsHeader, repeats) == 96 &&
               offsetof(gpu::CellsHeader, sweep_entries_begin) == 104 &&
-              offsetof(gpu::CellsHeader, huge_cells) == 124);  // kHeaderCandidates, ... in cells_common.glsl.inc
+              offsetof(gpu::CellsHeader, huge_cells) == 124 && offsetof(gpu::CellsHeader, exact_queued) == 128);  // kHeaderCandidates, ... in cells_common.glsl.inc
 static_assert(sizeof(gpu::CellsGpuTriangle) == sizeof(GpuTriangle) && offsetof(gpu::CellsGpuTriangle, v) == offsetof(GpuTriangle, v));
 static_assert(sizeof(CandidatePair) == 8);
 static_assert(sizeof(gpu::Projection) == 64 && sizeof(gpu::ObjectGpu) == 88);
@@ -82,6 +82,8 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
                                        : compute(P.pairs, shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64");
         !r)
         return r.error();
+    if (device.shader_float64)
+        if (auto r = compute(P.exact, shaders::cells_exact_comp, "cells-exact"); !r) return r.error();
     return cp;
 }
 
@@ -232,6 +234,8 @@ void CellStage::writeParams() {
     p.gpu_triangles = has_download_ ? buf_.gpu_triangles->address() : 0;
     p.marks = has_download_ ? buf_.marks->address() : 0;
     p.sorted = buf_.sorted->address();
+    p.exact_queue = use_exact_ ? buf_.exact_queue->address() : 0;
+    p.exact_queue_capacity = use_exact_ ? static_cast<std::uint32_t>(buf_.exact_queue->size() / 8) : 0;
     p.sorted_capacity = static_cast<std::uint32_t>(buf_.sorted->size() / 8);
     p.loop_guard = loopGuard();
     p.gpu_triangle_capacity = has_download_ ? capacity_.gpu_triangles : 0;
@@ -522,7 +526,7 @@ std::uint32_t CellStage::automaticPairChunk() const {
 void CellStage::notePairPassTime(std::span<const graph::PassTiming> passes, std::uint64_t candidates) {
     double gpu_ms = 0;
     for (const graph::PassTiming& p : passes)
-        if (p.name == kPairPassName) gpu_ms += p.gpu_ms;
+        if (p.name == kPairPassName || p.name == kExactPassName) gpu_ms += p.gpu_ms;
     // Too little work to time reliably says nothing about the rate.
     if (gpu_ms > 1.0 && candidates >= 1024) pair_rate_ = double(candidates) / gpu_ms;
 }
@@ -532,7 +536,7 @@ std::uint64_t CellStage::memoryBytes() const noexcept {
     for (const Row* r : {&buf_.params, &buf_.objects, &buf_.object_flags, &buf_.pair_mask, &buf_.projection, &buf_.header,
                          &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,
                          &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.sorted, &buf_.candidates,
-                         &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks})
+                         &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks, &buf_.exact_queue})
         total += (*r)->memoryBytes();
     return total;
 }

@@ -158,6 +158,8 @@ inline constexpr double kSweepChunkTargetMs = 200.0;
 inline constexpr const char* kSweepPassName = "cells-sweep";
 // The pair pass's name in the graph (and in the passes' timings).
 inline constexpr const char* kPairPassName = "cells-pairs";
+// The exact pass after each chunk of the pair pass (with CellStageSettings::exact).
+inline constexpr const char* kExactPassName = "cells-exact";
 
 struct CellStageResult {
     // Global triangle ids (object's triangle_base + triangle), a < b, sorted, unique.
@@ -258,7 +260,7 @@ private:
     Result<void> ensureBuffers();
     std::uint32_t automaticPairChunk() const;
     struct PairPassIds {
-        graph::ResourceId header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks;
+        graph::ResourceId header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, exact_queue;
     };
     void recordPairPass(graph::Graph& g, const PairPassIds& ids, std::uint32_t chunk);
     struct SweepIds {
@@ -277,6 +279,7 @@ private:
     vk::Device* device_;
     struct Pipelines {
         vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, deep_guarded, args, pairs;
+        vk::Pipeline exact;  // needs shaderFloat64
     } pipes_;
     vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
     using Row = TableRow;  // rows of table_
@@ -286,7 +289,7 @@ private:
     struct Buffers {
         Row params, objects, object_flags, pair_mask, projection, header, header_rb;
         Row triangles, geometry, counts, offsets, block_sums, entries, entry_cells;
-        Row big_items, deep_items, sorted, candidates, survivors, args, gpu_triangles, marks;
+        Row big_items, deep_items, sorted, candidates, survivors, args, gpu_triangles, marks, exact_queue;
     } buf_;
     // The prepared run.
     std::vector<gpu::ObjectGpu> objects_;

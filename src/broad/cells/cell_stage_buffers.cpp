@@ -36,6 +36,7 @@ void CellStage::addRows() {
     row(buf_.args, "cells-args", MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     row(buf_.gpu_triangles, "cells-gpu-triangles", MemoryKind::Readback);
     row(buf_.marks, "cells-marks", MemoryKind::DeviceLocal);
+    row(buf_.exact_queue, "cells-exact-queue", MemoryKind::DeviceLocal);
 }
 
 Result<void> CellStage::ensureBuffers() {
@@ -52,6 +53,9 @@ Result<void> CellStage::ensureBuffers() {
     // cells of k > kCellsDeepShared entries; either way at most 2 k / kCellsSmallCell.
     static_assert(gpu::kCellsDeepShared >= 4 * gpu::kCellsGroupSize && gpu::kCellsSmallCell >= gpu::kCellsGroupSize);
     const VkDeviceSize deep = 2 * VkDeviceSize(capacity_.entries) / gpu::kCellsSmallCell + 1;
+    // The exact queue holds a pair chunk's candidates at most (the pair pass queues only
+    // those of its chunk, the exact pass empties it before the next): it cannot overflow.
+    const VkDeviceSize exact_queue = use_exact_ ? std::min<VkDeviceSize>(capacity_.candidates, pair_chunk_) : 0;
     const MemoryKind survivors_kind = survivors_on_device_ ? MemoryKind::DeviceLocal : MemoryKind::Readback;
     const RowSize plan[] = {
         rowSize(buf_.params, sizeof(gpu::CellsParams), MemoryKind::Upload),
@@ -77,6 +81,7 @@ Result<void> CellStage::ensureBuffers() {
         rowSize(buf_.args, gpu::kCellsArgsCount * 12, MemoryKind::DeviceLocal),
         rowSize(buf_.gpu_triangles, has_download_ ? VkDeviceSize(capacity_.gpu_triangles) * sizeof(GpuTriangle) : 0, MemoryKind::Readback),
         rowSize(buf_.marks, has_download_ ? (tris + 31) / 32 * 4 : 0, MemoryKind::DeviceLocal),
+        rowSize(buf_.exact_queue, exact_queue * 8, MemoryKind::DeviceLocal),
     };
     const std::string what = "cell stage: resolution " + std::to_string(resolution_) + " with " + std::to_string(triangles_) + " triangles";
     if (auto ok = table_->reserve(*device_, plan, what); !ok) return ok;

@@ -133,7 +133,8 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
 
     recordSweep(g, {header, entries, entry_cells, offsets, counts, deep, importRow(g, buf_.sorted), candidates, args});
     sweep_chunks_ = 1;  // a run starts its sweep over
-    recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks}, 0);
+    recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, importRow(g, buf_.exact_queue)},
+                   0);
     return {header, survivors, tris, candidates, geometry, args};
 }
 
@@ -187,12 +188,13 @@ void CellStage::recordSweepChunk(graph::Graph& g) {
     recordPairPass(g,
                    {header, importRow(g, buf_.header_rb, true), importRow(g, buf_.triangles), importRow(g, buf_.geometry), candidates,
                     importRow(g, buf_.survivors, !survivors_on_device_), args, importRow(g, buf_.gpu_triangles, true),
-                    importRow(g, buf_.marks)},
+                    importRow(g, buf_.marks), importRow(g, buf_.exact_queue)},
                    0);
 }
 
-// The pair pass over chunk `chunk` of the candidates (its arguments first), then the header
-// to the host: the last passes of a run, and all of a later chunk's submission.
+// The pair pass over chunk `chunk` of the candidates (its arguments first), with the exact
+// decision the exact pass over what it queued (its arguments first), then the header to
+// the host: the last passes of a run, and all of a later chunk's submission.
 void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint32_t chunk) {
     const VkDeviceAddress params = buf_.params->address();
     const VkBuffer args_buffer = buf_.args->handle();
@@ -217,10 +219,33 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
         .readWrite(id.marks)
         .write(id.gpu_triangles)
         .write(id.survivors)
+        .write(id.exact_queue)
         .record([pairs, params, args_buffer, chunk](PassContext& pc) {
             bindAndPush(pc, *pairs, params, 0, chunk);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsPairChunk * 12);
         });
+    if (use_exact_) {
+        pass(g, "cells-exact-args", PassKind::Compute, Stage::Filtering)
+            .readWrite(id.header)  // the queue's length
+            .write(id.args)
+            .record([&P, params](PassContext& pc) {
+                bindAndPush(pc, P.args, params, 0, gpu::kCellsArgsStepExact);
+                pc.dispatch(1, 1, 1);
+            });
+        pass(g, kExactPassName, PassKind::Compute, Stage::Filtering)
+            .indirect(id.args)
+            .read(id.exact_queue)
+            .read(id.tris)
+            .read(id.geometry)
+            .readWrite(id.header)
+            .readWrite(id.marks)
+            .write(id.gpu_triangles)
+            .write(id.survivors)
+            .record([&P, params, args_buffer](PassContext& pc) {
+                bindAndPush(pc, P.exact, params);
+                pc.dispatchIndirect(args_buffer, gpu::kCellsArgsExact * 12);
+            });
+    }
     pass(g, "cells-readback", PassKind::Transfer, Stage::Readback)
         .use(id.header, Use::TransferSrc)
         .use(id.header_rb, Use::TransferDst)
@@ -238,7 +263,7 @@ void CellStage::recordPairChunk(graph::Graph& g) {
                     importRow(g, buf_.triangles), importRow(g, buf_.geometry),
                     importRow(g, buf_.candidates),
                     importRow(g, buf_.survivors, !survivors_on_device_), importRow(g, buf_.args),
-                    importRow(g, buf_.gpu_triangles, true), importRow(g, buf_.marks)},
+                    importRow(g, buf_.gpu_triangles, true), importRow(g, buf_.marks), importRow(g, buf_.exact_queue)},
                    next_chunk_);
 }
 

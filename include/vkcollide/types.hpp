@@ -68,6 +68,17 @@ enum class ExactDecision {
     Cpu,  // on the CPU: every pair the GPU filter keeps is read back and tested there
 };
 
+// How the GPU's exact decision runs (DetectSettings::reliable.exact_pass). The pairs are the
+// same either way; only the time changes (docs/exact_gpu.md, "Two passes").
+enum class ExactPass {
+    Auto,    // Queued where the world's last detection decided at least 8,192 candidates
+             // exactly, Inline below 4,096, else as the last one (Queued at first)
+    Inline,  // inside the pair pass: no pass of its own, but each subgroup of candidates
+             // waits for its lanes that take the exact path
+    Queued,  // the pair pass queues the candidates its filter cannot decide and an exact pass
+             // of its own decides them in full subgroups
+};
+
 // Where the host result's pairs are put in order (DetectSettings::reliable.pair_sort) when the exact
 // decision ran on the GPU. Both give the same pairs and responses to the bit.
 enum class PairSort {
@@ -98,6 +109,7 @@ VKCOLLIDE_API const char* toString(Coverage coverage) noexcept;
 VKCOLLIDE_API const char* toString(SamplingBackend backend) noexcept;
 VKCOLLIDE_API const char* toString(ExactDecision exact) noexcept;
 VKCOLLIDE_API const char* toString(PairSort sort) noexcept;
+VKCOLLIDE_API const char* toString(ExactPass pass) noexcept;
 VKCOLLIDE_API const char* toString(GridTuning tuning) noexcept;
 
 }  // namespace vkcollide

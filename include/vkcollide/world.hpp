@@ -169,6 +169,10 @@ struct ReliableSettings {
     // pairs are the same either way; DetectStats::gpu_exact_tests and ::cpu_exact_tests say
     // which ran. Peeling decides on the CPU: Gpu is refused there.
     ExactDecision exact = ExactDecision::Auto;
+    // With the exact decision on the GPU: whether it runs inside the pair pass or as a pass
+    // of its own over the candidates the filter leaves (ExactPass); CellStats::exact_queued
+    // says which ran.
+    ExactPass exact_pass = ExactPass::Auto;
     // Exact decision on the GPU, no device_pairs: where the host result's pairs are put in
     // order (PairSort; docs/exact_gpu.md). Gpu: sorted on the GPU and read back in order, so
     // the CPU only computes the responses; Cpu: the narrow phase sorts them (the reference
@@ -366,6 +370,10 @@ struct CellStats {
     // in a cell of k <= 1,024 footprints; in a huge cell its sort (k L (L + 1) / 4, L =
     // ceil(log2 k)), k per object in it and the pairs its sweep visits.
     std::uint64_t comparisons = 0;
+    // With exact_ran: the exact decision ran as a pass of its own over the candidates the
+    // filter left (the last detection had many), else inside the pair pass
+    // (docs/exact_gpu.md, "Two passes"). The pairs are the same either way.
+    bool exact_queued = false;
 };
 
 // A host mesh declared closed (ObjectOptions::open false) that is not a closed surface

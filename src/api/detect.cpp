@@ -131,6 +131,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.keep_ray_image = s.peeling.collision_rays;  // peeling only (validation)
     d.broad.max_candidate_pairs = s.limits.max_candidate_pairs;  // the reliable method's GPU budget
     d.broad.exact_on_gpu = s.reliable.exact != ExactDecision::Cpu;  // Gpu was checked against the device
+    d.broad.exact_pass = s.reliable.exact_pass;
     d.axes = s.peeling.axes;
     d.bad_objects = s.bad_objects;
     run.settings_ms = msSince(run.start);
@@ -237,7 +238,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         const passes::CellStageStats& c = broad[0].cells;
         st.cells = {c.entries,   c.max_cell,      c.deep_cells, c.candidate_cells, c.candidates,       c.duplicates, c.filtered,
                     c.survivors, c.gpu_triangles, c.runs,       c.filter_ran,      c.exact_ran,        c.exact_tests, c.exact_neighbours,
-                    c.repeats,   c.sweep_chunks,  c.pair_chunks,  c.huge_cells,      c.comparisons};
+                    c.repeats,   c.sweep_chunks,  c.pair_chunks,  c.huge_cells,      c.comparisons,      c.exact_queued};
         st.collision_rays = c.candidate_cells;
         st.peeling.backend_reason = "none: the reliable method samples no rays";
     }

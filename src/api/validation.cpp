@@ -209,6 +209,9 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         return outside("bad_objects", int(s.bad_objects), "BadObjectPolicy", "Exclude or Fail");
     if (s.reliable.exact != ExactDecision::Auto && s.reliable.exact != ExactDecision::Gpu && s.reliable.exact != ExactDecision::Cpu)
         return outside("reliable.exact", int(s.reliable.exact), "ExactDecision", "Auto, Gpu or Cpu");
+    if (s.reliable.exact_pass != ExactPass::Auto && s.reliable.exact_pass != ExactPass::Inline &&
+        s.reliable.exact_pass != ExactPass::Queued)
+        return outside("reliable.exact_pass", int(s.reliable.exact_pass), "ExactPass", "Auto, Inline or Queued");
     if (s.reliable.pair_sort != PairSort::Auto && s.reliable.pair_sort != PairSort::Gpu && s.reliable.pair_sort != PairSort::Cpu)
         return outside("reliable.pair_sort", int(s.reliable.pair_sort), "PairSort", "Auto, Gpu or Cpu");
     if (s.reliable.grid_tuning != GridTuning::Auto && s.reliable.grid_tuning != GridTuning::On && s.reliable.grid_tuning != GridTuning::Off)

@@ -133,6 +133,7 @@ struct BroadPhaseSettings {
     // Methods that form pairs on the GPU: decide them exactly there where the device can
     // (CellStageSettings::exact); BroadPhaseResult::cells.exact_ran says whether it did.
     bool exact_on_gpu = false;
+    ExactPass exact_pass = ExactPass::Auto;  // CellStageSettings::exact_pass
     // Methods that decide pairs exactly on the GPU: also sort them there into device
     // buffers (DevicePairsView; objects named by GpuMesh::tag). Capacity in pairs, 0: automatic.
     bool device_pairs = false;

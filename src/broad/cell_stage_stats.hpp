@@ -38,6 +38,7 @@ struct CellStageStats {
     bool exact_ran = false;  // the pair pass decided exactly: survivors intersect
     std::uint64_t exact_tests = 0;  // candidates the exact test decided
     std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (bit-identical vertex)
+    bool exact_queued = false;  // the exact decision ran as the exact pass (CellStageSettings::exact_pass)
 };
 
 }  // namespace vkcollide::passes

@@ -55,6 +55,15 @@ const char* toString(GridTuning tuning) noexcept {
     return "?";
 }
 
+const char* toString(ExactPass pass) noexcept {
+    switch (pass) {
+        case ExactPass::Auto: return "auto";
+        case ExactPass::Inline: return "inline";
+        case ExactPass::Queued: return "queued";
+    }
+    return "?";
+}
+
 const char* toString(PairSort sort) noexcept {
     switch (sort) {
         case PairSort::Auto: return "auto";

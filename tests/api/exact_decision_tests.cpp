@@ -137,14 +137,19 @@ TEST_CASE("exact decision: GPU and CPU give the same pairs and responses on rest
     auto ref = computeReferencePairs(scene.reference(), {.threads = 2});
     REQUIRE(ref);
     REQUIRE(ref->size() > 100);  // touching faces, the ball's pole, the strip, the fold
-    for (std::uint32_t resolution : {1u, 7u, 64u}) {
-        DetectSettings s;
-        s.resolution = resolution;
-        const Both r = detectBoth(ctx, scene, s);
-        requireSame(r, *ref, "resolution " + std::to_string(resolution));
-        // Neighbours by position only: the fold's coincident copies share positions, not indices.
-        CHECK(r.gpu.stats.cells.exact_neighbours > 0);
-    }
+    // The exact decision inside the pair pass, and in a pass of its own over the queue of
+    // what the filter left.
+    for (std::uint32_t resolution : {1u, 7u, 64u})
+        for (ExactPass pass : {ExactPass::Inline, ExactPass::Queued}) {
+            DetectSettings s;
+            s.resolution = resolution;
+            s.reliable.exact_pass = pass;
+            const Both r = detectBoth(ctx, scene, s);
+            requireSame(r, *ref, "resolution " + std::to_string(resolution) + ", exact pass " + toString(pass));
+            CHECK(r.gpu.stats.cells.exact_queued == (pass == ExactPass::Queued));
+            // Neighbours by position only: the fold's coincident copies share positions, not indices.
+            CHECK(r.gpu.stats.cells.exact_neighbours > 0);
+        }
 }
 
 TEST_CASE("exact decision: GPU and CPU agree on the test scenes and the stability cases", "[api][gpu][reliable][exact]") {
@@ -186,6 +191,17 @@ TEST_CASE("exact decision: Auto decides on the GPU where it can, and bad setting
     CHECK(automatic->stats.cells.exact_ran == fp64);
     CHECK((automatic->stats.gpu_exact_tests > 0) == fp64);
     CHECK((automatic->stats.cpu_exact_tests > 0) == !fp64);
+    if (fp64) {
+        // ExactPass::Auto: a pass of its own at first, then from the last detection's exact
+        // tests (this scene has few: inside the pair pass), the same pairs either way.
+        CHECK(automatic->stats.cells.exact_queued);
+        REQUIRE(automatic->stats.gpu_exact_tests < 4096);
+        auto next = (*world)->detect();
+        REQUIRE(next);
+        CHECK_FALSE(next->stats.cells.exact_queued);
+        CHECK(next->pairs == automatic->pairs);
+        CHECK(next->stats.gpu_exact_tests == automatic->stats.gpu_exact_tests);
+    }
 
     DetectSettings peeling;
     peeling.method = DetectMethod::Peeling;
@@ -206,6 +222,12 @@ TEST_CASE("exact decision: Auto decides on the GPU where it can, and bad setting
     REQUIRE_FALSE(out_of_range);
     CHECK(out_of_range.error().code() == ErrorCode::InvalidArgument);
     CHECK_THAT(out_of_range.error().message(), Catch::Contains("ExactDecision"));
+    DetectSettings bad_pass;
+    bad_pass.reliable.exact_pass = static_cast<ExactPass>(9);
+    auto pass_out_of_range = (*world)->detect(bad_pass);
+    REQUIRE_FALSE(pass_out_of_range);
+    CHECK(pass_out_of_range.error().code() == ErrorCode::InvalidArgument);
+    CHECK_THAT(pass_out_of_range.error().message(), Catch::Contains("reliable.exact_pass"));
     CHECK((*world)->detect());  // usable afterwards
 }
 

@@ -117,18 +117,25 @@ TEST_CASE("cells: the pair pass in chunks decides what one pass decides", "[cell
     CellScene scene = mixedScene();
     scene.meshes.push_back(soup(rng, 1500, -0.5f, 0.5f, 0.03f, "soup"));
     scene.self.push_back(1);
-    for (bool exact : {false, true}) {
-        INFO((exact ? "exact decision" : "filter"));
+    for (auto [exact, exact_pass] : {std::pair{false, ExactPass::Auto}, std::pair{true, ExactPass::Inline}, std::pair{true, ExactPass::Queued}}) {
+        INFO((exact ? "exact decision, " : "filter") << (exact ? toString(exact_pass) : ""));
         CellRunOptions opt;
         opt.resolution = 128;
         opt.settings.exact = exact;
+        opt.settings.exact_pass = exact_pass;
         const CellRun whole = runCells(ctx, **stage, scene, opt);
         REQUIRE(whole.result.stats.candidates > 500);
         auto pairPasses = [](const CellRun& run) {
             return std::count_if(run.result.passes.begin(), run.result.passes.end(),
                                  [](const graph::PassTiming& p) { return p.name == "cells-pairs"; });
         };
+        auto exactPasses = [](const CellRun& run) {
+            return std::count_if(run.result.passes.begin(), run.result.passes.end(),
+                                 [](const graph::PassTiming& p) { return p.name == "cells-exact"; });
+        };
         CHECK(pairPasses(whole) == 1);  // automatic: one chunk on a scene this small
+        CHECK(whole.result.stats.exact_queued == (exact_pass == ExactPass::Queued));
+        if (exact) REQUIRE(whole.result.stats.exact_tests > 100);
         for (std::uint32_t chunk : {97u, 1000u, 1u << 20}) {
             INFO("chunks of " << chunk << " candidates");
             opt.settings.pair_chunk = chunk;
@@ -141,6 +148,8 @@ TEST_CASE("cells: the pair pass in chunks decides what one pass decides", "[cell
             CHECK(split.result.stats.exact_tests == whole.result.stats.exact_tests);
             CHECK(split.result.stats.duplicates == whole.result.stats.duplicates);
             CHECK(std::uint64_t(pairPasses(split)) == std::max<std::uint64_t>(1, (whole.result.stats.candidates + chunk - 1) / chunk));
+            // Queued: each chunk's exact pass over that chunk's queue.
+            CHECK(exactPasses(split) == (exact_pass == ExactPass::Queued ? pairPasses(split) : 0));
         }
         // Tiny survivor capacity: a chunk overflows it, counting only the survivors so far;
         // the stage sizes for every candidate then, so chunks cost no more reruns than one pass.

@@ -118,6 +118,8 @@ TEST_CASE("reliable: the pair pass in chunks gives the sorted pairs and proximit
     const Outputs whole = run(**bp, up->up.meshes, s);
     REQUIRE(whole.pairs.size() > 50);
     REQUIRE(whole.records > 50);
+    INFO("one pass: " << whole.cells.candidates << " candidates, " << whole.cells.exact_tests << " exact tests, exact pass "
+                      << (whole.cells.exact_queued ? "queued" : "inline"));
     CHECK(whole.pair_passes == 1);
     for (std::uint32_t chunk : {157u, 1000u}) {
         INFO("chunks of " << chunk << " candidates");

@@ -36,6 +36,10 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // The reliable method with the exact decision on the CPU (the reference path): its
         // difference to "default" is what deciding on the GPU saves (docs/exact_gpu.md).
         {"exact-cpu", "modes", [](S& s) { s.reliable.exact = ExactDecision::Cpu; }},
+        // The GPU's exact decision inside the pair pass, or in a pass of its own, always (the
+        // default, ExactPass::Auto, chooses from the last detection's exact tests).
+        {"exact-inline", "modes", [](S& s) { s.reliable.exact_pass = ExactPass::Inline; }},
+        {"exact-queued", "modes", [](S& s) { s.reliable.exact_pass = ExactPass::Queued; }},
         // The host result's pairs sorted on the GPU always, or on the CPU always (the default,
         // PairSort::Auto, sorts on the GPU from kGpuPairSortFrom pairs).
         {"sort-gpu", "modes", [](S& s) { s.reliable.pair_sort = PairSort::Gpu; }},

@@ -171,6 +171,7 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("cell_huge_cells", st.cells.huge_cells);
     count("cell_comparisons", st.cells.comparisons);
     count("cell_survivors", st.cells.survivors);
+    if (st.cells.exact_ran) j.member("cell_exact_pass", [&] { j.string(st.cells.exact_queued ? "queued" : "inline"); });
     count("deep_rays", st.peeling.deep_rays);
     count("axes", st.peeling.axes);
     count("depth_complexity", st.peeling.depth_complexity);

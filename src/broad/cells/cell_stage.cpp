@@ -83,7 +83,9 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
         !r)
         return r.error();
     if (device.shader_float64)
-        if (auto r = compute(P.exact, shaders::cells_exact_comp, "cells-exact"); !r) return r.error();
+        for (auto r : {compute(P.exact, shaders::cells_exact_comp, "cells-exact"),
+                       compute(P.pairs_inline, shaders::cells_pairs_inline_comp, "cells-pairs-inline")})
+            if (!r) return r.error();
     return cp;
 }
 
@@ -137,6 +139,9 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     projection_address_ = in.projection_address;
     use_filter_ = settings.filter && filterSupported();
     use_exact_ = settings.exact && filterSupported();
+    if (settings.exact_pass != ExactPass::Auto) exact_queued_ = settings.exact_pass == ExactPass::Queued;
+    else if (last_exact_tests_ != ~std::uint64_t{0} && last_exact_tests_ >= kExactQueuedFrom) exact_queued_ = true;
+    else if (last_exact_tests_ < kExactInlineBelow) exact_queued_ = false;
     proximity_pad_ = settings.proximity_pad;
     survivors_on_device_ = settings.survivors_on_device;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
@@ -404,6 +409,8 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.exact_ran = use_exact_;
     s.exact_tests = h.exact_tests;
     s.exact_neighbours = h.exact_neighbours;
+    s.exact_queued = use_exact_ && exact_queued_;
+    if (use_exact_) last_exact_tests_ = h.exact_tests;
     survivor_count_ = h.survivors;
     gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;
     if (survivor_count_ && !survivors_on_device_) buf_.survivors->invalidate(0, VkDeviceSize(survivor_count_) * 8);

@@ -48,6 +48,7 @@
 #include "graph/executor.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/narrow.hpp"
+#include "vkcollide/types.hpp"
 
 namespace vkcollide::passes {
 
@@ -90,6 +91,13 @@ struct CellStageCapacity {
     std::uint32_t sorted = 0;  // footprints of huge cells (8 bytes each: their sort's runs and copies)
 };
 
+// ExactPass::Auto's thresholds (vkcollide/types.hpp), in exact tests of the last run: an
+// exact pass of its own costs about 15 us (its arguments and a dispatch) and saves about
+// a third of the exact tests' time (docs/exact_gpu.md, "Two passes"); the gap keeps a
+// scene near the threshold from switching, and re-recording its commands, every frame.
+inline constexpr std::uint64_t kExactInlineBelow = 4096;
+inline constexpr std::uint64_t kExactQueuedFrom = 8192;
+
 struct CellStageSettings {
     // Run the double-precision filter where the device has shaderFloat64 enabled.
     bool filter = true;
@@ -97,6 +105,8 @@ struct CellStageSettings {
     // shaderFloat64; docs/exact_gpu.md) and leave out neighbours (a bit-identical world
     // vertex): the survivors are then exactly the intersecting pairs.
     bool exact = false;
+    // Where the exact decision runs; the survivors are the same either way.
+    ExactPass exact_pass = ExactPass::Auto;
     // The budget of a run (DetectSettings::limits.max_candidate_pairs in a detection; the stage's
     // own limit is 2^31 - 1, its buffers' 32-bit indices): the cells of the triangles'
     // clamped footprint boxes (so the footprints, 20 bytes each, and the count pass's work)
@@ -279,7 +289,7 @@ private:
     vk::Device* device_;
     struct Pipelines {
         vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, deep_guarded, args, pairs;
-        vk::Pipeline exact;  // needs shaderFloat64
+        vk::Pipeline exact, pairs_inline;  // need shaderFloat64
     } pipes_;
     vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
     using Row = TableRow;  // rows of table_
@@ -297,6 +307,10 @@ private:
     VkDeviceAddress projection_address_ = 0;
     float proximity_pad_ = 0;
     bool survivors_on_device_ = false;
+    // The exact decision in a pass of its own this run (ExactPass), and how many candidates
+    // the last run decided exactly (~0: none yet).
+    bool exact_queued_ = true;
+    std::uint64_t last_exact_tests_ = ~std::uint64_t{0};
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish

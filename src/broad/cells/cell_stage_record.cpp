@@ -202,7 +202,8 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
     const auto& P = pipes_;
     // The double-precision variant wherever the device has it (P.use_filter switches the
     // filter): it also computes download objects' world vertices as the CPU does.
-    const vk::Pipeline* pairs = filterSupported() ? &filter_pipeline_ : &P.pairs;
+    const bool queued = use_exact_ && exact_queued_;
+    const vk::Pipeline* pairs = !filterSupported() ? &P.pairs : use_exact_ && !queued ? &P.pairs_inline : &filter_pipeline_;
     pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing)
         .readWrite(id.header)  // the chunks done so far
         .write(id.args)
@@ -224,7 +225,7 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
             bindAndPush(pc, *pairs, params, 0, chunk);
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsPairChunk * 12);
         });
-    if (use_exact_) {
+    if (queued) {
         pass(g, "cells-exact-args", PassKind::Compute, Stage::Filtering)
             .readWrite(id.header)  // the queue's length
             .write(id.args)

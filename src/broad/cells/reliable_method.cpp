@@ -39,6 +39,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     CellStageSettings settings;
     settings.max_candidate_pairs = run.settings.max_candidate_pairs;
     settings.exact = run.settings.exact_on_gpu;
+    settings.exact_pass = run.settings.exact_pass;
     settings.pair_chunk = run.settings.pair_chunk;
     settings.sweep_work = run.settings.sweep_work;
     settings.repeat_checks = static_cast<CellStageSettings::RepeatChecks>(std::min(run.settings.repeat_checks, 2u));

@@ -200,7 +200,9 @@ TEST_CASE("exact decision: Auto decides on the GPU where it can, and bad setting
         REQUIRE(next);
         CHECK_FALSE(next->stats.cells.exact_queued);
         CHECK(next->pairs == automatic->pairs);
-        CHECK(next->stats.gpu_exact_tests == automatic->stats.gpu_exact_tests);
+        // Inline, the whole filter runs first; queued, its plane step alone (the exact
+        // pass settles the rest): never fewer exact tests queued.
+        CHECK(next->stats.gpu_exact_tests <= automatic->stats.gpu_exact_tests);
     }
 
     DetectSettings peeling;

@@ -71,8 +71,9 @@ enum class ExactDecision {
 // How the GPU's exact decision runs (DetectSettings::reliable.exact_pass). The pairs are the
 // same either way; only the time changes (docs/exact_gpu.md, "Two passes").
 enum class ExactPass {
-    Auto,    // Queued where the world's last detection decided at least 8,192 candidates
-             // exactly, Inline below 4,096, else as the last one (Queued at first)
+    Auto,    // Queued where the world's last detection had at least 65,536 candidates in
+             // their canonical cells (CellStats: candidates - duplicates), Inline below
+             // 32,768, else as the last one (Queued at first)
     Inline,  // inside the pair pass: no pass of its own, but each subgroup of candidates
              // waits for its lanes that take the exact path
     Queued,  // the pair pass queues the candidates its filter cannot decide and an exact pass

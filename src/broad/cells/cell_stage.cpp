@@ -140,8 +140,8 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     use_filter_ = settings.filter && filterSupported();
     use_exact_ = settings.exact && filterSupported();
     if (settings.exact_pass != ExactPass::Auto) exact_queued_ = settings.exact_pass == ExactPass::Queued;
-    else if (last_exact_tests_ != ~std::uint64_t{0} && last_exact_tests_ >= kExactQueuedFrom) exact_queued_ = true;
-    else if (last_exact_tests_ < kExactInlineBelow) exact_queued_ = false;
+    else if (last_canonical_ != ~std::uint64_t{0} && last_canonical_ >= kExactQueuedFrom) exact_queued_ = true;
+    else if (last_canonical_ < kExactInlineBelow) exact_queued_ = false;
     proximity_pad_ = settings.proximity_pad;
     survivors_on_device_ = settings.survivors_on_device;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
@@ -410,7 +410,7 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.exact_tests = h.exact_tests;
     s.exact_neighbours = h.exact_neighbours;
     s.exact_queued = use_exact_ && exact_queued_;
-    if (use_exact_) last_exact_tests_ = h.exact_tests;
+    if (use_exact_) last_canonical_ = h.candidates - std::min<std::uint64_t>(h.candidates, h.duplicates);
     survivor_count_ = h.survivors;
     gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;
     if (survivor_count_ && !survivors_on_device_) buf_.survivors->invalidate(0, VkDeviceSize(survivor_count_) * 8);

@@ -91,12 +91,15 @@ struct CellStageCapacity {
     std::uint32_t sorted = 0;  // footprints of huge cells (8 bytes each: their sort's runs and copies)
 };
 
-// ExactPass::Auto's thresholds (vkcollide/types.hpp), in exact tests of the last run: an
-// exact pass of its own costs about 15 us (its arguments and a dispatch) and saves about
-// a third of the exact tests' time (docs/exact_gpu.md, "Two passes"); the gap keeps a
-// scene near the threshold from switching, and re-recording its commands, every frame.
-inline constexpr std::uint64_t kExactInlineBelow = 4096;
-inline constexpr std::uint64_t kExactQueuedFrom = 8192;
+// ExactPass::Auto's thresholds (vkcollide/types.hpp), in the last run's canonical
+// candidates (candidates less duplicates: what the filter examines, the same count either
+// way): an exact pass of its own costs about 15 us (its arguments and a dispatch) and
+// saves time in proportion to them (idle lanes, the lighter filter; docs/exact_gpu.md,
+// "Two passes"): on an H100 it broke even at 30K (deform-pair-100K) and won 20 % at 430K
+// (pile-shapes). The gap keeps a scene near the threshold from switching, and re-recording
+// its commands, every frame.
+inline constexpr std::uint64_t kExactInlineBelow = 32768;
+inline constexpr std::uint64_t kExactQueuedFrom = 65536;
 
 struct CellStageSettings {
     // Run the double-precision filter where the device has shaderFloat64 enabled.
@@ -307,10 +310,10 @@ private:
     VkDeviceAddress projection_address_ = 0;
     float proximity_pad_ = 0;
     bool survivors_on_device_ = false;
-    // The exact decision in a pass of its own this run (ExactPass), and how many candidates
-    // the last run decided exactly (~0: none yet).
+    // The exact decision in a pass of its own this run (ExactPass), and the last run's
+    // canonical candidates (~0: none yet).
     bool exact_queued_ = true;
-    std::uint64_t last_exact_tests_ = ~std::uint64_t{0};
+    std::uint64_t last_canonical_ = ~std::uint64_t{0};
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish

@@ -247,8 +247,11 @@ TEST_CASE("exact decision: the record paths refuse pairs_decided", "[narrow][exa
 
 namespace {
 
-// One world, the same settings twice: pairs sorted on the GPU, then on the CPU.
+// One world, the same settings twice: pairs sorted on the GPU, then on the CPU. The exact
+// pass fixed (ExactPass::Auto may change between the two detections, and with it the
+// filter that ran first and the count of exact tests; not the pairs).
 Both sortedBoth(CollisionWorld& world, DetectSettings settings = {}) {
+    if (settings.reliable.exact_pass == ExactPass::Auto) settings.reliable.exact_pass = ExactPass::Queued;
     settings.reliable.pair_sort = PairSort::Gpu;
     auto gpu = world.detect(settings);
     REQUIRE(gpu);

@@ -19,7 +19,13 @@ FailLargeAllocations::~FailLargeAllocations() { g_fail_above.store(std::numeric_
 }  // namespace vkcollide::test
 
 // Every replaceable form, so that no allocation is made by one allocator and freed by
-// another (AddressSanitizer checks that pairing).
+// another (AddressSanitizer checks that pairing). GCC 12 at -O1 and above, seeing these
+// definitions inlined into each other in a unity build, takes the free() in operator
+// delete[] for one of a pointer from operator new[] (-Wmismatched-new-delete): it is this
+// file's own pairing, malloc with free.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
 void* operator new(std::size_t bytes) {
     if (bytes > g_fail_above.load(std::memory_order_relaxed)) throw std::bad_alloc();
     if (void* p = std::malloc(bytes ? bytes : 1)) return p;

@@ -73,7 +73,7 @@ enum class ExactDecision {
 enum class ExactPass {
     Auto,    // Queued where the world's last detection had at least 65,536 candidates in
              // their canonical cells (CellStats: candidates - duplicates), Inline below
-             // 32,768, else as the last one (Queued at first)
+             // 32,768, else as the last one (Inline at first)
     Inline,  // inside the pair pass: no pass of its own, but each subgroup of candidates
              // waits for its lanes that take the exact path
     Queued,  // the pair pass queues the candidates its filter cannot decide and an exact pass

@@ -230,7 +230,8 @@ TEST_CASE("vkcollide detect: the JSON's settings are those the method that ran r
     const Json j = detectJson(s.scratch, s.files + " --resolution 64");
     CHECK(j["settings"]["asked"].object().size() == options.all.size() - options.reliable_only.size());
     CHECK(j["settings"]["used"].object().size() == options.all.size() - options.reliable_only.size());
-    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--pair-sort", "--grid-tuning", "--proximity", "--proximity-capacity"});
+    CHECK(options.reliable_only ==
+          std::set<std::string>{"--exact", "--exact-pass", "--pair-sort", "--grid-tuning", "--proximity", "--proximity-capacity"});
     CHECK_FALSE(j["settings"]["used"].has("exact"));
     CHECK(j["settings"]["used"].has("depth_aware"));
     // The reliable method: the fields it reads, and none that only peeling reads.

@@ -170,6 +170,44 @@ TEST_CASE("cells: the pair pass in chunks decides what one pass decides", "[cell
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
+// ExactPass::Auto: the one kernel at first and for few canonical candidates, the exact pass
+// of its own once the last run had passes::kExactQueuedFrom of them, and back below
+// kExactInlineBelow; the same pairs every time.
+TEST_CASE("cells: the exact pass follows the last run's canonical candidates", "[cells][gpu]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) {
+        WARN("the device has no shaderFloat64: no exact decision on the GPU");
+        return;
+    }
+    auto stage = passes::CellStage::create(ctx.device());
+    REQUIRE(stage);
+    std::mt19937 rng(23);
+    CellScene dense;  // a soup of slivers in a thin slab: many canonical candidates, most disjoint
+    dense.meshes.push_back(soup(rng, 8000, -0.5f, 0.5f, 0.08f, "dense"));
+    for (Float3& p : dense.meshes.back().positions) p.z *= 0.05f;
+    dense.self.push_back(1);
+    CellScene sparse = mixedScene();
+    CellRunOptions opt;
+    opt.resolution = 16;
+    opt.settings.exact = true;
+    const auto canonical = [](const CellRun& r) { return r.result.stats.candidates - r.result.stats.duplicates; };
+    const CellRun first = runCells(ctx, **stage, dense, opt);
+    INFO(canonical(first) << " canonical candidates, " << first.result.stats.exact_tests << " exact tests");
+    REQUIRE(canonical(first) >= passes::kExactQueuedFrom);
+    CHECK_FALSE(first.result.stats.exact_queued);  // inline at first
+    const CellRun queued = runCells(ctx, **stage, dense, opt);
+    CHECK(queued.result.stats.exact_queued);
+    CHECK(queued.pairs == first.pairs);
+    CHECK(queued.result.stats.exact_tests >= first.result.stats.exact_tests);  // the plane sides filter alone
+    const CellRun few = runCells(ctx, **stage, sparse, opt);
+    REQUIRE(canonical(few) < passes::kExactInlineBelow);
+    CHECK(few.result.stats.exact_queued);  // as the last run said
+    const CellRun back = runCells(ctx, **stage, sparse, opt);
+    CHECK_FALSE(back.result.stats.exact_queued);
+    CHECK(back.pairs == few.pairs);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
 TEST_CASE("cells: identical results run to run", "[cells][gpu]") {
     ValidatedContext ctx;
     auto stage = passes::CellStage::create(ctx.device());

@@ -165,6 +165,13 @@ const std::vector<Option>& options() {
                   "where the exact triangle test decides the candidates: auto (the GPU where it has 64-bit floats), gpu or cpu (the reference path)",
                   "gpu: only intersecting pairs are read back and the CPU computes responses alone; cpu: every pair the GPU filter keeps is tested on the CPU; same pairs",
                   setting<kReliable, &ReliableSettings::exact>, "exact", "reliable.exact", show<kReliable, &ReliableSettings::exact>}),
+        reliable({"--exact-pass", "HOW", Section::Settings,
+                  "with the exact decision on the GPU: queued (a pass of its own over the candidates the pair pass's filter leaves), "
+                  "inline (inside the pair pass) or auto (queued from 65,536 candidates in their canonical cells in the last detection; "
+                  "docs/exact_gpu.md)",
+                  "queued: full subgroups on the exact path and a lighter filter, about 15 us more a chunk; same pairs",
+                  setting<kReliable, &ReliableSettings::exact_pass>, "exact_pass", "reliable.exact_pass",
+                  show<kReliable, &ReliableSettings::exact_pass>}),
         reliable({"--pair-sort", "WHERE", Section::Settings,
                   "where the exact decision's pairs are put in order: auto (the GPU from 4096 pairs in the last detection), gpu or cpu "
                   "(the narrow phase; docs/exact_gpu.md)",

@@ -82,10 +82,10 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
                                        : compute(P.pairs, shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64");
         !r)
         return r.error();
+    // The pair pass with the exact decision inside, ExactPass::Auto's first choice, here: a
+    // world's first detection compiles nothing (the exact pass's program: prepare()).
     if (device.shader_float64)
-        for (auto r : {compute(P.exact, shaders::cells_exact_comp, "cells-exact"),
-                       compute(P.pairs_inline, shaders::cells_pairs_inline_comp, "cells-pairs-inline")})
-            if (!r) return r.error();
+        if (auto r = compute(P.pairs_inline, shaders::cells_pairs_inline_comp, "cells-pairs-inline"); !r) return r.error();
     return cp;
 }
 
@@ -142,6 +142,13 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     if (settings.exact_pass != ExactPass::Auto) exact_queued_ = settings.exact_pass == ExactPass::Queued;
     else if (last_canonical_ != ~std::uint64_t{0} && last_canonical_ >= kExactQueuedFrom) exact_queued_ = true;
     else if (last_canonical_ < kExactInlineBelow) exact_queued_ = false;
+    // The exact pass's program is made when a run first needs it: it holds the exact test
+    // (lavapipe compiles it in about a second), and worlds of small scenes never run it.
+    if (use_exact_ && exact_queued_ && pipes_.exact.handle() == VK_NULL_HANDLE) {
+        auto made = vk::Pipeline::createCompute(*device_, shaders::cells_exact_comp, {}, sizeof(gpu::Push), "cells-exact");
+        if (!made) return made.error();
+        pipes_.exact = std::move(*made);
+    }
     proximity_pad_ = settings.proximity_pad;
     survivors_on_device_ = settings.survivors_on_device;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });

@@ -292,7 +292,7 @@ private:
     vk::Device* device_;
     struct Pipelines {
         vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, deep_guarded, args, pairs;
-        vk::Pipeline exact, pairs_inline;  // need shaderFloat64
+        vk::Pipeline pairs_inline, exact;  // need shaderFloat64; `exact` made when a run first needs it (prepare)
     } pipes_;
     vk::Pipeline filter_pipeline_;  // the pair pass with the filter (needs shaderFloat64)
     using Row = TableRow;  // rows of table_
@@ -312,7 +312,7 @@ private:
     bool survivors_on_device_ = false;
     // The exact decision in a pass of its own this run (ExactPass), and the last run's
     // canonical candidates (~0: none yet).
-    bool exact_queued_ = true;
+    bool exact_queued_ = false;
     std::uint64_t last_canonical_ = ~std::uint64_t{0};
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;

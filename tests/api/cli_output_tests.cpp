@@ -264,7 +264,7 @@ TEST_CASE("vkcollide --help: every option says what it does and what it costs", 
         "--open", "--self", "--no-self-collision", "--transform", "--translate", "--rotate", "--scale", "--gpu-mesh",
         "--edge-length", "--sequence", "--frame-files", "--frames", "--threads", "--device", "--no-robust-access",
         "--validation", "--quiet", "--pairs", "--json", "--stats", "--csv", "--png", "--png-size", "--view", "--rays",
-        "--method", "--timeout", "--wait-poll", "--max-pairs", "--max-candidate-pairs", "--contacts", "--contact-resolution", "--contact-geometry", "--exact", "--pair-sort",
+        "--method", "--timeout", "--wait-poll", "--max-pairs", "--max-candidate-pairs", "--contacts", "--contact-resolution", "--contact-geometry", "--exact", "--exact-pass", "--pair-sort",
         "--grid-tuning",
         "--proximity", "--proximity-capacity", "--proximity-pairs"};
     CHECK(std::set<std::string>(options.begin(), options.end()) == tested);

@@ -401,6 +401,36 @@ TEST_CASE("vkcollide detect: --pair-sort chooses where the pairs are put in orde
     CHECK(run.err.find("--pair-sort belongs to the reliable method") != std::string::npos);
 }
 
+TEST_CASE("vkcollide detect: --exact-pass runs the exact decision inside the pair pass or in a pass of its own", "[cli][gpu]") {
+    TwoSpheres s(1.0f);
+    const Json inl = detectJson(s.scratch, s.plain_files + " --exact-pass inline");
+    const Json queued = detectJson(s.scratch, s.plain_files + " --exact-pass queued");
+    const Json automatic = detectJson(s.scratch, s.plain_files);
+    CHECK(inl["settings"]["asked"]["exact_pass"].string() == "inline");
+    CHECK(queued["settings"]["used"]["exact_pass"].string() == "queued");
+    CHECK(automatic["settings"]["used"]["exact_pass"].string() == "auto");
+    REQUIRE(stats(inl)["pairs"].number() > 0);
+    if (stats(inl)["gpu_exact_tests"].number() > 0) {  // a device with shaderFloat64 (lavapipe has it)
+        CHECK(stats(inl)["cell_exact_pass"].string() == "inline");
+        CHECK(stats(queued)["cell_exact_pass"].string() == "queued");
+        CHECK(stats(automatic)["cell_exact_pass"].string() == "inline");  // Auto's first detection
+        const auto passes = [](const Json& j) {
+            std::set<std::string> names;
+            for (std::size_t k = 0; k < stats(j)["gpu_passes"].size(); ++k) names.insert(stats(j)["gpu_passes"][k]["name"].string());
+            return names;
+        };
+        CHECK(passes(queued).count("cells-exact") == 1);
+        CHECK(passes(inl).count("cells-exact") == 0);
+    }
+    CHECK(jsonPairs(inl["frames"][0]) == jsonPairs(queued["frames"][0]));
+    const Run bad = runCli("detect " + s.plain_files + " --exact-pass later");
+    CHECK(bad.status == 1);
+    CHECK(bad.err.find("--exact-pass needs auto, inline or queued, got 'later'") != std::string::npos);
+    const Run run = runCli("detect " + s.files + " --exact-pass queued");
+    CHECK(run.status == 1);
+    CHECK(run.err.find("--exact-pass belongs to the reliable method") != std::string::npos);
+}
+
 // --grid-tuning: auto resolves to off for now; on, the scene's second detection (what
 // --frames 2 reports) tries the coarser grid, says so, and gives the same pairs.
 TEST_CASE("vkcollide detect: --grid-tuning chooses the grid per scene, same pairs", "[cli][gpu]") {

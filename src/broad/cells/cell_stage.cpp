@@ -66,7 +66,7 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
     };
     auto& P = cp->pipes_;
     // The setup and the pair pass each come with float64 (the CPU's world vertices, the
-    // filter and the exact decision) or without it (record: filterSupported()).
+    // filter and the exact decision) or without it (filterSupported()).
     for (auto r : {device.shader_float64 ? compute(P.setup, shaders::cells_setup_comp, "cells-setup")
                                          : compute(P.setup, shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"),
                    compute(P.big, shaders::cells_big_comp, "cells-big"),
@@ -78,14 +78,15 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
                    compute(P.deep_guarded, shaders::cells_deep_guarded_comp, "cells-deep-guarded"),
                    compute(P.args, shaders::cells_args_comp, "cells-args")})
         if (!r) return r.error();
-    if (auto r = device.shader_float64 ? compute(cp->filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs")
+    // The pair pass: with float64 the one with the exact decision inside, the default's first
+    // choice (ExactPass::Auto), so that a world's first detection compiles nothing; the
+    // queueing pair pass and the exact pass are made when a run first needs them
+    // (prepare()): each is a large program (lavapipe takes about a second for the exact
+    // test), and most worlds run only one of the three.
+    if (auto r = device.shader_float64 ? compute(P.pairs_inline, shaders::cells_pairs_inline_comp, "cells-pairs-inline")
                                        : compute(P.pairs, shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64");
         !r)
         return r.error();
-    // The pair pass with the exact decision inside, ExactPass::Auto's first choice, here: a
-    // world's first detection compiles nothing (the exact pass's program: prepare()).
-    if (device.shader_float64)
-        if (auto r = compute(P.pairs_inline, shaders::cells_pairs_inline_comp, "cells-pairs-inline"); !r) return r.error();
     return cp;
 }
 
@@ -142,13 +143,18 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     if (settings.exact_pass != ExactPass::Auto) exact_queued_ = settings.exact_pass == ExactPass::Queued;
     else if (last_canonical_ != ~std::uint64_t{0} && last_canonical_ >= kExactQueuedFrom) exact_queued_ = true;
     else if (last_canonical_ < kExactInlineBelow) exact_queued_ = false;
-    // The exact pass's program is made when a run first needs it: it holds the exact test
-    // (lavapipe compiles it in about a second), and worlds of small scenes never run it.
-    if (use_exact_ && exact_queued_ && pipes_.exact.handle() == VK_NULL_HANDLE) {
-        auto made = vk::Pipeline::createCompute(*device_, shaders::cells_exact_comp, {}, sizeof(gpu::Push), "cells-exact");
+    // The programs this run needs beyond the stage's own (create()).
+    const auto make = [this](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) -> Result<void> {
+        if (out.handle() != VK_NULL_HANDLE) return {};
+        auto made = vk::Pipeline::createCompute(*device_, code, {}, sizeof(gpu::Push), name);
         if (!made) return made.error();
-        pipes_.exact = std::move(*made);
-    }
+        out = std::move(*made);
+        return {};
+    };
+    if (filterSupported() && (!use_exact_ || exact_queued_))
+        if (auto ok = make(filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs"); !ok) return ok.error();
+    if (use_exact_ && exact_queued_)
+        if (auto ok = make(pipes_.exact, shaders::cells_exact_comp, "cells-exact"); !ok) return ok.error();
     proximity_pad_ = settings.proximity_pad;
     survivors_on_device_ = settings.survivors_on_device;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Device run 3 of 2026-12-05 (session 44): what the pair pass's filter costs now that the
 # exact pass decides what it leaves. build-carry/expf/vkcollide_bench is main (3094658,
-# ExactPass::Auto) + an experiment, not committed (branch exp-filter): VKC_EXP_FILTER=1 the
+# ExactPass::Auto) + an experiment, not committed (exp_filter.patch in this folder): VKC_EXP_FILTER=1 the
 # whole filter (main's), 2 only the plane sides (each triangle's vertices against the
 # other's plane), 3 the plane sides and, where a sign is uncertain, the projections (no
 # Guigue-Devillers interval step), 0 no filter (every canonical candidate to the exact pass).

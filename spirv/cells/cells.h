@@ -288,7 +288,7 @@ struct CellsParams {
     // iterations together pass 65,535, silently (gallivm's loop limiter); there the host sets
     // a bound below it, and a cell that needs more raises kCellsLoopLimit.
     uint loop_guard;
-    uint exact_queue_capacity;  // at least one pair chunk's candidates: it never overflows
+    uint exact_queue_capacity;  // as many as a pair chunk's candidates can be: it never overflows
 };
 
 // ---- Device pairs (DetectSettings::reliable.device_pairs; src/broad/cells/device_pairs.cpp) ---

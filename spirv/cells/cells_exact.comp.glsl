@@ -25,7 +25,8 @@ void main() {
         key_a = tris.t[c.x].key;
         key_b = tris.t[c.y].key;
         tested = 1u;
-        keep = exactDecision(P, c.x, c.y, key_a, key_b, neighbour);
+        CellsGeometryRef geo = CellsGeometryRef(P.geometry);
+        keep = exactDecision(geo.g[c.x], geo.g[c.y], key_a, key_b, neighbour);
     }
     subgroupCount(headerField(P, kHeaderExactTests), tested);
     subgroupCount(headerField(P, kHeaderExactNeighbours), neighbour);

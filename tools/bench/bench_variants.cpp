@@ -37,7 +37,7 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // difference to "default" is what deciding on the GPU saves (docs/exact_gpu.md).
         {"exact-cpu", "modes", [](S& s) { s.reliable.exact = ExactDecision::Cpu; }},
         // The GPU's exact decision inside the pair pass, or in a pass of its own, always (the
-        // default, ExactPass::Auto, chooses from the last detection's exact tests).
+        // default, ExactPass::Auto, chooses from the last detection's canonical candidates).
         {"exact-inline", "modes", [](S& s) { s.reliable.exact_pass = ExactPass::Inline; }},
         {"exact-queued", "modes", [](S& s) { s.reliable.exact_pass = ExactPass::Queued; }},
         // The host result's pairs sorted on the GPU always, or on the CPU always (the default,

@@ -37,6 +37,14 @@ std::uint32_t grown(std::uint64_t needed, std::uint32_t budget) {
 
 bool moderate(float x) { return std::isfinite(x) && std::fabs(x) < 4.611686018427388e18f; }
 
+// A compute program of the stage (no bindings: every buffer through device addresses).
+Result<void> makePipeline(vk::Device& device, vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) {
+    auto p = vk::Pipeline::createCompute(device, code, {}, sizeof(gpu::Push), name);
+    if (!p) return p.error();
+    out = std::move(*p);
+    return {};
+}
+
 }  // namespace
 
 Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferTable* table) {
@@ -57,12 +65,8 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
     }
     cp->table_ = table;
     cp->addRows();
-    const std::span<const vk::Pipeline::Binding> none;
-    auto compute = [&](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) -> Result<void> {
-        auto p = vk::Pipeline::createCompute(device, code, none, sizeof(gpu::Push), name);
-        if (!p) return p.error();
-        out = std::move(*p);
-        return {};
+    auto compute = [&](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) {
+        return makePipeline(device, out, code, name);
     };
     auto& P = cp->pipes_;
     // The setup and the pair pass each come with float64 (the CPU's world vertices, the
@@ -143,18 +147,11 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     if (settings.exact_pass != ExactPass::Auto) exact_queued_ = settings.exact_pass == ExactPass::Queued;
     else if (last_canonical_ != ~std::uint64_t{0} && last_canonical_ >= kExactQueuedFrom) exact_queued_ = true;
     else if (last_canonical_ < kExactInlineBelow) exact_queued_ = false;
-    // The programs this run needs beyond the stage's own (create()).
-    const auto make = [this](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) -> Result<void> {
-        if (out.handle() != VK_NULL_HANDLE) return {};
-        auto made = vk::Pipeline::createCompute(*device_, code, {}, sizeof(gpu::Push), name);
-        if (!made) return made.error();
-        out = std::move(*made);
-        return {};
-    };
-    if (filterSupported() && (!use_exact_ || exact_queued_))
-        if (auto ok = make(filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs"); !ok) return ok.error();
-    if (use_exact_ && exact_queued_)
-        if (auto ok = make(pipes_.exact, shaders::cells_exact_comp, "cells-exact"); !ok) return ok.error();
+    // The programs this run needs beyond the stage's own (create()), made once.
+    if (filterSupported() && (!use_exact_ || exactQueued()) && filter_pipeline_.handle() == VK_NULL_HANDLE)
+        if (auto ok = makePipeline(*device_, filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs"); !ok) return ok.error();
+    if (exactQueued() && pipes_.exact.handle() == VK_NULL_HANDLE)
+        if (auto ok = makePipeline(*device_, pipes_.exact, shaders::cells_exact_comp, "cells-exact"); !ok) return ok.error();
     proximity_pad_ = settings.proximity_pad;
     survivors_on_device_ = settings.survivors_on_device;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
@@ -252,8 +249,8 @@ void CellStage::writeParams() {
     p.gpu_triangles = has_download_ ? buf_.gpu_triangles->address() : 0;
     p.marks = has_download_ ? buf_.marks->address() : 0;
     p.sorted = buf_.sorted->address();
-    p.exact_queue = use_exact_ ? buf_.exact_queue->address() : 0;
-    p.exact_queue_capacity = use_exact_ ? static_cast<std::uint32_t>(buf_.exact_queue->size() / 8) : 0;
+    p.exact_queue = exactQueued() ? buf_.exact_queue->address() : 0;
+    p.exact_queue_capacity = exactQueued() ? static_cast<std::uint32_t>(buf_.exact_queue->size() / 8) : 0;
     p.sorted_capacity = static_cast<std::uint32_t>(buf_.sorted->size() / 8);
     p.loop_guard = loopGuard();
     p.gpu_triangle_capacity = has_download_ ? capacity_.gpu_triangles : 0;
@@ -422,7 +419,7 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.exact_ran = use_exact_;
     s.exact_tests = h.exact_tests;
     s.exact_neighbours = h.exact_neighbours;
-    s.exact_queued = use_exact_ && exact_queued_;
+    s.exact_queued = exactQueued();
     if (use_exact_) last_canonical_ = h.candidates - std::min<std::uint64_t>(h.candidates, h.duplicates);
     survivor_count_ = h.survivors;
     gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;

@@ -313,6 +313,7 @@ private:
     // The exact decision in a pass of its own this run (ExactPass), and the last run's
     // canonical candidates (~0: none yet).
     bool exact_queued_ = false;
+    bool exactQueued() const noexcept { return use_exact_ && exact_queued_; }  // this run has the exact pass
     std::uint64_t last_canonical_ = ~std::uint64_t{0};
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;

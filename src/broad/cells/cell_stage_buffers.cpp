@@ -53,9 +53,10 @@ Result<void> CellStage::ensureBuffers() {
     // cells of k > kCellsDeepShared entries; either way at most 2 k / kCellsSmallCell.
     static_assert(gpu::kCellsDeepShared >= 4 * gpu::kCellsGroupSize && gpu::kCellsSmallCell >= gpu::kCellsGroupSize);
     const VkDeviceSize deep = 2 * VkDeviceSize(capacity_.entries) / gpu::kCellsSmallCell + 1;
-    // The exact queue holds a pair chunk's candidates at most (the pair pass queues only
-    // those of its chunk, the exact pass empties it before the next): it cannot overflow.
-    const VkDeviceSize exact_queue = use_exact_ ? std::min<VkDeviceSize>(capacity_.candidates, pair_chunk_) : 0;
+    // The exact queue, for queued runs only, holds a pair chunk's candidates at most (the
+    // pair pass queues only those of its chunk, the exact pass empties it before the next):
+    // it cannot overflow.
+    const VkDeviceSize exact_queue = exactQueued() ? std::min<VkDeviceSize>(capacity_.candidates, pair_chunk_) : 0;
     const MemoryKind survivors_kind = survivors_on_device_ ? MemoryKind::DeviceLocal : MemoryKind::Readback;
     const RowSize plan[] = {
         rowSize(buf_.params, sizeof(gpu::CellsParams), MemoryKind::Upload),

@@ -200,9 +200,10 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
     const VkBuffer args_buffer = buf_.args->handle();
     const VkBuffer header_buffer = buf_.header->handle(), header_rb_buffer = buf_.header_rb->handle();
     const auto& P = pipes_;
-    // The double-precision variant wherever the device has it (P.use_filter switches the
-    // filter): it also computes download objects' world vertices as the CPU does.
-    const bool queued = use_exact_ && exact_queued_;
+    // A double-precision variant wherever the device has it (P.use_filter switches the
+    // filter): the one deciding exactly inline, or the one that filters (and queues for the
+    // exact pass).
+    const bool queued = exactQueued();
     const vk::Pipeline* pairs = !filterSupported() ? &P.pairs : use_exact_ && !queued ? &P.pairs_inline : &filter_pipeline_;
     pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing)
         .readWrite(id.header)  // the chunks done so far

@@ -329,11 +329,21 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.triangle_tests = st.cpu_exact_tests + st.gpu_exact_tests;
     st.positive_tests = narrow->stats.positive_tests;
     if (detected.hasPairs()) st.triangles_downloaded = narrow->stats.candidates;  // distinct triangles in the pairs
-    // Run indices grow with ids, so the sorted order survives the mapping.
+    // Run indices grow with ids, so the sorted order survives the mapping; a world whose
+    // ids are its run indices (none removed, none left out) needs none.
     out.pairs = std::move(narrow->pairs);
-    for (TrianglePair& p : out.pairs) p.object_a = ids[p.object_a], p.object_b = ids[p.object_b];
     out.responses = std::move(narrow->responses);
-    for (TriangleResponse& r : out.responses) r.object = ids[r.object];
+    bool renumber = false;
+    for (std::size_t i = 0; i < ids.size(); ++i) renumber = renumber || ids[i] != i;
+    if (renumber) {
+        constexpr std::size_t kGrain = 1 << 15;
+        executor->parallelFor(out.pairs.size(), kGrain, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) out.pairs[k].object_a = ids[out.pairs[k].object_a], out.pairs[k].object_b = ids[out.pairs[k].object_b];
+        });
+        executor->parallelFor(out.responses.size(), kGrain, [&](std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) out.responses[k].object = ids[out.responses[k].object];
+        });
+    }
     if (broad[0].scene_box) auto_settings.measured_box = broad[0].scene_box;
     // The tuned grid's time: the GPU span of a detection whose cell stage ran once (a run
     // that grew a buffer is not comparable).

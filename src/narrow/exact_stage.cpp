@@ -149,7 +149,7 @@ void testAndRespond(std::vector<PairTask>& tasks, const SlotData& slots, std::si
     // (lower slot, higher slot) keys sorts the pairs.
     Buffer<std::uint64_t>& colliding = ws.colliding;
     colliding.resize(hit_count);
-    out.pairs.resize(hit_count);
+    resizeFresh(out.pairs, hit_count, ex);  // fresh pages touched in parallel
     // Plain pointers and copies: the strided slot views read through std::byte, which may
     // alias anything, so members reached through references would be reloaded per pair.
     // The keys' address is passed in, not captured: the radix sort swaps `colliding` with

@@ -128,7 +128,7 @@ void respondSorted(const Buffer<std::uint64_t>& colliding, const SlotData& slots
             normal[r] = unitNormal(slots.v[slot]);
         }
     });
-    out.responses.resize(responders);
+    resizeFresh(out.responses, responders, ex);
     ex.parallelFor(responders, kResultGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t r = begin; r < end; ++r) {
             const auto self = static_cast<std::uint32_t>(ends[begin_of[r]] >> 32);
@@ -195,7 +195,7 @@ void respondGrouped(const Buffer<std::uint64_t>& colliding, const SlotData& slot
             responder_slot[position] = static_cast<std::uint32_t>(s);
             normal[s] = unitNormal(slots.v[s]);
         });
-    out.responses.resize(responders);
+    resizeFresh(out.responses, responders, ex);
     ex.parallelFor(responders, kResultGrain, [&](std::size_t begin, std::size_t end) {
         for (std::size_t r = begin; r < end; ++r) {
             const std::uint32_t self = responder_slot[r];

@@ -123,17 +123,12 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
     const SlotData slots = slotView(ws.tags, ws.vertices);
     clock.lap(result.timings.gather_ms);
 
-    if (result.pairs.capacity() >= kept) {
-        // Reused memory: resize() zeroes only what grows; the copy runs in parallel.
-        result.pairs.resize(kept);
-        ex.parallelFor(kept, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
-            std::copy(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
-                      result.pairs.begin() + static_cast<std::ptrdiff_t>(begin));
-        });
-    } else {
-        // Fresh memory: one pass (resize() would first zero it, page by page, on one thread).
-        result.pairs.assign(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(kept));
-    }
+    // Reused memory, or fresh pages touched in parallel first; the copy runs in parallel.
+    resizeFresh(result.pairs, kept, ex);
+    ex.parallelFor(kept, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
+        std::copy(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
+                  result.pairs.begin() + static_cast<std::ptrdiff_t>(begin));
+    });
     clock.lap(result.timings.sort_ms);
     respond(colliding, slots, slot_count, ResponseForm::Automatic, ex, ws, result);
     clock.lap(result.timings.response_ms);

@@ -72,3 +72,26 @@ TEST_CASE("radix sorts of unordered keys", "[narrow][radix]") {
         }
     }
 }
+
+// resizeFresh: v.resize() within the capacity; beyond it, value-initialised elements in new
+// memory that the executor's threads touched first.
+TEST_CASE("resizeFresh sizes a vector as resize() does, growing it through the executor", "[narrow]") {
+    struct Pair {
+        std::uint32_t a = 7, b = 0, c = 0, d = 0;  // a non-zero default: value-initialised, not only zeroed
+    };
+    const Pair old{1, 2, 3, 4};
+    const auto fresh = [](const Pair& p) { return p.a == 7 && p.b == 0 && p.c == 0 && p.d == 0; };
+    for (unsigned threads : {1u, 4u}) {
+        ThreadPool pool(threads);
+        std::vector<Pair> v(3, old);
+        for (std::size_t n : {std::size_t(2), std::size_t(300000), std::size_t(1000), std::size_t(700000)}) {
+            const bool grows = n > v.capacity();
+            const std::size_t kept = grows ? 0 : std::min(n, v.size());
+            vkcollide::narrow::resizeFresh(v, n, pool);
+            REQUIRE(v.size() == n);
+            CHECK(std::all_of(v.begin(), v.begin() + std::ptrdiff_t(kept), [&](const Pair& p) { return p.a == old.a && p.d == old.d; }));
+            CHECK(std::all_of(v.begin() + std::ptrdiff_t(kept), v.end(), fresh));
+            std::fill(v.begin(), v.end(), old);
+        }
+    }
+}

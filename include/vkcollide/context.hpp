@@ -322,7 +322,7 @@ struct AdoptedDevice {
     // Optional: the engine's pipeline cache, used for every pipeline vkcollide creates
     // (borrowed, never destroyed). One created with
     // VK_PIPELINE_CACHE_CREATE_EXTERNALLY_SYNCHRONIZED_BIT must not be used by the engine
-    // while vkcollide creates pipelines (CollisionWorld::create, first detections).
+    // while vkcollide creates pipelines (a world's first detections with a method or stage).
     // VK_NULL_HANDLE: the Context creates its own, from pipeline_cache_data.
     VkPipelineCache pipeline_cache = VK_NULL_HANDLE;
     std::span<const std::byte> pipeline_cache_data;

@@ -34,7 +34,8 @@ CollisionWorld::~CollisionWorld() {
 Result<std::unique_ptr<CollisionWorld>> CollisionWorld::create(Context& context, const WorldOptions& options) {
     auto impl = std::make_unique<Impl>();
     impl->device_ref = ContextAccess::deviceRef(context);
-    // The default method's pipelines now; the other's when a detection first asks for it.
+    // The default method's stages now (they check the device); every pipeline when a
+    // detection first needs it (a world that only peels compiles none of the cell stage).
     auto detection = passes::Detection::create(ContextAccess::device(context), DetectionsInFlight::methodFactory(DetectSettings{}.method));
     if (!detection) return detection.error();
     impl->detections.runs[0].detection = std::move(*detection);

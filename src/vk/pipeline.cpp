@@ -114,14 +114,19 @@ Result<Pipeline> Pipeline::share(Device& device, const std::string& key, const M
     return Pipeline(std::move(h));
 }
 
-Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::uint32_t> spirv,
-                                         std::span<const Binding> bindings, std::uint32_t push_constant_bytes,
-                                         const std::string& name) {
-    // A device below the shader's workgroup size or shared memory fails here, by name.
+Result<void> Pipeline::checkComputeLimits(const Device& device, std::span<const std::uint32_t> spirv, const std::string& name) {
     auto needs = readComputeNeeds(spirv);
     if (!needs) return Error(ErrorCode::InvalidArgument, "compute pipeline '" + name + "': " + needs.error().message());
     if (auto over = exceededComputeLimit(*needs, device.properties.limits, name))
         return Error(ErrorCode::UnsupportedFeature, *over + " on " + device.info.name);
+    return {};
+}
+
+Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::uint32_t> spirv,
+                                         std::span<const Binding> bindings, std::uint32_t push_constant_bytes,
+                                         const std::string& name) {
+    // A device below the shader's workgroup size or shared memory fails here, by name.
+    if (auto ok = checkComputeLimits(device, spirv, name); !ok) return ok.error();
     const std::string key = "compute " + programKey(spirv) + " " + bindingKey(bindings, push_constant_bytes);
     return share(device, key, [&](PipelineHandles& h) -> Result<void> {
         if (auto ok = makeLayout(device, bindings, push_constant_bytes, VK_SHADER_STAGE_COMPUTE_BIT, name, h); !ok) return ok;

@@ -38,6 +38,9 @@ public:
         std::uint32_t binding;
         VkDescriptorType type;
     };
+    // What createCompute checks before it compiles, without compiling: a device below the
+    // program's workgroup size or shared memory fails by name (UnsupportedFeature).
+    static Result<void> checkComputeLimits(const Device& device, std::span<const std::uint32_t> spirv, const std::string& name);
     static Result<Pipeline> createCompute(Device& device, std::span<const std::uint32_t> spirv,
                                           std::span<const Binding> bindings, std::uint32_t push_constant_bytes,
                                           const std::string& name);

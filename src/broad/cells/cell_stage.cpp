@@ -65,33 +65,68 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
     }
     cp->table_ = table;
     cp->addRows();
-    auto compute = [&](vk::Pipeline& out, std::span<const std::uint32_t> code, const char* name) {
-        return makePipeline(device, out, code, name);
-    };
-    auto& P = cp->pipes_;
-    // The setup and the pair pass each come with float64 (the CPU's world vertices, the
-    // filter and the exact decision) or without it (filterSupported()).
-    for (auto r : {device.shader_float64 ? compute(P.setup, shaders::cells_setup_comp, "cells-setup")
-                                         : compute(P.setup, shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"),
-                   compute(P.big, shaders::cells_big_comp, "cells-big"),
-                   compute(P.scan, shaders::cells_scan_comp, "cells-scan"), compute(P.fill, shaders::cells_fill_comp, "cells-fill"),
-                   compute(P.sweep, shaders::cells_sweep_comp, "cells-sweep"),
-                   compute(P.sweep_plain, shaders::cells_sweep_plain_comp, "cells-sweep-plain"),
-                   compute(P.deep_sort, shaders::cells_deep_sort_comp, "cells-deep-sort"),
-                   compute(P.deep, shaders::cells_deep_comp, "cells-deep"),
-                   compute(P.deep_guarded, shaders::cells_deep_guarded_comp, "cells-deep-guarded"),
-                   compute(P.args, shaders::cells_args_comp, "cells-args")})
-        if (!r) return r.error();
-    // The pair pass: with float64 the one with the exact decision inside, the default's first
-    // choice (ExactPass::Auto), so that a world's first detection compiles nothing; the
-    // queueing pair pass and the exact pass are made when a run first needs them
-    // (prepare()): each is a large program (lavapipe takes about a second for the exact
-    // test), and most worlds run only one of the three.
-    if (auto r = device.shader_float64 ? compute(P.pairs_inline, shaders::cells_pairs_inline_comp, "cells-pairs-inline")
-                                       : compute(P.pairs, shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64");
-        !r)
-        return r.error();
+    // No pipeline yet: prepare() makes the ones a run needs (CellStage::ensurePipelines), so
+    // that a world that never runs the reliable method, or never a variant, compiles none of
+    // it (the pair pass alone took a third of a world's compiling on lavapipe). A device
+    // below a program's limits is refused here, by name, as before anything runs.
+    for (const Program& program : programs(device.shader_float64))
+        if (auto ok = vk::Pipeline::checkComputeLimits(device, program.code, program.name); !ok) return ok.error();
     return cp;
+}
+
+// Every program the stage may run on a device with or without float64.
+std::vector<CellStage::Program> CellStage::programs(bool float64) {
+    std::vector<Program> all = {
+        {shaders::cells_big_comp, "cells-big"},         {shaders::cells_scan_comp, "cells-scan"},
+        {shaders::cells_fill_comp, "cells-fill"},       {shaders::cells_sweep_comp, "cells-sweep"},
+        {shaders::cells_sweep_plain_comp, "cells-sweep-plain"}, {shaders::cells_deep_sort_comp, "cells-deep-sort"},
+        {shaders::cells_deep_comp, "cells-deep"},       {shaders::cells_deep_guarded_comp, "cells-deep-guarded"},
+        {shaders::cells_args_comp, "cells-args"}};
+    if (float64) {
+        all.push_back({shaders::cells_setup_comp, "cells-setup"});
+        all.push_back({shaders::cells_pairs_inline_comp, "cells-pairs-inline"});
+        all.push_back({shaders::cells_pairs_comp, "cells-pairs"});
+        all.push_back({shaders::cells_exact_comp, "cells-exact"});
+    } else {
+        all.push_back({shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"});
+        all.push_back({shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"});
+    }
+    return all;
+}
+
+// The programs this run records, each made once (shared with the device's other worlds:
+// vk::Pipeline::share): the setup and the pair pass with float64 or without it, the shallow
+// sweep with or without its repeat checks, the deep sweep with or without the loop guard,
+// and with float64 the pair pass with the exact decision inside, or the queueing one and
+// the exact pass.
+Result<void> CellStage::ensurePipelines() {
+    auto& P = pipes_;
+    const bool f64 = filterSupported();
+    struct Need {
+        vk::Pipeline* out;
+        Program program;
+    };
+    const Need needs[] = {
+        {&P.setup, f64 ? Program{shaders::cells_setup_comp, "cells-setup"} : Program{shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"}},
+        {&P.big, {shaders::cells_big_comp, "cells-big"}},
+        {&P.scan, {shaders::cells_scan_comp, "cells-scan"}},
+        {&P.fill, {shaders::cells_fill_comp, "cells-fill"}},
+        {plain_sweep_ ? &P.sweep_plain : &P.sweep,
+         plain_sweep_ ? Program{shaders::cells_sweep_plain_comp, "cells-sweep-plain"} : Program{shaders::cells_sweep_comp, "cells-sweep"}},
+        {&P.deep_sort, {shaders::cells_deep_sort_comp, "cells-deep-sort"}},
+        {loopGuard() != ~0u ? &P.deep_guarded : &P.deep,
+         loopGuard() != ~0u ? Program{shaders::cells_deep_guarded_comp, "cells-deep-guarded"} : Program{shaders::cells_deep_comp, "cells-deep"}},
+        {&P.args, {shaders::cells_args_comp, "cells-args"}},
+        {!f64 ? &P.pairs : use_exact_ && !exactQueued() ? &P.pairs_inline : &P.pairs_filter,
+         !f64                            ? Program{shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"}
+         : use_exact_ && !exactQueued() ? Program{shaders::cells_pairs_inline_comp, "cells-pairs-inline"}
+                                         : Program{shaders::cells_pairs_comp, "cells-pairs"}},
+        {exactQueued() ? &P.exact : nullptr, {shaders::cells_exact_comp, "cells-exact"}},
+    };
+    for (const Need& n : needs)
+        if (n.out && n.out->handle() == VK_NULL_HANDLE)
+            if (auto ok = makePipeline(*device_, *n.out, n.program.code, n.program.name); !ok) return ok.error();
+    return {};
 }
 
 Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSettings& settings) {
@@ -147,11 +182,6 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     if (settings.exact_pass != ExactPass::Auto) exact_queued_ = settings.exact_pass == ExactPass::Queued;
     else if (last_canonical_ != ~std::uint64_t{0} && last_canonical_ >= kExactQueuedFrom) exact_queued_ = true;
     else if (last_canonical_ < kExactInlineBelow) exact_queued_ = false;
-    // The programs this run needs beyond the stage's own (create()), made once.
-    if (filterSupported() && (!use_exact_ || exactQueued()) && filter_pipeline_.handle() == VK_NULL_HANDLE)
-        if (auto ok = makePipeline(*device_, filter_pipeline_, shaders::cells_pairs_comp, "cells-pairs"); !ok) return ok.error();
-    if (exactQueued() && pipes_.exact.handle() == VK_NULL_HANDLE)
-        if (auto ok = makePipeline(*device_, pipes_.exact, shaders::cells_exact_comp, "cells-exact"); !ok) return ok.error();
     proximity_pad_ = settings.proximity_pad;
     survivors_on_device_ = settings.survivors_on_device;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
@@ -170,6 +200,7 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     plain_sweep_ = checks == Checks::DeepChunksOnly;
     loop_guard_ = settings.loop_guard;
     sweep_dedupe_ = plain_sweep_ ? gpu::kCellsDeepShared + 1 : gpu::kCellsSweepDedupe;
+    if (auto ok = ensurePipelines(); !ok) return ok.error();
     auto_sweep_work_ = settings.sweep_work == 0;
     sweep_work_ = auto_sweep_work_ ? automaticSweepWork() : settings.sweep_work;
     next_chunk_ = 0;

@@ -190,7 +190,7 @@ public:
     static Result<std::unique_ptr<CellStage>> create(vk::Device& device, BufferTable* table = nullptr);
 
     // Whether the double-precision filter can run (shaderFloat64 enabled on the device).
-    bool filterSupported() const noexcept { return pipes_.pairs_inline.handle() != VK_NULL_HANDLE; }
+    bool filterSupported() const noexcept { return device_->shader_float64; }
 
     // Checks the input, sizes the buffers and uploads the run's parameters. Errors:
     // InvalidArgument (resolution, projection, object layout), OutOfMemory (a buffer
@@ -290,11 +290,19 @@ private:
     Result<void> checkBudget(const gpu::CellsHeader& header) const;
 
     vk::Device* device_;
+    // Made when a run first needs them (ensurePipelines()). `pairs`: without float64;
+    // `pairs_inline` (the exact decision inside), `pairs_filter` (the filter, queueing for
+    // the exact pass) and `exact`: with it.
     struct Pipelines {
         vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, deep_guarded, args, pairs;
-        vk::Pipeline pairs_inline, exact;  // need shaderFloat64; `exact` made when a run first needs it (prepare())
+        vk::Pipeline pairs_inline, pairs_filter, exact;
     } pipes_;
-    vk::Pipeline filter_pipeline_;  // the pair pass with the filter, queueing for the exact pass (needs shaderFloat64; prepare())
+    struct Program {
+        std::span<const std::uint32_t> code;
+        const char* name;
+    };
+    static std::vector<Program> programs(bool float64);
+    Result<void> ensurePipelines();
     using Row = TableRow;  // rows of table_
     void addRows();
     std::unique_ptr<BufferTable> own_table_;  // without a caller's table

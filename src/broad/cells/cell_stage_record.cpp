@@ -204,7 +204,7 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
     // filter): the one deciding exactly inline, or the one that filters (and queues for the
     // exact pass).
     const bool queued = exactQueued();
-    const vk::Pipeline* pairs = !filterSupported() ? &P.pairs : use_exact_ && !queued ? &P.pairs_inline : &filter_pipeline_;
+    const vk::Pipeline* pairs = !filterSupported() ? &P.pairs : use_exact_ && !queued ? &P.pairs_inline : &P.pairs_filter;
     pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing)
         .readWrite(id.header)  // the chunks done so far
         .write(id.args)

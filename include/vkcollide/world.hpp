@@ -349,7 +349,9 @@ struct CellStats {
     std::uint64_t survivors = 0;        // pairs read back (8 bytes each)
     std::uint64_t gpu_triangles = 0;    // engine meshes' triangles read back with their vertices (52 bytes each)
     std::uint32_t runs = 1;             // submissions (more after a buffer grew)
-    bool filter_ran = false;            // the device has shaderFloat64
+    // The device has shaderFloat64 and the filter ran (before the exact pass it is skipped
+    // while it rejects under a tenth of the candidates: docs/exact_gpu.md, "Two passes").
+    bool filter_ran = false;
     bool exact_ran = false;  // the pair pass decided exactly (DetectSettings::reliable.exact)
     std::uint64_t exact_tests = 0;  // candidates the GPU's exact test decided (after the filter)
     std::uint64_t exact_neighbours = 0;  // of those, left out as neighbours (a bit-identical vertex)

@@ -208,6 +208,64 @@ TEST_CASE("cells: the exact pass follows the last run's canonical candidates", "
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
+TEST_CASE("cells: before the exact pass a filter that rejects little is skipped, then measured again", "[cells][gpu]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) {
+        WARN("the device has no shaderFloat64: no exact decision on the GPU");
+        return;
+    }
+    // Two coplanar sheets, one shifted by a third of a square: every candidate is coplanar,
+    // which the plane sides never reject.
+    CellScene flat;
+    flat.meshes.push_back(generated(clothGrid(1.0f, 1.0f, 24, 24), "sheet"));
+    flat.meshes.push_back(generated(clothGrid(1.0f, 1.0f, 24, 24), "shifted sheet"));
+    flat.transforms = {kIdentityTransform, translation(1.0f / 72, 1.0f / 72, 0.0f)};
+    flat.self = {0, 0};
+    std::mt19937 rng(31);
+    CellScene soupy;  // slivers in a box: most candidates are proved disjoint
+    soupy.meshes.push_back(soup(rng, 3000, -0.5f, 0.5f, 0.05f, "soup"));
+    soupy.self.push_back(1);
+    CellRunOptions opt;
+    opt.resolution = 16;
+    opt.settings.exact = true;
+    opt.settings.exact_pass = ExactPass::Queued;
+    const auto canonical = [](const CellRun& r) { return r.result.stats.candidates - r.result.stats.duplicates; };
+
+    auto stage = passes::CellStage::create(ctx.device());
+    REQUIRE(stage);
+    const auto reference = referencePairs(flat);
+    REQUIRE(reference.size() > 1000);
+    const CellRun measured = runCells(ctx, **stage, flat, opt);
+    INFO(canonical(measured) << " canonical candidates, " << measured.result.stats.filtered << " filtered");
+    CHECK(measured.result.stats.filter_ran);
+    REQUIRE(double(measured.result.stats.filtered) < passes::kFilterUsefulShare * double(canonical(measured)));
+    CHECK(measured.pairs == reference);
+    for (std::uint32_t k = 0; k < passes::kFilterRecheckRuns; ++k) {
+        const CellRun skipped = runCells(ctx, **stage, flat, opt);
+        CHECK_FALSE(skipped.result.stats.filter_ran);
+        CHECK(skipped.result.stats.filtered == 0);
+        CHECK(skipped.result.stats.exact_tests == canonical(skipped));  // every canonical candidate decided exactly
+        CHECK(skipped.pairs == reference);
+    }
+    const CellRun again = runCells(ctx, **stage, flat, opt);
+    CHECK(again.result.stats.filter_ran);  // measured again
+    CHECK(again.pairs == reference);
+
+    // Where the filter pays for itself it runs every time; and never skipped when asked so.
+    auto other = passes::CellStage::create(ctx.device());
+    REQUIRE(other);
+    const CellRun rejecting = runCells(ctx, **other, soupy, opt);
+    REQUIRE(double(rejecting.result.stats.filtered) >= passes::kFilterUsefulShare * double(canonical(rejecting)));
+    const CellRun next = runCells(ctx, **other, soupy, opt);
+    CHECK(next.result.stats.filter_ran);
+    CHECK(next.pairs == rejecting.pairs);
+    opt.settings.skip_unhelpful_filter = false;
+    auto pinned = passes::CellStage::create(ctx.device());
+    REQUIRE(pinned);
+    for (int k = 0; k < 2; ++k) CHECK(runCells(ctx, **pinned, flat, opt).result.stats.filter_ran);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
 TEST_CASE("cells: identical results run to run", "[cells][gpu]") {
     ValidatedContext ctx;
     auto stage = passes::CellStage::create(ctx.device());

@@ -182,6 +182,11 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     if (settings.exact_pass != ExactPass::Auto) exact_queued_ = settings.exact_pass == ExactPass::Queued;
     else if (last_canonical_ != ~std::uint64_t{0} && last_canonical_ >= kExactQueuedFrom) exact_queued_ = true;
     else if (last_canonical_ < kExactInlineBelow) exact_queued_ = false;
+    skip_unhelpful_filter_ = settings.skip_unhelpful_filter;
+    if (use_filter_ && use_exact_ && exactQueued() && skip_unhelpful_filter_ && filter_skips_left_ > 0) {
+        --filter_skips_left_;
+        use_filter_ = false;
+    }
     proximity_pad_ = settings.proximity_pad;
     survivors_on_device_ = settings.survivors_on_device;
     has_self_ = std::any_of(in.self_collision.begin(), in.self_collision.end(), [](std::uint8_t s) { return s != 0; });
@@ -452,6 +457,9 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.exact_neighbours = h.exact_neighbours;
     s.exact_queued = exactQueued();
     if (use_exact_) last_canonical_ = h.candidates - std::min<std::uint64_t>(h.candidates, h.duplicates);
+    if (use_filter_ && use_exact_ && exactQueued() && skip_unhelpful_filter_ && last_canonical_ > 0 &&
+        double(h.filtered) < kFilterUsefulShare * double(last_canonical_))
+        filter_skips_left_ = kFilterRecheckRuns;
     survivor_count_ = h.survivors;
     gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;
     if (survivor_count_ && !survivors_on_device_) buf_.survivors->invalidate(0, VkDeviceSize(survivor_count_) * 8);

@@ -101,6 +101,15 @@ struct CellStageCapacity {
 inline constexpr std::uint64_t kExactInlineBelow = 32768;
 inline constexpr std::uint64_t kExactQueuedFrom = 65536;
 
+// With the exact pass to follow, the pair pass's filter (the plane sides) is skipped where
+// it rejected under this share of the last filtered run's canonical candidates, for the
+// next kFilterRecheckRuns runs, then run once to measure again: on an H100 it rejected 60-89 %
+// of the piles', spheres' and CAD plates' candidates and paid for itself, 0-1.6 % of the
+// touching and mating stacks' and walls' and cost 7-45 % of their pair + exact passes
+// (docs/exact_gpu.md, "Two passes"). The exact pass decides every candidate either way.
+inline constexpr double kFilterUsefulShare = 0.1;
+inline constexpr std::uint32_t kFilterRecheckRuns = 15;
+
 struct CellStageSettings {
     // Run the double-precision filter where the device has shaderFloat64 enabled.
     bool filter = true;
@@ -110,6 +119,9 @@ struct CellStageSettings {
     bool exact = false;
     // Where the exact decision runs; the survivors are the same either way.
     ExactPass exact_pass = ExactPass::Auto;
+    // With the exact pass: skip the filter while it rejects under kFilterUsefulShare of the
+    // candidates (false: always filter, as tests that count what it rejects need).
+    bool skip_unhelpful_filter = true;
     // The budget of a run (DetectSettings::limits.max_candidate_pairs in a detection; the stage's
     // own limit is 2^31 - 1, its buffers' 32-bit indices): the cells of the triangles'
     // clamped footprint boxes (so the footprints, 20 bytes each, and the count pass's work)
@@ -323,6 +335,8 @@ private:
     bool exact_queued_ = false;
     bool exactQueued() const noexcept { return use_exact_ && exact_queued_; }  // this run has the exact pass
     std::uint64_t last_canonical_ = ~std::uint64_t{0};
+    bool skip_unhelpful_filter_ = true;      // CellStageSettings::skip_unhelpful_filter
+    std::uint32_t filter_skips_left_ = 0;     // runs that skip the filter before it is measured again
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish

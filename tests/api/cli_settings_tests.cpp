@@ -421,6 +421,13 @@ TEST_CASE("vkcollide detect: --exact-pass runs the exact decision inside the pai
         };
         CHECK(passes(queued).count("cells-exact") == 1);
         CHECK(passes(inl).count("cells-exact") == 0);
+        // What the filter did: it ran (a first detection always filters) and its rejections
+        // and the exact tests together are the canonical candidates, either way.
+        for (const Json* j : {&inl, &queued}) {
+            CHECK(stats(*j)["cell_filter_ran"].boolean());
+            CHECK(stats(*j)["cell_filtered"].number() + stats(*j)["gpu_exact_tests"].number() ==
+                  stats(inl)["cell_filtered"].number() + stats(inl)["gpu_exact_tests"].number());
+        }
     }
     CHECK(jsonPairs(inl["frames"][0]) == jsonPairs(queued["frames"][0]));
     const Run bad = runCli("detect " + s.plain_files + " --exact-pass later");

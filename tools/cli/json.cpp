@@ -170,7 +170,9 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("cell_pair_chunks", st.cells.pair_chunks);
     count("cell_huge_cells", st.cells.huge_cells);
     count("cell_comparisons", st.cells.comparisons);
+    count("cell_filtered", st.cells.filtered);
     count("cell_survivors", st.cells.survivors);
+    if (st.method == vkcollide::DetectMethod::Reliable) j.member("cell_filter_ran", [&] { j.boolean(st.cells.filter_ran); });
     if (st.cells.exact_ran) j.member("cell_exact_pass", [&] { j.string(st.cells.exact_queued ? "queued" : "inline"); });
     count("deep_rays", st.peeling.deep_rays);
     count("axes", st.peeling.axes);

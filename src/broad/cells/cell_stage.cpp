@@ -45,6 +45,18 @@ Result<void> makePipeline(vk::Device& device, vk::Pipeline& out, std::span<const
     return {};
 }
 
+// The stage's programs, each named once: programs() lists them for create()'s limit check,
+// the slots below pick a run's forms for ensurePipelines() and the recording.
+using Program = CellStage::Program;
+constexpr Program kSetup{shaders::cells_setup_comp, "cells-setup"}, kSetupNoFp64{shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"},
+    kBig{shaders::cells_big_comp, "cells-big"}, kScan{shaders::cells_scan_comp, "cells-scan"}, kFill{shaders::cells_fill_comp, "cells-fill"},
+    kSweep{shaders::cells_sweep_comp, "cells-sweep"}, kSweepPlain{shaders::cells_sweep_plain_comp, "cells-sweep-plain"},
+    kDeepSort{shaders::cells_deep_sort_comp, "cells-deep-sort"}, kDeep{shaders::cells_deep_comp, "cells-deep"},
+    kDeepGuarded{shaders::cells_deep_guarded_comp, "cells-deep-guarded"}, kArgs{shaders::cells_args_comp, "cells-args"},
+    kPairsNoFp64{shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"},
+    kPairsInline{shaders::cells_pairs_inline_comp, "cells-pairs-inline"}, kPairsFilter{shaders::cells_pairs_comp, "cells-pairs"},
+    kExact{shaders::cells_exact_comp, "cells-exact"};
+
 }  // namespace
 
 Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferTable* table) {
@@ -76,56 +88,46 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
 
 // Every program the stage may run on a device with or without float64.
 std::vector<CellStage::Program> CellStage::programs(bool float64) {
-    std::vector<Program> all = {
-        {shaders::cells_big_comp, "cells-big"},         {shaders::cells_scan_comp, "cells-scan"},
-        {shaders::cells_fill_comp, "cells-fill"},       {shaders::cells_sweep_comp, "cells-sweep"},
-        {shaders::cells_sweep_plain_comp, "cells-sweep-plain"}, {shaders::cells_deep_sort_comp, "cells-deep-sort"},
-        {shaders::cells_deep_comp, "cells-deep"},       {shaders::cells_deep_guarded_comp, "cells-deep-guarded"},
-        {shaders::cells_args_comp, "cells-args"}};
-    if (float64) {
-        all.push_back({shaders::cells_setup_comp, "cells-setup"});
-        all.push_back({shaders::cells_pairs_inline_comp, "cells-pairs-inline"});
-        all.push_back({shaders::cells_pairs_comp, "cells-pairs"});
-        all.push_back({shaders::cells_exact_comp, "cells-exact"});
-    } else {
-        all.push_back({shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"});
-        all.push_back({shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"});
-    }
+    std::vector<Program> all = {kBig, kScan, kFill, kSweep, kSweepPlain, kDeepSort, kDeep, kDeepGuarded, kArgs};
+    if (float64) all.insert(all.end(), {kSetup, kPairsInline, kPairsFilter, kExact});
+    else all.insert(all.end(), {kSetupNoFp64, kPairsNoFp64});
     return all;
 }
 
+// A run's forms: the shallow sweep with or without its repeat checks, the deep sweep with or
+// without the loop guard, and the pair pass without float64, with the exact decision
+// inside, or filtering (and queueing for the exact pass).
+CellStage::Slot CellStage::shallowSweepSlot() {
+    return plain_sweep_ ? Slot{&pipes_.sweep_plain, &kSweepPlain} : Slot{&pipes_.sweep, &kSweep};
+}
+CellStage::Slot CellStage::deepSweepSlot() {
+    return loopGuard() != ~0u ? Slot{&pipes_.deep_guarded, &kDeepGuarded} : Slot{&pipes_.deep, &kDeep};
+}
+CellStage::Slot CellStage::pairSlot() {
+    if (!filterSupported()) return {&pipes_.pairs, &kPairsNoFp64};
+    if (use_exact_ && !exactQueued()) return {&pipes_.pairs_inline, &kPairsInline};
+    return {&pipes_.pairs_filter, &kPairsFilter};
+}
+
 // The programs this run records, each made once (shared with the device's other worlds:
-// vk::Pipeline::share): the setup and the pair pass with float64 or without it, the shallow
-// sweep with or without its repeat checks, the deep sweep with or without the loop guard,
-// and with float64 the pair pass with the exact decision inside, or the queueing one and
-// the exact pass.
+// vk::Pipeline::share).
 Result<void> CellStage::ensurePipelines() {
     auto& P = pipes_;
-    const bool f64 = filterSupported();
-    struct Need {
-        vk::Pipeline* out;
-        Program program;
+    const Slot needs[] = {
+        {&P.setup, filterSupported() ? &kSetup : &kSetupNoFp64},
+        {&P.big, &kBig},
+        {&P.scan, &kScan},
+        {&P.fill, &kFill},
+        shallowSweepSlot(),
+        {&P.deep_sort, &kDeepSort},
+        deepSweepSlot(),
+        {&P.args, &kArgs},
+        pairSlot(),
+        {exactQueued() ? &P.exact : nullptr, &kExact},
     };
-    const Need needs[] = {
-        {&P.setup, f64 ? Program{shaders::cells_setup_comp, "cells-setup"} : Program{shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"}},
-        {&P.big, {shaders::cells_big_comp, "cells-big"}},
-        {&P.scan, {shaders::cells_scan_comp, "cells-scan"}},
-        {&P.fill, {shaders::cells_fill_comp, "cells-fill"}},
-        {plain_sweep_ ? &P.sweep_plain : &P.sweep,
-         plain_sweep_ ? Program{shaders::cells_sweep_plain_comp, "cells-sweep-plain"} : Program{shaders::cells_sweep_comp, "cells-sweep"}},
-        {&P.deep_sort, {shaders::cells_deep_sort_comp, "cells-deep-sort"}},
-        {loopGuard() != ~0u ? &P.deep_guarded : &P.deep,
-         loopGuard() != ~0u ? Program{shaders::cells_deep_guarded_comp, "cells-deep-guarded"} : Program{shaders::cells_deep_comp, "cells-deep"}},
-        {&P.args, {shaders::cells_args_comp, "cells-args"}},
-        {!f64 ? &P.pairs : use_exact_ && !exactQueued() ? &P.pairs_inline : &P.pairs_filter,
-         !f64                            ? Program{shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"}
-         : use_exact_ && !exactQueued() ? Program{shaders::cells_pairs_inline_comp, "cells-pairs-inline"}
-                                         : Program{shaders::cells_pairs_comp, "cells-pairs"}},
-        {exactQueued() ? &P.exact : nullptr, {shaders::cells_exact_comp, "cells-exact"}},
-    };
-    for (const Need& n : needs)
-        if (n.out && n.out->handle() == VK_NULL_HANDLE)
-            if (auto ok = makePipeline(*device_, *n.out, n.program.code, n.program.name); !ok) return ok.error();
+    for (const Slot& n : needs)
+        if (n.pipeline && n.pipeline->handle() == VK_NULL_HANDLE)
+            if (auto ok = makePipeline(*device_, *n.pipeline, n.program->code, n.program->name); !ok) return ok.error();
     return {};
 }
 
@@ -183,7 +185,7 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     else if (last_canonical_ != ~std::uint64_t{0} && last_canonical_ >= kExactQueuedFrom) exact_queued_ = true;
     else if (last_canonical_ < kExactInlineBelow) exact_queued_ = false;
     skip_unhelpful_filter_ = settings.skip_unhelpful_filter;
-    if (use_filter_ && use_exact_ && exactQueued() && skip_unhelpful_filter_ && filter_skips_left_ > 0) {
+    if (filterSkippable() && filter_skips_left_ > 0) {
         --filter_skips_left_;
         use_filter_ = false;
     }
@@ -457,8 +459,7 @@ Result<CellStage::Outcome> CellStage::finish(CellStageStats& s) {
     s.exact_neighbours = h.exact_neighbours;
     s.exact_queued = exactQueued();
     if (use_exact_) last_canonical_ = h.candidates - std::min<std::uint64_t>(h.candidates, h.duplicates);
-    if (use_filter_ && use_exact_ && exactQueued() && skip_unhelpful_filter_ && last_canonical_ > 0 &&
-        double(h.filtered) < kFilterUsefulShare * double(last_canonical_))
+    if (filterSkippable() && last_canonical_ > 0 && double(h.filtered) < kFilterUsefulShare * double(last_canonical_))
         filter_skips_left_ = kFilterRecheckRuns;
     survivor_count_ = h.survivors;
     gpu_triangle_count_ = has_download_ ? h.gpu_triangles : 0;

@@ -201,6 +201,12 @@ public:
     // outlive the stage; without one, of a table the stage owns.
     static Result<std::unique_ptr<CellStage>> create(vk::Device& device, BufferTable* table = nullptr);
 
+    // One of the stage's compute programs (SPIR-V and the name its pipeline carries).
+    struct Program {
+        std::span<const std::uint32_t> code;
+        const char* name;
+    };
+
     // Whether the double-precision filter can run (shaderFloat64 enabled on the device).
     bool filterSupported() const noexcept { return device_->shader_float64; }
 
@@ -309,11 +315,15 @@ private:
         vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, deep_guarded, args, pairs;
         vk::Pipeline pairs_inline, pairs_filter, exact;
     } pipes_;
-    struct Program {
-        std::span<const std::uint32_t> code;
-        const char* name;
-    };
     static std::vector<Program> programs(bool float64);
+    // A form of a pass: where its pipeline is kept and the program it is made from.
+    struct Slot {
+        vk::Pipeline* pipeline;
+        const Program* program;
+    };
+    Slot shallowSweepSlot();
+    Slot deepSweepSlot();
+    Slot pairSlot();
     Result<void> ensurePipelines();
     using Row = TableRow;  // rows of table_
     void addRows();
@@ -334,6 +344,8 @@ private:
     // canonical candidates (~0: none yet).
     bool exact_queued_ = false;
     bool exactQueued() const noexcept { return use_exact_ && exact_queued_; }  // this run has the exact pass
+    // This run filters before the exact pass, where a filter that rejects little may be skipped.
+    bool filterSkippable() const noexcept { return use_filter_ && exactQueued() && skip_unhelpful_filter_; }
     std::uint64_t last_canonical_ = ~std::uint64_t{0};
     bool skip_unhelpful_filter_ = true;      // CellStageSettings::skip_unhelpful_filter
     std::uint32_t filter_skips_left_ = 0;     // runs that skip the filter before it is measured again

@@ -143,9 +143,9 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
 void CellStage::recordSweep(graph::Graph& g, const SweepIds& id) {
     const VkDeviceAddress params = buf_.params->address();
     const VkBuffer args_buffer = buf_.args->handle();
-    const vk::Pipeline* shallow = plain_sweep_ ? &pipes_.sweep_plain : &pipes_.sweep;
+    const vk::Pipeline* shallow = shallowSweepSlot().pipeline;
     // The loop counters only where the device ends long loops (llvmpipe).
-    const vk::Pipeline* deep = loopGuard() != ~0u ? &pipes_.deep_guarded : &pipes_.deep;
+    const vk::Pipeline* deep = deepSweepSlot().pipeline;
     const vk::Pipeline* sort = &pipes_.deep_sort;
     pass(g, kSweepPassName, PassKind::Compute, Stage::Pairing)
         .indirect(id.args)
@@ -200,11 +200,9 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
     const VkBuffer args_buffer = buf_.args->handle();
     const VkBuffer header_buffer = buf_.header->handle(), header_rb_buffer = buf_.header_rb->handle();
     const auto& P = pipes_;
-    // A double-precision variant wherever the device has it (P.use_filter switches the
-    // filter): the one deciding exactly inline, or the one that filters (and queues for the
-    // exact pass).
+    // The run's form of the pair pass (pairSlot(); P.use_filter switches the filter).
     const bool queued = exactQueued();
-    const vk::Pipeline* pairs = !filterSupported() ? &P.pairs : use_exact_ && !queued ? &P.pairs_inline : &P.pairs_filter;
+    const vk::Pipeline* pairs = pairSlot().pipeline;
     pass(g, "cells-pair-args", PassKind::Compute, Stage::Pairing)
         .readWrite(id.header)  // the chunks done so far
         .write(id.args)

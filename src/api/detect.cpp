@@ -338,7 +338,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     if (renumber) {
         constexpr std::size_t kGrain = 1 << 15;
         executor->parallelFor(out.pairs.size(), kGrain, [&](std::size_t begin, std::size_t end) {
-            for (std::size_t k = begin; k < end; ++k) out.pairs[k].object_a = ids[out.pairs[k].object_a], out.pairs[k].object_b = ids[out.pairs[k].object_b];
+            for (std::size_t k = begin; k < end; ++k)
+                out.pairs[k].object_a = ids[out.pairs[k].object_a], out.pairs[k].object_b = ids[out.pairs[k].object_b];
         });
         executor->parallelFor(out.responses.size(), kGrain, [&](std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) out.responses[k].object = ids[out.responses[k].object];

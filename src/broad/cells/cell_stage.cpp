@@ -49,11 +49,11 @@ Result<void> makePipeline(vk::Device& device, vk::Pipeline& out, std::span<const
 // the slots below pick a run's forms for ensurePipelines() and the recording.
 using Program = CellStage::Program;
 constexpr Program kSetup{shaders::cells_setup_comp, "cells-setup"}, kSetupNoFp64{shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"},
-    kBig{shaders::cells_big_comp, "cells-big"}, kScan{shaders::cells_scan_comp, "cells-scan"}, kFill{shaders::cells_fill_comp, "cells-fill"},
-    kSweep{shaders::cells_sweep_comp, "cells-sweep"}, kSweepPlain{shaders::cells_sweep_plain_comp, "cells-sweep-plain"},
-    kDeepSort{shaders::cells_deep_sort_comp, "cells-deep-sort"}, kDeep{shaders::cells_deep_comp, "cells-deep"},
-    kDeepGuarded{shaders::cells_deep_guarded_comp, "cells-deep-guarded"}, kArgs{shaders::cells_args_comp, "cells-args"},
-    kPairsNoFp64{shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"},
+    kBig{shaders::cells_big_comp, "cells-big"}, kScan{shaders::cells_scan_comp, "cells-scan"},
+    kFill{shaders::cells_fill_comp, "cells-fill"}, kSweep{shaders::cells_sweep_comp, "cells-sweep"},
+    kSweepPlain{shaders::cells_sweep_plain_comp, "cells-sweep-plain"}, kDeepSort{shaders::cells_deep_sort_comp, "cells-deep-sort"},
+    kDeep{shaders::cells_deep_comp, "cells-deep"}, kDeepGuarded{shaders::cells_deep_guarded_comp, "cells-deep-guarded"},
+    kArgs{shaders::cells_args_comp, "cells-args"}, kPairsNoFp64{shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"},
     kPairsInline{shaders::cells_pairs_inline_comp, "cells-pairs-inline"}, kPairsFilter{shaders::cells_pairs_comp, "cells-pairs"},
     kExact{shaders::cells_exact_comp, "cells-exact"};
 

@@ -347,8 +347,8 @@ private:
     // This run filters before the exact pass, where a filter that rejects little may be skipped.
     bool filterSkippable() const noexcept { return use_filter_ && exactQueued() && skip_unhelpful_filter_; }
     std::uint64_t last_canonical_ = ~std::uint64_t{0};
-    bool skip_unhelpful_filter_ = true;      // CellStageSettings::skip_unhelpful_filter
-    std::uint32_t filter_skips_left_ = 0;     // runs that skip the filter before it is measured again
+    bool skip_unhelpful_filter_ = true;    // CellStageSettings::skip_unhelpful_filter
+    std::uint32_t filter_skips_left_ = 0;  // runs that skip the filter before it is measured again
     bool use_filter_ = false, use_exact_ = false, has_pair_mask_ = false, has_self_ = false, has_download_ = false;
     std::uint32_t download_triangles_ = 0;
     std::uint32_t survivor_count_ = 0, gpu_triangle_count_ = 0;  // of the last Complete finish

@@ -89,6 +89,15 @@ enum class PairSort {
     Cpu,   // on the CPU: the GPU's unsorted pairs are read back, sorted and deduplicated there
 };
 
+// Where the host result's responses are computed (DetectSettings::reliable.responses) when
+// its pairs are sorted on the GPU (PairSort). Both give the same responses to the bit
+// (docs/exact_gpu.md, "Responses on the GPU").
+enum class ResponseSource {
+    Auto,  // on the GPU wherever the host result's pairs are sorted there
+    Gpu,   // on the GPU, with the pairs sorted there (as PairSort::Gpu): both come back ready
+    Cpu,   // the narrow phase's, on the host's threads (the reference path)
+};
+
 // How the reliable method's automatic grid is chosen (DetectSettings::reliable.grid_tuning).
 // The pairs are the same at any grid (the method is exact at every resolution): only the time
 // changes.
@@ -103,13 +112,14 @@ enum class GridTuning {
 
 // Lower-case names as the command-line options spell them: "scan", "paper"; "centre",
 // "dilate", "conservative", "best"; "auto", "raster", "compute"; "reliable", "peeling";
-// "auto", "gpu", "cpu" (twice); "auto", "on", "off".
+// "auto", "gpu", "cpu" (three times); "auto", "on", "off".
 VKCOLLIDE_API const char* toString(PackingMethod method) noexcept;
 VKCOLLIDE_API const char* toString(DetectMethod method) noexcept;
 VKCOLLIDE_API const char* toString(Coverage coverage) noexcept;
 VKCOLLIDE_API const char* toString(SamplingBackend backend) noexcept;
 VKCOLLIDE_API const char* toString(ExactDecision exact) noexcept;
 VKCOLLIDE_API const char* toString(PairSort sort) noexcept;
+VKCOLLIDE_API const char* toString(ResponseSource source) noexcept;
 VKCOLLIDE_API const char* toString(ExactPass pass) noexcept;
 VKCOLLIDE_API const char* toString(GridTuning tuning) noexcept;
 

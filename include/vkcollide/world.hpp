@@ -181,6 +181,15 @@ struct ReliableSettings {
     // shaderFloat64, a pair filter the world applies on the host only); Auto then sorts on
     // the CPU. With engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
     PairSort pair_sort = PairSort::Auto;
+    // Where the host result's responses are computed when its pairs are sorted on the GPU
+    // (ResponseSource; docs/exact_gpu.md, "Responses on the GPU"). Gpu: the GPU computes them
+    // (and sorts the pairs, as pair_sort Gpu) and both are read back ready, so the host only
+    // checks and copies; Cpu: the narrow phase computes them (the reference path). The same
+    // responses to the bit either way; DetectStats::reliable.responses_on_gpu says which
+    // ran. Gpu is refused where pair_sort Gpu would be, with pair_sort Cpu and with
+    // device_pairs (whose host result is built on the host); Auto then computes them on the
+    // CPU, as it does for a result cut at limits.max_pairs.
+    ResponseSource responses = ResponseSource::Auto;
     // With an automatic resolution: whether the grid is chosen per scene from the
     // detections' own GPU times (GridTuning). On, the first detections of a scene try the
     // neighbouring grids (each as exact; some slower) and the world keeps the fastest; the
@@ -210,6 +219,13 @@ struct ReliableSettings {
     // pairs the buffers hold, and the survivors stay in device-local memory. Refused without
     // device_pairs and with contacts.objects (they are built from the host's pairs).
     bool host_pairs = true;
+    // With device_pairs: every colliding triangle's response on the GPU too, in a buffer the
+    // world owns (DevicePairs::responses): TriangleResponse records in DetectResult::responses'
+    // order, equal to them to the bit (docs/exact_gpu.md, "Responses on the GPU"). Refused
+    // by name without device_pairs. Costs GPU passes over the triangles and their partners
+    // (DetectStats::reliable.sorting_ms) and 64 bytes per triangle plus 4 per survivor of
+    // capacity of device memory. With host_pairs off DetectResult::responses stays empty.
+    bool device_responses = false;
 };
 
 // Contacts beyond the triangle pairs (vkcollide/contacts.hpp, docs/contacts.md). Either
@@ -424,9 +440,12 @@ struct ReliableStats {
     double footprints_ms = 0, pairing_ms = 0, filtering_ms = 0;  // GPU, per stage
     double sorting_ms = 0;             // device_pairs: the GPU's sort of the pairs
     bool pairs_sorted_on_gpu = false;  // DetectSettings::reliable.pair_sort: the GPU ordered the host result's pairs
+    bool responses_on_gpu = false;     // DetectSettings::reliable.responses: the GPU computed the host result's responses
     // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
     // as DetectResult::pairs would have held) and `count` (those the buffer holds).
     std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
+    // device_responses: the header's `responses` (every colliding triangle's, in the buffer).
+    std::uint32_t device_responses_written = 0;
 };
 
 // DetectSettings::contacts. With objects on: the stage's host wall time (both submissions,
@@ -562,6 +581,12 @@ struct DevicePairsHeader {
     std::uint32_t needed = 0;    // distinct intersecting pairs the detection found
     std::uint32_t flags = 0;     // kDevicePairs* below
     std::uint32_t capacity = 0;  // pairs the buffer holds
+    // With device_responses: the responses written (one per triangle in any of the `needed`
+    // pairs, even where the pairs overflowed) and the buffer's capacity (the detection's
+    // triangles: it never overflows); 0 and 0 without.
+    std::uint32_t responses = 0;
+    std::uint32_t response_capacity = 0;
+    std::uint32_t reserved[2] = {};
 };
 inline constexpr std::uint32_t kDevicePairsOverflow = 1;    // needed > capacity: the first `capacity` pairs written
 inline constexpr std::uint32_t kDevicePairsIncomplete = 2;  // repeated by collect(): count 0 until then
@@ -572,6 +597,13 @@ struct DevicePairs {
     VkDeviceAddress header_address = 0;
     std::uint32_t capacity = 0;        // pairs (the header says it too)
     std::uint32_t slot = 0;            // the detection slot (0 or 1) whose buffers these are
+    // With DetectSettings::reliable.device_responses: TriangleResponse[response_capacity] at
+    // offset 0 (24 bytes each, tightly packed: object, triangle, direction x y z as floats,
+    // partner_count), the first header.responses of them DetectResult::responses' records in
+    // its order; same usage, memory, synchronisation and lifetime as `pairs`. Else null.
+    VkBuffer responses = VK_NULL_HANDLE;
+    VkDeviceAddress responses_address = 0;
+    std::uint32_t response_capacity = 0;
 };
 
 // The collision rays of a peeling detection (DetectSettings::peeling.collision_rays): each ray from

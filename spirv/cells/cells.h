@@ -303,10 +303,13 @@ VKC_CONST kDevicePairsIncomplete = 2u;  // the run must be repeated (a buffer ov
 
 // The public layout (vkcollide::DevicePairsHeader, TrianglePair).
 struct DevicePairsHeader {
-    uint count;     // pairs written: min(needed, capacity)
-    uint needed;    // distinct intersecting pairs found
-    uint flags;     // kDevicePairs*
-    uint capacity;  // pairs the buffer holds
+    uint count;              // pairs written: min(needed, capacity)
+    uint needed;             // distinct intersecting pairs found
+    uint flags;              // kDevicePairs*
+    uint capacity;           // pairs the buffer holds
+    uint responses;          // with device responses: responses written (every colliding triangle's)
+    uint response_capacity;  // with device responses: responses the buffer holds (the run's triangles); else 0
+    uint spare0, spare1;
 };
 struct DevicePair {
     uint object_a, triangle_a, object_b, triangle_b;
@@ -328,9 +331,36 @@ struct DevicePairsParams {
     uint block_count;                    // ceil(triangle_count / kCellsScanBlock)
     uint capacity;
     uint max_groups_x;
+    uint response_capacity;  // with device responses: the run's triangles; else 0 (the header says it)
+    uint spare;
 };
 // Buckets up to this size are sorted by insertion, larger ones by heap sort (in place).
 VKC_CONST kDevicePairsInsertionSort = 16u;
+
+// ---- Device responses (DetectSettings::reliable.device_responses; src/broad/cells/device_responses.cpp) ---
+// Every colliding triangle's response (vkcollide::TriangleResponse) from the device pairs'
+// sorted buckets: each triangle's lower partners bucketed and sorted the same way (count,
+// scan, scatter, sort), the unit normals, then the terms summed in ascending partner order
+// (the CPU's order) with correctly rounded division and square root (rounded_fp64.glsl.inc).
+struct DeviceResponse {
+    uint object, triangle;
+    uint direction[3];  // float bits (rounded from double through the bits: no flush)
+    uint partner_count;
+};
+struct DeviceResponsesParams {
+    VKC_ADDRESS(uint64_t) pairs;         // DevicePairsParams of the same run (buckets, header, object ids)
+    VKC_ADDRESS(uint64_t) lower_counts;  // uint[triangle_count]: pairs where the triangle is the higher end, then the cursor
+    VKC_ADDRESS(uint64_t) lower_offsets; // uint[triangle_count + 1]: its first slot in `lower`
+    VKC_ADDRESS(uint64_t) lower;         // uint[survivor capacity]: lower partners, bucketed by the higher
+    VKC_ADDRESS(uint64_t) marks;         // uint[triangle_count]: 1 where the triangle is in a pair
+    VKC_ADDRESS(uint64_t) positions;     // uint[triangle_count + 1]: its response's index
+    VKC_ADDRESS(uint64_t) normals;       // double[3 * triangle_count]: unit normals of marked triangles
+    VKC_ADDRESS(uint64_t) responses;     // DeviceResponse[triangle_count]
+    uint triangle_count;
+    uint block_count;  // ceil(triangle_count / kCellsScanBlock)
+    uint max_groups_x;
+    uint spare;
+};
 
 // Unit test of the filter alone (tests/shaders/cells_filter_test.comp): one pair per invocation.
 struct CellsFilterCase {

@@ -19,6 +19,7 @@
 #include "cells_common.glsl.inc"
 #include "common/workgroup.glsl.inc"
 #include "block_scan.glsl.inc"
+#include "bucket_sort.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer DevicePairsParamsRef { DevicePairsParams p; };
@@ -37,39 +38,6 @@ void writeArgs(DevicePairsParams D, uint survivors) {
     args.v[0] = x;
     args.v[1] = x == 0u ? 1u : (groups + x - 1u) / x;
     args.v[2] = 1u;
-}
-
-// Heap sort of partners[base, base + n) (n > kDevicePairsInsertionSort): O(n log n) on one
-// invocation, no extra memory.
-void siftDown(UintsRef p, uint base, uint root, uint n) {
-    uint v = p.v[base + root];
-    for (;;) {
-        uint child = 2u * root + 1u;
-        if (child >= n) break;
-        if (child + 1u < n && p.v[base + child + 1u] > p.v[base + child]) ++child;
-        uint c = p.v[base + child];
-        if (c <= v) break;
-        p.v[base + root] = c;
-        root = child;
-    }
-    p.v[base + root] = v;
-}
-void sortBucket(UintsRef p, uint base, uint n) {
-    if (n <= kDevicePairsInsertionSort) {
-        for (uint i = 1u; i < n; ++i) {
-            uint v = p.v[base + i], j = i;
-            for (; j > 0u && p.v[base + j - 1u] > v; --j) p.v[base + j] = p.v[base + j - 1u];
-            p.v[base + j] = v;
-        }
-        return;
-    }
-    for (uint i = n / 2u; i-- > 0u;) siftDown(p, base, i, n);
-    for (uint end = n - 1u; end > 0u; --end) {
-        uint top = p.v[base];
-        p.v[base] = p.v[base + end];
-        p.v[base + end] = top;
-        siftDown(p, base, 0u, end);
-    }
 }
 
 // The scan's three steps over counts[0, triangle_count) (see the header comment).
@@ -96,7 +64,7 @@ void main() {
             Header f = HeaderRef(D.fault_header).h;
             failed = failed || f.bad_index_count != 0u || f.bad_vertex_count != 0u;
         }
-        pairsHeader(D).h = DevicePairsHeader(0u, 0u, failed ? kDevicePairsIncomplete : 0u, D.capacity);
+        pairsHeader(D).h = DevicePairsHeader(0u, 0u, failed ? kDevicePairsIncomplete : 0u, D.capacity, 0u, D.response_capacity, 0u, 0u);
         writeArgs(D, failed ? 0u : survivorCount(P));
         return;
     }

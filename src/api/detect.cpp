@@ -78,16 +78,20 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     for (auto ok :
          {validation::checkSortedOnGpuFilter("reliable.device_pairs", s.reliable.device_pairs, filter_on_host_only, run.ids.size()),
           validation::checkSortedOnGpuFilter("reliable.pair_sort Gpu", s.reliable.pair_sort == PairSort::Gpu, filter_on_host_only,
+                                             run.ids.size()),
+          validation::checkSortedOnGpuFilter("reliable.responses Gpu", s.reliable.responses == ResponseSource::Gpu, filter_on_host_only,
                                              run.ids.size())})
         if (!ok) return ok.error();
     d.broad.device_pairs = s.reliable.device_pairs;
     d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
     d.broad.host_pairs = s.reliable.host_pairs;
+    d.broad.device_responses = s.reliable.device_responses;
     // Auto sorts on the host where the device ends long loops (llvmpipe): a triangle with
     // thousands of partners would fail the GPU's sort there.
     const bool auto_gpu_sort = last_narrow_pairs >= kGpuPairSortFrom && device().info.loop_iteration_limit == 0;
-    d.broad.sort_on_gpu = !filter_on_host_only && (s.reliable.pair_sort == PairSort::Gpu ||
+    d.broad.sort_on_gpu = !filter_on_host_only && (s.reliable.pair_sort == PairSort::Gpu || s.reliable.responses == ResponseSource::Gpu ||
                                                    (s.reliable.pair_sort == PairSort::Auto && auto_gpu_sort));
+    d.broad.responses_on_gpu = d.broad.sort_on_gpu && s.reliable.responses != ResponseSource::Cpu;
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();
@@ -296,9 +300,10 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         registry.source.setGpuTriangles(broad[0].gpu_triangles);
         if (broad[0].has_sorted_pairs) {
             narrow = narrow::runSortedPairs(broad[0].sorted_pairs, registry.source, options, *executor, narrow_workspace,
-                                            std::move(pair_memory), std::move(response_memory));
+                                            std::move(pair_memory), std::move(response_memory), broad[0].sorted_responses);
             last_narrow_pairs = broad[0].sorted_pairs.size();
             st.reliable.pairs_sorted_on_gpu = true;
+            st.reliable.responses_on_gpu = broad[0].has_sorted_responses && narrow && narrow->pairs_left_out == 0;
         } else {
             narrow = runPairNarrowPhase(broad[0].pairs, registry.source, options, *executor, narrow_workspace);
             last_narrow_pairs = broad[0].pairs.size();
@@ -309,6 +314,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         last_narrow_pairs = 0;  // the record path prepares no threads of its own
     }
     st.narrow_ms = msSince(t0);
+    if (detected.hasPairs()) st.reliable.device_responses_written = broad[0].device_responses;
     options.may_collide = {};  // it refers to this call's objects
     if (filter_threw) return *filter_threw;
     if (!narrow) return narrow.error();

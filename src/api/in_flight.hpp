@@ -59,7 +59,8 @@ struct DetectionsInFlight {
     // The slot a new detection starts in (created when needed).
     Result<Run*> freeRun(vk::Device& device);
     DevicePairs devicePairsOf(const passes::DevicePairsView& v, const Run& run) const {
-        return {v.pairs, v.pairs_address, v.header, v.header_address, v.capacity, static_cast<std::uint32_t>(&run - runs.data())};
+        return {v.pairs,          v.pairs_address, v.header, v.header_address, v.capacity, static_cast<std::uint32_t>(&run - runs.data()),
+                v.responses,      v.responses_address, v.response_capacity};
     }
 
     std::uint32_t inFlight() const { return std::uint32_t(runs[0].in_flight) + std::uint32_t(runs[1].in_flight); }

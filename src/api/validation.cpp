@@ -156,6 +156,16 @@ Result<void> checkDevicePairs(const DetectSettings& s, const vk::Device& device)
         return invalid("reliable.host_pairs = false with contacts.objects: object contacts are built from the host's pairs");
     if (s.reliable.pair_sort == PairSort::Gpu)
         if (auto ok = checkSortedOnGpu("reliable.pair_sort Gpu", s, device); !ok) return ok;
+    if (s.reliable.responses == ResponseSource::Gpu) {
+        if (auto ok = checkSortedOnGpu("reliable.responses Gpu", s, device); !ok) return ok;
+        if (s.reliable.pair_sort == PairSort::Cpu)
+            return invalid("reliable.responses Gpu needs the pairs sorted on the GPU (pair_sort Auto or Gpu, not Cpu)");
+        if (s.reliable.device_pairs)
+            return invalid("reliable.responses Gpu with reliable.device_pairs: that host result is built on the host "
+                           "(the GPU's responses are in DevicePairs::responses with reliable.device_responses)");
+    }
+    if (s.reliable.device_responses && !s.reliable.device_pairs)
+        return invalid("reliable.device_responses needs reliable.device_pairs = true: the responses are built from the device pairs");
     if (!s.reliable.device_pairs) return {};
     if (auto ok = checkSortedOnGpu("reliable.device_pairs", s, device); !ok) return ok;
     if (s.reliable.device_pair_capacity > kMaxDevicePairCapacity)
@@ -214,6 +224,9 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
         return outside("reliable.exact_pass", int(s.reliable.exact_pass), "ExactPass", "Auto, Inline or Queued");
     if (s.reliable.pair_sort != PairSort::Auto && s.reliable.pair_sort != PairSort::Gpu && s.reliable.pair_sort != PairSort::Cpu)
         return outside("reliable.pair_sort", int(s.reliable.pair_sort), "PairSort", "Auto, Gpu or Cpu");
+    if (s.reliable.responses != ResponseSource::Auto && s.reliable.responses != ResponseSource::Gpu &&
+        s.reliable.responses != ResponseSource::Cpu)
+        return outside("reliable.responses", int(s.reliable.responses), "ResponseSource", "Auto, Gpu or Cpu");
     if (s.reliable.grid_tuning != GridTuning::Auto && s.reliable.grid_tuning != GridTuning::On && s.reliable.grid_tuning != GridTuning::Off)
         return outside("reliable.grid_tuning", int(s.reliable.grid_tuning), "GridTuning", "Auto, On or Off");
     const bool reliable = s.method == DetectMethod::Reliable;

@@ -141,6 +141,8 @@ struct BroadPhaseSettings {
     // With device_pairs: false leaves the pairs on the GPU only (no survivors read back:
     // BroadPhaseResult::pairs empty, device_header set).
     bool host_pairs = true;
+    // With device_pairs: every colliding triangle's response there too (DevicePairsView::responses).
+    bool device_responses = false;
     // Methods that decide pairs exactly on the GPU, without device_pairs: sort the pairs there
     // and read them back in order (BroadPhaseResult::sorted_pairs). Not with meshes checked
     // on the GPU.
@@ -148,6 +150,8 @@ struct BroadPhaseSettings {
     // sort_on_gpu: the pairs expected (the last detection's): what the host's copy holds
     // first. More sort and copy once more.
     std::uint32_t sorted_pairs_expected = 0;
+    // Where sort_on_gpu ran: the responses computed there too (BroadPhaseResult::sorted_responses).
+    bool responses_on_gpu = false;
     // Methods that form pairs on the GPU with the exact decision there: also every
     // vertex-triangle and edge-edge pair within this distance (world units; 0: off), each
     // mesh with its GpuMesh::proximity_owned. Capacity in records, 0: automatic.
@@ -174,6 +178,9 @@ struct DevicePairsView {
     VkBuffer pairs = VK_NULL_HANDLE, header = VK_NULL_HANDLE;
     VkDeviceAddress pairs_address = 0, header_address = 0;
     std::uint32_t capacity = 0;
+    VkBuffer responses = VK_NULL_HANDLE;  // device_responses: TriangleResponse[response_capacity]
+    VkDeviceAddress responses_address = 0;
+    std::uint32_t response_capacity = 0;
 };
 
 // A mesh as the shaders read it (gpu::ObjectGpu), its triangles numbered from
@@ -221,12 +228,18 @@ struct BroadPhaseResult {
     // run indices (host-visible memory, valid until the next run); `pairs` is then empty.
     bool has_sorted_pairs = false;
     std::span<const TrianglePair> sorted_pairs;
+    // BroadPhaseSettings::responses_on_gpu where it ran: every pair's triangles' responses, in
+    // order (objects as run indices; host-visible memory, valid until the next run).
+    bool has_sorted_responses = false;
+    std::span<const TriangleResponse> sorted_responses;
     // BroadPhaseSettings::host_pairs off: the device pairs' header as the GPU left it (the
     // pairs are only there).
     struct DeviceHeader {
         std::uint32_t count = 0, needed = 0, flags = 0, capacity = 0;  // vkcollide::DevicePairsHeader
     };
     std::optional<DeviceHeader> device_header;
+    // BroadPhaseSettings::device_responses: the responses the device buffer holds.
+    std::uint32_t device_responses = 0;
     // Proximity (BroadPhaseSettings::proximity_distance > 0): the pairs in the result's
     // order as the GPU wrote them (a rare one twice, side by side; host-visible memory, valid
     // until the next run), what the pass counted and how many times it ran.

@@ -46,6 +46,15 @@ const char* toString(ExactDecision exact) noexcept {
     return "?";
 }
 
+const char* toString(ResponseSource source) noexcept {
+    switch (source) {
+        case ResponseSource::Auto: return "auto";
+        case ResponseSource::Gpu: return "gpu";
+        case ResponseSource::Cpu: return "cpu";
+    }
+    return "?";
+}
+
 const char* toString(GridTuning tuning) noexcept {
     switch (tuning) {
         case GridTuning::Auto: return "auto";

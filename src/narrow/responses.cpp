@@ -21,16 +21,23 @@ Vec3d unitNormal(const Vertex3& v) {
 }
 
 // Fills one response: self's object and triangle, its partner count and the direction of
-// the summed terms.
+// the summed terms. The sum is first scaled by a power of two (exact) that brings its
+// largest component into [0.5, 1): a direction made of tiny differences of unit normals
+// (down to about 2^-650) would otherwise square to nothing. The device responses
+// (spirv/cells/device_responses.comp.glsl) make the same operations in the same order.
 void setResponse(TriangleResponse& response, const SlotData& slots, std::uint32_t self, std::size_t partners, const Vec3d& sum) {
     response = {};
     response.object = slots.object[self];
     response.triangle = slots.triangle[self];
     response.partner_count = static_cast<std::uint32_t>(partners);
-    const double length = std::sqrt(sum.x * sum.x + sum.y * sum.y + sum.z * sum.z);
-    if (length > 0) {
-        response.direction = {static_cast<float>(sum.x / length), static_cast<float>(sum.y / length), static_cast<float>(sum.z / length)};
-    }
+    const double largest = std::max({std::abs(sum.x), std::abs(sum.y), std::abs(sum.z)});
+    if (!(largest > 0)) return;
+    int exponent = 0;
+    std::frexp(largest, &exponent);
+    const double scale = std::ldexp(1.0, -exponent);
+    const Vec3d s{sum.x * scale, sum.y * scale, sum.z * scale};
+    const double length = std::sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
+    response.direction = {static_cast<float>(s.x / length), static_cast<float>(s.y / length), static_cast<float>(s.z / length)};
 }
 
 // The responses on the calling thread (the Serial form). As in the Grouped form below,

@@ -15,15 +15,31 @@ namespace vkcollide::narrow {
 namespace {
 
 
-Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
-                                 Executor& ex, NarrowWorkspace::Impl& ws, std::vector<TrianglePair>& pair_memory,
-                                 std::vector<TriangleResponse>& response_memory) {
+// The pairs and the GPU's responses copied as they are (runSortedPairs with responses).
+void copyReady(std::span<const TrianglePair> sorted, std::span<const TriangleResponse> responses, Executor& ex, NarrowResult& result) {
+    resizeFresh(result.pairs, sorted.size(), ex);
+    resizeFresh(result.responses, responses.size(), ex);
+    ex.parallelFor(sorted.size(), narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
+        std::copy(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
+                  result.pairs.begin() + static_cast<std::ptrdiff_t>(begin));
+    });
+    ex.parallelFor(responses.size(), narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
+        std::copy(responses.begin() + static_cast<std::ptrdiff_t>(begin), responses.begin() + static_cast<std::ptrdiff_t>(end),
+                  result.responses.begin() + static_cast<std::ptrdiff_t>(begin));
+    });
+}
+
+Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span<const TriangleResponse> gpu_responses,
+                                 const TriangleSource& source, const NarrowOptions& options, Executor& ex, NarrowWorkspace::Impl& ws,
+                                 std::vector<TrianglePair>& pair_memory, std::vector<TriangleResponse>& response_memory) {
     StageClock clock;
     NarrowResult result;
     result.pairs = std::move(pair_memory);
     result.responses = std::move(response_memory);
     const std::size_t found = sorted.size();
     const std::size_t kept = std::min<std::size_t>(found, options.max_pairs);
+    // The GPU's responses are every pair's: used where no pair is left out.
+    const bool ready = !gpu_responses.empty() && kept == found;
     const std::uint32_t total = source.totalTriangles();
     const std::uint32_t objects = source.objectCount();
     if (const unsigned wake = threadsToWake(kept, ex.threadCount())) ex.prepare(wake);
@@ -31,8 +47,8 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
     // Checks, global ids, and a mark on each end's triangle (relaxed byte stores: every
     // writer writes 1). Over every pair, kept or not: the slots are the distinct triangles
     // of all the pairs found, as the pair path counts them (NarrowStats::candidates).
-    Buffer<std::uint8_t>& marks = ws.in_pair;
-    marks.resize(total);
+    Buffer<std::uint8_t>& marks = ws.in_pair;  // not needed when the responses are ready
+    marks.resize(ready ? 0 : total);
     std::fill(marks.begin(), marks.end(), std::uint8_t{0});
     Buffer<std::uint64_t>& ends = ws.ends;  // (global a << 32) | global b, per pair
     ends.resize(found);
@@ -60,6 +76,7 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
             }
             previous = key;
             ends[k] = key;
+            if (ready) continue;
             std::atomic_ref<std::uint8_t>(marks[key >> 32]).store(1, std::memory_order_relaxed);
             std::atomic_ref<std::uint8_t>(marks[key & 0xffffffffu]).store(1, std::memory_order_relaxed);
         }
@@ -72,6 +89,16 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
                                                  ") is out of range or out of order (internal error)");
     }
     clock.lap(result.timings.validate_ms);
+    if (ready) {
+        // Slots are the responders: one response per distinct triangle of the pairs.
+        NarrowStats& st = result.stats;
+        st.input_pairs = st.sap_pairs = st.positive_tests = found;
+        st.candidates = st.potentially_colliding_triangles = gpu_responses.size();
+        copyReady(sorted, gpu_responses, ex, result);
+        clock.lap(result.timings.sort_ms);
+        result.timings.total_ms = clock.totalMs();
+        return result;
+    }
 
     // Slots: the marked triangles in id order, numbered in blocks (count, scan, assign).
     const std::size_t blocks = (std::size_t{total} + narrow::kSlotMarkBlock - 1) / narrow::kSlotMarkBlock;
@@ -140,9 +167,9 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, const Tri
 
 Result<NarrowResult> runSortedPairs(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
                                     Executor& executor, NarrowWorkspace& workspace, std::vector<TrianglePair> pair_memory,
-                                    std::vector<TriangleResponse> response_memory) {
+                                    std::vector<TriangleResponse> response_memory, std::span<const TriangleResponse> gpu_responses) {
     return guardedCall("runSortedPairs", executor, options.max_box_pairs, [&](Executor& guarded) {
-        return sortedPhase(sorted, source, options, guarded, workspace.impl(), pair_memory, response_memory);
+        return sortedPhase(sorted, gpu_responses, source, options, guarded, workspace.impl(), pair_memory, response_memory);
     });
 }
 

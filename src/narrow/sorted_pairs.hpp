@@ -16,9 +16,13 @@ namespace vkcollide::narrow {
 // `sorted`: objects as indices into `source`, triangles within the object, strictly
 // ascending. A pair that is not (out of range, out of order) fails naming it.
 // `pair_memory`, `response_memory`: vectors whose memory the result's pairs and responses
-// reuse (their content is overwritten).
+// reuse (their content is overwritten). `gpu_responses`: the responses of all of `sorted`
+// computed on the GPU (DetectSettings::reliable.responses), in order: where no pair is left
+// out (max_pairs) they are the result's as they are, so no slot is numbered, no vertex
+// gathered and nothing computed (NarrowTimings: validate_ms, then the copies as sort_ms).
 Result<NarrowResult> runSortedPairs(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
                                     Executor& executor, NarrowWorkspace& workspace, std::vector<TrianglePair> pair_memory = {},
-                                    std::vector<TriangleResponse> response_memory = {});
+                                    std::vector<TriangleResponse> response_memory = {},
+                                    std::span<const TriangleResponse> gpu_responses = {});
 
 }  // namespace vkcollide::narrow

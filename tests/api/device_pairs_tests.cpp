@@ -1,6 +1,7 @@
 // Results on the GPU (DetectSettings::reliable.device_pairs, docs/api.md): the pairs the detection
 // leaves in device buffers, copied back here as an engine would read them, equal
-// DetectResult::pairs exactly (content and order) on the test scenes, the stability cases,
+// DetectResult::pairs exactly (content and order), and with device_responses the responses
+// DetectResult::responses to the bit, on the test scenes, the stability cases,
 // a resting stack, many objects, self-collision, a pair filter, a run whose survivors
 // overflowed (Incomplete at the signal, final after collect) and pipelined slots; a short
 // capacity says so; bad settings are refused by name. Validation layer on.
@@ -27,21 +28,48 @@ namespace {
 struct DeviceCopy {
     DevicePairsHeader header;
     std::vector<TrianglePair> pairs;  // the first header.count records
+    std::vector<TriangleResponse> responses;  // the first header.responses records (device_responses)
 };
 
-// The header and the pairs as the engine would read them.
+// The header, the pairs and the responses as the engine would read them.
 DeviceCopy readBack(vk::Device& dev, const DevicePairs& d) {
-    const BufferRead reads[] = {{d.header, sizeof(DevicePairsHeader)}, {d.pairs, VkDeviceSize(d.capacity) * sizeof(TrianglePair)}};
+    std::vector<BufferRead> reads = {{d.header, sizeof(DevicePairsHeader)}, {d.pairs, VkDeviceSize(d.capacity) * sizeof(TrianglePair)}};
+    if (d.responses) reads.push_back({d.responses, VkDeviceSize(d.response_capacity) * sizeof(TriangleResponse)});
     const auto bytes = copyToHost(dev, reads);
     DeviceCopy out;
     std::memcpy(&out.header, bytes[0].data(), sizeof out.header);
     const std::uint32_t n = std::min(out.header.count, d.capacity);
     out.pairs.resize(n);
     if (n) std::memcpy(out.pairs.data(), bytes[1].data(), std::size_t{n} * sizeof(TrianglePair));
+    if (d.responses) {
+        const std::uint32_t m = std::min(out.header.responses, d.response_capacity);
+        out.responses.resize(m);
+        if (m) std::memcpy(out.responses.data(), bytes[2].data(), std::size_t{m} * sizeof(TriangleResponse));
+    }
     return out;
 }
 
-// The device's pairs are the host's, in order, complete.
+// Byte for byte: a direction's -0 is not +0.
+bool sameBits(const TriangleResponse& a, const TriangleResponse& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The device's responses are the host's, to the bit, in order.
+void requireSameResponses(const DeviceCopy& d, const DetectResult& r) {
+    CHECK(d.header.response_capacity == r.device->response_capacity);
+    REQUIRE(d.responses.size() == r.responses.size());
+    std::size_t differ = 0;
+    for (std::size_t k = 0; k < r.responses.size(); ++k) {
+        if (sameBits(d.responses[k], r.responses[k])) continue;
+        if (++differ > 5) continue;
+        const TriangleResponse &g = d.responses[k], &h = r.responses[k];
+        UNSCOPED_INFO("response " << k << ": GPU object " << g.object << " triangle " << g.triangle << " partners " << g.partner_count
+                                  << " (" << g.direction.x << ", " << g.direction.y << ", " << g.direction.z << "), host object "
+                                  << h.object << " triangle " << h.triangle << " partners " << h.partner_count << " (" << h.direction.x
+                                  << ", " << h.direction.y << ", " << h.direction.z << ")");
+    }
+    CHECK(differ == 0);
+}
+
+// The device's pairs are the host's, in order, complete (and its responses, where asked).
 void requireSame(vk::Device& dev, const DetectResult& r, const std::string& what) {
     INFO(what << ": " << r.pairs.size() << " pairs on the host");
     REQUIRE(r.device);
@@ -51,6 +79,13 @@ void requireSame(vk::Device& dev, const DetectResult& r, const std::string& what
     CHECK(d.header.needed == r.pairs.size());
     CHECK(d.header.count == r.pairs.size());
     CHECK(d.pairs == r.pairs);
+    if (r.device->responses) {
+        requireSameResponses(d, r);
+        CHECK(r.stats.reliable.device_responses_written == r.responses.size());
+    } else {
+        CHECK(d.header.responses == 0);
+        CHECK(d.header.response_capacity == 0);
+    }
 }
 
 // Boxes resting face to face (coplanar, exact in float) in a 3 x 2 x 3 stack: touching
@@ -97,6 +132,7 @@ TEST_CASE("device pairs: the GPU's sorted pairs equal DetectResult::pairs on eve
     }
     DetectSettings on;
     on.reliable.device_pairs = true;
+    on.reliable.device_responses = true;
     std::vector<TestScene> scenes;
     auto all = allTestScenes();
     REQUIRE(all);
@@ -138,6 +174,7 @@ TEST_CASE("device pairs: pair filter, the final run after an overflow, pipelined
     if (!ctx.device().shader_float64) return;
     DetectSettings on;
     on.reliable.device_pairs = true;
+    on.reliable.device_responses = true;  // their passes rerun with the sort's
     {
         const TestScene scene = manySpheres();
         auto world = sceneWorld(ctx, scene);
@@ -239,6 +276,12 @@ TEST_CASE("device pairs: refused by name without the GPU's exact decision", "[ap
     DetectSettings big;
     big.reliable.device_pair_capacity = kMaxDevicePairCapacity + 1;
     refused(big, ErrorCode::InvalidArgument, "kMaxDevicePairCapacity");
+    DetectSettings responses_alone;
+    responses_alone.reliable.device_responses = true;
+    auto alone = world->detect(responses_alone);
+    REQUIRE_FALSE(alone);
+    CHECK(alone.error().code() == ErrorCode::InvalidArgument);
+    CHECK_THAT(alone.error().message(), Catch::Contains("reliable.device_responses") && Catch::Contains("reliable.device_pairs"));
     // Without the setting a detection has none, and devicePairs() says so.
     auto plain = world->detect();
     REQUIRE(plain);
@@ -254,9 +297,10 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
     if (!ctx.device().shader_float64) return;
     DetectSettings with_host;
     with_host.reliable.device_pairs = true;
+    with_host.reliable.device_responses = true;
     DetectSettings gpu_only = with_host;
     gpu_only.reliable.host_pairs = false;
-    // The pairs of a host run, then the device-only run's buffers against them.
+    // The pairs and responses of a host run, then the device-only run's buffers against them.
     const auto same = [&](CollisionWorld& world, const std::string& what) {
         INFO(what);
         auto host = world.detect(with_host);
@@ -274,6 +318,11 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
         CHECK(d.header.flags == 0);
         CHECK(d.header.needed == host->pairs.size());
         CHECK(d.pairs == host->pairs);
+        CHECK(only->stats.reliable.device_responses_written == host->responses.size());
+        REQUIRE(d.responses.size() == host->responses.size());
+        std::size_t differ = 0;
+        for (std::size_t k = 0; k < d.responses.size(); ++k) differ += sameBits(d.responses[k], host->responses[k]) ? 0 : 1;
+        CHECK(differ == 0);
         return host->pairs;
     };
     std::vector<TestScene> scenes;
@@ -336,5 +385,79 @@ TEST_CASE("device pairs without a host result hold the host result's pairs", "[a
     r = world->detect(contacts);
     REQUIRE_FALSE(r);
     CHECK_THAT(r.error().message(), Catch::Contains("reliable.host_pairs") && Catch::Contains("contacts.objects"));
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+namespace {
+
+// A flat sheet (two triangles per cell) and its copy tilted about the X axis by `sin`
+// (cos rounded to float: 1 for the tiniest tilts), crossing along X: the two normals
+// differ by about `sin`, so every response sums terms of that size.
+TestScene tiltedSheets(const std::string& name, float sin, float scale) {
+    TestScene s{name, {}};
+    const float cos = std::sqrt(1.0f - sin * sin);
+    for (int k = 0; k < 2; ++k) {
+        auto m = clothGrid(2, 2, 12, 12);
+        REQUIRE(m);
+        const float c = k ? cos : 1.0f, t = k ? sin : 0.0f;
+        const Transform3x4 at{scale, 0, 0, 0, 0, scale * c, -scale * t, 0, 0, scale * t, scale * c, 0};
+        s.objects.push_back({std::move(*m), {.name = "sheet" + std::to_string(k), .open = true, .transform = at}});
+    }
+    return s;
+}
+
+// Needles and zero-area triangles (segments, points on the plate) through a plate of two
+// triangles that comes after them: each plate triangle has hundreds of lower partners, so
+// their bucket is heap-sorted, and the zero-area ones have no normal of their own.
+TestScene needlesThroughPlate() {
+    TestScene s{"needles through a plate", {}};
+    HostMesh needles;
+    for (int i = 0; i < 24; ++i)
+        for (int j = 0; j < 24; ++j) {
+            const float x = -0.9f + 0.075f * float(i), y = -0.9f + 0.075f * float(j);
+            const auto base = static_cast<std::uint32_t>(needles.positions.size());
+            const int kind = (i + j) % 4;
+            const float w = kind == 0 ? 0.0f : kind == 1 ? 1e-30f : kind == 2 ? 1e-7f : 0.01f;  // segment, slivers, a thin one
+            needles.positions.push_back({x, y, -1.0f});
+            needles.positions.push_back({x + w, y, 1.0f});
+            needles.positions.push_back({x, y + (kind == 0 ? 0.0f : w), kind == 0 ? 0.0f : 1.0f});  // kind 0: collinear, through z = 0
+            needles.indices.insert(needles.indices.end(), {base, base + 1, base + 2});
+        }
+    HostMesh plate;
+    plate.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    plate.indices = {0, 1, 2, 0, 2, 3};
+    s.objects.push_back({std::move(needles), {.name = "needles", .open = true}});
+    s.objects.push_back({std::move(plate), {.name = "plate", .open = true}});
+    return s;
+}
+
+}  // namespace
+
+// The responses' arithmetic where the CPU's rounding is easiest to miss: sums of tiny normal
+// differences (tilts of 2^-12 .. 2^-60, down to none at all in float), scales from 2^-40 to
+// 2^40, slivers, segments and points with no normal, a triangle with hundreds of partners, a
+// resting stack's exact coplanar contacts (sums of exact zeros and ones).
+TEST_CASE("device responses: tiny tilts, extreme scales, slivers and crowded triangles give the host's responses to the bit",
+          "[api][gpu][reliable][device_pairs]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) return;
+    DetectSettings on;
+    on.reliable.device_pairs = true;
+    on.reliable.device_responses = true;
+    std::vector<TestScene> scenes;
+    for (const int tilt : {12, 24, 30, 60})
+        for (const int scale : {-40, 0, 40})
+            scenes.push_back(tiltedSheets("sheets tilted by 2^-" + std::to_string(tilt) + " at 2^" + std::to_string(scale),
+                                          std::ldexp(1.0f, -tilt), std::ldexp(1.0f, scale)));
+    scenes.push_back(needlesThroughPlate());
+    scenes.push_back(restingStack());
+    for (const TestScene& scene : scenes) {
+        auto world = sceneWorld(ctx, scene);
+        auto r = world->detect(on);
+        REQUIRE(r);
+        INFO(scene.name);
+        CHECK(r->pairs.size() > 0);
+        requireSame(ctx.device(), *r, scene.name);
+    }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -50,6 +50,20 @@ std::uint32_t mix(std::uint32_t i, const TrianglePair& p) {
     return h ^ (h >> 15);
 }
 
+// The check shader's mixResponse(), on the host.
+std::uint32_t mixResponse(std::uint32_t i, const TriangleResponse& r) {
+    std::uint32_t bits[3];
+    std::memcpy(bits, &r.direction, sizeof bits);
+    std::uint32_t h = i * 0x9E3779B1u;
+    h ^= r.object * 0x85EBCA6Bu;
+    h ^= r.triangle * 0xC2B2AE35u;
+    h ^= bits[0] * 0x27D4EB2Fu;
+    h ^= bits[1] * 0x165667B1u;
+    h ^= bits[2] * 0xD3A2646Cu;
+    h ^= r.partner_count * 0xFD7046C5u;
+    return h ^ (h >> 15);
+}
+
 // Frame f: sphere 0 scaled and moved along x, sphere 1 moved the other way.
 struct Pose {
     float scale, x;
@@ -219,7 +233,8 @@ public:
         bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         REQUIRE(f_.vkBeginCommandBuffer(cmd, &bi) == VK_SUCCESS);
         f_.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, check_pipeline_);
-        const CheckPush push{pairs.pairs_address, pairs.header_address, address(checks_) + VkDeviceAddress(slot) * kCheckWords * 4};
+        const CheckPush push{pairs.pairs_address, pairs.header_address, address(checks_) + VkDeviceAddress(slot) * kCheckWords * 4,
+                             pairs.responses_address};
         f_.vkCmdPushConstants(cmd, check_layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
         f_.vkCmdDispatch(cmd, 4, 1, 1);
         REQUIRE(f_.vkEndCommandBuffer(cmd) == VK_SUCCESS);
@@ -261,7 +276,7 @@ private:
         std::uint32_t pad;
     };
     struct CheckPush {
-        VkDeviceAddress pairs, header, out;
+        VkDeviceAddress pairs, header, out, responses;
     };
 
     void pipeline(std::span<const std::uint32_t> spirv, std::uint32_t push_bytes, VkPipelineLayout& out_layout, VkPipeline& out_pipeline) {
@@ -401,6 +416,7 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
         // Each detection also leaves its pairs on the GPU, which the engine reads at once.
         DetectSettings on_gpu;
         on_gpu.reliable.device_pairs = (*context)->deviceInfo().shader_float64;
+        on_gpu.reliable.device_responses = on_gpu.reliable.device_pairs;  // and the responses there too
         if (!on_gpu.reliable.device_pairs) WARN("no shaderFloat64: the engine reads no pairs on the GPU");
         std::vector<DetectResult> results(kChecks);  // by g, kept for the comparison below
         int g = 0;  // frames with semaphores, over both loops
@@ -461,6 +477,8 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
             INFO("check " << k);
             const DetectResult& r = results[k];
             const std::vector<TrianglePair>& want = k < 2 * kFrames ? r.pairs : expected[k - 2 * kFrames];
+            // The GPU-only frames' responses: the same frame's in the first loop (same poses).
+            const std::vector<TriangleResponse>& want_responses = k < 2 * kFrames ? r.responses : results[k - 2 * kFrames].responses;
             const auto seen = engine.checked(k);
             if (r.stats.cells.runs > 1) {  // repeated by collect(): the signal's pairs said so
                 CHECK(seen[1] == kDevicePairsIncomplete);
@@ -478,6 +496,11 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
             CHECK(seen[3] == sum);
             CHECK(seen[4] == cross);
             CHECK(cross == want.size());  // two spheres, no self-collision
+            std::uint32_t response_sum = 0;
+            for (std::size_t i = 0; i < want_responses.size(); ++i)
+                response_sum += mixResponse(static_cast<std::uint32_t>(i), want_responses[i]);
+            CHECK(seen[5] == want_responses.size());
+            CHECK(seen[6] == response_sum);
             ++compared;
         }
         // Reruns happen only while the buffers grow (the second slot's first frames).

@@ -270,6 +270,10 @@ void requireSameSorted(const Both& r, const std::string& what) {
     INFO(what << ": GPU-sorted " << r.gpu.pairs.size() << " pairs, CPU-sorted " << r.cpu.pairs.size());
     CHECK(r.gpu.stats.reliable.pairs_sorted_on_gpu);
     CHECK_FALSE(r.cpu.stats.reliable.pairs_sorted_on_gpu);
+    // The GPU-sorted result's responses are the GPU's (ResponseSource::Auto) unless pairs were
+    // left out (max_pairs: the host computes them over the pairs kept): equal either way.
+    CHECK(r.gpu.stats.reliable.responses_on_gpu == (r.gpu.pairs_left_out == 0));
+    CHECK_FALSE(r.cpu.stats.reliable.responses_on_gpu);
     CHECK(r.gpu.pairs == r.cpu.pairs);
     CHECK(sameResponses(r.gpu.responses, r.cpu.responses));
     CHECK(r.gpu.pairs_left_out == r.cpu.pairs_left_out);
@@ -364,6 +368,33 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     refused({.method = DetectMethod::Peeling, .reliable = {.pair_sort = PairSort::Gpu}}, "reliable method");
     refused({.reliable = {.exact = ExactDecision::Cpu, .pair_sort = PairSort::Gpu}}, "exact decision on the GPU");
     refused({.reliable = {.pair_sort = PairSort(9)}}, "PairSort");
+    // Responses on the CPU after a GPU sort (the reference path), and Gpu's refusals.
+    DetectSettings cpu_responses;
+    cpu_responses.reliable.pair_sort = PairSort::Gpu;
+    cpu_responses.reliable.responses = ResponseSource::Cpu;
+    auto on_host = grid_world->detect(cpu_responses);
+    REQUIRE(on_host);
+    CHECK(on_host->stats.reliable.pairs_sorted_on_gpu);
+    CHECK_FALSE(on_host->stats.reliable.responses_on_gpu);
+    CHECK(sameResponses(on_host->responses, rerun.cpu.responses));
+    DetectSettings gpu_responses;
+    gpu_responses.reliable.responses = ResponseSource::Gpu;  // sorts on the GPU too, even below kGpuPairSortFrom
+    auto on_gpu = small->detect(gpu_responses);
+    REQUIRE(on_gpu);
+    CHECK(on_gpu->stats.reliable.pairs_sorted_on_gpu);
+    CHECK(on_gpu->stats.reliable.responses_on_gpu);
+    const auto refused_responses = [&](DetectSettings s, const char* words) {
+        s.reliable.responses = ResponseSource::Gpu;
+        auto r = small->detect(s);
+        REQUIRE_FALSE(r);
+        CHECK_THAT(r.error().message(), Catch::Contains("reliable.responses") && Catch::Contains(words));
+    };
+    refused_responses({.reliable = {.pair_sort = PairSort::Cpu}}, "pair_sort");
+    refused_responses({.reliable = {.device_pairs = true}}, "device_pairs");
+    refused_responses({.reliable = {.exact = ExactDecision::Cpu}}, "exact decision on the GPU");
+    auto bad_source = small->detect({.reliable = {.responses = ResponseSource(9)}});
+    REQUIRE_FALSE(bad_source);
+    CHECK_THAT(bad_source.error().message(), Catch::Contains("reliable.responses") && Catch::Contains("ResponseSource"));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

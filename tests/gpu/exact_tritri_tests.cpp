@@ -57,23 +57,25 @@ public:
         pipeline_.emplace(std::move(*pipeline));
     }
 
-    // words_per_case words per case in, one result word per case out.
-    std::vector<std::uint32_t> run(const std::vector<std::uint32_t>& words, std::size_t words_per_case, std::uint32_t mode) {
+    // words_per_case words per case in, results_per_case result words per case out.
+    std::vector<std::uint32_t> run(const std::vector<std::uint32_t>& words, std::size_t words_per_case, std::uint32_t mode,
+                                   std::size_t results_per_case = 1) {
         const std::size_t n = words.size() / words_per_case;
-        std::vector<std::uint32_t> result(n);
+        std::vector<std::uint32_t> result(n * results_per_case);
         for (std::size_t first = 0; first < n; first += kChunk) {
             const std::size_t count = std::min(kChunk, n - first);
-            runChunk(words.data() + first * words_per_case, count, words_per_case, mode, result.data() + first);
+            runChunk(words.data() + first * words_per_case, count, words_per_case, mode, results_per_case,
+                     result.data() + first * results_per_case);
         }
         return result;
     }
 
 private:
     void runChunk(const std::uint32_t* words, std::size_t count, std::size_t words_per_case, std::uint32_t mode,
-                  std::uint32_t* out_results) {
+                  std::size_t results_per_case, std::uint32_t* out_results) {
         vk::Device& device = ctx_.device();
         auto input = vk::Buffer::create(device, count * words_per_case * 4, 0, vk::MemoryKind::Upload, "exact-cases");
-        auto output = vk::Buffer::create(device, count * 4, 0, vk::MemoryKind::Readback, "exact-results");
+        auto output = vk::Buffer::create(device, count * results_per_case * 4, 0, vk::MemoryKind::Readback, "exact-results");
         REQUIRE(input);
         REQUIRE(output);
         std::memcpy(input->mapped(), words, count * words_per_case * 4);
@@ -92,7 +94,7 @@ private:
         REQUIRE(executor.run(g));
         REQUIRE_NO_VALIDATION_MESSAGES(ctx_);
         output->invalidate();
-        std::memcpy(out_results, output->mapped(), count * 4);
+        std::memcpy(out_results, output->mapped(), count * results_per_case * 4);
     }
 
     ValidatedContext& ctx_;
@@ -615,4 +617,104 @@ TEST_CASE("exact GPU predicates return the CPU's signs", "[gpu][exact]") {
         }
     }
     std::printf("exact points: %zu cases (7 predicates each, 3 of them exact arithmetic alone), %.2f s\n", total, secondsSince(start));
+}
+
+namespace {
+
+// A double of 53 random bits (a random significand) times 2^exponent, with a random sign.
+double randomDouble(Rng& rng, int exponent) {
+    const std::uint64_t significand = (rng() >> 11) | (std::uint64_t{1} << 52);
+    const double v = std::ldexp(double(significand), exponent - 52);
+    return rng() & 1 ? -v : v;
+}
+
+void appendDouble(std::vector<std::uint32_t>& io_words, double d) {
+    std::uint64_t u;
+    std::memcpy(&u, &d, 8);
+    io_words.push_back(static_cast<std::uint32_t>(u));
+    io_words.push_back(static_cast<std::uint32_t>(u >> 32));
+}
+
+double doubleAt(const std::uint32_t* words) {
+    const std::uint64_t u = std::uint64_t{words[0]} | (std::uint64_t{words[1]} << 32);
+    double d;
+    std::memcpy(&d, &u, 8);
+    return d;
+}
+
+std::string showDouble(double d) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%a", d);
+    return text;
+}
+
+}  // namespace
+
+// The device responses' arithmetic (spirv/cells/rounded_fp64.glsl.inc): the quotient and the
+// root rounded as IEEE rounds them, from the driver's own start and from one 5 ulps off, and
+// doubles rounded to float through the bits (ties, subnormal floats, carries into the next
+// binade), on the magnitudes the responses reach (2^-650 .. 2^520).
+TEST_CASE("rounded GPU division, square root and float rounding equal the CPU's", "[gpu][exact]") {
+    ValidatedContext ctx;
+    if (skipWithoutFloat64(ctx)) return;
+    ExactRunner runner(ctx);
+    Rng rng(21);
+    std::vector<std::uint32_t> words;
+    std::size_t count = 0;
+    const auto add = [&](double a, double b, double x, double f) {
+        appendDouble(words, a);
+        appendDouble(words, b);
+        appendDouble(words, x);
+        appendDouble(words, f);
+        ++count;
+    };
+    for (int k = 0; k < 1000000; ++k) {
+        const int family = k % 8;
+        double a = randomDouble(rng, uniformInt(rng, -650, 250));
+        double b = randomDouble(rng, uniformInt(rng, -350, 260));
+        double x = std::abs(randomDouble(rng, uniformInt(rng, -700, 520)));
+        // A float's value with a random double's extra bits: every rounding case, subnormal
+        // floats (2^-149 .. 2^-126) and the half of the least one included.
+        double f = randomDouble(rng, uniformInt(rng, -152, 120));
+        if (family == 1) {
+            // Quotients and roots that are exact, and next to a power of two (binade edges).
+            b = std::ldexp(1.0, uniformInt(rng, -300, 300)) * (rng() & 1 ? -1 : 1);
+            const double r = randomDouble(rng, uniformInt(rng, -300, 200));
+            x = r * r;
+        } else if (family == 2) {
+            a = std::nextafter(std::abs(b), 0.0) * double(1 << uniformInt(rng, 0, 8));  // just below a power-of-two ratio
+            x = std::nextafter(std::ldexp(1.0, 2 * uniformInt(rng, -300, 250)), double(uniformInt(rng, 0, 1)));
+        } else if (family == 3) {
+            // Float ties: 24 kept bits, then exactly half (odd and even kept bits).
+            const std::uint64_t kept = (rng() >> 40) | (std::uint64_t{1} << 23);
+            f = std::ldexp(double(kept * 2 + 1), uniformInt(rng, -125, 100) - 24);
+        } else if (family == 4) {
+            // Subnormal float ties and carries into 2^-126.
+            f = std::ldexp(double(2 * uniformInt(rng, 0, (1 << 23) - 1) + 1), -150);
+            if (k % 16 == 4) f = std::nextafter(std::ldexp(1.0, -126), 0.0);
+        } else if (family == 5) {
+            // Unit-normal-like operands: a component over a length of similar size.
+            b = std::abs(randomDouble(rng, uniformInt(rng, -300, 250)));
+            a = b * std::ldexp(randomDouble(rng, 0), -uniformInt(rng, 0, 60));
+        }
+        add(a, b, x, f);
+    }
+    const std::vector<std::uint32_t> out = runner.run(words, 8, 2, 9);
+    std::size_t mismatches = 0;
+    for (std::size_t i = 0; i < count && mismatches < 10; ++i) {
+        const std::uint32_t* in = &words[8 * i];
+        const double a = doubleAt(in), b = doubleAt(in + 2), x = doubleAt(in + 4), f = doubleAt(in + 6);
+        const std::uint32_t* r = &out[9 * i];
+        const double q = a / b, s = std::sqrt(x);
+        const float rounded = static_cast<float>(f);
+        const bool same = std::memcmp(&q, &r[0], 8) == 0 && std::memcmp(&s, &r[2], 8) == 0 && std::memcmp(&q, &r[4], 8) == 0 &&
+                          std::memcmp(&s, &r[6], 8) == 0 && std::memcmp(&rounded, &r[8], 4) == 0;
+        if (same) continue;
+        ++mismatches;
+        UNSCOPED_INFO("case " << i << ": a " << showDouble(a) << " b " << showDouble(b) << " x " << showDouble(x) << " f " << showDouble(f)
+                              << "; CPU " << showDouble(q) << " " << showDouble(s) << " " << showDouble(double(rounded)) << ", GPU "
+                              << showDouble(doubleAt(&r[0])) << " " << showDouble(doubleAt(&r[2])) << " (from 5 ulps off "
+                              << showDouble(doubleAt(&r[4])) << " " << showDouble(doubleAt(&r[6])) << ") float bits " << r[8]);
+    }
+    CHECK(mismatches == 0);
 }

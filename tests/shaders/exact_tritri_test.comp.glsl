@@ -2,6 +2,7 @@
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // The exact triangle-triangle test and its predicates alone, for their unit tests
 // (tests/gpu/exact_tritri_tests.cpp), one case per invocation:
 //  mode 0 (pairs, 24 words: a's 9 floats, b's 9 floats, a's 3 indices, b's 3 indices):
@@ -11,9 +12,14 @@
 //    orient3d(a,b,c,d), orient3dExact(a,b,c,d), the plane (a,b,c)'s side of d,
 //    orient2d(a.xy,b.xy,c.xy), orient2dExact(same), orient2d(b.yz,c.yz,d.yz),
 //    orient2dExact(same); bit 14 the plane's certainlyNotCollinear; bits 16.. the exact
-//    fallbacks of the filtered predicates (the first, third, fourth and sixth).
+//    fallbacks of the filtered predicates (the first, third, fourth and sixth);
+//  mode 2 (rounding, 8 words: doubles a, b, x, then a float's value f as a double; 9 words
+//    out): roundedQuotient(a, b), roundedSqrt(x), the same two started 5 ulps off (the
+//    correction alone, whatever the driver's own division and root give), as doubles'
+//    bits, then roundedFloatBits(f).
 #include "cells/exact_predicates.glsl.inc"
 #include "cells/tritri_exact.glsl.inc"
+#include "cells/rounded_fp64.glsl.inc"
 layout(local_size_x = 64) in;
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) readonly buffer ExactCasesRef { uint w[]; };
@@ -46,6 +52,28 @@ void main() {
         bool hit = exactTrianglesIntersect(a, b);
         uint fallbacks = min(exactFallbacks, 0xffffffu);
         pc.results.r[id] = (hit ? 1u : 0u) | (exactNeighbours(index_a, a, index_b, b) ? 2u : 0u) | (fallbacks << 8);
+        return;
+    }
+    if (pc.mode == 2u) {
+        uint base = 8u * id, out_base = 9u * id;
+        double a = packDouble2x32(uvec2(pc.cases.w[base], pc.cases.w[base + 1u]));
+        double b = packDouble2x32(uvec2(pc.cases.w[base + 2u], pc.cases.w[base + 3u]));
+        double x = packDouble2x32(uvec2(pc.cases.w[base + 4u], pc.cases.w[base + 5u]));
+        double f = packDouble2x32(uvec2(pc.cases.w[base + 6u], pc.cases.w[base + 7u]));
+        double q_off = abs(a / b), s_off = sqrt(x);
+        for (int k = 0; k < 5; ++k) {
+            q_off = roundedNextUp(q_off);
+            s_off = roundedNextDown(s_off);
+        }
+        double q_far = roundedNearest(0u, abs(a), abs(b), q_off);
+        if ((a < 0.0lf) != (b < 0.0lf)) q_far = -q_far;
+        uvec2 words[4] = uvec2[4](unpackDouble2x32(roundedQuotient(a, b)), unpackDouble2x32(roundedSqrt(x)), unpackDouble2x32(q_far),
+                                  unpackDouble2x32(roundedNearest(1u, x, 0.0lf, s_off)));
+        for (uint k = 0u; k < 4u; ++k) {
+            pc.results.r[out_base + 2u * k] = words[k].x;
+            pc.results.r[out_base + 2u * k + 1u] = words[k].y;
+        }
+        pc.results.r[out_base + 8u] = roundedFloatBits(f);
         return;
     }
     uint base = 12u * id;

@@ -410,5 +410,30 @@ TEST_CASE("reliable: a triangle with 5,000 partners sorts on the GPU as on the h
         CHECK(sorted->stats.reliable.pairs_sorted_on_gpu);
         CHECK(sorted->pairs == expected->pairs);
     }
+    // Device responses with the crossing triangle last: its 5,000 partners are the bucket of
+    // lower partners the responses' pass sorts. The same rule: named on llvmpipe, else the
+    // host's responses to the bit.
+    auto last = copiesWithOwnVertices(5000);
+    REQUIRE(last);
+    auto last_world = worldOf(ctx, *last);
+    auto host_responses = last_world->detect(host);
+    REQUIRE(host_responses);
+    REQUIRE(host_responses->responses.size() == 5001);
+    DetectSettings on_device = host;
+    on_device.reliable.device_pairs = true;
+    on_device.reliable.device_responses = true;
+    auto responded = last_world->detect(on_device);
+    if (ctx.device().info.loop_iteration_limit != 0) {
+        REQUIRE_FALSE(responded);
+        INFO(responded.error().message());
+        CHECK(responded.error().code() == ErrorCode::LimitExceeded);
+        CHECK(mentions(responded.error(), "device responses"));
+        CHECK(mentions(responded.error(), "sorts in one shader invocation"));
+    } else {
+        INFO((responded ? std::string() : responded.error().message()));
+        REQUIRE(responded);
+        CHECK(responded->stats.reliable.device_responses_written == 5001);
+        CHECK(responded->responses.size() == 5001);
+    }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -21,7 +21,7 @@ static_assert(sizeof(gpu::DevicePair) == sizeof(TrianglePair) && offsetof(gpu::D
 static_assert(sizeof(gpu::DevicePairsHeader) == sizeof(DevicePairsHeader) && offsetof(gpu::DevicePairsHeader, needed) == 4 &&
               offsetof(gpu::DevicePairsHeader, flags) == 8 && offsetof(gpu::DevicePairsHeader, capacity) == 12);
 static_assert(gpu::kDevicePairsOverflow == kDevicePairsOverflow && gpu::kDevicePairsIncomplete == kDevicePairsIncomplete);
-static_assert(sizeof(gpu::DevicePairsParams) == 11 * 8 + 4 * 4);
+static_assert(sizeof(gpu::DevicePairsParams) == 11 * 8 + 6 * 4);
 
 }  // namespace
 
@@ -51,7 +51,7 @@ Result<std::unique_ptr<DevicePairStage>> DevicePairStage::create(vk::Device& dev
 void DevicePairStage::retire() { table_->retire(); }
 
 Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
-                                      VkDeviceAddress fault_header, bool header_to_host, bool for_host) {
+                                      VkDeviceAddress fault_header, bool header_to_host, bool for_host, std::uint32_t response_capacity) {
     using vk::MemoryKind;
     triangles_ = cells.triangleCount();
     header_to_host_ = header_to_host;
@@ -100,12 +100,13 @@ Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const st
     p.block_count = static_cast<std::uint32_t>((VkDeviceSize(triangles_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock);
     p.capacity = capacity_;
     p.max_groups_x = max_groups_x_;
+    p.response_capacity = response_capacity;
     std::memcpy(buf_.params->mapped(), &p, sizeof p);
     buf_.params->flush();
     return {};
 }
 
-void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) {
+DevicePairStage::Resources DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) {
     Buffers& b = buf_;
     const auto header = importRow(g, b.header);
     const auto pairs = importRow(g, b.pairs);
@@ -179,6 +180,12 @@ void DevicePairStage::record(graph::Graph& g, const CellStage::Resources& cells,
             bindAndPush(pc, *pipe, params, 0, 7);
             dispatchGroups(pc, tri_groups, max_x);
         });
+    return {header, pairs, counts, offsets, partners, sums};
+}
+
+void DevicePairStage::recordCopies(graph::Graph& g, const Resources& sorted) {
+    Buffers& b = buf_;
+    const graph::ResourceId header = sorted.header, pairs = sorted.pairs;
     if (for_host_) {
         const auto host_pairs = importRow(g, b.host_pairs, true);
         // A copy by the transfer engine: the shaders' stores to host memory cross the bus

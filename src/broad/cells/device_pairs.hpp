@@ -11,6 +11,9 @@
 //   pairs-to-host  (for the host's result) the pairs copied to host memory by the transfer engine
 //   pairs-header-readback  (with a host copy of the header) the header copied to host memory
 //
+// With device responses (DeviceResponseStage, device_responses.hpp) their passes run between
+// pairs-sort and the copies to the host, over this stage's buckets; the header is shared.
+//
 // Capacity: the caller's, or (0) the cell stage's survivor capacity, which bounds the
 // distinct pairs of a complete run, so an automatic capacity never overflows. A caller's
 // smaller capacity overflows with kDevicePairsOverflow and the needed count (the first
@@ -45,17 +48,30 @@ public:
     // `header_to_host`: the passes end by copying the header to host memory (header()).
     // `for_host`: the sorted pairs are also copied to host-visible memory for the host's
     // result (hostPairs()); the engine's device-local buffer is then only the copy's source.
+    // `response_capacity`: the responses the device responses' buffer holds (the header
+    // says it; DeviceResponseStage), 0 without them.
     [[nodiscard]] Result<void> prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
-                                       VkDeviceAddress fault_header, bool header_to_host = false, bool for_host = false);
+                                       VkDeviceAddress fault_header, bool header_to_host = false, bool for_host = false,
+                                       std::uint32_t response_capacity = 0);
     // The passes, after the cell stage's (`cells`: its resources in this graph, or its
     // outputs imported alone after it ran again on an overflow, so that the buffers hold
     // the final run's pairs); `fault_header` the broad phase header's resource (invalid:
     // not in this graph).
-    void record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header = {});
+    // Returns what later passes read: the copies below, DeviceResponseStage (the buckets).
+    struct Resources {
+        graph::ResourceId header, pairs, counts, offsets, partners, block_sums;
+    };
+    Resources record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header = {});
+    // The copies to host memory the run was prepared for (header_to_host, for_host), after
+    // record() and any passes over its buckets.
+    void recordCopies(graph::Graph& g, const Resources& sorted);
     // Called at each detection's start: frees what was retired two starts ago.
     void retire();
 
     DevicePairsView view() const noexcept;
+    // The prepared run's parameters (DevicePairsParams) and triangles, for DeviceResponseStage.
+    VkDeviceAddress paramsAddress() const noexcept { return buf_.params->address(); }
+    std::uint32_t triangleCount() const noexcept { return triangles_; }
     // After the GPU work of a run prepared with header_to_host: its header.
     gpu::DevicePairsHeader header() const;
     // After the GPU work of a run prepared for_host: the first `count` pairs.

@@ -46,10 +46,12 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
     device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
     pairs_on_device_only_ = device_pairs_on_ && !run.settings.host_pairs;
+    device_responses_on_ = device_pairs_on_ && run.settings.device_responses;
     // The host result sorted on the GPU: not with device pairs (their buffers are the
     // engine's), nor with meshes checked on the GPU (their faults mark the sort incomplete).
     sorted_for_host_ = !device_pairs_on_ && run.settings.sort_on_gpu && run.settings.exact_on_gpu && cells_->filterSupported() &&
                        !run.any_gpu_check;
+    host_responses_on_ = sorted_for_host_ && run.settings.responses_on_gpu;
     settings.survivors_on_device = pairs_on_device_only_ || sorted_for_host_;
     // Proximity: every triangle grown by half the distance (rounded up to a float).
     proximity_on_ = run.settings.proximity_distance > 0;
@@ -75,19 +77,38 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
         if (!made) return made.error();
         device_pairs_ = std::move(*made);
     }
+    if (responding() && !device_responses_) {
+        auto made = DeviceResponseStage::create(*device_, *table_);  // its buffers: rows of the table
+        if (!made) return made.error();
+        device_responses_ = std::move(*made);
+    }
     device_pairs_->retire();
     object_tags_.resize(n);
     // Objects as the API names them for the engine, as run indices for the host's result.
     for (std::size_t i = 0; i < n; ++i) object_tags_[i] = sorted_for_host_ ? static_cast<std::uint32_t>(i) : run.meshes[i].tag;
     device_pair_capacity_ = run.settings.device_pair_capacity;
     if (sorted_for_host_) device_pair_capacity_ = hostSortCapacity(run.settings.sorted_pairs_expected);
+    if (host_responses_on_) host_response_capacity_ = hostResponseCapacity(last_responses_);
     fault_header_ = run.any_gpu_check ? table_->buffer(core_.header).address() : 0;
     return prepareSort();
 }
 
 Result<void> ReliableMethod::prepareSort() {
-    return device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_, pairs_on_device_only_ || sorted_for_host_,
-                                  sorted_for_host_);
+    // With device responses the header comes back too: DetectStats says how many there are,
+    // and a bucket past a loop limit is named.
+    const bool header_to_host = pairs_on_device_only_ || sorted_for_host_ || device_responses_on_;
+    if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_, header_to_host, sorted_for_host_,
+                                         responding() ? DeviceResponseStage::responseCapacity(*cells_) : 0);
+        !ok)
+        return ok;
+    if (!responding()) return {};
+    return device_responses_->prepare(*cells_, *device_pairs_, host_responses_on_ ? host_response_capacity_ : 0);
+}
+
+void ReliableMethod::recordSort(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) const {
+    const DevicePairStage::Resources sorted = device_pairs_->record(g, cells, fault_header);
+    if (responding()) device_responses_->record(g, cells, sorted);
+    device_pairs_->recordCopies(g, sorted);
 }
 
 void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
@@ -105,11 +126,11 @@ void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const 
         const CellStage::Resources cells = cells_->record(g, buffers[core_.projection]);
         if (phase == Phase::Again) return;  // the stage alone: the passes after it run once it completes
         if (proximity_on_) proximity_->record(g, cells);
-        if (sorting()) device_pairs_->record(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
+        if (sorting()) recordSort(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
         return;
     }
     const CellStage::Resources cells = cells_->importOutputs(g);
-    if (again_ == Step::Sort) device_pairs_->record(g, cells);
+    if (again_ == Step::Sort) recordSort(g, cells, {});
     if (again_ == Step::Proximity) proximity_->record(g, cells);
 }
 
@@ -118,6 +139,11 @@ void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const 
 std::uint32_t ReliableMethod::hostSortCapacity(std::uint64_t expected) const {
     const std::uint64_t wanted = std::max<std::uint64_t>(expected + expected / 4, 4096);
     return static_cast<std::uint32_t>(std::min<std::uint64_t>(wanted, std::max(cells_->capacity().survivors, 1u)));
+}
+
+// The same for the responses' copy: at most the run's triangles (DeviceResponseStage clamps).
+std::uint32_t ReliableMethod::hostResponseCapacity(std::uint64_t expected) {
+    return static_cast<std::uint32_t>(std::min<std::uint64_t>(std::max<std::uint64_t>(expected + expected / 4, 4096), UINT32_MAX));
 }
 
 // Each step ends in the result or asks for its passes again (the broad phase records
@@ -135,7 +161,13 @@ Result<Collected> ReliableMethod::collect(const RunView& run, const gpu::Header&
         const gpu::DevicePairsHeader h = device_pairs_->header();
         if (h.flags & gpu::kDevicePairsLoopLimit) return loopLimitError("device pairs");
         result.device_header = BroadPhaseResult::DeviceHeader{h.count, h.needed, h.flags, h.capacity};
+        result.device_responses = h.responses;
         return Collected::Done;
+    }
+    if (device_responses_on_) {
+        const gpu::DevicePairsHeader h = device_pairs_->header();
+        if (h.flags & gpu::kDevicePairsLoopLimit) return loopLimitError("device responses");
+        result.device_responses = h.responses;
     }
     result.pairs = cells_->survivors();
     result.gpu_triangles = cells_->gpuTriangles();
@@ -226,10 +258,12 @@ Error ReliableMethod::loopLimitError(const char* what) const {
 Result<Collected> ReliableMethod::collectSorted(BroadPhaseResult& result) {
     gpu::DevicePairsHeader h = device_pairs_->header();
     if (h.flags & gpu::kDevicePairsLoopLimit) return loopLimitError("sorted pairs");
-    if (h.flags == gpu::kDevicePairsOverflow && !host_sort_grown_) {
-        // More pairs than expected: sort again into a copy that holds them all.
+    const bool responses_short = host_responses_on_ && h.responses > device_responses_->hostCapacity();
+    if ((h.flags == gpu::kDevicePairsOverflow || (h.flags == 0 && responses_short)) && !host_sort_grown_) {
+        // More pairs (or responses) than expected: sort again into copies that hold them all.
         host_sort_grown_ = true;
         device_pair_capacity_ = hostSortCapacity(h.needed);
+        if (host_responses_on_) host_response_capacity_ = hostResponseCapacity(h.responses);
         if (auto ok = prepareSort(); !ok) return ok.error();
         return again(Step::Sort);
     }
@@ -238,6 +272,14 @@ Result<Collected> ReliableMethod::collectSorted(BroadPhaseResult& result) {
                                                  std::to_string(h.count) + " of " + std::to_string(h.needed) + " pairs (internal error)");
     result.has_sorted_pairs = true;
     result.sorted_pairs = device_pairs_->hostPairs(h.count);
+    if (host_responses_on_) {
+        if (h.responses > device_responses_->hostCapacity())
+            return Error(ErrorCode::VulkanError, "sorted responses: " + std::to_string(h.responses) + " found, the copy holds " +
+                                                     std::to_string(device_responses_->hostCapacity()) + " after growing (internal error)");
+        last_responses_ = h.responses;
+        result.has_sorted_responses = true;
+        result.sorted_responses = device_responses_->hostResponses(h.responses);
+    }
     result.gpu_triangles = cells_->gpuTriangles();
     return Collected::Done;
 }

@@ -6,7 +6,8 @@
 //                                                         projection the fit wrote
 //   readback  the broad phase's header                    common_stages.hpp
 //   (device pairs, BroadPhaseSettings::device_pairs: pairs-clear/args/bucket/sort after
-//             the stage's passes, device_pairs.hpp)
+//             the stage's passes, device_pairs.hpp; with device_responses then
+//             responses-clear/bucket/sum, device_responses.hpp)
 //   collect   the stage's header; after an overflow Again (the broad phase runs the
 //             stage's passes alone, its buffers already grown), while the pair pass has
 //             chunks to go Again (its next chunk alone), until complete, then the device
@@ -27,6 +28,7 @@
 
 #include "broad/cells/cell_stage.hpp"
 #include "broad/cells/device_pairs.hpp"
+#include "broad/cells/device_responses.hpp"
 #include "broad/method.hpp"
 #include "proximity/proximity_stage.hpp"
 
@@ -48,7 +50,13 @@ public:
     std::optional<ObjectFault> fault() const override { return fault_; }
     std::optional<DevicePairsView> devicePairs() const override {
         if (!device_pairs_on_) return std::nullopt;  // sorted_for_host_'s buffers are the host's
-        return device_pairs_->view();
+        DevicePairsView view = device_pairs_->view();
+        if (device_responses_on_) {
+            view.responses = device_responses_->buffer();
+            view.responses_address = device_responses_->address();
+            view.response_capacity = device_responses_->capacity();
+        }
+        return view;
     }
 
 private:
@@ -80,7 +88,18 @@ private:
     bool pairs_on_device_only_ = false;  // device pairs without a host result
     bool sorted_for_host_ = false;       // the host result's pairs sorted on the GPU (sort_on_gpu)
     bool sorting() const { return device_pairs_on_ || sorted_for_host_; }  // the device-pairs passes run
+    // Responses on the GPU (BroadPhaseSettings::device_responses with device pairs, or
+    // responses_on_gpu for the host result sorted there): made on first use.
+    std::unique_ptr<DeviceResponseStage> device_responses_;
+    bool device_responses_on_ = false;
+    bool host_responses_on_ = false;  // the host result's responses computed on the GPU (with sorted_for_host_)
+    bool responding() const { return device_responses_on_ || host_responses_on_; }
+    std::uint32_t host_response_capacity_ = 0;
+    std::uint32_t last_responses_ = 0;  // the last host result's responses: what its copy holds first
+    // The device pairs' passes, then the responses' and the copies to the host.
+    void recordSort(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) const;
     std::uint32_t hostSortCapacity(std::uint64_t expected) const;
+    static std::uint32_t hostResponseCapacity(std::uint64_t expected);
     // The device-pairs stage sized for this run (capacity, where its header and pairs go);
     // again after a rerun of the cell stage and for a larger host copy.
     [[nodiscard]] Result<void> prepareSort();

@@ -230,8 +230,8 @@ TEST_CASE("vkcollide detect: the JSON's settings are those the method that ran r
     const Json j = detectJson(s.scratch, s.files + " --resolution 64");
     CHECK(j["settings"]["asked"].object().size() == options.all.size() - options.reliable_only.size());
     CHECK(j["settings"]["used"].object().size() == options.all.size() - options.reliable_only.size());
-    CHECK(options.reliable_only ==
-          std::set<std::string>{"--exact", "--exact-pass", "--pair-sort", "--grid-tuning", "--proximity", "--proximity-capacity"});
+    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--exact-pass", "--pair-sort", "--responses", "--grid-tuning",
+                                                         "--proximity", "--proximity-capacity"});
     CHECK_FALSE(j["settings"]["used"].has("exact"));
     CHECK(j["settings"]["used"].has("depth_aware"));
     // The reliable method: the fields it reads, and none that only peeling reads.
@@ -379,26 +379,37 @@ TEST_CASE("vkcollide detect: --exact chooses where the reliable method's exact t
     CHECK(run.err.find("--exact belongs to the reliable method") != std::string::npos);
 }
 
-TEST_CASE("vkcollide detect: --pair-sort chooses where the pairs are put in order", "[cli][gpu]") {
+TEST_CASE("vkcollide detect: --pair-sort and --responses choose where the pairs are put in order and the responses computed",
+          "[cli][gpu]") {
     TwoSpheres s(1.0f);
     const Json gpu = detectJson(s.scratch, s.plain_files + " --pair-sort gpu");
     const Json cpu = detectJson(s.scratch, s.plain_files + " --pair-sort cpu");
+    const Json host_responses = detectJson(s.scratch, s.plain_files + " --pair-sort gpu --responses cpu");
     CHECK(gpu["settings"]["asked"]["pair_sort"].string() == "gpu");
     CHECK(cpu["settings"]["used"]["pair_sort"].string() == "cpu");
+    CHECK(host_responses["settings"]["used"]["responses"].string() == "cpu");
     REQUIRE(stats(gpu)["pairs"].number() > 0);
     CHECK(stats(gpu)["pairs_sorted_on_gpu"].boolean() == (stats(gpu)["gpu_exact_tests"].number() > 0));
+    CHECK(stats(gpu)["responses_on_gpu"].boolean() == stats(gpu)["pairs_sorted_on_gpu"].boolean());  // --responses auto
     CHECK_FALSE(stats(cpu)["pairs_sorted_on_gpu"].boolean());
-    CHECK(jsonPairs(gpu["frames"][0]) == jsonPairs(cpu["frames"][0]));
-    const Json &rg = gpu["frames"][0]["responses"], &rc = cpu["frames"][0]["responses"];
-    REQUIRE(rg.size() == rc.size());
-    for (std::size_t k = 0; k < rg.size(); ++k) {
-        CHECK(rg[k]["triangle"].number() == rc[k]["triangle"].number());
-        CHECK(rg[k]["partners"].number() == rc[k]["partners"].number());
-        for (std::size_t c = 0; c < 3; ++c) CHECK(rg[k]["direction"][c].number() == rc[k]["direction"][c].number());
+    CHECK_FALSE(stats(cpu)["responses_on_gpu"].boolean());
+    CHECK_FALSE(stats(host_responses)["responses_on_gpu"].boolean());
+    for (const Json* other : {&cpu, &host_responses}) {
+        CHECK(jsonPairs(gpu["frames"][0]) == jsonPairs((*other)["frames"][0]));
+        const Json &rg = gpu["frames"][0]["responses"], &rc = (*other)["frames"][0]["responses"];
+        REQUIRE(rg.size() == rc.size());
+        for (std::size_t k = 0; k < rg.size(); ++k) {
+            CHECK(rg[k]["triangle"].number() == rc[k]["triangle"].number());
+            CHECK(rg[k]["partners"].number() == rc[k]["partners"].number());
+            for (std::size_t c = 0; c < 3; ++c) CHECK(rg[k]["direction"][c].number() == rc[k]["direction"][c].number());
+        }
     }
     const Run run = runCli("detect " + s.files + " --pair-sort gpu");
     CHECK(run.status == 1);
     CHECK(run.err.find("--pair-sort belongs to the reliable method") != std::string::npos);
+    const Run refused = runCli("detect " + s.plain_files + " --responses gpu --pair-sort cpu");
+    CHECK(refused.status == 1);
+    CHECK(refused.err.find("reliable.responses Gpu needs the pairs sorted on the GPU") != std::string::npos);
 }
 
 TEST_CASE("vkcollide detect: --exact-pass runs the exact decision inside the pair pass or in a pass of its own", "[cli][gpu]") {

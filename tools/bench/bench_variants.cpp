@@ -44,6 +44,9 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // PairSort::Auto, sorts on the GPU from kGpuPairSortFrom pairs).
         {"sort-gpu", "modes", [](S& s) { s.reliable.pair_sort = PairSort::Gpu; }},
         {"sort-cpu", "modes", [](S& s) { s.reliable.pair_sort = PairSort::Cpu; }},
+        // Where the pairs are sorted on the GPU, the host result's responses from the narrow
+        // phase (the reference path) instead of the GPU (the default, ResponseSource::Auto).
+        {"responses-cpu", "modes", [](S& s) { s.reliable.responses = ResponseSource::Cpu; }},
         // The automatic grid fixed at kCellsPerEdge (the default on a GPU tunes it per scene,
         // docs/reliable.md "The grid per scene"): its difference to "default" is the tuning's.
         {"grid-fixed", "modes", [](S& s) { s.reliable.grid_tuning = GridTuning::Off; }},
@@ -55,6 +58,9 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // nothing read back, no host narrow phase. Its recall is the pairs' count against
         // the reference's (tests/api/device_pairs_tests.cpp compares the content).
         {"device-only", "modes", [](S& s) { s.reliable.device_pairs = true, s.reliable.host_pairs = false; }},
+        // The same with every colliding triangle's response left there too (device_responses).
+        {"device-responses", "modes",
+         [](S& s) { s.reliable.device_pairs = true, s.reliable.host_pairs = false, s.reliable.device_responses = true; }},
         {"depth-sep", "modes", paper([](S& s) { s.peeling.depth_aware = true; })},  // peeling, depth-aware separation on
         {"paper-sep", "modes", paper([](S& s) { s.peeling.depth_aware = false; })},  // peeling, the paper's separation (the old default)
         // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".

@@ -177,6 +177,12 @@ const std::vector<Option>& options() {
                   "(the narrow phase; docs/exact_gpu.md)",
                   "gpu: two GPU passes and one copy, the host only computes responses; cpu: the host sorts; same pairs and responses",
                   setting<kReliable, &ReliableSettings::pair_sort>, "pair_sort", "reliable.pair_sort", show<kReliable, &ReliableSettings::pair_sort>}),
+        reliable({"--responses", "WHERE", Section::Settings,
+                  "where the responses are computed when the pairs are sorted on the GPU: auto (the GPU), gpu (the pairs sorted "
+                  "there too) or cpu (the narrow phase; docs/exact_gpu.md)",
+                  "gpu: three GPU passes over the triangles and one copy, the host only checks and copies; same responses to the bit",
+                  setting<kReliable, &ReliableSettings::responses>, "responses", "reliable.responses",
+                  show<kReliable, &ReliableSettings::responses>}),
         reliable({"--grid-tuning", "HOW", Section::Settings,
                   "with an automatic --resolution: on (the grid chosen per scene from the detections' GPU times), off (2 cells "
                   "per typical edge) or auto (the library's choice: off until the tuner is measured on a GPU)",

@@ -354,6 +354,8 @@ struct DeviceResponsesParams {
     VKC_ADDRESS(uint64_t) lower;         // uint[survivor capacity]: lower partners, bucketed by the higher
     VKC_ADDRESS(uint64_t) marks;         // uint[triangle_count]: 1 where the triangle is in a pair
     VKC_ADDRESS(uint64_t) positions;     // uint[triangle_count + 1]: its response's index
+    VKC_ADDRESS(uint64_t) responders;    // uint[triangle_count]: the marked triangles in order (positions' inverse)
+    VKC_ADDRESS(uint64_t) args;          // VkDispatchIndirectCommand: one invocation per responder
     VKC_ADDRESS(uint64_t) normals;       // double[3 * triangle_count]: unit normals of marked triangles
     VKC_ADDRESS(uint64_t) responses;     // DeviceResponse[triangle_count]
     uint triangle_count;

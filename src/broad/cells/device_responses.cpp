@@ -18,7 +18,7 @@ namespace {
 static_assert(sizeof(gpu::DeviceResponse) == sizeof(TriangleResponse) && offsetof(TriangleResponse, triangle) == 4 &&
               offsetof(TriangleResponse, direction) == offsetof(gpu::DeviceResponse, direction) &&
               offsetof(TriangleResponse, partner_count) == offsetof(gpu::DeviceResponse, partner_count));
-static_assert(sizeof(gpu::DeviceResponsesParams) == 8 * 8 + 4 * 4);
+static_assert(sizeof(gpu::DeviceResponsesParams) == 10 * 8 + 4 * 4);
 
 }  // namespace
 
@@ -27,6 +27,9 @@ Result<std::unique_ptr<DeviceResponseStage>> DeviceResponseStage::create(vk::Dev
     auto p = vk::Pipeline::createCompute(device, shaders::device_responses_comp, {}, sizeof(gpu::Push), "device-responses");
     if (!p) return p.error();
     stage->pipeline_ = std::move(*p);
+    auto sum = vk::Pipeline::createCompute(device, shaders::device_responses_sum_comp, {}, sizeof(gpu::Push), "device-responses-sum");
+    if (!sum) return sum.error();
+    stage->sum_pipeline_ = std::move(*sum);
     using vk::MemoryKind;
     Buffers& b = stage->buf_;
     b.params = table.addOwned("device-responses-params", MemoryKind::Upload);
@@ -35,6 +38,8 @@ Result<std::unique_ptr<DeviceResponseStage>> DeviceResponseStage::create(vk::Dev
     b.lower = table.addOwned("device-responses-lower", MemoryKind::DeviceLocal);
     b.marks = table.addOwned("device-responses-marks", MemoryKind::DeviceLocal);
     b.positions = table.addOwned("device-responses-positions", MemoryKind::DeviceLocal);
+    b.responders = table.addOwned("device-responses-responders", MemoryKind::DeviceLocal);
+    b.args = table.addOwned("device-responses-args", MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     b.normals = table.addOwned("device-responses-normals", MemoryKind::DeviceLocal);
     // The one the engine reads: a grown one keeps the old buffer for two more starts.
     b.responses = table.addOwned("device-responses", MemoryKind::DeviceLocal, 0, true);
@@ -56,6 +61,8 @@ Result<void> DeviceResponseStage::prepare(const CellStage& cells, const DevicePa
         rowSize(buf_.lower, survivors * 4, MemoryKind::DeviceLocal),
         rowSize(buf_.marks, tris * 4, MemoryKind::DeviceLocal),
         rowSize(buf_.positions, (tris + 1) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.responders, tris * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.args, 12, MemoryKind::DeviceLocal),
         rowSize(buf_.normals, tris * 3 * sizeof(double), MemoryKind::DeviceLocal),
         rowSize(buf_.responses, tris * sizeof(gpu::DeviceResponse), MemoryKind::DeviceLocal),
         rowSize(buf_.host_responses, VkDeviceSize(host_capacity_) * sizeof(gpu::DeviceResponse), MemoryKind::Readback),
@@ -68,6 +75,8 @@ Result<void> DeviceResponseStage::prepare(const CellStage& cells, const DevicePa
     p.lower = buf_.lower->address();
     p.marks = buf_.marks->address();
     p.positions = buf_.positions->address();
+    p.responders = buf_.responders->address();
+    p.args = buf_.args->address();
     p.normals = buf_.normals->address();
     p.responses = buf_.responses->address();
     p.triangle_count = triangles_;
@@ -85,6 +94,8 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
     const auto lower = importRow(g, b.lower);
     const auto marks = importRow(g, b.marks);
     const auto positions = importRow(g, b.positions);
+    const auto responders = importRow(g, b.responders);
+    const auto args = importRow(g, b.args);
     const auto normals = importRow(g, b.normals);
     const auto responses = importRow(g, b.responses);
     const VkDeviceAddress params = buf_.params->address();
@@ -94,6 +105,8 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
     const std::uint64_t blocks = (std::uint64_t(triangles_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const std::uint32_t max_x = max_groups_x_;
     const vk::Pipeline* pipe = &pipeline_;
+    const vk::Pipeline* sum_pipe = &sum_pipeline_;
+    const VkBuffer args_buffer = buf_.args->handle();
     // One step over every triangle, then a barrier.
     auto perTriangle = [pipe, params, tri_groups, max_x](graph::PassContext& pc, std::uint32_t step) {
         bindAndPush(pc, *pipe, params, 0, step);
@@ -116,6 +129,7 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
         .use(lower_counts, graph::Use::TransferDst)
         .record([counts_buffer, count_bytes](graph::PassContext& pc) { pc.fillBuffer(counts_buffer, 0, count_bytes, 0); });
     addPass(g, "responses-bucket", graph::PassKind::Compute, Stage::Sorting)
+        .write(args)
         .read(sorted.header)
         .read(sorted.counts)
         .read(sorted.offsets)
@@ -130,26 +144,43 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
             bindAndPush(pc, *pipe, params, 0, 4);
             dispatchGroups(pc, tri_groups, max_x);
         });
-    addPass(g, "responses-sum", graph::PassKind::Compute, Stage::Sorting)
-        .read(cells.triangles)
-        .read(cells.geometry)
+    addPass(g, "responses-list", graph::PassKind::Compute, Stage::Sorting)
         .read(sorted.counts)
-        .read(sorted.offsets)
-        .read(sorted.partners)
         .read(lower_offsets)
         .read(lower_counts)
         .readWrite(lower)
         .readWrite(sorted.header)
         .readWrite(sorted.block_sums)
+        .readWrite(args)
         .write(marks)
         .write(positions)
-        .write(normals)
-        .write(responses)
+        .write(responders)
         .record([perTriangle, scan, pipe, params, tri_groups, max_x](graph::PassContext& pc) {
             perTriangle(pc, 5);
             scan(pc, 1);
             bindAndPush(pc, *pipe, params, 0, 6);
             dispatchGroups(pc, tri_groups, max_x);
+        });
+    addPass(g, "responses-sum", graph::PassKind::Compute, Stage::Sorting)
+        .indirect(args)
+        .read(cells.triangles)
+        .read(cells.geometry)
+        .read(sorted.header)
+        .read(sorted.counts)
+        .read(sorted.offsets)
+        .read(sorted.partners)
+        .read(lower_offsets)
+        .read(lower_counts)
+        .read(lower)
+        .read(responders)
+        .write(normals)
+        .write(responses)
+        .record([sum_pipe, params, args_buffer](graph::PassContext& pc) {
+            bindAndPush(pc, *sum_pipe, params, 0, 0);
+            pc.dispatchIndirect(args_buffer, 0);
+            pc.shaderBarrier();
+            bindAndPush(pc, *sum_pipe, params, 0, 1);
+            pc.dispatchIndirect(args_buffer, 0);
         });
     if (host_capacity_ == 0) return;
     // A copy by the transfer engine (as the device pairs' to the host): the host's capacity

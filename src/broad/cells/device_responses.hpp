@@ -5,8 +5,11 @@
 //
 //   responses-clear   the lower partners' counts zeroed
 //   responses-bucket  each triangle's lower partners counted, scanned and scattered
-//   responses-sum     each lower bucket sorted, the unit normals, the triangles in a pair
-//                     scanned into their places, each response summed in the CPU's order
+//   responses-list    each lower bucket sorted, the triangles in a pair marked, scanned and
+//                     listed (spirv/cells/device_responses.comp.glsl: light, per triangle)
+//   responses-sum     per listed triangle, dispatched indirectly: its unit normal, then its
+//                     response summed in the CPU's order (device_responses_sum.comp.glsl:
+//                     the double arithmetic, only where there is something to compute)
 //   responses-to-host (for the host's result) the first responses copied to host memory by
 //                     the transfer engine
 //
@@ -54,9 +57,9 @@ private:
 
     vk::Device* device_;
     BufferTable* table_;
-    vk::Pipeline pipeline_;
+    vk::Pipeline pipeline_, sum_pipeline_;
     struct Buffers {
-        TableRow params, lower_counts, lower_offsets, lower, marks, positions, normals, responses, host_responses;
+        TableRow params, lower_counts, lower_offsets, lower, marks, positions, responders, args, normals, responses, host_responses;
     } buf_;
     std::uint32_t triangles_ = 0, max_groups_x_ = 0, host_capacity_ = 0;
 };

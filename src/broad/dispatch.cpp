@@ -35,6 +35,19 @@ void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups, std::uin
     pc.dispatch(shape.x, shape.y, 1);
 }
 
+void recordBlockScan(const graph::PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint64_t blocks,
+                     std::uint32_t max_x, std::uint32_t first_step, std::uint32_t level) {
+    bindAndPush(pc, p, frame, 0, first_step, level);
+    dispatchGroups(pc, blocks, max_x);
+    pc.shaderBarrier();
+    bindAndPush(pc, p, frame, 0, first_step + 1, level);
+    pc.dispatch(1, 1, 1);
+    pc.shaderBarrier();
+    bindAndPush(pc, p, frame, 0, first_step + 2, level);
+    dispatchGroups(pc, blocks, max_x);
+    pc.shaderBarrier();
+}
+
 void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups) {
     dispatchGroups(pc, groups, pc.device->properties.limits.maxComputeWorkGroupCount[0]);
 }

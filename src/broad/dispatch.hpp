@@ -26,6 +26,12 @@ void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups);
 // The same in rows of at most `max_x` workgroups (at most the device's limit): for stages
 // that also give their shaders the row width (their indirect arguments use it too).
 void dispatchGroups(const graph::PassContext& pc, std::uint64_t groups, std::uint32_t max_x);
+// The three dispatches of an exclusive scan by spirv/cells/block_scan.glsl.inc (block sums
+// over `blocks` workgroups, the carry in one, the offsets), as steps first_step,
+// first_step + 1 and first_step + 2 of `p` with Push.level `level`, each followed by a
+// barrier.
+void recordBlockScan(const graph::PassContext& pc, const vk::Pipeline& p, VkDeviceAddress frame, std::uint64_t blocks,
+                     std::uint32_t max_x, std::uint32_t first_step, std::uint32_t level);
 // The same for `items` invocations of `size` per workgroup.
 void dispatchItems(const graph::PassContext& pc, std::uint64_t items, std::uint32_t size = gpu::kGroupSize);
 // The (x, y) layout dispatchGroups records for `groups` under the limits (x, y); {0, 0}

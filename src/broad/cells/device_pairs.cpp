@@ -137,15 +137,7 @@ DevicePairStage::Resources DevicePairStage::record(graph::Graph& g, const CellSt
         pc.dispatch(1, 1, 1);
     });
     auto scan = [pipe, params, blocks, max_x](graph::PassContext& pc, std::uint32_t level) {
-        bindAndPush(pc, *pipe, params, 0, 2, level);
-        dispatchGroups(pc, blocks, max_x);
-        pc.shaderBarrier();
-        bindAndPush(pc, *pipe, params, 0, 3, level);
-        pc.dispatch(1, 1, 1);
-        pc.shaderBarrier();
-        bindAndPush(pc, *pipe, params, 0, 4, level);
-        dispatchGroups(pc, blocks, max_x);
-        pc.shaderBarrier();
+        recordBlockScan(pc, *pipe, params, blocks, max_x, 2, level);  // steps 2-4
     };
     addPass(g, "pairs-bucket", graph::PassKind::Compute, Stage::Sorting)
         .indirect(args)

@@ -114,15 +114,7 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
         pc.shaderBarrier();
     };
     auto scan = [pipe, params, blocks, max_x](graph::PassContext& pc, std::uint32_t level) {
-        bindAndPush(pc, *pipe, params, 0, 1, level);
-        dispatchGroups(pc, blocks, max_x);
-        pc.shaderBarrier();
-        bindAndPush(pc, *pipe, params, 0, 2, level);
-        pc.dispatch(1, 1, 1);
-        pc.shaderBarrier();
-        bindAndPush(pc, *pipe, params, 0, 3, level);
-        dispatchGroups(pc, blocks, max_x);
-        pc.shaderBarrier();
+        recordBlockScan(pc, *pipe, params, blocks, max_x, 1, level);  // steps 1-3
     };
 
     addPass(g, "responses-clear", graph::PassKind::Transfer, Stage::Sorting)

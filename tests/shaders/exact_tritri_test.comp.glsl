@@ -13,10 +13,10 @@
 //    orient2d(a.xy,b.xy,c.xy), orient2dExact(same), orient2d(b.yz,c.yz,d.yz),
 //    orient2dExact(same); bit 14 the plane's certainlyNotCollinear; bits 16.. the exact
 //    fallbacks of the filtered predicates (the first, third, fourth and sixth);
-//  mode 2 (rounding, 8 words: doubles a, b, x, then a float's value f as a double; 9 words
-//    out): roundedQuotient(a, b), roundedSqrt(x), the same two started 5 ulps off (the
-//    correction alone, whatever the driver's own division and root give), as doubles'
-//    bits, then roundedFloatBits(f).
+//  mode 2 (rounding, 12 words: doubles a, b, x, a float's value f, then the CPU's a / b and
+//    sqrt(x); 13 words out): roundedQuotient(a, b), roundedSqrt(x), the two stepped to from
+//    5 ulps off the CPU's values (the correction alone), the driver's own a / b and sqrt(x),
+//    as doubles' bits, then roundedFloatBits(f).
 #include "cells/exact_predicates.glsl.inc"
 #include "cells/tritri_exact.glsl.inc"
 #include "cells/rounded_fp64.glsl.inc"
@@ -55,25 +55,27 @@ void main() {
         return;
     }
     if (pc.mode == 2u) {
-        uint base = 8u * id, out_base = 9u * id;
+        uint base = 12u * id, out_base = 13u * id;
         double a = packDouble2x32(uvec2(pc.cases.w[base], pc.cases.w[base + 1u]));
         double b = packDouble2x32(uvec2(pc.cases.w[base + 2u], pc.cases.w[base + 3u]));
         double x = packDouble2x32(uvec2(pc.cases.w[base + 4u], pc.cases.w[base + 5u]));
         double f = packDouble2x32(uvec2(pc.cases.w[base + 6u], pc.cases.w[base + 7u]));
-        double q_off = abs(a / b), s_off = sqrt(x);
+        double q_cpu = packDouble2x32(uvec2(pc.cases.w[base + 8u], pc.cases.w[base + 9u]));
+        double s_cpu = packDouble2x32(uvec2(pc.cases.w[base + 10u], pc.cases.w[base + 11u]));
+        double q_off = abs(q_cpu), s_off = s_cpu;
         for (int k = 0; k < 5; ++k) {
             q_off = roundedNextUp(q_off);
             s_off = roundedNextDown(s_off);
         }
         double q_far = roundedNearest(0u, abs(a), abs(b), q_off);
         if ((a < 0.0lf) != (b < 0.0lf)) q_far = -q_far;
-        uvec2 words[4] = uvec2[4](unpackDouble2x32(roundedQuotient(a, b)), unpackDouble2x32(roundedSqrt(x)), unpackDouble2x32(q_far),
-                                  unpackDouble2x32(roundedNearest(1u, x, 0.0lf, s_off)));
-        for (uint k = 0u; k < 4u; ++k) {
+        uvec2 words[6] = uvec2[6](unpackDouble2x32(roundedQuotient(a, b)), unpackDouble2x32(roundedSqrt(x)), unpackDouble2x32(q_far),
+                                  unpackDouble2x32(roundedNearest(1u, x, 0.0lf, s_off)), unpackDouble2x32(a / b), unpackDouble2x32(sqrt(x)));
+        for (uint k = 0u; k < 6u; ++k) {
             pc.results.r[out_base + 2u * k] = words[k].x;
             pc.results.r[out_base + 2u * k + 1u] = words[k].y;
         }
-        pc.results.r[out_base + 8u] = roundedFloatBits(f);
+        pc.results.r[out_base + 12u] = roundedFloatBits(f);
         return;
     }
     uint base = 12u * id;

@@ -15,17 +15,14 @@ namespace vkcollide::narrow {
 namespace {
 
 
-// The pairs and the GPU's responses copied as they are (runSortedPairs with responses).
-void copyReady(std::span<const TrianglePair> sorted, std::span<const TriangleResponse> responses, Executor& ex, NarrowResult& result) {
-    resizeFresh(result.pairs, sorted.size(), ex);
-    resizeFresh(result.responses, responses.size(), ex);
-    ex.parallelFor(sorted.size(), narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
-        std::copy(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
-                  result.pairs.begin() + static_cast<std::ptrdiff_t>(begin));
-    });
-    ex.parallelFor(responses.size(), narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
-        std::copy(responses.begin() + static_cast<std::ptrdiff_t>(begin), responses.begin() + static_cast<std::ptrdiff_t>(end),
-                  result.responses.begin() + static_cast<std::ptrdiff_t>(begin));
+// `to` = `from`: reused memory, or fresh pages touched in parallel first; the copy runs in
+// parallel (the result's pairs, and the GPU's responses where they are ready).
+template <typename T>
+void copyFresh(std::span<const T> from, std::vector<T>& to, Executor& ex) {
+    resizeFresh(to, from.size(), ex);
+    ex.parallelFor(from.size(), narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
+        std::copy(from.begin() + static_cast<std::ptrdiff_t>(begin), from.begin() + static_cast<std::ptrdiff_t>(end),
+                  to.begin() + static_cast<std::ptrdiff_t>(begin));
     });
 }
 
@@ -50,8 +47,8 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
     Buffer<std::uint8_t>& marks = ws.in_pair;  // not needed when the responses are ready
     marks.resize(ready ? 0 : total);
     std::fill(marks.begin(), marks.end(), std::uint8_t{0});
-    Buffer<std::uint64_t>& ends = ws.ends;  // (global a << 32) | global b, per pair
-    ends.resize(found);
+    Buffer<std::uint64_t>& ends = ws.ends;  // (global a << 32) | global b, per pair (for the slots)
+    ends.resize(ready ? 0 : found);
     // A pair's (a, b) as global ids; kOutOfRange when a triangle is out of range. Every
     // valid key is above 0 (a < b), so 0 stands for "no pair before".
     constexpr std::uint64_t kOutOfRange = ~std::uint64_t{0};
@@ -75,8 +72,8 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
                 return;
             }
             previous = key;
-            ends[k] = key;
             if (ready) continue;
+            ends[k] = key;
             std::atomic_ref<std::uint8_t>(marks[key >> 32]).store(1, std::memory_order_relaxed);
             std::atomic_ref<std::uint8_t>(marks[key & 0xffffffffu]).store(1, std::memory_order_relaxed);
         }
@@ -94,7 +91,8 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
         NarrowStats& st = result.stats;
         st.input_pairs = st.sap_pairs = st.positive_tests = found;
         st.candidates = st.potentially_colliding_triangles = gpu_responses.size();
-        copyReady(sorted, gpu_responses, ex, result);
+        copyFresh(sorted, result.pairs, ex);
+        copyFresh(gpu_responses, result.responses, ex);
         clock.lap(result.timings.sort_ms);
         result.timings.total_ms = clock.totalMs();
         return result;
@@ -150,12 +148,7 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
     const SlotData slots = slotView(ws.tags, ws.vertices);
     clock.lap(result.timings.gather_ms);
 
-    // Reused memory, or fresh pages touched in parallel first; the copy runs in parallel.
-    resizeFresh(result.pairs, kept, ex);
-    ex.parallelFor(kept, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
-        std::copy(sorted.begin() + static_cast<std::ptrdiff_t>(begin), sorted.begin() + static_cast<std::ptrdiff_t>(end),
-                  result.pairs.begin() + static_cast<std::ptrdiff_t>(begin));
-    });
+    copyFresh(sorted.first(kept), result.pairs, ex);
     clock.lap(result.timings.sort_ms);
     respond(colliding, slots, slot_count, ResponseForm::Automatic, ex, ws, result);
     clock.lap(result.timings.response_ms);

@@ -113,8 +113,13 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
         dispatchGroups(pc, tri_groups, max_x);
         pc.shaderBarrier();
     };
-    auto scan = [pipe, params, blocks, max_x](graph::PassContext& pc, std::uint32_t level) {
-        recordBlockScan(pc, *pipe, params, blocks, max_x, 1, level);  // steps 1-3
+    // Both bookkeeping passes: a step over the triangles, a scan (steps 1-3), a last step.
+    auto stepScanStep = [perTriangle, pipe, params, tri_groups, blocks, max_x](graph::PassContext& pc, std::uint32_t first,
+                                                                               std::uint32_t level, std::uint32_t last) {
+        perTriangle(pc, first);
+        recordBlockScan(pc, *pipe, params, blocks, max_x, 1, level);
+        bindAndPush(pc, *pipe, params, 0, last);
+        dispatchGroups(pc, tri_groups, max_x);
     };
 
     addPass(g, "responses-clear", graph::PassKind::Transfer, Stage::Sorting)
@@ -130,12 +135,7 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
         .readWrite(lower_counts)
         .write(lower_offsets)
         .write(lower)
-        .record([perTriangle, scan, pipe, params, tri_groups, max_x](graph::PassContext& pc) {
-            perTriangle(pc, 0);
-            scan(pc, 0);
-            bindAndPush(pc, *pipe, params, 0, 4);
-            dispatchGroups(pc, tri_groups, max_x);
-        });
+        .record([stepScanStep](graph::PassContext& pc) { stepScanStep(pc, 0, 0, 4); });
     addPass(g, "responses-list", graph::PassKind::Compute, Stage::Sorting)
         .read(sorted.counts)
         .read(lower_offsets)
@@ -147,12 +147,7 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
         .write(marks)
         .write(positions)
         .write(responders)
-        .record([perTriangle, scan, pipe, params, tri_groups, max_x](graph::PassContext& pc) {
-            perTriangle(pc, 5);
-            scan(pc, 1);
-            bindAndPush(pc, *pipe, params, 0, 6);
-            dispatchGroups(pc, tri_groups, max_x);
-        });
+        .record([stepScanStep](graph::PassContext& pc) { stepScanStep(pc, 5, 1, 6); });
     addPass(g, "responses-sum", graph::PassKind::Compute, Stage::Sorting)
         .indirect(args)
         .read(cells.triangles)

@@ -88,7 +88,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     for (std::size_t i = 0; i < n; ++i) object_tags_[i] = sorted_for_host_ ? static_cast<std::uint32_t>(i) : run.meshes[i].tag;
     device_pair_capacity_ = run.settings.device_pair_capacity;
     if (sorted_for_host_) device_pair_capacity_ = hostSortCapacity(run.settings.sorted_pairs_expected);
-    if (host_responses_on_) host_response_capacity_ = hostResponseCapacity(last_responses_);
+    if (host_responses_on_) host_response_capacity_ = hostCopyCapacity(last_responses_);
     fault_header_ = run.any_gpu_check ? table_->buffer(core_.header).address() : 0;
     return prepareSort();
 }
@@ -134,16 +134,15 @@ void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const 
     if (again_ == Step::Proximity) proximity_->record(g, cells);
 }
 
-// The host copy's capacity for `expected` pairs: a quarter more, at least 4096, at most the
-// survivor capacity (which holds every distinct pair of a complete run).
-std::uint32_t ReliableMethod::hostSortCapacity(std::uint64_t expected) const {
-    const std::uint64_t wanted = std::max<std::uint64_t>(expected + expected / 4, 4096);
-    return static_cast<std::uint32_t>(std::min<std::uint64_t>(wanted, std::max(cells_->capacity().survivors, 1u)));
+// A host copy's capacity for `expected` records: a quarter more, at least 4096.
+std::uint32_t ReliableMethod::hostCopyCapacity(std::uint64_t expected) {
+    return static_cast<std::uint32_t>(std::min<std::uint64_t>(std::max<std::uint64_t>(expected + expected / 4, 4096), UINT32_MAX));
 }
 
-// The same for the responses' copy: at most the run's triangles (DeviceResponseStage clamps).
-std::uint32_t ReliableMethod::hostResponseCapacity(std::uint64_t expected) {
-    return static_cast<std::uint32_t>(std::min<std::uint64_t>(std::max<std::uint64_t>(expected + expected / 4, 4096), UINT32_MAX));
+// The same for the pairs, at most the survivor capacity (which holds every distinct pair of a
+// complete run); the responses' copy is clamped to the run's triangles (DeviceResponseStage).
+std::uint32_t ReliableMethod::hostSortCapacity(std::uint64_t expected) const {
+    return std::min(hostCopyCapacity(expected), std::max(cells_->capacity().survivors, 1u));
 }
 
 // Each step ends in the result or asks for its passes again (the broad phase records
@@ -263,7 +262,7 @@ Result<Collected> ReliableMethod::collectSorted(BroadPhaseResult& result) {
         // More pairs (or responses) than expected: sort again into copies that hold them all.
         host_sort_grown_ = true;
         device_pair_capacity_ = hostSortCapacity(h.needed);
-        if (host_responses_on_) host_response_capacity_ = hostResponseCapacity(h.responses);
+        if (host_responses_on_) host_response_capacity_ = hostCopyCapacity(h.responses);
         if (auto ok = prepareSort(); !ok) return ok.error();
         return again(Step::Sort);
     }

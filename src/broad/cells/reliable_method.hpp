@@ -99,7 +99,7 @@ private:
     // The device pairs' passes, then the responses' and the copies to the host.
     void recordSort(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) const;
     std::uint32_t hostSortCapacity(std::uint64_t expected) const;
-    static std::uint32_t hostResponseCapacity(std::uint64_t expected);
+    static std::uint32_t hostCopyCapacity(std::uint64_t expected);
     // The device-pairs stage sized for this run (capacity, where its header and pairs go);
     // again after a rerun of the cell stage and for a larger host copy.
     [[nodiscard]] Result<void> prepareSort();

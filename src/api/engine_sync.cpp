@@ -59,7 +59,11 @@ Result<DetectResult> CollisionWorld::Impl::detectCall(const DetectSettings& sett
     auto scope = guard.enter("CollisionWorld::detect");
     if (!scope) return scope.error();
     if (detections.pending()) return Error(ErrorCode::InvalidArgument, "detect while a detection is in flight: collect() it first");
-    if (auto ok = begin(settings, settings.peeling.measure_layers, nullptr); !ok) return ok.error();
+    // The reliable method measures nothing before its one submission: it is left in flight
+    // here and collect() waits for it, so that what the host prepares for the result
+    // (prepareResultMemory) runs while the GPU works.
+    const bool measure = settings.method == DetectMethod::Peeling && settings.peeling.measure_layers;
+    if (auto ok = begin(settings, measure, nullptr); !ok) return ok.error();
     Run& run = detections.runs[detections.oldest];
     return hostGuarded(*run.detection, run.in_flight, [&] { return collect(run, false, reuse_memory); });
 }

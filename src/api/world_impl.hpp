@@ -36,6 +36,11 @@ struct CollisionWorld::Impl {
     Executor* executor = nullptr;          // the narrow phase's: own_pool or the engine's
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
     std::size_t last_narrow_pairs = 0;  // the last pair-path narrow phase's input: whom to wake while the next one waits
+    // detect()'s result memory for GPU-sorted pairs and responses, made ready while the GPU
+    // works (prepareResultMemory) and handed to the result; the last result's response count.
+    std::vector<TrianglePair> ready_pairs;
+    std::vector<TriangleResponse> ready_responses;
+    std::size_t last_responses = 0;
     ObjectRegistry registry;
     AutoSettings auto_settings;
     // Declared after the objects: destroyed first, the detections wait for their work in
@@ -79,6 +84,10 @@ struct CollisionWorld::Impl {
     // `reuse`: the caller's result (detectInto, collectInto), whose pairs', responses' and
     // pair contacts' memory finish() reuses; null: fresh vectors.
     Result<DetectResult> collect(Run& run, bool restart_clock, DetectResult* reuse = nullptr);
+    // Before collect()'s wait for a run whose pairs the GPU sorts and whose result memory the
+    // caller does not lend (detect(), collect()): vectors as large as the last result's pairs
+    // and responses, their new pages touched and zeroed while the GPU works, not after it.
+    void prepareResultMemory(const Run& run);
     // CollisionWorld::detect/collect and their *Into forms (reuse_memory: the caller's result).
     Result<DetectResult> detectCall(const DetectSettings& settings, DetectResult* reuse_memory);
     Result<DetectResult> collectCall(DetectResult* reuse_memory);

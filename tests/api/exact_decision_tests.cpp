@@ -442,3 +442,52 @@ TEST_CASE("detectInto and collectInto give detect()'s result in the caller's mem
     CHECK_FALSE(world->detectInto(kept, bad));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
+
+TEST_CASE("detect() makes the next result's memory ready while the GPU works, and its results stay detect()'s", "[api][gpu][reliable]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) return;  // no GPU sort without the exact decision on the GPU
+    auto grids = coincidentGrids(32);  // three coincident grids: over a megabyte of pairs
+    REQUIRE(grids);
+    DetectSettings gpu_sort;
+    gpu_sort.reliable.pair_sort = PairSort::Gpu;
+    auto world = sceneWorld(ctx, *grids);
+    auto first = world->detect(gpu_sort);  // nothing known yet: no memory made ready
+    REQUIRE(first);
+    const std::size_t n = first->pairs.size();
+    INFO(n << " pairs, " << first->responses.size() << " responses");
+    REQUIRE(n * sizeof(TrianglePair) >= (std::size_t{1} << 20));
+    CHECK(first->stats.reliable.pairs_sorted_on_gpu);
+    CHECK(first->stats.reliable.responses_on_gpu);
+    for (int frame = 0; frame < 2; ++frame) {
+        auto next = world->detect(gpu_sort);
+        REQUIRE(next);
+        CHECK(next->pairs == first->pairs);
+        CHECK(sameResponses(next->responses, first->responses));
+        CHECK(next->pairs.capacity() >= n + n / 8);  // the memory made ready during the wait
+    }
+    // submit() + collect() make it ready too; detectInto uses the caller's memory instead.
+    REQUIRE(world->submit(gpu_sort));
+    auto collected = world->collect();
+    REQUIRE(collected);
+    CHECK(collected->pairs == first->pairs);
+    CHECK(collected->pairs.capacity() >= n + n / 8);
+    // Fewer pairs (one grid moved half out), then more again: each time what a new world
+    // (nothing made ready) finds.
+    const auto moved = [&](float x, const char* what) {
+        INFO(what);
+        const Transform3x4 t = {1, 0, 0, x, 0, 1, 0, 0, 0, 0, 1, 0};
+        REQUIRE(world->setTransform(2, t));
+        auto r = world->detect(gpu_sort);
+        REQUIRE(r);
+        auto fresh = sceneWorld(ctx, *grids);
+        REQUIRE(fresh->setTransform(2, t));
+        auto expected = fresh->detect(gpu_sort);
+        REQUIRE(expected);
+        CHECK(r->pairs == expected->pairs);
+        CHECK(sameResponses(r->responses, expected->responses));
+        return r->pairs.size();
+    };
+    CHECK(moved(0.5f, "one grid moved by half its width") < n);
+    CHECK(moved(0.0f, "back in place") == n);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}

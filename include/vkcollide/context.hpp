@@ -281,6 +281,25 @@ struct ContextCreateInfo {
     // validation, which needs it for its messages). false: no names or labels, and the
     // extension only where validation needs it.
     bool debug_names = true;
+    // Keep every pipeline's compiler statistics (VK_KHR_pipeline_executable_properties:
+    // registers, spills, shared memory, instructions: whatever the driver reports), read
+    // with Context::pipelineStatistics(): for tuning the passes, where the driver offers
+    // the extension (NVIDIA's does; lavapipe's does not: pipelineStatistics() then says so).
+    // Pipelines take longer to create with it.
+    bool pipeline_statistics = false;
+};
+
+// One pipeline's compiler statistics (ContextCreateInfo::pipeline_statistics): one entry
+// per executable the driver made of it (a compute pipeline has one).
+struct PipelineStatistic {
+    std::string name;         // the driver's, e.g. "Register Count"
+    std::string description;  // the driver's
+    double value = 0;         // booleans as 0 / 1, integers exactly below 2^53
+};
+struct PipelineStatistics {
+    std::string pipeline;    // vkcollide's name for the pass's program
+    std::string executable;  // the driver's name for what it compiled (a stage)
+    std::vector<PipelineStatistic> statistics;
 };
 
 // Everything an engine lends to adopt(). Every handle must outlive the Context and every
@@ -396,6 +415,11 @@ public:
     // engine's, for an adopted device given one), to save and pass back as
     // pipeline_cache_data next run. Errors: VulkanError / OutOfMemory.
     [[nodiscard]] Result<std::vector<std::byte>> pipelineCacheData() const;
+    // The statistics of every pipeline created so far, in creation order (pipelines are
+    // made when a world first records a pass that needs them). Errors: UnsupportedFeature
+    // (ContextCreateInfo::pipeline_statistics was off, the device is adopted, or its driver
+    // does not offer VK_KHR_pipeline_executable_properties: the message says which).
+    [[nodiscard]] Result<std::vector<PipelineStatistics>> pipelineStatistics() const;
 
 private:
     // vkcollide's own subsystems reach the device through ContextAccess

@@ -77,6 +77,7 @@ Result<std::unique_ptr<Context>> Context::adopt(const AdoptedDevice& in, Message
     const auto listed = [&](const char* name) { return listsExtension(in.enabled_extensions, name); };
     d->conservative_rasterization = listed(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME) && d->info.conservative_rasterization;
     d->push_descriptor = listed(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME) && d->info.push_descriptor;
+    d->statistics_unavailable = "an adopted device: pipeline statistics need a Context that creates its device (ContextCreateInfo)";
     d->shader_float64 = enabled->has(Feature::ShaderFloat64);
     d->robust_buffer_access = enabled->has(Feature::RobustBufferAccess);
     d->robust_buffer_access2 = listed(VK_EXT_ROBUSTNESS_2_EXTENSION_NAME) && enabled->has(Feature::RobustBufferAccess2);

@@ -129,6 +129,7 @@ PhysicalDeviceReport describePhysicalDevice(const InstanceFunctions& fns, VkPhys
     info.conservative_rasterization = hasExtension(exts, VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
     info.push_descriptor = hasExtension(exts, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
     const bool robustness2_extension = hasExtension(exts, VK_EXT_ROBUSTNESS_2_EXTENSION_NAME);
+    report.executable_properties = hasExtension(exts, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
 
     report.supported = querySupported(fns, physical, robustness2_extension);
     for (auto& m : report.supported.missingRequired()) info.missing.push_back(m);
@@ -355,6 +356,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     int best_rank = 1 << 30;
     std::string report;
     FeatureSet supported;
+    bool executable_properties = false;
     for (VkPhysicalDevice p : physicals) {
         PhysicalDeviceReport pd = describePhysicalDevice(d->instance_fns, p);
         report += "\n  " + pd.info.name + " (" + toString(pd.info.type) + ")";
@@ -371,6 +373,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
             d->queue_family = *pd.queue_family;
             d->info = pd.info;
             supported = pd.supported;
+            executable_properties = pd.executable_properties;
         }
     }
     if (!d->physical) {
@@ -405,8 +408,15 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     if (d->conservative_rasterization) device_exts.push_back(VK_EXT_CONSERVATIVE_RASTERIZATION_EXTENSION_NAME);
     if (d->push_descriptor) device_exts.push_back(VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
     if (d->robust_buffer_access2) device_exts.push_back(VK_EXT_ROBUSTNESS_2_EXTENSION_NAME);
+    // Pipeline statistics (tuning only): the feature goes in front of the chain.
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_info{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+    executable_info.pNext = const_cast<VkPhysicalDeviceFeatures2*>(features.head());
+    executable_info.pipelineExecutableInfo = VK_TRUE;
+    const bool statistics = info.pipeline_statistics && executable_properties;
+    if (statistics) device_exts.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
     VkDeviceCreateInfo dci{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-    dci.pNext = features.head();
+    dci.pNext = statistics ? static_cast<const void*>(&executable_info) : static_cast<const void*>(features.head());
     dci.queueCreateInfoCount = 1;
     dci.pQueueCreateInfos = &queue_info;
     dci.enabledExtensionCount = static_cast<std::uint32_t>(device_exts.size());
@@ -427,6 +437,16 @@ Result<std::unique_ptr<Context>> Context::create(const ContextCreateInfo& info) 
     d->owns_device = true;
     d->debug_utils = info.debug_names && debug_utils_enabled && loadDebugLabelFunctions(gipa, d->instance, d->fns);
     d->fns.vkGetDeviceQueue(d->device, d->queue_family, 0, &d->queue);
+    if (info.pipeline_statistics) {
+        d->get_executable_properties = reinterpret_cast<PFN_vkGetPipelineExecutablePropertiesKHR>(
+            d->instance_fns.vkGetDeviceProcAddr(d->device, "vkGetPipelineExecutablePropertiesKHR"));
+        d->get_executable_statistics = reinterpret_cast<PFN_vkGetPipelineExecutableStatisticsKHR>(
+            d->instance_fns.vkGetDeviceProcAddr(d->device, "vkGetPipelineExecutableStatisticsKHR"));
+        d->capture_statistics = statistics && d->get_executable_properties && d->get_executable_statistics;
+        d->statistics_unavailable = d->capture_statistics ? ""
+                                    : d->info.name + "'s driver (" + d->info.driver +
+                                          ") does not offer VK_KHR_pipeline_executable_properties";
+    }
     if (auto ok = finishDevice(*d); !ok) return ok.error();
     if (auto ok = setUpPipelineCache(*d, VK_NULL_HANDLE, info.pipeline_cache_data); !ok) return ok.error();
     return std::unique_ptr<Context>(new Context(std::move(d)));

@@ -104,6 +104,15 @@ struct Device : std::enable_shared_from_this<Device> {
     // VK_EXT_debug_utils on the instance, and fns' VKC_DEBUG_LABEL_FUNCTIONS loaded: objects
     // get names and passes labels (vk/debug_names.hpp).
     bool debug_utils = false;
+    // ContextCreateInfo::pipeline_statistics: VK_KHR_pipeline_executable_properties enabled,
+    // its two queries loaded, every pipeline created capturing its statistics, which
+    // finishPipeline appends to pipeline_statistics (under pipelines_mutex). Where it was
+    // asked for and cannot be had, why (Context::pipelineStatistics returns it).
+    bool capture_statistics = false;
+    PFN_vkGetPipelineExecutablePropertiesKHR get_executable_properties = nullptr;
+    PFN_vkGetPipelineExecutableStatisticsKHR get_executable_statistics = nullptr;
+    std::vector<PipelineStatistics> pipeline_statistics;
+    std::string statistics_unavailable = "ContextCreateInfo::pipeline_statistics was off";
 
     Device() = default;
     ~Device();
@@ -135,6 +144,7 @@ struct PhysicalDeviceReport {
     DeviceInfo info;                            // info.missing: every requirement it lacks
     FeatureSet supported;                       // empty below Vulkan 1.3 (not queried)
     std::optional<std::uint32_t> queue_family;  // first graphics+compute family with timestamps
+    bool executable_properties = false;         // VK_KHR_pipeline_executable_properties listed
 };
 PhysicalDeviceReport describePhysicalDevice(const InstanceFunctions& fns, VkPhysicalDevice physical);
 

@@ -71,6 +71,41 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
     return {};
 }
 
+// ContextCreateInfo::pipeline_statistics: what the driver says of each executable of a new
+// pipeline, kept on the device (its caller holds pipelines_mutex). A query that fails
+// leaves an entry with what it could read: statistics are for tuning, never an error.
+void captureStatistics(Device& device, VkPipeline pipeline, const std::string& name) {
+    VkPipelineInfoKHR info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
+    info.pipeline = pipeline;
+    std::uint32_t count = 0;
+    if (device.get_executable_properties(device.device, &info, &count, nullptr) != VK_SUCCESS) return;
+    std::vector<VkPipelineExecutablePropertiesKHR> executables(count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
+    if (device.get_executable_properties(device.device, &info, &count, executables.data()) != VK_SUCCESS) return;
+    for (std::uint32_t e = 0; e < count; ++e) {
+        PipelineStatistics& out = device.pipeline_statistics.emplace_back();
+        out.pipeline = name;
+        out.executable = executables[e].name;
+        VkPipelineExecutableInfoKHR which{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
+        which.pipeline = pipeline;
+        which.executableIndex = e;
+        std::uint32_t n = 0;
+        if (device.get_executable_statistics(device.device, &which, &n, nullptr) != VK_SUCCESS) continue;
+        std::vector<VkPipelineExecutableStatisticKHR> stats(n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
+        if (device.get_executable_statistics(device.device, &which, &n, stats.data()) != VK_SUCCESS) continue;
+        for (std::uint32_t k = 0; k < n; ++k) {
+            double value = 0;
+            switch (stats[k].format) {
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: value = stats[k].value.b32 ? 1 : 0; break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR: value = static_cast<double>(stats[k].value.i64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR: value = static_cast<double>(stats[k].value.u64); break;
+                case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR: value = stats[k].value.f64; break;
+                default: continue;
+            }
+            out.statistics.push_back({stats[k].name, stats[k].description, value});
+        }
+    }
+}
+
 // The end of either pipeline kind's creation: a failed create may have written its handle,
 // which must not reach ~PipelineHandles.
 Result<void> finishPipeline(Device& device, VkResult r, const char* create_call, VkPipelineBindPoint bind_point, const std::string& name,
@@ -81,6 +116,7 @@ Result<void> finishPipeline(Device& device, VkResult r, const char* create_call,
     }
     nameObject(device, h.pipeline, name);
     h.bind_point = bind_point;
+    if (device.capture_statistics) captureStatistics(device, h.pipeline, name);
     return {};
 }
 
@@ -138,6 +174,7 @@ Result<Pipeline> Pipeline::createCompute(Device& device, std::span<const std::ui
         ci.stage.module = module.module;
         ci.stage.pName = "main";
         ci.layout = h.layout;
+        if (device.capture_statistics) ci.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
         VkResult r = device.fns.vkCreateComputePipelines(device.device, device.pipeline_cache, 1, &ci, device.allocator(), &h.pipeline);
         return finishPipeline(device, r, "vkCreateComputePipelines", VK_PIPELINE_BIND_POINT_COMPUTE, name, h);
     });
@@ -215,6 +252,7 @@ Result<void> makeRaster(Device& device, const Pipeline::RasterDesc& desc, std::s
 
     VkGraphicsPipelineCreateInfo ci{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
     ci.pNext = &rendering;
+    if (device.capture_statistics) ci.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
     ci.stageCount = 2;
     ci.pStages = stages;
     ci.pVertexInputState = &vertex_input;

@@ -70,4 +70,11 @@ Result<std::vector<std::byte>> Context::pipelineCacheData() const {
                  static_cast<std::int32_t>(VK_INCOMPLETE));
 }
 
+Result<std::vector<PipelineStatistics>> Context::pipelineStatistics() const {
+    vk::Device& d = *device_;
+    if (!d.capture_statistics) return Error(ErrorCode::UnsupportedFeature, "pipeline statistics: " + d.statistics_unavailable);
+    std::lock_guard lock(d.pipelines_mutex);
+    return d.pipeline_statistics;
+}
+
 }  // namespace vkcollide

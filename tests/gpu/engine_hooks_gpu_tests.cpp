@@ -10,6 +10,7 @@
 #include <cstring>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "api/context_access.hpp"
@@ -345,6 +346,53 @@ TEST_CASE("vkcollide's own device with the engine's allocation callbacks and a s
         CHECK(detectSpheres(**ctx) == first);
     }
     CHECK(host.live.load() == 0);
+    std::lock_guard<std::mutex> lock(log_mutex);
+    for (const auto& m : log) UNSCOPED_INFO(m);
+    CHECK(log.empty());
+}
+
+TEST_CASE("pipeline statistics: every pipeline's where the driver offers them, an error naming why where not", "[gpu][hooks]") {
+    std::mutex log_mutex;
+    std::vector<std::string> log;
+    ContextCreateInfo info;
+    info.validation = true;
+    info.on_message = [&](MessageSeverity severity, std::string_view text) {
+        std::lock_guard<std::mutex> lock(log_mutex);
+        if (severity != MessageSeverity::Info) log.emplace_back(text);
+    };
+    auto off = Context::create(info);
+    REQUIRE(off);
+    auto none = (*off)->pipelineStatistics();
+    REQUIRE_FALSE(none);
+    CHECK(none.error().code() == ErrorCode::UnsupportedFeature);
+    CHECK_THAT(none.error().message(), Catch::Contains("pipeline_statistics was off"));
+
+    info.pipeline_statistics = true;
+    auto ctx = Context::create(info);
+    REQUIRE(ctx);
+    const std::vector<TrianglePair> pairs = detectSpheres(**ctx);
+    CHECK(pairs == detectSpheres(**off));  // capturing changes no result
+    auto stats = (*ctx)->pipelineStatistics();
+    const vk::Device& d = ContextAccess::device(**ctx);
+    if (!d.capture_statistics) {  // lavapipe (Mesa 22.3) does not offer the extension
+        REQUIRE_FALSE(stats);
+        CHECK(stats.error().code() == ErrorCode::UnsupportedFeature);
+        CHECK_THAT(stats.error().message(), Catch::Contains(d.info.name) && Catch::Contains("VK_KHR_pipeline_executable_properties"));
+    } else {
+        REQUIRE(stats);
+        std::set<std::string> names;
+        for (const PipelineStatistics& p : *stats) {
+            INFO(p.pipeline << " / " << p.executable);
+            names.insert(p.pipeline);
+            CHECK_FALSE(p.pipeline.empty());
+            CHECK_FALSE(p.statistics.empty());
+            for (const PipelineStatistic& s : p.statistics) CHECK_FALSE(s.name.empty());
+        }
+        // Every pipeline the detection made has at least one executable (pipelines may share
+        // a name: the same program for two bindings).
+        CHECK(stats->size() >= d.pipelines_created);
+        CHECK(names.size() >= 10);
+    }
     std::lock_guard<std::mutex> lock(log_mutex);
     for (const auto& m : log) UNSCOPED_INFO(m);
     CHECK(log.empty());

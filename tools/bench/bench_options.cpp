@@ -27,7 +27,8 @@ bool number(std::string_view text, T& out) {
 void printUsage(std::FILE* out) {
     std::fprintf(out, "usage: vkcollide_bench [--set tuning|held-out|all] [--scenes a,b] [--mesh FILE[:x,y,z]]... "
                       "[--variants names|groups|all] [--resolutions 512,1024] [--scale S] [--frames K] [--threads N] [--data DIR] "
-                      "[--cache DIR | --no-cache] [--csv FILE] [--profile FILE] [--warmup-ms MS] [--list] [--reference-only] [--write-obj DIR] [--help]\n");
+                      "[--cache DIR | --no-cache] [--csv FILE] [--profile FILE] [--pipeline-stats FILE] [--warmup-ms MS] [--list] "
+                      "[--reference-only] [--write-obj DIR] [--help]\n");
 }
 
 void printHelp() {
@@ -53,6 +54,8 @@ void printHelp() {
         "  --no-cache           no reference cache\n"
         "  --csv FILE           the rows (default vkcollide_bench.csv for built-in scenes)\n"
         "  --profile FILE       where each timed frame's time went (tools/bench/profile_table.sh)\n"
+        "  --pipeline-stats FILE  every pipeline's compiler statistics (registers, spills...) at the end, as CSV;\n"
+        "                       fails where the driver lacks VK_KHR_pipeline_executable_properties\n"
         "  --warmup-ms MS       untimed detections for MS before each scene and variant (warm GPU clocks)\n"
         "  --list               list the scenes and variants and exit\n"
         "  --reference-only     build the scenes and their exact references only (no GPU)\n"
@@ -100,6 +103,7 @@ std::optional<Options> parseOptions(int argc, char** argv) {
             else if (a == "--cache") opt.cache = v, cache_given = true;
             else if (a == "--csv") opt.csv = v, csv_given = true;
             else if (a == "--profile") opt.profile = v;
+            else if (a == "--pipeline-stats") opt.pipeline_stats = v;
             else if (a == "--warmup-ms") ok = number(v, opt.warmup_ms) && opt.warmup_ms >= 0;
             else if (a == "--write-obj") opt.write_obj = v;
             else return bad("unknown option " + a);

@@ -17,6 +17,7 @@ struct Options {
     // no file unless --csv or --cache names one.
     std::string csv = "vkcollide_bench.csv", cache = "bench-cache";
     double warmup_ms = 0;  // untimed detections per scene and variant before its frames
+    std::string pipeline_stats;  // every pipeline's compiler statistics at the end (driver permitting), empty: none
     std::string profile;   // long-form per-stage times (GPU passes, narrow-phase stages), empty: none
     std::vector<std::string> scenes;
     std::vector<MeshFile> meshes;  // --mesh: one scene of the user's own files

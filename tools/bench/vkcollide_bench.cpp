@@ -3,13 +3,16 @@
 //   vkcollide_bench [--set tuning|held-out|all] [--scenes a,b,...] [--mesh FILE[:x,y,z]]...
 //                   [--variants default,mitigations,...] [--resolutions 512,1024,...] [--scale S] [--frames K]
 //                   [--threads N] [--data DIR] [--cache DIR | --no-cache] [--csv FILE] [--profile FILE]
-//                   [--warmup-ms MS] [--list] [--reference-only] [--write-obj DIR] [--help]
+//                   [--pipeline-stats FILE] [--warmup-ms MS] [--list] [--reference-only] [--write-obj DIR] [--help]
 //
 // --mesh runs the user's own files as one more scene (set "user"; user_scene.hpp), the same
 // way; bench_options.cpp has every option's default.
 // --profile FILE writes where each timed frame's time went (GPU passes, narrow-phase stages,
 // host totals, the detection's host parts as detect:*; tools/bench/profile_table.sh sums it up). --warmup-ms MS detects untimed for
 // that long before each scene and variant: a GPU's clocks drop while it idles.
+// --pipeline-stats FILE writes, after the runs, what the driver's compiler says of every
+// pipeline they made (ContextCreateInfo::pipeline_statistics: registers, spills, shared
+// memory...), one row per statistic; an error where the driver does not offer them.
 // --reference-only builds the chosen scenes and their exact references (filling the cache)
 // and prints per frame the triangles, reference pairs, crossing pairs and seconds; no GPU.
 // For each scene (bench_scenes.hpp) and settings variant (bench_variants.cpp) it runs one
@@ -209,6 +212,7 @@ int main(int argc, char** argv) {
     ContextCreateInfo context_info;
     const char* validation_env = std::getenv("VKCOLLIDE_TEST_VALIDATION");
     context_info.validation = validation_env && std::string(validation_env) == "1";
+    context_info.pipeline_statistics = !opt.pipeline_stats.empty();
     auto ctx = Context::create(context_info);
     if (!ctx) return std::fprintf(stderr, "vkcollide_bench: %s\n", ctx.error().message().c_str()), 1;
     const std::string device = csvField((*ctx)->deviceInfo().name);
@@ -421,6 +425,22 @@ int main(int argc, char** argv) {
         }
     }
     progressDone();
+    if (!opt.pipeline_stats.empty()) {
+        auto stats = (*ctx)->pipelineStatistics();
+        if (!stats) {
+            std::fprintf(stderr, "vkcollide_bench: --pipeline-stats: %s\n", stats.error().message().c_str());
+            ++failures;
+        } else {
+            std::ofstream out(opt.pipeline_stats);
+            out << "device,pipeline,executable,statistic,value\n";
+            for (const PipelineStatistics& p : *stats)
+                for (const PipelineStatistic& s : p.statistics)
+                    out << device << ',' << csvField(p.pipeline) << ',' << csvField(p.executable) << ',' << csvField(s.name) << ','
+                        << s.value << '\n';
+            if (!out) return std::fprintf(stderr, "vkcollide_bench: --pipeline-stats %s: cannot write it\n", opt.pipeline_stats.c_str()), 1;
+            std::printf("pipeline statistics: %zu executables in %s\n", stats->size(), opt.pipeline_stats.c_str());
+        }
+    }
     std::printf("\nCSV: %s (%zu scene x variant points, %d skipped)\n", opt.csv.empty() ? "none (--csv FILE)" : opt.csv.c_str(),
                 summaries.size(), failures);
     if (const std::uint64_t messages = (*ctx)->validationMessageCount(); messages > 0)

@@ -208,12 +208,13 @@ struct NarrowStats {
 // Wall-clock time of each stage of one call, in milliseconds (host steady clock). For
 // benchmarks and the statistics; never affects the result.
 struct NarrowTimings {
-    double validate_ms = 0;  // input checks, ordering, duplicates (pair path: sorting, merging repeats)
+    double validate_ms = 0;  // input checks, ordering, duplicates (pair path: sorting, merging repeats;
+                             // pairs sorted on the GPU: their check and their copy into the result)
     double gather_ms = 0;    // triangles' vertices and indices from the TriangleSource (lean and pair paths)
     double sweep_ms = 0;     // sweep and prune (pair path: pairing up), self-collision switch, neighbour rule
     double filter_ms = 0;    // NarrowOptions::may_collide
     double test_ms = 0;      // exact triangle-triangle tests
-    double sort_ms = 0;      // colliding pairs into canonical order
+    double sort_ms = 0;      // colliding pairs into canonical order (sorted on the GPU: the GPU's responses copied)
     double response_ms = 0;  // response vectors
     double total_ms = 0;     // the whole call
 };

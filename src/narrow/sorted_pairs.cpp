@@ -59,6 +59,10 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
         return keyOf(source.triangleBase(p.object_a) + p.triangle_a, source.triangleBase(p.object_b) + p.triangle_b);
     };
     std::atomic<std::size_t> bad{found};  // the lowest pair found out of range or out of order
+    // The kept pairs are copied into the result as they are checked: one read of the
+    // GPU's list instead of two (reused memory, or fresh pages touched in parallel first).
+    resizeFresh(result.pairs, kept, ex);
+    TrianglePair* const out = result.pairs.data();
     ex.parallelFor(found, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
         // A chunk's first pair is compared with the pair before it too (chunks may start
         // anywhere: an engine's executor chooses them); one out of range is its own chunk's.
@@ -72,6 +76,7 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
                 return;
             }
             previous = key;
+            if (k < kept) out[k] = sorted[k];
             if (ready) continue;
             ends[k] = key;
             std::atomic_ref<std::uint8_t>(marks[key >> 32]).store(1, std::memory_order_relaxed);
@@ -91,7 +96,6 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
         NarrowStats& st = result.stats;
         st.input_pairs = st.sap_pairs = st.positive_tests = found;
         st.candidates = st.potentially_colliding_triangles = gpu_responses.size();
-        copyFresh(sorted, result.pairs, ex);
         copyFresh(gpu_responses, result.responses, ex);
         clock.lap(result.timings.sort_ms);
         result.timings.total_ms = clock.totalMs();
@@ -148,8 +152,6 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
     const SlotData slots = slotView(ws.tags, ws.vertices);
     clock.lap(result.timings.gather_ms);
 
-    copyFresh(sorted.first(kept), result.pairs, ex);
-    clock.lap(result.timings.sort_ms);
     respond(colliding, slots, slot_count, ResponseForm::Automatic, ex, ws, result);
     clock.lap(result.timings.response_ms);
     result.timings.total_ms = clock.totalMs();

@@ -472,7 +472,7 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
         engine.idle();
         // What the engine's pass read at the signal is the host result of that frame (the
         // exact reference's, for the frames without one).
-        int compared = 0;
+        int compared = 0, reruns = 0, chunked = 0;
         for (int k = 0; k < kChecks && on_gpu.reliable.device_pairs; ++k) {
             INFO("check " << k);
             const DetectResult& r = results[k];
@@ -480,7 +480,12 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
             // The GPU-only frames' responses: the same frame's in the first loop (same poses).
             const std::vector<TriangleResponse>& want_responses = k < 2 * kFrames ? r.responses : results[k - 2 * kFrames].responses;
             const auto seen = engine.checked(k);
-            if (r.stats.cells.runs > 1) {  // repeated by collect(): the signal's pairs said so
+            // Repeated by collect() (a buffer grew), or finished in more submissions than one
+            // (the sweep or the pair pass in chunks where one would run past ~200 ms: lavapipe
+            // on a loaded machine): the signal's pairs said so.
+            const CellStats& cells = r.stats.cells;
+            if (cells.runs > 1 || cells.sweep_chunks > 1 || cells.pair_chunks > 1) {
+                ++(cells.runs > 1 ? reruns : chunked);
                 CHECK(seen[1] == kDevicePairsIncomplete);
                 CHECK(seen[0] == 0);
                 continue;
@@ -503,8 +508,14 @@ TEST_CASE("an engine deforms two meshes on its own device, double-buffers and sy
             CHECK(seen[6] == response_sum);
             ++compared;
         }
-        // Reruns happen only while the buffers grow (the second slot's first frames).
-        if (on_gpu.reliable.device_pairs) CHECK(compared >= kChecks - 2);
+        // Reruns happen only while the buffers grow (the second slot's first frames); chunks
+        // only where the machine is slow enough (a few frames of a loaded CI runner).
+        if (on_gpu.reliable.device_pairs) {
+            INFO(compared << " compared, " << reruns << " repeated, " << chunked << " in chunks");
+            CHECK(reruns <= 2);
+            CHECK(compared + reruns + chunked == kChecks);
+            CHECK(compared > 0);
+        }
     }
     REQUIRE_NO_VALIDATION_MESSAGES(validated);
 }

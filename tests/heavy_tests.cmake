@@ -32,11 +32,17 @@ set(VKCOLLIDE_RELEASE_ONLY_TESTS
   "proximity: a folded self-touching cloth over a ball, every pair within d found, none beyond the band"
   "proximity: adversarial contacts exactly at d, on edges, degenerate and coincident"
   "proximity: scales from 1e-6 to 1e6"
+  # GPU loops of thousands of partners and double arithmetic over many cases: the device
+  # pairs', responses' and proximity's host code is the other tests' (overflow, filter,
+  # slots, refusals; capacity and settings)
+  "device responses: tiny tilts, extreme scales, slivers and crowded triangles give the host's responses to the bit"
+  "proximity: a vertex near 5,000 triangles gives its records in order, or on llvmpipe fails naming the loop limit"
   # the contact stage's host code: the other contacts tests (overflow rerun, both methods
   # and the pair filter, bad settings, two slots)
   "contacts: two spheres give the lens volume, centroid, centre-line normal and depth r1 + r2 - d"
   "contacts: a box inside a box is contained, with the inner box's volume and no normal"
   "contacts: a sphere half sunk into a box gives half its volume, the face normal and depth r"
+  "contacts: nested spheres grow the ray lists and every pair is contained"
   # peeling's host code: the CPU-reference, packing, cap and depth-aware tests
   "a resolution past the framebuffer limit samples in compute or is refused by name"
   "depth-aware: a deep overlap downloads a fraction of the paper's triangles and loses no pair it finds"

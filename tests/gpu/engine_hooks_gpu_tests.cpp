@@ -371,9 +371,9 @@ TEST_CASE("pipeline statistics: every pipeline's where the driver offers them, a
     auto ctx = Context::create(info);
     REQUIRE(ctx);
     const std::vector<TrianglePair> pairs = detectSpheres(**ctx);
-    CHECK(pairs == detectSpheres(**off));  // capturing changes no result
     auto stats = (*ctx)->pipelineStatistics();
     const vk::Device& d = ContextAccess::device(**ctx);
+    if (d.capture_statistics) CHECK(pairs == detectSpheres(**off));  // capturing changes no result
     if (!d.capture_statistics) {  // lavapipe (Mesa 22.3) does not offer the extension
         REQUIRE_FALSE(stats);
         CHECK(stats.error().code() == ErrorCode::UnsupportedFeature);

@@ -71,28 +71,43 @@ Result<void> makeModule(Device& device, std::span<const std::uint32_t> spirv, Sh
     return {};
 }
 
+// Vulkan's two-call query: the count, then that many structures of type s_type.
+template <typename T, typename Query>
+bool queryAll(VkStructureType s_type, std::vector<T>& out, Query query) {
+    std::uint32_t n = 0;
+    if (query(&n, static_cast<T*>(nullptr)) != VK_SUCCESS) return false;
+    T blank{};
+    blank.sType = s_type;
+    out.assign(n, blank);
+    if (query(&n, out.data()) != VK_SUCCESS) return false;
+    out.resize(n);
+    return true;
+}
+
 // ContextCreateInfo::pipeline_statistics: what the driver says of each executable of a new
 // pipeline, kept on the device (its caller holds pipelines_mutex). A query that fails
 // leaves an entry with what it could read: statistics are for tuning, never an error.
 void captureStatistics(Device& device, VkPipeline pipeline, const std::string& name) {
     VkPipelineInfoKHR info{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
     info.pipeline = pipeline;
-    std::uint32_t count = 0;
-    if (device.get_executable_properties(device.device, &info, &count, nullptr) != VK_SUCCESS) return;
-    std::vector<VkPipelineExecutablePropertiesKHR> executables(count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
-    if (device.get_executable_properties(device.device, &info, &count, executables.data()) != VK_SUCCESS) return;
-    for (std::uint32_t e = 0; e < count; ++e) {
+    std::vector<VkPipelineExecutablePropertiesKHR> executables;
+    if (!queryAll(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR, executables, [&](std::uint32_t* n, auto* data) {
+            return device.get_executable_properties(device.device, &info, n, data);
+        }))
+        return;
+    for (std::uint32_t e = 0; e < executables.size(); ++e) {
         PipelineStatistics& out = device.pipeline_statistics.emplace_back();
         out.pipeline = name;
         out.executable = executables[e].name;
         VkPipelineExecutableInfoKHR which{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
         which.pipeline = pipeline;
         which.executableIndex = e;
-        std::uint32_t n = 0;
-        if (device.get_executable_statistics(device.device, &which, &n, nullptr) != VK_SUCCESS) continue;
-        std::vector<VkPipelineExecutableStatisticKHR> stats(n, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
-        if (device.get_executable_statistics(device.device, &which, &n, stats.data()) != VK_SUCCESS) continue;
-        for (std::uint32_t k = 0; k < n; ++k) {
+        std::vector<VkPipelineExecutableStatisticKHR> stats;
+        if (!queryAll(VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR, stats, [&](std::uint32_t* n, auto* data) {
+                return device.get_executable_statistics(device.device, &which, n, data);
+            }))
+            continue;
+        for (std::size_t k = 0; k < stats.size(); ++k) {
             double value = 0;
             switch (stats[k].format) {
                 case VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_BOOL32_KHR: value = stats[k].value.b32 ? 1 : 0; break;

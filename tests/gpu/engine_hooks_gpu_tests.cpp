@@ -24,6 +24,27 @@ using namespace vkcollide::test;
 
 namespace {
 
+// Validation on for a Context of the test's own, its warnings and errors kept: check() at
+// the end reports them and fails on any.
+struct MessageLog {
+    std::mutex mutex;
+    std::vector<std::string> lines;
+    ContextCreateInfo validated() {
+        ContextCreateInfo info;
+        info.validation = true;
+        info.on_message = [this](MessageSeverity severity, std::string_view text) {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (severity != MessageSeverity::Info) lines.emplace_back(text);
+        };
+        return info;
+    }
+    void check() {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& m : lines) UNSCOPED_INFO(m);
+        CHECK(lines.empty());
+    }
+};
+
 DetectSettings fixedSettings() {
     DetectSettings s;
     s.resolution = 128;
@@ -317,15 +338,9 @@ TEST_CASE("vkcollide's own device with the engine's allocation callbacks and a s
           "[gpu][hooks]") {
     HostCallbacks host;
     std::vector<std::byte> saved;
-    std::mutex log_mutex;
-    std::vector<std::string> log;
-    ContextCreateInfo info;
-    info.validation = true;
+    MessageLog log;
+    ContextCreateInfo info = log.validated();
     info.allocation_callbacks = &host.callbacks;
-    info.on_message = [&](MessageSeverity severity, std::string_view text) {
-        std::lock_guard<std::mutex> lock(log_mutex);
-        if (severity != MessageSeverity::Info) log.emplace_back(text);
-    };
     std::vector<TrianglePair> first;
     {
         auto ctx = Context::create(info);
@@ -346,20 +361,12 @@ TEST_CASE("vkcollide's own device with the engine's allocation callbacks and a s
         CHECK(detectSpheres(**ctx) == first);
     }
     CHECK(host.live.load() == 0);
-    std::lock_guard<std::mutex> lock(log_mutex);
-    for (const auto& m : log) UNSCOPED_INFO(m);
-    CHECK(log.empty());
+    log.check();
 }
 
 TEST_CASE("pipeline statistics: every pipeline's where the driver offers them, an error naming why where not", "[gpu][hooks]") {
-    std::mutex log_mutex;
-    std::vector<std::string> log;
-    ContextCreateInfo info;
-    info.validation = true;
-    info.on_message = [&](MessageSeverity severity, std::string_view text) {
-        std::lock_guard<std::mutex> lock(log_mutex);
-        if (severity != MessageSeverity::Info) log.emplace_back(text);
-    };
+    MessageLog log;
+    ContextCreateInfo info = log.validated();
     auto off = Context::create(info);
     REQUIRE(off);
     auto none = (*off)->pipelineStatistics();
@@ -393,24 +400,15 @@ TEST_CASE("pipeline statistics: every pipeline's where the driver offers them, a
         CHECK(stats->size() >= d.pipelines_created);
         CHECK(names.size() >= 10);
     }
-    std::lock_guard<std::mutex> lock(log_mutex);
-    for (const auto& m : log) UNSCOPED_INFO(m);
-    CHECK(log.empty());
+    log.check();
 }
 
 TEST_CASE("a Context destroyed while a detection is in flight: collect() and the world's destruction still work",
           "[gpu][lifetime]") {
     ValidatedContext reference_ctx;
     const std::vector<TrianglePair> expected = detectSpheres(reference_ctx.context());
-    std::mutex log_mutex;
-    std::vector<std::string> log;
-    ContextCreateInfo info;
-    info.validation = true;
-    info.on_message = [&](MessageSeverity severity, std::string_view text) {
-        std::lock_guard<std::mutex> lock(log_mutex);
-        if (severity != MessageSeverity::Info) log.emplace_back(text);
-    };
-    auto ctx = Context::create(info);
+    MessageLog log;
+    auto ctx = Context::create(log.validated());
     REQUIRE(ctx);
     auto world = CollisionWorld::create(**ctx, {.threads = 2});
     REQUIRE(world);
@@ -425,9 +423,7 @@ TEST_CASE("a Context destroyed while a detection is in flight: collect() and the
     REQUIRE(r);
     CHECK(r->pairs == expected);
     world->reset();  // the last owner of the device: vkDestroyDevice and vkDestroyInstance here
-    std::lock_guard<std::mutex> lock(log_mutex);
-    for (const auto& m : log) UNSCOPED_INFO(m);
-    CHECK(log.empty());  // the layer reports objects left at vkDestroyDevice: none
+    log.check();  // the layer reports objects left at vkDestroyDevice: none
     REQUIRE_NO_VALIDATION_MESSAGES(reference_ctx);
 }
 

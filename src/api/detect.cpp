@@ -95,7 +95,6 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.responses_on_gpu = d.broad.sort_on_gpu && s.reliable.responses != ResponseSource::Cpu;
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     run.sorts_on_gpu = s.method == DetectMethod::Reliable && d.broad.sort_on_gpu && s.reliable.host_pairs;
-    run.responses_on_gpu = run.sorts_on_gpu && d.broad.responses_on_gpu;
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();
     if (s.contacts.geometry)
@@ -162,7 +161,7 @@ void CollisionWorld::Impl::prepareResultMemory(const Run& run) {
         narrow::resizeFresh(v, n, *executor);
     };
     ready(ready_pairs, last_narrow_pairs);
-    if (run.responses_on_gpu) ready(ready_responses, last_responses);
+    if (run.settings.reliable.responses != ResponseSource::Cpu) ready(ready_responses, last_responses);  // computed on the GPU
 }
 
 Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock, DetectResult* reuse) {

@@ -44,7 +44,6 @@ struct DetectionsInFlight {
         double start_ms = 0, wait_ms = 0;  // host: start() (settings, record, submit); collect's wait and readback
         double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host.settings_ms)
         bool sorts_on_gpu = false;         // the reliable method's host pairs come back sorted by the GPU
-        bool responses_on_gpu = false;     // and their responses computed there
     };
 
     // A batch of only the engine's waits and signals, for a submit() that failed after it

@@ -16,7 +16,7 @@ namespace {
 
 
 // `to` = `from`: reused memory, or fresh pages touched in parallel first; the copy runs in
-// parallel (the result's pairs, and the GPU's responses where they are ready).
+// parallel (the GPU's responses where they are ready; the pairs are copied by the check).
 template <typename T>
 void copyFresh(std::span<const T> from, std::vector<T>& to, Executor& ex) {
     resizeFresh(to, from.size(), ex);

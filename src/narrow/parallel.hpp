@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/huge_pages.hpp"
 #include "vkcollide/thread_pool.hpp"
 
 namespace vkcollide::narrow {
@@ -74,10 +75,11 @@ private:
 };
 
 // Sizes `v` to n elements that the caller then overwrites: v.resize(n) within its capacity;
-// beyond it, a new array of value-initialised elements (the old contents are lost) whose
-// pages the executor's threads touch before resize()'s one-thread pass: a fresh vector's
-// page faults, taken by one thread, cost 13.6 ms for the 27 MB of 1.7M pairs on the H200's
-// host (docs/api.md), more than the rest of the host's work for them.
+// beyond it, a new array of value-initialised elements (the old contents are lost), in huge
+// pages where the kernel gives them (core/huge_pages.hpp), which the executor's threads touch
+// before resize()'s one-thread pass: a fresh vector's page faults, taken by one thread, cost
+// 13.6 ms for the 27 MB of 1.7M pairs on the H200's host (docs/api.md), more than the rest of
+// the host's work for them.
 template <typename T>
 void resizeFresh(std::vector<T>& v, std::size_t n, Executor& ex) {
     static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
@@ -91,6 +93,7 @@ void resizeFresh(std::vector<T>& v, std::size_t n, Executor& ex) {
     // Allocated storage, no elements yet: raw bytes, written before resize() makes the elements.
     auto* bytes = reinterpret_cast<unsigned char*>(fresh.data());
     const std::size_t total = n * sizeof(T);
+    adviseHugePages(bytes, total);
     ex.parallelFor(taskCount(total, kTouchBytes), 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) std::memset(bytes + k * kTouchBytes, 0, std::min(kTouchBytes, total - k * kTouchBytes));
     });

@@ -15,9 +15,12 @@
 #include <cstring>
 #include <functional>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "graph/executor.hpp"
 #include "narrow/exact_predicates.hpp"
+#include "narrow/expansion.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/triangle_intersection.hpp"
 #include "support/gpu_fixture.hpp"
@@ -730,4 +733,82 @@ TEST_CASE("rounded GPU division, square root and float rounding equal the CPU's"
                 static_cast<unsigned long long>(driver_root_ulps));
     INFO(mismatches << " of " << count << " cases differ");
     CHECK(mismatches == 0);
+}
+
+// The steps the rounding is made of, each against the CPU on full 53-bit doubles (the
+// predicates' operands have at most 50 bits, so their tests cannot see a TwoProduct whose
+// error term is wrong for wider ones): TwoSum, Veltkamp's split and Dekker's TwoProduct to
+// the bit, and the sign of each one-ulp test (a - b * (c + h), x - (c + h)^2) against an
+// expansion whose products are std::fma's. The cases sit where the rounding decides: c the
+// quotient or the root or a neighbour, h half the gap to the next double up or down.
+TEST_CASE("rounded GPU steps: TwoSum, split, TwoProduct and the one-ulp side tests equal the CPU's on full doubles", "[gpu][exact]") {
+    ValidatedContext ctx;
+    if (skipWithoutFloat64(ctx)) return;
+    ExactRunner runner(ctx);
+    Rng rng(77);
+    std::vector<std::uint32_t> words;
+    std::vector<std::array<double, 4>> cases;
+    const auto add = [&](double a, double b, double c, double h) {
+        cases.push_back({a, b, c, h});
+        for (double d : {a, b, c, h}) appendDouble(words, d);
+    };
+    // The binade edge of the NVIDIA run of 2026-12-06 (case 2): sqrt(2^336 - 2^283) lies just below the
+    // midpoint 2^168 - 2^114, seen from either neighbour.
+    add(std::ldexp(0x1.fffffffffffffp0, 335), 1.0, std::ldexp(0x1.fffffffffffffp0, 167), std::ldexp(1.0, 114));
+    add(std::ldexp(0x1.fffffffffffffp0, 335), 1.0, std::ldexp(1.0, 168), -std::ldexp(1.0, 114));
+    // Odd cases sit at the root, even ones at the quotient; the root's side is compared on
+    // the odd ones alone (at a quotient c * c may overflow: outside the rounding's domain).
+    for (int k = 0; k < 200000; ++k) {
+        const double a = std::abs(randomDouble(rng, uniformInt(rng, -300, 300)));
+        const double b = std::abs(randomDouble(rng, uniformInt(rng, -300, 300)));
+        double c = k % 2 ? std::sqrt(a) : a / b;
+        for (int steps = uniformInt(rng, -2, 2); steps != 0; steps += steps > 0 ? -1 : 1) c = std::nextafter(c, steps > 0 ? 1e300 : 0.0);
+        const bool up = rng() & 1;
+        const double h = (std::nextafter(c, up ? 1e300 : 0.0) - c) / 2;
+        add(a, b, c, h);
+    }
+    const std::vector<std::uint32_t> out = runner.run(words, 8, 3, 16);
+    const char* names[] = {"TwoSum's sum",         "TwoSum's error",     "split's high part",   "split's low part",
+                           "TwoProduct's product", "TwoProduct's error", "the quotient's side", "the root's side"};
+    std::size_t wrong[8] = {};
+    std::size_t mismatches = 0, fma_unfused = 0;
+    std::string examples;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const auto [a, b, c, h] = cases[i];
+        double expected[6];
+        narrow::exact::twoSum(a, b, expected[0], expected[1]);
+        const double big = 134217729.0 * a, a_big = big - a;  // Veltkamp, as the shader
+        expected[2] = big - a_big;
+        expected[3] = a - expected[2];
+        narrow::exact::twoProduct(a, b, expected[4], expected[5]);
+        // a - b * (c + h) and a - (c + h)^2 = a - c*c - 2ch - h*h (h a power of two: b*h, 2ch and h*h exact).
+        double p, e;
+        narrow::exact::Expansion<8> quotient, root;
+        narrow::exact::twoProduct(b, c, p, e);
+        for (double t : {a, -p, -e, -(b * h)}) quotient.add(t);
+        narrow::exact::twoProduct(c, c, p, e);
+        for (double t : {a, -p, -e, -(2 * c * h), -(h * h)}) root.add(t);
+        const std::uint32_t* r = &out[16 * i];
+        if (doubleAt(&r[14]) != expected[5]) ++fma_unfused;
+        bool same = true;
+        for (int k = 0; k < 6; ++k)
+            if (doubleAt(&r[2 * k]) != expected[k]) ++wrong[k], same = false;  // by value: a zero's sign does not matter
+        if (int(r[12]) - 1 != quotient.sign()) ++wrong[6], same = false;
+        if ((i < 2 || i % 2 == 1) && int(r[13]) - 1 != root.sign()) ++wrong[7], same = false;  // cases 0 and 1 are roots too
+        if (same || ++mismatches > 8) continue;
+        std::ostringstream text;
+        text << "\n  case " << i << ": a " << showDouble(a) << " b " << showDouble(b) << " c " << showDouble(c) << " h " << showDouble(h)
+             << "; GPU TwoProduct " << showDouble(doubleAt(&r[8])) << " + " << showDouble(doubleAt(&r[10])) << ", CPU "
+             << showDouble(expected[4]) << " + " << showDouble(expected[5]) << "; split " << showDouble(doubleAt(&r[4])) << " + "
+             << showDouble(doubleAt(&r[6])) << "; sides GPU " << int(r[12]) - 1 << " " << int(r[13]) - 1 << ", CPU " << quotient.sign()
+             << " " << root.sign();
+        examples += text.str();
+    }
+    std::printf("rounding steps: %zu cases; the driver's fma(a, b, -a * b) differs from the product's error in %zu\n", cases.size(),
+                fma_unfused);
+    INFO(mismatches << " cases differ; the first:" << examples);
+    for (int k = 0; k < 8; ++k) {
+        INFO(names[k] << ": " << wrong[k] << " of " << cases.size() << " cases differ");
+        CHECK(wrong[k] == 0);
+    }
 }

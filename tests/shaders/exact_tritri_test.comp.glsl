@@ -16,7 +16,11 @@
 //  mode 2 (rounding, 12 words: doubles a, b, x, a float's value f, then the CPU's a / b and
 //    sqrt(x); 13 words out): roundedQuotient(a, b), roundedSqrt(x), the two stepped to from
 //    5 ulps off the CPU's values (the correction alone), the driver's own a / b and sqrt(x),
-//    as doubles' bits, then roundedFloatBits(f).
+//    as doubles' bits, then roundedFloatBits(f);
+//  mode 3 (the steps of the rounding, 8 words: doubles a, b, c, h; 16 words out): TwoSum(a, b),
+//    Veltkamp's split of a, TwoProduct(a, b) (two doubles each), the signs (+1) of
+//    roundedQuotientSide(a, b, c, h) and roundedRootSide(a, c, h), then fma(a, b, -a * b) (the
+//    product's error where the driver's fma is fused; for the record: Vulkan does not promise it).
 #include "cells/exact_predicates.glsl.inc"
 #include "cells/tritri_exact.glsl.inc"
 #include "cells/rounded_fp64.glsl.inc"
@@ -76,6 +80,30 @@ void main() {
             pc.results.r[out_base + 2u * k + 1u] = words[k].y;
         }
         pc.results.r[out_base + 12u] = roundedFloatBits(f);
+        return;
+    }
+    if (pc.mode == 3u) {
+        uint base = 8u * id, out_base = 16u * id;
+        double a = packDouble2x32(uvec2(pc.cases.w[base], pc.cases.w[base + 1u]));
+        double b = packDouble2x32(uvec2(pc.cases.w[base + 2u], pc.cases.w[base + 3u]));
+        double c = packDouble2x32(uvec2(pc.cases.w[base + 4u], pc.cases.w[base + 5u]));
+        double h = packDouble2x32(uvec2(pc.cases.w[base + 6u], pc.cases.w[base + 7u]));
+        double v[6];
+        exactTwoSum(a, b, v[0], v[1]);
+        exactSplit(a, v[2], v[3]);
+        exactTwoProduct(a, b, v[4], v[5]);
+        for (uint k = 0u; k < 6u; ++k) {
+            uvec2 u = unpackDouble2x32(v[k]);
+            pc.results.r[out_base + 2u * k] = u.x;
+            pc.results.r[out_base + 2u * k + 1u] = u.y;
+        }
+        pc.results.r[out_base + 12u] = uint(roundedQuotientSide(a, b, c, h) + 1);
+        pc.results.r[out_base + 13u] = uint(roundedRootSide(a, c, h) + 1);
+        precise double product = a * b;
+        precise double fused_error = fma(a, b, -product);
+        uvec2 u = unpackDouble2x32(fused_error);
+        pc.results.r[out_base + 14u] = u.x;
+        pc.results.r[out_base + 15u] = u.y;
         return;
     }
     uint base = 12u * id;

@@ -23,6 +23,15 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
+// A result made in memory prepared for the last one (prepareResultMemory) keeps at most twice
+// what it holds: a frame whose pairs fell from millions to a few does not carry tens of MB.
+// The copy moves what remains, under half of the memory. detectInto's memory is the caller's.
+template <typename T>
+void releaseSlack(std::vector<T>& v) {
+    constexpr std::size_t kFromBytes = std::size_t{1} << 20;
+    if (v.capacity() * sizeof(T) >= kFromBytes && v.size() < v.capacity() / 2) v.shrink_to_fit();
+}
+
 }  // namespace
 
 // An error of the detection, with the objects the GPU check named (indices in the run's
@@ -364,6 +373,10 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     out.pairs = std::move(narrow->pairs);
     out.responses = std::move(narrow->responses);
     last_responses = out.responses.size();
+    if (!reuse) {
+        releaseSlack(out.pairs);
+        releaseSlack(out.responses);
+    }
     bool renumber = false;
     for (std::size_t i = 0; i < ids.size(); ++i) renumber = renumber || ids[i] != i;
     if (renumber) {

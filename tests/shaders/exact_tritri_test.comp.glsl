@@ -41,6 +41,14 @@ vec3 point(uint base) {
 
 uint signBits(int s, uint shift) { return uint(s + 1) << shift; }
 
+// A double in two input words (low first), and one written to two result words.
+double caseDouble(uint word) { return packDouble2x32(uvec2(pc.cases.w[word], pc.cases.w[word + 1u])); }
+void putDouble(uint word, double v) {
+    uvec2 u = unpackDouble2x32(v);
+    pc.results.r[word] = u.x;
+    pc.results.r[word + 1u] = u.y;
+}
+
 void main() {
     uint id = gl_GlobalInvocationID.x;
     if (id >= pc.count) return;
@@ -60,12 +68,8 @@ void main() {
     }
     if (pc.mode == 2u) {
         uint base = 12u * id, out_base = 13u * id;
-        double a = packDouble2x32(uvec2(pc.cases.w[base], pc.cases.w[base + 1u]));
-        double b = packDouble2x32(uvec2(pc.cases.w[base + 2u], pc.cases.w[base + 3u]));
-        double x = packDouble2x32(uvec2(pc.cases.w[base + 4u], pc.cases.w[base + 5u]));
-        double f = packDouble2x32(uvec2(pc.cases.w[base + 6u], pc.cases.w[base + 7u]));
-        double q_cpu = packDouble2x32(uvec2(pc.cases.w[base + 8u], pc.cases.w[base + 9u]));
-        double s_cpu = packDouble2x32(uvec2(pc.cases.w[base + 10u], pc.cases.w[base + 11u]));
+        double a = caseDouble(base), b = caseDouble(base + 2u), x = caseDouble(base + 4u), f = caseDouble(base + 6u);
+        double q_cpu = caseDouble(base + 8u), s_cpu = caseDouble(base + 10u);
         double q_off = abs(q_cpu), s_off = s_cpu;
         for (int k = 0; k < 5; ++k) {
             q_off = roundedNextUp(q_off);
@@ -73,37 +77,24 @@ void main() {
         }
         double q_far = roundedNearest(0u, abs(a), abs(b), q_off);
         if ((a < 0.0lf) != (b < 0.0lf)) q_far = -q_far;
-        uvec2 words[6] = uvec2[6](unpackDouble2x32(roundedQuotient(a, b)), unpackDouble2x32(roundedSqrt(x)), unpackDouble2x32(q_far),
-                                  unpackDouble2x32(roundedNearest(1u, x, 0.0lf, s_off)), unpackDouble2x32(a / b), unpackDouble2x32(sqrt(x)));
-        for (uint k = 0u; k < 6u; ++k) {
-            pc.results.r[out_base + 2u * k] = words[k].x;
-            pc.results.r[out_base + 2u * k + 1u] = words[k].y;
-        }
+        double v[6] = double[6](roundedQuotient(a, b), roundedSqrt(x), q_far, roundedNearest(1u, x, 0.0lf, s_off), a / b, sqrt(x));
+        for (uint k = 0u; k < 6u; ++k) putDouble(out_base + 2u * k, v[k]);
         pc.results.r[out_base + 12u] = roundedFloatBits(f);
         return;
     }
     if (pc.mode == 3u) {
         uint base = 8u * id, out_base = 16u * id;
-        double a = packDouble2x32(uvec2(pc.cases.w[base], pc.cases.w[base + 1u]));
-        double b = packDouble2x32(uvec2(pc.cases.w[base + 2u], pc.cases.w[base + 3u]));
-        double c = packDouble2x32(uvec2(pc.cases.w[base + 4u], pc.cases.w[base + 5u]));
-        double h = packDouble2x32(uvec2(pc.cases.w[base + 6u], pc.cases.w[base + 7u]));
+        double a = caseDouble(base), b = caseDouble(base + 2u), c = caseDouble(base + 4u), h = caseDouble(base + 6u);
         double v[6];
         exactTwoSum(a, b, v[0], v[1]);
         exactSplit(a, v[2], v[3]);
         exactTwoProduct(a, b, v[4], v[5]);
-        for (uint k = 0u; k < 6u; ++k) {
-            uvec2 u = unpackDouble2x32(v[k]);
-            pc.results.r[out_base + 2u * k] = u.x;
-            pc.results.r[out_base + 2u * k + 1u] = u.y;
-        }
+        for (uint k = 0u; k < 6u; ++k) putDouble(out_base + 2u * k, v[k]);
         pc.results.r[out_base + 12u] = uint(roundedQuotientSide(a, b, c, h) + 1);
         pc.results.r[out_base + 13u] = uint(roundedRootSide(a, c, h) + 1);
         precise double product = a * b;
         precise double fused_error = fma(a, b, -product);
-        uvec2 u = unpackDouble2x32(fused_error);
-        pc.results.r[out_base + 14u] = u.x;
-        pc.results.r[out_base + 15u] = u.y;
+        putDouble(out_base + 14u, fused_error);
         return;
     }
     uint base = 12u * id;

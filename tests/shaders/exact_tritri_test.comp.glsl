@@ -19,7 +19,7 @@
 //    as doubles' bits, then roundedFloatBits(f);
 //  mode 3 (the steps of the rounding, 8 words: doubles a, b, c, h; 16 words out): TwoSum(a, b),
 //    Veltkamp's split of a, TwoProduct(a, b) (two doubles each), the signs (+1) of
-//    roundedQuotientSide(a, b, c, h) and roundedRootSide(a, c, h), then fma(a, b, -a * b) (the
+//    roundedQuotientSide and roundedRootSide at the midpoint c + h, then fma(a, b, -a * b) (the
 //    product's error where the driver's fma is fused; for the record: Vulkan does not promise it).
 #include "cells/exact_predicates.glsl.inc"
 #include "cells/tritri_exact.glsl.inc"
@@ -90,8 +90,8 @@ void main() {
         exactSplit(a, v[2], v[3]);
         exactTwoProduct(a, b, v[4], v[5]);
         for (uint k = 0u; k < 6u; ++k) putDouble(out_base + 2u * k, v[k]);
-        pc.results.r[out_base + 12u] = uint(roundedQuotientSide(a, b, c, h) + 1);
-        pc.results.r[out_base + 13u] = uint(roundedRootSide(a, c, h) + 1);
+        pc.results.r[out_base + 12u] = uint(roundedQuotientSide(a, b, c, h > 0.0lf) + 1);  // the midpoint c + h
+        pc.results.r[out_base + 13u] = uint(roundedRootSide(a, c, h > 0.0lf) + 1);
         precise double product = a * b;
         precise double fused_error = fma(a, b, -product);
         putDouble(out_base + 14u, fused_error);

@@ -6,10 +6,13 @@
 // One dispatch covers a batch of objects (pc.object: the first, pc.step: how many), one
 // invocation per vertex of the batch: one dispatch for a scene of hundreds of objects
 // instead of one each (each cost the host about a microsecond to record and the GPU a
-// dispatch).
+// dispatch). Each workgroup reduces its vertices' extent in shared memory and adds it
+// with one atomic per field: every vertex's own atomics on the header's words serialised
+// (0.18 ms for the 1.3M vertices of deep-blobs on an H100, where reading them takes 10 us).
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
 #include "dispatch.glsl.inc"
+#include "workgroup.glsl.inc"
 
 void main() {
     Frame f = frame();
@@ -17,24 +20,36 @@ void main() {
     uint first = pc.object, last = pc.object + pc.step - 1u;
     ObjectGpu end = objects.o[last];
     uint i = globalIndex();
-    if (i >= end.vertex_base + end.vertex_count) return;
-    // The last object of the batch whose first vertex is at most i (an empty object shares
-    // its base with the next one, which is then the one found).
-    uint lo = first, hi = last;
-    while (lo < hi) {
-        uint mid = (lo + hi + 1u) / 2u;
-        if (objects.o[mid].vertex_base <= i) lo = mid; else hi = mid - 1u;
+    // Every invocation reaches the reductions (they hold barriers); one past the batch
+    // contributes the neutral values.
+    bool live = i < end.vertex_base + end.vertex_count;
+    uint subnormal = 0u;
+    uvec3 lo_keys = uvec3(0xFFFFFFFFu), hi_keys = uvec3(0u);
+    if (live) {
+        // The last object of the batch whose first vertex is at most i (an empty object
+        // shares its base with the next one, which is then the one found).
+        uint lo = first, hi = last;
+        while (lo < hi) {
+            uint mid = (lo + hi + 1u) / 2u;
+            if (objects.o[mid].vertex_base <= i) lo = mid; else hi = mid - 1u;
+        }
+        ObjectGpu o = objects.o[lo];
+        vec3 p = fetchPosition(o, i - o.vertex_base);
+        vec3 w = toWorld(o, p);
+        // Magnitude bits in [1, 0x7FFFFF]: a subnormal (0 wraps past the bound).
+        subnormal = any(lessThan((floatBitsToUint(p) & 0x7FFFFFFFu) - 1u, uvec3(0x7FFFFFu))) ? 1u : 0u;
+        for (uint axis = 0u; axis < 3u; ++axis) lo_keys[axis] = hi_keys[axis] = orderedFromFloat(dot(basisRow(f, axis), w));
     }
-    ObjectGpu o = objects.o[lo];
-    i -= o.vertex_base;
-    vec3 p = fetchPosition(o, i);
-    vec3 w = toWorld(o, p);
-    HeaderRef h = HeaderRef(f.header);
-    // Magnitude bits in [1, 0x7FFFFF]: a subnormal (0 wraps past the bound).
-    if (any(lessThan((floatBitsToUint(p) & 0x7FFFFFFFu) - 1u, uvec3(0x7FFFFFu)))) atomicAdd(h.h.subnormal_vertices, 1u);
+    subnormal = groupReduceAdd(subnormal);
     for (uint axis = 0u; axis < 3u; ++axis) {
-        uint key = orderedFromFloat(dot(basisRow(f, axis), w));
-        atomicMin(h.h.bounds[axis], key);
-        atomicMax(h.h.bounds[3u + axis], key);
+        lo_keys[axis] = ~groupReduceMax(~lo_keys[axis]);  // min(x) = ~max(~x)
+        hi_keys[axis] = groupReduceMax(hi_keys[axis]);
+    }
+    if (gl_LocalInvocationIndex != 0u) return;
+    HeaderRef h = HeaderRef(f.header);
+    if (subnormal != 0u) atomicAdd(h.h.subnormal_vertices, subnormal);
+    for (uint axis = 0u; axis < 3u; ++axis) {
+        atomicMin(h.h.bounds[axis], lo_keys[axis]);
+        atomicMax(h.h.bounds[3u + axis], hi_keys[axis]);
     }
 }

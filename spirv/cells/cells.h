@@ -125,7 +125,8 @@ VKC_CONST kCellsArgsStepExact = 0xFFFFFFFFu;
 
 // One triangle after setup (96 bytes: padded to whole 16-byte words, so that a record
 // loads and stores as six vectors, not 21 scalars), written once, read by the count, fill
-// and pair passes, so all of them see the same footprint and depth bounds bit for bit.
+// and pair passes, so all of them see the same footprint and depth bounds bit for bit. The
+// setup writes it word by word (packTriangle in cells_setup.glsl.inc): change both together.
 struct CellsTriangle {
     float x[3];       // vertices in cell units (sampling x times N)
     float y[3];
@@ -145,7 +146,8 @@ struct CellsTriangle {
 
 // What the pair pass needs of a triangle: world vertices (the CPU's where the device has
 // shaderFloat64, else as this GPU computed them), the bound on their difference from the
-// CPU's (per coordinate) and the vertex indices; 64 bytes, four 16-byte words.
+// CPU's (per coordinate) and the vertex indices; 64 bytes, four 16-byte words (written by
+// packGeometry in cells_setup.glsl.inc).
 struct CellsGeometry {
     float v[9];
     float eps;

@@ -31,6 +31,9 @@ VKC_CONST kCellsChunkCells = 4096;
 // entries); deeper still ("huge" cells), a workgroup sorts the cell in place in global
 // memory (cells_deep_sort.comp) and workgroups of kCellsGroupSize sorted entries sweep it.
 VKC_CONST kCellsSmallCell = 256;
+// The scan records the cell of every kCellsEntryChunk-th entry (CellsParams.chunk_cells);
+// the shallow sweep finds an entry's cell between its chunk's first and the next one's.
+VKC_CONST kCellsEntryChunk = 256;
 VKC_CONST kCellsDeepShared = 1024;
 // The scan counts a huge cell deeper than this as every two of its entries (so any budget
 // refuses it, 5.5e11 comparisons): one workgroup sorts a cell, which should end in a
@@ -234,7 +237,8 @@ struct CellsParams {
     VKC_ADDRESS(uint64_t) offsets;       // uint[cell_count + 1]: first entry of each cell
     VKC_ADDRESS(uint64_t) block_sums;    // uint[block_count]
     VKC_ADDRESS(uint64_t) entries;       // CellsEntry[entry_capacity]
-    VKC_ADDRESS(uint64_t) entry_cells;   // uint[entry_capacity]: the cell of each entry
+    VKC_ADDRESS(uint64_t) chunk_cells;   // uint[entry_capacity / kCellsEntryChunk + 1]: the cell of every
+                                         // kCellsEntryChunk-th entry (the scan); the sweep searches from it
     VKC_ADDRESS(uint64_t) big_items;     // uvec2[item_capacity]: (triangle, chunk)
     VKC_ADDRESS(uint64_t) deep_items;    // uvec2[deep_capacity]: (cell, chunk or kCellsSorted)
     VKC_ADDRESS(uint64_t) candidates;    // CellsCandidate[candidate_capacity]

@@ -278,7 +278,7 @@ void CellStage::writeParams() {
     p.offsets = buf_.offsets->address();
     p.block_sums = buf_.block_sums->address();
     p.entries = buf_.entries->address();
-    p.entry_cells = buf_.entry_cells->address();
+    p.chunk_cells = buf_.chunk_cells->address();
     p.big_items = buf_.big_items->address();
     p.deep_items = buf_.deep_items->address();
     p.candidates = buf_.candidates->address();
@@ -592,7 +592,7 @@ std::uint64_t CellStage::memoryBytes() const noexcept {
     std::uint64_t total = 0;
     for (const Row* r : {&buf_.params, &buf_.objects, &buf_.object_flags, &buf_.pair_mask, &buf_.projection, &buf_.header,
                          &buf_.header_rb, &buf_.triangles, &buf_.geometry, &buf_.counts, &buf_.offsets, &buf_.block_sums,
-                         &buf_.entries, &buf_.entry_cells, &buf_.big_items, &buf_.deep_items, &buf_.sorted, &buf_.candidates,
+                         &buf_.entries, &buf_.chunk_cells, &buf_.big_items, &buf_.deep_items, &buf_.sorted, &buf_.candidates,
                          &buf_.survivors, &buf_.args, &buf_.gpu_triangles, &buf_.marks, &buf_.exact_queue})
         total += (*r)->memoryBytes();
     return total;

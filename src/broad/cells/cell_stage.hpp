@@ -295,7 +295,7 @@ private:
     };
     void recordPairPass(graph::Graph& g, const PairPassIds& ids, std::uint32_t chunk);
     struct SweepIds {
-        graph::ResourceId header, entries, entry_cells, offsets, counts, deep, sorted, candidates, args;
+        graph::ResourceId header, entries, chunk_cells, offsets, counts, deep, sorted, candidates, args;
     };
     void recordSweep(graph::Graph& g, const SweepIds& ids);
     std::uint32_t automaticSweepWork() const;
@@ -331,7 +331,7 @@ private:
     BufferTable* table_ = nullptr;
     struct Buffers {
         Row params, objects, object_flags, pair_mask, projection, header, header_rb;
-        Row triangles, geometry, counts, offsets, block_sums, entries, entry_cells;
+        Row triangles, geometry, counts, offsets, block_sums, entries, chunk_cells;
         Row big_items, deep_items, sorted, candidates, survivors, args, gpu_triangles, marks, exact_queue;
     } buf_;
     // The prepared run.

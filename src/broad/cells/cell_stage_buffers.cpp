@@ -27,7 +27,7 @@ void CellStage::addRows() {
     row(buf_.offsets, "cells-offsets", MemoryKind::DeviceLocal);
     row(buf_.block_sums, "cells-block-sums", MemoryKind::DeviceLocal);
     row(buf_.entries, "cells-entries", MemoryKind::DeviceLocal);
-    row(buf_.entry_cells, "cells-entry-cells", MemoryKind::DeviceLocal);
+    row(buf_.chunk_cells, "cells-chunk-cells", MemoryKind::DeviceLocal);
     row(buf_.big_items, "cells-big-items", MemoryKind::DeviceLocal);
     row(buf_.deep_items, "cells-deep-items", MemoryKind::DeviceLocal);
     row(buf_.sorted, "cells-sorted", MemoryKind::DeviceLocal);
@@ -72,7 +72,7 @@ Result<void> CellStage::ensureBuffers() {
         rowSize(buf_.offsets, (cells + 1) * 4, MemoryKind::DeviceLocal),
         rowSize(buf_.block_sums, (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock * 4, MemoryKind::DeviceLocal),
         rowSize(buf_.entries, VkDeviceSize(capacity_.entries) * sizeof(gpu::CellsEntry), MemoryKind::DeviceLocal),
-        rowSize(buf_.entry_cells, VkDeviceSize(capacity_.entries) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.chunk_cells, (VkDeviceSize(capacity_.entries) / gpu::kCellsEntryChunk + 1) * 4, MemoryKind::DeviceLocal),
         rowSize(buf_.big_items, VkDeviceSize(capacity_.items) * 8, MemoryKind::DeviceLocal),
         rowSize(buf_.deep_items, deep * 8, MemoryKind::DeviceLocal),
         // Scenes without huge cells never grow it past its first few elements.

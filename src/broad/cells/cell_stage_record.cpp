@@ -44,7 +44,7 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
     const auto offsets = importRow(g, buf_.offsets);
     const auto sums = importRow(g, buf_.block_sums);
     const auto entries = importRow(g, buf_.entries);
-    const auto entry_cells = importRow(g, buf_.entry_cells);
+    const auto chunk_cells = importRow(g, buf_.chunk_cells);
     const auto big = importRow(g, buf_.big_items);
     const auto deep = importRow(g, buf_.deep_items);
     const auto candidates = importRow(g, buf_.candidates);
@@ -101,6 +101,7 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
         .readWrite(header)
         .write(deep)
         .write(args)
+        .write(chunk_cells)
         .record([&P, params, blocks, max_x](PassContext& pc) {
             bindAndPush(pc, P.scan, params, 0, 0);
             dispatchGroups(pc, blocks, max_x);
@@ -123,7 +124,6 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
         .read(header)
         .readWrite(counts)
         .write(entries)
-        .write(entry_cells)
         .record([&P, params, tri_groups, args_buffer, max_x](PassContext& pc) {
             bindAndPush(pc, P.fill, params);
             dispatchGroups(pc, tri_groups, max_x);
@@ -131,7 +131,7 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
             pc.dispatchIndirect(args_buffer, gpu::kCellsArgsBig * 12);
         });
 
-    recordSweep(g, {header, entries, entry_cells, offsets, counts, deep, importRow(g, buf_.sorted), candidates, args});
+    recordSweep(g, {header, entries, chunk_cells, offsets, counts, deep, importRow(g, buf_.sorted), candidates, args});
     sweep_chunks_ = 1;  // a run starts its sweep over
     recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, importRow(g, buf_.exact_queue)},
                    0);
@@ -150,7 +150,7 @@ void CellStage::recordSweep(graph::Graph& g, const SweepIds& id) {
     pass(g, kSweepPassName, PassKind::Compute, Stage::Pairing)
         .indirect(id.args)
         .readWrite(id.entries)  // huge cells are sorted in place
-        .read(id.entry_cells)
+        .read(id.chunk_cells)
         .read(id.offsets)
         .readWrite(id.counts)  // kCellsCandidateBit: cells with a candidate
         .read(id.deep)
@@ -182,7 +182,7 @@ void CellStage::recordSweepChunk(graph::Graph& g) {
             bindAndPush(pc, P.args, params, 0, 1);
             pc.dispatch(1, 1, 1);
         });
-    recordSweep(g, {header, importRow(g, buf_.entries), importRow(g, buf_.entry_cells), importRow(g, buf_.offsets),
+    recordSweep(g, {header, importRow(g, buf_.entries), importRow(g, buf_.chunk_cells), importRow(g, buf_.offsets),
                     importRow(g, buf_.counts), importRow(g, buf_.deep_items), importRow(g, buf_.sorted), candidates, args});
     ++sweep_chunks_;
     recordPairPass(g,

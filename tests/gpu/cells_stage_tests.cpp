@@ -5,11 +5,15 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <utility>
 
 #include "gpu/cells_test_support.hpp"
+#include "support/device_copy.hpp"
 #include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
@@ -81,6 +85,75 @@ TEST_CASE("cells: tiny capacities overflow, grow and rerun to the same pairs", "
     auto r = (*limited)->run(executor, in, s);
     REQUIRE_FALSE(r);
     CHECK(r.error().code() == ErrorCode::OutOfMemory);
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// The setup writes its records through shared memory, word by word (packTriangle and
+// packGeometry in cells_setup.glsl.inc): every field must land where cells.h puts it, for
+// every triangle, the last workgroup's partial tail included (1,932 triangles).
+TEST_CASE("cells: the setup's records hold every field where cells.h puts it", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellStage::create(ctx.device());
+    REQUIRE(stage);
+    CellScene scene = mixedScene();
+    const float c = std::cos(0.5f), s = std::sin(0.5f);  // turned and scaled: the model's rows all count
+    scene.transforms[1] = {1.5f * c, -1.5f * s, 0, 0.3f, 1.5f * s, 1.5f * c, 0, 0.2f, 0, 0, 1.5f, 0.1f, 0, 0, 0, 1};
+    CellRunOptions opt;
+    opt.resolution = 64;
+    opt.direction = {0.3, 0.5, 1.0};
+    const CellRun run = runCells(ctx, **stage, scene, opt);
+    REQUIRE(run.pairs.size() > 50);
+
+    const std::uint32_t n = (*stage)->triangleCount();
+    REQUIRE(n % gpu::kCellsGroupSize != 0);
+    const BufferRead reads[] = {{(*stage)->trianglesBuffer(), VkDeviceSize(n) * sizeof(gpu::CellsTriangle)},
+                                {(*stage)->geometryBuffer(), VkDeviceSize(n) * sizeof(gpu::CellsGeometry)}};
+    const auto bytes = copyToHost(ctx.device(), reads);
+    std::vector<gpu::CellsTriangle> tris(n);
+    std::vector<gpu::CellsGeometry> geos(n);
+    std::memcpy(tris.data(), bytes[0].data(), bytes[0].size());
+    std::memcpy(geos.data(), bytes[1].data(), bytes[1].size());
+
+    const gpu::Projection pr = fitProjection(scene, opt.direction);
+    const auto bits = [](float x) { return std::bit_cast<std::uint32_t>(x); };
+    std::uint32_t t = 0, planes = 0;
+    for (std::size_t o = 0; o < scene.meshes.size(); ++o) {
+        const HostMesh& m = scene.meshes[o];
+        const std::vector<Float3> world = worldPositions(m, scene.transformOf(o));
+        for (std::size_t local = 0; local < m.triangleCount(); ++local, ++t) {
+            const gpu::CellsTriangle& r = tris[t];
+            const gpu::CellsGeometry& g = geos[t];
+            INFO("object " << o << ", triangle " << local);
+            CHECK(r.key == (std::uint32_t(o) | (scene.selfOf(o) ? gpu::kCellsKeySelf : 0u)));
+            CHECK((r.mode & gpu::kCellsEdges) != 0);
+            CHECK((r.mode & ~(gpu::kCellsEdges | gpu::kCellsPlane)) == 0);
+            planes += (r.mode & gpu::kCellsPlane) != 0 ? 1 : 0;
+            CHECK((r.spare[0] | r.spare[1] | r.spare[2] | g.spare[0] | g.spare[1] | g.spare[2]) == 0);
+            if ((*stage)->filterSupported()) CHECK(g.eps == 0.0f);  // the CPU's world vertices, bit for bit
+            CHECK(r.pad > 0.0f);
+            CHECK(r.ez >= 0.0f);
+            const std::uint32_t lo_x = r.cells_lo & 0xFFFF, lo_y = r.cells_lo >> 16, hi_x = r.cells_hi & 0xFFFF, hi_y = r.cells_hi >> 16;
+            CHECK((lo_x <= hi_x && lo_y <= hi_y && hi_x < opt.resolution && hi_y < opt.resolution));
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t index = m.indices[3 * local + k];
+                CHECK(g.index[k] == index);
+                const Float3 w = (*stage)->filterSupported() ? world[index] : Float3{g.v[3 * k], g.v[3 * k + 1], g.v[3 * k + 2]};
+                CHECK((bits(g.v[3 * k]) == bits(w.x) && bits(g.v[3 * k + 1]) == bits(w.y) && bits(g.v[3 * k + 2]) == bits(w.z)));
+                // The sampling coordinates within their bounds of the projection of w.
+                const auto row = [&](int i) {
+                    const gpu::vec4& q = pr.row[i];
+                    return double(q.x) * w.x + double(q.y) * w.y + double(q.z) * w.z + double(q.w);
+                };
+                CHECK(std::fabs(double(r.x[k]) - row(0) * opt.resolution) <= double(r.pad));
+                CHECK(std::fabs(double(r.y[k]) - row(1) * opt.resolution) <= double(r.pad));
+                CHECK(std::fabs(double(r.z[k]) - row(2)) <= double(r.ez) + 1e-6);
+                CHECK((r.zmin <= r.z[k] && r.z[k] <= r.zmax));
+                CHECK((lo_x <= std::uint32_t(std::max(0.0f, r.x[k])) + 1 && std::uint32_t(std::max(0.0f, r.x[k])) <= hi_x + 1));
+            }
+        }
+    }
+    CHECK(t == n);
+    CHECK(planes > n / 2);  // mostly non-degenerate projections: the plane words hold something
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

@@ -231,6 +231,10 @@ public:
     // The indirect dispatches the stage writes (kCellsArgs* slots of 12 bytes): the pair
     // pass's serves any later pass over the candidates.
     VkBuffer argsBuffer() const noexcept { return buf_.args->handle(); }
+    // The setup's records, one per triangle (gpu::CellsTriangle, gpu::CellsGeometry): what
+    // the pair pass and later stages read; the tests check their layout word by word.
+    VkBuffer trianglesBuffer() const noexcept { return buf_.triangles->handle(); }
+    VkBuffer geometryBuffer() const noexcept { return buf_.geometry->handle(); }
     // The prepared run as later GPU stages see it: the parameters' address (CellsParams),
     // its triangles and the dispatch row limit.
     VkDeviceAddress paramsAddress() const noexcept { return buf_.params->address(); }

@@ -10,17 +10,14 @@
 //   2: one workgroup per block: each cell's offset, its count reset to 0 (the fill's
 //      cursor), work items for cells deeper than kCellsSmallCell (huge cells need
 //      CellsParams.sorted up to their end: kCellsOverflowSorted), and the cell of every
-//      kCellsEntryChunk-th entry among the block's (chunk_cells), from which the sweep
-//      finds each entry's cell: the fill stored every entry's, one scattered 4-byte word a
-//      footprint, 0.45 of its 1.57 ms on deep-blobs (H100).
+//      kCellsEntryChunk-th entry (chunk_cells, written by the invocation whose cell holds
+//      it), from which the sweep finds each entry's cell: the fill stored every entry's,
+//      one scattered 4-byte word a footprint, 0.45 of its 1.57 ms on deep-blobs (H100).
 #include "cells_common.glsl.inc"
 #include "common/workgroup.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 const uint kPerInvocation = kCellsScanBlock / kCellsGroupSize;
-
-// Step 2: each cell's first entry, then the block's end.
-shared uint s_starts[kCellsScanBlock + 1u];
 
 // Sum over the workgroup in 64 bits (the comparisons of a block may pass 2^32).
 shared uint64_t s_wide[kCellsGroupSize];
@@ -92,17 +89,17 @@ void main() {
         return;
     }
     uint running = sums.v[block] + groupInclusiveScan(sum) - sum;
-    uint start = running;
-    for (uint k = 0u; k < kPerInvocation; ++k) {  // v[k] is 0 past the last cell
-        s_starts[gl_LocalInvocationIndex * kPerInvocation + k] = start;
-        start += v[k];
-    }
-    if (gl_LocalInvocationIndex == kCellsGroupSize - 1u) s_starts[kCellsScanBlock] = start;
     uint items = 0u, deep = 0u, huge = 0u, sorted_end = 0u;
+    UintsRef chunk_cells = UintsRef(P.chunk_cells);
     for (uint k = 0u; k < kPerInvocation; ++k) {
         if (first + k >= P.cell_count) break;
         offsets.v[first + k] = running;
         counts.v[first + k] = 0u;
+        // The chunks whose first entry is this cell's: each lies in one non-empty cell, so
+        // one invocation writes it.
+        uint cell_end = min(running + v[k], P.entry_capacity);
+        for (uint c = (running + kCellsEntryChunk - 1u) / kCellsEntryChunk; c * kCellsEntryChunk < cell_end; ++c)
+            chunk_cells.v[c] = first + k;
         running += v[k];
         if (v[k] > kCellsSmallCell) {
             ++deep;
@@ -132,20 +129,5 @@ void main() {
         for (uint c = 0u; c < parts; ++c, ++slot)
             if (slot < P.deep_capacity) deep_items.v[slot] = uvec2(first + k, parts == 1u ? kCellsSorted : c);
             else atomicOr(cellsHeader(P).h.flags, kCellsInconsistent);  // deep_capacity >= 2 entries / kCellsSmallCell
-    }
-
-    barrier();
-    UintsRef chunk_cells = UintsRef(P.chunk_cells);
-    uint end = min(s_starts[kCellsScanBlock], P.entry_capacity);
-    uint first_chunk = (s_starts[0] + kCellsEntryChunk - 1u) / kCellsEntryChunk;
-    for (uint c = first_chunk + gl_LocalInvocationIndex; c * kCellsEntryChunk < end; c += kCellsGroupSize) {
-        // The last cell whose first entry is at most the chunk's first: an empty cell
-        // shares its start with the next one, which is then the one found.
-        uint e = c * kCellsEntryChunk, lo = 0u, hi = kCellsScanBlock - 1u;
-        while (lo < hi) {
-            uint mid = (lo + hi + 1u) / 2u;
-            if (s_starts[mid] <= e) lo = mid; else hi = mid - 1u;
-        }
-        chunk_cells.v[c] = block * kCellsScanBlock + lo;
     }
 }

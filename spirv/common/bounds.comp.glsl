@@ -12,7 +12,10 @@
 #include "common.glsl.inc"
 layout(local_size_x = kGroupSize) in;
 #include "dispatch.glsl.inc"
-#include "workgroup.glsl.inc"
+
+// The workgroup's extent: min keys (0-2), max keys (3-5), subnormal count (6), reduced
+// together in log2(kGroupSize) steps of one barrier each.
+shared uint s_fields[7][kGroupSize];
 
 void main() {
     Frame f = frame();
@@ -40,12 +43,29 @@ void main() {
         subnormal = any(lessThan((floatBitsToUint(p) & 0x7FFFFFFFu) - 1u, uvec3(0x7FFFFFu))) ? 1u : 0u;
         for (uint axis = 0u; axis < 3u; ++axis) lo_keys[axis] = hi_keys[axis] = orderedFromFloat(dot(basisRow(f, axis), w));
     }
-    subnormal = groupReduceAdd(subnormal);
+    const uint me = gl_LocalInvocationIndex;
     for (uint axis = 0u; axis < 3u; ++axis) {
-        lo_keys[axis] = ~groupReduceMax(~lo_keys[axis]);  // min(x) = ~max(~x)
-        hi_keys[axis] = groupReduceMax(hi_keys[axis]);
+        s_fields[axis][me] = lo_keys[axis];
+        s_fields[3u + axis][me] = hi_keys[axis];
     }
-    if (gl_LocalInvocationIndex != 0u) return;
+    s_fields[6][me] = subnormal;
+    barrier();
+    for (uint stride = kGroupSize / 2u; stride > 0u; stride >>= 1) {
+        if (me < stride) {
+            for (uint axis = 0u; axis < 3u; ++axis) {
+                s_fields[axis][me] = min(s_fields[axis][me], s_fields[axis][me + stride]);
+                s_fields[3u + axis][me] = max(s_fields[3u + axis][me], s_fields[3u + axis][me + stride]);
+            }
+            s_fields[6][me] += s_fields[6][me + stride];
+        }
+        barrier();
+    }
+    if (me != 0u) return;
+    subnormal = s_fields[6][0];
+    for (uint axis = 0u; axis < 3u; ++axis) {
+        lo_keys[axis] = s_fields[axis][0];
+        hi_keys[axis] = s_fields[3u + axis][0];
+    }
     HeaderRef h = HeaderRef(f.header);
     if (subnormal != 0u) atomicAdd(h.h.subnormal_vertices, subnormal);
     for (uint axis = 0u; axis < 3u; ++axis) {

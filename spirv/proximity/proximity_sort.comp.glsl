@@ -21,7 +21,6 @@ layout(local_size_x = kCellsGroupSize) in;
 layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer ProximityParamsRef { ProximityParams p; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ProximityHeaderRef { ProximityHeader h; };
 layout(buffer_reference, scalar, buffer_reference_align = 4) buffer ProximityRecordsRef { ProximityRecord r[]; };
-layout(buffer_reference, scalar, buffer_reference_align = 16) buffer Uvec4sRef { uvec4 v[]; };
 
 ProximityParams qparams() { return ProximityParamsRef(pc.frame).p; }
 

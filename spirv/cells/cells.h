@@ -25,14 +25,15 @@ VKC_CONST kCellsMaxResolution = 16384;
 // workgroup each (so a triangle spanning the grid does not serialise on one invocation).
 VKC_CONST kCellsSmallBox = 64;
 VKC_CONST kCellsChunkCells = 4096;
-// Cells with at most kCellsSmallCell entries are swept by one invocation per entry,
-// unsorted (no barriers, every lane busy: cheaper than sorting up to about this depth);
+// Cells with at most kCellsSmallCell entries are swept in tiles (cells_sweep_shallow.glsl.inc:
+// the cells that begin in one kCellsEntryChunk of entries, ordered by depth in shared memory);
 // deeper cells by a workgroup that sorts them in shared memory (up to kCellsDeepShared
 // entries); deeper still ("huge" cells), a workgroup sorts the cell in place in global
 // memory (cells_deep_sort.comp) and workgroups of kCellsGroupSize sorted entries sweep it.
 VKC_CONST kCellsSmallCell = 256;
 // The scan records the cell of every kCellsEntryChunk-th entry (CellsParams.chunk_cells);
-// the shallow sweep finds an entry's cell between its chunk's first and the next one's.
+// the shallow sweep's tiles start from them and find each entry's cell between its chunk's
+// first and the next one's. A tile is one workgroup: kCellsEntryChunk == kCellsGroupSize.
 VKC_CONST kCellsEntryChunk = 256;
 VKC_CONST kCellsDeepShared = 1024;
 // The scan counts a huge cell deeper than this as every two of its entries (so any budget
@@ -116,7 +117,7 @@ VKC_CONST kCellsMaxExponentBits = 189u;  // biased exponent of 2^62
 
 // Slots of CellsParams.args (VkDispatchIndirectCommand each).
 VKC_CONST kCellsArgsBig = 0u;    // big-triangle work items (count and fill)
-VKC_CONST kCellsArgsSweep = 1u;  // one invocation per entry
+VKC_CONST kCellsArgsSweep = 1u;  // one workgroup per kCellsEntryChunk entries (a tile)
 VKC_CONST kCellsArgsDeep = 2u;   // deep-cell work items
 VKC_CONST kCellsArgsPairs = 3u;  // one invocation per candidate (passes after the pair pass)
 VKC_CONST kCellsArgsPairChunk = 4u;  // the pair pass: one invocation per candidate of its chunk

@@ -4,7 +4,7 @@
 // previous pass left in the header; nothing to do (0 workgroups) once the run failed.
 //   step 0, after setup: big-triangle work items (count and fill);
 //   step 1, after the scan and before each later sweep chunk: the sweep's next chunk (one
-//   invocation per entry of it) and its deep items, from where the last chunk ended (0
+//   workgroup per kCellsEntryChunk entries of it, whole ones) and its deep items, from where the last chunk ended (0
 //   after the header's clear), at most CellsParams.sweep_work comparisons (a deep item
 //   counts kCellsGroupSize entries of a sorted cell); whether more are left into the
 //   header (sweep_pending); none once the comparisons passed the budget;
@@ -40,7 +40,9 @@ void main() {
         uint e1 = entries, i1 = items;
         if (P.sweep_work != ~0u) {
             uint deepest = max(h.max_cell, 1u);
-            e1 = e0 + min(entries - e0, max(kCellsGroupSize, P.sweep_work / min(deepest, kCellsSmallCell)));
+            // Whole chunks: the shallow sweep's tiles are the cells that begin in one.
+            uint chunk_entries = max(kCellsEntryChunk, P.sweep_work / min(deepest, kCellsSmallCell));
+            e1 = e0 + min(entries - e0, chunk_entries - chunk_entries % kCellsEntryChunk);
             i1 = i0 + min(items - i0, max(1u, P.sweep_work / (kCellsGroupSize * min(deepest, kCellsDeepShared))));
         }
         CellsHeaderRef hr = cellsHeader(P);
@@ -49,7 +51,7 @@ void main() {
         hr.h.sweep_items_begin = i0;
         hr.h.sweep_items_end = i1;
         hr.h.sweep_pending = e1 < entries || i1 < items ? 1u : 0u;
-        writeDispatch(P, kCellsArgsSweep, groupsFor(e1 - e0));
+        writeDispatch(P, kCellsArgsSweep, (e1 - e0 + kCellsEntryChunk - 1u) / kCellsEntryChunk);  // a tile each
         writeDispatch(P, kCellsArgsDeep, i1 - i0);
         writeDispatch(P, kCellsArgsSort, h.huge_cells > 0u ? i1 - i0 : 0u);
     } else {

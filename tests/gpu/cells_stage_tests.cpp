@@ -451,6 +451,75 @@ TEST_CASE("cells: huge cells with coincident copies, within one object and acros
     }
 }
 
+// The shallow sweep works in tiles: the cells whose first entry lies in one chunk of
+// kCellsEntryChunk entries, the last of them running into the next chunk, a deep last cell
+// left to the deep sweep, each tile ordered by depth in shared memory. Columns of small
+// triangles, one cell each, with counts that put cell boundaries anywhere relative to the
+// chunks (empty cells, one entry, a chunk's worth exactly, one more, deep ones between
+// shallow ones), at a few depths only (ties in zlo, coplanar pairs), in two objects, one
+// testing itself: the exact pairs, the same candidates whether the sweep runs in one
+// submission or in chunks of whole tiles, and with the rows of workgroups split.
+TEST_CASE("cells: the shallow sweep's tiles hold cells across chunk boundaries, deep cells and depth ties", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellStage::create(ctx.device());
+    REQUIRE(stage);
+    constexpr std::uint32_t kN = 16;  // cells per side over [0, 1]^2, world projection
+    gpu::Projection pr{};
+    pr.row[0] = {1, 0, 0, 0};
+    pr.row[1] = {0, 1, 0, 0};
+    pr.row[2] = {0, 0, 1, 0};
+    std::mt19937 rng(50);
+    const std::uint32_t counts[] = {0, 0, 1, 2, 3, 7, 31, 64, 100, 200, 255, 256, 257, 300};
+    std::uniform_int_distribution<std::size_t> pick(0, std::size(counts) - 1);
+    std::uniform_real_distribution<float> in_cell(0.3f, 0.5f), level(0.0f, 1.0f);
+    CellScene scene;
+    HostMesh a{"a", {}, {}}, b{"b", {}, {}};
+    std::uint32_t triangles = 0;
+    for (std::uint32_t cell = 0; cell < kN * kN; ++cell) {
+        const float x0 = float(cell % kN) / kN, y0 = float(cell / kN) / kN, w = 1.0f / kN;
+        const std::uint32_t k = counts[pick(rng)];
+        for (std::uint32_t t = 0; t < k; ++t) {
+            const float x = x0 + w * in_cell(rng), y = y0 + w * in_cell(rng);
+            const float z = 0.1f * std::floor(8.0f * level(rng)) + 0.1f, h = float(t % 3) * 0.03f;  // flat ones tie
+            addTriangle(t % 2 ? b : a, {x, y, z}, {x + 0.15f * w, y, z + h}, {x, y + 0.15f * w, z + 0.5f * h});
+        }
+        triangles += k;
+    }
+    scene.meshes = {a, b};
+    scene.self = {1, 0};
+    const auto reference = referencePairs(scene);
+    REQUIRE(triangles > 4 * gpu::kCellsEntryChunk);
+    REQUIRE(reference.size() > 1000);
+    CellRunOptions opt;
+    opt.resolution = kN;
+    opt.projection = pr;
+    opt.settings.exact = true;
+    const CellRun whole = runCells(ctx, **stage, scene, opt);
+    CHECK(whole.result.stats.deep_cells > 0);
+    CHECK(whole.result.stats.max_cell == 300);
+    const auto check_exact = [&](const CellRun& run) {
+        if (!run.result.stats.exact_ran) return requireAllFound(run, reference);
+        const PairComparison cmp = comparePairs(run.pairs, reference);
+        CHECK(cmp.false_negatives == 0);
+        CHECK(cmp.false_positives == 0);
+    };
+    check_exact(whole);
+    for (std::uint32_t work : {1u, 5000u}) {  // chunks of one tile, and of a few
+        INFO("sweep chunks of " << work << " comparisons");
+        opt.settings.sweep_work = work;
+        const CellRun split = runCells(ctx, **stage, scene, opt);
+        CHECK(split.result.stats.sweep_chunks > 1);
+        CHECK(split.result.stats.candidates == whole.result.stats.candidates);
+        CHECK(split.pairs == whole.pairs);
+        check_exact(split);
+    }
+    opt.settings.sweep_work = 0;
+    opt.settings.max_workgroups_x = 3;
+    const CellRun rows = runCells(ctx, **stage, scene, opt);
+    CHECK(rows.result.stats.candidates == whole.result.stats.candidates);
+    CHECK(rows.pairs == whole.pairs);
+}
+
 // Boxes within a cell: two objects' small triangles share one cell and overlap in depth
 // everywhere, but lie in different parts of it. The sweep pairs only entries whose boxes
 // within the cell meet, so of the k * k depth-overlapping pairs only the one crossing pair

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Device run 15 of 2026-12-06 (session 50): the shallow sweep per tile, its counts per workgroup.
+#   build-carry/base/  vkcollide_bench at 9172ecb (session 49's end)
+#   build-carry/new/   the shallow sweep loads the cells that begin in a chunk of 256 entries
+#                      (and their vertex indices) into shared memory, ranks each cell by
+#                      (zlo, index), walks each entry's later entries until one starts beyond
+#                      its zhi, and adds its counts to the header once per workgroup; its bench
+#                      and tests
+#   build-carry/<exp>/ new with one piece done twice (experiments/run15_variants.py): rank2,
+#                      load2, walk2
+for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
+tar -xJf build-pack/bins.tar.xz
+export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+W=/tmp/run15; mkdir -p $W
+start=$(date +%s)
+log() { echo "$1 rc=$2 at $(( $(date +%s) - start )) s" >> $W/log.txt; tar -C /tmp -czf $OUT/run15.tgz run15; }
+nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv > $W/gpu.txt 2>&1
+timeout 90 build-carry/new/vkcollide_cells_tests > $W/cells.txt 2>&1; log cells $?
+timeout 90 build-carry/new/vkcollide_device_pairs_tests > $W/device_pairs.txt 2>&1; log device_pairs $?
+timeout 90 build-carry/new/vkcollide_engine_loop_tests > $W/engine_loop.txt 2>&1; log engine_loop $?
+H=deep-blobs,deep-bunny-elephant,pile-shapes,spheres-60x10K-dense,bunnies-2x75K,stack-mating,stack-touching,pile-deep,wall-touching
+n=0
+for b in base new rank2 load2 walk2 new base; do
+  n=$((n + 1)); o=$n-$b
+  V=device-only,default; case $b in rank2|load2|walk2) V=device-only;; esac
+  timeout 110 build-carry/$b/vkcollide_bench --data data/cgal --cache /tmp/bc --set all --variants $V --scenes $H --frames 6 \
+      --threads 16 --warmup-ms 1000 --csv $W/$o.csv --profile $W/${o}_profile.csv > $W/$o.txt 2>&1; log $o $?
+done
+gzip -f $W/*_profile.csv; tar -C /tmp -czf $OUT/run15.tgz run15
+cat $W/log.txt; grep -E "passed|failed" $W/cells.txt $W/device_pairs.txt $W/engine_loop.txt

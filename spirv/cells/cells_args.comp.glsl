@@ -4,10 +4,11 @@
 // previous pass left in the header; nothing to do (0 workgroups) once the run failed.
 //   step 0, after setup: big-triangle work items (count and fill);
 //   step 1, after the scan and before each later sweep chunk: the sweep's next chunk (one
-//   workgroup per kCellsEntryChunk entries of it, whole ones) and its deep items, from where the last chunk ended (0
-//   after the header's clear), at most CellsParams.sweep_work comparisons (a deep item
-//   counts kCellsGroupSize entries of a sorted cell); whether more are left into the
-//   header (sweep_pending); none once the comparisons passed the budget;
+//   workgroup per kCellsEntryChunk entries of it, whole ones) and its deep items, from
+//   where the last chunk ended (0 after the header's clear), at most
+//   CellsParams.sweep_work comparisons (a deep item counts kCellsGroupSize entries of a
+//   sorted cell); whether more are left into the header (sweep_pending); none once the
+//   comparisons passed the budget;
 //   step 2 + k, after the sweep: every candidate (passes after the pair pass) and the pair
 //   pass's chunk k (one invocation per candidate in it); the chunks so far into the header.
 //   Nothing while sweep chunks are pending: the candidates are not all written yet. The

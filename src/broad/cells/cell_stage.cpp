@@ -15,7 +15,7 @@ namespace {
 
 static_assert(sizeof(gpu::CellsTriangle) == 96 && sizeof(gpu::CellsGeometry) == 64);
 static_assert(sizeof(gpu::CellsEntry) == 16 && sizeof(gpu::CellsCandidate) == 12);
-// The shallow sweep's workgroup sorts one tile: the cells that begin in a chunk, up to twice its entries.
+// A workgroup of the shallow sweep takes one tile: the cells that begin in a chunk of entries.
 static_assert(gpu::kCellsEntryChunk == gpu::kCellsGroupSize);
 static_assert(sizeof(gpu::CellsHeader) == 136 && sizeof(gpu::CellsParams) == 264);
 static_assert(offsetof(gpu::CellsHeader, candidates) == 56 && offsetof(gpu::CellsHeader, box_cells) == 64 &&

@@ -441,13 +441,7 @@ TEST_CASE("cells: huge cells with coincident copies, within one object and acros
             CHECK(run.result.stats.huge_cells == 1);
             CHECK(run.result.stats.max_cell > gpu::kCellsDeepShared);
         }
-        if (run.result.stats.exact_ran) {
-            const PairComparison cmp = comparePairs(run.pairs, reference);
-            CHECK(cmp.false_negatives == 0);
-            CHECK(cmp.false_positives == 0);
-        } else {
-            requireAllFound(run, reference);
-        }
+        requireExactPairs(run, reference);
     }
 }
 
@@ -464,10 +458,6 @@ TEST_CASE("cells: the shallow sweep's tiles hold cells across chunk boundaries, 
     auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
     constexpr std::uint32_t kN = 16;  // cells per side over [0, 1]^2, world projection
-    gpu::Projection pr{};
-    pr.row[0] = {1, 0, 0, 0};
-    pr.row[1] = {0, 1, 0, 0};
-    pr.row[2] = {0, 0, 1, 0};
     std::mt19937 rng(50);
     const std::uint32_t counts[] = {0, 0, 1, 2, 3, 7, 31, 64, 100, 200, 255, 256, 257, 300};
     std::uniform_int_distribution<std::size_t> pick(0, std::size(counts) - 1);
@@ -492,18 +482,12 @@ TEST_CASE("cells: the shallow sweep's tiles hold cells across chunk boundaries, 
     REQUIRE(reference.size() > 1000);
     CellRunOptions opt;
     opt.resolution = kN;
-    opt.projection = pr;
+    opt.projection = worldProjection();
     opt.settings.exact = true;
     const CellRun whole = runCells(ctx, **stage, scene, opt);
     CHECK(whole.result.stats.deep_cells > 0);
     CHECK(whole.result.stats.max_cell == 300);
-    const auto check_exact = [&](const CellRun& run) {
-        if (!run.result.stats.exact_ran) return requireAllFound(run, reference);
-        const PairComparison cmp = comparePairs(run.pairs, reference);
-        CHECK(cmp.false_negatives == 0);
-        CHECK(cmp.false_positives == 0);
-    };
-    check_exact(whole);
+    requireExactPairs(whole, reference);
     for (std::uint32_t work : {1u, 5000u}) {  // chunks of one tile, and of a few
         INFO("sweep chunks of " << work << " comparisons");
         opt.settings.sweep_work = work;
@@ -511,7 +495,7 @@ TEST_CASE("cells: the shallow sweep's tiles hold cells across chunk boundaries, 
         CHECK(split.result.stats.sweep_chunks > 1);
         CHECK(split.result.stats.candidates == whole.result.stats.candidates);
         CHECK(split.pairs == whole.pairs);
-        check_exact(split);
+        requireExactPairs(split, reference);
     }
     opt.settings.sweep_work = 0;
     opt.settings.max_workgroups_x = 3;
@@ -529,12 +513,7 @@ TEST_CASE("cells: triangles apart within a shared cell are not paired", "[cells]
     ValidatedContext ctx;
     auto stage = passes::CellStage::create(ctx.device());
     REQUIRE(stage);
-    // Sampling = world: x, y across the grid, z the depth; N = 4, so cell (1, 1) is
-    // [0.25, 0.5]^2.
-    gpu::Projection pr{};
-    pr.row[0] = {1, 0, 0, 0};
-    pr.row[1] = {0, 1, 0, 0};
-    pr.row[2] = {0, 0, 1, 0};
+    // Sampling = world (worldProjection); N = 4, so cell (1, 1) is [0.25, 0.5]^2.
     // Standing triangles spanning depth 0.3 to 0.7, their x within [x0, x1].
     const auto standing = [](HostMesh& m, std::uint32_t count, float x0, float x1) {
         for (std::uint32_t k = 0; k < count; ++k) {
@@ -559,7 +538,7 @@ TEST_CASE("cells: triangles apart within a shared cell are not paired", "[cells]
         REQUIRE(reference.size() == 1);
         CellRunOptions opt;
         opt.resolution = 4;
-        opt.projection = pr;
+        opt.projection = worldProjection();
         const CellRun run = runCells(ctx, **stage, scene, opt);
         requireAllFound(run, reference);
         CHECK(run.result.stats.max_cell >= 2 * per_object);

@@ -141,6 +141,15 @@ inline UploadedScene uploadScene(vk::Device& device, const CellScene& scene, boo
     return up;
 }
 
+// Sampling = world: x and y across the grid's [0, 1]^2, z the depth.
+inline gpu::Projection worldProjection() {
+    gpu::Projection pr{};
+    pr.row[0] = {1, 0, 0, 0};
+    pr.row[1] = {0, 1, 0, 0};
+    pr.row[2] = {0, 0, 1, 0};
+    return pr;
+}
+
 // Maps the scene's world box seen along `direction` onto [0, 1]^2 (square cells) and the
 // depth onto [0, 1]. Any affine map would do for correctness; this one makes cells useful.
 inline gpu::Projection fitProjection(const CellScene& scene, std::array<double, 3> direction) {
@@ -243,6 +252,15 @@ inline void requireAllFound(const CellRun& run, const std::vector<TrianglePair>&
         UNSCOPED_INFO("missed (" << c.missed[i].object_a << ", " << c.missed[i].triangle_a << ") x (" << c.missed[i].object_b
                                  << ", " << c.missed[i].triangle_b << ")");
     REQUIRE(c.false_negatives == 0);
+}
+
+// With the exact pass run, the survivors are the reference's pairs (none missed, none
+// extra); without it (a device without shaderFloat64), every reference pair is a survivor.
+inline void requireExactPairs(const CellRun& run, const std::vector<TrianglePair>& reference) {
+    if (!run.result.stats.exact_ran) return requireAllFound(run, reference);
+    const PairComparison cmp = comparePairs(run.pairs, reference);
+    CHECK(cmp.false_negatives == 0);
+    CHECK(cmp.false_positives == 0);
 }
 
 // The stage run as part of a larger graph: an earlier pass of that graph writes the

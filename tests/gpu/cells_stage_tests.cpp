@@ -504,6 +504,57 @@ TEST_CASE("cells: the shallow sweep's tiles hold cells across chunk boundaries, 
     CHECK(rows.pairs == whole.pairs);
 }
 
+// The fill's workgroups of 256 triangles take their slots per cell through a table in
+// shared memory where their footprints crowd into few cells, one footprint at a time
+// where they are spread (cells_fill.comp, the GPU form; lavapipe runs the per-footprint
+// form unless told). Each object here is three such workgroups: small triangles in a patch
+// of a few cells (the table), triangles of 7 x 7 cells in a patch of 2,500 cells (crowded,
+// but more cells than the table holds: most take their slots alone) and small ones all over
+// the grid (spread). The two objects cross in every patch: the exact pairs, whatever way
+// each footprint found its slot, and the same entries and candidates in both forms.
+TEST_CASE("cells: the fill's workgroups crowded into few cells, crowded past the table and spread give the exact pairs", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellStage::create(ctx.device());
+    REQUIRE(stage);
+    constexpr std::uint32_t kN = 128;  // cells per side over [0, 1]^2, world projection
+    std::mt19937 rng(51);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    const auto block = [&](HostMesh& m, float x0, float x1, float size) {
+        for (std::uint32_t t = 0; t < gpu::kCellsGroupSize; ++t) {
+            const float x = x0 + (x1 - x0 - size) * unit(rng), y = x0 + (x1 - x0 - size) * unit(rng);
+            const float z = 0.45f + 0.1f * unit(rng);
+            addTriangle(m, {x, y, z}, {x + size, y, 0.45f + 0.1f * unit(rng)}, {x, y + size, 0.45f + 0.1f * unit(rng)});
+        }
+    };
+    CellScene scene;
+    HostMesh a{"a", {}, {}}, b{"b", {}, {}};
+    for (HostMesh* m : {&a, &b}) {
+        block(*m, 0.20f, 0.25f, 0.01f);  // about 6 x 6 cells: every workgroup cell in the table
+        block(*m, 0.50f, 0.90f, 0.045f);  // 7 x 7 cells each in 51 x 51: crowded, past the table
+        block(*m, 0.00f, 1.00f, 0.004f);  // all over the grid: spread
+    }
+    scene.meshes = {a, b};
+    scene.self = {1, 0};
+    const auto reference = referencePairs(scene);
+    REQUIRE(reference.size() > 1000);
+    CellRunOptions opt;
+    opt.resolution = kN;
+    opt.projection = worldProjection();
+    opt.settings.exact = true;
+    opt.settings.fill_slots = passes::CellStageSettings::FillSlots::PerFootprint;
+    const CellRun per_footprint = runCells(ctx, **stage, scene, opt);
+    requireExactPairs(per_footprint, reference);
+    opt.settings.fill_slots = passes::CellStageSettings::FillSlots::PerCell;  // what a GPU runs (Auto)
+    for (int round = 0; round < 2; ++round) {
+        INFO("slots per cell, round " << round);
+        const CellRun run = runCells(ctx, **stage, scene, opt);
+        requireExactPairs(run, reference);
+        CHECK(run.result.stats.entries == per_footprint.result.stats.entries);
+        CHECK(run.result.stats.candidates == per_footprint.result.stats.candidates);
+        CHECK(run.pairs == per_footprint.pairs);
+    }
+}
+
 // Boxes within a cell: two objects' small triangles share one cell and overlap in depth
 // everywhere, but lie in different parts of it. The sweep pairs only entries whose boxes
 // within the cell meet, so of the k * k depth-overlapping pairs only the one crossing pair

@@ -52,10 +52,11 @@ Result<void> makePipeline(vk::Device& device, vk::Pipeline& out, std::span<const
 using Program = CellStage::Program;
 constexpr Program kSetup{shaders::cells_setup_comp, "cells-setup"}, kSetupNoFp64{shaders::cells_setup_nofp64_comp, "cells-setup-nofp64"},
     kBig{shaders::cells_big_comp, "cells-big"}, kScan{shaders::cells_scan_comp, "cells-scan"},
-    kFill{shaders::cells_fill_comp, "cells-fill"}, kSweep{shaders::cells_sweep_comp, "cells-sweep"},
-    kSweepPlain{shaders::cells_sweep_plain_comp, "cells-sweep-plain"}, kDeepSort{shaders::cells_deep_sort_comp, "cells-deep-sort"},
-    kDeep{shaders::cells_deep_comp, "cells-deep"}, kDeepGuarded{shaders::cells_deep_guarded_comp, "cells-deep-guarded"},
-    kArgs{shaders::cells_args_comp, "cells-args"}, kPairsNoFp64{shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"},
+    kFill{shaders::cells_fill_comp, "cells-fill"}, kFillPerFootprint{shaders::cells_fill_per_footprint_comp, "cells-fill-per-footprint"},
+    kSweep{shaders::cells_sweep_comp, "cells-sweep"}, kSweepPlain{shaders::cells_sweep_plain_comp, "cells-sweep-plain"},
+    kDeepSort{shaders::cells_deep_sort_comp, "cells-deep-sort"}, kDeep{shaders::cells_deep_comp, "cells-deep"},
+    kDeepGuarded{shaders::cells_deep_guarded_comp, "cells-deep-guarded"}, kArgs{shaders::cells_args_comp, "cells-args"},
+    kPairsNoFp64{shaders::cells_pairs_nofp64_comp, "cells-pairs-nofp64"},
     kPairsInline{shaders::cells_pairs_inline_comp, "cells-pairs-inline"}, kPairsFilter{shaders::cells_pairs_comp, "cells-pairs"},
     kExact{shaders::cells_exact_comp, "cells-exact"};
 
@@ -90,7 +91,7 @@ Result<std::unique_ptr<CellStage>> CellStage::create(vk::Device& device, BufferT
 
 // Every program the stage may run on a device with or without float64.
 std::vector<CellStage::Program> CellStage::programs(bool float64) {
-    std::vector<Program> all = {kBig, kScan, kFill, kSweep, kSweepPlain, kDeepSort, kDeep, kDeepGuarded, kArgs};
+    std::vector<Program> all = {kBig, kScan, kFill, kFillPerFootprint, kSweep, kSweepPlain, kDeepSort, kDeep, kDeepGuarded, kArgs};
     if (float64) all.insert(all.end(), {kSetup, kPairsInline, kPairsFilter, kExact});
     else all.insert(all.end(), {kSetupNoFp64, kPairsNoFp64});
     return all;
@@ -119,7 +120,7 @@ Result<void> CellStage::ensurePipelines() {
         {&P.setup, filterSupported() ? &kSetup : &kSetupNoFp64},
         {&P.big, &kBig},
         {&P.scan, &kScan},
-        {&P.fill, &kFill},
+        fill_per_cell_ ? Slot{&P.fill, &kFill} : Slot{&P.fill_per_footprint, &kFillPerFootprint},
         shallowSweepSlot(),
         {&P.deep_sort, &kDeepSort},
         deepSweepSlot(),
@@ -207,6 +208,9 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     if (checks == Checks::Auto)
         checks = device_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Checks::FromShallow : Checks::DeepChunksOnly;
     plain_sweep_ = checks == Checks::DeepChunksOnly;
+    using FillSlots = CellStageSettings::FillSlots;
+    fill_per_cell_ = settings.fill_slots == FillSlots::Auto ? device_->properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU
+                                                            : settings.fill_slots == FillSlots::PerCell;
     loop_guard_ = settings.loop_guard;
     sweep_dedupe_ = plain_sweep_ ? gpu::kCellsDeepShared + 1 : gpu::kCellsSweepDedupe;
     if (auto ok = ensurePipelines(); !ok) return ok.error();

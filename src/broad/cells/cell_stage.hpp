@@ -166,6 +166,14 @@ struct CellStageSettings {
     // repeats faster. The same pairs either way; tests pick each.
     enum class RepeatChecks { Auto, FromShallow, DeepChunksOnly };
     RepeatChecks repeat_checks = RepeatChecks::Auto;
+    // How the fill takes its slots (docs/reliable.md, "Fill"). Auto: on a GPU a workgroup
+    // whose footprints crowd into few cells takes each cell's slots at once through a table
+    // in shared memory (PerCell); on a CPU implementation, where its barriers and shared
+    // atomics cost more than the atomics they save (the bundled demo's fill about 3x slower
+    // on lavapipe), every footprint takes its own (PerFootprint). The same pairs either
+    // way; tests pick each.
+    enum class FillSlots { Auto, PerCell, PerFootprint };
+    FillSlots fill_slots = FillSlots::Auto;
     // Count the deep sweep's and the sorts' loops where the device ends long loops silently
     // (DeviceInfo::loop_iteration_limit; docs/reliable.md, "Huge cells"). false: never
     // (tests run a GPU's deep sweep on lavapipe with it, on scenes within that limit).
@@ -316,7 +324,7 @@ private:
     // `pairs_inline` (the exact decision inside), `pairs_filter` (the filter, queueing for
     // the exact pass) and `exact`: with it.
     struct Pipelines {
-        vk::Pipeline setup, big, scan, fill, sweep, sweep_plain, deep_sort, deep, deep_guarded, args, pairs;
+        vk::Pipeline setup, big, scan, fill, fill_per_footprint, sweep, sweep_plain, deep_sort, deep, deep_guarded, args, pairs;
         vk::Pipeline pairs_inline, pairs_filter, exact;
     } pipes_;
     static std::vector<Program> programs(bool float64);
@@ -365,6 +373,7 @@ private:
     std::uint32_t pair_chunk_ = 0, next_chunk_ = 0;  // the run's chunk size; the chunk recorded next
     std::uint32_t sweep_dedupe_ = gpu::kCellsSweepDedupe;  // CellsParams::sweep_dedupe
     bool plain_sweep_ = false;                              // the shallow sweep without repeat checks
+    bool fill_per_cell_ = true;  // the fill takes a crowded workgroup's slots per cell
     bool loop_guard_ = true;                                // CellStageSettings::loop_guard
     double pair_rate_ = 0;  // candidates per GPU ms of the pair pass, measured (0: not yet)
     // The sweep's chunks: their work (CellsParams::sweep_work), whether it is automatic,

@@ -97,9 +97,12 @@ std::vector<CellStage::Program> CellStage::programs(bool float64) {
     return all;
 }
 
-// A run's forms: the shallow sweep with or without its repeat checks, the deep sweep with or
-// without the loop guard, and the pair pass without float64, with the exact decision
-// inside, or filtering (and queueing for the exact pass).
+// A run's forms: the fill per cell or per footprint, the shallow sweep with or without its
+// repeat checks, the deep sweep with or without the loop guard, and the pair pass without
+// float64, with the exact decision inside, or filtering (and queueing for the exact pass).
+CellStage::Slot CellStage::fillSlot() {
+    return fill_per_cell_ ? Slot{&pipes_.fill, &kFill} : Slot{&pipes_.fill_per_footprint, &kFillPerFootprint};
+}
 CellStage::Slot CellStage::shallowSweepSlot() {
     return plain_sweep_ ? Slot{&pipes_.sweep_plain, &kSweepPlain} : Slot{&pipes_.sweep, &kSweep};
 }
@@ -120,7 +123,7 @@ Result<void> CellStage::ensurePipelines() {
         {&P.setup, filterSupported() ? &kSetup : &kSetupNoFp64},
         {&P.big, &kBig},
         {&P.scan, &kScan},
-        fill_per_cell_ ? Slot{&P.fill, &kFill} : Slot{&P.fill_per_footprint, &kFillPerFootprint},
+        fillSlot(),
         shallowSweepSlot(),
         {&P.deep_sort, &kDeepSort},
         deepSweepSlot(),

@@ -333,6 +333,7 @@ private:
         vk::Pipeline* pipeline;
         const Program* program;
     };
+    Slot fillSlot();
     Slot shallowSweepSlot();
     Slot deepSweepSlot();
     Slot pairSlot();

@@ -124,7 +124,7 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
         .read(header)
         .readWrite(counts)
         .write(entries)
-        .record([&P, fill = fill_per_cell_ ? &P.fill : &P.fill_per_footprint, params, tri_groups, args_buffer, max_x](PassContext& pc) {
+        .record([&P, fill = fillSlot().pipeline, params, tri_groups, args_buffer, max_x](PassContext& pc) {
             bindAndPush(pc, *fill, params);
             dispatchGroups(pc, tri_groups, max_x);
             bindAndPush(pc, P.big, params, 0, 1);  // other cells than the small triangles': no barrier needed

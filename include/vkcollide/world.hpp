@@ -479,6 +479,11 @@ struct HostStats {
     // span: queue launch latency, GPU time outside the timestamps, wake-up latency. With
     // submit() and collect() apart it also counts the host's work in between.
     double launch_wake_ms = 0;
+    // Of collect_ms: detect()'s result memory made ready before the wait (pages faulted in,
+    // elements made), for GPU-sorted pairs about the last result's size; 0 for detectInto(),
+    // which writes into the caller's memory. Where it exceeds the GPU span it is also in
+    // launch_wake_ms (the host wakes after it).
+    double prepare_ms = 0;
     // Of DetectStats::submissions, those whose command buffer was submitted again instead
     // of recorded: the commands equalled the last recording's and nothing they use was
     // destroyed since.

@@ -180,7 +180,11 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock,
         run.deadline = t0 + std::chrono::milliseconds(run.settings.limits.timeout_ms);
         run.detection->setDeadline(run.deadline);
     }
-    if (!reuse && run.sorts_on_gpu) prepareResultMemory(run);
+    run.prepare_ms = 0;
+    if (!reuse && run.sorts_on_gpu) {
+        prepareResultMemory(run);
+        run.prepare_ms = msSince(t0);
+    }
     auto r = run.detection->collect();
     run.wait_ms = msSince(t0);
     if (!r) return noted(describeFailure(run, r.error()));
@@ -432,6 +436,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.total_ms = msSince(run.start);
     st.host.start_ms = run.start_ms;
     st.host.collect_ms = run.wait_ms;
+    st.host.prepare_ms = run.prepare_ms;
     st.host.settings_ms = run.settings_ms;
     return out;
 }

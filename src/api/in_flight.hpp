@@ -42,6 +42,7 @@ struct DetectionsInFlight {
         // timeout for detect(); submit() and record() restart it at collect().
         std::chrono::steady_clock::time_point deadline;
         double start_ms = 0, wait_ms = 0;  // host: start() (settings, record, submit); collect's wait and readback
+        double prepare_ms = 0;  // of wait_ms: detect()'s result memory made ready (prepareResultMemory)
         double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host.settings_ms)
         bool sorts_on_gpu = false;         // the reliable method's host pairs come back sorted by the GPU
     };

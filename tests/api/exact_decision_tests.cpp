@@ -418,6 +418,7 @@ TEST_CASE("detectInto and collectInto give detect()'s result in the caller's mem
         CHECK(sameResponses(kept.responses, fresh->responses));
         CHECK(kept.stats.positive_tests == fresh->stats.positive_tests);
         if (frame > 0 && ctx.device().shader_float64) CHECK(kept.pairs.data() == memory);  // sorted on the GPU: reused
+        CHECK(kept.stats.host.prepare_ms == 0.0);  // nothing made ready: the caller's memory
         memory = kept.pairs.data();
     }
     REQUIRE(world->setTransform(2, {1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 1, 0}));
@@ -458,12 +459,15 @@ TEST_CASE("detect() makes the next result's memory ready while the GPU works, an
     REQUIRE(n * sizeof(TrianglePair) >= (std::size_t{1} << 20));
     CHECK(first->stats.reliable.pairs_sorted_on_gpu);
     CHECK(first->stats.reliable.responses_on_gpu);
+    CHECK(first->stats.host.prepare_ms <= first->stats.host.collect_ms);
     for (int frame = 0; frame < 2; ++frame) {
         auto next = world->detect(gpu_sort);
         REQUIRE(next);
         CHECK(next->pairs == first->pairs);
         CHECK(sameResponses(next->responses, first->responses));
         CHECK(next->pairs.capacity() >= n + n / 8);  // the memory made ready during the wait
+        CHECK(next->stats.host.prepare_ms > 0.0);
+        CHECK(next->stats.host.prepare_ms <= next->stats.host.collect_ms);
     }
     // submit() + collect() make it ready too; detectInto uses the caller's memory instead.
     REQUIRE(world->submit(gpu_sort));

@@ -23,7 +23,9 @@
 #      tools, stays configurable; its code and tests are the host part of build 2.
 # Everything compiles in batches (CMake unity builds: about a third of the compiling), the
 # tests' own sources at -O1 (Release) and -O0 (sanitized; the library and the tests'
-# references keep their optimisation), and in the sanitized build without UBSan's checks:
+# references keep their optimisation), the tools' and samples' own sources at -O1 in
+# Release (compiled and smoke-tested here, measured in builds of their own), Catch2's
+# runner as Catch2 ships it compiled, and in the sanitized build without UBSan's checks:
 # they doubled those sources' compiling (the narrow tests' batch 24 s -> 12 s) and would check
 # the tests' code, not the library's, which keeps them, as the test support does (ASan stays
 # on everywhere). A compiler cache for this run (ccache, in BUILD_ROOT/build-ccache) builds
@@ -55,7 +57,7 @@ unity=(-DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 -DVKCOLLIDE_UNIT
 
 echo "== Release: library, CLI, samples, benchmarks; the GPU tests, samples' smoke tests and the installed package =="
 cmake -S "$src" -B build-ci -G Ninja -DCMAKE_BUILD_TYPE=Release -DVKCOLLIDE_WERROR=ON "${unity[@]}" \
-  -DVKCOLLIDE_TEST_COMPILE_OPTIONS=-O1 >/dev/null
+  -DVKCOLLIDE_TEST_COMPILE_OPTIONS=-O1 -DVKCOLLIDE_TOOL_COMPILE_OPTIONS=-O1 >/dev/null
 cmake --build build-ci -j "$jobs" --target vkcollide vkcollide_cli vkcollide_samples vkcollide_benchmarks vkcollide_release_suite
 # glibc's malloc in transparent huge pages (glibc >= 2.35; others ignore it): lavapipe's device
 # memory and the validation layer's are malloc'd, and on a VM a 4 KiB page fault is dear

@@ -26,9 +26,10 @@ if(SHARED)
   endif()
   file(REMOVE_RECURSE ${SHARED_BUILD_DIR})
   set(BUILD_DIR ${SHARED_BUILD_DIR})
-  # UNITY: the unity settings of the build running this test, so that a compiler cache
-  # given to both finds the same batches.
+  # UNITY and TOOL_OPTIONS: the unity settings and VKCOLLIDE_TOOL_COMPILE_OPTIONS of the build
+  # running this test, so that a compiler cache given to both finds the same batches.
   step(${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${BUILD_DIR} -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON ${UNITY}
+       "-DVKCOLLIDE_TOOL_COMPILE_OPTIONS=${TOOL_OPTIONS}"
        -DVKCOLLIDE_BUILD_TESTS=OFF -DVKCOLLIDE_BUILD_SAMPLES=OFF -DVKCOLLIDE_BUILD_TOOLS=ON -DVKCOLLIDE_INSTALL=ON
        -DVKCOLLIDE_WERROR=ON)
   step(${CMAKE_COMMAND} --build ${BUILD_DIR} --target vkcollide vkcollide_cli)

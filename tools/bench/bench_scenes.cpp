@@ -229,7 +229,7 @@ std::vector<SceneSpec> issue7Scenes(const std::string& data, double scale) {
 
 std::vector<SceneSpec> allScenes(const std::string& data, double scale) {
     std::vector<SceneSpec> all = issue7Scenes(data, scale);
-    for (auto part : {drapeScenes(scale), twistedScenes(scale), pileScenes(data, scale), deepOverlapScenes(data, scale),
+    for (auto part : {foldScenes(scale), drapeScenes(scale), twistedScenes(scale), pileScenes(data, scale), deepOverlapScenes(data, scale),
                       deformingPairScenes(data, scale), ballClothScenes(scale), mixedScenes(scale), touchingScenes(scale)})
         for (SceneSpec& s : part) all.push_back(std::move(s));
     return all;

@@ -75,6 +75,7 @@ Result<HostMesh> loadMesh(const std::string& data, const std::string& file, floa
 
 // The scene kinds (scene_kinds.cpp, scene_piles.cpp); each returns the specs
 // of its tuning and held-out scenes.
+std::vector<SceneSpec> foldScenes(double scale);
 std::vector<SceneSpec> drapeScenes(double scale);
 std::vector<SceneSpec> twistedScenes(double scale);
 std::vector<SceneSpec> pileScenes(const std::string& data, double scale);

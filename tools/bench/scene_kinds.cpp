@@ -1,6 +1,6 @@
-// Bench scene kinds, part 1: a draped cloth with a flap folded through itself, a bar
-// bent and twisted into itself, README's ball pushed through a cloth, and mixed engine/host
-// meshes. Each kind has a tuning scene and a held-out one that differs in kind or
+// Bench scene kinds, part 1: a cloth folded over a hinge through itself, a draped cloth with
+// a flap folded through itself, a bar bent and twisted into itself, README's ball pushed
+// through a cloth, and mixed engine/host meshes. Each kind has a tuning scene and a held-out one that differs in kind or
 // parameters (other shapes, scales, orientations, motions).
 #include <algorithm>
 #include <cmath>
@@ -39,7 +39,64 @@ Result<HostMesh> wrappedBar(float a, float b, float radius, float turns, float t
     return bar;
 }
 
+// A square cloth (n x n quads, side 1) folded over a hinge through itself: the part s <= hinge
+// (s across [0, 1]) lies flat, rippled along y as a sin(2 pi f0 y); past a half-cylinder of
+// radius r it comes back above, rippled as a sin(2 pi f1 y + phase). Where the ripples differ
+// by more than 2 r the flap passes through the part below, along lines across the overlap.
+Result<HostMesh> foldedCloth(std::uint32_t n, double hinge, double r, double a, double f0, double f1, double phase) {
+    Result<HostMesh> cloth = clothGrid(1.0f, 1.0f, n, n);
+    if (!cloth) return cloth.error();
+    constexpr double kTwoPi = 2.0 * std::numbers::pi;
+    const double bend = std::numbers::pi * r;  // the hinge's arc length
+    for (Float3& p : cloth->positions) {
+        const double s = double(p.x) + 0.5, y = double(p.y) + 0.5;
+        const double below = a * std::sin(kTwoPi * f0 * y), above = a * std::sin(kTwoPi * f1 * y + phase);
+        double x = s, z = below;
+        if (s > hinge + bend) {
+            x = hinge - (s - hinge - bend), z = 2 * r + above;
+        } else if (s > hinge) {
+            const double t = (s - hinge) / r;  // the angle round the hinge, 0 .. pi
+            x = hinge + r * std::sin(t), z = r - r * std::cos(t) + below + (above - below) * t / std::numbers::pi;
+        }
+        p = {float(x - 0.5), float(y - 0.5), float(z)};
+    }
+    return cloth;
+}
+
 }  // namespace
+
+std::vector<SceneSpec> foldScenes(double scale) {
+    const std::uint32_t n = scaledCount(300, scale, 2, 16), n_b = scaledCount(600, scale, 2, 16);
+    return {
+        {"cloth-fold", Motion::Rigid, SceneSet::Tuning, 1,
+         "one open cloth (" + count(2ull * n * n) +
+             ", self-colliding) folded over a hinge so that its rippled flap passes through "
+             "the part below along lines",
+         [=](int) -> Result<std::vector<BenchObject>> {
+             Result<HostMesh> cloth = foldedCloth(n, 0.5, 0.02, 0.03, 5.0, 7.0, 0.5);
+             if (!cloth) return cloth.error();
+             BenchObject c = object(std::move(*cloth), "cloth");
+             c.open = true;
+             std::vector<BenchObject> out;
+             out.push_back(std::move(c));
+             return out;
+         }},
+        {"cloth-fold-720K", Motion::Rigid, SceneSet::HeldOut, 1,
+         "held-out: as the exact-on-GPU issue's folded cloth, one open cloth (" + count(2ull * n_b * n_b) +
+             ", self-colliding) folded through itself, other ripples, a tighter hinge, in metres x 2, tilted",
+         [=](int) -> Result<std::vector<BenchObject>> {
+             Result<HostMesh> cloth = foldedCloth(n_b, 0.58, 0.012, 0.025, 7.0, 9.0, 1.0);
+             if (!cloth) return cloth.error();
+             Transform3x4 t = rotationTranslation(0.3, 1, 0.4, 0.7, {0.2f, -0.1f, 0.05f});
+             for (int k : {0, 1, 2, 4, 5, 6, 8, 9, 10}) t[k] *= 2.0f;
+             BenchObject c = object(std::move(*cloth), "cloth", t);
+             c.open = true;
+             std::vector<BenchObject> out;
+             out.push_back(std::move(c));
+             return out;
+         }},
+    };
+}
 
 std::vector<SceneSpec> drapeScenes(double scale) {
     const std::uint32_t quads = scaledCount(100, scale, 2, 12), seg = scaledCount(64, scale, 2, 8);

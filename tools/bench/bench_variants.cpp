@@ -73,6 +73,9 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
     Variant into{"into", "modes", [](S&) {}};  // the default through detectInto(), one result kept
     into.into = true;
     v.push_back(into);
+    Variant dropped{"dropped", "modes", [](S&) {}};  // the default, each frame's result released before the next
+    dropped.drop = true;
+    v.push_back(dropped);
     Variant geometry_into{"contact-geometry-into", "contacts", [](S& s) { s.contacts.geometry = true; }};  // and its memory kept
     geometry_into.into = true;
     v.push_back(std::move(geometry_into));

@@ -22,6 +22,10 @@ struct Variant {
     bool pipelined = false;
     // detectInto() with one DetectResult kept across frames (its memory reused).
     bool into = false;
+    // Each frame's result compared and released before the next frame (as an engine that
+    // consumes its result and drops it); otherwise every frame's result is kept until the
+    // frames are done, and each frame's result memory is new to the process.
+    bool drop = false;
     // > 0: untimed busy host work of this many ms before each timed frame (an engine's other
     // work per frame): with `pipelined`, the GPU's part of a step then runs meanwhile and a
     // step shows the detection's cost on the engine's thread alone.

@@ -373,7 +373,8 @@ int main(int argc, char** argv) {
             // back to back: their rows are compared and written after the loop, so no
             // untimed host work lets the GPU catch up between pipelined steps (which would
             // hide the GPU's part of a step). `slack_ms` puts such work back on purpose: an
-            // engine's other work per frame.
+            // engine's other work per frame. `drop` compares and releases each frame's result
+            // before the next one (its memory goes back, as an engine's would).
             struct TimedFrame {
                 int shown;
                 DetectResult result;
@@ -410,7 +411,9 @@ int main(int argc, char** argv) {
                     break;
                 }
                 const int shown = v.pipelined ? f - 1 : f;  // the frame this result belongs to
-                if (shown >= 0) timed_frames.push_back({shown, std::move(*r), update_ms, total_ms});
+                if (shown >= 0 && v.drop) emit(shown, *r, update_ms, total_ms);  // then released
+                else if (shown >= 0)
+                    timed_frames.push_back({shown, std::move(*r), update_ms, total_ms});
             }
             if (v.pipelined && (*world)->pending()) (void)(*world)->collect();
             for (const TimedFrame& t : timed_frames) emit(t.shown, t.result, t.update_ms, t.total_ms);

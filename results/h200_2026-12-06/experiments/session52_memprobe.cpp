@@ -105,6 +105,23 @@ int main(int argc, char** argv) {
             std::sort(t.begin(), t.end());
             std::printf("%2zu MB, %d threads: last alive, then freed (huge %d): median %.2f ms, min %.2f, max %.2f\n", mb, threads, huge, t[t.size() / 2], t[0], t.back());
         }
+        // Every allocation kept (as the bench keeps every frame's result): the process grows.
+        for (int huge = 1; huge >= 0; --huge) {
+            std::vector<double> t;
+            std::vector<unsigned char*> kept;
+            for (int rep = 0; rep < 15; ++rep) {
+                auto a = Clock::now();
+                auto* p = static_cast<unsigned char*>(std::malloc(bytes));
+                if (huge) advise(p, bytes);
+                par(p, false);
+                std::memset(p, 0, bytes); asm volatile("" ::"r"(p) : "memory");
+                t.push_back(ms(a, Clock::now()));
+                kept.push_back(p);
+            }
+            for (auto* p : kept) std::free(p);
+            std::sort(t.begin(), t.end());
+            std::printf("%2zu MB, %d threads: every one kept (huge %d): median %.2f ms, min %.2f, max %.2f\n", mb, threads, huge, t[t.size() / 2], t[0], t.back());
+        }
         // The resize pass alone over warm memory.
         auto* p = static_cast<unsigned char*>(std::malloc(bytes)); std::memset(p, 1, bytes);
         std::vector<double> t;

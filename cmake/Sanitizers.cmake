@@ -31,8 +31,7 @@ if(VKCOLLIDE_SANITIZE)
     VKCOLLIDE_LSAN_SUPPRESSIONS="${PROJECT_SOURCE_DIR}/tools/sanitize/lsan.supp")
 endif()
 
-# Links the runtime above into every executable under `dir` (recursively).
-include(${CMAKE_CURRENT_LIST_DIR}/Targets.cmake)
+# Links the runtime above into every executable under `dir` (recursively; cmake/Targets.cmake).
 function(vkcollide_sanitize_executables dir)
   if(NOT VKCOLLIDE_SANITIZE)
     return()

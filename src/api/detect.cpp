@@ -159,18 +159,20 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
 // A result's first writes into new memory fault its pages in, and resize() zeroes them on
 // one thread: on the H100's host 7 ms for the 27 MB of 1.7M pairs and their responses,
 // against 0.3-0.4 into memory already in use. So before the wait, vectors the size of the
-// last result's (and an eighth more) are made ready while the GPU works; the narrow phase
-// then copies into them in parallel. Small results are left alone (the allocator hands
+// last result's (and an eighth more) are made ready while the GPU works, the two arrays'
+// one-thread passes side by side; the narrow phase then copies into them in parallel. Small results are left alone (the allocator hands
 // their memory back warm).
 void CollisionWorld::Impl::prepareResultMemory(const Run& run) {
     constexpr std::size_t kFromBytes = std::size_t{1} << 20;
-    const auto ready = [this]<typename T>(std::vector<T>& v, std::size_t last) {
+    const auto wanted = [](const auto& v, std::size_t last) -> std::size_t {
         const std::size_t n = last + last / 8;
-        if (n * sizeof(T) < kFromBytes || v.size() >= n) return;
-        narrow::resizeFresh(v, n, *executor);
+        return n * sizeof(v[0]) < kFromBytes ? v.size() : std::max(n, v.size());  // never shrunk here
     };
-    ready(ready_pairs, last_narrow_pairs);
-    if (run.settings.reliable.responses != ResponseSource::Cpu) ready(ready_responses, last_responses);  // computed on the GPU
+    const std::size_t pairs = wanted(ready_pairs, last_narrow_pairs);
+    // The responses are computed on the GPU: the narrow phase only copies them.
+    const std::size_t responses =
+        run.settings.reliable.responses != ResponseSource::Cpu ? wanted(ready_responses, last_responses) : ready_responses.size();
+    narrow::resizeFresh(ready_pairs, pairs, ready_responses, responses, *executor);
 }
 
 Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock, DetectResult* reuse) {

@@ -74,31 +74,75 @@ private:
     std::size_t size_ = 0, capacity_ = 0;
 };
 
-// Sizes `v` to n elements that the caller then overwrites: v.resize(n) within its capacity;
-// beyond it, a new array of value-initialised elements (the old contents are lost), in huge
-// pages where the kernel gives them (core/huge_pages.hpp), which the executor's threads touch
-// before resize()'s one-thread pass: a fresh vector's page faults, taken by one thread, cost
-// 13.6 ms for the 27 MB of 1.7M pairs on the H200's host (docs/api.md), more than the rest of
-// the host's work for them.
+// Sizing arrays to n elements that the caller then overwrites: v.resize(n) within the
+// capacity; beyond it, a new array of value-initialised elements (the old contents are lost),
+// in huge pages where the kernel gives them (core/huge_pages.hpp), which the executor's
+// threads touch before resize()'s one-thread pass: a fresh vector's page faults, taken by one
+// thread, cost 13.6 ms for the 27 MB of 1.7M pairs on the H200's host (docs/api.md), more
+// than the rest of the host's work for them.
+namespace fresh {
+
+inline constexpr std::size_t kTouchBytes = std::size_t{1} << 20;  // a task's share of the pages
+
+// One array on its way to n elements: `fresh` holds the new storage (no elements yet) where
+// the old capacity is too small.
+template <typename T>
+struct Plan {
+    static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
+    std::vector<T>& v;
+    std::size_t n;
+    std::vector<T> fresh{};
+
+    Plan(std::vector<T>& into, std::size_t count) : v(into), n(count) {
+        if (n <= v.capacity() || n * sizeof(T) < 2 * kTouchBytes) return;
+        fresh.reserve(n);
+        adviseHugePages(fresh.data(), bytes());
+    }
+    bool isNew() const { return fresh.capacity() > 0; }
+    // Allocated storage, no elements yet: raw bytes, written before resize() makes the elements.
+    unsigned char* data() { return reinterpret_cast<unsigned char*>(fresh.data()); }
+    std::size_t bytes() const { return isNew() ? n * sizeof(T) : 0; }
+    std::size_t pageTasks() const { return taskCount(bytes(), kTouchBytes); }
+    void touch(std::size_t task) { std::memset(data() + task * kTouchBytes, 0, std::min(kTouchBytes, bytes() - task * kTouchBytes)); }
+    void finish() {
+        if (!isNew()) {
+            v.resize(n);
+            return;
+        }
+        fresh.resize(n);
+        v.swap(fresh);
+    }
+};
+
+}  // namespace fresh
+
 template <typename T>
 void resizeFresh(std::vector<T>& v, std::size_t n, Executor& ex) {
-    static_assert(std::is_trivially_copyable_v<T> && std::is_trivially_destructible_v<T>);
-    constexpr std::size_t kTouchBytes = std::size_t{1} << 20;  // a task's share of the pages
-    if (n <= v.capacity() || n * sizeof(T) < 2 * kTouchBytes) {
-        v.resize(n);
+    fresh::Plan<T> plan(v, n);
+    ex.parallelFor(plan.pageTasks(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) plan.touch(k);
+    });
+    plan.finish();
+}
+
+// The same for two arrays at once (a result's pairs and responses): their new pages touched
+// in one parallel loop, then their two one-thread resize() passes side by side.
+template <typename A, typename B>
+void resizeFresh(std::vector<A>& a, std::size_t na, std::vector<B>& b, std::size_t nb, Executor& ex) {
+    fresh::Plan<A> pa(a, na);
+    fresh::Plan<B> pb(b, nb);
+    const std::size_t tasks_a = pa.pageTasks();
+    ex.parallelFor(tasks_a + pb.pageTasks(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) k < tasks_a ? pa.touch(k) : pb.touch(k - tasks_a);
+    });
+    if (!pa.isNew() || !pb.isNew()) {  // at most one long pass
+        pa.finish();
+        pb.finish();
         return;
     }
-    std::vector<T> fresh;
-    fresh.reserve(n);
-    // Allocated storage, no elements yet: raw bytes, written before resize() makes the elements.
-    auto* bytes = reinterpret_cast<unsigned char*>(fresh.data());
-    const std::size_t total = n * sizeof(T);
-    adviseHugePages(bytes, total);
-    ex.parallelFor(taskCount(total, kTouchBytes), 1, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k) std::memset(bytes + k * kTouchBytes, 0, std::min(kTouchBytes, total - k * kTouchBytes));
+    ex.parallelFor(2, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) k == 0 ? pa.finish() : pb.finish();
     });
-    fresh.resize(n);
-    v.swap(fresh);
 }
 
 // Below this many items the scan, the compaction and the sorts run on the calling thread.

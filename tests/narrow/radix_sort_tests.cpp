@@ -95,3 +95,43 @@ TEST_CASE("resizeFresh sizes a vector as resize() does, growing it through the e
         }
     }
 }
+
+// The two-array resizeFresh (a result's pairs and responses): each array as the one-array
+// form sizes it, whichever of them grows.
+TEST_CASE("resizeFresh sizes two vectors at once as resize() does, growing either or both", "[narrow]") {
+    struct Pair {
+        std::uint32_t a = 7, b = 0, c = 0, d = 0;
+    };
+    struct Response {
+        double x = 0.5, y = 0;
+        std::uint32_t id = 9;
+    };
+    const Pair old_pair{1, 2, 3, 4};
+    const Response old_response{1.0, 2.0, 3};
+    for (unsigned threads : {1u, 4u}) {
+        ThreadPool pool(threads);
+        std::vector<Pair> pairs(3, old_pair);
+        std::vector<Response> responses(5, old_response);
+        const std::size_t sizes[][2] = {{2, 4}, {300000, 3}, {300000, 200000}, {1000, 900000}, {700000, 900000}, {0, 0}};
+        for (const auto& size : sizes) {
+            INFO("sizes " << size[0] << ", " << size[1] << " on " << threads << " threads");
+            const std::size_t kept_pairs = size[0] > pairs.capacity() ? 0 : std::min(size[0], pairs.size());
+            const std::size_t kept_responses = size[1] > responses.capacity() ? 0 : std::min(size[1], responses.size());
+            vkcollide::narrow::resizeFresh(pairs, size[0], responses, size[1], pool);
+            REQUIRE(pairs.size() == size[0]);
+            REQUIRE(responses.size() == size[1]);
+            for (std::size_t i = 0; i < pairs.size(); ++i) {
+                const bool kept = i < kept_pairs;
+                REQUIRE(pairs[i].a == (kept ? old_pair.a : 7u));
+                REQUIRE(pairs[i].d == (kept ? old_pair.d : 0u));
+            }
+            for (std::size_t i = 0; i < responses.size(); ++i) {
+                const bool kept = i < kept_responses;
+                REQUIRE(responses[i].x == (kept ? old_response.x : 0.5));
+                REQUIRE(responses[i].id == (kept ? old_response.id : 9u));
+            }
+            std::fill(pairs.begin(), pairs.end(), old_pair);
+            std::fill(responses.begin(), responses.end(), old_response);
+        }
+    }
+}

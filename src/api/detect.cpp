@@ -160,8 +160,8 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
 // one thread: on the H100's host 7 ms for the 27 MB of 1.7M pairs and their responses,
 // against 0.3-0.4 into memory already in use. So before the wait, vectors the size of the
 // last result's (and an eighth more) are made ready while the GPU works, the two arrays'
-// one-thread passes side by side; the narrow phase then copies into them in parallel. Small results are left alone (the allocator hands
-// their memory back warm).
+// one-thread passes side by side; the narrow phase then copies into them in parallel. Small
+// results are left alone (the allocator hands their memory back warm).
 void CollisionWorld::Impl::prepareResultMemory(const Run& run) {
     constexpr std::size_t kFromBytes = std::size_t{1} << 20;
     const auto wanted = [](const auto& v, std::size_t last) -> std::size_t {

@@ -69,18 +69,17 @@ void GridTuner::report(const Scene& scene, int step, double gpu_ms) {
         held_fresh_ = false;
         return;
     }
+    held_ms_ = gpu_ms;  // before the bracket closes: settle() keeps it
+    held_fresh_ = true;
     if (trial_ms_ > 0) {
         const double before = trial_before_ms_, after = gpu_ms;
         if (std::fabs(after - before) <= kSteady * std::min(before, after)) {
             ratio(trial_step_) = trial_ms_ / (0.5 * (before + after));
         } else if (++unsteady_ >= kMaxUnsteady) {
-            held_ms_ = gpu_ms;
             settle();  // the clocks keep moving: keep this grid, walk again later
         }
         trial_ms_ = 0;
     }
-    held_ms_ = gpu_ms;
-    held_fresh_ = true;
     if (walking_) return;
     ++since_settled_;
     if (gpu_ms > settled_ms_ * (1 + kDrift) || since_settled_ >= reprobeAfter()) {

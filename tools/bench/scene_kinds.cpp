@@ -1,7 +1,7 @@
 // Bench scene kinds, part 1: a cloth folded over a hinge through itself, a draped cloth with
 // a flap folded through itself, a bar bent and twisted into itself, README's ball pushed
-// through a cloth, and mixed engine/host meshes. Each kind has a tuning scene and a held-out one that differs in kind or
-// parameters (other shapes, scales, orientations, motions).
+// through a cloth, and mixed engine/host meshes. Each kind has a tuning scene and a held-out
+// one that differs in kind or parameters (other shapes, scales, orientations, motions).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -77,9 +77,7 @@ std::vector<SceneSpec> foldScenes(double scale) {
              if (!cloth) return cloth.error();
              BenchObject c = object(std::move(*cloth), "cloth");
              c.open = true;
-             std::vector<BenchObject> out;
-             out.push_back(std::move(c));
-             return out;
+             return std::vector<BenchObject>{std::move(c)};
          }},
         {"cloth-fold-720K", Motion::Rigid, SceneSet::HeldOut, 1,
          "held-out: as the exact-on-GPU issue's folded cloth, one open cloth (" + count(2ull * n_b * n_b) +
@@ -91,9 +89,7 @@ std::vector<SceneSpec> foldScenes(double scale) {
              for (int k : {0, 1, 2, 4, 5, 6, 8, 9, 10}) t[k] *= 2.0f;
              BenchObject c = object(std::move(*cloth), "cloth", t);
              c.open = true;
-             std::vector<BenchObject> out;
-             out.push_back(std::move(c));
-             return out;
+             return std::vector<BenchObject>{std::move(c)};
          }},
     };
 }

@@ -364,8 +364,7 @@ private:
 
 }  // namespace
 
-TEST_CASE("an engine deforms two meshes on its own device, double-buffers and synchronises with timelines: every frame's contacts",
-          "[api][gpu][engine]") {
+TEST_CASE("an engine double-buffers two deforming meshes on its device: timelines order every frame's contacts", "[api][gpu][engine]") {
     test::ValidatedContext validated;
     auto a = uvSphere(1.0f, 24, 12), b = uvSphere(0.6f, 20, 10);
     REQUIRE(a);

@@ -64,7 +64,7 @@ struct DeviceProximityHeader {
     std::uint32_t triangle_pairs = 0, distances = 0, neighbours = 0, in_band = 0;
 };
 inline constexpr std::uint32_t kDeviceProximityOverflow = 1;    // needed > capacity (collect() grew it and ran again)
-inline constexpr std::uint32_t kDeviceProximityIncomplete = 2;  // the cell stage ran again: count 0 until collect() repeats it
+inline constexpr std::uint32_t kDeviceProximityIncomplete = 2;  // the cell stage runs again or on: count 0 until collect() repeats it
 struct DeviceProximity {
     VkBuffer pairs = VK_NULL_HANDLE;
     VkDeviceAddress pairs_address = 0;

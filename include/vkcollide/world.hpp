@@ -566,9 +566,11 @@ struct ExcludedObject {
 // from COMPUTE_SHADER / SHADER_WRITE to your stage and access; detect() and collect(): the
 // work is finished (on another queue, order after the world's work as for submit()).
 // Before collect() returns, check the header: kDevicePairsIncomplete means this GPU run must
-// be repeated (a reliable-method buffer overflowed, DetectStats::cells.runs > 1, or an
-// engine mesh failed the GPU input check) and count is 0; collect() repeats it, after which
-// the buffers hold the final pairs (as DetectResult::pairs) for reads ordered after collect().
+// be repeated or finished (a reliable-method buffer overflowed, DetectStats::cells.runs > 1;
+// an engine mesh failed the GPU input check; or the sweep or the pair pass goes on in later
+// submissions, cells.sweep_chunks or pair_chunks > 1) and count is 0; collect() does it,
+// after which the buffers hold the final pairs (as DetectResult::pairs) for reads ordered
+// after collect().
 //
 // Lifetime: each of the world's two detection slots (kMaxInFlight) has its own buffers
 // (DevicePairs::slot). A detection's pairs stay there until the GPU work of the next

@@ -305,8 +305,9 @@ struct CellsParams {
 // DevicePairsHeader.flags (vkcollide::kDevicePairs* in world.hpp, the same values):
 VKC_CONST kDevicePairsOverflow = 1u;    // needed > capacity: the first `capacity` pairs written
 VKC_CONST kDevicePairsLoopLimit = 4u;   // a bucket needs more loop iterations than CellsParams.loop_guard: failed
-VKC_CONST kDevicePairsIncomplete = 2u;  // the run must be repeated (a buffer overflowed, a mesh
-                                        // failed the GPU check): count 0; collect() repeats it
+// kDevicePairsIncomplete: the run must be repeated or finished (a buffer overflowed, a mesh
+// failed the GPU check, sweep or pair chunks are left: runComplete): count 0; collect() does it.
+VKC_CONST kDevicePairsIncomplete = 2u;
 
 // The public layout (vkcollide::DevicePairsHeader, TrianglePair).
 struct DevicePairsHeader {

@@ -57,9 +57,9 @@ void main() {
     CellsParams P = CellsParamsRef(D.cells).p;
     if (pc.step == 0u) {
         if (gl_LocalInvocationIndex != 0u) return;
-        CellsHeader ch = cellsHeader(P).h;
-        // A run whose pair pass still has chunks to go is incomplete like a failed one.
-        bool failed = ch.flags != 0u || uint64_t(ch.pairs_done) < min(ch.candidates, uint64_t(P.candidate_capacity));
+        // A run whose sweep or pair pass still has chunks to go is incomplete like a failed
+        // one (a sweep chunk that found no candidate yet included).
+        bool failed = !runComplete(P);
         if (D.fault_header != 0ul) {
             Header f = HeaderRef(D.fault_header).h;
             failed = failed || f.bad_index_count != 0u || f.bad_vertex_count != 0u;

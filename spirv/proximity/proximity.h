@@ -19,7 +19,7 @@ VKC_CONST kProximityInBand = 1u;  // the computed distance is within its error b
 
 // ProximityHeader.flags
 VKC_CONST kProximityOverflow = 1u;    // needed > capacity: the records past the capacity were not written
-VKC_CONST kProximityIncomplete = 2u;  // the cell stage's run failed (an overflow, bad input): count 0
+VKC_CONST kProximityIncomplete = 2u;  // the cell stage's run failed or has chunks left (runComplete): count 0
 VKC_CONST kProximityLoopLimit = 4u;   // a bucket needs more loop iterations than CellsParams.loop_guard: failed
 
 // Owned primitives of a triangle (ProximityParams.owned, one byte per global triangle):

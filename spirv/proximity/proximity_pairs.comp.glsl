@@ -170,7 +170,7 @@ void main() {
     if (pc.step == 1u) {
         ProximityHeaderRef H = qheader(Q);
         H.h.capacity = Q.capacity;
-        if (cellsHeader(P).h.flags != 0u) {
+        if (!runComplete(P)) {  // failed, or chunks left: the candidates are not all decided
             H.h.flags = kProximityIncomplete;
             H.h.count = 0u;
         } else {

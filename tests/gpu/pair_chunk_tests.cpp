@@ -5,15 +5,18 @@
 // pass, and the sweep's counts unchanged.
 #include <catch2/catch.hpp>
 
+#include <chrono>
 #include <cstring>
 #include <memory>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "broad/broad_phase.hpp"
 #include "broad/cells/reliable_method.hpp"
 #include "mesh/mesh_upload.hpp"
 #include "proximity/ownership.hpp"
+#include "support/device_copy.hpp"
 #include "support/gpu_fixture.hpp"
 #include "vkcollide/scene.hpp"
 
@@ -22,8 +25,8 @@ using namespace vkcollide::passes;
 
 namespace {
 
-HostMesh sphereAt(Float3 t, float radius) {
-    auto made = uvSphere(radius, 24, 12);
+HostMesh sphereAt(Float3 t, float radius, std::uint32_t slices = 24, std::uint32_t stacks = 12) {
+    auto made = uvSphere(radius, slices, stacks);
     REQUIRE(made);
     HostMesh m = std::move(*made);
     REQUIRE(transformMesh(m, Transform3x4{1, 0, 0, t.x, 0, 1, 0, t.y, 0, 0, 1, t.z}));
@@ -185,6 +188,99 @@ TEST_CASE("reliable: the sweep in chunks, or with repeats checked only in deep c
         CHECK(plain.cells.repeats < whole.cells.repeats);
         CHECK(plain.cells.candidates > whole.cells.candidates);
         CHECK(plain.cells.candidates + plain.cells.repeats == whole.cells.candidates + whole.cells.repeats);
+    }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+namespace {
+
+// Device pairs' and proximity's headers as an engine reads them at the signal of a run's
+// first submission: submitted, finished (polled: collect() has not run the chunks after it),
+// then copied as test::copyToHost copies.
+struct FirstHeaders {
+    gpu::DevicePairsHeader pairs;
+    DeviceProximityHeader proximity;
+};
+
+FirstHeaders firstSubmission(vk::Device& device, BroadPhase& bp, std::span<const GpuMesh> meshes, const BroadPhaseSettings& s,
+                             const DeviceProximity& proximity) {
+    REQUIRE(bp.submit(meshes, s, 1));
+    for (;;) {
+        auto done = bp.poll();
+        REQUIRE(done);
+        if (*done == vk::Completion::Done) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    const auto view = bp.devicePairs();
+    REQUIRE(view);
+    const test::BufferRead reads[2] = {{view->header, sizeof(gpu::DevicePairsHeader)}, {proximity.header, sizeof(DeviceProximityHeader)}};
+    const auto bytes = test::copyToHost(device, reads);
+    FirstHeaders h{};
+    std::memcpy(&h.pairs, bytes[0].data(), sizeof h.pairs);
+    std::memcpy(&h.proximity, bytes[1].data(), sizeof h.proximity);
+    return h;
+}
+
+}  // namespace
+
+// world.hpp, "Device pairs": an engine reads the pairs at the world's signal, which is the
+// end of the run's first submission; where the sweep or the pair pass goes on in later
+// submissions, what it reads there must say Incomplete (count 0), never a part of the pairs
+// as complete. Here the first sweep chunks hold only a far sphere's cells (it collides with
+// nothing, and two of them on opposite corners put one first whichever way the projection
+// turns), so they found no candidate at all: the case the device pairs once took for done.
+TEST_CASE(
+    "reliable: a run whose sweep or pair pass goes on in later submissions leaves its device pairs and proximity incomplete at the first",
+    "[gpu][cells][proximity]") {
+    test::ValidatedContext ctx;
+    REQUIRE(ctx.device().shader_float64);
+    const auto up = upload(ctx.device(),
+                           {sphereAt({-6.0f, -6.0f, 0.0f}, 1.0f, 64, 32), sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f),
+                            sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), sphereAt({6.0f, 6.0f, 0.0f}, 1.0f, 64, 32)},
+                           std::size_t(-1));
+    auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
+    REQUIRE(bp);
+    BroadPhaseSettings s = exactWithProximity(40, 0.03);
+    s.sort_on_gpu = false;
+    s.device_pairs = true;
+    s.host_pairs = false;  // the engine's case: nothing read back but the header
+    s.sweep_work = ~0u;
+    s.pair_chunk = ~0u;
+    auto whole = (*bp)->run(up->up.meshes, s);  // the buffers grow to the scene: one run from now on
+    REQUIRE(whole);
+    whole = (*bp)->run(up->up.meshes, s);
+    REQUIRE(whole);
+    REQUIRE(whole->device_header);
+    const std::uint32_t pairs = whole->device_header->count;
+    REQUIRE(pairs > 50);
+    REQUIRE(whole->device_header->flags == 0);
+    REQUIRE(whole->cells.sweep_chunks == 1);
+    const DeviceProximity proximity = whole->proximity_device;
+    const std::size_t records = whole->proximity.size();
+    REQUIRE(records > 50);
+
+    struct Split {
+        const char* what;
+        std::uint32_t sweep_work, pair_chunk;
+    };
+    for (const Split& split : {Split{"the sweep in chunks", 1u, ~0u}, Split{"the pair pass in chunks", ~0u, 157u}}) {
+        INFO(split.what);
+        s.sweep_work = split.sweep_work;
+        s.pair_chunk = split.pair_chunk;
+        const FirstHeaders first = firstSubmission(ctx.device(), **bp, up->up.meshes, s, proximity);
+        CHECK(first.pairs.flags == kDevicePairsIncomplete);
+        CHECK(first.pairs.count == 0);
+        CHECK(first.proximity.flags == kDeviceProximityIncomplete);
+        CHECK(first.proximity.count == 0);
+        auto r = (*bp)->collect();  // the later chunks, then the sort and proximity once more
+        INFO((r ? std::string() : r.error().message()));
+        REQUIRE(r);
+        CHECK((r->cells.sweep_chunks > 1 || r->cells.pair_chunks > 1));
+        REQUIRE(r->device_header);
+        CHECK(r->device_header->flags == 0);
+        CHECK(r->device_header->count == pairs);
+        CHECK(r->proximity.size() == records);
+        CHECK(r->proximity_device.header == proximity.header);  // the buffers read above
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

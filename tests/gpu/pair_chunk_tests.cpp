@@ -117,6 +117,10 @@ TEST_CASE("reliable: the pair pass in chunks gives the sorted pairs and proximit
     auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
     REQUIRE(bp);
     BroadPhaseSettings s = exactWithProximity(48, 0.02);
+    // One chunk of each, whatever the machine's load (the automatic sizes split a run that
+    // would take over ~200 ms: a loaded runner under the sanitizers).
+    s.pair_chunk = ~0u;
+    s.sweep_work = ~0u;
     (void)run(**bp, up->up.meshes, s);  // the buffers grow to the scene: one run from now on
     const Outputs whole = run(**bp, up->up.meshes, s);
     REQUIRE(whole.pairs.size() > 50);
@@ -151,6 +155,7 @@ TEST_CASE("reliable: the sweep in chunks, or with repeats checked only in deep c
     REQUIRE(bp);
     BroadPhaseSettings s = exactWithProximity(40, 0.01);
     s.sweep_work = ~0u;  // one chunk
+    s.pair_chunk = ~0u;  // and one pair pass, whatever the load
     (void)run(**bp, up->up.meshes, s);  // the buffers grow to the scene: one run from now on
     const Outputs whole = run(**bp, up->up.meshes, s);
     REQUIRE(whole.pairs.size() > 50);

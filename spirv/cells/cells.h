@@ -340,7 +340,11 @@ struct DevicePairsParams {
     uint capacity;
     uint max_groups_x;
     uint response_capacity;  // with device responses: the run's triangles; else 0 (the header says it)
-    uint spare;
+    // 1: the pairs go to the host only (its sorted result): `pairs` holds a uvec2 per pair,
+    // its two global triangle ids (8 bytes, vkcollide::CandidatePair), half the DevicePair's
+    // bytes to copy over the bus; the host names the objects. 0: DevicePair records (the
+    // engine's).
+    uint packed;
 };
 // Buckets up to this size are sorted by insertion, larger ones by heap sort (in place).
 VKC_CONST kDevicePairsInsertionSort = 16u;

@@ -7,14 +7,16 @@
 // the order of (a, b). The order comes from the data alone, never from atomics: the
 // atomics only place a pair in its lower id's bucket, and each bucket is then sorted.
 // Steps (Push.step), each after a barrier:
-//   0  one invocation: the header (capacity, flags: Incomplete when the run failed or a
-//      mesh failed the GPU input check) and the indirect dispatch over the survivors;
+//   0  one invocation: the header (capacity, flags: Incomplete when the run failed, has
+//      chunks left or a mesh failed the GPU input check) and the indirect dispatch over
+//      the survivors;
 //   1  per survivor: counts[a] += 1;
 //   2-4  exclusive scan of counts over triangles (Push.level 0: into offsets, counts reset
 //      to 0 as the scatter's cursor; level 1: into out_offsets, the total is `needed`);
 //   5  per survivor: partners[offsets[a] + cursor] = b;
 //   6  per triangle: its bucket sorted by b, repeats dropped; counts[a] = distinct partners;
-//   7  per triangle: its pairs written at out_offsets[a] (those below the capacity).
+//   7  per triangle: its pairs written at out_offsets[a] (those below the capacity), as
+//      DevicePair records or, for the host alone (DevicePairsParams.packed), as (a, b).
 // Passes 1 and 5 are proportional to the survivors, the others to the triangles.
 #include "cells_common.glsl.inc"
 #include "common/workgroup.glsl.inc"
@@ -108,13 +110,18 @@ void main() {
     // Step 7: the lower triangle's pairs, in order, where they fit.
     uint out_first = UintsRef(D.out_offsets).v[id];
     if (out_first >= D.capacity) return;
+    uint last = min(n, D.capacity - out_first);
+    if (D.packed != 0u) {  // global ids for the host's result
+        Uvec2sRef packed = Uvec2sRef(D.pairs);
+        for (uint j = 0u; j < last; ++j) packed.v[out_first + j] = uvec2(id, partners.v[base + j]);
+        return;
+    }
     CellsTrianglesRef tris = CellsTrianglesRef(P.triangles);
     ObjectsRef objects = ObjectsRef(P.objects);
     UintsRef ids = UintsRef(D.object_ids);
     uint oa = tris.t[id].key & kCellsKeyObject;
     uint ida = ids.v[oa], ta = id - objects.o[oa].triangle_base;
     DevicePairsRef out_pairs = DevicePairsRef(D.pairs);
-    uint last = min(n, D.capacity - out_first);
     for (uint j = 0u; j < last; ++j) {
         uint b = partners.v[base + j];
         uint ob = tris.t[b].key & kCellsKeyObject;

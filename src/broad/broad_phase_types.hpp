@@ -224,10 +224,11 @@ struct BroadPhaseResult {
     std::span<const CandidatePair> pairs;
     std::span<const GpuTriangle> gpu_triangles;
     CellStageStats cells;                    // the cell stage's counters (has_pairs)
-    // BroadPhaseSettings::sort_on_gpu where it ran: the pairs final and in order, objects as
-    // run indices (host-visible memory, valid until the next run); `pairs` is then empty.
+    // BroadPhaseSettings::sort_on_gpu where it ran: the pairs final, as global triangle ids
+    // (the run's objects in order; a < b) in ascending order, which is DetectResult::pairs'
+    // (host-visible memory, valid until the next run); `pairs` is then empty.
     bool has_sorted_pairs = false;
-    std::span<const TrianglePair> sorted_pairs;
+    std::span<const CandidatePair> sorted_pairs;
     // BroadPhaseSettings::responses_on_gpu where it ran: every pair's triangles' responses, in
     // order (objects as run indices; host-visible memory, valid until the next run).
     bool has_sorted_responses = false;

@@ -9,6 +9,7 @@
 #include "narrow/guarded_executor.hpp"
 #include "narrow/pair_keys.hpp"
 #include "narrow/responses.hpp"
+#include "narrow/slots.hpp"
 #include "narrow/workspace.hpp"
 
 namespace vkcollide::narrow {
@@ -26,7 +27,7 @@ void copyFresh(std::span<const T> from, std::vector<T>& to, Executor& ex) {
     });
 }
 
-Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span<const TriangleResponse> gpu_responses,
+Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::span<const TriangleResponse> gpu_responses,
                                  const TriangleSource& source, const NarrowOptions& options, Executor& ex, NarrowWorkspace::Impl& ws,
                                  std::vector<TrianglePair>& pair_memory, std::vector<TriangleResponse>& response_memory) {
     StageClock clock;
@@ -38,56 +39,60 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
     // The GPU's responses are every pair's: used where no pair is left out.
     const bool ready = !gpu_responses.empty() && kept == found;
     const std::uint32_t total = source.totalTriangles();
-    const std::uint32_t objects = source.objectCount();
     if (const unsigned wake = threadsToWake(kept, ex.threadCount())) ex.prepare(wake);
 
-    // Checks, global ids, and a mark on each end's triangle (relaxed byte stores: every
-    // writer writes 1). Over every pair, kept or not: the slots are the distinct triangles
-    // of all the pairs found, as the pair path counts them (NarrowStats::candidates).
+    // Checks, each end's object, and a mark on each end's triangle (relaxed byte stores:
+    // every writer writes 1). Over every pair, kept or not: the slots are the distinct
+    // triangles of all the pairs found, as the pair path counts them (NarrowStats::candidates).
     Buffer<std::uint8_t>& marks = ws.in_pair;  // not needed when the responses are ready
     marks.resize(ready ? 0 : total);
     std::fill(marks.begin(), marks.end(), std::uint8_t{0});
     Buffer<std::uint64_t>& ends = ws.ends;  // (global a << 32) | global b, per pair (for the slots)
     ends.resize(ready ? 0 : found);
-    // A pair's (a, b) as global ids; kOutOfRange when a triangle is out of range. Every
-    // valid key is above 0 (a < b), so 0 stands for "no pair before".
-    constexpr std::uint64_t kOutOfRange = ~std::uint64_t{0};
-    const auto globalKey = [&](const TrianglePair& p) {
-        if (p.object_a >= objects || p.object_b >= objects || p.triangle_a >= source.triangleCount(p.object_a) ||
-            p.triangle_b >= source.triangleCount(p.object_b))
-            return kOutOfRange;
-        return keyOf(source.triangleBase(p.object_a) + p.triangle_a, source.triangleBase(p.object_b) + p.triangle_b);
-    };
     std::atomic<std::size_t> bad{found};  // the lowest pair found out of range or out of order
-    // The kept pairs are copied into the result as they are checked: one read of the
-    // GPU's list instead of two (reused memory, or fresh pages touched in parallel first).
+    // The kept pairs are named (object, triangle) as they are checked, into the result: one
+    // read of the GPU's list (reused memory, or fresh pages touched in parallel first).
     resizeFresh(result.pairs, kept, ex);
     TrianglePair* const out = result.pairs.data();
     ex.parallelFor(found, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
         // A chunk's first pair is compared with the pair before it too (chunks may start
-        // anywhere: an engine's executor chooses them); one out of range is its own chunk's.
-        std::uint64_t previous = begin > 0 ? globalKey(sorted[begin - 1]) : 0;
-        if (previous == kOutOfRange) previous = 0;
+        // anywhere: an engine's executor chooses them). A bad pair before it is its own
+        // chunk's, and lower: it is the one named.
+        std::uint64_t previous = begin > 0 ? keyOf(sorted[begin - 1].a, sorted[begin - 1].b) : 0;
+        // Each end's object and its ids [first, next): a's only grows, b's mostly repeats.
+        struct Named {
+            std::uint32_t object = 0, first = 0, next = 0;  // empty: the first id looks it up
+        } na, nb;
+        const auto name = [&source](Named& n, std::uint32_t id) {
+            if (id - n.first < n.next - n.first) return;  // within [first, next)
+            n.object = objectOf(source, id);
+            n.first = source.triangleBase(n.object);
+            n.next = source.triangleBase(n.object + 1);
+        };
         for (std::size_t k = begin; k < end; ++k) {
-            const std::uint64_t key = globalKey(sorted[k]);
-            if (key == kOutOfRange || (key >> 32) >= (key & 0xffffffffu) || key <= previous) {
+            const CandidatePair p = sorted[k];
+            const std::uint64_t key = keyOf(p.a, p.b);
+            if (p.b >= total || p.a >= p.b || key <= previous) {
                 std::size_t expected = bad.load();
                 while (k < expected && !bad.compare_exchange_weak(expected, k)) {}
                 return;
             }
             previous = key;
-            if (k < kept) out[k] = sorted[k];
+            if (k < kept) {
+                name(na, p.a);
+                name(nb, p.b);
+                out[k] = TrianglePair{na.object, p.a - na.first, nb.object, p.b - nb.first};
+            }
             if (ready) continue;
             ends[k] = key;
-            std::atomic_ref<std::uint8_t>(marks[key >> 32]).store(1, std::memory_order_relaxed);
-            std::atomic_ref<std::uint8_t>(marks[key & 0xffffffffu]).store(1, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(marks[p.a]).store(1, std::memory_order_relaxed);
+            std::atomic_ref<std::uint8_t>(marks[p.b]).store(1, std::memory_order_relaxed);
         }
     });
     if (const std::size_t k = bad.load(); k < found) {
-        const TrianglePair& p = sorted[k];
-        return Error(ErrorCode::VulkanError, "sorted pairs: pair " + std::to_string(k) + " (object " + std::to_string(p.object_a) +
-                                                 " triangle " + std::to_string(p.triangle_a) + ", object " + std::to_string(p.object_b) +
-                                                 " triangle " + std::to_string(p.triangle_b) +
+        const CandidatePair p = sorted[k];
+        return Error(ErrorCode::VulkanError, "sorted pairs: pair " + std::to_string(k) + " (triangles " + std::to_string(p.a) + " and " +
+                                                 std::to_string(p.b) + " of " + std::to_string(total) +
                                                  ") is out of range or out of order (internal error)");
     }
     clock.lap(result.timings.validate_ms);
@@ -160,7 +165,7 @@ Result<NarrowResult> sortedPhase(std::span<const TrianglePair> sorted, std::span
 
 }  // namespace
 
-Result<NarrowResult> runSortedPairs(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
+Result<NarrowResult> runSortedPairs(std::span<const CandidatePair> sorted, const TriangleSource& source, const NarrowOptions& options,
                                     Executor& executor, NarrowWorkspace& workspace, std::vector<TrianglePair> pair_memory,
                                     std::vector<TriangleResponse> response_memory, std::span<const TriangleResponse> gpu_responses) {
     return guardedCall("runSortedPairs", executor, options.max_box_pairs, [&](Executor& guarded) {

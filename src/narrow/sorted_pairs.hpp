@@ -13,14 +13,16 @@
 
 namespace vkcollide::narrow {
 
-// `sorted`: objects as indices into `source`, triangles within the object, strictly
-// ascending. A pair that is not (out of range, out of order) fails naming it.
+// `sorted`: each pair as its two global triangle ids of `source` (a < b), strictly ascending
+// as (a, b), which is DetectResult::pairs' order: the GPU's 8-byte form (half the bytes of a
+// TrianglePair to copy over the bus); the result names (object, triangle) as it copies them.
+// A pair that is not (out of range, out of order) fails naming it.
 // `pair_memory`, `response_memory`: vectors whose memory the result's pairs and responses
 // reuse (their content is overwritten). `gpu_responses`: the responses of all of `sorted`
 // computed on the GPU (DetectSettings::reliable.responses), in order: where no pair is left
 // out (max_pairs) they are the result's as they are, so no slot is numbered, no vertex
 // gathered and nothing computed (NarrowTimings: validate_ms, then the copies as sort_ms).
-Result<NarrowResult> runSortedPairs(std::span<const TrianglePair> sorted, const TriangleSource& source, const NarrowOptions& options,
+Result<NarrowResult> runSortedPairs(std::span<const CandidatePair> sorted, const TriangleSource& source, const NarrowOptions& options,
                                     Executor& executor, NarrowWorkspace& workspace, std::vector<TrianglePair> pair_memory = {},
                                     std::vector<TriangleResponse> response_memory = {},
                                     std::span<const TriangleResponse> gpu_responses = {});

@@ -44,7 +44,7 @@ HostMesh pileAt(Float3 t, std::uint32_t copies) {
 }
 
 struct Outputs {
-    std::vector<TrianglePair> pairs;
+    std::vector<std::uint64_t> pairs;  // the sorted pairs' global ids, a << 32 | b
     std::vector<std::uint8_t> proximity;  // the records' bytes
     std::size_t records = 0;
     std::uint32_t pair_passes = 0, sweeps = 0;
@@ -58,7 +58,7 @@ Outputs run(BroadPhase& bp, std::span<const GpuMesh> meshes, BroadPhaseSettings 
     REQUIRE(r->has_sorted_pairs);
     REQUIRE(r->has_proximity);
     Outputs out;
-    out.pairs.assign(r->sorted_pairs.begin(), r->sorted_pairs.end());
+    for (const CandidatePair& p : r->sorted_pairs) out.pairs.push_back(std::uint64_t{p.a} << 32 | p.b);
     out.records = r->proximity.size();
     out.proximity.resize(r->proximity.size_bytes());
     if (!out.proximity.empty()) std::memcpy(out.proximity.data(), r->proximity.data(), out.proximity.size());

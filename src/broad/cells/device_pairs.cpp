@@ -73,8 +73,8 @@ Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const st
         rowSize(buf_.args, 12, MemoryKind::DeviceLocal),
         rowSize(buf_.header, sizeof(gpu::DevicePairsHeader), MemoryKind::DeviceLocal),
         rowSize(buf_.header_rb, header_to_host ? sizeof(gpu::DevicePairsHeader) : 0, MemoryKind::Readback),
-        rowSize(buf_.pairs, VkDeviceSize(capacity_) * sizeof(gpu::DevicePair), MemoryKind::DeviceLocal),
-        rowSize(buf_.host_pairs, for_host ? VkDeviceSize(capacity_) * sizeof(gpu::DevicePair) : 0, MemoryKind::Readback),
+        rowSize(buf_.pairs, VkDeviceSize(capacity_) * pairBytes(), MemoryKind::DeviceLocal),
+        rowSize(buf_.host_pairs, for_host ? VkDeviceSize(capacity_) * pairBytes() : 0, MemoryKind::Readback),
     };
     if (auto ok = table_->reserve(*device_, plan,
                                   "device pairs: capacity " + std::to_string(capacity_) + " with " + std::to_string(triangles_) + " triangles");
@@ -101,6 +101,7 @@ Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const st
     p.capacity = capacity_;
     p.max_groups_x = max_groups_x_;
     p.response_capacity = response_capacity;
+    p.packed = for_host ? 1u : 0u;
     std::memcpy(buf_.params->mapped(), &p, sizeof p);
     buf_.params->flush();
     return {};
@@ -182,13 +183,14 @@ void DevicePairStage::recordCopies(graph::Graph& g, const Resources& sorted) {
         const auto host_pairs = importRow(g, b.host_pairs, true);
         // A copy by the transfer engine: the shaders' stores to host memory cross the bus
         // 15-20x slower on an H200 (1.7M pairs: 11.7 ms from a coalesced shader, 0.65 ms
-        // copied). The whole capacity is copied, so the host's capacity follows the pairs
-        // found (ReliableMethod: 1.25x the last count; an overflow sorts once more).
+        // copied; about 52 GB/s). The whole capacity is copied, so the host's capacity follows the
+        // pairs found (ReliableMethod: 1.25x the last count; an overflow sorts once more),
+        // and each pair is its two global ids (DevicePairsParams.packed): 8 bytes, not 16.
         addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback)
             .use(pairs, graph::Use::TransferSrc)
             .use(host_pairs, graph::Use::TransferDst)
-            .record([from = b.pairs->handle(), to = b.host_pairs->handle(), bytes = VkDeviceSize(capacity_) * sizeof(gpu::DevicePair)](
-                        graph::PassContext& pc) {
+            .record([from = b.pairs->handle(), to = b.host_pairs->handle(),
+                     bytes = VkDeviceSize(capacity_) * pairBytes()](graph::PassContext& pc) {
                 VkBufferCopy copy{0, 0, bytes};
                 pc.copyBuffer(from, to, copy);
             });
@@ -204,11 +206,11 @@ void DevicePairStage::recordCopies(graph::Graph& g, const Resources& sorted) {
         });
 }
 
-std::span<const TrianglePair> DevicePairStage::hostPairs(std::uint32_t count) const {
+std::span<const CandidatePair> DevicePairStage::hostPairs(std::uint32_t count) const {
     if (!for_host_ || count == 0) return {};
     count = std::min(count, capacity_);
-    buf_.host_pairs->invalidate(0, VkDeviceSize(count) * sizeof(TrianglePair));
-    return {static_cast<const TrianglePair*>(buf_.host_pairs->mapped()), count};
+    buf_.host_pairs->invalidate(0, VkDeviceSize(count) * sizeof(CandidatePair));
+    return {static_cast<const CandidatePair*>(buf_.host_pairs->mapped()), count};
 }
 
 gpu::DevicePairsHeader DevicePairStage::header() const {

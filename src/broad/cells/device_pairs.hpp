@@ -74,8 +74,9 @@ public:
     std::uint32_t triangleCount() const noexcept { return triangles_; }
     // After the GPU work of a run prepared with header_to_host: its header.
     gpu::DevicePairsHeader header() const;
-    // After the GPU work of a run prepared for_host: the first `count` pairs.
-    std::span<const TrianglePair> hostPairs(std::uint32_t count) const;
+    // After the GPU work of a run prepared for_host: the first `count` pairs, as their global
+    // triangle ids (a < b, ascending; the host names the objects: narrow::runSortedPairs).
+    std::span<const CandidatePair> hostPairs(std::uint32_t count) const;
 
 private:
     DevicePairStage(vk::Device& device, BufferTable& table) : device_(&device), table_(&table) {}
@@ -88,6 +89,8 @@ private:
     } buf_;
     std::uint32_t triangles_ = 0, capacity_ = 0, max_groups_x_ = 0;
     bool header_to_host_ = false, for_host_ = false;
+    // A pair's bytes in `pairs` and its host copy: for the host alone, its two global ids.
+    VkDeviceSize pairBytes() const noexcept { return for_host_ ? sizeof(CandidatePair) : sizeof(gpu::DevicePair); }
 };
 
 }  // namespace vkcollide::passes

@@ -11,6 +11,8 @@
 #   build-carry/trace/  vkcollide_bench at 962764c + session53_prepare_trace.patch (the old tuner)
 #   build-carry/new/    vkcollide_bench at 84dd7c3 + the same patch (the bracketed tuner)
 #   build-carry/p1/     vkcollide_bench at 637f007 (the two arrays side by side)
+#   build-carry/s54/    vkcollide_bench at b06bbed (session 54: the host's sorted pairs cross
+#                       the bus at 8 bytes a pair; compare pairs-to-host with p1's, (a''))
 #   (stripped, `tar -cJf build-pack/bins.tar.xz build-carry`)
 #   build-pack/cgal.tar.xz  data/cgal less ChineseDragon, mushroom and the spheres, as
 #                       cgal-run/ (`tar -C data -cJf build-pack/cgal.tar.xz cgal-run`): the
@@ -28,8 +30,9 @@ grep -E "MemFree|AnonHugePages|HugePages_Free" /proc/meminfo >> $W/gpu.txt
 O=build-carry/trace/vkcollide_bench; X=build-carry/new/vkcollide_bench
 B="--data data/cgal-run --cache /tmp/bc --set all --threads 16"
 timeout 60 $X $B --frames 6 --warmup-ms 1000 --variants device-only --scenes spheres-60x10K-dense > $W/0-warm.txt 2>&1; log warm $?
-# (a') the result's two arrays side by side (p1) against one after the other (new), alternated
-for r in 1; do for b in new p1; do
+# (a') the result's two arrays side by side (p1) against one after the other (new), alternated;
+# (a'') with s54 (8-byte host pairs: pairs-to-host, detect(), detectInto()) in the same loop
+for r in 1; do for b in new p1 s54; do
   timeout 60 build-carry/$b/vkcollide_bench $B --frames 6 --warmup-ms 1000 --variants default,dropped,into \
     --scenes stack-mating,stack-touching,wall-touching --csv $W/$r-$b.csv --profile $W/$r-$b\_profile.csv > $W/$r-$b.txt 2>&1; log $r-$b $?
 done; done

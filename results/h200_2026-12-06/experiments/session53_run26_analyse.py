@@ -76,3 +76,13 @@ if os.path.exists(f):
         worse += sb > sa * 1.015
         print(f'  {k[0]:8s} {k[1]:24s} span {sa:7.3f} -> {sb:7.3f} ({100*(sb/sa-1):+5.1f} %) total {ta:7.3f} -> {tb_:7.3f} res {a[-1][2]}->{",".join(sorted(set(x[2] for x in b)))} recall/prec {rec} {notes.get(k[1],"")}')
     print('  worse by > 1.5 %:', worse)
+print("== (0) builds: new (84dd7c3), p1 (637f007: two arrays side by side), s54 (b06bbed: 8-byte host pairs)")
+for b in ['new', 'p1', 's54']:
+    for pf in glob.glob(os.path.join(d, f'1-{b}_profile.csv*')):
+        agg = collections.defaultdict(lambda: collections.defaultdict(list))
+        for (sc, var, fr), kv in prof(pf).items():
+            if fr < 1: continue
+            for k in [('gpu', 'pairs-to-host'), ('gpu', 'pairs-sort'), ('detect', 'gpu-span'), ('detect', 'prepare'), ('host', 'total'), ('narrow', 'validate')]:
+                if k in kv: agg[(sc, var)][k[1]].append(kv[k])
+        for k, v in sorted(agg.items()):
+            print(f'  {b:4s}', k, ' '.join(f'{n}={st.mean(x):.3f}' for n, x in v.items()))

@@ -267,6 +267,8 @@ struct LimitSettings {
     // with ErrorCode::Timeout naming this setting; the GPU work already submitted goes on
     // and the world is WorldState::Busy until it ends (CollisionWorld::state()). The
     // world's destructor waits for that work without a limit (docs/stability.md, "Time").
+    // Not counted: the pipelines a context's first detections with a method or stage create
+    // before they submit (0.5 s on lavapipe; detect once at load time).
     std::uint32_t timeout_ms = 60000;
     // How the thread that collects a detection waits for its GPU work: it sleeps until
     // shortly (0.15 ms) before the work's expected end (the submission time plus the last

@@ -47,8 +47,6 @@ Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::spa
     Buffer<std::uint8_t>& marks = ws.in_pair;  // not needed when the responses are ready
     marks.resize(ready ? 0 : total);
     std::fill(marks.begin(), marks.end(), std::uint8_t{0});
-    Buffer<std::uint64_t>& ends = ws.ends;  // (global a << 32) | global b, per pair (for the slots)
-    ends.resize(ready ? 0 : found);
     std::atomic<std::size_t> bad{found};  // the lowest pair found out of range or out of order
     // The kept pairs are named (object, triangle) as they are checked, into the result: one
     // read of the GPU's list (reused memory, or fresh pages touched in parallel first).
@@ -84,7 +82,6 @@ Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::spa
                 out[k] = TrianglePair{na.object, p.a - na.first, nb.object, p.b - nb.first};
             }
             if (ready) continue;
-            ends[k] = key;
             std::atomic_ref<std::uint8_t>(marks[p.a]).store(1, std::memory_order_relaxed);
             std::atomic_ref<std::uint8_t>(marks[p.b]).store(1, std::memory_order_relaxed);
         }
@@ -136,12 +133,12 @@ Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::spa
                 }
         }
     });
-    // The colliding pairs as slot keys: slots follow the ids, so they stay sorted.
+    // The colliding pairs as slot keys (from the GPU's global ids, read again): slots follow
+    // the ids, so they stay sorted.
     Buffer<std::uint64_t>& colliding = ws.colliding;
     colliding.resize(kept);
     ex.parallelFor(kept, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t k = begin; k < end; ++k)
-            colliding[k] = keyOf(slot_of[ends[k] >> 32], slot_of[ends[k] & 0xffffffffu]);
+        for (std::size_t k = begin; k < end; ++k) colliding[k] = keyOf(slot_of[sorted[k].a], slot_of[sorted[k].b]);
     });
     NarrowStats& st = result.stats;
     st.input_pairs = found;

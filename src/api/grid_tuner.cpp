@@ -50,11 +50,10 @@ int GridTuner::next(const Scene& scene) {
     // The step left behind was slower than the new one: only the far side is compared.
     const int left = current_;
     current_ = best;
-    ratio_ = {};
+    startWalk();  // a walk from the new step, its held time still to come
     ratio(left) = 1 / best_ratio;
     held_ms_ = 0;
     held_fresh_ = false;
-    unsteady_ = 0;
     return current_;
 }
 

@@ -267,8 +267,9 @@ struct LimitSettings {
     // with ErrorCode::Timeout naming this setting; the GPU work already submitted goes on
     // and the world is WorldState::Busy until it ends (CollisionWorld::state()). The
     // world's destructor waits for that work without a limit (docs/stability.md, "Time").
-    // Not counted: the pipelines a context's first detections with a method or stage create
-    // before they submit (0.5 s on lavapipe; detect once at load time).
+    // Not counted: the pipelines a context's first detections with a method or stage compile
+    // before they submit (0.57 s on lavapipe); CollisionWorld::preparePipelines compiles
+    // them at load time.
     std::uint32_t timeout_ms = 60000;
     // How the thread that collects a detection waits for its GPU work: it sleeps until
     // shortly (0.15 ms) before the work's expected end (the submission time plus the last
@@ -677,6 +678,12 @@ struct WorldOptions {
     Executor* executor = nullptr;
 };
 
+// What CollisionWorld::preparePipelines() did.
+struct PreparedPipelines {
+    std::uint32_t created = 0;  // pipelines the call compiled: 0 where every one was made before
+    double ms = 0;  // the call's time on the host
+};
+
 class VKCOLLIDE_API CollisionWorld {
 public:
     // The world keeps the Context's device alive: it may outlive the Context, and every
@@ -760,6 +767,20 @@ public:
 
     // The settings detect() would use now, with every automatic field filled in.
     [[nodiscard]] Result<DetectSettings> resolveSettings(const DetectSettings& settings = {}) const;
+
+    // Makes now every pipeline a detection with `settings` may need, so that no later
+    // detection on any world of this Context compiles one and its timeout
+    // (LimitSettings::timeout_ms) bounds all of its time. Without it a Context's first
+    // detection with a method or stage compiles that one's pipelines inside detect() (0.5 s
+    // for the reliable method on lavapipe), and so does a later detection whose scene picks
+    // another form (the reliable method's exact pass, the peeling method's compute
+    // sampling). Covers the method and what the settings turn on or Auto may turn on later:
+    // the exact decision on the GPU, device pairs and responses, the pair sort on the GPU,
+    // proximity, object contacts. The pipelines live as long as the Context. Call it at load
+    // time; it submits nothing, so it may be called with a detection in flight. Errors:
+    // detect()'s for bad settings or a bad scene; the driver's (VulkanError), naming the
+    // program.
+    [[nodiscard]] Result<PreparedPipelines> preparePipelines(const DetectSettings& settings = {});
 
     // Records, submits, waits and runs the narrow phase. Errors: InvalidArgument for bad
     // settings, OutOfMemory when the resolution or scene needs more device memory than the

@@ -65,6 +65,14 @@ Result<void> CollisionWorld::Impl::prepareProximity(Run& run) {
     return {};
 }
 
+// Auto sorts on the host where the device ends long loops (llvmpipe): a triangle with
+// thousands of partners would fail the GPU's sort there.
+bool CollisionWorld::Impl::sortsOnGpu(const DetectSettings& s, std::size_t last_pairs) const {
+    const bool auto_gpu_sort = last_pairs >= kGpuPairSortFrom && device().info.loop_iteration_limit == 0;
+    return s.reliable.pair_sort == PairSort::Gpu || s.reliable.responses == ResponseSource::Gpu ||
+           (s.reliable.pair_sort == PairSort::Auto && auto_gpu_sort);
+}
+
 Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
     run.start = Clock::now();
     std::vector<passes::GpuMesh>& meshes = run.meshes;  // kept: no allocation per detection
@@ -96,11 +104,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
     d.broad.host_pairs = s.reliable.host_pairs;
     d.broad.device_responses = s.reliable.device_responses;
-    // Auto sorts on the host where the device ends long loops (llvmpipe): a triangle with
-    // thousands of partners would fail the GPU's sort there.
-    const bool auto_gpu_sort = last_narrow_pairs >= kGpuPairSortFrom && device().info.loop_iteration_limit == 0;
-    d.broad.sort_on_gpu = !filter_on_host_only && (s.reliable.pair_sort == PairSort::Gpu || s.reliable.responses == ResponseSource::Gpu ||
-                                                   (s.reliable.pair_sort == PairSort::Auto && auto_gpu_sort));
+    d.broad.sort_on_gpu = !filter_on_host_only && sortsOnGpu(s, last_narrow_pairs);
     d.broad.responses_on_gpu = d.broad.sort_on_gpu && s.reliable.responses != ResponseSource::Cpu;
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     run.sorts_on_gpu = s.method == DetectMethod::Reliable && d.broad.sort_on_gpu && s.reliable.host_pairs;

@@ -13,6 +13,7 @@ list(APPEND VKCOLLIDE_GPU_SOURCES
   ${CMAKE_CURRENT_LIST_DIR}/engine_sync.cpp
   ${CMAKE_CURRENT_LIST_DIR}/in_flight.cpp  # the detections in flight: two slots
   ${CMAKE_CURRENT_LIST_DIR}/object_registry.cpp  # the objects, ids, the narrow phase's source, the pair mask
+  ${CMAKE_CURRENT_LIST_DIR}/prepare_pipelines.cpp  # CollisionWorld::preparePipelines: pipelines made before a detection needs them
   ${CMAKE_CURRENT_LIST_DIR}/validation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/world.cpp
 )

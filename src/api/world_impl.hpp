@@ -79,6 +79,9 @@ struct CollisionWorld::Impl {
     // Starts a detection in `run` (target: the engine's semaphores or command buffer).
     Result<void> start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target);
     Result<void> prepareProximity(Run& run);
+    // Whether the reliable method's host pairs are sorted on the GPU with `s` after a
+    // detection that found `last_pairs` pairs (PairSort::Auto), the pair filter aside.
+    bool sortsOnGpu(const DetectSettings& s, std::size_t last_pairs) const;
     // restart_clock: the timeout counts from now (submit() and record(): the caller chose
     // when to collect); detect() counts from its start.
     // `reuse`: the caller's result (detectInto, collectInto), whose pairs', responses' and

@@ -85,6 +85,9 @@ public:
     std::uint64_t memoryBytes() const noexcept { return table_.bytes() + executor_.memoryBytes(); }
     // The method's device pairs (BroadPhaseSettings::device_pairs) of the run started last.
     std::optional<DevicePairsView> devicePairs() const { return method_->devicePairs(); }
+    // Makes now every pipeline the method may record with `settings` (its forms and the
+    // stages it would create on first use; BroadPhaseMethod::preparePipelines).
+    [[nodiscard]] Result<void> preparePipelines(const BroadPhaseSettings& settings) { return method_->preparePipelines(settings); }
     // The follow-up stage `factory` makes (broad/follow_up.hpp), created on first use with
     // its rows in this broad phase's table and kept while the broad phase lives.
     [[nodiscard]] Result<FollowUpStage*> followUp(FollowUpFactory factory);

@@ -77,6 +77,14 @@ public:
     // Per run, after the table's buffers are reserved and before the frame is uploaded:
     // per-run choices, the method's own resources, and its fields of `io_frame`.
     [[nodiscard]] virtual Result<void> prepare(const BroadPhaseSettings& settings, const RunShape& shape, gpu::Frame& io_frame) = 0;
+    // Makes now every pipeline a run with `settings` may record, whatever its scene and the
+    // runs before it: the forms and the stages it would make on first use
+    // (CollisionWorld::preparePipelines). A method that makes them all in its factory
+    // has nothing to do.
+    [[nodiscard]] virtual Result<void> preparePipelines(const BroadPhaseSettings& settings) {
+        (void)settings;
+        return {};
+    }
     // Before Phase::Main is recorded: `measured` is the header of run()'s measuring
     // submission and `measured_passes` its passes' GPU times, or null and empty in
     // submit(), where `predicted_layers` is the caller's prediction of the depth (what the

@@ -26,16 +26,14 @@ double secondsBusy(const CollisionWorld& world) {
     return secondsSince(t0);
 }
 
-// A context's first detections with a method create its pipelines before they submit: host
-// work no timeout can stop (docs/stability.md, "Time"; 0.5 s on lavapipe for the reliable
-// method, more on a loaded runner). Made here first, with `s` on a small scene of the same
-// kind in a world of its own, so that the timed detections measure what the timeout bounds.
-void makePipelines(ValidatedContext& ctx, const PathologicalCase& small, DetectSettings s) {
-    s.limits.timeout_ms = 60000;
-    auto world = worldOf(ctx, small);
-    auto r = world->detect(s);
-    INFO((r ? std::string() : r.error().message()));
-    REQUIRE(r);
+// A context's first detections with a method compile its pipelines before they submit:
+// host work no timeout can stop (docs/stability.md, "Time"; 0.5 s on lavapipe for the
+// reliable method, more on a loaded runner). Made here first, as an engine would at load
+// time, so that the timed detections measure what the timeout bounds.
+void preparePipelines(CollisionWorld& world, const DetectSettings& s) {
+    auto prepared = world.preparePipelines(s);
+    INFO((prepared ? std::string() : prepared.error().message()));
+    REQUIRE(prepared);
 }
 
 // Detects with `s`, which must fail with Timeout within its timeout plus a second; then how
@@ -73,11 +71,9 @@ TEST_CASE("reliable: one timeout covers every rerun of a detection, and the worl
     ValidatedContext ctx;
     auto c = crossingTriangles(600);
     REQUIRE(c);
-    auto small = crossingTriangles(40);
-    REQUIRE(small);
-    makePipelines(ctx, *small, {});
     auto world = worldOf(ctx, *c);
     DetectSettings s;  // the reliable method
+    preparePipelines(*world, s);
     s.limits.timeout_ms = 300;
     const auto t0 = Clock::now();
     auto r = world->detect(s);
@@ -148,10 +144,8 @@ TEST_CASE("reliable: after a timeout the GPU finishes one chunk of the sweep, no
     DetectSettings s;  // the reliable method
     s.resolution = 250;
     s.direction = std::array<float, 3>{1.0f, 2.0f, 3.0f};
-    auto small = crossingTriangles(40);
-    REQUIRE(small);
-    makePipelines(ctx, *small, s);
     auto world = worldOf(ctx, *c);
+    preparePipelines(*world, s);
     s.limits.timeout_ms = 3000;
     const double busy = busyAfterTimeout(*world, s);
     INFO("the world was Busy for " << busy << " s after the timeout");
@@ -176,12 +170,10 @@ TEST_CASE("peeling: after a timeout the GPU finishes one chunk of peeling steps,
     REQUIRE(c);
     DetectSettings deep = c->settings;  // the paper's method
     deep.resolution = 128;
-    auto small = slabsOverContact(2);
-    REQUIRE(small);
-    makePipelines(ctx, *small, deep);
     deep.limits.timeout_ms = 1000;
     {
         auto world = worldOf(ctx, *c);
+        preparePipelines(*world, deep);
         const double busy = busyAfterTimeout(*world, deep);
         INFO("the world was Busy for " << busy << " s after the timeout");
         CHECK(busy < 1.0);

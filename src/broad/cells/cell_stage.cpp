@@ -137,6 +137,37 @@ Result<void> CellStage::ensurePipelines() {
     return {};
 }
 
+void CellStage::chooseForms(const CellStageSettings& settings) {
+    use_exact_ = settings.exact && filterSupported();
+    using Checks = CellStageSettings::RepeatChecks;
+    Checks checks = settings.repeat_checks;
+    if (checks == Checks::Auto)
+        checks = device_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Checks::FromShallow : Checks::DeepChunksOnly;
+    plain_sweep_ = checks == Checks::DeepChunksOnly;
+    using FillSlots = CellStageSettings::FillSlots;
+    fill_per_cell_ = settings.fill_slots == FillSlots::Auto ? device_->properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU
+                                                            : settings.fill_slots == FillSlots::PerCell;
+    loop_guard_ = settings.loop_guard;
+}
+
+// The exact decision's two forms follow the last run's candidates (ExactPass::Auto), so
+// both are made unless the settings fix one; the rest follows the device and the settings.
+Result<void> CellStage::makeEveryPipeline(const CellStageSettings& settings) {
+    chooseForms(settings);
+    const bool kept = exact_queued_;
+    for (const bool queued : {false, true}) {
+        if (settings.exact_pass != ExactPass::Auto && queued != (settings.exact_pass == ExactPass::Queued)) continue;
+        exact_queued_ = queued;
+        auto ok = ensurePipelines();
+        if (!ok) {
+            exact_queued_ = kept;
+            return ok;
+        }
+    }
+    exact_queued_ = kept;
+    return {};
+}
+
 Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSettings& settings) {
     if (in.objects.empty()) return Error(ErrorCode::InvalidArgument, "cell stage: no objects");
     if (in.resolution < 1 || in.resolution > gpu::kCellsMaxResolution)
@@ -186,7 +217,7 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     resolution_ = in.resolution;
     projection_address_ = in.projection_address;
     use_filter_ = settings.filter && filterSupported();
-    use_exact_ = settings.exact && filterSupported();
+    chooseForms(settings);
     if (settings.exact_pass != ExactPass::Auto) exact_queued_ = settings.exact_pass == ExactPass::Queued;
     else if (last_canonical_ != ~std::uint64_t{0} && last_canonical_ >= kExactQueuedFrom) exact_queued_ = true;
     else if (last_canonical_ < kExactInlineBelow) exact_queued_ = false;
@@ -206,15 +237,6 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     runs_ = 0;
     bad_input_.reset();
     pair_chunk_ = settings.pair_chunk ? settings.pair_chunk : automaticPairChunk();
-    using Checks = CellStageSettings::RepeatChecks;
-    Checks checks = settings.repeat_checks;
-    if (checks == Checks::Auto)
-        checks = device_->properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? Checks::FromShallow : Checks::DeepChunksOnly;
-    plain_sweep_ = checks == Checks::DeepChunksOnly;
-    using FillSlots = CellStageSettings::FillSlots;
-    fill_per_cell_ = settings.fill_slots == FillSlots::Auto ? device_->properties.deviceType != VK_PHYSICAL_DEVICE_TYPE_CPU
-                                                            : settings.fill_slots == FillSlots::PerCell;
-    loop_guard_ = settings.loop_guard;
     sweep_dedupe_ = plain_sweep_ ? gpu::kCellsDeepShared + 1 : gpu::kCellsSweepDedupe;
     if (auto ok = ensurePipelines(); !ok) return ok.error();
     auto_sweep_work_ = settings.sweep_work == 0;

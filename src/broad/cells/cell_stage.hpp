@@ -222,6 +222,11 @@ public:
     // InvalidArgument (resolution, projection, object layout), OutOfMemory (a buffer
     // larger than the device allows).
     [[nodiscard]] Result<void> prepare(const CellStageInput& input, const CellStageSettings& settings = {});
+    // Makes now every pipeline a run with `settings` may record on this device, whichever
+    // form the scene or the last run picks (the pair pass with the exact decision inside and
+    // the filter with the exact pass), instead of at the run that first needs it
+    // (CollisionWorld::preparePipelines). Errors: the driver's, by the program's name.
+    [[nodiscard]] Result<void> makeEveryPipeline(const CellStageSettings& settings);
     // Adds the stage's passes (names start with "cells-") to `graph`, after prepare().
     // `projection` is the buffer an earlier pass wrote the projection into, when the
     // input gave projection_address. The header readback is the last pass. Returns the
@@ -338,6 +343,9 @@ private:
     Slot deepSweepSlot();
     Slot pairSlot();
     Result<void> ensurePipelines();
+    // The forms a run with `settings` takes on this device whatever its scene (the sweep's
+    // repeat checks, the fill's slots, the loop guard), and whether it decides exactly.
+    void chooseForms(const CellStageSettings& settings);
     using Row = TableRow;  // rows of table_
     void addRows();
     std::unique_ptr<BufferTable> own_table_;  // without a caller's table

@@ -12,6 +12,52 @@ Result<std::unique_ptr<BroadPhaseMethod>> ReliableMethod::create(vk::Device& dev
     return std::unique_ptr<BroadPhaseMethod>(new ReliableMethod(device, table, core, std::move(*cells)));
 }
 
+namespace {
+
+// The cell stage's settings of a run with `s` (the proximity pad aside: prepareStage).
+CellStageSettings cellSettings(const BroadPhaseSettings& s) {
+    CellStageSettings settings;
+    settings.max_candidate_pairs = s.max_candidate_pairs;
+    settings.exact = s.exact_on_gpu;
+    settings.exact_pass = s.exact_pass;
+    settings.pair_chunk = s.pair_chunk;
+    settings.sweep_work = s.sweep_work;
+    settings.repeat_checks = static_cast<CellStageSettings::RepeatChecks>(std::min(s.repeat_checks, 2u));
+    return settings;
+}
+
+}  // namespace
+
+// Every stage a run with `s` may create on first use, created now, and every form of the
+// cell stage's passes: their pipelines stay with the device's Context (vk::Pipeline).
+Result<void> ReliableMethod::preparePipelines(const BroadPhaseSettings& s) {
+    if (auto ok = cells_->makeEveryPipeline(cellSettings(s)); !ok) return ok;
+    // Sorting on the GPU needs the exact decision there (prepareStage).
+    const bool sorts = s.exact_on_gpu && cells_->filterSupported() && (s.device_pairs || s.sort_on_gpu);
+    return makeStages(s.proximity_distance > 0, sorts, sorts && (s.device_responses || s.responses_on_gpu));
+}
+
+// The stages after the cell stage that a run uses, each created on first use (its buffers:
+// rows of the table).
+Result<void> ReliableMethod::makeStages(bool proximity, bool sorting, bool responding) {
+    if (proximity && !proximity_) {
+        auto made = proximity::ProximityStage::create(*device_, *table_);
+        if (!made) return made.error();
+        proximity_ = std::move(*made);
+    }
+    if (sorting && !device_pairs_) {
+        auto made = DevicePairStage::create(*device_, *table_);
+        if (!made) return made.error();
+        device_pairs_ = std::move(*made);
+    }
+    if (responding && !device_responses_) {
+        auto made = DeviceResponseStage::create(*device_, *table_);
+        if (!made) return made.error();
+        device_responses_ = std::move(*made);
+    }
+    return {};
+}
+
 // The stage's input from the run: the objects as uploaded, the projection the front's fit
 // writes (or the caller's region, uploaded there), per-object flags and the pair mask.
 Result<void> ReliableMethod::prepareStage(const RunView& run) {
@@ -36,13 +82,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     if (!any_self) in.self_collision.clear();  // keeps its capacity
     in.download = any_download ? std::span<const std::uint8_t>(download_) : std::span<const std::uint8_t>();
     in.pair_mask = run.settings.pair_mask ? std::span<const std::uint32_t>(run.settings.pair_mask->bits) : std::span<const std::uint32_t>();
-    CellStageSettings settings;
-    settings.max_candidate_pairs = run.settings.max_candidate_pairs;
-    settings.exact = run.settings.exact_on_gpu;
-    settings.exact_pass = run.settings.exact_pass;
-    settings.pair_chunk = run.settings.pair_chunk;
-    settings.sweep_work = run.settings.sweep_work;
-    settings.repeat_checks = static_cast<CellStageSettings::RepeatChecks>(std::min(run.settings.repeat_checks, 2u));
+    CellStageSettings settings = cellSettings(run.settings);
     // Device pairs: only where the exact decision runs on the GPU (the API refuses the rest).
     device_pairs_on_ = run.settings.device_pairs && run.settings.exact_on_gpu && cells_->filterSupported();
     pairs_on_device_only_ = device_pairs_on_ && !run.settings.host_pairs;
@@ -62,26 +102,11 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
         settings.proximity_pad = pad;
     }
     if (auto ok = cells_->prepare(in, settings); !ok) return ok;
-    if (proximity_on_) {
-        if (!proximity_) {
-            auto made = proximity::ProximityStage::create(*device_, *table_);  // its buffers: rows of the table
-            if (!made) return made.error();
-            proximity_ = std::move(*made);
-        }
+    if (auto ok = makeStages(proximity_on_, sorting(), responding()); !ok) return ok;
+    if (proximity_on_)
         if (auto ok = proximity_->prepare(*cells_, run.meshes, run.settings.proximity_distance, run.settings.proximity_capacity); !ok)
             return ok;
-    }
     if (!sorting()) return {};
-    if (!device_pairs_) {
-        auto made = DevicePairStage::create(*device_, *table_);  // its buffers: rows of the table
-        if (!made) return made.error();
-        device_pairs_ = std::move(*made);
-    }
-    if (responding() && !device_responses_) {
-        auto made = DeviceResponseStage::create(*device_, *table_);  // its buffers: rows of the table
-        if (!made) return made.error();
-        device_responses_ = std::move(*made);
-    }
     device_pairs_->retire();
     object_tags_.resize(n);
     // Objects as the API names them for the engine, as run indices for the host's result.

@@ -40,6 +40,7 @@ public:
 
     MethodTraits traits() const noexcept override { return {false, false, true}; }
     Result<void> prepare(const BroadPhaseSettings&, const RunShape&, gpu::Frame&) override { return {}; }
+    Result<void> preparePipelines(const BroadPhaseSettings& settings) override;
     // Nothing measured, nothing predicted: the stage sizes its buffers from the scene.
     Result<void> begin(const RunView& run, const gpu::Header*, std::span<const graph::PassTiming>, std::uint32_t) override {
         return prepareStage(run);
@@ -63,6 +64,7 @@ private:
     ReliableMethod(vk::Device& device, BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellStage> cells)
         : device_(&device), table_(&table), core_(core), cells_(std::move(cells)) {}
     Result<void> prepareStage(const RunView& run);
+    Result<void> makeStages(bool proximity, bool sorting, bool responding);
     // collect()'s steps, in order; each answers Again after asking for its passes.
     Result<Collected> collectCells(const RunView& run, BroadPhaseResult& io_result);
     Result<Collected> collectProximity(BroadPhaseResult& io_result);

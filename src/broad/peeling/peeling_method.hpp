@@ -42,6 +42,8 @@ public:
     static Buffers addRows(BufferTable& io_table);
 
     Result<void> prepare(const BroadPhaseSettings& settings, const RunShape& shape, gpu::Frame& io_frame) override;
+    // The compute sampler, which a run makes when it first samples in compute (Auto picks it per scene).
+    Result<void> preparePipelines(const BroadPhaseSettings& settings) override { return sampling_->makeComputeSampler(settings.backend); }
     void import(graph::Graph& g) override { sampling_->import(g); }
     Result<void> begin(const RunView& run, const gpu::Header* measured, std::span<const graph::PassTiming> measured_passes,
                        std::uint32_t predicted_layers) override;

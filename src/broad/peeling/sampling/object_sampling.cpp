@@ -53,16 +53,22 @@ Result<VkDeviceAddress> ObjectSampling::prepare(const BroadPhaseSettings& s, con
                                                             ": lower the resolution or sample in compute");
     }
     if (choice_.backend == SamplingBackend::Compute) {
-        if (!compute_) {
-            auto created = ComputeSampler::create(*device_, *table_);
-            if (!created) return created.error();
-            compute_ = std::move(*created);
-        }
+        if (auto ok = makeComputeSampler(SamplingBackend::Compute); !ok) return ok.error();
         active_ = compute_.get();
     } else {
         active_ = raster_.get();
     }
     return active_->prepare(s, shape);
+}
+
+Result<void> ObjectSampling::makeComputeSampler(SamplingBackend backend) {
+    // Compute on a device without it fails here, by name (ComputeSampler::create).
+    if (compute_ || backend == SamplingBackend::Raster || (backend == SamplingBackend::Auto && !computeSamplingSupported(*device_)))
+        return {};
+    auto created = ComputeSampler::create(*device_, *table_);
+    if (!created) return created.error();
+    compute_ = std::move(*created);
+    return {};
 }
 
 void ObjectSampling::import(graph::Graph& g) { active_->import(g); }

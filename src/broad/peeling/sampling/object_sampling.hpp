@@ -35,6 +35,9 @@ public:
     // the address for gpu::Frame::compute_sampling (0 for raster). Precondition: no
     // thin-triangle coverage with an explicit Compute backend (Auto then picks raster).
     [[nodiscard]] Result<VkDeviceAddress> prepare(const BroadPhaseSettings& settings, const RunShape& shape);
+    // Creates the compute sampler now where a run with `backend` may sample in compute on
+    // this device (Auto where it can, Compute), instead of at the first run that does.
+    [[nodiscard]] Result<void> makeComputeSampler(SamplingBackend backend);
     // The active backend's own buffers into a graph about to be recorded.
     void import(graph::Graph& g);
     // Measuring part: depth-complexity counts, then "reduce-max" (header's depth complexity

@@ -63,6 +63,16 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
          [](S& s) { s.reliable.device_pairs = true, s.reliable.host_pairs = false, s.reliable.device_responses = true; }},
         {"depth-sep", "modes", paper([](S& s) { s.peeling.depth_aware = true; })},  // peeling, depth-aware separation on
         {"paper-sep", "modes", paper([](S& s) { s.peeling.depth_aware = false; })},  // peeling, the paper's separation (the old default)
+        // The reliable method along a fixed direction instead of the automatic one (the axis most
+        // triangle area faces): the main diagonal, and a direction oblique to every axis.
+        {"dir-diagonal", "directions",
+         [](S& s) {
+             s.direction = std::array<float, 3>{1.0f, 1.0f, 1.0f};
+         }},
+        {"dir-oblique", "directions",
+         [](S& s) {
+             s.direction = std::array<float, 3>{0.31f, 0.52f, 0.8f};
+         }},
         // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".
         {"contacts", "contacts", [](S& s) { s.contacts.objects = true; }},
         {"contacts-256", "contacts", [](S& s) { s.contacts.objects = true, s.contacts.resolution = 256u; }},

@@ -16,6 +16,8 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
             more(s);
         };
     };
+    // A fixed direction (the reliable method's default is the automatic one).
+    const auto along = [](float x, float y, float z) { return [=](S& s) { s.direction = std::array<float, 3>{x, y, z}; }; };
     std::vector<Variant> v = {
         // name            group          what changes
         {"default", "default", [](S&) {}},
@@ -64,15 +66,11 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         {"depth-sep", "modes", paper([](S& s) { s.peeling.depth_aware = true; })},  // peeling, depth-aware separation on
         {"paper-sep", "modes", paper([](S& s) { s.peeling.depth_aware = false; })},  // peeling, the paper's separation (the old default)
         // The reliable method along a fixed direction instead of the automatic one (the axis most
-        // triangle area faces): the main diagonal, and a direction oblique to every axis.
-        {"dir-diagonal", "directions",
-         [](S& s) {
-             s.direction = std::array<float, 3>{1.0f, 1.0f, 1.0f};
-         }},
-        {"dir-oblique", "directions",
-         [](S& s) {
-             s.direction = std::array<float, 3>{0.31f, 0.52f, 0.8f};
-         }},
+        // triangle area faces): the main diagonal, a direction oblique to every axis, and one 20
+        // degrees off z (a flat scene still seen almost face-on) but oblique to the other axes.
+        {"dir-diagonal", "directions", along(1, 1, 1)},
+        {"dir-oblique", "directions", along(0.31f, 0.52f, 0.8f)},
+        {"dir-tilt", "directions", along(0.21f, 0.27f, 0.94f)},
         // Object-level contacts on (docs/contacts.md): their cost is the difference to "default".
         {"contacts", "contacts", [](S& s) { s.contacts.objects = true; }},
         {"contacts-256", "contacts", [](S& s) { s.contacts.objects = true, s.contacts.resolution = 256u; }},

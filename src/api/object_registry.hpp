@@ -55,13 +55,14 @@ struct ObjectRegistry {
         double volume6 = 0;
         // For the automatic settings: the typical edge length (object units; given for GPU
         // meshes) and, host meshes, the sum over triangles of area * n n^T (xx, yy, zz, xy,
-        // xz, yz; object space). A cache for host meshes: after their geometry changes
+        // xz, yz; object space) and the area facing each object axis (vertex_scans::Shape). A cache for host meshes: after their geometry changes
         // (shape_stale) they are measured by the next resolve() that needs them
         // (AutoSettings::measureShapes), not by addMesh; hence mutable. updateVertices
         // measures them on the way (in its own parallel loop) while the last resolve()
         // needed them.
         mutable float edge_length = 0;
         mutable std::array<double, 6> area_moment{};
+        mutable std::array<double, 3> axis_area{};
         mutable bool shape_stale = false;
         // Proximity: the vertices and edges each triangle owns (host meshes, computed by the
         // first detection that asks; the indices never change).

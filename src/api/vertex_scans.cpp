@@ -201,6 +201,7 @@ struct ShapeSampling {
 struct ShapePartial {
     double sum = 0;
     std::array<double, 6> moment{};
+    std::array<double, 3> axis_area{};
 };
 
 // The partial sums of sampled triangles [begin, end) of one mesh.
@@ -222,6 +223,8 @@ ShapePartial shapeRun(const ShapeMesh& mesh, const ShapeSampling& sampling, std:
         const double w = 0.5 / len;  // area * n n^T = N N^T / (2 |N|)
         p.moment[0] += w * c[0] * c[0], p.moment[1] += w * c[1] * c[1], p.moment[2] += w * c[2] * c[2];
         p.moment[3] += w * c[0] * c[1], p.moment[4] += w * c[0] * c[2], p.moment[5] += w * c[1] * c[2];
+        for (int a = 0; a < 3; ++a)
+            if (std::fabs(c[a]) >= kAxisFaceCos * len) p.axis_area[a] += 0.5 * len;
     }
     return p;
 }
@@ -233,10 +236,12 @@ Shape finishShape(const ShapeSampling& m, std::span<const ShapePartial> parts) {
     for (std::size_t r = m.first_run; r < m.first_run + m.runs(); ++r) {
         sum += parts[r].sum;
         for (int k = 0; k < 6; ++k) s.area_moment[k] += parts[r].moment[k];
+        for (int a = 0; a < 3; ++a) s.axis_area[a] += parts[r].axis_area[a];
     }
     // Scaled to the whole mesh: the moment is a sum over triangles.
     const double scale = m.sampled ? double(m.triangles) / double(m.sampled) : 0.0;
     for (double& v : s.area_moment) v *= scale;
+    for (double& v : s.axis_area) v *= scale;
     s.edge_length = m.sampled ? static_cast<float>(sum / double(3 * m.sampled)) : 0.0f;
     return s;
 }

@@ -53,7 +53,12 @@ inline constexpr std::size_t kMinChunkVertices = std::size_t{1} << 14;
 struct Shape {
     float edge_length = 0;
     std::array<double, 6> area_moment{};
+    // The area of the triangles whose normal lies within about 1 degree of the object's
+    // x, y or z axis (faces of an axis-aligned box; object space, scaled as the moment).
+    std::array<double, 3> axis_area{};
 };
+// A triangle faces axis a (Shape::axis_area) where |n . a| >= this: within 1.15 degrees.
+inline constexpr double kAxisFaceCos = 0.9998;
 Shape measureShape(Executor& executor, std::span<const Float3> positions, std::span<const std::uint32_t> indices);
 // Several meshes' shapes in one parallel loop (the executor's threads started once, not
 // once per mesh: a detection of deforming meshes measures every one of them); out[i] is

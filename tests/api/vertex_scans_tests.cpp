@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "api/vertex_scans.hpp"
+#include "vkcollide/scene.hpp"
 #include "vkcollide/thread_pool.hpp"
 
 using namespace vkcollide;
@@ -193,6 +194,7 @@ TEST_CASE("the shape measure is the same on every executor, and a plain loop's o
         grid(16, p, idx);  // 512 triangles (one run of kShapeChunk), all sampled
         double sum = 0;
         std::array<double, 6> m{};
+        std::array<double, 3> axis_area{};
         for (std::size_t t = 0; t < idx.size(); t += 3) {
             const Float3 q[3] = {p[idx[t]], p[idx[t + 1]], p[idx[t + 2]]};
             auto d = [](const Float3& a, const Float3& b) {
@@ -206,11 +208,14 @@ TEST_CASE("the shape measure is the same on every executor, and a plain loop's o
             const double w = 0.5 / std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
             m[0] += w * c[0] * c[0], m[1] += w * c[1] * c[1], m[2] += w * c[2] * c[2];
             m[3] += w * c[0] * c[1], m[4] += w * c[0] * c[2], m[5] += w * c[1] * c[2];
+            for (int a = 0; a < 3; ++a)
+                if (std::fabs(c[a]) >= vertex_scans::kAxisFaceCos * (0.5 / w)) axis_area[a] += 0.25 / w;
         }
         for (const auto& ex : pool) {
             const auto s = vertex_scans::measureShape(*ex, p, idx);
             CHECK(s.edge_length == static_cast<float>(sum / double(idx.size())));
             CHECK(s.area_moment == m);
+            CHECK(s.axis_area == axis_area);
         }
     }
     SECTION("large: sampled in runs, the same on every executor") {
@@ -239,6 +244,31 @@ TEST_CASE("the shape measure is the same on every executor, and a plain loop's o
     }
 }
 
+TEST_CASE("the area facing each axis: a box's faces, none of a sphere's, a turned box's by its own axes", "[api][host]") {
+    ThreadPool pool(2);
+    // A box of half extents (1, 2, 3): faces of area 4 x 6 (normal x), 2 x 6 (y), 2 x 4 (z).
+    auto b = box({1, 2, 3}, 4);
+    REQUIRE(b);
+    const auto s = vertex_scans::measureShape(pool, b->positions, b->indices);
+    CHECK(s.axis_area[0] == Approx(2 * 24.0));
+    CHECK(s.axis_area[1] == Approx(2 * 12.0));
+    CHECK(s.axis_area[2] == Approx(2 * 8.0));
+    // Turned by 30 degrees about z: only the z faces still face an axis.
+    HostMesh turned = *b;
+    const float c = std::cos(0.5236f), sn = std::sin(0.5236f);
+    for (Float3& v : turned.positions) v = {c * v.x - sn * v.y, sn * v.x + c * v.y, v.z};
+    const auto t = vertex_scans::measureShape(pool, turned.positions, turned.indices);
+    CHECK(t.axis_area[0] == 0);
+    CHECK(t.axis_area[1] == 0);
+    CHECK(t.axis_area[2] == Approx(2 * 8.0).epsilon(1e-5));
+    // A sphere's triangles face no axis to within a degree, but for a few at the poles.
+    auto sphere = icosphere(1.0f, 4);
+    REQUIRE(sphere);
+    const auto q = vertex_scans::measureShape(pool, sphere->positions, sphere->indices);
+    const double area = q.area_moment[0] + q.area_moment[1] + q.area_moment[2];
+    CHECK(q.axis_area[0] + q.axis_area[1] + q.axis_area[2] < 0.01 * area);
+}
+
 TEST_CASE("several shapes measured in one loop are each mesh's own measure, exactly", "[api][host]") {
     const auto pool = executors();
     // Sizes around the sampling limit and the run length, and a mesh without triangles
@@ -263,6 +293,7 @@ TEST_CASE("several shapes measured in one loop are each mesh's own measure, exac
             const auto alone = vertex_scans::measureShape(*ex, positions[i], indices[i]);
             CHECK(shapes[i].edge_length == alone.edge_length);
             CHECK(shapes[i].area_moment == alone.area_moment);
+            CHECK(shapes[i].axis_area == alone.axis_area);
         }
         CHECK(shapes[1].edge_length == 0.0f);
     }

@@ -193,8 +193,8 @@ struct ReliableSettings {
     // With an automatic resolution: whether the grid is chosen per scene from the
     // detections' own GPU times (GridTuning). On, the first detections of a scene try the
     // neighbouring grids (each as exact; some slower) and the world keeps the fastest; the
-    // settings note says which grid ran and why. Auto resolves to Off for now (the tuner is
-    // not yet measured on a GPU). A resolution given by the caller is never changed.
+    // settings note says which grid ran and why. Auto resolves to On on a GPU, to Off on a
+    // CPU implementation (lavapipe). A resolution given by the caller is never changed.
     GridTuning grid_tuning = GridTuning::Auto;
 
     // With the exact decision on the GPU (exact Auto or Gpu, a device with shaderFloat64):

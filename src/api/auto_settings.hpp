@@ -16,6 +16,9 @@
 
 namespace vkcollide {
 
+// What GridTuning::Auto means on `device`: On, but Off on a CPU implementation.
+GridTuning autoGridTuning(const vk::Device& device);
+
 struct AutoSettings {
     using Object = ObjectRegistry::Object;
 

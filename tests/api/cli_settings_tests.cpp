@@ -449,7 +449,7 @@ TEST_CASE("vkcollide detect: --exact-pass runs the exact decision inside the pai
     CHECK(run.err.find("--exact-pass belongs to the reliable method") != std::string::npos);
 }
 
-// --grid-tuning: auto resolves to off for now; on, the scene's second detection (what
+// --grid-tuning: auto resolves to off on lavapipe (on on a GPU); on, the scene's second detection (what
 // --frames 2 reports) tries the coarser grid, says so, and gives the same pairs.
 TEST_CASE("vkcollide detect: --grid-tuning chooses the grid per scene, same pairs", "[cli][gpu]") {
     TwoSpheres s(1.0f);

@@ -320,7 +320,8 @@ TEST_CASE("reliable: self-collision and automatic settings", "[api][gpu][reliabl
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-// The grid per scene (DetectSettings::reliable.grid_tuning): Auto is Off for now; On, a
+// The grid per scene (DetectSettings::reliable.grid_tuning): Auto is On on a GPU and Off on
+// a CPU implementation such as lavapipe (the device type, faked below); On, a
 // scene's first detections try the neighbouring grids, each giving the exact pairs, the
 // settings note says which grid ran, and a given resolution is kept.
 TEST_CASE("reliable: the grid tuned per scene tries neighbouring grids, every one exact", "[api][gpu][reliable]") {
@@ -333,6 +334,19 @@ TEST_CASE("reliable: the grid tuned per scene tries neighbouring grids, every on
     auto plain = world->resolveSettings();
     REQUIRE(plain);
     CHECK(plain->reliable.grid_tuning == GridTuning::Off);
+    {
+        // The same world on a device that says it is a GPU: Auto turns the tuner on.
+        VkPhysicalDeviceType& type = ctx.device().properties.deviceType;
+        const VkPhysicalDeviceType was = type;
+        type = VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU;
+        auto on_gpu = world->resolveSettings();
+        type = was;
+        REQUIRE(on_gpu);
+        CHECK(on_gpu->reliable.grid_tuning == GridTuning::On);
+        auto fixed_on_gpu = world->resolveSettings({.reliable = {.grid_tuning = GridTuning::Off}});
+        REQUIRE(fixed_on_gpu);
+        CHECK(fixed_on_gpu->reliable.grid_tuning == GridTuning::Off);
+    }
     const DetectSettings tuned{.reliable = {.grid_tuning = GridTuning::On}};
     std::set<std::uint32_t> resolutions;
     for (int k = 0; k < 8; ++k) {

@@ -185,7 +185,7 @@ const std::vector<Option>& options() {
                   show<kReliable, &ReliableSettings::responses>}),
         reliable({"--grid-tuning", "HOW", Section::Settings,
                   "with an automatic --resolution: on (the grid chosen per scene from the detections' GPU times), off (2 cells "
-                  "per typical edge) or auto (the library's choice: off until the tuner is measured on a GPU)",
+                  "per typical edge) or auto (the library's choice: on on a GPU, off on a CPU implementation such as lavapipe)",
                   "on: a scene's first detections try neighbouring grids, some slower; same pairs at every grid",
                   setting<kReliable, &ReliableSettings::grid_tuning>, "grid_tuning", "reliable.grid_tuning",
                   show<kReliable, &ReliableSettings::grid_tuning>}),

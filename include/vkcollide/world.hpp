@@ -685,7 +685,9 @@ struct WorldOptions {
 
 // What CollisionWorld::preparePipelines() did.
 struct PreparedPipelines {
-    std::uint32_t created = 0;  // pipelines the call compiled: 0 where every one was made before
+    // Pipelines the Context compiled during the call: 0 where every one was made before (one
+    // that another thread's world compiled meanwhile counts too).
+    std::uint32_t created = 0;
     double ms = 0;  // the call's time on the host
 };
 

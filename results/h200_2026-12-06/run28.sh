@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Device run 28 (session 55): the current figures at 5925d93 (the reliable method's axis
 # tilted where boxes' faces would be seen edge-on, GridTuning::Auto On on a GPU), every bench
-# scene: detect() (default), detectInto() (into) and the pairs left on the GPU (device-only).
+# scene: detect() (default) and detectInto() (into).
 # Run from the repository root with `.gl` and `build-pack` carried:
 #   build-carry/s57/vkcollide_bench  at 5925d93 (Release, stripped; `tar -cJf build-pack/bins.tar.xz build-carry`)
 #   build-pack/cgal.tar.xz           data/cgal-run (as for run 27)
@@ -16,7 +16,7 @@ N=build-carry/s57/vkcollide_bench
 B="--data data/cgal-run --cache /tmp/bc --set all --threads 16"
 timeout 60 $N $B --frames 6 --warmup-ms 1000 --variants device-only --scenes spheres-60x10K-dense > $W/0-warm.txt 2>&1; log warm $?
 # The tuner walks during each point's warm-up (600 ms of untimed detections), as in an
-# engine's first frames; the 10 timed frames are what it settled on.
-timeout 400 $N $B --frames 10 --warmup-ms 600 --variants default,into,device-only --csv $W/all.csv --profile $W/all_profile.csv > $W/all.txt 2>&1; log all $?
+# engine's first frames; the 8 timed frames are what it settled on.
+timeout 200 $N $B --frames 8 --warmup-ms 600 --variants default,into --csv $W/all.csv --profile $W/all_profile.csv > $W/all.txt 2>&1; log all $?
 gzip -f $W/*_profile.csv; tar -C /tmp -czf $OUT/run28.tgz run28
 cat $W/log.txt; grep -hE "^(tuning|held)" $W/all.txt

@@ -1,4 +1,4 @@
-# Reads the output folder of session53_run26.sh (python3 session53_run26_analyse.py /tmp/run26): the
+# Reads the output folder of run27.sh (once session53_run26.sh; python3 session53_run26_analyse.py DIR): the
 # prepare trace per array, the grid invocations beside the sampled clocks, the tuner against
 # the fixed grid per scene.
 import sys, csv, gzip, glob, os, re, collections, statistics as st, datetime

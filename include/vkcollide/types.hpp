@@ -102,13 +102,16 @@ enum class ResponseSource {
 // The pairs are the same at any grid (the method is exact at every resolution): only the time
 // changes.
 enum class GridTuning {
-    Auto,  // the library's choice: On on a GPU (as fast or faster on every bench scene on
-    // the H200), Off on a CPU implementation such as lavapipe (docs/reliable.md,
-    // "The grid per scene")
-    On,  // per scene, from the detections' own GPU times: kCellsPerEdge scaled by steps of
-    // sqrt(2) from 1/4 to 2, the fastest of its neighbours kept (docs/reliable.md, "The
-    // grid per scene")
-    Off,  // kCellsPerEdge (2) cells per typical edge, whatever the scene
+    // The library's choice: On on a GPU (as fast or faster on every bench scene on the
+    // H200), Off on a CPU implementation such as lavapipe (docs/reliable.md, "The grid per
+    // scene").
+    Auto,
+    // Per scene, from the detections' own GPU times: kCellsPerEdge scaled by steps of
+    // sqrt(2) from 1/4 to 2, the fastest of its neighbours kept (docs/reliable.md, "The grid
+    // per scene").
+    On,
+    // kCellsPerEdge (2) cells per typical edge, whatever the scene.
+    Off,
 };
 
 // Lower-case names as the command-line options spell them: "scan", "paper"; "centre",

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 
 #include "api/vertex_scans.hpp"
 #include "common/broadphase.h"
@@ -41,15 +40,23 @@ using Vec3 = std::array<double, 3>;
 Vec3 cross(const Vec3& a, const Vec3& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+// The cofactor matrix of a transform's linear part, by rows (row i: the cross product of the
+// other two rows): it maps object-space area vectors to world space.
+using Cofactor = std::array<Vec3, 3>;
+Cofactor cofactor(const Transform3x4& t) {
+    const Vec3 r[3] = {Vec3{t[0], t[1], t[2]}, Vec3{t[4], t[5], t[6]}, Vec3{t[8], t[9], t[10]}};
+    return {cross(r[1], r[2]), cross(r[2], r[0]), cross(r[0], r[1])};
+}
+
 // How much of an object's triangle area faces each world axis: sum over its triangles of
 // area * (n . axis)^2 in world space. Area vectors map by the cofactor matrix C of the
 // transform's linear part; C M C^T / |det|^(2/3) is exact for rotations with uniform scale
 // and a fair estimate for the rest (the direction is a speed choice for the reliable
 // method, a recall choice for peeling).
 Vec3 worldFacing(const std::array<double, 6>& m, const Transform3x4& t) {
-    const Vec3 r[3] = {Vec3{t[0], t[1], t[2]}, Vec3{t[4], t[5], t[6]}, Vec3{t[8], t[9], t[10]}};
-    const Vec3 c[3] = {cross(r[1], r[2]), cross(r[2], r[0]), cross(r[0], r[1])};
-    const double det = std::fabs(dot(r[0], c[0]));
+    const Vec3 r0{t[0], t[1], t[2]};
+    const Cofactor c = cofactor(t);
+    const double det = std::fabs(dot(r0, c[0]));
     const double norm = det > 0 ? std::cbrt(det * det) : 1.0;
     Vec3 out{};
     for (int a = 0; a < 3; ++a) {
@@ -61,6 +68,10 @@ Vec3 worldFacing(const std::array<double, 6>& m, const Transform3x4& t) {
     return out;
 }
 
+// The reliable method tilts its automatic axis where at least this share of the scene's
+// area is exactly edge-on along it (faces of boxes aligned with the world's axes).
+constexpr double kTiltFromEdgeOn = 0.25;
+
 // The reliable method's direction where much of the scene's area would be seen edge-on
 // along `axis`: that axis tilted by 20 degrees towards an azimuth that lines up with nothing.
 // Along an axis, faces parallel to it (an axis-aligned box's four side faces: stacks, walls,
@@ -69,10 +80,6 @@ Vec3 worldFacing(const std::array<double, 6>& m, const Transform3x4& t) {
 // area). Only then: a tilt gives face-on triangles a depth, so they meet more others in
 // depth (tilted always, the bench's pile of shapes on a floor made 84 % more candidates).
 // The pairs are the same along any direction.
-// The reliable method tilts its automatic axis where at least this share of the scene's
-// area is exactly edge-on along it (faces of boxes aligned with the world's axes).
-constexpr double kTiltFromEdgeOn = 0.25;
-
 std::array<float, 3> tiltedAxis(int axis) {
     std::array<float, 3> d{};
     d[axis] = 0.94f, d[(axis + 1) % 3] = 0.21f, d[(axis + 2) % 3] = 0.27f;
@@ -83,8 +90,7 @@ std::array<float, 3> tiltedAxis(int axis) {
 // that faces a world axis within kAxisFaceCos after transform `t`: a face with normal e_a maps
 // to the cofactor matrix's column a (its area scaled by that column's length).
 void addAxisFaces(const std::array<double, 3>& axis_area, const Transform3x4& t, Vec3& io_area) {
-    const Vec3 r[3] = {Vec3{t[0], t[1], t[2]}, Vec3{t[4], t[5], t[6]}, Vec3{t[8], t[9], t[10]}};
-    const Vec3 c[3] = {cross(r[1], r[2]), cross(r[2], r[0]), cross(r[0], r[1])};
+    const Cofactor c = cofactor(t);
     for (int a = 0; a < 3; ++a) {
         if (!(axis_area[a] > 0)) continue;
         const Vec3 v{c[0][a], c[1][a], c[2][a]};
@@ -232,33 +238,29 @@ DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegis
     if (!s.direction) {
         std::array<float, 3> d{0, 0, 0};
         const double total = facing[0] + facing[1] + facing[2];
-        char buf[256];
+        char buf[160];
+        int axis = 2;
         if (total > 0) {
-            const int axis = largestFacing(facing);
-            d[axis] = 1;
+            axis = largestFacing(facing);
             std::snprintf(buf, sizeof buf, "direction %c (most triangle area faces it: x %.0f %%, y %.0f %%, z %.0f %%)", "xyz"[axis],
                           100 * facing[0] / total, 100 * facing[1] / total, 100 * facing[2] / total);
         } else if (any_box) {
-            int thin = 2;
             for (int a : {1, 0})
-                if (hi[a] - lo[a] < hi[thin] - lo[thin]) thin = a;
-            d[thin] = 1;
-            std::snprintf(buf, sizeof buf, "direction %c (no triangle area measured: the scene's thinnest axis)", "xyz"[thin]);
+                if (hi[a] - lo[a] < hi[axis] - lo[axis]) axis = a;
+            std::snprintf(buf, sizeof buf, "direction %c (no triangle area measured: the scene's thinnest axis)", "xyz"[axis]);
         } else {
-            d[2] = 1;
             std::snprintf(buf, sizeof buf, "direction z (no geometry measured yet)");
         }
-        const int axis = d[0] == 1 ? 0 : d[1] == 1 ? 1 : 2;
+        d[axis] = 1;
+        append(why, buf);
         const double edge_on = axis_faces[(axis + 1) % 3] + axis_faces[(axis + 2) % 3];
         if (reliable && total > 0 && edge_on >= kTiltFromEdgeOn * total) {
             d = tiltedAxis(axis);
-            char tilted[128];
-            std::snprintf(tilted, sizeof tilted, ", tilted 20 degrees to (%.2f, %.2f, %.2f): %.0f %% of the area would be edge-on", d[0],
-                          d[1], d[2], 100 * edge_on / total);
-            std::strncat(buf, tilted, sizeof buf - std::strlen(buf) - 1);
+            std::snprintf(buf, sizeof buf, ", tilted 20 degrees to (%.2f, %.2f, %.2f): %.0f %% of the area would be edge-on", d[0], d[1],
+                          d[2], 100 * edge_on / total);
+            why += buf;
         }
         s.direction = d;
-        append(why, buf);
     }
     if (reliable && s.peeling.axes == 3) {  // any other count stays, for the check to name it
         s.peeling.axes = 1;

@@ -73,6 +73,21 @@ bool CollisionWorld::Impl::sortsOnGpu(const DetectSettings& s, std::size_t last_
            (s.reliable.pair_sort == PairSort::Auto && auto_gpu_sort);
 }
 
+// What decides which passes and stages a method runs (and so which pipelines it needs:
+// preparePipelines asks for the same); start() adds the rest of the run's settings.
+passes::BroadPhaseSettings CollisionWorld::Impl::methodSettings(const DetectSettings& s, bool sort_on_gpu) const {
+    passes::BroadPhaseSettings b;
+    b.backend = s.peeling.backend;
+    b.exact_on_gpu = s.reliable.exact != ExactDecision::Cpu;  // Gpu was checked against the device
+    b.exact_pass = s.reliable.exact_pass;
+    b.device_pairs = s.reliable.device_pairs;
+    b.device_responses = s.reliable.device_responses;
+    b.sort_on_gpu = sort_on_gpu;
+    b.responses_on_gpu = sort_on_gpu && s.reliable.responses != ResponseSource::Cpu;
+    b.proximity_distance = s.proximity.distance;
+    return b;
+}
+
 Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& settings, bool measure, graph::SubmitTarget* target) {
     run.start = Clock::now();
     std::vector<passes::GpuMesh>& meshes = run.meshes;  // kept: no allocation per detection
@@ -91,7 +106,6 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.method = DetectionsInFlight::methodFactory(s.method);
     auto mask = registry.pairMask(run.ids);
     if (!mask) return mask.error();
-    d.broad.pair_mask = *mask;
     const bool filter_on_host_only = registry.pair_filter && !*mask;
     for (auto ok :
          {validation::checkSortedOnGpuFilter("reliable.device_pairs", s.reliable.device_pairs, filter_on_host_only, run.ids.size()),
@@ -100,12 +114,10 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
           validation::checkSortedOnGpuFilter("reliable.responses Gpu", s.reliable.responses == ResponseSource::Gpu, filter_on_host_only,
                                              run.ids.size())})
         if (!ok) return ok.error();
-    d.broad.device_pairs = s.reliable.device_pairs;
+    d.broad = methodSettings(s, !filter_on_host_only && sortsOnGpu(s, last_narrow_pairs));
+    d.broad.pair_mask = *mask;
     d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
     d.broad.host_pairs = s.reliable.host_pairs;
-    d.broad.device_responses = s.reliable.device_responses;
-    d.broad.sort_on_gpu = !filter_on_host_only && sortsOnGpu(s, last_narrow_pairs);
-    d.broad.responses_on_gpu = d.broad.sort_on_gpu && s.reliable.responses != ResponseSource::Cpu;
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     run.sorts_on_gpu = s.method == DetectMethod::Reliable && d.broad.sort_on_gpu && s.reliable.host_pairs;
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
@@ -119,15 +131,14 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     if (s.proximity.distance > 0 && registry.pair_filter && !*mask)
         return Error(ErrorCode::InvalidArgument, "proximity with a pair filter over " + std::to_string(run.ids.size()) +
                                                      " objects: the filter is applied on the host only beyond " +
-                                                     std::to_string(gpu::kMaxFilterMaskObjects) + " objects, the proximity pass needs it on the GPU");
-    d.broad.proximity_distance = s.proximity.distance;
+                                                     std::to_string(gpu::kMaxFilterMaskObjects) +
+                                                     " objects, the proximity pass needs it on the GPU");
     d.broad.proximity_capacity = s.proximity.capacity;
     d.broad.resolution = *s.resolution;
     d.broad.direction = *s.direction;
     d.broad.layer_cap = s.peeling.layer_cap;
     d.broad.dual = s.peeling.dual;
     d.broad.packing = s.peeling.packing;
-    d.broad.backend = s.peeling.backend;
     d.broad.open_epsilon = *s.peeling.open_epsilon;
     d.broad.closed_epsilon = s.peeling.closed_epsilon;
     // resolve() turned Best into Conservative or Dilate. The reliable method samples no
@@ -149,8 +160,6 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.depth_aware = s.peeling.depth_aware;
     d.broad.keep_ray_image = s.peeling.collision_rays;  // peeling only (validation)
     d.broad.max_candidate_pairs = s.limits.max_candidate_pairs;  // the reliable method's GPU budget
-    d.broad.exact_on_gpu = s.reliable.exact != ExactDecision::Cpu;  // Gpu was checked against the device
-    d.broad.exact_pass = s.reliable.exact_pass;
     d.axes = s.peeling.axes;
     d.bad_objects = s.bad_objects;
     run.settings_ms = msSince(run.start);

@@ -32,16 +32,9 @@ Result<PreparedPipelines> CollisionWorld::preparePipelines(const DetectSettings&
     const std::uint64_t before = pipelinesCreated(device);
     auto broad = passes::BroadPhase::create(device, DetectionsInFlight::methodFactory(s.method));
     if (!broad) return broad.error();
-    // What the settings turn on, and what Auto may turn on in a later detection.
-    passes::BroadPhaseSettings b;
-    b.backend = s.peeling.backend;
-    b.exact_on_gpu = s.reliable.exact != ExactDecision::Cpu;
-    b.exact_pass = s.reliable.exact_pass;
-    b.device_pairs = s.reliable.device_pairs;
-    b.device_responses = s.reliable.device_responses;
-    b.sort_on_gpu = impl_->sortsOnGpu(s, std::numeric_limits<std::size_t>::max());
-    b.responses_on_gpu = b.sort_on_gpu && s.reliable.responses != ResponseSource::Cpu;
-    b.proximity_distance = s.proximity.distance;
+    // What the settings turn on, and what Auto may turn on in a later detection (the sort on
+    // the GPU, after a detection of many pairs).
+    const passes::BroadPhaseSettings b = impl_->methodSettings(s, impl_->sortsOnGpu(s, std::numeric_limits<std::size_t>::max()));
     if (auto ok = (*broad)->preparePipelines(b); !ok) return ok.error();
     if (s.contacts.objects)
         if (auto stage = (*broad)->followUp(passes::ContactStage::create); !stage) return stage.error();

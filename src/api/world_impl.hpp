@@ -82,6 +82,9 @@ struct CollisionWorld::Impl {
     // Whether the reliable method's host pairs are sorted on the GPU with `s` after a
     // detection that found `last_pairs` pairs (PairSort::Auto), the pair filter aside.
     bool sortsOnGpu(const DetectSettings& s, std::size_t last_pairs) const;
+    // The broad phase's settings that choose a method's passes and stages (`sort_on_gpu`:
+    // sortsOnGpu's answer, the pair filter considered); the rest are start()'s.
+    passes::BroadPhaseSettings methodSettings(const DetectSettings& s, bool sort_on_gpu) const;
     // restart_clock: the timeout counts from now (submit() and record(): the caller chose
     // when to collect); detect() counts from its start.
     // `reuse`: the caller's result (detectInto, collectInto), whose pairs', responses' and

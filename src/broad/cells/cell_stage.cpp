@@ -155,17 +155,14 @@ void CellStage::chooseForms(const CellStageSettings& settings) {
 Result<void> CellStage::makeEveryPipeline(const CellStageSettings& settings) {
     chooseForms(settings);
     const bool kept = exact_queued_;
+    Result<void> ok{};
     for (const bool queued : {false, true}) {
         if (settings.exact_pass != ExactPass::Auto && queued != (settings.exact_pass == ExactPass::Queued)) continue;
         exact_queued_ = queued;
-        auto ok = ensurePipelines();
-        if (!ok) {
-            exact_queued_ = kept;
-            return ok;
-        }
+        if (ok = ensurePipelines(); !ok) break;
     }
     exact_queued_ = kept;
-    return {};
+    return ok;
 }
 
 Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSettings& settings) {

@@ -54,7 +54,7 @@ struct ProximityPair {
 // buffer). `header`: one DeviceProximityHeader at offset 0 (device-local). Both have usage
 // STORAGE, SHADER_DEVICE_ADDRESS, TRANSFER_SRC and TRANSFER_DST on the Context's queue
 // family; the engine reads them, never writes them.
-// Synchronisation as for DevicePairs (world.hpp): complete and visible at the world's
+// Synchronisation as for DevicePairs (detect_result.hpp): complete and visible at the world's
 // signal (submit) or after the recorded commands (record), finished when detect()/collect()
 // return. Lifetime: until the next detection in the same slot starts (DevicePairs::slot's
 // rule); a detection that needs more capacity re-creates them: take them afresh from each

@@ -11,6 +11,9 @@
 
 namespace vkcollide {
 
+// Stable handle of an object in a CollisionWorld (never reused after removeObject).
+using ObjectId = std::uint32_t;
+
 // A position or direction in object or world units.
 struct Float3 {
     float x = 0, y = 0, z = 0;
@@ -52,7 +55,7 @@ enum class BadObjectPolicy {
 enum class SamplingBackend { Auto, Raster, Compute };
 
 // How a detection's broad phase finds what the exact narrow phase tests (DetectSettings::
-// method; world.hpp says what each guarantees and costs).
+// method; detect_settings.hpp says what each guarantees and costs).
 enum class DetectMethod {
     Reliable,  // cells on a grid, candidate pairs formed and filtered on the GPU: every
                // intersecting pair, touching included, at any resolution (docs/reliable.md)

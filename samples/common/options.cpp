@@ -164,7 +164,7 @@ void refuseOtherMethod(const Args& args, const CommonOptions& o, const char* opt
 }
 
 void finishCommonOptions(const Args& args, CommonOptions& o, const char* sample_name) {
-    // The options that shape the peeling method's rays (DetectSettings, world.hpp).
+    // The options that shape the peeling method's rays (DetectSettings, detect_settings.hpp).
     for (const char* option : {"--layer-cap", "--dual", "--backend", "--axes", "--coverage"})
         refuseOtherMethod(args, o, option, vkcollide::DetectMethod::Peeling);
     if (const char* env = std::getenv("VKCOLLIDE_TEST_VALIDATION"); env && std::strcmp(env, "1") == 0) o.validation = true;

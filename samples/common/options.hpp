@@ -55,7 +55,7 @@ struct CommonOptions {
     // Detection settings (DetectSettings); 0 / "auto": chosen by vkcollide from the scene.
     // The method as DetectSettings::method: reliable (its default) or peeling (the
     // paper's). Layer cap, dual, backend, axes and coverage shape the peeling method's rays
-    // only (world.hpp): given under the reliable method they are refused, not ignored.
+    // only (detect_settings.hpp): given under the reliable method they are refused, not ignored.
     std::string method = "reliable";
     std::uint32_t resolution = 0;    // reliable: any cell count; peeling: a power of two (the API checks)
     std::uint32_t layer_cap = 0;

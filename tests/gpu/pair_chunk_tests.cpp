@@ -228,7 +228,7 @@ FirstHeaders firstSubmission(vk::Device& device, BroadPhase& bp, std::span<const
 
 }  // namespace
 
-// world.hpp, "Device pairs": an engine reads the pairs at the world's signal, which is the
+// detect_result.hpp, "Results on the GPU": an engine reads the pairs at the world's signal, which is the
 // end of the run's first submission; where the sweep or the pair pass goes on in later
 // submissions, what it reads there must say Incomplete (count 0), never a part of the pairs
 // as complete. Here the first sweep chunks hold only a far sphere's cells (it collides with

@@ -55,7 +55,7 @@ struct Option {
     Shower show = nullptr;         // that field as JSON
     SlotSetter set_slot = nullptr; // Takes::Files or FileValue: applied to each file named
     Takes takes = Takes::Value;
-    // Read by the peeling method only (world.hpp says which fields): refused under the
+    // Read by the peeling method only (detect_settings.hpp says which fields): refused under the
     // reliable method, left out of the JSON's settings then.
     std::optional<vkcollide::DetectMethod> only;
 };

@@ -1,5 +1,5 @@
 // fuzz_world's model of a world and its checks of a detection's result: the promises of
-// DetectResult (world.hpp) and, for host meshes, the exact reference of tests/support.
+// DetectResult (detect_result.hpp) and, for host meshes, the exact reference of tests/support.
 #pragma once
 
 #include <cstddef>

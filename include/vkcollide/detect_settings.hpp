@@ -24,9 +24,11 @@ namespace vkcollide {
 // infinity). Every triangle is listed in each cell its projection may touch, with an
 // interval that holds its depth over that cell, both grown by bounds on float rounding;
 // pairs of triangles whose intervals overlap in a cell are candidates; a conservative
-// double-precision triangle test on the GPU drops those it proves disjoint; the
-// survivors (pairs of triangle ids, plus the world vertices of engine meshes' triangles)
-// go to the exact narrow phase. Guarantee: every pair of triangles that intersect —
+// double-precision triangle test on the GPU drops those it proves disjoint; the exact
+// decision takes the rest: on the GPU where the device has shaderFloat64
+// (ReliableSettings::exact), so that only intersecting pairs are read back, else in the
+// CPU narrow phase, which reads the survivors (pairs of triangle ids, plus the world
+// vertices of engine meshes' triangles). Guarantee: every pair of triangles that intersect —
 // touching included (a shared point, an edge on a face, coplanar overlap, degenerate and
 // sliver triangles) — is found, at any resolution and along any direction; resolution
 // and direction change the speed only (docs/reliable.md has the proof and its
@@ -34,10 +36,13 @@ namespace vkcollide {
 // magnitude; an object beyond that is treated as a bad object, see bad_objects).
 // Cost: GPU passes over every triangle (its cells), every cell (a sweep) and every
 // candidate pair (the filter); about 100 bytes per triangle, 20 per footprint (2 to 10 per
-// triangle at the automatic resolution) and 12 per candidate of device memory; on the
-// host only the surviving pairs (within a few per cent of the intersecting ones for
-// different objects; more for self-collision) are read, in place, and tested. One
-// submission; nothing is measured first (measured times: docs/results.md).
+// triangle at the automatic resolution) and 12 per candidate of device memory. On the
+// host: with the exact decision on the GPU, the intersecting pairs (sorted on the GPU and
+// read at 8 bytes each where there are many: ReliableSettings::pair_sort) are named and
+// given their responses; with it on the CPU, the surviving pairs (within a few per cent of
+// the intersecting ones for different objects; more for self-collision) are read, in
+// place, and tested. One submission; nothing is measured first (measured times:
+// docs/results.md).
 // It reads the top-level fields (resolution: cells per side), `reliable`, `contacts`,
 // `proximity` and `limits`; it ignores `peeling` (it shapes the sampling of rays, which
 // it does not do), except that it runs peeling.axes = 3 as 1 (one grid finds everything;

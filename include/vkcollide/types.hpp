@@ -54,7 +54,7 @@ enum class BadObjectPolicy {
 // says which ran and why.
 enum class SamplingBackend { Auto, Raster, Compute };
 
-// How a detection's broad phase finds what the exact narrow phase tests (DetectSettings::
+// How a detection's broad phase finds what the exact decision decides (DetectSettings::
 // method; detect_settings.hpp says what each guarantees and costs).
 enum class DetectMethod {
     Reliable,  // cells on a grid, candidate pairs formed and filtered on the GPU: every

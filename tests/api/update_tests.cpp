@@ -5,8 +5,10 @@
 // changes nothing.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "api/vertex_scans.hpp"
 #include "support/error_text.hpp"
@@ -192,4 +194,43 @@ TEST_CASE("shapes measured with the vertex update (automatic settings last time)
         CHECK(a->pairs == b->pairs);
     }
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// A deforming scene's automatic resolution follows its extent, moving by a cell or so
+// between frames. Once the scene was larger (the per-cell buffers grew then and are kept),
+// the cell stage still clears and scans its counts over this run's cells rounded up (at
+// most 12.5 % more), not over its exact count, so frames a cell apart mostly record the
+// same commands and submit the command buffer again instead of recording it
+// (HostStats::reused_submissions).
+TEST_CASE("a drifting resolution keeps the command buffer", "[api][gpu]") {
+    ValidatedContext ctx;
+    const HostMesh a = sphere(1.0f, 40, 0.0f), b = sphere(1.0f, 40, 1.2f);
+    auto world = makeWorld(ctx, {.threads = 2});
+    auto ia = world->addMesh(a, {.name = "a"});
+    REQUIRE(ia);
+    REQUIRE(world->addMesh(b, {.name = "b"}));
+    std::vector<std::uint32_t> resolution;
+    std::vector<bool> reused;
+    for (int frame = 0; frame < 14; ++frame) {
+        // First far from b (a wide scene: the buffers grow), then through it, moving back
+        // and forth by 1 % of the scene's width: the resolution moves by a cell or so.
+        const float dx = frame == 0 ? 1.5f : 0.016f * float(frame % 3);
+        std::vector<Float3> moved = a.positions;
+        for (Float3& p : moved) p.x -= dx;
+        REQUIRE(world->updateVertices(*ia, moved));
+        auto r = world->detect();
+        REQUIRE(r);
+        REQUIRE(r->stats.submissions == 1);
+        if (frame > 0) REQUIRE_FALSE(r->pairs.empty());
+        resolution.push_back(r->stats.resolution);
+        reused.push_back(r->stats.host.reused_submissions == 1);
+    }
+    CAPTURE(resolution, reused);
+    // After the first three frames (the first detections record): frames whose resolution
+    // moved from the last frame's, mostly submitted again.
+    std::size_t moved = 0, moved_reused = 0;
+    for (std::size_t f = 4; f < resolution.size(); ++f)
+        if (resolution[f] != resolution[f - 1]) ++moved, moved_reused += reused[f];
+    REQUIRE(moved >= 4);  // the resolution did move
+    CHECK(moved_reused * 2 >= moved);
 }

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Device run 30 (session 56): every bench scene, detect() (default) and detectInto() (into), at
 # main's build. Run from the repository root with `.gl` and `build-pack` carried:
-#   build-pack/bins.tar.xz  build-carry/s58/vkcollide_bench at 6fcc778 (main) (Release, stripped;
+#   build-pack/bins.tar.xz  build-carry/s58/vkcollide_bench at main's HEAD (Release, stripped;
 #                           `tar -cJf build-pack/bins.tar.xz build-carry`)
 #   build-pack/cgal.tar.xz  data/cgal-run
 for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig

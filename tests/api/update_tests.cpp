@@ -5,7 +5,6 @@
 // changes nothing.
 #include <catch2/catch.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -199,7 +198,7 @@ TEST_CASE("shapes measured with the vertex update (automatic settings last time)
 // A deforming scene's automatic resolution follows its extent, moving by a cell or so
 // between frames. Once the scene was larger (the per-cell buffers grew then and are kept),
 // the cell stage still clears and scans its counts over this run's cells rounded up (at
-// most 12.5 % more), not over its exact count, so frames a cell apart mostly record the
+// most 6.25 % more, as its buffers are sized), not over its exact count, so frames a cell apart mostly record the
 // same commands and submit the command buffer again instead of recording it
 // (HostStats::reused_submissions).
 TEST_CASE("a drifting resolution keeps the command buffer", "[api][gpu]") {

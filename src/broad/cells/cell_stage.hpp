@@ -306,6 +306,14 @@ public:
 private:
     explicit CellStage(vk::Device& device) : device_(&device) {}
     Result<void> ensureBuffers();
+    // The cells the per-cell buffers are sized for, and the count buffer's clear and scan
+    // run over (the shaders stop at the params' cell and block counts): `exact` rounded up
+    // to a sixteenth of its power of two. A resolution that moves by a cell or so a frame
+    // (a deforming scene's follows its extent) then seldom re-creates those buffers or
+    // changes the recorded commands, so the executor mostly submits its command buffer
+    // again instead of recording it (recording: 0.05-0.09 ms a frame on the H100's host,
+    // results/h200_2026-12-07/README.md).
+    static std::uint64_t roundedCells(std::uint64_t exact);
     std::uint32_t automaticPairChunk() const;
     struct PairPassIds {
         graph::ResourceId header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, exact_queue;

@@ -39,14 +39,14 @@ void CellStage::addRows() {
     row(buf_.exact_queue, "cells-exact-queue", MemoryKind::DeviceLocal);
 }
 
+std::uint64_t CellStage::roundedCells(std::uint64_t exact) {
+    const std::uint64_t step = std::max<std::uint64_t>(1, (std::uint64_t{1} << (std::bit_width(exact) - 1)) / 16);
+    return (exact + step - 1) / step * step;
+}
+
 Result<void> CellStage::ensureBuffers() {
     using vk::MemoryKind;
-    // Cells rounded up to a sixteenth of their power of two: a resolution that grows by a
-    // few cells a frame re-creates the per-cell buffers only now and then (each re-creation
-    // also means a recorded command buffer cannot be submitted again).
-    const VkDeviceSize exact_cells = VkDeviceSize(resolution_) * resolution_;
-    const VkDeviceSize cell_step = std::max<VkDeviceSize>(1, (VkDeviceSize{1} << (std::bit_width(exact_cells) - 1)) / 16);
-    const VkDeviceSize cells = (exact_cells + cell_step - 1) / cell_step * cell_step;
+    const VkDeviceSize cells = roundedCells(VkDeviceSize(resolution_) * resolution_);
     const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
     const VkDeviceSize objects = objects_.size();
     // Deep items: one per cell deeper than kCellsSmallCell, or ceil(k / kCellsGroupSize) for

@@ -22,27 +22,12 @@ std::uint64_t groupsFor(std::uint64_t items) { return (items + gpu::kCellsGroupS
 // Each pass declares its stage, so a broad phase sums its GPU time (stage.hpp).
 graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage stage) { return addPass(g, name, kind, stage); }
 
-// The cells the count buffer is cleared and scanned over (the shaders stop at the params'
-// cell and block counts): this run's, rounded up to a multiple of a power of two between
-// 1/16 and 1/8 of it (at most 12.5 % more; those passes are 1 % of a span), and at most
-// the buffer's capacity. A deforming scene's automatic resolution follows its extent and
-// moves by a cell between frames (about 2 % of the cells at 100 per side); rounded, most
-// such frames record the same commands, so the executor submits its command buffer again
-// instead of recording it (0.05-0.09 ms of host time a frame on the H100's host,
-// results/h200_2026-12-07/README.md).
-std::uint64_t recordedCells(std::uint64_t exact, std::uint64_t capacity) {
-    std::uint64_t step = 1;
-    while ((exact >> 4) >= step) step <<= 1;  // exact < 16 * step: step > exact / 16
-    const std::uint64_t rounded = (exact + step - 1) / step * step;
-    return std::min(rounded, capacity);  // the buffer holds this run's cells: capacity >= exact
-}
-
 }  // namespace
 
 CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projection) {
     survivor_count_ = gpu_triangle_count_ = 0;  // until this recording's finish()
     const VkDeviceAddress params = buf_.params->address();
-    const std::uint64_t cells = recordedCells(std::uint64_t(resolution_) * resolution_, buf_.counts->size() / 4);
+    const std::uint64_t cells = roundedCells(std::uint64_t(resolution_) * resolution_);  // the buffers hold as many
     const std::uint64_t blocks = (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const std::uint64_t tri_groups = groupsFor(triangles_);
     const auto header = importRow(g, buf_.header);

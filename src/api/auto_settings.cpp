@@ -156,9 +156,7 @@ void AutoSettings::measureShapes(const DetectSettings& in, const ObjectRegistry&
     std::vector<vertex_scans::Shape> shapes(stale.size());
     vertex_scans::measureShapes(executor, meshes, shapes);
     for (std::size_t i = 0; i < stale.size(); ++i) {
-        stale[i]->edge_length = shapes[i].edge_length;
-        stale[i]->area_moment = shapes[i].area_moment;
-        stale[i]->axis_area = shapes[i].axis_area;
+        stale[i]->shape = shapes[i];
         stale[i]->shape_stale = false;
     }
 }
@@ -194,21 +192,21 @@ DetectSettings AutoSettings::resolve(const DetectSettings& in, const ObjectRegis
                 }
             }
             any_box = true;
-            const Vec3 f = worldFacing(o.area_moment, t);
+            const Vec3 f = worldFacing(o.shape.area_moment, t);
             for (int a = 0; a < 3; ++a) facing[a] += f[a];
-            addAxisFaces(o.axis_area, t, axis_faces);
+            addAxisFaces(o.shape.axis_area, t, axis_faces);
             host_triangles += n;
         } else {
             any_gpu = true;
-            if (o.edge_length > 0) {
-                const double e = double(o.edge_length) * scale;
+            if (o.shape.edge_length > 0) {
+                const double e = double(o.shape.edge_length) * scale;
                 gpu_known_area += n * 0.4330127 * e * e, gpu_known_triangles += n;  // equilateral triangles of that edge
             } else {
                 gpu_unknown_triangles += n;
             }
         }
-        if (o.edge_length > 0) {
-            const double e = double(o.edge_length) * scale;
+        if (o.shape.edge_length > 0) {
+            const double e = double(o.shape.edge_length) * scale;
             edge_weighted += e * n, edge_triangles += n;
             if (o.options.open) open_edge += e * n, open_triangles += n;
         }

@@ -35,7 +35,7 @@ Result<ObjectId> CollisionWorld::addGpuMesh(const GpuMeshDesc& d, const ObjectOp
     if (!mesh) return mesh.error();
     o.gpu = *mesh;
     o.engine_desc = d;
-    o.edge_length = options.typical_edge_length;
+    o.shape.edge_length = options.typical_edge_length;
     w.registry.objects.push_back(std::move(o));
     w.objectsChanged();
     return id;

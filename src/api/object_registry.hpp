@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "api/vertex_scans.hpp"
 #include "broad/broad_phase_types.hpp"
 #include "vk/resources.hpp"
 #include "vkcollide/world.hpp"
@@ -53,16 +54,14 @@ struct ObjectRegistry {
         // times the object-space volume (both measured by addMesh; updateVertices leaves them).
         std::uint64_t boundary_edges = 0;
         double volume6 = 0;
-        // For the automatic settings: the typical edge length (object units; given for GPU
-        // meshes) and, host meshes, the sum over triangles of area * n n^T (xx, yy, zz, xy,
-        // xz, yz; object space) and the area facing each object axis (vertex_scans::Shape). A cache for host meshes: after their geometry changes
-        // (shape_stale) they are measured by the next resolve() that needs them
-        // (AutoSettings::measureShapes), not by addMesh; hence mutable. updateVertices
-        // measures them on the way (in its own parallel loop) while the last resolve()
-        // needed them.
-        mutable float edge_length = 0;
-        mutable std::array<double, 6> area_moment{};
-        mutable std::array<double, 3> axis_area{};
+        // For the automatic settings (vertex_scans::Shape): the typical edge length (object
+        // units; given for GPU meshes) and, host meshes, the sum over triangles of
+        // area * n n^T and the area facing each object axis (object space). A cache for host
+        // meshes: after their geometry changes (shape_stale) they are measured by the next
+        // resolve() that needs them (AutoSettings::measureShapes), not by addMesh; hence
+        // mutable. updateVertices measures them on the way (in its own parallel loop) while
+        // the last resolve() needed them.
+        mutable vertex_scans::Shape shape;
         mutable bool shape_stale = false;
         // Proximity: the vertices and edges each triangle owns (host meshes, computed by the
         // first detection that asks; the indices never change).

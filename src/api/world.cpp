@@ -175,7 +175,7 @@ Result<void> CollisionWorld::Impl::updateHostVertices(ObjectId id, std::span<con
     o.box = scan.box;
     o.max_abs = scan.max_abs;
     o.shape_stale = !measure;
-    if (measure) o.edge_length = shape.edge_length, o.area_moment = shape.area_moment, o.axis_area = shape.axis_area;
+    if (measure) o.shape = shape;
     return {};
 }
 

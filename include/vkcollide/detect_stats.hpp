@@ -159,7 +159,9 @@ struct HostStats {
     // of recorded: the commands equalled the last recording's and nothing they use was
     // destroyed since.
     std::uint32_t reused_submissions = 0;
-    unsigned narrow_threads = 0;  // the executor's threads the narrow phase could use
+    // The threads the narrow phase could use: the executor's, or 1 where it ran on the calling
+    // thread (fewer than 2,048 pairs the GPU decided: no tests to share out).
+    unsigned narrow_threads = 0;
 };
 
 struct DetectStats {

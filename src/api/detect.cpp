@@ -155,7 +155,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     // While the wait polls, keep the narrow phase's workers awake as many as a detection
     // like the last one will use: they then take its first loops at once instead of
     // 0.1-0.2 ms later, when the kernel has woken the last of them (docs/narrow_phase.md).
-    if (const unsigned wake = narrow::threadsToWake(last_narrow_pairs, executor->threadCount()))
+    if (const unsigned wake = narrow::threadsToWake(last_narrow_pairs, executor->threadCount(), last_narrow_decided))
         d.broad.poll_hook = [ex = executor, wake] { ex->prepare(wake); };
     d.broad.depth_aware = s.peeling.depth_aware;
     d.broad.keep_ray_image = s.peeling.collision_rays;  // peeling only (validation)
@@ -303,6 +303,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     options.max_pairs = run_settings.limits.max_pairs;
     options.max_box_pairs = run_settings.limits.max_candidate_pairs;
     options.pairs_decided = detected.hasPairs() && broad[0].cells.exact_ran;
+    last_narrow_decided = options.pairs_decided;
     // The filter's kept answers (indices of the live objects the mask was built over), or
     // the filter itself beyond the mask's object limit. The filter must not throw
     // (world.hpp); if it does, the exception stops here, the narrow phase sees "may not
@@ -324,6 +325,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     }
     const auto t0 = Clock::now();
     Result<NarrowResult> narrow = Error(ErrorCode::InvalidArgument, "no narrow phase ran");
+    bool calling_thread_only = false;  // few decided pairs: the pair path ran without the executor
     if (detected.hasPairs() && broad[0].device_header) {
         // The pairs stay on the GPU (host_pairs off): nothing to read, test or respond to.
         narrow = NarrowResult{};
@@ -359,6 +361,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         } else {
             narrow = runPairNarrowPhase(broad[0].pairs, registry.source, options, *executor, narrow_workspace);
             last_narrow_pairs = broad[0].pairs.size();
+            calling_thread_only = narrow::runsOnCallingThread(last_narrow_pairs, options.pairs_decided);
         }
         registry.source.setGpuTriangles({});  // the download is overwritten by the next run
     } else {
@@ -378,7 +381,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
                       " intersecting pairs, more than DetectSettings::limits.max_pairs (" + std::to_string(run_settings.limits.max_pairs) +
                       "): kept " + std::to_string(narrow->pairs.size()) + ", left out " + std::to_string(narrow->pairs_left_out));
     }
-    st.host.narrow_threads = executor->threadCount();
+    st.host.narrow_threads = calling_thread_only ? 1 : executor->threadCount();
     st.narrow = narrow->stats;
     st.narrow_timings = narrow->timings;
     st.potentially_colliding_triangles = narrow->stats.potentially_colliding_triangles;

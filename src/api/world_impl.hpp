@@ -36,6 +36,7 @@ struct CollisionWorld::Impl {
     Executor* executor = nullptr;          // the narrow phase's: own_pool or the engine's
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
     std::size_t last_narrow_pairs = 0;  // the last pair-path narrow phase's input: whom to wake while the next one waits
+    bool last_narrow_decided = false;   // ... and whether the GPU had decided its pairs (no tests: fewer threads)
     // detect()'s result memory for GPU-sorted pairs and responses, made ready while the GPU
     // works (prepareResultMemory) and handed to the result; the last result's response count.
     std::vector<TrianglePair> ready_pairs;

@@ -26,8 +26,10 @@ namespace narrow {
 
 std::size_t testGrain(std::size_t tests, unsigned threads) { return grainFor(tests, threads, 4, kMinTestGrain, kMaxTestGrain); }
 
-unsigned threadsToWake(std::size_t input_pairs, unsigned threads) {
-    if (input_pairs < kPrepareFrom) return 0;
+bool runsOnCallingThread(std::size_t input_pairs, bool decided) { return decided && input_pairs < kSerialDecidedBelow; }
+
+unsigned threadsToWake(std::size_t input_pairs, unsigned threads, bool decided) {
+    if (input_pairs < kPrepareFrom || runsOnCallingThread(input_pairs, decided)) return 0;
     return static_cast<unsigned>(std::min<std::size_t>(threads, taskCount(input_pairs, testGrain(input_pairs, threads))));
 }
 

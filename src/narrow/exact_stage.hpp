@@ -54,7 +54,15 @@ std::size_t testGrain(std::size_t tests, unsigned threads);
 // when the tests need them; below, the tests take a few microseconds and waking costs more.
 // The world also calls it with the last detection's count while it waits for the GPU.
 inline constexpr std::size_t kPrepareFrom = 256;
-unsigned threadsToWake(std::size_t input_pairs, unsigned threads);
+
+// Pairs the GPU decided (NarrowOptions::pairs_decided) need no tests, and below this many
+// the pair path runs on the calling thread and wakes nobody: what is left (checks, slots,
+// gather, responses) costs about 50 ns a pair there, and waking workers and handing them
+// chunks cost more. Measured with bench_narrow --decided (docs/narrow_phase.md).
+inline constexpr std::size_t kSerialDecidedBelow = 2048;
+bool runsOnCallingThread(std::size_t input_pairs, bool decided);
+
+unsigned threadsToWake(std::size_t input_pairs, unsigned threads, bool decided);
 
 // Stages 3 to 6 on the pairs that `tasks` found (their counters already in out.stats):
 // may_collide once per distinct object pair (ascending, this thread), the exact tests in

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "common/config.h"
+#include "narrow/calling_thread_executor.hpp"
 #include "narrow/exact_stage.hpp"
 #include "narrow/guarded_executor.hpp"
 #include "narrow/workspace.hpp"
@@ -57,7 +58,7 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
         return Error(ErrorCode::InvalidArgument, "runPairNarrowPhase: " + std::to_string(input) + " pairs (at most " +
                                                      std::to_string(kMaxPairs) + ")");
     }
-    if (const unsigned wake = narrow::threadsToWake(input, ex.threadCount())) ex.prepare(wake);
+    if (const unsigned wake = narrow::threadsToWake(input, ex.threadCount(), options.pairs_decided)) ex.prepare(wake);
     const std::uint32_t total = source.totalTriangles();
 
     // Stages 1 to 3 (pair_keys.hpp): checks, slots, the distinct pairs as sorted keys.
@@ -147,7 +148,10 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
 
 Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
                                         const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace) {
-    return narrow::guardedCall("runPairNarrowPhase", executor, options.max_box_pairs, [&](Executor& guarded) {
+    // Few decided pairs: every loop on this thread (results never depend on the executor).
+    narrow::CallingThreadExecutor calling_thread;
+    Executor& chosen = narrow::runsOnCallingThread(in_pairs.size(), options.pairs_decided) ? calling_thread : executor;
+    return narrow::guardedCall("runPairNarrowPhase", chosen, options.max_box_pairs, [&](Executor& guarded) {
         return pairPhase(in_pairs, source, options, guarded, io_workspace);
     });
 }

@@ -39,7 +39,8 @@ Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::spa
     // The GPU's responses are every pair's: used where no pair is left out.
     const bool ready = !gpu_responses.empty() && kept == found;
     const std::uint32_t total = source.totalTriangles();
-    if (const unsigned wake = threadsToWake(kept, ex.threadCount())) ex.prepare(wake);
+    // Decided pairs, but the naming below is one parallel loop over them: woken as for tests.
+    if (const unsigned wake = threadsToWake(kept, ex.threadCount(), false)) ex.prepare(wake);
 
     // Checks, each end's object, and a mark on each end's triangle (relaxed byte stores:
     // every writer writes 1). Over every pair, kept or not: the slots are the distinct

@@ -369,11 +369,15 @@ TEST_CASE("calls that change what work in flight reads fail by name, so do calls
     auto scene = overlappingSpheres();
     REQUIRE(scene);
     const auto ids = addScene(*world, *scene);
-    auto plain = world->detect();
+    // The CPU decides (exact Cpu): few pairs the GPU decided would run on the calling thread
+    // without the executor (narrow::kSerialDecidedBelow).
+    DetectSettings cpu_decides;
+    cpu_decides.reliable.exact = ExactDecision::Cpu;
+    auto plain = world->detect(cpu_decides);
     REQUIRE(plain);
     target = world.get();
     loops = 0;
-    auto watched = world->detect();
+    auto watched = world->detect(cpu_decides);
     REQUIRE(watched);
     CHECK(watched->pairs == plain->pairs);
     CHECK(watched->stats.host.narrow_threads == 4);  // the engine's executor ran the narrow phase
@@ -382,6 +386,17 @@ TEST_CASE("calls that change what work in flight reads fail by name, so do calls
     CHECK(mentions(refusals[1], "CollisionWorld::detect was called on thread"));
     CHECK(mentions(refusals[1], "used from one thread at a time"));
     target = nullptr;
+    // Where the GPU decides (shaderFloat64: lavapipe, the H200), the scene's few hundred
+    // pairs run on the calling thread: the engine's executor is not called, and the stats
+    // say one thread.
+    loops = 0;
+    auto decided = world->detect();
+    REQUIRE(decided);
+    CHECK(decided->pairs == plain->pairs);
+    if (decided->stats.gpu_exact_tests > 0) {
+        CHECK(loops == 0);
+        CHECK(decided->stats.host.narrow_threads == 1);
+    }
 
     REQUIRE(world->submit());
     std::vector<std::pair<std::string, Result<void>>> in_flight;

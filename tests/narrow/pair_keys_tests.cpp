@@ -1,19 +1,22 @@
 // The pair path's front (src/narrow/pair_keys.hpp): the form on the calling thread and
 // the parallel form give the same slots and keys as a plain reference, on random inputs
 // around the size where the automatic choice switches, on 1 and 4 threads; the same first
-// bad pair; and the whole pair path gives the same result on either side of the switch.
+// bad pair; the whole pair path gives the same result on either side of the switch; and
+// few pairs the GPU decided run on the calling thread, with the same result.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <random>
 #include <set>
 #include <utility>
 #include <vector>
 
+#include "narrow/exact_stage.hpp"
 #include "narrow/pair_keys.hpp"
 #include "narrow/scene_builders.hpp"
 #include "narrow/sweep_and_prune.hpp"
@@ -95,6 +98,25 @@ std::vector<CandidatePair> randomPairs(std::size_t n, std::uint32_t total, std::
     }
     return pairs;
 }
+
+// Counts what the narrow phase asks of the executor, and runs its loops on a pool.
+class CountingExecutor final : public Executor {
+public:
+    explicit CountingExecutor(Executor& inner) : inner_(inner) {}
+    unsigned threadCount() const noexcept override { return inner_.threadCount(); }
+    void parallelFor(std::size_t count, std::size_t grain, const std::function<void(std::size_t, std::size_t)>& body) override {
+        ++loops;
+        inner_.parallelFor(count, grain, body);
+    }
+    void prepare(unsigned threads) noexcept override {
+        ++prepares;
+        inner_.prepare(threads);
+    }
+    int loops = 0, prepares = 0;
+
+private:
+    Executor& inner_;
+};
 
 }  // namespace
 
@@ -200,4 +222,63 @@ TEST_CASE("Pair path: the same result on either side of the serial front's switc
             CHECK(got->stats.input_pairs == pairs->size());
         }
     }
+}
+
+TEST_CASE("Pair path: few decided pairs run on the calling thread, with the same result", "[narrow][pairs][threads]") {
+    // The intersecting pairs of two overlapping spheres, as the GPU's exact decision sends
+    // them (NarrowOptions::pairs_decided): below kSerialDecidedBelow pairs the executor is
+    // never asked for a loop or a wake-up; with repeats up to the limit it is; the pairs and
+    // responses are those of the tested path either way.
+    const HostMesh a = test::makeSphere(1.0f, {0, 0, 0}, 24, 32);
+    const HostMesh b = test::makeSphere(0.9f, {0.8f, 0.1f, 0.05f}, 22, 30);
+    TriangleSource source;
+    REQUIRE(source.addHostMesh(a.positions, a.indices));
+    REQUIRE(source.addHostMesh(b.positions, b.indices));
+    std::vector<CandidatePair> all;  // every pair of the two objects: the tests decide
+    for (std::uint32_t i = 0; i < source.triangleBase(1); ++i)
+        for (std::uint32_t j = source.triangleBase(1); j < source.totalTriangles(); ++j) all.push_back({i, j});
+    NarrowOptions tested;
+    tested.default_self_collision = false;
+    ThreadPool pool(4);
+    const auto expected = runPairNarrowPhase(all, source, tested, pool);
+    REQUIRE(expected);
+    std::vector<CandidatePair> hits;
+    for (const TrianglePair& p : expected->pairs)
+        hits.push_back({source.triangleBase(p.object_a) + p.triangle_a, source.triangleBase(p.object_b) + p.triangle_b});
+    REQUIRE(hits.size() > 100);
+    REQUIRE(hits.size() < narrow::kSerialDecidedBelow);
+    std::vector<CandidatePair> repeated = hits;  // the same distinct pairs, at the limit
+    std::mt19937 rng(5);
+    while (repeated.size() < narrow::kSerialDecidedBelow) {
+        const CandidatePair p = hits[rng() % hits.size()];
+        repeated.push_back(rng() % 2 ? p : CandidatePair{p.b, p.a});
+    }
+    std::shuffle(repeated.begin(), repeated.end(), rng);
+    NarrowOptions decided = tested;
+    decided.pairs_decided = true;
+    for (const bool at_limit : {false, true}) {
+        INFO((at_limit ? "at the limit" : "below it"));
+        CountingExecutor counting(pool);
+        const auto got = runPairNarrowPhase(at_limit ? repeated : hits, source, decided, counting);
+        REQUIRE(got);
+        CHECK(got->pairs == expected->pairs);
+        REQUIRE(got->responses.size() == expected->responses.size());
+        for (std::size_t i = 0; i < got->responses.size(); ++i) {
+            const TriangleResponse &g = got->responses[i], &e = expected->responses[i];
+            REQUIRE((g.object == e.object && g.triangle == e.triangle && g.partner_count == e.partner_count));
+            REQUIRE(std::memcmp(&g.direction, &e.direction, sizeof(Float3)) == 0);
+        }
+        CHECK(got->stats.triangle_tests == 0);
+        if (at_limit) {
+            CHECK(counting.loops > 0);
+            CHECK(counting.prepares == 1);
+        } else {
+            CHECK(counting.loops == 0);
+            CHECK(counting.prepares == 0);
+        }
+    }
+    // The same few pairs, tested: the pool is used.
+    CountingExecutor counting(pool);
+    REQUIRE(runPairNarrowPhase(hits, source, tested, counting));
+    CHECK(counting.loops > 0);
 }

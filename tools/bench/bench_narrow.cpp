@@ -3,7 +3,7 @@
 //   bench_narrow [--threads 1,2,16] [--sizes 10000,100000,1000000] [--scenes demo,spheres,torus-box]
 //                [--modes all,near,contact] [--self on,off] [--paths records,lean,pairs] [--pair-repeats 0.1]
 //                [--repeat 7] [--margin 1.0] [--filter] [--fresh] [--candidates FILE]... [--resolution N]
-//                [--pairs-sent boxes|hits] [--gap-us 0] [--dump PREFIX] [--csv PATH]
+//                [--pairs-sent boxes|hits] [--decided] [--gap-us 0] [--dump PREFIX] [--csv PATH]
 //   bench_narrow --wake-probe [--threads 16] [--repeat 7] [--gap-us 2000]
 //   bench_narrow --front-probe [scene options as above] (bench_narrow_probes.hpp)
 //
@@ -53,6 +53,9 @@
 //
 // --dump writes each workload's candidates to PREFIX<scene>-<size>-<mode>.bin (the format
 // --candidates reads), e.g. to profile the GPU's candidates without the GPU.
+//
+// --decided (with --pairs-sent hits) sets NarrowOptions::pairs_decided on the pair path:
+// the pairs are taken as intersecting, as the GPU's exact decision sends them (no tests).
 //
 // --gap-us sleeps that long before every timed call, as the GPU's 0.3-2 ms between two
 // detections does: the pool's workers have gone to sleep when the call starts (without it
@@ -111,6 +114,7 @@ struct Options {
     std::vector<std::string> paths = {"records"};
     double pair_repeats = 0.1;  // pair path: this fraction of the pairs is sent twice (reversed)
     bool hits_only = false;     // pair path: send only the pairs whose triangles intersect
+    bool decided = false;       // pair path: NarrowOptions::pairs_decided (with hits_only)
     unsigned gap_us = 0;        // sleep before each timed call
     std::vector<std::string> files;
     unsigned repeat = 7;
@@ -190,6 +194,8 @@ Options parseArgs(int argc, char** argv) {
             const std::string v = value();
             if (v != "boxes" && v != "hits") die("--pairs-sent takes boxes or hits");
             o.hits_only = v == "hits";
+        } else if (a == "--decided") {
+            o.decided = true;
         } else if (a == "--gap-us") {
             o.gap_us = static_cast<unsigned>(std::stoul(value()));
         } else if (a == "--modes") {
@@ -216,11 +222,12 @@ Options parseArgs(int argc, char** argv) {
             o.front_probe = true;
         } else {
             die("unknown argument " + a +
-                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --pairs-sent, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --gap-us, --dump, --csv, --wake-probe, --front-probe)");
+                " (use --threads, --sizes, --scenes, --modes, --self, --paths, --pair-repeats, --pairs-sent, --decided, --candidates, --repeat, --resolution, --margin, --filter, --fresh, --gap-us, --dump, --csv, --wake-probe, --front-probe)");
         }
     }
     if (o.threads.empty()) die("--threads needs at least one count");
     if (o.self.empty()) die("--self needs on, off or both");
+    if (o.decided && !o.hits_only) die("--decided needs --pairs-sent hits (decided pairs intersect)");
     return o;
 }
 
@@ -548,8 +555,10 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
                         result = o.fresh ? runNarrowPhase(lean.records, lean.source, options, pool)
                                          : runNarrowPhase(lean.records, lean.source, options, pool, workspace);
                     } else {
-                        result = o.fresh ? runPairNarrowPhase(lean.pairs, lean.source, options, pool)
-                                         : runPairNarrowPhase(lean.pairs, lean.source, options, pool, workspace);
+                        NarrowOptions pair_options = options;
+                        pair_options.pairs_decided = o.decided;
+                        result = o.fresh ? runPairNarrowPhase(lean.pairs, lean.source, pair_options, pool)
+                                         : runPairNarrowPhase(lean.pairs, lean.source, pair_options, pool, workspace);
                     }
                     const double cpu_ms = processCpuMs() - cpu_start;
                     if (!result) die(w.scene + " (" + path + "): " + result.error().message());

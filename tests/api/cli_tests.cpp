@@ -145,8 +145,12 @@ TEST_CASE("vkcollide detect refuses an absurd --threads by name instead of abort
         CHECK(exitCode(runCliLogged("detect " + scene + " --threads " + threads, log)) == 1);
         CHECK(readText(log).find("--threads needs a number from 1 to 1024") != std::string::npos);
     }
-    CHECK(exitCode(runCliLogged("detect " + scene + " --threads 2", log)) == 0);
+    // The CPU's exact decision runs on the pool; pairs the GPU decided, this few, on the
+    // calling thread (narrow::kSerialDecidedBelow), where the device has 64-bit floats.
+    CHECK(exitCode(runCliLogged("detect " + scene + " --threads 2 --exact cpu", log)) == 0);
     CHECK(readText(log).find("(2 threads)") != std::string::npos);
+    CHECK(exitCode(runCliLogged("detect " + scene + " --threads 2 --exact gpu", log)) == 0);
+    CHECK(readText(log).find("(1 thread)") != std::string::npos);
     fs::remove_all(dir);
 }
 

@@ -14,7 +14,7 @@ start=$(date +%s)
 log() { echo "$1 rc=$2 at $(( $(date +%s) - start )) s" >> $W/log.txt; tar -C /tmp -czf $OUT/run31.tgz $(basename $W); }
 nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv > $W/gpu.txt 2>&1
 B="--data data/cgal-run --cache /tmp/bc --set all --threads 16"
-SMALL=bunnies-2x75K,deform-pair-100K,deform-armadillo-bunny,ball-cloth,ball-cloth-moving,mixed-gpu,mixed-gpu-b,twisted-bar,twisted-ribbon,drape-flap,drape-flap-b,deform-tori,deform-blobs,spheres-8x10K,bunnies-2x75K-deep
+SMALL=bunnies-2x75K,deform-pair-100K,deform-armadillo-bunny,ball-cloth,ball-cloth-moving,mixed-gpu,mixed-gpu-b,twisted-bar,twisted-ribbon,drape-flap,drape-flap-b,deform-tori,deform-blobs,spheres-8x10K,bunnies-2x75K-deep,deform-pair-1M
 timeout 60 build-carry/s59/vkcollide_bench $B --frames 6 --warmup-ms 1000 --variants device-only --scenes spheres-60x10K-dense > $W/0-warm.txt 2>&1; log warm $?
 small() {  # $1: tag, $2: build
   timeout 150 build-carry/$2/vkcollide_bench $B --frames 10 --warmup-ms 300 --variants default,into,pipelined --scenes $SMALL \

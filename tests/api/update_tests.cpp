@@ -3,6 +3,7 @@
 // the GPU from the upload buffer and by the narrow phase from the host copy; automatic
 // settings measured lazily), a bad vertex in the last chunk is named, and a refused update
 // changes nothing.
+#include <algorithm>
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -232,4 +233,38 @@ TEST_CASE("a drifting resolution keeps the command buffer", "[api][gpu]") {
         if (resolution[f] != resolution[f - 1]) ++moved, moved_reused += reused[f];
     REQUIRE(moved >= 4);  // the resolution did move
     CHECK(moved_reused * 2 >= moved);
+}
+
+TEST_CASE("a resolution swinging by half its cells keeps the command buffer", "[api][gpu]") {
+    // a moves away from b and back, a quarter of its radius a frame: the scene's width, and
+    // with it the resolution, swings by about a quarter (the cells by half). Once the widest
+    // frame has sized the buffers, every frame records the same commands (the clear and the
+    // scan cover every cell the buffers hold: CellStage::recordedCells).
+    ValidatedContext ctx;
+    const HostMesh a = sphere(1.0f, 40, 0.0f), b = sphere(1.0f, 40, 1.2f);
+    auto world = makeWorld(ctx, {.threads = 2});
+    auto ia = world->addMesh(a, {.name = "a"});
+    REQUIRE(ia);
+    REQUIRE(world->addMesh(b, {.name = "b"}));
+    std::vector<std::uint32_t> resolution;
+    std::vector<bool> reused;
+    for (int frame = 0; frame < 12; ++frame) {
+        const float dx = 0.25f * float(frame % 4);
+        std::vector<Float3> moved = a.positions;
+        for (Float3& p : moved) p.x -= dx;
+        REQUIRE(world->updateVertices(*ia, moved));
+        auto r = world->detect();
+        REQUIRE(r);
+        REQUIRE(r->stats.submissions == 1);
+        REQUIRE_FALSE(r->pairs.empty());
+        resolution.push_back(r->stats.resolution);
+        reused.push_back(r->stats.host.reused_submissions == 1);
+    }
+    CAPTURE(resolution, reused);
+    const auto [lowest, highest] = std::minmax_element(resolution.begin(), resolution.end());
+    REQUIRE(double(*highest) >= 1.15 * double(*lowest));  // the resolution did swing
+    for (std::size_t f = 5; f < resolution.size(); ++f) {
+        INFO("frame " << f);
+        CHECK(reused[f]);
+    }
 }

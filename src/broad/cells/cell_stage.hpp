@@ -306,14 +306,21 @@ public:
 private:
     explicit CellStage(vk::Device& device) : device_(&device) {}
     Result<void> ensureBuffers();
-    // The cells the per-cell buffers are sized for, and the count buffer's clear and scan
-    // run over (the shaders stop at the params' cell and block counts): `exact` rounded up
-    // to a sixteenth of its power of two. A resolution that moves by a cell or so a frame
-    // (a deforming scene's follows its extent) then seldom re-creates those buffers or
-    // changes the recorded commands, so the executor mostly submits its command buffer
-    // again instead of recording it (recording: 0.05-0.09 ms a frame on the H100's host,
-    // results/h200_2026-12-07/README.md).
+    // The cells the per-cell buffers are sized for: `exact` rounded up to a sixteenth of its
+    // power of two. A resolution that moves by a cell or so a frame (a deforming scene's
+    // follows its extent) then seldom re-creates those buffers.
     static std::uint64_t roundedCells(std::uint64_t exact);
+    // The cells the count buffer's clear and the scan's dispatches cover (the shaders stop
+    // at the params' cell and block counts): every cell the per-cell buffers hold, while
+    // that is at most kRecordedCellsSlack times this run's rounded count, else the rounded
+    // count. The recorded commands then stay the same while a deforming scene's cell count
+    // swings within that band, and the executor submits its command buffer again instead of
+    // recording it (0.03 ms a frame on the H200's host; a sixteenth's rounding alone left
+    // deform-tori, deform-blobs and deform-armadillo-bunny recording on 73-100 % of their
+    // frames: results/h200_2026-12-07/README.md, run 31). The band costs a clear of 4 bytes
+    // and an idle scan workgroup per 1,024 cells beyond the run's.
+    static constexpr std::uint64_t kRecordedCellsSlack = 4;
+    std::uint64_t recordedCells() const;
     std::uint32_t automaticPairChunk() const;
     struct PairPassIds {
         graph::ResourceId header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, exact_queue;

@@ -44,6 +44,13 @@ std::uint64_t CellStage::roundedCells(std::uint64_t exact) {
     return (exact + step - 1) / step * step;
 }
 
+std::uint64_t CellStage::recordedCells() const {
+    const std::uint64_t rounded = roundedCells(std::uint64_t(resolution_) * resolution_);
+    // What all three per-cell buffers hold (ensureBuffers reserves them together).
+    const std::uint64_t held = std::min({buf_.counts->size() / 4, buf_.offsets->size() / 4 - 1, buf_.block_sums->size() / 4 * gpu::kCellsScanBlock});
+    return held >= rounded && held <= kRecordedCellsSlack * rounded ? held : rounded;
+}
+
 Result<void> CellStage::ensureBuffers() {
     using vk::MemoryKind;
     const VkDeviceSize cells = roundedCells(VkDeviceSize(resolution_) * resolution_);

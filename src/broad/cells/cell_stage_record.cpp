@@ -27,7 +27,7 @@ graph::PassBuilder pass(graph::Graph& g, const char* name, PassKind kind, Stage 
 CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projection) {
     survivor_count_ = gpu_triangle_count_ = 0;  // until this recording's finish()
     const VkDeviceAddress params = buf_.params->address();
-    const std::uint64_t cells = roundedCells(std::uint64_t(resolution_) * resolution_);  // the buffers hold as many
+    const std::uint64_t cells = recordedCells();  // the buffers hold as many
     const std::uint64_t blocks = (cells + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const std::uint64_t tri_groups = groupsFor(triangles_);
     const auto header = importRow(g, buf_.header);

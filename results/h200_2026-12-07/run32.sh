@@ -18,7 +18,7 @@ B="--data data/cgal-run --cache /tmp/bc --set all --threads 16"
 SCENES=deform-tori,deform-blobs,deform-armadillo-bunny,deform-pair-100K,deform-pair-1M,deep-blobs,bunnies-14x75K,stack-mating
 timeout 60 build-carry/s60/vkcollide_bench $B --frames 4 --warmup-ms 800 --variants device-only --scenes spheres-60x10K-dense > $W/0-warm.txt 2>&1; log warm $?
 one() {  # $1: round, $2: build
-  timeout 40 build-carry/$2/vkcollide_bench $B --frames 8 --warmup-ms 200 --variants default,into --scenes $SCENES \
+  timeout 60 build-carry/$2/vkcollide_bench $B --frames 8 --warmup-ms 200 --variants default,into --scenes $SCENES \
     --csv $W/$1-$2.csv --profile $W/$1-$2_profile.csv > $W/$1-$2.txt 2>&1; log $1-$2 $?
 }
 one a s59; one a s60; one b s60; one b s59

@@ -243,6 +243,8 @@ struct NarrowOptions {
     // (the reliable method's GPU pair pass): each one that passes the self-collision
     // switch, the neighbour rule and may_collide is taken as intersecting without a test
     // (NarrowStats::triangle_tests stays 0), and only the result and responses are built.
+    // Fewer than 2,048 such pairs run on the calling thread: the executor is not called (the
+    // work is a few microseconds a hundred pairs, less than waking its threads).
     bool pairs_decided = false;
 
     bool selfCollides(std::uint32_t object) const {

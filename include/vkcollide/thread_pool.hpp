@@ -50,7 +50,8 @@ public:
 // An engine's parallel-for: run run_task(k) once for every k in [0, task_count), on any
 // threads, in any order, and return when every call has returned. task_count >= 2.
 // vkcollide calls it from the thread that calls the world (WorldOptions::executor says
-// which calls), one loop at a time: about ten loops per narrow-phase call, one per
+// which calls), one loop at a time: about ten loops per narrow-phase call (none for fewer
+// than 2,048 pairs the GPU decided: those run on the calling thread), one per
 // updateVertices and per shape measurement; each task is a few microseconds to a millisecond.
 using ParallelForCallback =
     std::function<void(std::size_t task_count, const std::function<void(std::size_t task)>& run_task)>;

@@ -94,11 +94,12 @@ int main(int argc, char** argv) {
     std::printf("GPU passes (ms):");
     for (const auto& p : st.gpu_passes) std::printf(" %s %.3f;", p.name.c_str(), p.gpu_ms);
     if (st.method == DetectMethod::Reliable)
-        std::printf("\nstages (ms): footprints %.3f, pairing %.3f, filtering %.3f (GPU), readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
-                    st.reliable.footprints_ms, st.reliable.pairing_ms, st.reliable.filtering_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads, st.total_ms);
+        std::printf("\nstages (ms): footprints %.3f, pairing %.3f, filtering %.3f (GPU), readback %.3f, CPU narrow phase %.3f (%u thread%s), total %.3f\n",
+                    st.reliable.footprints_ms, st.reliable.pairing_ms, st.reliable.filtering_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads,
+                    st.host.narrow_threads == 1 ? "" : "s", st.total_ms);
     else
-        std::printf("\nstages (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f, readback %.3f, CPU narrow phase %.3f (%u threads), total %.3f\n",
+        std::printf("\nstages (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f, readback %.3f, CPU narrow phase %.3f (%u thread%s), total %.3f\n",
                     st.sampling_ms, st.peeling.merging_ms, st.peeling.separation_ms, st.peeling.packing_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads,
-                    st.total_ms);
+                    st.host.narrow_threads == 1 ? "" : "s", st.total_ms);
     return result->pairs.empty() ? fail("expected collisions in the bundled scene, found none") : 0;
 }

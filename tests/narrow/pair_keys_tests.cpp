@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
-#include <cstring>
 #include <functional>
 #include <map>
 #include <random>
@@ -18,6 +17,7 @@
 
 #include "narrow/exact_stage.hpp"
 #include "narrow/pair_keys.hpp"
+#include "narrow/same_result.hpp"
 #include "narrow/scene_builders.hpp"
 #include "narrow/sweep_and_prune.hpp"
 #include "narrow/workspace.hpp"
@@ -209,13 +209,7 @@ TEST_CASE("Pair path: the same result on either side of the serial front's switc
         for (const std::vector<CandidatePair>* pairs : {&below, &above}) {
             const auto got = runPairNarrowPhase(*pairs, source, options, *pool, workspace);
             REQUIRE(got);
-            REQUIRE(got->pairs == expected->pairs);
-            REQUIRE(got->responses.size() == expected->responses.size());
-            for (std::size_t i = 0; i < got->responses.size(); ++i) {
-                const TriangleResponse &g = got->responses[i], &e = expected->responses[i];
-                REQUIRE((g.object == e.object && g.triangle == e.triangle && g.partner_count == e.partner_count));
-                REQUIRE(std::memcmp(&g.direction, &e.direction, sizeof(Float3)) == 0);
-            }
+            test::requireSamePairsAndResponses(*got, *expected);
             CHECK(got->stats.sap_pairs == expected->stats.sap_pairs);
             CHECK(got->stats.candidates == expected->stats.candidates);
             CHECK(got->stats.triangle_tests == expected->stats.triangle_tests);
@@ -261,13 +255,7 @@ TEST_CASE("Pair path: few decided pairs run on the calling thread, with the same
         CountingExecutor counting(pool);
         const auto got = runPairNarrowPhase(at_limit ? repeated : hits, source, decided, counting);
         REQUIRE(got);
-        CHECK(got->pairs == expected->pairs);
-        REQUIRE(got->responses.size() == expected->responses.size());
-        for (std::size_t i = 0; i < got->responses.size(); ++i) {
-            const TriangleResponse &g = got->responses[i], &e = expected->responses[i];
-            REQUIRE((g.object == e.object && g.triangle == e.triangle && g.partner_count == e.partner_count));
-            REQUIRE(std::memcmp(&g.direction, &e.direction, sizeof(Float3)) == 0);
-        }
+        test::requireSamePairsAndResponses(*got, *expected);
         CHECK(got->stats.triangle_tests == 0);
         if (at_limit) {
             CHECK(counting.loops > 0);

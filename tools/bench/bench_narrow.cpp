@@ -524,6 +524,8 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
         NarrowOptions options;
         options.default_self_collision = self;
         if (o.filter) options.may_collide = [](std::uint32_t, std::uint32_t) { return true; };
+        NarrowOptions pair_options = options;  // the pair path's (the record paths refuse pairs_decided)
+        pair_options.pairs_decided = o.decided;
         LeanInputs lean;
         if (lean_paths && !w.objects.empty()) lean = leanInputs(w, self, o.pair_repeats, o.hits_only, pair_path);
         std::vector<TrianglePair> reference_pairs;
@@ -555,8 +557,6 @@ void runWorkload(const Workload& w, const Options& o, std::FILE* csv) {
                         result = o.fresh ? runNarrowPhase(lean.records, lean.source, options, pool)
                                          : runNarrowPhase(lean.records, lean.source, options, pool, workspace);
                     } else {
-                        NarrowOptions pair_options = options;
-                        pair_options.pairs_decided = o.decided;
                         result = o.fresh ? runPairNarrowPhase(lean.pairs, lean.source, pair_options, pool)
                                          : runPairNarrowPhase(lean.pairs, lean.source, pair_options, pool, workspace);
                     }

@@ -10,9 +10,6 @@
 // partner ascending; so the lower buckets are sorted here. Light on registers: every step
 // is proportional to the triangles.
 // Steps (Push.step), each after a barrier, all after the device pairs' passes:
-//   7     per triangle: lower_counts zeroed (here, not by a transfer fill: a barrier after a
-//         fill would wait on every copy before it, the pairs' copy to the host included,
-//         which runs beside these steps);
 //   0     per triangle a: lower_counts[b] += 1 for each higher partner b (invocation 0 first
 //         zeroes the responders' dispatch, so that a skipped run dispatches none);
 //   1-3   an exclusive scan (block_scan.glsl.inc): Push.level 0, lower_counts into
@@ -21,7 +18,7 @@
 //   4     per triangle a: lower[lower_offsets[b] + cursor] = a for each higher partner b;
 //   5     per triangle: its lower bucket sorted; marks = in a pair;
 //   6     per marked triangle: responders[positions[t]] = t.
-// Order: 7, 0, scan level 0, 4, 5, scan level 1, 6.
+// Order: 0, scan level 0, 4, 5, scan level 1, 6.
 #include "cells_common.glsl.inc"
 #include "common/workgroup.glsl.inc"
 #include "block_scan.glsl.inc"
@@ -47,10 +44,6 @@ void main() {
         return;
     }
     if (t >= R.triangle_count) return;
-    if (pc.step == 7u) {
-        UintsRef(R.lower_counts).v[t] = 0u;
-        return;
-    }
     UintsRef counts = UintsRef(D.counts), offsets = UintsRef(D.offsets), partners = UintsRef(D.partners);
     UintsRef lower_counts = UintsRef(R.lower_counts), lower_offsets = UintsRef(R.lower_offsets), lower = UintsRef(R.lower);
     uint higher_n = counts.v[t], higher_base = offsets.v[t];

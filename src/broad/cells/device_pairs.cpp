@@ -176,31 +176,29 @@ DevicePairStage::Resources DevicePairStage::record(graph::Graph& g, const CellSt
     return {header, pairs, counts, offsets, partners, sums};
 }
 
-void DevicePairStage::recordPairsToHost(graph::Graph& g, const Resources& sorted) {
-    if (!for_host_) return;
+void DevicePairStage::recordCopies(graph::Graph& g, const Resources& sorted) {
     Buffers& b = buf_;
-    const auto host_pairs = importRow(g, b.host_pairs, true);
-    // A copy by the transfer engine: the shaders' stores to host memory cross the bus
-    // 15-20x slower on an H200 (1.7M pairs: 11.7 ms from a coalesced shader, 0.65 ms
-    // copied; about 52 GB/s). The whole capacity is copied, so the host's capacity follows the
-    // pairs found (ReliableMethod: 1.25x the last count; an overflow sorts once more),
-    // and each pair is its two global ids (DevicePairsParams.packed): 8 bytes, not 16.
-    addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback)
-        .use(sorted.pairs, graph::Use::TransferSrc)
-        .use(host_pairs, graph::Use::TransferDst)
-        .record([from = b.pairs->handle(), to = b.host_pairs->handle(),
-                 bytes = VkDeviceSize(capacity_) * pairBytes()](graph::PassContext& pc) {
-            VkBufferCopy copy{0, 0, bytes};
-            pc.copyBuffer(from, to, copy);
-        });
-}
-
-void DevicePairStage::recordHeaderToHost(graph::Graph& g, const Resources& sorted) {
+    const graph::ResourceId header = sorted.header, pairs = sorted.pairs;
+    if (for_host_) {
+        const auto host_pairs = importRow(g, b.host_pairs, true);
+        // A copy by the transfer engine: the shaders' stores to host memory cross the bus
+        // 15-20x slower on an H200 (1.7M pairs: 11.7 ms from a coalesced shader, 0.65 ms
+        // copied; about 52 GB/s). The whole capacity is copied, so the host's capacity follows the
+        // pairs found (ReliableMethod: 1.25x the last count; an overflow sorts once more),
+        // and each pair is its two global ids (DevicePairsParams.packed): 8 bytes, not 16.
+        addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback)
+            .use(pairs, graph::Use::TransferSrc)
+            .use(host_pairs, graph::Use::TransferDst)
+            .record([from = b.pairs->handle(), to = b.host_pairs->handle(),
+                     bytes = VkDeviceSize(capacity_) * pairBytes()](graph::PassContext& pc) {
+                VkBufferCopy copy{0, 0, bytes};
+                pc.copyBuffer(from, to, copy);
+            });
+    }
     if (!header_to_host_) return;
-    Buffers& b = buf_;
     const auto header_rb = importRow(g, b.header_rb, true);
     addPass(g, "pairs-header-readback", graph::PassKind::Transfer, Stage::Readback)
-        .use(sorted.header, graph::Use::TransferSrc)
+        .use(header, graph::Use::TransferSrc)
         .use(header_rb, graph::Use::TransferDst)
         .record([from = b.header->handle(), to = b.header_rb->handle()](graph::PassContext& pc) {
             VkBufferCopy copy{0, 0, sizeof(gpu::DevicePairsHeader)};

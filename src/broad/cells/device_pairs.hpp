@@ -62,12 +62,9 @@ public:
         graph::ResourceId header, pairs, counts, offsets, partners, block_sums;
     };
     Resources record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header = {});
-    // The copies to host memory the run was prepared for. The pairs' (for_host) right after
-    // record(): passes over the buckets that only compute run beside it (no barrier of
-    // theirs waits on the copy stage). The header's (header_to_host) after those passes,
-    // which count into it.
-    void recordPairsToHost(graph::Graph& g, const Resources& sorted);
-    void recordHeaderToHost(graph::Graph& g, const Resources& sorted);
+    // The copies to host memory the run was prepared for (header_to_host, for_host), after
+    // record() and any passes over its buckets.
+    void recordCopies(graph::Graph& g, const Resources& sorted);
     // Called at each detection's start: frees what was retired two starts ago.
     void retire();
 

@@ -99,6 +99,8 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
     const auto normals = importRow(g, b.normals);
     const auto responses = importRow(g, b.responses);
     const VkDeviceAddress params = buf_.params->address();
+    const VkBuffer counts_buffer = buf_.lower_counts->handle();
+    const VkDeviceSize count_bytes = VkDeviceSize(std::max<std::uint32_t>(triangles_, 1)) * 4;
     const std::uint64_t tri_groups = (std::uint64_t(triangles_) + gpu::kCellsGroupSize - 1) / gpu::kCellsGroupSize;
     const std::uint64_t blocks = (std::uint64_t(triangles_) + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const std::uint32_t max_x = max_groups_x_;
@@ -120,8 +122,9 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
         dispatchGroups(pc, tri_groups, max_x);
     };
 
-    // The counts are zeroed by a step (7) of the bucket pass, not a transfer fill: no barrier
-    // here waits on the copy stage, so the pairs' copy to the host runs beside these passes.
+    addPass(g, "responses-clear", graph::PassKind::Transfer, Stage::Sorting)
+        .use(lower_counts, graph::Use::TransferDst)
+        .record([counts_buffer, count_bytes](graph::PassContext& pc) { pc.fillBuffer(counts_buffer, 0, count_bytes, 0); });
     addPass(g, "responses-bucket", graph::PassKind::Compute, Stage::Sorting)
         .write(args)
         .read(sorted.header)
@@ -132,10 +135,7 @@ void DeviceResponseStage::record(graph::Graph& g, const CellStage::Resources& ce
         .readWrite(lower_counts)
         .write(lower_offsets)
         .write(lower)
-        .record([perTriangle, stepScanStep](graph::PassContext& pc) {
-            perTriangle(pc, 7);
-            stepScanStep(pc, 0, 0, 4);
-        });
+        .record([stepScanStep](graph::PassContext& pc) { stepScanStep(pc, 0, 0, 4); });
     addPass(g, "responses-list", graph::PassKind::Compute, Stage::Sorting)
         .read(sorted.counts)
         .read(lower_offsets)

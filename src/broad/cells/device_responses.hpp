@@ -3,10 +3,8 @@
 // pairs' sorted buckets, equal to the host result's responses to the bit
 // (spirv/cells/device_responses.comp.glsl has the passes and why they match the CPU).
 //
-//   responses-bucket  each triangle's lower partners counted (the counts zeroed by a step of
-//                     its own, not a fill: the pairs' copy to the host runs beside these
-//                     passes, and a barrier after a fill would wait on it), scanned and
-//                     scattered
+//   responses-clear   the lower partners' counts zeroed
+//   responses-bucket  each triangle's lower partners counted, scanned and scattered
 //   responses-list    each lower bucket sorted, the triangles in a pair marked, scanned and
 //                     listed (spirv/cells/device_responses.comp.glsl: light, per triangle)
 //   responses-sum     per listed triangle, dispatched indirectly: its unit normal, then its

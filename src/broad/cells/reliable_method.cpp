@@ -132,10 +132,8 @@ Result<void> ReliableMethod::prepareSort() {
 
 void ReliableMethod::recordSort(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) const {
     const DevicePairStage::Resources sorted = device_pairs_->record(g, cells, fault_header);
-    // The pairs cross the bus (the transfer engine) while the responses are computed.
-    device_pairs_->recordPairsToHost(g, sorted);
     if (responding()) device_responses_->record(g, cells, sorted);
-    device_pairs_->recordHeaderToHost(g, sorted);
+    device_pairs_->recordCopies(g, sorted);
 }
 
 void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {

@@ -6,9 +6,8 @@
 //                                                         projection the fit wrote
 //   readback  the broad phase's header                    common_stages.hpp
 //   (device pairs, BroadPhaseSettings::device_pairs: pairs-clear/args/bucket/sort after
-//             the stage's passes, device_pairs.hpp; for the host the pairs' copy next,
-//             beside the responses that follow with device_responses:
-//             responses-bucket/list/sum, device_responses.hpp)
+//             the stage's passes, device_pairs.hpp; with device_responses then
+//             responses-clear/bucket/sum, device_responses.hpp)
 //   collect   the stage's header; after an overflow Again (the broad phase runs the
 //             stage's passes alone, its buffers already grown), while the pair pass has
 //             chunks to go Again (its next chunk alone), until complete, then the device

@@ -79,7 +79,8 @@ private:
 // in huge pages where the kernel gives them (core/huge_pages.hpp), which the executor's
 // threads touch before resize()'s one-thread pass: a fresh vector's page faults, taken by one
 // thread, cost 13.6 ms for the 27 MB of 1.7M pairs on the H200's host (docs/api.md), more
-// than the rest of the host's work for them.
+// than the rest of the host's work for them. (That pass writes nothing for a type whose
+// default constructor leaves it unset, as TrianglePair's does.)
 namespace fresh {
 
 inline constexpr std::size_t kTouchBytes = std::size_t{1} << 20;  // a task's share of the pages

@@ -43,7 +43,7 @@ struct Source {
 
 // The pair (a, b) as the result names it, by a walk over the objects' ranges.
 TrianglePair named(const TriangleSource& s, std::uint32_t a, std::uint32_t b) {
-    TrianglePair p;
+    TrianglePair p{0, 0, 0, 0};
     for (std::uint32_t o = 0; o < s.objectCount(); ++o) {
         if (a >= s.triangleBase(o) && a < s.triangleBase(o + 1)) p.object_a = o, p.triangle_a = a - s.triangleBase(o);
         if (b >= s.triangleBase(o) && b < s.triangleBase(o + 1)) p.object_b = o, p.triangle_b = b - s.triangleBase(o);

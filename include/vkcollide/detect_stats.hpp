@@ -112,6 +112,9 @@ struct ReliableStats {
     double sorting_ms = 0;  // device_pairs: the GPU's sort of the pairs
     bool pairs_sorted_on_gpu = false;  // DetectSettings::reliable.pair_sort: the GPU ordered the host result's pairs
     bool responses_on_gpu = false;  // DetectSettings::reliable.responses: the GPU computed the host result's responses
+    // With both: the host named the result's pairs while the GPU computed the responses (a
+    // milestone in the submission: docs/narrow_phase.md), not after it finished.
+    bool pairs_named_during_gpu = false;
     // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
     // as DetectResult::pairs would have held) and `count` (those the buffer holds).
     std::uint32_t device_pairs_found = 0, device_pairs_written = 0;
@@ -155,6 +158,10 @@ struct HostStats {
     // which writes into the caller's memory. Where it exceeds the GPU span it is also in
     // launch_wake_ms (the host wakes after it).
     double prepare_ms = 0;
+    // Of collect_ms: the host's work while the GPU still ran, past a milestone of the
+    // submission (the pairs named during the responses' passes: reliable.pairs_named_during_gpu;
+    // also narrow_timings.validate_ms, outside narrow_ms); not in wait_ms.
+    double milestone_ms = 0;
     // Of DetectStats::submissions, those whose command buffer was submitted again instead
     // of recorded: the commands equalled the last recording's and nothing they use was
     // destroyed since.

@@ -121,6 +121,9 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.host_pairs = s.reliable.host_pairs;
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     run.sorts_on_gpu = s.method == DetectMethod::Reliable && d.broad.sort_on_gpu && s.reliable.host_pairs;
+    // The pairs named while the GPU computes their responses (finish() then names none).
+    if (run.sorts_on_gpu && d.broad.responses_on_gpu)
+        d.broad.on_sorted_pairs = [this, &run](std::span<const CandidatePair> sorted) { return nameEarly(run, sorted); };
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();
     if (s.contacts.geometry)
@@ -192,6 +195,24 @@ void CollisionWorld::Impl::prepareResultMemory(const Run& run) {
     narrow::resizeFresh(ready_pairs, pairs, ready_responses, responses, *executor);
 }
 
+// Inside collect()'s wait, as soon as the GPU has copied a complete sort's pairs: they are
+// named into the result's memory, checked on the way, while the GPU computes the responses.
+// The objects are named as finish() names them when the run's objects are all live (finish
+// uses this naming only then). Never throws (the executor's callback must not).
+bool CollisionWorld::Impl::nameEarly(Run& run, std::span<const CandidatePair> sorted) {
+    run.named_early = false;
+    if (!run.early_into || sorted.size() > run.settings.limits.max_pairs) return false;
+    const auto t0 = Clock::now();
+    try {
+        if (!registry.syncSource(run.ids)) return false;
+    } catch (...) {  // host memory ran out: finish() says so
+        return false;
+    }
+    run.named_early = narrow::nameSortedPairs(sorted, registry.source, *executor, *run.early_into);
+    run.early_name_ms = msSince(t0);
+    return run.named_early;
+}
+
 Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock, DetectResult* reuse) {
     run.in_flight = false;
     const auto t0 = Clock::now();
@@ -204,7 +225,11 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock,
         prepareResultMemory(run);
         run.prepare_ms = msSince(t0);
     }
+    run.early_into = reuse ? &reuse->pairs : &ready_pairs;
+    run.named_early = false;
+    run.early_name_ms = 0;
     auto r = run.detection->collect();
+    run.early_into = nullptr;
     run.wait_ms = msSince(t0);
     if (!r) return noted(describeFailure(run, r.error()));
     return finish(run, std::move(*r), reuse);
@@ -357,8 +382,12 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
                 pair_memory = std::move(ready_pairs);
                 response_memory = std::move(ready_responses);
             }
+            // Named during the wait (nameEarly) over these pairs, with the same objects.
+            const bool named = broad[0].sorted_pairs_seen && run.named_early && std::ranges::equal(ids, run.ids);
             narrow = narrow::runSortedPairs(broad[0].sorted_pairs, registry.source, options, *executor, narrow_workspace,
-                                            std::move(pair_memory), std::move(response_memory), broad[0].sorted_responses);
+                                            std::move(pair_memory), std::move(response_memory), broad[0].sorted_responses, named);
+            st.reliable.pairs_named_during_gpu = named && narrow && narrow->pairs_left_out == 0;
+            if (named && narrow) narrow->timings.validate_ms = run.early_name_ms;
             last_narrow_pairs = broad[0].sorted_pairs.size();
             st.reliable.pairs_sorted_on_gpu = true;
             st.reliable.responses_on_gpu = broad[0].has_sorted_responses && narrow && narrow->pairs_left_out == 0;
@@ -459,6 +488,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.host.start_ms = run.start_ms;
     st.host.collect_ms = run.wait_ms;
     st.host.prepare_ms = run.prepare_ms;
+    st.host.milestone_ms = st.reliable.pairs_named_during_gpu ? run.early_name_ms : 0;
     st.host.settings_ms = run.settings_ms;
     return out;
 }

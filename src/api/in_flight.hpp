@@ -45,6 +45,11 @@ struct DetectionsInFlight {
         double prepare_ms = 0;  // of wait_ms: detect()'s result memory made ready (prepareResultMemory)
         double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host.settings_ms)
         bool sorts_on_gpu = false;         // the reliable method's host pairs come back sorted by the GPU
+        // During collect(): where nameEarly names the pairs (the caller's result for
+        // detectInto, else the memory made ready), whether it did and how long it took.
+        std::vector<TrianglePair>* early_into = nullptr;
+        bool named_early = false;
+        double early_name_ms = 0;
     };
 
     // A batch of only the engine's waits and signals, for a submit() that failed after it

@@ -95,6 +95,9 @@ struct CollisionWorld::Impl {
     // caller does not lend (detect(), collect()): vectors as large as the last result's pairs
     // and responses, their new pages touched and zeroed while the GPU works, not after it.
     void prepareResultMemory(const Run& run);
+    // The broad phase's on_sorted_pairs for `run`: its sorted pairs named into the result's
+    // memory (Run::early_into) while the GPU computes the responses.
+    bool nameEarly(Run& run, std::span<const CandidatePair> sorted);
     // CollisionWorld::detect/collect and their *Into forms (reuse_memory: the caller's result).
     Result<DetectResult> detectCall(const DetectSettings& settings, DetectResult* reuse_memory);
     Result<DetectResult> collectCall(DetectResult* reuse_memory);

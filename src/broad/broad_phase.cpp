@@ -218,6 +218,7 @@ void BroadPhase::record(graph::Graph& g, Recording what, FollowUpStage* follow_u
         // Its own rows only: what the run wrote stays, and the stage reads none of it but
         // the objects (uploaded by the host).
         follow_up->record(g, run);
+        executor_.setMilestone({});
         run_.host.declare_ms += msSince(t0);
         return;
     }
@@ -234,6 +235,8 @@ void BroadPhase::record(graph::Graph& g, Recording what, FollowUpStage* follow_u
         if (what != Recording::Measure) method_->record(Phase::Main, g, run, buffers);
     }
     common_->recordReadback(g, buffers, core_);
+    // The method's milestone in this recording, if any: collect() calls it mid-submission.
+    executor_.setMilestone(method_->milestone());
     run_.host.declare_ms += msSince(t0);
 }
 

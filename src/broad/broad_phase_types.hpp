@@ -152,6 +152,12 @@ struct BroadPhaseSettings {
     std::uint32_t sorted_pairs_expected = 0;
     // Where sort_on_gpu ran: the responses computed there too (BroadPhaseResult::sorted_responses).
     bool responses_on_gpu = false;
+    // With responses_on_gpu: called inside collect(), on its thread, with the sorted pairs
+    // (global triangle ids, as BroadPhaseResult::sorted_pairs) as soon as the GPU has copied
+    // them, while it still computes the responses; returns whether it used them (named them:
+    // BroadPhaseResult::sorted_pairs_seen then says so). Called at most once per sort, only
+    // with a complete sort's pairs; the span is valid until the next run. Empty: not called.
+    std::function<bool(std::span<const CandidatePair>)> on_sorted_pairs;
     // Methods that form pairs on the GPU with the exact decision there: also every
     // vertex-triangle and edge-edge pair within this distance (world units; 0: off), each
     // mesh with its GpuMesh::proximity_owned. Capacity in records, 0: automatic.
@@ -229,6 +235,9 @@ struct BroadPhaseResult {
     // (host-visible memory, valid until the next run); `pairs` is then empty.
     bool has_sorted_pairs = false;
     std::span<const CandidatePair> sorted_pairs;
+    // BroadPhaseSettings::on_sorted_pairs was called with exactly these sorted_pairs (the
+    // final sort's) and used them.
+    bool sorted_pairs_seen = false;
     // BroadPhaseSettings::responses_on_gpu where it ran: every pair's triangles' responses, in
     // order (objects as run indices; host-visible memory, valid until the next run).
     bool has_sorted_responses = false;

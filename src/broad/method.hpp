@@ -34,6 +34,7 @@
 #include "broad/dispatch.hpp"
 #include "broad/run_view.hpp"
 #include "broad/stage.hpp"
+#include "graph/executor.hpp"
 
 namespace vkcollide::passes {
 
@@ -99,6 +100,10 @@ public:
     // After a submission ended: the method's outputs and statistics into `io_result`, or
     // Again (at most kMaxMethodAgains times in a run).
     [[nodiscard]] virtual Result<Collected> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) = 0;
+    // After record(): the milestone of the recording (graph::Executor::setMilestone), a
+    // pass after which the host may start on part of the outputs while the GPU does the
+    // rest; none by default. Its callback runs inside the broad phase's collect().
+    virtual graph::Executor::Milestone milestone() { return {}; }
     // After collect() failed with InvalidMesh: the object (run index) the method's own
     // input checks blamed, if any (the broad phase adds it to its ObjectFaults).
     virtual std::optional<ObjectFault> fault() const { return std::nullopt; }

@@ -186,6 +186,12 @@ void CommandTape::writeTimestamp(VkPipelineStageFlags2 stage, VkQueryPool pool, 
     put(query);
 }
 
+void CommandTape::signalHost(VkEvent event) {
+    put(kSignalHost);
+    put(bits(event));
+    ++signals_;
+}
+
 void CommandTape::beginLabel(std::string_view prefix, std::string_view name) {
     put(kBeginLabel);
     const std::size_t size = prefix.size() + name.size() + 1;

@@ -44,12 +44,20 @@ public:
     void setViewport(const VkViewport& viewport);
     void setScissor(const VkRect2D& scissor);
     void writeTimestamp(VkPipelineStageFlags2 stage, VkQueryPool pool, std::uint32_t query);
+    // Every earlier command's writes made visible to the host (a barrier to HOST_READ), then
+    // `event` set (vkCmdSetEvent2 over every earlier command): PassContext::signalHost.
+    void signalHost(VkEvent event);
     // A VK_EXT_debug_utils label named prefix + name (stored with its NUL, so that replay
     // passes it in place) until the matching endLabel().
     void beginLabel(std::string_view prefix, std::string_view name);
     void endLabel();
 
-    void clear() noexcept { words_.clear(); }
+    void clear() noexcept {
+        words_.clear();
+        signals_ = 0;
+    }
+    // How many signalHost() commands it holds.
+    std::size_t signals() const noexcept { return signals_; }
     // Position after the last command (replay() starts from one).
     std::size_t size() const noexcept { return words_.size(); }
     bool empty() const noexcept { return words_.empty(); }
@@ -68,6 +76,7 @@ private:
     // One word per field (two 32-bit fields share one where noted in the .cpp): a layout
     // without padding, so that equal commands are equal words.
     std::vector<std::uint64_t> words_;
+    std::size_t signals_ = 0;
     // replay()'s scratch, kept between replays.
     std::vector<VkMemoryBarrier2> memory_barriers_;
     std::vector<VkBufferMemoryBarrier2> buffer_barriers_;

@@ -219,6 +219,28 @@ void CommandTape::replay(const vk::DeviceFunctions& f, VkCommandBuffer cmd, std:
                 f.vkCmdWriteTimestamp2(cmd, stage, pool, static_cast<std::uint32_t>(in.next()));
                 break;
             }
+            case kSignalHost: {
+                const auto event = in.nextHandle<VkEvent>();
+                // The writes so far made visible to the host; the event's first scope holds
+                // that barrier, so a host that sees it set reads what they wrote.
+                VkMemoryBarrier2 to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+                to_host.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+                to_host.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+                to_host.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+                to_host.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+                VkDependencyInfo barrier{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+                barrier.memoryBarrierCount = 1;
+                barrier.pMemoryBarriers = &to_host;
+                f.vkCmdPipelineBarrier2(cmd, &barrier);
+                VkMemoryBarrier2 before{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+                before.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+                before.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+                VkDependencyInfo set{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+                set.memoryBarrierCount = 1;
+                set.pMemoryBarriers = &before;
+                f.vkCmdSetEvent2(cmd, event, &set);
+                break;
+            }
             case kBeginLabel: {
                 const std::uint64_t size = in.next();
                 VkDebugUtilsLabelEXT label{VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT};

@@ -1,6 +1,7 @@
 #include "graph/executor.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "vk/debug_names.hpp"
 
@@ -27,6 +28,7 @@ HostTimes& HostTimes::operator+=(const HostTimes& o) noexcept {
     record_ms += o.record_ms;
     submit_ms += o.submit_ms;
     wait_ms += o.wait_ms;
+    milestone_ms += o.milestone_ms;
     gpu_span_ms += o.gpu_span_ms;
     launch_wake_ms += o.launch_wake_ms;
     submissions += o.submissions;
@@ -173,6 +175,7 @@ void Executor::tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& 
         tapeBarriers(planned.barriers, ctx);
         if (labels) tape_.beginLabel(vk::kDebugPrefix, p.name);
         tape_.writeTimestamp(VK_PIPELINE_STAGE_2_TOP_OF_PIPE_BIT, queries_, q++);
+        const std::size_t signals = tape_.signals();
         if (p.kind == PassKind::Raster) {
             std::vector<VkRenderingAttachmentInfo>& colors = colors_;
             colors.clear();
@@ -216,6 +219,8 @@ void Executor::tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& 
         } else {
             p.record(ctx);
         }
+        // The pass that sets a milestone's event: its end tells collect() when to look.
+        if (tape_.signals() != signals) pending_signal_pass_ = static_cast<std::uint32_t>(pending_names_.size() - 1);
         tape_.writeTimestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
         if (labels) tape_.endLabel();
     }
@@ -277,6 +282,9 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
     }
     // Wait for the previous use before touching its resources or queries.
     if (auto ok = waitFor(submission_, timeout_ns); !ok) return ok.error();
+    pending_milestone_ = std::exchange(next_milestone_, Milestone{});
+    if (pending_milestone_.event)
+        if (auto ok = pending_milestone_.event->unset(); !ok) return ok.error();
 
     const auto pass_count = static_cast<std::uint32_t>(plan->order.size());
     const std::uint32_t needed = 2 * pass_count + 2;
@@ -312,6 +320,7 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
 
     pending_names_.clear();
     pending_stages_.clear();
+    pending_signal_pass_ = kNoPass;
     pending_culled_.clear();
     for (std::uint32_t c : plan->culled) pending_culled_.push_back(graph.passes()[c].name);
     tape_.clear();
@@ -401,14 +410,66 @@ Result<void> Executor::waitForCollect(std::uint64_t timeout_ns) {
     return {};
 }
 
+Result<bool> Executor::waitForMilestone(const vk::Event& event, std::uint64_t timeout_ns) {
+    const Clock::time_point start = Clock::now();
+    auto spent = [&] { return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count()); };
+    const auto ended = [&]() -> Result<bool> {  // the submission is done: set or never
+        auto set = event.isSet();
+        if (!set) return set.error();
+        return *set;
+    };
+    if (!submission_.valid() || !submission_.pending()) return ended();
+    // Asleep in the fence's wait until kPollLeadNs before where the last submission set it
+    // (its timestamps: collect()).
+    const Clock::time_point expected = pending_submitted_at_ + std::chrono::nanoseconds(last_milestone_ns_);
+    const auto ahead = std::chrono::duration_cast<std::chrono::nanoseconds>(expected - start).count();
+    if (ahead > std::int64_t{kPollLeadNs}) {
+        auto done = submission_.waitFor(std::min<std::uint64_t>(static_cast<std::uint64_t>(ahead) - kPollLeadNs, timeout_ns));
+        if (!done) return done.error();
+        if (*done == vk::Completion::Done) return ended();
+    }
+    // Then polled (an event has no host wait): busy for at most the polling window, then
+    // in short naps in the fence's wait, which also end when the submission does.
+    const std::uint64_t poll_from = spent();
+    const std::uint64_t window = std::max<std::uint64_t>(poll_ns_, 2 * kPollLeadNs);
+    std::uint64_t next_hook = poll_from;
+    while (spent() < timeout_ns) {
+        auto set = event.isSet();
+        if (!set) return set.error();
+        if (*set) return true;
+        if (poll_hook_ && spent() >= next_hook) {
+            poll_hook_();
+            next_hook = spent() + kPollHookNs;
+        }
+        auto done = spent() - poll_from < window ? submission_.poll() : submission_.waitFor(std::min<std::uint64_t>(kMilestoneNapNs, timeout_ns - std::min(timeout_ns, spent())));
+        if (!done) return done.error();
+        if (*done == vk::Completion::Done) return ended();
+    }
+    return false;
+}
+
 Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
     const Clock::time_point t_wait = Clock::now();
+    double milestone_ms = 0;
+    if (pending_milestone_.event) {
+        const Milestone m = std::exchange(pending_milestone_, Milestone{});
+        auto seen = waitForMilestone(*m.event, timeout_ns);
+        if (!seen) return seen.error();
+        if (*seen && m.reached) {
+            const Clock::time_point t_seen = Clock::now();
+            m.reached();
+            milestone_ms = msBetween(t_seen, Clock::now());
+        }
+        const auto used = static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t_wait).count());
+        timeout_ns = used < timeout_ns ? timeout_ns - used : 0;
+    }
     if (auto ok = waitForCollect(timeout_ns); !ok) return ok.error();
     const Clock::time_point t_woken = Clock::now();
     ExecutionReport report;
     report.culled = pending_culled_;
     report.host = pending_host_;
-    report.host.wait_ms = msBetween(t_wait, t_woken);
+    report.host.wait_ms = msBetween(t_wait, t_woken) - milestone_ms;
+    report.host.milestone_ms = milestone_ms;
     const auto count = static_cast<std::uint32_t>(2 * pending_names_.size());
     if (count == 0) return report;
     std::vector<std::uint64_t> stamps(count);
@@ -424,6 +485,11 @@ Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
         report.passes.push_back({pending_names_[i], double((t1 - t0) & mask) * period_ms, pending_stages_[i]});
     }
     report.total_gpu_ms = double(((stamps[count - 1] & mask) - (stamps[0] & mask)) & mask) * period_ms;
+    // Where the next milestone is looked for: the GPU time to the end of the pass that sets
+    // it (the launch latency is within collect()'s kPollLeadNs of polling ahead of it).
+    if (pending_signal_pass_ != kNoPass)
+        last_milestone_ns_ = static_cast<std::uint64_t>(
+            double(((stamps[2 * pending_signal_pass_ + 1] & mask) - (stamps[0] & mask)) & mask) * period_ms * 1e6);
     report.host.gpu_span_ms = report.total_gpu_ms;
     last_gpu_span_ns_ = static_cast<std::uint64_t>(report.total_gpu_ms * 1e6);
     report.host.launch_wake_ms = std::max(0.0, msBetween(pending_submitted_at_, t_woken) - report.total_gpu_ms);

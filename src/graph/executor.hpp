@@ -21,6 +21,7 @@
 #include "graph/command_tape.hpp"
 #include "graph/graph.hpp"
 #include "graph/pass_context.hpp"
+#include "vk/event.hpp"
 #include "vk/resources.hpp"
 
 namespace vkcollide::graph {
@@ -43,7 +44,8 @@ struct HostTimes {
     // built and compared, and the command buffer recorded from it (unless reused).
     double record_ms = 0;
     double submit_ms = 0;       // command buffer ended and handed to the queue
-    double wait_ms = 0;         // collect(): waiting for the GPU
+    double wait_ms = 0;         // collect(): waiting for the GPU (less milestone_ms)
+    double milestone_ms = 0;    // collect(): in the milestone's callback (Executor::setMilestone)
     double gpu_span_ms = 0;     // ExecutionReport::total_gpu_ms: first pass's start to last pass's end
     // From the queue submission's return to collect()'s waking up, less gpu_span_ms (at
     // least 0): the queue's launch latency, the GPU's gaps before the first and after the last timestamp,
@@ -125,6 +127,22 @@ public:
     // the results arrive. Empty: nothing is called. Must not throw.
     void setPollHook(std::function<void()> hook) { poll_hook_ = std::move(hook); }
     static constexpr std::uint64_t kPollHookNs = 50'000;
+    // A milestone's polling naps this long in the fence's wait once the window has passed.
+    static constexpr std::uint64_t kMilestoneNapNs = 50'000;
+    // A point inside the next submission that the host hears of before the submission ends:
+    // a pass there calls PassContext::signalHost(*event). collect() polls the event (asleep
+    // in the fence's wait until shortly before the GPU time at which the last submission
+    // with such a pass reached it, by its timestamps,
+    // with poll_hook calls while it polls) and calls `reached` on the waiting thread once
+    // it is set, then waits for the rest of the submission: host work on what the earlier
+    // passes left (in host-visible memory) runs while the GPU does the later ones. Where
+    // the event was not set by the end (no such pass ran), `reached` is not called. For the
+    // next submit() only, which unsets the event once the previous submission has ended.
+    struct Milestone {
+        const vk::Event* event = nullptr;
+        std::function<void()> reached;  // must not throw
+    };
+    void setMilestone(Milestone milestone) { next_milestone_ = std::move(milestone); }
     // Whether submitted work is still running (polls; never waits).
     bool busy() const;
     // Done once the last submission has finished, NotYet while it runs; never waits.
@@ -145,6 +163,9 @@ private:
     Result<void> planFor(const Graph& graph);
     // collect()'s wait for the last submission (setWaitPolling).
     Result<void> waitForCollect(std::uint64_t timeout_ns);
+    // collect()'s wait for the milestone: whether its event is set (false: the submission
+    // ended without it, or timeout_ns passed first).
+    Result<bool> waitForMilestone(const vk::Event& event, std::uint64_t timeout_ns);
     // The plan's commands, the executor's own (barriers, timestamps, rendering, labels) and
     // the passes', onto tape_; outer_label: inside one "vkcollide: detect" label.
     void tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& ctx, bool outer_label);
@@ -184,7 +205,11 @@ private:
     std::uint32_t query_capacity_ = 0;
     std::uint64_t poll_ns_ = 0;
     std::function<void()> poll_hook_;
-    std::uint64_t last_gpu_span_ns_ = 0;  // the last collected submission's, for the expected end
+    std::uint64_t last_gpu_span_ns_ = 0;
+    Milestone next_milestone_, pending_milestone_;
+    static constexpr std::uint32_t kNoPass = ~0u;
+    std::uint32_t pending_signal_pass_ = kNoPass;  // the pass of pending_names_ that sets an event
+    std::uint64_t last_milestone_ns_ = 0;  // the GPU time to the last submission's event (its timestamps)  // the last collected submission's, for the expected end
     // Transients cached by name; recreated when the description changes.
     struct CachedBuffer {
         VkDeviceSize size = 0;

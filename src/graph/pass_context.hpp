@@ -66,6 +66,9 @@ public:
     void copyBuffer(VkBuffer src, VkBuffer dst, std::span<const VkBufferCopy> regions) const { tape_->copyBuffer(src, dst, regions); }
     void copyBuffer(VkBuffer src, VkBuffer dst, const VkBufferCopy& region) const { tape_->copyBuffer(src, dst, {&region, 1}); }
     void pipelineBarrier(const VkDependencyInfo& dependency) const { tape_->pipelineBarrier(dependency); }
+    // Sets `event` once every earlier command has finished, with their writes visible to
+    // the host: a milestone the host polls (Executor::setMilestone).
+    void signalHost(VkEvent event) const { tape_->signalHost(event); }
     // A barrier between two dependent dispatches or draws inside one pass (mip chains,
     // multi-step scans): all shader writes become visible to later shader reads and writes.
     void shaderBarrier() const;

@@ -31,6 +31,7 @@ enum Op : std::uint64_t {
     kWriteTimestamp,
     kBeginLabel,
     kEndLabel,
+    kSignalHost,
 };
 
 template <class H>

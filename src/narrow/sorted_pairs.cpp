@@ -27,32 +27,15 @@ void copyFresh(std::span<const T> from, std::vector<T>& to, Executor& ex) {
     });
 }
 
-Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::span<const TriangleResponse> gpu_responses,
-                                 const TriangleSource& source, const NarrowOptions& options, Executor& ex, NarrowWorkspace::Impl& ws,
-                                 std::vector<TrianglePair>& pair_memory, std::vector<TriangleResponse>& response_memory) {
-    StageClock clock;
-    NarrowResult result;
-    result.pairs = std::move(pair_memory);
-    result.responses = std::move(response_memory);
+// Checks the GPU's list (each pair in range, strictly ascending) and names the first `kept`
+// pairs (object, triangle) into out[0, kept) in the same read; with `marks`, marks each end's
+// triangle (relaxed byte stores: every writer writes 1). Returns the lowest bad pair's
+// index, or sorted.size().
+std::size_t checkAndName(std::span<const CandidatePair> sorted, std::size_t kept, const TriangleSource& source, Executor& ex,
+                         TrianglePair* const out, std::uint8_t* const marks) {
     const std::size_t found = sorted.size();
-    const std::size_t kept = std::min<std::size_t>(found, options.max_pairs);
-    // The GPU's responses are every pair's: used where no pair is left out.
-    const bool ready = !gpu_responses.empty() && kept == found;
     const std::uint32_t total = source.totalTriangles();
-    // Decided pairs, but the naming below is one parallel loop over them: woken as for tests.
-    if (const unsigned wake = threadsToWake(kept, ex.threadCount(), false)) ex.prepare(wake);
-
-    // Checks, each end's object, and a mark on each end's triangle (relaxed byte stores:
-    // every writer writes 1). Over every pair, kept or not: the slots are the distinct
-    // triangles of all the pairs found, as the pair path counts them (NarrowStats::candidates).
-    Buffer<std::uint8_t>& marks = ws.in_pair;  // not needed when the responses are ready
-    marks.resize(ready ? 0 : total);
-    std::fill(marks.begin(), marks.end(), std::uint8_t{0});
     std::atomic<std::size_t> bad{found};  // the lowest pair found out of range or out of order
-    // The kept pairs are named (object, triangle) as they are checked, into the result: one
-    // read of the GPU's list (reused memory, or fresh pages touched in parallel first).
-    resizeFresh(result.pairs, kept, ex);
-    TrianglePair* const out = result.pairs.data();
     ex.parallelFor(found, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
         // A chunk's first pair is compared with the pair before it too (chunks may start
         // anywhere: an engine's executor chooses them). A bad pair before it is its own
@@ -82,12 +65,48 @@ Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::spa
                 name(nb, p.b);
                 out[k] = TrianglePair{na.object, p.a - na.first, nb.object, p.b - nb.first};
             }
-            if (ready) continue;
+            if (!marks) continue;
             std::atomic_ref<std::uint8_t>(marks[p.a]).store(1, std::memory_order_relaxed);
             std::atomic_ref<std::uint8_t>(marks[p.b]).store(1, std::memory_order_relaxed);
         }
     });
-    if (const std::size_t k = bad.load(); k < found) {
+    return bad.load();
+}
+
+Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::span<const TriangleResponse> gpu_responses,
+                                 const TriangleSource& source, const NarrowOptions& options, Executor& ex, NarrowWorkspace::Impl& ws,
+                                 std::vector<TrianglePair>& pair_memory, std::vector<TriangleResponse>& response_memory,
+                                 bool pairs_named) {
+    StageClock clock;
+    NarrowResult result;
+    result.pairs = std::move(pair_memory);
+    result.responses = std::move(response_memory);
+    const std::size_t found = sorted.size();
+    const std::size_t kept = std::min<std::size_t>(found, options.max_pairs);
+    // The GPU's responses are every pair's: used where no pair is left out.
+    const bool ready = !gpu_responses.empty() && kept == found;
+    const std::uint32_t total = source.totalTriangles();
+    // Named already (nameSortedPairs, while the GPU computed the responses), and the
+    // responses are the GPU's: nothing to read again.
+    const bool named = pairs_named && ready && result.pairs.size() == found;
+    // Decided pairs, but the naming below is one parallel loop over them: woken as for tests.
+    if (!named)
+        if (const unsigned wake = threadsToWake(kept, ex.threadCount(), false)) ex.prepare(wake);
+
+    // Checks, each end's object, and a mark on each end's triangle. Over every pair, kept or
+    // not: the slots are the distinct triangles of all the pairs found, as the pair path
+    // counts them (NarrowStats::candidates).
+    Buffer<std::uint8_t>& marks = ws.in_pair;  // not needed when the responses are ready
+    marks.resize(ready ? 0 : total);
+    std::fill(marks.begin(), marks.end(), std::uint8_t{0});
+    // The kept pairs are named (object, triangle) as they are checked, into the result: one
+    // read of the GPU's list (reused memory, or fresh pages touched in parallel first).
+    std::size_t bad_pair = found;
+    if (!named) {
+        resizeFresh(result.pairs, kept, ex);
+        bad_pair = checkAndName(sorted, kept, source, ex, result.pairs.data(), ready ? nullptr : marks.data());
+    }
+    if (const std::size_t k = bad_pair; k < found) {
         const CandidatePair p = sorted[k];
         return Error(ErrorCode::VulkanError, "sorted pairs: pair " + std::to_string(k) + " (triangles " + std::to_string(p.a) + " and " +
                                                  std::to_string(p.b) + " of " + std::to_string(total) +
@@ -165,10 +184,23 @@ Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::spa
 
 Result<NarrowResult> runSortedPairs(std::span<const CandidatePair> sorted, const TriangleSource& source, const NarrowOptions& options,
                                     Executor& executor, NarrowWorkspace& workspace, std::vector<TrianglePair> pair_memory,
-                                    std::vector<TriangleResponse> response_memory, std::span<const TriangleResponse> gpu_responses) {
+                                    std::vector<TriangleResponse> response_memory, std::span<const TriangleResponse> gpu_responses,
+                                    bool pairs_named) {
     return guardedCall("runSortedPairs", executor, options.max_box_pairs, [&](Executor& guarded) {
-        return sortedPhase(sorted, gpu_responses, source, options, guarded, workspace.impl(), pair_memory, response_memory);
+        return sortedPhase(sorted, gpu_responses, source, options, guarded, workspace.impl(), pair_memory, response_memory, pairs_named);
     });
+}
+
+bool nameSortedPairs(std::span<const CandidatePair> sorted, const TriangleSource& source, Executor& executor,
+                     std::vector<TrianglePair>& out) noexcept {
+    GuardedExecutor guarded(executor);
+    try {
+        if (const unsigned wake = threadsToWake(sorted.size(), executor.threadCount(), false)) executor.prepare(wake);
+        resizeFresh(out, sorted.size(), guarded);
+        return checkAndName(sorted, sorted.size(), source, guarded, out.data(), nullptr) == sorted.size();
+    } catch (...) {  // host memory ran out (or an array's largest size): runSortedPairs says so
+        return false;
+    }
 }
 
 }  // namespace vkcollide::narrow

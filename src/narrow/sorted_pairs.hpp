@@ -22,9 +22,18 @@ namespace vkcollide::narrow {
 // computed on the GPU (DetectSettings::reliable.responses), in order: where no pair is left
 // out (max_pairs) they are the result's as they are, so no slot is numbered, no vertex
 // gathered and nothing computed (NarrowTimings: validate_ms, then the copies as sort_ms).
+// `pairs_named`: pair_memory already holds all of `sorted` named by nameSortedPairs (with the
+// same source), so with gpu_responses used as they are nothing is read or written again.
 Result<NarrowResult> runSortedPairs(std::span<const CandidatePair> sorted, const TriangleSource& source, const NarrowOptions& options,
                                     Executor& executor, NarrowWorkspace& workspace, std::vector<TrianglePair> pair_memory = {},
                                     std::vector<TriangleResponse> response_memory = {},
-                                    std::span<const TriangleResponse> gpu_responses = {});
+                                    std::span<const TriangleResponse> gpu_responses = {}, bool pairs_named = false);
+
+// runSortedPairs' naming alone, for all of `sorted`, into `out` (resized to sorted.size():
+// reused memory, or fresh pages touched in parallel first): what a detection does while
+// the GPU still computes the responses. False, with `out` unspecified, where a pair is out
+// of range or out of order (runSortedPairs then names it) or host memory ran out; never throws.
+bool nameSortedPairs(std::span<const CandidatePair> sorted, const TriangleSource& source, Executor& executor,
+                     std::vector<TrianglePair>& out) noexcept;
 
 }  // namespace vkcollide::narrow

@@ -45,6 +45,7 @@ constexpr VkObjectType objectTypeOf() noexcept {
     else if constexpr (std::is_same_v<Handle, VkFence>) return VK_OBJECT_TYPE_FENCE;
     else if constexpr (std::is_same_v<Handle, VkSemaphore>) return VK_OBJECT_TYPE_SEMAPHORE;
     else if constexpr (std::is_same_v<Handle, VkQueryPool>) return VK_OBJECT_TYPE_QUERY_POOL;
+    else if constexpr (std::is_same_v<Handle, VkEvent>) return VK_OBJECT_TYPE_EVENT;
     else static_assert(!sizeof(Handle), "a handle type vkcollide does not name yet");
 }
 

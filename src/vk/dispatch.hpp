@@ -80,6 +80,10 @@ namespace vkcollide::vk {
     X(vkGetSemaphoreCounterValue)           \
     X(vkWaitSemaphores)                     \
     X(vkSignalSemaphore)                    \
+    X(vkCreateEvent)                        \
+    X(vkDestroyEvent)                       \
+    X(vkGetEventStatus)                     \
+    X(vkResetEvent)                         \
     X(vkCreatePipelineCache)                \
     X(vkDestroyPipelineCache)               \
     X(vkGetPipelineCacheData)               \
@@ -88,6 +92,7 @@ namespace vkcollide::vk {
     X(vkResetQueryPool)                     \
     X(vkGetQueryPoolResults)                \
     X(vkCmdPipelineBarrier2)                \
+    X(vkCmdSetEvent2)                       \
     X(vkCmdBeginRendering)                  \
     X(vkCmdEndRendering)                    \
     X(vkCmdBindPipeline)                    \

@@ -274,6 +274,10 @@ void requireSameSorted(const Both& r, const std::string& what) {
     // left out (max_pairs: the host computes them over the pairs kept): equal either way.
     CHECK(r.gpu.stats.reliable.responses_on_gpu == (r.gpu.pairs_left_out == 0));
     CHECK_FALSE(r.cpu.stats.reliable.responses_on_gpu);
+    // With the GPU's responses the pairs were named while the GPU computed them (a milestone).
+    CHECK(r.gpu.stats.reliable.pairs_named_during_gpu == r.gpu.stats.reliable.responses_on_gpu);
+    CHECK_FALSE(r.cpu.stats.reliable.pairs_named_during_gpu);
+    CHECK((r.gpu.stats.host.milestone_ms > 0.0) == r.gpu.stats.reliable.pairs_named_during_gpu);
     CHECK(r.gpu.pairs == r.cpu.pairs);
     CHECK(sameResponses(r.gpu.responses, r.cpu.responses));
     CHECK(r.gpu.pairs_left_out == r.cpu.pairs_left_out);
@@ -418,6 +422,7 @@ TEST_CASE("detectInto and collectInto give detect()'s result in the caller's mem
         CHECK(sameResponses(kept.responses, fresh->responses));
         CHECK(kept.stats.positive_tests == fresh->stats.positive_tests);
         if (frame > 0 && ctx.device().shader_float64) CHECK(kept.pairs.data() == memory);  // sorted on the GPU: reused
+        CHECK(kept.stats.reliable.pairs_named_during_gpu == ctx.device().shader_float64);  // into the caller's memory
         CHECK(kept.stats.host.prepare_ms == 0.0);  // nothing made ready: the caller's memory
         memory = kept.pairs.data();
     }
@@ -468,6 +473,8 @@ TEST_CASE("detect() makes the next result's memory ready while the GPU works, an
         CHECK(next->pairs.capacity() >= n + n / 8);  // the memory made ready during the wait
         CHECK(next->stats.host.prepare_ms > 0.0);
         CHECK(next->stats.host.prepare_ms <= next->stats.host.collect_ms);
+        CHECK(next->stats.reliable.pairs_named_during_gpu);  // into the memory made ready
+        CHECK(next->stats.host.prepare_ms + next->stats.host.milestone_ms <= next->stats.host.collect_ms);
     }
     // submit() + collect() make it ready too; detectInto uses the caller's memory instead.
     REQUIRE(world->submit(gpu_sort));

@@ -9,10 +9,12 @@
 
 #include "support/engine_commands.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/mapped_words.hpp"
 #include "vk/resources.hpp"
 #include "vk/semaphore.hpp"
 
 using namespace vkcollide;
+using test::wordAt;
 
 namespace {
 
@@ -34,13 +36,6 @@ void recordFill(const vk::Device& dev, VkCommandBuffer cmd, const vk::Buffer& bu
     di.bufferMemoryBarrierCount = 1;
     di.pBufferMemoryBarriers = &b;
     dev.fns.vkCmdPipelineBarrier2(cmd, &di);
-}
-
-std::uint32_t wordAt(const vk::Buffer& buffer, std::size_t index) {
-    buffer.invalidate();
-    std::uint32_t v = 0;
-    std::memcpy(&v, static_cast<const std::byte*>(buffer.mapped()) + index * 4, 4);
-    return v;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "graph/executor.hpp"
 #include "support/engine_commands.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/mapped_words.hpp"
 #include "support/graph_test_push.hpp"
 #include "test_shaders/all.hpp"
 #include "vk/semaphore.hpp"
@@ -20,14 +21,10 @@ using namespace vkcollide;
 using namespace vkcollide::graph;
 using test::DrawPush;
 using test::SumPush;
+using test::poison;
+using test::wordAt;
 
 namespace {
-
-
-void poison(const vk::Buffer& b) {
-    std::memset(b.mapped(), 0xFF, b.size());
-    b.flush();
-}
 
 // Transfer writes before later transfer writes (the fills below overlap on purpose).
 void transferBarrier(const PassContext& pc) {
@@ -38,13 +35,6 @@ void transferBarrier(const PassContext& pc) {
     d.memoryBarrierCount = 1;
     d.pMemoryBarriers = &mb;
     pc.pipelineBarrier(d);
-}
-
-std::uint32_t wordAt(const vk::Buffer& b, std::size_t index) {
-    b.invalidate();
-    std::uint32_t v = 0;
-    std::memcpy(&v, static_cast<const std::byte*>(b.mapped()) + index * 4, 4);
-    return v;
 }
 
 // What a run may change: the draw's push constants, the sum's dispatch, a transient's size.

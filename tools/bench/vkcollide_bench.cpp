@@ -131,8 +131,10 @@ void writeProfile(std::ofstream& out, const std::string& prefix, const DetectSta
     row("detect", "gpu-span", st.gpu_span_ms);
     row("detect", "launch-wake", st.host.launch_wake_ms);
     row("detect", "prepare", st.host.prepare_ms);  // of collect: not in "rest"
+    row("detect", "milestone", st.host.milestone_ms);  // of collect: the pairs named while the GPU ran
     const double named = st.host.settings_ms + st.host.upload_ms + st.host.declare_ms + st.host.compile_ms + st.host.record_ms +
-                         st.host.submit_ms + st.host.prepare_ms + st.host.wait_ms + st.readback_ms + st.narrow_ms + st.contacts.geometry_ms;
+                         st.host.submit_ms + st.host.prepare_ms + st.host.milestone_ms + st.host.wait_ms + st.readback_ms + st.narrow_ms +
+                         st.contacts.geometry_ms;
     row("detect", "rest", st.total_ms - named);
     row("detect", "reused", st.host.reused_submissions);  // a count, not ms: submissions submitted again, not recorded
     out.flush();

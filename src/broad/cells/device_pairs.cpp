@@ -45,17 +45,23 @@ Result<std::unique_ptr<DevicePairStage>> DevicePairStage::create(vk::Device& dev
     b.pairs = table.addOwned("device-pairs", MemoryKind::DeviceLocal, 0, true);
     b.header_rb = table.addOwned("device-pairs-header-readback", MemoryKind::Readback);
     b.host_pairs = table.addOwned("device-pairs-host", MemoryKind::Readback);
+    b.header_rb_early = table.addOwned("device-pairs-header-early", MemoryKind::Readback);
+    auto event = vk::Event::create(device, "device-pairs-ready");
+    if (!event) return event.error();
+    stage->event_ = std::move(*event);
     return stage;
 }
 
 void DevicePairStage::retire() { table_->retire(); }
 
 Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
-                                      VkDeviceAddress fault_header, bool header_to_host, bool for_host, std::uint32_t response_capacity) {
+                                      VkDeviceAddress fault_header, bool header_to_host, bool for_host, std::uint32_t response_capacity,
+                                      bool early) {
     using vk::MemoryKind;
     triangles_ = cells.triangleCount();
     header_to_host_ = header_to_host;
     for_host_ = for_host;
+    early_ = early && for_host && header_to_host;
     max_groups_x_ = cells.maxGroupsX();
     const std::uint32_t survivors = cells.capacity().survivors;
     // Automatic: the survivor capacity, which holds every distinct pair of a complete run.
@@ -75,6 +81,7 @@ Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const st
         rowSize(buf_.header_rb, header_to_host ? sizeof(gpu::DevicePairsHeader) : 0, MemoryKind::Readback),
         rowSize(buf_.pairs, VkDeviceSize(capacity_) * pairBytes(), MemoryKind::DeviceLocal),
         rowSize(buf_.host_pairs, for_host ? VkDeviceSize(capacity_) * pairBytes() : 0, MemoryKind::Readback),
+        rowSize(buf_.header_rb_early, early_ ? sizeof(gpu::DevicePairsHeader) : 0, MemoryKind::Readback),
     };
     if (auto ok = table_->reserve(*device_, plan,
                                   "device pairs: capacity " + std::to_string(capacity_) + " with " + std::to_string(triangles_) + " triangles");
@@ -176,10 +183,46 @@ DevicePairStage::Resources DevicePairStage::record(graph::Graph& g, const CellSt
     return {header, pairs, counts, offsets, partners, sums};
 }
 
+void DevicePairStage::recordEarlyCopies(graph::Graph& g, const Resources& sorted) {
+    if (!early_) return;
+    Buffers& b = buf_;
+    const auto host_pairs = importRow(g, b.host_pairs, true);
+    const auto header_early = importRow(g, b.header_rb_early, true);
+    addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback)
+        .use(sorted.pairs, graph::Use::TransferSrc)
+        .use(host_pairs, graph::Use::TransferDst)
+        .record([from = b.pairs->handle(), to = b.host_pairs->handle(), bytes = VkDeviceSize(capacity_) * pairBytes()](graph::PassContext& pc) {
+            VkBufferCopy copy{0, 0, bytes};
+            pc.copyBuffer(from, to, copy);
+        });
+    addPass(g, "pairs-header-early", graph::PassKind::Transfer, Stage::Readback)
+        .use(sorted.header, graph::Use::TransferSrc)
+        .use(header_early, graph::Use::TransferDst)
+        .record([from = b.header->handle(), to = b.header_rb_early->handle()](graph::PassContext& pc) {
+            VkBufferCopy copy{0, 0, sizeof(gpu::DevicePairsHeader)};
+            pc.copyBuffer(from, to, copy);
+        });
+    // After both copies (it reads what they wrote, so the graph orders it there): the host
+    // sees the event set with the pairs and the header in its memory.
+    addPass(g, "pairs-ready", graph::PassKind::Transfer, Stage::Readback)
+        .use(host_pairs, graph::Use::TransferSrc)
+        .use(header_early, graph::Use::TransferSrc)
+        .sideEffects()
+        .record([event = event_.handle()](graph::PassContext& pc) { pc.signalHost(event); });
+}
+
+gpu::DevicePairsHeader DevicePairStage::earlyHeader() const {
+    gpu::DevicePairsHeader h{};
+    if (!early_ || !buf_.header_rb_early->valid()) return h;
+    buf_.header_rb_early->invalidate();
+    std::memcpy(static_cast<void*>(&h), buf_.header_rb_early->mapped(), sizeof h);
+    return h;
+}
+
 void DevicePairStage::recordCopies(graph::Graph& g, const Resources& sorted) {
     Buffers& b = buf_;
     const graph::ResourceId header = sorted.header, pairs = sorted.pairs;
-    if (for_host_) {
+    if (for_host_ && !early_) {
         const auto host_pairs = importRow(g, b.host_pairs, true);
         // A copy by the transfer engine: the shaders' stores to host memory cross the bus
         // 15-20x slower on an H200 (1.7M pairs: 11.7 ms from a coalesced shader, 0.65 ms

@@ -13,6 +13,10 @@
 //
 // With device responses (DeviceResponseStage, device_responses.hpp) their passes run between
 // pairs-sort and the copies to the host, over this stage's buckets; the header is shared.
+// Early copies (prepare's `early`, for the host's result with its responses on the GPU):
+// pairs-to-host, a copy of the header (pairs-header-early) and `pairs-ready`, which sets
+// the stage's event (milestone()), run right after pairs-sort, before the responses' passes,
+// so that the host names the pairs while the GPU computes the responses.
 //
 // Capacity: the caller's, or (0) the cell stage's survivor capacity, which bounds the
 // distinct pairs of a complete run, so an automatic capacity never overflows. A caller's
@@ -33,6 +37,7 @@
 
 #include "broad/broad_phase_types.hpp"
 #include "broad/cells/cell_stage.hpp"
+#include "vk/event.hpp"
 
 namespace vkcollide::passes {
 
@@ -52,7 +57,7 @@ public:
     // says it; DeviceResponseStage), 0 without them.
     [[nodiscard]] Result<void> prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
                                        VkDeviceAddress fault_header, bool header_to_host = false, bool for_host = false,
-                                       std::uint32_t response_capacity = 0);
+                                       std::uint32_t response_capacity = 0, bool early = false);
     // The passes, after the cell stage's (`cells`: its resources in this graph, or its
     // outputs imported alone after it ran again on an overflow, so that the buffers hold
     // the final run's pairs); `fault_header` the broad phase header's resource (invalid:
@@ -62,9 +67,16 @@ public:
         graph::ResourceId header, pairs, counts, offsets, partners, block_sums;
     };
     Resources record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header = {});
-    // The copies to host memory the run was prepared for (header_to_host, for_host), after
-    // record() and any passes over its buckets.
+    // Prepared `early`: the pairs' copy to host memory, the header's early copy and the pass
+    // that sets event() (in that order), right after record(); otherwise nothing.
+    void recordEarlyCopies(graph::Graph& g, const Resources& sorted);
+    // The copies to host memory the run was prepared for (header_to_host, for_host; the
+    // pairs' only when not early), after record() and any passes over its buckets.
     void recordCopies(graph::Graph& g, const Resources& sorted);
+    // The event pairs-ready sets (prepared early), else null.
+    const vk::Event* event() const noexcept { return early_ ? &event_ : nullptr; }
+    // After the event was seen set: the header as it was when the pairs were copied.
+    gpu::DevicePairsHeader earlyHeader() const;
     // Called at each detection's start: frees what was retired two starts ago.
     void retire();
 
@@ -85,10 +97,12 @@ private:
     BufferTable* table_;
     vk::Pipeline pipeline_;
     struct Buffers {
-        TableRow params, object_ids, counts, offsets, out_offsets, block_sums, partners, args, header, pairs, header_rb, host_pairs;
+        TableRow params, object_ids, counts, offsets, out_offsets, block_sums, partners, args, header, pairs, header_rb, host_pairs,
+            header_rb_early;
     } buf_;
+    vk::Event event_;
     std::uint32_t triangles_ = 0, capacity_ = 0, max_groups_x_ = 0;
-    bool header_to_host_ = false, for_host_ = false;
+    bool header_to_host_ = false, for_host_ = false, early_ = false;
     // A pair's bytes in `pairs` and its host copy: for the host alone, its two global ids.
     VkDeviceSize pairBytes() const noexcept { return for_host_ ? sizeof(CandidatePair) : sizeof(gpu::DevicePair); }
 };

@@ -92,6 +92,8 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     sorted_for_host_ = !device_pairs_on_ && run.settings.sort_on_gpu && run.settings.exact_on_gpu && cells_->filterSupported() &&
                        !run.any_gpu_check;
     host_responses_on_ = sorted_for_host_ && run.settings.responses_on_gpu;
+    early_pairs_on_ = host_responses_on_ && static_cast<bool>(run.settings.on_sorted_pairs);
+    on_sorted_pairs_ = early_pairs_on_ ? run.settings.on_sorted_pairs : nullptr;
     settings.survivors_on_device = pairs_on_device_only_ || sorted_for_host_;
     // Proximity: every triangle grown by half the distance (rounded up to a float).
     proximity_on_ = run.settings.proximity_distance > 0;
@@ -122,8 +124,9 @@ Result<void> ReliableMethod::prepareSort() {
     // With device responses the header comes back too: DetectStats says how many there are,
     // and a bucket past a loop limit is named.
     const bool header_to_host = pairs_on_device_only_ || sorted_for_host_ || device_responses_on_;
+    early_pairs_seen_ = false;  // a new sort: what the callback took is not its pairs
     if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_, header_to_host, sorted_for_host_,
-                                         responding() ? DeviceResponseStage::responseCapacity(*cells_) : 0);
+                                         responding() ? DeviceResponseStage::responseCapacity(*cells_) : 0, early_pairs_on_);
         !ok)
         return ok;
     if (!responding()) return {};
@@ -132,6 +135,7 @@ Result<void> ReliableMethod::prepareSort() {
 
 void ReliableMethod::recordSort(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) const {
     const DevicePairStage::Resources sorted = device_pairs_->record(g, cells, fault_header);
+    device_pairs_->recordEarlyCopies(g, sorted);  // prepared early: the pairs to the host, then the event
     if (responding()) device_responses_->record(g, cells, sorted);
     device_pairs_->recordCopies(g, sorted);
 }
@@ -279,6 +283,15 @@ Error ReliableMethod::loopLimitError(const char* what) const {
                      "or detect on a GPU");
 }
 
+// The pairs are in host memory, the responses not yet: a complete sort's pairs go to the
+// callback (an incomplete or overflowing one is collectSorted's to sort again).
+void ReliableMethod::pairsReady() {
+    const gpu::DevicePairsHeader h = device_pairs_->earlyHeader();
+    if (h.flags != 0 || h.count != h.needed || !on_sorted_pairs_) return;
+    early_pairs_seen_ = on_sorted_pairs_(device_pairs_->hostPairs(h.count));
+    early_pairs_count_ = h.count;
+}
+
 Result<Collected> ReliableMethod::collectSorted(BroadPhaseResult& result) {
     gpu::DevicePairsHeader h = device_pairs_->header();
     if (h.flags & gpu::kDevicePairsLoopLimit) return loopLimitError("sorted pairs");
@@ -296,6 +309,7 @@ Result<Collected> ReliableMethod::collectSorted(BroadPhaseResult& result) {
                                                  std::to_string(h.count) + " of " + std::to_string(h.needed) + " pairs (internal error)");
     result.has_sorted_pairs = true;
     result.sorted_pairs = device_pairs_->hostPairs(h.count);
+    result.sorted_pairs_seen = early_pairs_seen_ && early_pairs_count_ == h.count;
     if (host_responses_on_) {
         if (h.responses > device_responses_->hostCapacity())
             return Error(ErrorCode::VulkanError, "sorted responses: " + std::to_string(h.responses) + " found, the copy holds " +

@@ -123,7 +123,9 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     run.sorts_on_gpu = s.method == DetectMethod::Reliable && d.broad.sort_on_gpu && s.reliable.host_pairs;
     // The pairs named while the GPU computes their responses (finish() then names none).
     if (run.sorts_on_gpu && d.broad.responses_on_gpu)
-        d.broad.on_sorted_pairs = [this, &run](std::span<const CandidatePair> sorted) { return nameEarly(run, sorted); };
+        d.broad.on_sorted_pairs = [this, &run](std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end) {
+            return nameEarly(run, sorted, begin, end);
+        };
     for (std::size_t i = 0; i < meshes.size(); ++i) meshes[i].tag = run.ids[i];  // the ids device pairs carry
     if (auto ok = prepareProximity(run); !ok) return ok.error();
     if (s.contacts.geometry)
@@ -199,18 +201,27 @@ void CollisionWorld::Impl::prepareResultMemory(const Run& run) {
 // named into the result's memory, checked on the way, while the GPU computes the responses.
 // The objects are named as finish() names them when the run's objects are all live (finish
 // uses this naming only then). Never throws (the executor's callback must not).
-bool CollisionWorld::Impl::nameEarly(Run& run, std::span<const CandidatePair> sorted) {
-    run.named_early = false;
-    if (!run.early_into || sorted.size() > run.settings.limits.max_pairs) return false;
+bool CollisionWorld::Impl::nameEarly(Run& run, std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end) {
     const auto t0 = Clock::now();
-    try {
-        if (!registry.syncSource(run.ids)) return false;
-    } catch (...) {  // host memory ran out: finish() says so
+    if (begin == 0) {  // a sort's first piece: the source and the memory for all of them
+        run.named_early = false;
+        run.early_named = 0;
+        run.early_name_ms = 0;
+        if (!run.early_into || sorted.size() > run.settings.limits.max_pairs) return false;
+        try {
+            if (!registry.syncSource(run.ids)) return false;
+        } catch (...) {  // host memory ran out: finish() says so
+            return false;
+        }
+        if (!narrow::prepareSortedNames(*run.early_into, sorted.size(), *executor)) return false;
+    } else if (run.early_named != begin) {
         return false;
     }
-    run.named_early = narrow::nameSortedPairs(sorted, registry.source, *executor, *run.early_into);
-    run.early_name_ms = msSince(t0);
-    return run.named_early;
+    const bool ok = narrow::nameSortedPairs(sorted, begin, end, registry.source, *executor, *run.early_into);
+    run.early_name_ms += msSince(t0);
+    run.early_named = ok ? end : 0;
+    run.named_early = ok && end == sorted.size();
+    return ok;
 }
 
 Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock, DetectResult* reuse) {
@@ -227,6 +238,7 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock,
     }
     run.early_into = reuse ? &reuse->pairs : &ready_pairs;
     run.named_early = false;
+    run.early_named = 0;
     run.early_name_ms = 0;
     auto r = run.detection->collect();
     run.early_into = nullptr;

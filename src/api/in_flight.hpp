@@ -49,6 +49,7 @@ struct DetectionsInFlight {
         // detectInto, else the memory made ready), whether it did and how long it took.
         std::vector<TrianglePair>* early_into = nullptr;
         bool named_early = false;
+        std::size_t early_named = 0;  // the pairs named so far (pieces in order)
         double early_name_ms = 0;
     };
 

@@ -97,7 +97,7 @@ struct CollisionWorld::Impl {
     void prepareResultMemory(const Run& run);
     // The broad phase's on_sorted_pairs for `run`: its sorted pairs named into the result's
     // memory (Run::early_into) while the GPU computes the responses.
-    bool nameEarly(Run& run, std::span<const CandidatePair> sorted);
+    bool nameEarly(Run& run, std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end);
     // CollisionWorld::detect/collect and their *Into forms (reuse_memory: the caller's result).
     Result<DetectResult> detectCall(const DetectSettings& settings, DetectResult* reuse_memory);
     Result<DetectResult> collectCall(DetectResult* reuse_memory);

@@ -152,12 +152,19 @@ struct BroadPhaseSettings {
     std::uint32_t sorted_pairs_expected = 0;
     // Where sort_on_gpu ran: the responses computed there too (BroadPhaseResult::sorted_responses).
     bool responses_on_gpu = false;
-    // With responses_on_gpu: called inside collect(), on its thread, with the sorted pairs
-    // (global triangle ids, as BroadPhaseResult::sorted_pairs) as soon as the GPU has copied
-    // them, while it still computes the responses; returns whether it used them (named them:
-    // BroadPhaseResult::sorted_pairs_seen then says so). Called at most once per sort, only
-    // with a complete sort's pairs; the span is valid until the next run. Empty: not called.
-    std::function<bool(std::span<const CandidatePair>)> on_sorted_pairs;
+    // With responses_on_gpu: called inside collect(), on its thread, as soon as the GPU has
+    // copied a piece of the sorted pairs (global triangle ids, as BroadPhaseResult::sorted_pairs)
+    // to host memory, while it still copies the rest and computes the responses: with all of
+    // them (the span, whose later pieces may not be there yet) and the piece [begin, end) that
+    // is, pieces in order from 0 (begin 0: a new sort's first). Returns whether it took the
+    // piece; a refused piece ends the calls for that sort. BroadPhaseResult::sorted_pairs_seen
+    // says whether it took every piece of the final sort. Only a complete sort's pairs; the
+    // span is valid until the next run. Empty: not called.
+    std::function<bool(std::span<const CandidatePair> all, std::size_t begin, std::size_t end)> on_sorted_pairs;
+    // With on_sorted_pairs: the copy's pieces hold at least this many pairs (of the copy's
+    // capacity; at most DevicePairStage::kMaxEarlyChunks pieces). 0: automatic
+    // (DevicePairStage::kMinEarlyChunkPairs); tests set it small.
+    std::uint32_t early_piece_pairs = 0;
     // Methods that form pairs on the GPU with the exact decision there: also every
     // vertex-triangle and edge-edge pair within this distance (world units; 0: off), each
     // mesh with its GpuMesh::proximity_owned. Capacity in records, 0: automatic.

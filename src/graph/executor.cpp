@@ -220,7 +220,8 @@ void Executor::tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& 
             p.record(ctx);
         }
         // The pass that sets a milestone's event: its end tells collect() when to look.
-        if (tape_.signals() != signals) pending_signal_pass_ = static_cast<std::uint32_t>(pending_names_.size() - 1);
+        if (tape_.signals() != signals && pending_signal_pass_ == kNoPass)
+            pending_signal_pass_ = static_cast<std::uint32_t>(pending_names_.size() - 1);
         tape_.writeTimestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);
         if (labels) tape_.endLabel();
     }
@@ -283,8 +284,8 @@ Result<void> Executor::submit(const Graph& graph, std::uint64_t timeout_ns, Subm
     // Wait for the previous use before touching its resources or queries.
     if (auto ok = waitFor(submission_, timeout_ns); !ok) return ok.error();
     pending_milestone_ = std::exchange(next_milestone_, Milestone{});
-    if (pending_milestone_.event)
-        if (auto ok = pending_milestone_.event->unset(); !ok) return ok.error();
+    for (const vk::Event& e : pending_milestone_.events)
+        if (auto ok = e.unset(); !ok) return ok.error();
 
     const auto pass_count = static_cast<std::uint32_t>(plan->order.size());
     const std::uint32_t needed = 2 * pass_count + 2;
@@ -410,7 +411,7 @@ Result<void> Executor::waitForCollect(std::uint64_t timeout_ns) {
     return {};
 }
 
-Result<bool> Executor::waitForMilestone(const vk::Event& event, std::uint64_t timeout_ns) {
+Result<bool> Executor::waitForMilestone(const vk::Event& event, bool first, std::uint64_t timeout_ns) {
     const Clock::time_point start = Clock::now();
     auto spent = [&] { return static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count()); };
     const auto ended = [&]() -> Result<bool> {  // the submission is done: set or never
@@ -419,11 +420,12 @@ Result<bool> Executor::waitForMilestone(const vk::Event& event, std::uint64_t ti
         return *set;
     };
     if (!submission_.valid() || !submission_.pending()) return ended();
-    // Asleep in the fence's wait until kPollLeadNs before where the last submission set it
-    // (its timestamps: collect()).
+    // The first: asleep in the fence's wait until kPollLeadNs before where the last
+    // submission's pass that sets it began (its timestamps: collect()). The later ones
+    // follow it closely: polled at once.
     const Clock::time_point expected = pending_submitted_at_ + std::chrono::nanoseconds(last_milestone_ns_);
     const auto ahead = std::chrono::duration_cast<std::chrono::nanoseconds>(expected - start).count();
-    if (ahead > std::int64_t{kPollLeadNs}) {
+    if (first && ahead > std::int64_t{kPollLeadNs}) {
         auto done = submission_.waitFor(std::min<std::uint64_t>(static_cast<std::uint64_t>(ahead) - kPollLeadNs, timeout_ns));
         if (!done) return done.error();
         if (*done == vk::Completion::Done) return ended();
@@ -451,14 +453,16 @@ Result<bool> Executor::waitForMilestone(const vk::Event& event, std::uint64_t ti
 Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
     const Clock::time_point t_wait = Clock::now();
     double milestone_ms = 0;
-    if (pending_milestone_.event) {
+    if (!pending_milestone_.events.empty()) {
         const Milestone m = std::exchange(pending_milestone_, Milestone{});
-        auto seen = waitForMilestone(*m.event, timeout_ns);
-        if (!seen) return seen.error();
-        if (*seen && m.reached) {
+        for (std::size_t k = 0; k < m.events.size(); ++k) {
+            const auto used = static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t_wait).count());
+            auto seen = waitForMilestone(m.events[k], k == 0, used < timeout_ns ? timeout_ns - used : 0);
+            if (!seen) return seen.error();
+            if (!*seen) break;
             const Clock::time_point t_seen = Clock::now();
-            m.reached();
-            milestone_ms = msBetween(t_seen, Clock::now());
+            if (m.reached) m.reached(k);
+            milestone_ms += msBetween(t_seen, Clock::now());
         }
         const auto used = static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t_wait).count());
         timeout_ns = used < timeout_ns ? timeout_ns - used : 0;
@@ -485,11 +489,12 @@ Result<ExecutionReport> Executor::collect(std::uint64_t timeout_ns) {
         report.passes.push_back({pending_names_[i], double((t1 - t0) & mask) * period_ms, pending_stages_[i]});
     }
     report.total_gpu_ms = double(((stamps[count - 1] & mask) - (stamps[0] & mask)) & mask) * period_ms;
-    // Where the next milestone is looked for: the GPU time to the end of the pass that sets
-    // it (the launch latency is within collect()'s kPollLeadNs of polling ahead of it).
+    // Where the next milestone is looked for: the GPU time to the start of the first pass
+    // that sets an event (the launch latency is within collect()'s kPollLeadNs of polling
+    // ahead of it).
     if (pending_signal_pass_ != kNoPass)
         last_milestone_ns_ = static_cast<std::uint64_t>(
-            double(((stamps[2 * pending_signal_pass_ + 1] & mask) - (stamps[0] & mask)) & mask) * period_ms * 1e6);
+            double(((stamps[2 * pending_signal_pass_] & mask) - (stamps[0] & mask)) & mask) * period_ms * 1e6);
     report.host.gpu_span_ms = report.total_gpu_ms;
     last_gpu_span_ns_ = static_cast<std::uint64_t>(report.total_gpu_ms * 1e6);
     report.host.launch_wake_ms = std::max(0.0, msBetween(pending_submitted_at_, t_woken) - report.total_gpu_ms);

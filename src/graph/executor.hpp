@@ -15,6 +15,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -129,18 +130,19 @@ public:
     static constexpr std::uint64_t kPollHookNs = 50'000;
     // A milestone's polling naps this long in the fence's wait once the window has passed.
     static constexpr std::uint64_t kMilestoneNapNs = 50'000;
-    // A point inside the next submission that the host hears of before the submission ends:
-    // a pass there calls PassContext::signalHost(*event). collect() polls the event (asleep
-    // in the fence's wait until shortly before the GPU time at which the last submission
-    // with such a pass reached it, by its timestamps,
-    // with poll_hook calls while it polls) and calls `reached` on the waiting thread once
-    // it is set, then waits for the rest of the submission: host work on what the earlier
-    // passes left (in host-visible memory) runs while the GPU does the later ones. Where
-    // the event was not set by the end (no such pass ran), `reached` is not called. For the
-    // next submit() only, which unsets the event once the previous submission has ended.
+    // Points inside the next submission that the host hears of before the submission ends:
+    // the submission sets `events` in this order, each through PassContext::signalHost.
+    // collect() polls the first (asleep in the fence's wait until shortly before the GPU
+    // time at which the last submission's first such pass began, by its timestamps, with
+    // poll_hook calls while it polls), calls `reached(0)` on the waiting thread once it is
+    // set, then polls the next, and so on, then waits for the rest of the submission: host
+    // work on what the earlier commands left in host-visible memory runs while the GPU does
+    // the later ones. Where an event was not set by the end (no such pass ran), neither it
+    // nor the ones after it are reached. For the next submit() only, which unsets the
+    // events once the previous submission has ended.
     struct Milestone {
-        const vk::Event* event = nullptr;
-        std::function<void()> reached;  // must not throw
+        std::span<const vk::Event> events;
+        std::function<void(std::size_t)> reached;  // with each event's index; must not throw
     };
     void setMilestone(Milestone milestone) { next_milestone_ = std::move(milestone); }
     // Whether submitted work is still running (polls; never waits).
@@ -163,9 +165,9 @@ private:
     Result<void> planFor(const Graph& graph);
     // collect()'s wait for the last submission (setWaitPolling).
     Result<void> waitForCollect(std::uint64_t timeout_ns);
-    // collect()'s wait for the milestone: whether its event is set (false: the submission
-    // ended without it, or timeout_ns passed first).
-    Result<bool> waitForMilestone(const vk::Event& event, std::uint64_t timeout_ns);
+    // collect()'s wait for one of the milestone's events (`first`: the first of them): whether
+    // it is set (false: the submission ended without it, or timeout_ns passed first).
+    Result<bool> waitForMilestone(const vk::Event& event, bool first, std::uint64_t timeout_ns);
     // The plan's commands, the executor's own (barriers, timestamps, rendering, labels) and
     // the passes', onto tape_; outer_label: inside one "vkcollide: detect" label.
     void tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& ctx, bool outer_label);
@@ -208,8 +210,8 @@ private:
     std::uint64_t last_gpu_span_ns_ = 0;
     Milestone next_milestone_, pending_milestone_;
     static constexpr std::uint32_t kNoPass = ~0u;
-    std::uint32_t pending_signal_pass_ = kNoPass;  // the pass of pending_names_ that sets an event
-    std::uint64_t last_milestone_ns_ = 0;  // the GPU time to the last submission's event (its timestamps)  // the last collected submission's, for the expected end
+    std::uint32_t pending_signal_pass_ = kNoPass;  // the first pass of pending_names_ that sets an event
+    std::uint64_t last_milestone_ns_ = 0;  // the GPU time to that pass's start, last submission (its timestamps)  // the last collected submission's, for the expected end
     // Transients cached by name; recreated when the description changes.
     struct CachedBuffer {
         VkDeviceSize size = 0;

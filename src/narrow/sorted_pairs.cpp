@@ -27,16 +27,18 @@ void copyFresh(std::span<const T> from, std::vector<T>& to, Executor& ex) {
     });
 }
 
-// Checks the GPU's list (each pair in range, strictly ascending) and names the first `kept`
-// pairs (object, triangle) into out[0, kept) in the same read; with `marks`, marks each end's
-// triangle (relaxed byte stores: every writer writes 1). Returns the lowest bad pair's
-// index, or sorted.size().
-std::size_t checkAndName(std::span<const CandidatePair> sorted, std::size_t kept, const TriangleSource& source, Executor& ex,
-                         TrianglePair* const out, std::uint8_t* const marks) {
+// Checks the GPU's list over [from, to) (each pair in range, strictly ascending from the one
+// before `from`) and names those below `kept` (object, triangle) into out[k] in the same
+// read; with `marks`, marks each end's triangle (relaxed byte stores: every writer writes 1).
+// Returns the lowest bad pair's index, or sorted.size().
+std::size_t checkAndName(std::span<const CandidatePair> sorted, std::size_t from, std::size_t to, std::size_t kept,
+                         const TriangleSource& source, Executor& ex, TrianglePair* const out, std::uint8_t* const marks) {
     const std::size_t found = sorted.size();
     const std::uint32_t total = source.totalTriangles();
     std::atomic<std::size_t> bad{found};  // the lowest pair found out of range or out of order
-    ex.parallelFor(found, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
+    ex.parallelFor(to - from, narrow::kSortedPairGrain, [&](std::size_t begin, std::size_t end) {
+        begin += from;
+        end += from;
         // A chunk's first pair is compared with the pair before it too (chunks may start
         // anywhere: an engine's executor chooses them). A bad pair before it is its own
         // chunk's, and lower: it is the one named.
@@ -104,7 +106,7 @@ Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::spa
     std::size_t bad_pair = found;
     if (!named) {
         resizeFresh(result.pairs, kept, ex);
-        bad_pair = checkAndName(sorted, kept, source, ex, result.pairs.data(), ready ? nullptr : marks.data());
+        bad_pair = checkAndName(sorted, 0, found, kept, source, ex, result.pairs.data(), ready ? nullptr : marks.data());
     }
     if (const std::size_t k = bad_pair; k < found) {
         const CandidatePair p = sorted[k];
@@ -191,14 +193,24 @@ Result<NarrowResult> runSortedPairs(std::span<const CandidatePair> sorted, const
     });
 }
 
-bool nameSortedPairs(std::span<const CandidatePair> sorted, const TriangleSource& source, Executor& executor,
-                     std::vector<TrianglePair>& out) noexcept {
+bool prepareSortedNames(std::vector<TrianglePair>& out, std::size_t n, Executor& executor) noexcept {
     GuardedExecutor guarded(executor);
     try {
-        if (const unsigned wake = threadsToWake(sorted.size(), executor.threadCount(), false)) executor.prepare(wake);
-        resizeFresh(out, sorted.size(), guarded);
-        return checkAndName(sorted, sorted.size(), source, guarded, out.data(), nullptr) == sorted.size();
+        if (const unsigned wake = threadsToWake(n, executor.threadCount(), false)) executor.prepare(wake);
+        resizeFresh(out, n, guarded);
+        return true;
     } catch (...) {  // host memory ran out (or an array's largest size): runSortedPairs says so
+        return false;
+    }
+}
+
+bool nameSortedPairs(std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end, const TriangleSource& source,
+                     Executor& executor, std::vector<TrianglePair>& out) noexcept {
+    if (out.size() != sorted.size() || begin > end || end > sorted.size()) return false;
+    GuardedExecutor guarded(executor);
+    try {
+        return checkAndName(sorted, begin, end, end, source, guarded, out.data(), nullptr) == sorted.size();
+    } catch (...) {
         return false;
     }
 }

@@ -29,11 +29,15 @@ Result<NarrowResult> runSortedPairs(std::span<const CandidatePair> sorted, const
                                     std::vector<TriangleResponse> response_memory = {},
                                     std::span<const TriangleResponse> gpu_responses = {}, bool pairs_named = false);
 
-// runSortedPairs' naming alone, for all of `sorted`, into `out` (resized to sorted.size():
-// reused memory, or fresh pages touched in parallel first): what a detection does while
-// the GPU still computes the responses. False, with `out` unspecified, where a pair is out
-// of range or out of order (runSortedPairs then names it) or host memory ran out; never throws.
-bool nameSortedPairs(std::span<const CandidatePair> sorted, const TriangleSource& source, Executor& executor,
-                     std::vector<TrianglePair>& out) noexcept;
+// runSortedPairs' naming alone, piece by piece, as a detection does while the GPU still
+// copies the rest and computes the responses: prepareSortedNames makes `out` hold `n`
+// pairs (reused memory, or fresh pages touched in parallel first; false where host memory
+// ran out); nameSortedPairs names and checks pairs [begin, end) of `sorted` into it
+// (out.size() == sorted.size(); the pair before `begin`, which it compares with, must be in
+// memory). False, with `out` unspecified there, where a pair is out of range or out of
+// order (runSortedPairs then names it). Neither throws.
+bool prepareSortedNames(std::vector<TrianglePair>& out, std::size_t n, Executor& executor) noexcept;
+bool nameSortedPairs(std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end, const TriangleSource& source,
+                     Executor& executor, std::vector<TrianglePair>& out) noexcept;
 
 }  // namespace vkcollide::narrow

@@ -2,10 +2,12 @@
 // pair_chunk): each chunk is a submission of its own (the broad phase's Again), so that GPU
 // work left running after a timeout is at most one chunk. The passes after them (the GPU
 // sort, proximity) must see every chunk: the same sorted pairs and proximity records as one
-// pass, and the sweep's counts unchanged.
+// pass, and the sweep's counts unchanged. The sorted pairs handed to the host in pieces while
+// the GPU computes the responses (BroadPhaseSettings::on_sorted_pairs) are the final ones.
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <string_view>
@@ -287,5 +289,81 @@ TEST_CASE(
         CHECK(r->proximity.size() == records);
         CHECK(r->proximity_device.header == proximity.header);  // the buffers read above
     }
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+TEST_CASE("reliable: the sorted pairs handed over piece by piece while the GPU computes the responses are the final ones, in order",
+          "[gpu][cells]") {
+    test::ValidatedContext ctx;
+    REQUIRE(ctx.device().shader_float64);
+    // Two spheres and a fan of 100 coplanar equilateral triangles about one centre, each
+    // turned a little further, self-colliding: every two of them overlap (no shared vertex),
+    // 4,950 pairs, more than three of the four pieces of the smallest copy (4,096 pairs) hold.
+    HostMesh fan{"fan", {}, {}};
+    for (std::uint32_t k = 0; k < 100; ++k) {
+        for (int v = 0; v < 3; ++v) {
+            const double a = 0.011 * k + 2.0943951023931953 * v;
+            fan.positions.push_back({float(2.5 + 0.1 * std::cos(a)), float(0.1 * std::sin(a)), 0.0f});
+        }
+        fan.indices.insert(fan.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    const auto up = upload(ctx.device(), {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), fan}, 2);
+    auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
+    REQUIRE(bp);
+    BroadPhaseSettings s = exactWithProximity(48, 0.0);
+    s.responses_on_gpu = true;
+    s.pair_chunk = ~0u;
+    s.sweep_work = ~0u;
+    std::vector<std::pair<std::size_t, std::size_t>> pieces;  // [begin, end) of each call
+    std::vector<std::uint64_t> taken;
+    bool refuse_later = false;
+    s.on_sorted_pairs = [&](std::span<const CandidatePair> all, std::size_t begin, std::size_t end) {
+        pieces.emplace_back(begin, end);
+        if (refuse_later && begin > 0) return false;
+        if (begin == 0) taken.clear();
+        for (std::size_t k = begin; k < end; ++k) taken.push_back(std::uint64_t{all[k].a} << 32 | all[k].b);
+        return true;
+    };
+    const auto detect = [&] {
+        pieces.clear();
+        auto r = bp->get()->run(up->up.meshes, s);
+        INFO((r ? std::string() : r.error().message()));
+        REQUIRE(r);
+        REQUIRE(r->has_sorted_pairs);
+        REQUIRE(r->has_sorted_responses);
+        std::vector<std::uint64_t> final_pairs;
+        for (const CandidatePair& p : r->sorted_pairs) final_pairs.push_back(std::uint64_t{p.a} << 32 | p.b);
+        return std::make_pair(r->sorted_pairs_seen, final_pairs);
+    };
+    (void)detect();  // the buffers and the copy's capacity grow to the scene
+    for (std::uint32_t piece : {0u, 50u, 1u << 30}) {
+        INFO("pieces of at least " << piece << " pairs (0: automatic)");
+        s.early_piece_pairs = piece;
+        const auto [seen, final_pairs] = detect();
+        REQUIRE(final_pairs.size() > 3 * 1024);
+        CHECK(seen);
+        CHECK(taken == final_pairs);
+        REQUIRE_FALSE(pieces.empty());
+        CHECK(pieces.front().first == 0);
+        CHECK(pieces.back().second == final_pairs.size());
+        for (std::size_t k = 1; k < pieces.size(); ++k) CHECK(pieces[k].first == pieces[k - 1].second);
+        for (const auto& [begin, end] : pieces) CHECK(begin < end);
+        CHECK(pieces.size() == (piece == 50 ? DevicePairStage::kMaxEarlyChunks : 1u));
+    }
+    // A refused piece ends the calls for that sort, and the result says it was not all taken.
+    s.early_piece_pairs = 50;
+    refuse_later = true;
+    const auto [seen, final_pairs] = detect();
+    CHECK_FALSE(seen);
+    CHECK(pieces.size() == 2);
+    // Without the GPU's responses nothing is handed over early.
+    refuse_later = false;
+    s.responses_on_gpu = false;
+    pieces.clear();
+    auto r = bp->get()->run(up->up.meshes, s);
+    REQUIRE(r);
+    CHECK(r->has_sorted_pairs);
+    CHECK_FALSE(r->sorted_pairs_seen);
+    CHECK(pieces.empty());
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

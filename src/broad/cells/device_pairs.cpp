@@ -1,6 +1,7 @@
 #include "broad/cells/device_pairs.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstring>
 #include <string>
@@ -46,9 +47,11 @@ Result<std::unique_ptr<DevicePairStage>> DevicePairStage::create(vk::Device& dev
     b.header_rb = table.addOwned("device-pairs-header-readback", MemoryKind::Readback);
     b.host_pairs = table.addOwned("device-pairs-host", MemoryKind::Readback);
     b.header_rb_early = table.addOwned("device-pairs-header-early", MemoryKind::Readback);
-    auto event = vk::Event::create(device, "device-pairs-ready");
-    if (!event) return event.error();
-    stage->event_ = std::move(*event);
+    for (std::uint32_t k = 0; k < kMaxEarlyChunks; ++k) {
+        auto event = vk::Event::create(device, "device-pairs-ready-" + std::to_string(k));
+        if (!event) return event.error();
+        stage->events_.push_back(std::move(*event));
+    }
     return stage;
 }
 
@@ -56,16 +59,21 @@ void DevicePairStage::retire() { table_->retire(); }
 
 Result<void> DevicePairStage::prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
                                       VkDeviceAddress fault_header, bool header_to_host, bool for_host, std::uint32_t response_capacity,
-                                      bool early) {
+                                      std::uint32_t early_piece_pairs) {
     using vk::MemoryKind;
     triangles_ = cells.triangleCount();
     header_to_host_ = header_to_host;
     for_host_ = for_host;
-    early_ = early && for_host && header_to_host;
+    early_ = early_piece_pairs > 0 && for_host && header_to_host;
     max_groups_x_ = cells.maxGroupsX();
     const std::uint32_t survivors = cells.capacity().survivors;
     // Automatic: the survivor capacity, which holds every distinct pair of a complete run.
     capacity_ = capacity ? capacity : survivors;
+    // Pieces of at least early_piece_pairs (kMinEarlyChunkPairs by default): a piece's naming
+    // on the host wakes its threads and each event costs a barrier, worth it where the copy
+    // is long.
+    early_chunks_ = std::clamp<std::uint32_t>(early_piece_pairs ? capacity_ / early_piece_pairs : 1, 1, kMaxEarlyChunks);
+    early_chunk_pairs_ = (capacity_ + early_chunks_ - 1) / early_chunks_;
     const VkDeviceSize tris = std::max<std::uint32_t>(triangles_, 1);
     const VkDeviceSize blocks = (tris + gpu::kCellsScanBlock - 1) / gpu::kCellsScanBlock;
     const RowSize plan[] = {
@@ -188,27 +196,25 @@ void DevicePairStage::recordEarlyCopies(graph::Graph& g, const Resources& sorted
     Buffers& b = buf_;
     const auto host_pairs = importRow(g, b.host_pairs, true);
     const auto header_early = importRow(g, b.header_rb_early, true);
+    // The header first (the host reads the count with the first piece), then each piece and
+    // its event: the host sees event k set with the header and pieces 0..k in its memory.
+    std::array<VkEvent, kMaxEarlyChunks> events{};
+    for (std::uint32_t k = 0; k < early_chunks_; ++k) events[k] = events_[k].handle();
     addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback)
         .use(sorted.pairs, graph::Use::TransferSrc)
-        .use(host_pairs, graph::Use::TransferDst)
-        .record([from = b.pairs->handle(), to = b.host_pairs->handle(), bytes = VkDeviceSize(capacity_) * pairBytes()](graph::PassContext& pc) {
-            VkBufferCopy copy{0, 0, bytes};
-            pc.copyBuffer(from, to, copy);
-        });
-    addPass(g, "pairs-header-early", graph::PassKind::Transfer, Stage::Readback)
         .use(sorted.header, graph::Use::TransferSrc)
+        .use(host_pairs, graph::Use::TransferDst)
         .use(header_early, graph::Use::TransferDst)
-        .record([from = b.header->handle(), to = b.header_rb_early->handle()](graph::PassContext& pc) {
-            VkBufferCopy copy{0, 0, sizeof(gpu::DevicePairsHeader)};
-            pc.copyBuffer(from, to, copy);
+        .record([from = b.pairs->handle(), to = b.host_pairs->handle(), header = b.header->handle(), header_to = b.header_rb_early->handle(),
+                 events, chunks = early_chunks_, piece = VkDeviceSize(early_chunk_pairs_) * pairBytes(),
+                 bytes = VkDeviceSize(capacity_) * pairBytes()](graph::PassContext& pc) {
+            pc.copyBuffer(header, header_to, VkBufferCopy{0, 0, sizeof(gpu::DevicePairsHeader)});
+            for (std::uint32_t k = 0; k < chunks; ++k) {
+                const VkDeviceSize at = k * piece;
+                if (at < bytes) pc.copyBuffer(from, to, VkBufferCopy{at, at, std::min(piece, bytes - at)});
+                pc.signalHost(events[k]);
+            }
         });
-    // After both copies (it reads what they wrote, so the graph orders it there): the host
-    // sees the event set with the pairs and the header in its memory.
-    addPass(g, "pairs-ready", graph::PassKind::Transfer, Stage::Readback)
-        .use(host_pairs, graph::Use::TransferSrc)
-        .use(header_early, graph::Use::TransferSrc)
-        .sideEffects()
-        .record([event = event_.handle()](graph::PassContext& pc) { pc.signalHost(event); });
 }
 
 gpu::DevicePairsHeader DevicePairStage::earlyHeader() const {

@@ -14,9 +14,10 @@
 // With device responses (DeviceResponseStage, device_responses.hpp) their passes run between
 // pairs-sort and the copies to the host, over this stage's buckets; the header is shared.
 // Early copies (prepare's `early`, for the host's result with its responses on the GPU):
-// pairs-to-host, a copy of the header (pairs-header-early) and `pairs-ready`, which sets
-// the stage's event (milestone()), run right after pairs-sort, before the responses' passes,
-// so that the host names the pairs while the GPU computes the responses.
+// pairs-to-host runs right after pairs-sort, before the responses' passes, and copies the
+// header, then the pairs in earlyChunks() pieces, each followed by the setting of its event
+// (events()), so that the host names each piece while the GPU copies the next and then
+// computes the responses.
 //
 // Capacity: the caller's, or (0) the cell stage's survivor capacity, which bounds the
 // distinct pairs of a complete run, so an automatic capacity never overflows. A caller's
@@ -54,10 +55,12 @@ public:
     // `for_host`: the sorted pairs are also copied to host-visible memory for the host's
     // result (hostPairs()); the engine's device-local buffer is then only the copy's source.
     // `response_capacity`: the responses the device responses' buffer holds (the header
-    // says it; DeviceResponseStage), 0 without them.
+    // says it; DeviceResponseStage), 0 without them. `early_piece_pairs` (with for_host and
+    // header_to_host): the early copies in pieces of at least that many pairs (at most
+    // kMaxEarlyChunks of them); 0: none.
     [[nodiscard]] Result<void> prepare(const CellStage& cells, std::span<const std::uint32_t> object_ids, std::uint32_t capacity,
                                        VkDeviceAddress fault_header, bool header_to_host = false, bool for_host = false,
-                                       std::uint32_t response_capacity = 0, bool early = false);
+                                       std::uint32_t response_capacity = 0, std::uint32_t early_piece_pairs = 0);
     // The passes, after the cell stage's (`cells`: its resources in this graph, or its
     // outputs imported alone after it ran again on an overflow, so that the buffers hold
     // the final run's pairs); `fault_header` the broad phase header's resource (invalid:
@@ -67,16 +70,22 @@ public:
         graph::ResourceId header, pairs, counts, offsets, partners, block_sums;
     };
     Resources record(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header = {});
-    // Prepared `early`: the pairs' copy to host memory, the header's early copy and the pass
-    // that sets event() (in that order), right after record(); otherwise nothing.
+    // Prepared `early`: the pass that copies the header, then each piece of the pairs to host
+    // memory and sets its event, right after record(); otherwise nothing.
     void recordEarlyCopies(graph::Graph& g, const Resources& sorted);
     // The copies to host memory the run was prepared for (header_to_host, for_host; the
     // pairs' only when not early), after record() and any passes over its buckets.
     void recordCopies(graph::Graph& g, const Resources& sorted);
-    // The event pairs-ready sets (prepared early), else null.
-    const vk::Event* event() const noexcept { return early_ ? &event_ : nullptr; }
-    // After the event was seen set: the header as it was when the pairs were copied.
+    // Prepared early: the events the early copy sets, one per piece of the pairs, in order;
+    // else none. Piece k holds the pairs [k, k + 1) * earlyChunkPairs() (of the capacity).
+    std::span<const vk::Event> events() const noexcept { return {events_.data(), early_ ? early_chunks_ : 0u}; }
+    std::uint32_t earlyChunkPairs() const noexcept { return early_chunk_pairs_; }
+    // After the first event was seen set: the header as it was when the pairs were copied.
     gpu::DevicePairsHeader earlyHeader() const;
+    // The most pieces, and the fewest pairs a piece of more than one holds by default
+    // (prepare's early_piece_pairs: 0 copies nothing early).
+    static constexpr std::uint32_t kMaxEarlyChunks = 4;
+    static constexpr std::uint32_t kMinEarlyChunkPairs = 1u << 17;
     // Called at each detection's start: frees what was retired two starts ago.
     void retire();
 
@@ -100,7 +109,8 @@ private:
         TableRow params, object_ids, counts, offsets, out_offsets, block_sums, partners, args, header, pairs, header_rb, host_pairs,
             header_rb_early;
     } buf_;
-    vk::Event event_;
+    std::vector<vk::Event> events_;  // kMaxEarlyChunks
+    std::uint32_t early_chunks_ = 1, early_chunk_pairs_ = 0;
     std::uint32_t triangles_ = 0, capacity_ = 0, max_groups_x_ = 0;
     bool header_to_host_ = false, for_host_ = false, early_ = false;
     // A pair's bytes in `pairs` and its host copy: for the host alone, its two global ids.

@@ -94,6 +94,7 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     host_responses_on_ = sorted_for_host_ && run.settings.responses_on_gpu;
     early_pairs_on_ = host_responses_on_ && static_cast<bool>(run.settings.on_sorted_pairs);
     on_sorted_pairs_ = early_pairs_on_ ? run.settings.on_sorted_pairs : nullptr;
+    early_piece_pairs_ = run.settings.early_piece_pairs;
     settings.survivors_on_device = pairs_on_device_only_ || sorted_for_host_;
     // Proximity: every triangle grown by half the distance (rounded up to a float).
     proximity_on_ = run.settings.proximity_distance > 0;
@@ -125,8 +126,10 @@ Result<void> ReliableMethod::prepareSort() {
     // and a bucket past a loop limit is named.
     const bool header_to_host = pairs_on_device_only_ || sorted_for_host_ || device_responses_on_;
     early_pairs_seen_ = false;  // a new sort: what the callback took is not its pairs
+    early_pairs_count_ = early_pairs_taken_ = 0;
     if (auto ok = device_pairs_->prepare(*cells_, object_tags_, device_pair_capacity_, fault_header_, header_to_host, sorted_for_host_,
-                                         responding() ? DeviceResponseStage::responseCapacity(*cells_) : 0, early_pairs_on_);
+                                         responding() ? DeviceResponseStage::responseCapacity(*cells_) : 0,
+                                         early_pairs_on_ ? (early_piece_pairs_ ? early_piece_pairs_ : DevicePairStage::kMinEarlyChunkPairs) : 0);
         !ok)
         return ok;
     if (!responding()) return {};
@@ -283,13 +286,27 @@ Error ReliableMethod::loopLimitError(const char* what) const {
                      "or detect on a GPU");
 }
 
-// The pairs are in host memory, the responses not yet: a complete sort's pairs go to the
-// callback (an incomplete or overflowing one is collectSorted's to sort again).
-void ReliableMethod::pairsReady() {
-    const gpu::DevicePairsHeader h = device_pairs_->earlyHeader();
-    if (h.flags != 0 || h.count != h.needed || !on_sorted_pairs_) return;
-    early_pairs_seen_ = on_sorted_pairs_(device_pairs_->hostPairs(h.count));
-    early_pairs_count_ = h.count;
+// A piece of the pairs is in host memory, the responses are not yet: a complete sort's
+// pieces go to the callback in order (an incomplete or overflowing sort is collectSorted's
+// to sort again); a piece it refuses ends the early naming for this sort.
+void ReliableMethod::pairsReady(std::size_t piece) {
+    if (piece == 0) {
+        const gpu::DevicePairsHeader h = device_pairs_->earlyHeader();
+        early_pairs_seen_ = false;
+        early_pairs_taken_ = 0;
+        early_pairs_count_ = h.flags == 0 && h.count == h.needed && on_sorted_pairs_ ? h.count : 0;
+        if (early_pairs_count_ == 0) return;
+    } else if (early_pairs_count_ == 0 || early_pairs_taken_ != std::min<std::uint64_t>(std::uint64_t(piece) * device_pairs_->earlyChunkPairs(), early_pairs_count_)) {
+        return;  // refused or skipped before
+    }
+    const std::uint32_t end =
+        static_cast<std::uint32_t>(std::min<std::uint64_t>(std::uint64_t(piece + 1) * device_pairs_->earlyChunkPairs(), early_pairs_count_));
+    if (!on_sorted_pairs_(device_pairs_->hostPairs(early_pairs_count_), early_pairs_taken_, end)) {
+        early_pairs_count_ = 0;
+        return;
+    }
+    early_pairs_taken_ = end;
+    early_pairs_seen_ = early_pairs_taken_ == early_pairs_count_;
 }
 
 Result<Collected> ReliableMethod::collectSorted(BroadPhaseResult& result) {

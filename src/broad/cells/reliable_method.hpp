@@ -50,11 +50,12 @@ public:
     Result<Collected> collect(const RunView& run, const gpu::Header& header, BroadPhaseResult& io_result) override;
     std::optional<ObjectFault> fault() const override { return fault_; }
     // With BroadPhaseSettings::on_sorted_pairs (the host's sorted result, its responses on
-    // the GPU): the device pairs' event, set once the pairs are in host memory and before
-    // the responses' passes; its callback hands a complete sort's pairs to on_sorted_pairs.
+    // the GPU): the device pairs' events, each set once a piece of the pairs is in host
+    // memory, before the responses' passes; the callback hands a complete sort's pieces to
+    // on_sorted_pairs.
     graph::Executor::Milestone milestone() override {
         if (!early_pairs_on_) return {};
-        return {device_pairs_->event(), [this] { pairsReady(); }};
+        return {device_pairs_->events(), [this](std::size_t piece) { pairsReady(piece); }};
     }
     std::optional<DevicePairsView> devicePairs() const override {
         if (!device_pairs_on_) return std::nullopt;  // sorted_for_host_'s buffers are the host's
@@ -76,8 +77,8 @@ private:
     Result<Collected> collectCells(const RunView& run, BroadPhaseResult& io_result);
     Result<Collected> collectProximity(BroadPhaseResult& io_result);
     Result<Collected> collectSorted(BroadPhaseResult& io_result);
-    // milestone()'s callback.
-    void pairsReady();
+    // milestone()'s callback: piece `piece` of the pairs is in host memory.
+    void pairsReady(std::size_t piece);
     Error loopLimitError(const char* what) const;
     enum class Step { Cells, SweepChunk, PairChunk, Sort, Proximity };
     Collected again(Step step) {
@@ -107,12 +108,14 @@ private:
     bool responding() const { return device_responses_on_ || host_responses_on_; }
     std::uint32_t host_response_capacity_ = 0;
     std::uint32_t last_responses_ = 0;  // the last host result's responses: what its copy holds first
-    // The pairs copied early for BroadPhaseSettings::on_sorted_pairs (milestone()); whether
-    // it took the current sort's pairs, and how many.
+    // The pairs copied early for BroadPhaseSettings::on_sorted_pairs (milestone()): the
+    // current sort's count (from the early header, 0 when incomplete), how many of them the
+    // callback has taken, and whether it took every piece.
     bool early_pairs_on_ = false;
-    std::function<bool(std::span<const CandidatePair>)> on_sorted_pairs_;
+    std::function<bool(std::span<const CandidatePair>, std::size_t, std::size_t)> on_sorted_pairs_;
+    std::uint32_t early_pairs_count_ = 0, early_pairs_taken_ = 0;
+    std::uint32_t early_piece_pairs_ = 0;  // BroadPhaseSettings::early_piece_pairs
     bool early_pairs_seen_ = false;
-    std::uint32_t early_pairs_count_ = 0;
     // The device pairs' passes, then the responses' and the copies to the host.
     void recordSort(graph::Graph& g, const CellStage::Resources& cells, graph::ResourceId fault_header) const;
     std::uint32_t hostSortCapacity(std::uint64_t expected) const;

@@ -293,5 +293,10 @@ inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
 // PairSort::Auto sorts on the GPU from this many pairs in the world's last detection: below
 // it the host's sort costs less than the GPU's passes (docs/results.md, "Sorted on the GPU").
 inline constexpr std::size_t kGpuPairSortFrom = 4096;
+// Where the GPU sorts the pairs and computes their responses, the host names the pairs while
+// the GPU computes the responses from this many pairs in the world's last detection: below
+// it the responses' passes are too short to hide the naming, which then costs more than
+// after the wait (pile-shapes' 7,177 pairs: 0.06 ms more on an H100; docs/exact_gpu.md).
+inline constexpr std::size_t kNameDuringGpuFrom = 32768;
 
 }  // namespace vkcollide

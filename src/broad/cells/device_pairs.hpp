@@ -15,7 +15,7 @@
 // pairs-sort and the copies to the host, over this stage's buckets; the header is shared.
 // Early copies (prepare's `early`, for the host's result with its responses on the GPU):
 // pairs-to-host runs right after pairs-sort, before the responses' passes, and copies the
-// header, then the pairs in earlyChunks() pieces, each followed by the setting of its event
+// header, then the pairs in up to kMaxEarlyChunks pieces, each followed by the setting of its event
 // (events()), so that the host names each piece while the GPU copies the next and then
 // computes the responses.
 //

@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
-"""Run 35: per scene and variant, s63 (51a926d, before) and s64 (the pairs named while the GPU
-computes the responses): median host total, GPU span, narrow phase and the detect() profile's
-prepare, wait and milestone (the early naming), over frames >= 1 of both rounds (a, b);
-recall and precision minimum.
-    python3 analyse35.py DIR   (DIR holds {a,b}-{s63,s64}.csv and _profile.csv.gz)"""
+"""Runs 34 and 35 (session 59): per scene and variant, each build's median host total, GPU span,
+narrow phase and the detect() profile's prepare, wait and milestone (the naming during the
+GPU), over frames >= 1 of rounds a and b; recall and precision minimum over all.
+    python3 analyse_rounds.py RUN BUILD...   (from results/h200_2026-12-07)
+    e.g. python3 analyse_rounds.py run34 s60 s63; python3 analyse_rounds.py run35 s63 s64"""
 import csv, gzip, sys, os, statistics as st
 from collections import defaultdict
 d = sys.argv[1]
-builds = ('s63', 's64')
+builds = tuple(sys.argv[2:])
 rows, prof = defaultdict(list), defaultdict(lambda: defaultdict(list))
 for rnd in 'ab':
     for b in builds:
@@ -23,7 +23,7 @@ for rnd in 'ab':
                 prof[(b, r['scene'], r['variant'])][r['stage']].append(float(r['ms']))
 med = lambda x, i: st.median(t[i] for t in x) if x else float('nan')
 pm = lambda p, k: st.median(p[k]) if p.get(k) else float('nan')
-print('| scene | variant | pairs | host total ms: s63 / s64 | GPU span ms | narrow ms | prepare ms | wait ms | milestone ms | recall, precision min |')
+print(f'| scene | variant | pairs | host total ms: {" / ".join(builds)} | GPU span ms | narrow ms | prepare ms | wait ms | milestone ms | recall, precision min |')
 print('|---|---|---|---|---|---|---|---|---|---|')
 for sc, v in sorted({(k[1], k[2]) for k in rows}):
     rs = [rows.get((b, sc, v), []) for b in builds]

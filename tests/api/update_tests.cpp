@@ -268,3 +268,23 @@ TEST_CASE("a resolution swinging by half its cells keeps the command buffer", "[
         CHECK(reused[f]);
     }
 }
+
+TEST_CASE("a resolution swinging far below what the buffers hold keeps the command buffer", "[api][gpu]") {
+    // Frame 0 far wider (a far from b: the per-cell buffers grow to over four times what any
+    // later frame needs, as after the grid tuner's trials at a finer grid), then the swing
+    // of the test above. The clear and the scan then cover the most cells of the recent
+    // runs within the band (CellStage::recordedCells), the same on every frame of the
+    // swing, so once the swing's widest frame has run, every frame is submitted again.
+    const MovedFrames m = detectMoved(12, [](int frame) { return frame == 0 ? 6.0f : 0.25f * float(frame % 4); });
+    const std::vector<std::uint32_t>& resolution = m.resolution;
+    const std::vector<bool>& reused = m.reused;
+    CAPTURE(resolution, reused);
+    for (std::size_t f = 1; f < m.found.size(); ++f) REQUIRE(m.found[f]);
+    const auto [lowest, highest] = std::minmax_element(resolution.begin() + 1, resolution.end());
+    REQUIRE(double(*highest) >= 1.15 * double(*lowest));                // the swing
+    REQUIRE(double(resolution[0]) >= 2.2 * double(*highest));            // over 4.8 times the cells
+    for (std::size_t f = 6; f < resolution.size(); ++f) {
+        INFO("frame " << f);
+        CHECK(reused[f]);
+    }
+}

@@ -212,6 +212,8 @@ Result<void> CellStage::prepare(const CellStageInput& in, const CellStageSetting
     objects_.assign(in.objects.begin(), in.objects.end());
     triangles_ = static_cast<std::uint32_t>(total);
     resolution_ = in.resolution;
+    recent_cells_[recent_next_] = roundedCells(std::uint64_t(resolution_) * resolution_);
+    recent_next_ = (recent_next_ + 1) % kRecentRuns;
     projection_address_ = in.projection_address;
     use_filter_ = settings.filter && filterSupported();
     chooseForms(settings);

@@ -318,9 +318,18 @@ private:
     // recording it (0.03 ms a frame on the H200's host; a sixteenth's rounding alone left
     // deform-tori, deform-blobs and deform-armadillo-bunny recording on 73-100 % of their
     // frames: results/h200_2026-12-07/README.md, run 31). The band costs a clear of 4 bytes
-    // and an idle scan workgroup per 1,024 cells beyond the run's.
+    // and an idle scan workgroup per 1,024 cells beyond the run's. Where the buffers hold
+    // more than that (they keep the most cells a run ever needed: the grid tuner's trials
+    // at finer grids, a scene that spread out), the most cells one of the last kRecentRuns
+    // runs needed within the same band: otherwise a scene swinging below a
+    // quarter of the buffers recorded anew every frame (deform-blobs and
+    // deform-armadillo-bunny on the H100: tuned to 0.35x, 104-227 cells a side after trials
+    // at up to 1.41x; results/h200_2026-12-07/README.md, session 59).
     static constexpr std::uint64_t kRecordedCellsSlack = 4;
+    static constexpr std::size_t kRecentRuns = 32;
     std::uint64_t recordedCells() const;
+    std::array<std::uint64_t, kRecentRuns> recent_cells_{};  // rounded counts, a ring (0: none)
+    std::size_t recent_next_ = 0;
     std::uint32_t automaticPairChunk() const;
     struct PairPassIds {
         graph::ResourceId header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, exact_queue;

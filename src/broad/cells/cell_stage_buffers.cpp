@@ -48,7 +48,13 @@ std::uint64_t CellStage::recordedCells() const {
     const std::uint64_t rounded = roundedCells(std::uint64_t(resolution_) * resolution_);
     // What all three per-cell buffers hold (ensureBuffers reserves them together).
     const std::uint64_t held = std::min({buf_.counts->size() / 4, buf_.offsets->size() / 4 - 1, buf_.block_sums->size() / 4 * gpu::kCellsScanBlock});
-    return held >= rounded && held <= kRecordedCellsSlack * rounded ? held : rounded;
+    if (held >= rounded && held <= kRecordedCellsSlack * rounded) return held;
+    // The most cells a recent run needed within the band (a run far larger is left out):
+    // the same for every run of a scene that swings within a range narrower than the band.
+    std::uint64_t most = rounded;
+    for (const std::uint64_t c : recent_cells_)
+        if (c > most && c <= kRecordedCellsSlack * rounded) most = c;
+    return std::min(held, most);
 }
 
 Result<void> CellStage::ensureBuffers() {

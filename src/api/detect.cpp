@@ -197,8 +197,9 @@ void CollisionWorld::Impl::prepareResultMemory(const Run& run) {
     narrow::resizeFresh(ready_pairs, pairs, ready_responses, responses, *executor);
 }
 
-// Inside collect()'s wait, as soon as the GPU has copied a complete sort's pairs: they are
-// named into the result's memory, checked on the way, while the GPU computes the responses.
+// Inside collect()'s wait, as each piece of a complete sort's pairs reaches host memory (in
+// order): it is named into the result's memory, checked on the way, while the GPU copies the
+// next piece and computes the responses.
 // The objects are named as finish() names them when the run's objects are all live (finish
 // uses this naming only then). Never throws (the executor's callback must not).
 bool CollisionWorld::Impl::nameEarly(Run& run, std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end) {

@@ -219,7 +219,7 @@ void Executor::tapePlan(const Graph& graph, const GraphPlan& plan, PassContext& 
         } else {
             p.record(ctx);
         }
-        // The pass that sets a milestone's event: its end tells collect() when to look.
+        // The first pass that sets a milestone's event: its start tells collect() when to look.
         if (tape_.signals() != signals && pending_signal_pass_ == kNoPass)
             pending_signal_pass_ = static_cast<std::uint32_t>(pending_names_.size() - 1);
         tape_.writeTimestamp(VK_PIPELINE_STAGE_2_BOTTOM_OF_PIPE_BIT, queries_, q++);

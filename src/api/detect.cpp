@@ -197,16 +197,16 @@ void CollisionWorld::Impl::prepareResultMemory(const Run& run) {
     narrow::resizeFresh(ready_pairs, pairs, ready_responses, responses, *executor);
 }
 
-// Inside collect()'s wait, as each piece of a complete sort's pairs reaches host memory (in
-// order): it is named into the result's memory, checked on the way, while the GPU copies the
-// next piece and computes the responses.
-// The objects are named as finish() names them when the run's objects are all live (finish
-// uses this naming only then). Never throws (the executor's callback must not).
+// Inside collect()'s wait, as each piece of a complete sort's pairs reaches host memory (the
+// broad phase calls it in order and stops at a refused piece, and says in
+// BroadPhaseResult::sorted_pairs_seen whether every piece of the final sort was taken): it
+// is named into the result's memory, checked on the way, while the GPU copies the next piece
+// and computes the responses. The objects are named as finish() names them when the run's
+// objects are all live (finish uses this naming only then). Never throws (the executor's
+// callback must not).
 bool CollisionWorld::Impl::nameEarly(Run& run, std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end) {
     const auto t0 = Clock::now();
     if (begin == 0) {  // a sort's first piece: the source and the memory for all of them
-        run.named_early = false;
-        run.early_named = 0;
         run.early_name_ms = 0;
         if (!run.early_into || sorted.size() > run.settings.limits.max_pairs) return false;
         try {
@@ -215,13 +215,9 @@ bool CollisionWorld::Impl::nameEarly(Run& run, std::span<const CandidatePair> so
             return false;
         }
         if (!narrow::prepareSortedNames(*run.early_into, sorted.size(), *executor)) return false;
-    } else if (run.early_named != begin) {
-        return false;
     }
     const bool ok = narrow::nameSortedPairs(sorted, begin, end, registry.source, *executor, *run.early_into);
     run.early_name_ms += msSince(t0);
-    run.early_named = ok ? end : 0;
-    run.named_early = ok && end == sorted.size();
     return ok;
 }
 
@@ -238,8 +234,6 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock,
         run.prepare_ms = msSince(t0);
     }
     run.early_into = reuse ? &reuse->pairs : &ready_pairs;
-    run.named_early = false;
-    run.early_named = 0;
     run.early_name_ms = 0;
     auto r = run.detection->collect();
     run.early_into = nullptr;
@@ -396,7 +390,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
                 response_memory = std::move(ready_responses);
             }
             // Named during the wait (nameEarly) over these pairs, with the same objects.
-            const bool named = broad[0].sorted_pairs_seen && run.named_early && std::ranges::equal(ids, run.ids);
+            const bool named = broad[0].sorted_pairs_seen && std::ranges::equal(ids, run.ids);
             narrow = narrow::runSortedPairs(broad[0].sorted_pairs, registry.source, options, *executor, narrow_workspace,
                                             std::move(pair_memory), std::move(response_memory), broad[0].sorted_responses, named);
             st.reliable.pairs_named_during_gpu = named && narrow && narrow->pairs_left_out == 0;

@@ -46,10 +46,8 @@ struct DetectionsInFlight {
         double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host.settings_ms)
         bool sorts_on_gpu = false;         // the reliable method's host pairs come back sorted by the GPU
         // During collect(): where nameEarly names the pairs (the caller's result for
-        // detectInto, else the memory made ready), whether it did and how long it took.
+        // detectInto, else the memory made ready) and how long that took.
         std::vector<TrianglePair>* early_into = nullptr;
-        bool named_early = false;
-        std::size_t early_named = 0;  // the pairs named so far (pieces in order)
         double early_name_ms = 0;
     };
 

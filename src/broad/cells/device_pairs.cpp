@@ -24,6 +24,16 @@ static_assert(sizeof(gpu::DevicePairsHeader) == sizeof(DevicePairsHeader) && off
 static_assert(gpu::kDevicePairsOverflow == kDevicePairsOverflow && gpu::kDevicePairsIncomplete == kDevicePairsIncomplete);
 static_assert(sizeof(gpu::DevicePairsParams) == 11 * 8 + 6 * 4);
 
+// A header the run copied to a readback row (`copied`), as the GPU left it; zeros otherwise.
+template <typename Row>
+gpu::DevicePairsHeader headerIn(const Row& row, bool copied) {
+    gpu::DevicePairsHeader h{};
+    if (!copied || !row->valid()) return h;
+    row->invalidate();
+    std::memcpy(static_cast<void*>(&h), row->mapped(), sizeof h);
+    return h;
+}
+
 }  // namespace
 
 Result<std::unique_ptr<DevicePairStage>> DevicePairStage::create(vk::Device& device, BufferTable& table) {
@@ -191,63 +201,49 @@ DevicePairStage::Resources DevicePairStage::record(graph::Graph& g, const CellSt
     return {header, pairs, counts, offsets, partners, sums};
 }
 
-void DevicePairStage::recordEarlyCopies(graph::Graph& g, const Resources& sorted) {
-    if (!early_) return;
+// The pairs' copy to host memory, by the transfer engine: the shaders' stores to host memory
+// cross the bus 15-20x slower on an H200 (1.7M pairs: 11.7 ms from a coalesced shader, 0.65 ms
+// copied; about 52 GB/s). The whole capacity is copied, so the host's capacity follows the
+// pairs found (ReliableMethod: 1.25x the last count; an overflow sorts once more), and each
+// pair is its two global ids (DevicePairsParams.packed): 8 bytes, not 16. Early: the header
+// first (the host reads the count with the first piece), then each piece and its event, so
+// that the host sees event k set with the header and pieces 0..k in its memory; otherwise
+// the capacity in one copy.
+void DevicePairStage::recordPairsToHost(graph::Graph& g, const Resources& sorted, bool early) {
     Buffers& b = buf_;
     const auto host_pairs = importRow(g, b.host_pairs, true);
-    const auto header_early = importRow(g, b.header_rb_early, true);
-    // The header first (the host reads the count with the first piece), then each piece and
-    // its event: the host sees event k set with the header and pieces 0..k in its memory.
     std::array<VkEvent, kMaxEarlyChunks> events{};
-    for (std::uint32_t k = 0; k < early_chunks_; ++k) events[k] = events_[k].handle();
-    addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback)
-        .use(sorted.pairs, graph::Use::TransferSrc)
-        .use(sorted.header, graph::Use::TransferSrc)
-        .use(host_pairs, graph::Use::TransferDst)
-        .use(header_early, graph::Use::TransferDst)
-        .record([from = b.pairs->handle(), to = b.host_pairs->handle(), header = b.header->handle(), header_to = b.header_rb_early->handle(),
-                 events, chunks = early_chunks_, piece = VkDeviceSize(early_chunk_pairs_) * pairBytes(),
-                 bytes = VkDeviceSize(capacity_) * pairBytes()](graph::PassContext& pc) {
-            pc.copyBuffer(header, header_to, VkBufferCopy{0, 0, sizeof(gpu::DevicePairsHeader)});
-            for (std::uint32_t k = 0; k < chunks; ++k) {
-                const VkDeviceSize at = k * piece;
-                if (at < bytes) pc.copyBuffer(from, to, VkBufferCopy{at, at, std::min(piece, bytes - at)});
-                pc.signalHost(events[k]);
-            }
-        });
+    const std::uint32_t chunks = early ? early_chunks_ : 1;
+    for (std::uint32_t k = 0; early && k < chunks; ++k) events[k] = events_[k].handle();
+    const VkDeviceSize bytes = VkDeviceSize(capacity_) * pairBytes();
+    auto pass = addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback);
+    pass.use(sorted.pairs, graph::Use::TransferSrc).use(host_pairs, graph::Use::TransferDst);
+    if (early) pass.use(sorted.header, graph::Use::TransferSrc).use(importRow(g, b.header_rb_early, true), graph::Use::TransferDst);
+    pass.record([from = b.pairs->handle(), to = b.host_pairs->handle(), header = b.header->handle(), header_to = b.header_rb_early->handle(),
+                 early, events, chunks, piece = early ? VkDeviceSize(early_chunk_pairs_) * pairBytes() : bytes,
+                 bytes](graph::PassContext& pc) {
+        if (early) pc.copyBuffer(header, header_to, VkBufferCopy{0, 0, sizeof(gpu::DevicePairsHeader)});
+        for (std::uint32_t k = 0; k < chunks; ++k) {
+            const VkDeviceSize at = k * piece;
+            if (at < bytes) pc.copyBuffer(from, to, VkBufferCopy{at, at, std::min(piece, bytes - at)});
+            if (early) pc.signalHost(events[k]);
+        }
+    });
 }
 
-gpu::DevicePairsHeader DevicePairStage::earlyHeader() const {
-    gpu::DevicePairsHeader h{};
-    if (!early_ || !buf_.header_rb_early->valid()) return h;
-    buf_.header_rb_early->invalidate();
-    std::memcpy(static_cast<void*>(&h), buf_.header_rb_early->mapped(), sizeof h);
-    return h;
+void DevicePairStage::recordEarlyCopies(graph::Graph& g, const Resources& sorted) {
+    if (early_) recordPairsToHost(g, sorted, true);
 }
+
+gpu::DevicePairsHeader DevicePairStage::earlyHeader() const { return headerIn(buf_.header_rb_early, early_); }
 
 void DevicePairStage::recordCopies(graph::Graph& g, const Resources& sorted) {
-    Buffers& b = buf_;
-    const graph::ResourceId header = sorted.header, pairs = sorted.pairs;
-    if (for_host_ && !early_) {
-        const auto host_pairs = importRow(g, b.host_pairs, true);
-        // A copy by the transfer engine: the shaders' stores to host memory cross the bus
-        // 15-20x slower on an H200 (1.7M pairs: 11.7 ms from a coalesced shader, 0.65 ms
-        // copied; about 52 GB/s). The whole capacity is copied, so the host's capacity follows the
-        // pairs found (ReliableMethod: 1.25x the last count; an overflow sorts once more),
-        // and each pair is its two global ids (DevicePairsParams.packed): 8 bytes, not 16.
-        addPass(g, "pairs-to-host", graph::PassKind::Transfer, Stage::Readback)
-            .use(pairs, graph::Use::TransferSrc)
-            .use(host_pairs, graph::Use::TransferDst)
-            .record([from = b.pairs->handle(), to = b.host_pairs->handle(),
-                     bytes = VkDeviceSize(capacity_) * pairBytes()](graph::PassContext& pc) {
-                VkBufferCopy copy{0, 0, bytes};
-                pc.copyBuffer(from, to, copy);
-            });
-    }
+    if (for_host_ && !early_) recordPairsToHost(g, sorted, false);
     if (!header_to_host_) return;
+    Buffers& b = buf_;
     const auto header_rb = importRow(g, b.header_rb, true);
     addPass(g, "pairs-header-readback", graph::PassKind::Transfer, Stage::Readback)
-        .use(header, graph::Use::TransferSrc)
+        .use(sorted.header, graph::Use::TransferSrc)
         .use(header_rb, graph::Use::TransferDst)
         .record([from = b.header->handle(), to = b.header_rb->handle()](graph::PassContext& pc) {
             VkBufferCopy copy{0, 0, sizeof(gpu::DevicePairsHeader)};
@@ -262,13 +258,7 @@ std::span<const CandidatePair> DevicePairStage::hostPairs(std::uint32_t count) c
     return {static_cast<const CandidatePair*>(buf_.host_pairs->mapped()), count};
 }
 
-gpu::DevicePairsHeader DevicePairStage::header() const {
-    gpu::DevicePairsHeader h{};
-    if (!header_to_host_ || !buf_.header_rb->valid()) return h;
-    buf_.header_rb->invalidate();
-    std::memcpy(static_cast<void*>(&h), buf_.header_rb->mapped(), sizeof h);
-    return h;
-}
+gpu::DevicePairsHeader DevicePairStage::header() const { return headerIn(buf_.header_rb, header_to_host_); }
 
 DevicePairsView DevicePairStage::view() const noexcept {
     return {buf_.pairs->handle(), buf_.header->handle(), buf_.pairs->address(), buf_.header->address(), capacity_};

@@ -115,6 +115,8 @@ private:
     bool header_to_host_ = false, for_host_ = false, early_ = false;
     // A pair's bytes in `pairs` and its host copy: for the host alone, its two global ids.
     VkDeviceSize pairBytes() const noexcept { return for_host_ ? sizeof(CandidatePair) : sizeof(gpu::DevicePair); }
+    // pairs-to-host: early (recordEarlyCopies) or after the responses' passes (recordCopies).
+    void recordPairsToHost(graph::Graph& g, const Resources& sorted, bool early);
 };
 
 }  // namespace vkcollide::passes

@@ -5,6 +5,9 @@
 //      update-1t         the same on a world of one thread;
 //      update-resolve    resolveSettings() after each update: the shape measurement that
 //                        updateVertices leaves to the automatic settings, plus resolving;
+//      update-pair-idle  a deforming pair's host frame: two meshes of --vertices updated
+//                        and the settings resolved, after 0.5 ms idle (the executor's
+//                        threads asleep, as after a detection's wait);
 //      upload-memory     the memory type upload buffers get (method column: its flags);
 //      part:<name>       the pieces alone, on a thread pool of --threads (or 1: -1t) and a
 //                        mapped upload buffer as the world's (its memory type):
@@ -230,6 +233,30 @@ int main(int argc, char** argv) {
                             median(resolve), median(resolve) * 1e6 / n, device.c_str());
         }
         updateParts(ContextAccess::device(**ctx), big, frames, threads == 0 ? std::thread::hardware_concurrency() : threads, device);
+    }
+    {  // A deforming pair's frame on the host: both meshes updated, then the settings resolved.
+        const HostMesh a = sphere(1.0f, 2 * vertices), b = sphere(0.8f, 2 * vertices);
+        auto world = CollisionWorld::create(**ctx, {.threads = threads});
+        if (!world) die(world.error().message());
+        auto ia = (*world)->addMesh(a, {.name = "a"});
+        auto ib = (*world)->addMesh(b, {.name = "b"});
+        if (!ia || !ib) die((ia ? ib : ia).error().message());
+        std::vector<Float3> pa, pb;
+        std::vector<double> times;
+        for (int f = 0; f < frames; ++f) {
+            pose(a, f, -0.8f, pa);
+            pose(b, f, 0.8f, pb);
+            // Idle first, as during a detection's GPU wait: the executor's threads stop polling and sleep.
+            std::this_thread::sleep_for(std::chrono::microseconds(500));
+            const auto t0 = Clock::now();
+            if (auto ok = (*world)->updateVertices(*ia, pa); !ok) die(ok.error().message());
+            if (auto ok = (*world)->updateVertices(*ib, pb); !ok) die(ok.error().message());
+            if (auto r = (*world)->resolveSettings(); !r) die(r.error().message());
+            times.push_back(msSince(t0));
+        }
+        const double n = double(a.positions.size() + b.positions.size());
+        std::printf("update-pair-idle,-,%zu,%zu,%d,%.3f,%.3f,,,,,,,%s\n", a.triangleCount() + b.triangleCount(), a.positions.size() + b.positions.size(),
+                    frames, median(times), median(times) * 1e6 / n, device.c_str());
     }
 
     const HostMesh a = sphere(1.0f, triangles), b = sphere(0.8f, triangles);

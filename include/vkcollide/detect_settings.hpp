@@ -133,6 +133,15 @@ struct ReliableSettings {
     // device_pairs (whose host result is built on the host); Auto then computes them on the
     // CPU, as it does for a result cut at limits.max_pairs.
     ResponseSource responses = ResponseSource::Auto;
+    // With the responses on the GPU: when the host names the sorted pairs into the result
+    // (PairNaming). Auto: while the GPU computes the responses, once the world's last
+    // detection had kNameDuringGpuFrom pairs; the host learns that each piece of the pairs
+    // is in its memory from a VkEvent the GPU sets, which Vulkan does not name as a host
+    // synchronisation (docs/exact_gpu.md says what was checked, and where). AfterFence: only
+    // after the submission's fence, as for every other readback, at the cost of the naming
+    // time (stack-mating's 1.7M pairs: about 0.8 ms on an H100's host). The same result
+    // either way; DetectStats::reliable.pairs_named_during_gpu says which ran.
+    PairNaming pair_naming = PairNaming::Auto;
     // With an automatic resolution: whether the grid is chosen per scene from the
     // detections' own GPU times (GridTuning). On, the first detections of a scene try the
     // neighbouring grids (each as exact; some slower) and the world keeps the fastest; the
@@ -294,7 +303,8 @@ inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
 // it the host's sort costs less than the GPU's passes (docs/results.md, "Sorted on the GPU").
 inline constexpr std::size_t kGpuPairSortFrom = 4096;
 // Where the GPU sorts the pairs and computes their responses, the host names the pairs while
-// the GPU computes the responses from this many pairs in the world's last detection: below
+// the GPU computes the responses (ReliableSettings::pair_naming Auto) from this many pairs in
+// the world's last detection: below
 // it the responses' passes are too short to hide the naming, which then costs more than
 // after the wait (pile-shapes' 7,177 pairs: 0.06 ms more on an H100; docs/exact_gpu.md).
 inline constexpr std::size_t kNameDuringGpuFrom = 32768;

@@ -101,6 +101,15 @@ enum class ResponseSource {
     Cpu,   // the narrow phase's, on the host's threads (the reference path)
 };
 
+// When the host names the pairs the GPU sorted (DetectSettings::reliable.pair_naming), where
+// the GPU also computes their responses (ResponseSource). The same result either way
+// (docs/exact_gpu.md, "The pairs named while the GPU computes the responses").
+enum class PairNaming {
+    Auto,        // during the responses' passes, from kNameDuringGpuFrom pairs in the world's last
+                 // detection: the host polls a VkEvent the GPU sets after each piece of the copy
+    AfterFence,  // only after the submission's fence: the host synchronisation Vulkan specifies
+};
+
 // How the reliable method's automatic grid is chosen (DetectSettings::reliable.grid_tuning).
 // The pairs are the same at any grid (the method is exact at every resolution): only the time
 // changes.
@@ -119,7 +128,7 @@ enum class GridTuning {
 
 // Lower-case names as the command-line options spell them: "scan", "paper"; "centre",
 // "dilate", "conservative", "best"; "auto", "raster", "compute"; "reliable", "peeling";
-// "auto", "gpu", "cpu" (three times); "auto", "on", "off".
+// "auto", "gpu", "cpu" (three times); "auto", "on", "off"; "auto", "after-fence".
 VKCOLLIDE_API const char* toString(PackingMethod method) noexcept;
 VKCOLLIDE_API const char* toString(DetectMethod method) noexcept;
 VKCOLLIDE_API const char* toString(Coverage coverage) noexcept;
@@ -129,5 +138,6 @@ VKCOLLIDE_API const char* toString(PairSort sort) noexcept;
 VKCOLLIDE_API const char* toString(ResponseSource source) noexcept;
 VKCOLLIDE_API const char* toString(ExactPass pass) noexcept;
 VKCOLLIDE_API const char* toString(GridTuning tuning) noexcept;
+VKCOLLIDE_API const char* toString(PairNaming naming) noexcept;
 
 }  // namespace vkcollide

@@ -122,7 +122,8 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
     run.sorts_on_gpu = s.method == DetectMethod::Reliable && d.broad.sort_on_gpu && s.reliable.host_pairs;
     // The pairs named while the GPU computes their responses (finish() then names none).
-    if (run.sorts_on_gpu && d.broad.responses_on_gpu && last_narrow_pairs >= kNameDuringGpuFrom)
+    if (run.sorts_on_gpu && d.broad.responses_on_gpu && s.reliable.pair_naming == PairNaming::Auto &&
+        last_narrow_pairs >= kNameDuringGpuFrom)
         d.broad.on_sorted_pairs = [this, &run](std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end) {
             return nameEarly(run, sorted, begin, end);
         };

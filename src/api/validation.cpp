@@ -227,6 +227,8 @@ Result<void> checkSettings(const DetectSettings& s, const vk::Device& device) {
     if (s.reliable.responses != ResponseSource::Auto && s.reliable.responses != ResponseSource::Gpu &&
         s.reliable.responses != ResponseSource::Cpu)
         return outside("reliable.responses", int(s.reliable.responses), "ResponseSource", "Auto, Gpu or Cpu");
+    if (s.reliable.pair_naming != PairNaming::Auto && s.reliable.pair_naming != PairNaming::AfterFence)
+        return outside("reliable.pair_naming", int(s.reliable.pair_naming), "PairNaming", "Auto or AfterFence");
     if (s.reliable.grid_tuning != GridTuning::Auto && s.reliable.grid_tuning != GridTuning::On && s.reliable.grid_tuning != GridTuning::Off)
         return outside("reliable.grid_tuning", int(s.reliable.grid_tuning), "GridTuning", "Auto, On or Off");
     const bool reliable = s.method == DetectMethod::Reliable;

@@ -73,6 +73,14 @@ const char* toString(ExactPass pass) noexcept {
     return "?";
 }
 
+const char* toString(PairNaming naming) noexcept {
+    switch (naming) {
+        case PairNaming::Auto: return "auto";
+        case PairNaming::AfterFence: return "after-fence";
+    }
+    return "?";
+}
+
 const char* toString(PairSort sort) noexcept {
     switch (sort) {
         case PairSort::Auto: return "auto";

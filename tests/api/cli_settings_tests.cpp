@@ -230,8 +230,8 @@ TEST_CASE("vkcollide detect: the JSON's settings are those the method that ran r
     const Json j = detectJson(s.scratch, s.files + " --resolution 64");
     CHECK(j["settings"]["asked"].object().size() == options.all.size() - options.reliable_only.size());
     CHECK(j["settings"]["used"].object().size() == options.all.size() - options.reliable_only.size());
-    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--exact-pass", "--pair-sort", "--responses", "--grid-tuning",
-                                                         "--proximity", "--proximity-capacity"});
+    CHECK(options.reliable_only == std::set<std::string>{"--exact", "--exact-pass", "--pair-sort", "--responses", "--pair-naming",
+                                                         "--grid-tuning", "--proximity", "--proximity-capacity"});
     CHECK_FALSE(j["settings"]["used"].has("exact"));
     CHECK(j["settings"]["used"].has("depth_aware"));
     // The reliable method: the fields it reads, and none that only peeling reads.
@@ -379,7 +379,7 @@ TEST_CASE("vkcollide detect: --exact chooses where the reliable method's exact t
     CHECK(run.err.find("--exact belongs to the reliable method") != std::string::npos);
 }
 
-TEST_CASE("vkcollide detect: --pair-sort and --responses choose where the pairs are put in order and the responses computed",
+TEST_CASE("vkcollide detect: --pair-sort, --responses and --pair-naming choose where the pairs are put in order, the responses computed and the pairs named",
           "[cli][gpu]") {
     TwoSpheres s(1.0f);
     const Json gpu = detectJson(s.scratch, s.plain_files + " --pair-sort gpu");
@@ -410,6 +410,16 @@ TEST_CASE("vkcollide detect: --pair-sort and --responses choose where the pairs 
     const Run refused = runCli("detect " + s.plain_files + " --responses gpu --pair-sort cpu");
     CHECK(refused.status == 1);
     CHECK(refused.err.find("reliable.responses Gpu needs the pairs sorted on the GPU") != std::string::npos);
+    // --pair-naming: when the host names the GPU's sorted pairs (the same pairs either way).
+    const Json after_fence = detectJson(s.scratch, s.plain_files + " --pair-sort gpu --pair-naming after-fence");
+    CHECK(after_fence["settings"]["asked"]["pair_naming"].string() == "after-fence");
+    CHECK(after_fence["settings"]["used"]["pair_naming"].string() == "after-fence");
+    CHECK(gpu["settings"]["used"]["pair_naming"].string() == "auto");
+    CHECK_FALSE(stats(after_fence)["pairs_named_during_gpu"].boolean());
+    CHECK(jsonPairs(after_fence["frames"][0]) == jsonPairs(gpu["frames"][0]));
+    const Run bad_naming = runCli("detect " + s.plain_files + " --pair-naming never");
+    CHECK(bad_naming.status == 1);
+    CHECK(bad_naming.err.find("--pair-naming needs auto or after-fence, got 'never'") != std::string::npos);
 }
 
 TEST_CASE("vkcollide detect: --exact-pass runs the exact decision inside the pair pass or in a pass of its own", "[cli][gpu]") {

@@ -508,5 +508,28 @@ TEST_CASE("detect() makes the next result's memory ready while the GPU works, an
     CHECK(moved(0.0f, "back in place") == n);
     CHECK(moved(100.0f, "one grid moved out: a third of the pairs") < n / 2);
     CHECK(moved(0.0f, "back in place again") == n);
+    // Named only after the fence when asked: the same result, none of it named during the GPU.
+    DetectSettings after_fence = gpu_sort;
+    after_fence.reliable.pair_naming = PairNaming::AfterFence;
+    for (int frame = 0; frame < 2; ++frame) {
+        auto r = world->detect(after_fence);
+        REQUIRE(r);
+        CHECK(r->pairs == first->pairs);
+        CHECK(sameResponses(r->responses, first->responses));
+        CHECK(r->stats.reliable.responses_on_gpu);
+        CHECK_FALSE(r->stats.reliable.pairs_named_during_gpu);
+        CHECK(r->stats.host.milestone_ms == 0.0);
+        DetectResult into;
+        REQUIRE(world->detectInto(into, after_fence));
+        CHECK(into.pairs == first->pairs);
+        CHECK_FALSE(into.stats.reliable.pairs_named_during_gpu);
+    }
+    auto named = world->detect(gpu_sort);  // and during the GPU again under Auto
+    REQUIRE(named);
+    CHECK(named->pairs == first->pairs);
+    CHECK(named->stats.reliable.pairs_named_during_gpu);
+    auto bad = world->detect({.reliable = {.pair_naming = PairNaming(7)}});
+    REQUIRE_FALSE(bad);
+    CHECK_THAT(bad.error().message(), Catch::Contains("reliable.pair_naming") && Catch::Contains("PairNaming"));
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

@@ -49,6 +49,9 @@ std::vector<Variant> allVariants(const std::vector<std::uint32_t>& resolutions) 
         // Where the pairs are sorted on the GPU, the host result's responses from the narrow
         // phase (the reference path) instead of the GPU (the default, ResponseSource::Auto).
         {"responses-cpu", "modes", [](S& s) { s.reliable.responses = ResponseSource::Cpu; }},
+        // The pairs named after the fence only (PairNaming::AfterFence), not while the GPU
+        // computes the responses: its difference to "default" is what the overlap saves.
+        {"after-fence", "modes", [](S& s) { s.reliable.pair_naming = PairNaming::AfterFence; }},
         // The automatic grid fixed at kCellsPerEdge (the default on a GPU tunes it per scene,
         // docs/reliable.md "The grid per scene"): its difference to "default" is the tuning's.
         {"grid-fixed", "modes", [](S& s) { s.reliable.grid_tuning = GridTuning::Off; }},

@@ -265,7 +265,7 @@ TEST_CASE("vkcollide --help: every option says what it does and what it costs", 
         "--edge-length", "--sequence", "--frame-files", "--frames", "--threads", "--device", "--no-robust-access",
         "--validation", "--quiet", "--pairs", "--json", "--stats", "--csv", "--png", "--png-size", "--view", "--rays",
         "--method", "--timeout", "--wait-poll", "--max-pairs", "--max-candidate-pairs", "--contacts", "--contact-resolution", "--contact-geometry", "--exact", "--exact-pass", "--pair-sort",
-        "--responses", "--grid-tuning",
+        "--responses", "--pair-naming", "--grid-tuning",
         "--proximity", "--proximity-capacity", "--proximity-pairs"};
     CHECK(std::set<std::string>(options.begin(), options.end()) == tested);
 }

@@ -30,7 +30,8 @@ one() {  # $1: round, $2: policy name, $3: build, then environment
   env "$@" timeout 100 build-carry/$b/vkcollide_bench $B --frames 10 --warmup-ms 600 --variants default,into --scenes $SCENES \
     --csv $W/update-$r-$name.csv --profile $W/update-$r-$name"_profile.csv" > $W/update-$r-$name.txt 2>&1; log update-$r-$name $?
 }
-for r in a b; do
+# SKIP_UPDATE=1: experiments 1 and 3 only (a short device call).
+for r in $([ -n "$SKIP_UPDATE" ] || echo a b); do
   if [ $r = b ]; then order="D C B A"; else order="A B C D"; fi
   for p in $order; do
     case $p in

@@ -112,9 +112,9 @@ struct ReliableStats {
     double sorting_ms = 0;  // device_pairs: the GPU's sort of the pairs
     bool pairs_sorted_on_gpu = false;  // DetectSettings::reliable.pair_sort: the GPU ordered the host result's pairs
     bool responses_on_gpu = false;  // DetectSettings::reliable.responses: the GPU computed the host result's responses
-    // With both (and kNameDuringGpuFrom pairs or more in the world's last detection): the host
-    // named the result's pairs while the GPU computed the responses (a milestone in the
-    // submission: docs/exact_gpu.md), not after it finished.
+    // With both (and reliable.pair_naming Auto, kNameDuringGpuFrom pairs or more in the
+    // world's last detection): the host named the result's pairs while the GPU computed the
+    // responses (a milestone in the submission: docs/exact_gpu.md), not after it finished.
     bool pairs_named_during_gpu = false;
     // device_pairs with host_pairs off: the header's `needed` (the distinct intersecting pairs,
     // as DetectResult::pairs would have held) and `count` (those the buffer holds).

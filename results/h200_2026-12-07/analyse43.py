@@ -6,13 +6,15 @@ experiment changes) is within 5 % of the fastest seen in the run. Medians over f
                                   pass, the GPU span and detect()'s host total
     python3 analyse43.py update   policies A-D on the deforming scenes: the host's vertex
                                   update, detect()'s settings, the host total
-(from results/h200_2026-12-07)."""
+(from results/h200_2026-12-07). A second argument names the run's folder (default run43;
+run43b: the second call, with the update policies)."""
 import csv, glob, gzip, os, re, statistics as st, sys
 from collections import defaultdict
 what = sys.argv[1]
+run = sys.argv[2] if len(sys.argv) > 2 else 'run43'
 frames = []
-for f in sorted(glob.glob(f'run43/{what}-*_profile.csv.gz')):
-    rnd, build = re.match(rf'run43/{what}-(\w)-(\w+)_profile', f).groups()
+for f in sorted(glob.glob(f'{run}/{what}-*_profile.csv.gz')):
+    rnd, build = re.match(rf'{run}/{what}-(\w)-(\w+)_profile', f).groups()
     per = defaultdict(dict)
     for r in csv.DictReader(gzip.open(f, 'rt')):
         if int(r['frame']) >= 1:

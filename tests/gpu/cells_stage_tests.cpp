@@ -504,6 +504,63 @@ TEST_CASE("cells: the shallow sweep's tiles hold cells across chunk boundaries, 
     CHECK(rows.pairs == whole.pairs);
 }
 
+// Poles' fans of slivers: every triangle of a fan shares the pole's vertex, so each walk in
+// its cell visits the whole fan, and every pair is a neighbour pair the sweep drops. The
+// sweep reads the partners' vertex indices from shared memory there: in the shallow tiles
+// for cells of 64 entries or more, in the deep sweep always, with each entry's box carried
+// through its sort. Fans of 40 (shallow, indices from the geometry), 100 (shallow, indices
+// in shared memory) and 600 triangles (deep), each pierced by needles of its own object
+// and of another: the exact pairs, and no fan pair among the candidates.
+TEST_CASE("cells: poles' fans of slivers, pierced by needles, give the exact pairs and no neighbour candidates", "[cells][gpu]") {
+    ValidatedContext ctx;
+    auto stage = passes::CellStage::create(ctx.device());
+    REQUIRE(stage);
+    constexpr std::uint32_t kN = 16;  // cells per side over [0, 1]^2, world projection
+    constexpr float kRim = 0.02f;     // every fan within one cell of 1/16
+    std::mt19937 rng(61);
+    std::uniform_real_distribution<float> angle(0.0f, 6.2831853f), radius(0.3f * kRim, 0.6f * kRim);
+    HostMesh fans{"fans", {}, {}}, other{"needles", {}, {}};
+    const struct {
+        Float3 pole;
+        std::uint32_t slivers;
+    } cones[] = {{{0.22f, 0.22f, 0.5f}, 40}, {{0.53f, 0.53f, 0.5f}, 100}, {{0.78f, 0.34f, 0.5f}, 600}};
+    std::uint64_t fan_pairs = 0;
+    for (const auto& cone : cones) {
+        const auto pole = static_cast<std::uint32_t>(fans.positions.size());
+        fans.positions.push_back(cone.pole);
+        for (std::uint32_t k = 0; k < cone.slivers; ++k) {
+            const float a = 6.2831853f * float(k) / float(cone.slivers);
+            fans.positions.push_back({cone.pole.x + kRim * std::cos(a), cone.pole.y + kRim * std::sin(a), cone.pole.z - 0.01f});
+        }
+        for (std::uint32_t k = 0; k < cone.slivers; ++k)
+            fans.indices.insert(fans.indices.end(), {pole, pole + 1 + k, pole + 1 + (k + 1) % cone.slivers});
+        fan_pairs += std::uint64_t{cone.slivers} * (cone.slivers - 1) / 2;
+        // Vertical needles through the cone's surface: 3 of the fans' own object, 3 of another.
+        for (int n = 0; n < 6; ++n) {
+            const float a = angle(rng), r = radius(rng);
+            const float x = cone.pole.x + r * std::cos(a), y = cone.pole.y + r * std::sin(a);
+            addTriangle(n < 3 ? fans : other, {x, y, 0.45f}, {x + 0.004f, y + 0.001f, 0.45f}, {x + 0.002f, y, 0.56f});
+        }
+    }
+    CellScene scene;
+    scene.meshes = {fans, other};
+    scene.self = {1, 0};
+    const auto reference = referencePairs(scene);
+    REQUIRE(reference.size() >= 6 * 3);  // every needle crosses its cone
+    CellRunOptions opt;
+    opt.resolution = kN;
+    opt.projection = worldProjection();
+    opt.settings.exact = true;
+    const CellRun run = runCells(ctx, **stage, scene, opt);
+    CHECK(run.result.stats.deep_cells == 1);
+    CHECK(run.result.stats.max_cell >= 606);
+    requireExactPairs(run, reference);
+    // The needles' pairs only (each needle meets at most its fan and the other needles).
+    INFO("candidates " << run.result.stats.candidates << ", the fans' neighbour pairs " << fan_pairs);
+    CHECK(run.result.stats.candidates <= 6 * (40 + 100 + 600) + 3 * 15);
+    CHECK(run.result.stats.exact_neighbours == 0);
+}
+
 // The fill's workgroups of 256 triangles take their slots per cell through a table in
 // shared memory where their footprints crowd into few cells, one footprint at a time
 // where they are spread (cells_fill.comp, the GPU form; lavapipe runs the per-footprint

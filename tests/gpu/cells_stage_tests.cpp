@@ -506,11 +506,11 @@ TEST_CASE("cells: the shallow sweep's tiles hold cells across chunk boundaries, 
 
 // Poles' fans of slivers: every triangle of a fan shares the pole's vertex, so each walk in
 // its cell visits the whole fan, and every pair is a neighbour pair the sweep drops. The
-// sweep reads the partners' vertex indices from shared memory there: in the shallow tiles
-// for cells of 64 entries or more, in the deep sweep always, with each entry's box carried
-// through its sort. Fans of 40 (shallow, indices from the geometry), 100 (shallow, indices
-// in shared memory) and 600 triangles (deep), each pierced by needles of its own object
-// and of another: the exact pairs, and no fan pair among the candidates.
+// shallow tiles read a partner's vertex indices from the geometry; the deep sweep reads
+// them from shared memory, with each entry's box carried through its sort, and loads the
+// partner's entry only for a pair it may keep. Fans of 40 and 100 (shallow) and 600
+// triangles (deep), each pierced by needles of its own object and of another: the exact
+// pairs, and no fan pair among the candidates.
 TEST_CASE("cells: poles' fans of slivers, pierced by needles, give the exact pairs and no neighbour candidates", "[cells][gpu]") {
     ValidatedContext ctx;
     auto stage = passes::CellStage::create(ctx.device());

@@ -138,9 +138,11 @@ struct ReliableSettings {
     // detection had kNameDuringGpuFrom pairs; the host learns that each piece of the pairs
     // is in its memory from a VkEvent the GPU sets, which Vulkan does not name as a host
     // synchronisation (docs/exact_gpu.md says what was checked, and where). AfterFence: only
-    // after the submission's fence, as for every other readback, at the cost of the naming
-    // time (stack-mating's 1.7M pairs: about 0.8 ms on an H100's host). The same result
-    // either way; DetectStats::reliable.pairs_named_during_gpu says which ran.
+    // after the submission's fence, as for every other readback: the naming (stack-mating's
+    // 1.7M pairs: about 0.8 ms on an H100's host) no longer overlaps the GPU, but the GPU
+    // span is shorter (no event, no early copy): detect() measured within noise of Auto on
+    // the stacks, 0.07 ms more on cad-mating (H100, run 43). The same result either way;
+    // DetectStats::reliable.pairs_named_during_gpu says which ran.
     PairNaming pair_naming = PairNaming::Auto;
     // With an automatic resolution: whether the grid is chosen per scene from the
     // detections' own GPU times (GridTuning). On, the first detections of a scene try the

@@ -10,7 +10,9 @@
 #include "api/mesh_checks.hpp"
 #include "api/validation.hpp"
 #include "api/world_impl.hpp"
+#include "narrow/calling_thread_executor.hpp"
 #include "narrow/exact_stage.hpp"
+#include "narrow/pair_narrow_phase.hpp"
 #include "narrow/parallel.hpp"
 #include "narrow/sorted_pairs.hpp"
 #include "proximity/ownership.hpp"
@@ -120,7 +122,8 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
     d.broad.host_pairs = s.reliable.host_pairs;
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
-    run.sorts_on_gpu = s.method == DetectMethod::Reliable && d.broad.sort_on_gpu && s.reliable.host_pairs;
+    run.host_pairs = s.method == DetectMethod::Reliable && s.reliable.host_pairs;
+    run.sorts_on_gpu = run.host_pairs && d.broad.sort_on_gpu;
     // The pairs named while the GPU computes their responses (finish() then names none).
     if (run.sorts_on_gpu && d.broad.responses_on_gpu && s.reliable.pair_naming == PairNaming::Auto &&
         last_narrow_pairs >= kNameDuringGpuFrom)
@@ -177,25 +180,32 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
 }
 
 // A result's first writes into new memory fault its pages in: on the H100's host 1.5-2 ms for
-// the 27 MB of 1.7M pairs with 16 threads touching them (run 33). So before the wait,
-// vectors the size of the last result's (and an eighth more) are made ready while the GPU
-// works; the narrow phase then names the pairs into them in parallel. resize() writes no
-// pair (TrianglePair's constructor leaves the ids unset: a one-thread zeroing of those 27 MB
-// took 2.8 ms more); the responses' resize() still zeroes, beside the pairs' pages. Small
-// results are left alone (the allocator hands their memory back warm).
+// the 27 MB of 1.7M pairs with 16 threads touching them (run 33), and about 2 us a page on
+// one thread (the responses of 32K pairs, 0.9 MB, took 0.48 ms to copy into fresh memory
+// after the GPU's wait, 0.02 ms into warm memory: run 44). A result kept by the caller does
+// not come back to the allocator, so the next one's memory is new pages from the kernel
+// (above the allocator's mmap threshold, from 128 KB, every time). So before the wait,
+// vectors the size of the last result's (and an eighth more) are made ready, their pages
+// touched, while the GPU works; the narrow phase then writes the pairs and responses into
+// them. resize() writes no pair (TrianglePair's constructor leaves the ids unset: a
+// one-thread zeroing of those 27 MB took 2.8 ms more); the responses' resize() still
+// zeroes, beside the pairs' pages. Results of a few pages are left alone; under a megabyte
+// the calling thread touches them (a few hundred pages at most): the executor's workers,
+// woken for it, would spin beside the one-thread narrow phase of few pairs that follows,
+// and an engine's executor is not called for that phase (engine_sync_tests.cpp).
 static_assert(!std::is_trivially_default_constructible_v<TrianglePair> && std::is_trivially_copyable_v<TrianglePair>,
               "resize() must make a result's pairs without writing them");
-void CollisionWorld::Impl::prepareResultMemory(const Run& run) {
-    constexpr std::size_t kFromBytes = std::size_t{1} << 20;
+void CollisionWorld::Impl::prepareResultMemory() {
+    constexpr std::size_t kFromBytes = std::size_t{16} << 10;
     const auto wanted = [](const auto& v, std::size_t last) -> std::size_t {
         const std::size_t n = last + last / 8;
         return n * sizeof(v[0]) < kFromBytes ? v.size() : std::max(n, v.size());  // never shrunk here
     };
-    const std::size_t pairs = wanted(ready_pairs, last_narrow_pairs);
-    // The responses are computed on the GPU: the narrow phase only copies them.
-    const std::size_t responses =
-        run.settings.reliable.responses != ResponseSource::Cpu ? wanted(ready_responses, last_responses) : ready_responses.size();
-    narrow::resizeFresh(ready_pairs, pairs, ready_responses, responses, *executor);
+    const std::size_t pairs = wanted(ready_pairs, last_result_pairs), responses = wanted(ready_responses, last_responses);
+    const std::size_t bytes = pairs * sizeof(TrianglePair) + responses * sizeof(TriangleResponse);
+    narrow::CallingThreadExecutor calling_thread;
+    Executor& ex = bytes < narrow::fresh::kTouchBytes ? static_cast<Executor&>(calling_thread) : *executor;
+    narrow::resizeFresh(ready_pairs, pairs, ready_responses, responses, ex, kFromBytes);
 }
 
 // Inside collect()'s wait, as each piece of a complete sort's pairs reaches host memory (the
@@ -230,8 +240,8 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock,
         run.detection->setDeadline(run.deadline);
     }
     run.prepare_ms = 0;
-    if (!reuse && run.sorts_on_gpu) {
-        prepareResultMemory(run);
+    if (!reuse && run.host_pairs) {
+        prepareResultMemory();
         run.prepare_ms = msSince(t0);
     }
     run.early_into = reuse ? &reuse->pairs : &ready_pairs;
@@ -400,7 +410,12 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
             st.reliable.pairs_sorted_on_gpu = true;
             st.reliable.responses_on_gpu = broad[0].has_sorted_responses && narrow && narrow->pairs_left_out == 0;
         } else {
-            narrow = runPairNarrowPhase(broad[0].pairs, registry.source, options, *executor, narrow_workspace);
+            if (!reuse) {
+                pair_memory = std::move(ready_pairs);
+                response_memory = std::move(ready_responses);
+            }
+            narrow = narrow::runPairNarrowPhaseInto(broad[0].pairs, registry.source, options, *executor, narrow_workspace,
+                                                    std::move(pair_memory), std::move(response_memory));
             last_narrow_pairs = broad[0].pairs.size();
             calling_thread_only = narrow::runsOnCallingThread(last_narrow_pairs, options.pairs_decided);
         }
@@ -435,6 +450,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     // ids are its run indices (none removed, none left out) needs none.
     out.pairs = std::move(narrow->pairs);
     out.responses = std::move(narrow->responses);
+    last_result_pairs = out.pairs.size();
     last_responses = out.responses.size();
     if (!reuse) {
         releaseSlack(out.pairs);

@@ -37,11 +37,12 @@ struct CollisionWorld::Impl {
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
     std::size_t last_narrow_pairs = 0;  // the last pair-path narrow phase's input: whom to wake while the next one waits
     bool last_narrow_decided = false;   // ... and whether the GPU had decided its pairs (no tests: fewer threads)
-    // detect()'s result memory for GPU-sorted pairs and responses, made ready while the GPU
-    // works (prepareResultMemory) and handed to the result; the last result's response count.
+    // detect()'s result memory for the reliable method's pairs and responses, made ready
+    // while the GPU works (prepareResultMemory) and handed to the result; the last result's
+    // pair and response counts.
     std::vector<TrianglePair> ready_pairs;
     std::vector<TriangleResponse> ready_responses;
-    std::size_t last_responses = 0;
+    std::size_t last_result_pairs = 0, last_responses = 0;
     ObjectRegistry registry;
     AutoSettings auto_settings;
     // Declared after the objects: destroyed first, the detections wait for their work in
@@ -94,7 +95,7 @@ struct CollisionWorld::Impl {
     // Before collect()'s wait for a run whose pairs the GPU sorts and whose result memory the
     // caller does not lend (detect(), collect()): vectors as large as the last result's pairs
     // and responses, their new pages touched and zeroed while the GPU works, not after it.
-    void prepareResultMemory(const Run& run);
+    void prepareResultMemory();
     // The broad phase's on_sorted_pairs for `run`: its sorted pairs named into the result's
     // memory (Run::early_into) while the GPU computes the responses.
     bool nameEarly(Run& run, std::span<const CandidatePair> sorted, std::size_t begin, std::size_t end);

@@ -10,6 +10,7 @@
 #include "narrow/workspace.hpp"
 #include "narrow/neighbours.hpp"
 #include "narrow/pair_keys.hpp"
+#include "narrow/pair_narrow_phase.hpp"
 #include "narrow/slots.hpp"
 #include "vkcollide/narrow.hpp"
 #include "vkcollide/thread_pool.hpp"
@@ -50,7 +51,8 @@ Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs,
 namespace {
 
 Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source, const NarrowOptions& options,
-                               Executor& ex, NarrowWorkspace& io_workspace) {
+                               Executor& ex, NarrowWorkspace& io_workspace, std::vector<TrianglePair>& pair_memory,
+                               std::vector<TriangleResponse>& response_memory) {
     narrow::StageClock clock;
     NarrowWorkspace::Impl& ws = io_workspace.impl();
     const std::size_t input = in_pairs.size();
@@ -81,6 +83,10 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
     const std::uint64_t slot_mask = (std::uint64_t{1} << slot_bits) - 1;
 
     NarrowResult result;
+    result.pairs = std::move(pair_memory);  // their memory only: sized where they are written
+    result.pairs.clear();
+    result.responses = std::move(response_memory);
+    result.responses.clear();
     result.stats.input_pairs = input;
     result.stats.candidates = slot_count;
     result.stats.potentially_colliding_triangles = slot_count;  // every one is in a pair
@@ -148,11 +154,18 @@ Result<NarrowResult> pairPhase(std::span<const CandidatePair> in_pairs, const Tr
 
 Result<NarrowResult> runPairNarrowPhase(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
                                         const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace) {
+    return narrow::runPairNarrowPhaseInto(in_pairs, source, options, executor, io_workspace, {}, {});
+}
+
+Result<NarrowResult> narrow::runPairNarrowPhaseInto(std::span<const CandidatePair> in_pairs, const TriangleSource& source,
+                                                    const NarrowOptions& options, Executor& executor, NarrowWorkspace& io_workspace,
+                                                    std::vector<TrianglePair> pair_memory,
+                                                    std::vector<TriangleResponse> response_memory) {
     // Few decided pairs: every loop on this thread (results never depend on the executor).
     narrow::CallingThreadExecutor calling_thread;
     Executor& chosen = narrow::runsOnCallingThread(in_pairs.size(), options.pairs_decided) ? calling_thread : executor;
     return narrow::guardedCall("runPairNarrowPhase", chosen, options.max_box_pairs, [&](Executor& guarded) {
-        return pairPhase(in_pairs, source, options, guarded, io_workspace);
+        return pairPhase(in_pairs, source, options, guarded, io_workspace, pair_memory, response_memory);
     });
 }
 

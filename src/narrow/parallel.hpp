@@ -75,15 +75,19 @@ private:
 };
 
 // Sizing arrays to n elements that the caller then overwrites: v.resize(n) within the
-// capacity; beyond it, a new array of value-initialised elements (the old contents are lost),
-// in huge pages where the kernel gives them (core/huge_pages.hpp), which the executor's
-// threads touch before resize()'s one-thread pass: a fresh vector's page faults, taken by one
-// thread, cost 13.6 ms for the 27 MB of 1.7M pairs on the H200's host (docs/api.md), more
-// than the rest of the host's work for them. (That pass writes nothing for a type whose
-// default constructor leaves it unset, as TrianglePair's does.)
+// capacity; beyond it, from `touch_from` bytes, a new array of value-initialised elements
+// (the old contents are lost), in huge pages where the kernel gives them
+// (core/huge_pages.hpp), which the executor's threads touch before resize()'s one-thread
+// pass: a fresh vector's page faults, taken by one thread, cost 13.6 ms for the 27 MB of 1.7M
+// pairs on the H200's host (docs/api.md), more than the rest of the host's work for them.
+// (That pass writes nothing for a type whose default constructor leaves it unset, as
+// TrianglePair's does.) Below `touch_from` the new array's pages fault where it is first
+// written; a detection's result memory, made ready while the GPU works, is touched from a
+// few pages on (CollisionWorld::Impl::prepareResultMemory).
 namespace fresh {
 
 inline constexpr std::size_t kTouchBytes = std::size_t{1} << 20;  // a task's share of the pages
+inline constexpr std::size_t kTouchFrom = 2 * kTouchBytes;       // resizeFresh's default
 
 // One array on its way to n elements: `fresh` holds the new storage (no elements yet) where
 // the old capacity is too small.
@@ -94,8 +98,8 @@ struct Plan {
     std::size_t n;
     std::vector<T> fresh{};
 
-    Plan(std::vector<T>& into, std::size_t count) : v(into), n(count) {
-        if (n <= v.capacity() || n * sizeof(T) < 2 * kTouchBytes) return;
+    Plan(std::vector<T>& into, std::size_t count, std::size_t touch_from = kTouchFrom) : v(into), n(count) {
+        if (n <= v.capacity() || n * sizeof(T) < std::max<std::size_t>(touch_from, 1)) return;
         fresh.reserve(n);
         adviseHugePages(fresh.data(), bytes());
     }
@@ -129,9 +133,10 @@ void resizeFresh(std::vector<T>& v, std::size_t n, Executor& ex) {
 // The same for two arrays at once (a result's pairs and responses): their new pages touched
 // in one parallel loop, then their two one-thread resize() passes side by side.
 template <typename A, typename B>
-void resizeFresh(std::vector<A>& a, std::size_t na, std::vector<B>& b, std::size_t nb, Executor& ex) {
-    fresh::Plan<A> pa(a, na);
-    fresh::Plan<B> pb(b, nb);
+void resizeFresh(std::vector<A>& a, std::size_t na, std::vector<B>& b, std::size_t nb, Executor& ex,
+                 std::size_t touch_from = fresh::kTouchFrom) {
+    fresh::Plan<A> pa(a, na, touch_from);
+    fresh::Plan<B> pb(b, nb, touch_from);
     const std::size_t tasks_a = pa.pageTasks();
     ex.parallelFor(tasks_a + pb.pageTasks(), 1, [&](std::size_t begin, std::size_t end) {
         for (std::size_t k = begin; k < end; ++k) k < tasks_a ? pa.touch(k) : pb.touch(k - tasks_a);

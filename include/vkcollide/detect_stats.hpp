@@ -155,7 +155,7 @@ struct HostStats {
     // submit() and collect() apart it also counts the host's work in between.
     double launch_wake_ms = 0;
     // Of collect_ms: detect()'s result memory made ready before the wait (pages faulted in,
-    // elements made), about the last result's size (the reliable method's pairs from 16 KB;
+    // elements made), for GPU-sorted pairs about the last result's size (from 16 KB;
     // docs/api.md); 0 for detectInto(), which writes into the caller's memory. Where it
     // exceeds the GPU span it is also in launch_wake_ms (the host wakes after it).
     double prepare_ms = 0;

@@ -122,8 +122,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
     d.broad.host_pairs = s.reliable.host_pairs;
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
-    run.host_pairs = s.method == DetectMethod::Reliable && s.reliable.host_pairs;
-    run.sorts_on_gpu = run.host_pairs && d.broad.sort_on_gpu;
+    run.sorts_on_gpu = s.method == DetectMethod::Reliable && d.broad.sort_on_gpu && s.reliable.host_pairs;
     // The pairs named while the GPU computes their responses (finish() then names none).
     if (run.sorts_on_gpu && d.broad.responses_on_gpu && s.reliable.pair_naming == PairNaming::Auto &&
         last_narrow_pairs >= kNameDuringGpuFrom)
@@ -184,15 +183,16 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
 // one thread (the responses of 32K pairs, 0.9 MB, took 0.48 ms to copy into fresh memory
 // after the GPU's wait, 0.02 ms into warm memory: run 44). A result kept by the caller does
 // not come back to the allocator, so the next one's memory is new pages from the kernel
-// (above the allocator's mmap threshold, from 128 KB, every time). So before the wait,
-// vectors the size of the last result's (and an eighth more) are made ready, their pages
-// touched, while the GPU works; the narrow phase then writes the pairs and responses into
-// them. resize() writes no pair (TrianglePair's constructor leaves the ids unset: a
-// one-thread zeroing of those 27 MB took 2.8 ms more); the responses' resize() still
-// zeroes, beside the pairs' pages. Results of a few pages are left alone; under a megabyte
-// the calling thread touches them (a few hundred pages at most): the executor's workers,
-// woken for it, would spin beside the one-thread narrow phase of few pairs that follows,
-// and an engine's executor is not called for that phase (engine_sync_tests.cpp).
+// (above the allocator's mmap threshold, from 128 KB, every time). So where the GPU sorts
+// the pairs, before the wait, vectors the size of the last result's (and an eighth more) are
+// made ready, their pages touched, while the GPU works; the narrow phase then writes the
+// pairs and responses into them. resize() writes no pair (TrianglePair's constructor leaves
+// the ids unset: a one-thread zeroing of those 27 MB took 2.8 ms more); the responses'
+// resize() still zeroes, beside the pairs' pages. Under a megabyte the calling thread
+// touches them (a few hundred pages at most), so the executor's workers are not woken for
+// it. The host's pair path (under kGpuPairSortFrom pairs) gets none: made ready there, its
+// few kilobytes cost its narrow phase more than their faults (run 48: spheres-8x10K +0.19
+// ms, 2,882 pairs).
 static_assert(!std::is_trivially_default_constructible_v<TrianglePair> && std::is_trivially_copyable_v<TrianglePair>,
               "resize() must make a result's pairs without writing them");
 void CollisionWorld::Impl::prepareResultMemory() {
@@ -240,7 +240,7 @@ Result<DetectResult> CollisionWorld::Impl::collect(Run& run, bool restart_clock,
         run.detection->setDeadline(run.deadline);
     }
     run.prepare_ms = 0;
-    if (!reuse && run.host_pairs) {
+    if (!reuse && run.sorts_on_gpu) {
         prepareResultMemory();
         run.prepare_ms = msSince(t0);
     }
@@ -410,10 +410,8 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
             st.reliable.pairs_sorted_on_gpu = true;
             st.reliable.responses_on_gpu = broad[0].has_sorted_responses && narrow && narrow->pairs_left_out == 0;
         } else {
-            if (!reuse) {
-                pair_memory = std::move(ready_pairs);
-                response_memory = std::move(ready_responses);
-            }
+            // detectInto's memory; detect() makes none ready for this path (its results have
+            // fewer than kGpuPairSortFrom pairs): run 48, `experiments/session62_old_prepare.diff`.
             narrow = narrow::runPairNarrowPhaseInto(broad[0].pairs, registry.source, options, *executor, narrow_workspace,
                                                     std::move(pair_memory), std::move(response_memory));
             last_narrow_pairs = broad[0].pairs.size();

@@ -45,7 +45,6 @@ struct DetectionsInFlight {
         double prepare_ms = 0;  // of wait_ms: detect()'s result memory made ready (prepareResultMemory)
         double settings_ms = 0;            // host: start()'s settings, validation and mask (DetectStats::host.settings_ms)
         bool sorts_on_gpu = false;         // the reliable method's host pairs come back sorted by the GPU
-        bool host_pairs = false;           // the reliable method's pairs come to the host (either path)
         // During collect(): where nameEarly names the pairs (the caller's result for
         // detectInto, else the memory made ready) and how long that took.
         std::vector<TrianglePair>* early_into = nullptr;

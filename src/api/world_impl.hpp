@@ -37,9 +37,9 @@ struct CollisionWorld::Impl {
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
     std::size_t last_narrow_pairs = 0;  // the last pair-path narrow phase's input: whom to wake while the next one waits
     bool last_narrow_decided = false;   // ... and whether the GPU had decided its pairs (no tests: fewer threads)
-    // detect()'s result memory for the reliable method's pairs and responses, made ready
-    // while the GPU works (prepareResultMemory) and handed to the result; the last result's
-    // pair and response counts.
+    // detect()'s result memory for GPU-sorted pairs and responses, made ready while the GPU
+    // works (prepareResultMemory) and handed to the result; the last result's pair and
+    // response counts.
     std::vector<TrianglePair> ready_pairs;
     std::vector<TriangleResponse> ready_responses;
     std::size_t last_result_pairs = 0, last_responses = 0;

@@ -472,25 +472,46 @@ TEST_CASE("detectInto and collectInto give detect()'s result in the caller's mem
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 
-// The host's pair path (pairs sorted and responses computed on the host) and results of a few
-// pages: a kept result's successor would otherwise fault its new pages in after the wait.
-TEST_CASE("detect() makes a host-sorted result's memory ready during the wait too, from a few pages on", "[api][gpu][reliable]") {
+// GPU-sorted results under a megabyte (the calling thread makes their memory ready) and the
+// host's pair path (none made ready for detect(); detectInto's memory reused): a kept result's
+// successor would otherwise fault its new pages in after the wait.
+TEST_CASE("detect() makes a small GPU-sorted result's memory ready during the wait, detectInto reuses memory on both paths", "[api][gpu][reliable]") {
     ValidatedContext ctx;
     auto grids = coincidentGrids(12);
     REQUIRE(grids);
+    auto world = sceneWorld(ctx, *grids);
     DetectSettings host_sort;
     host_sort.reliable.pair_sort = PairSort::Cpu;
-    auto world = sceneWorld(ctx, *grids);
-    auto first = world->detect(host_sort);
-    REQUIRE(first);
-    const std::size_t n = first->pairs.size(), responses = first->responses.size();
+    auto on_host = world->detect(host_sort);
+    REQUIRE(on_host);
+    const std::size_t n = on_host->pairs.size(), responses = on_host->responses.size();
     INFO(n << " pairs, " << responses << " responses");
     REQUIRE(n * sizeof(TrianglePair) >= (std::size_t{16} << 10));
     REQUIRE(n * sizeof(TrianglePair) < (std::size_t{1} << 20));
-    CHECK_FALSE(first->stats.reliable.pairs_sorted_on_gpu);
+    CHECK_FALSE(on_host->stats.reliable.pairs_sorted_on_gpu);
+    auto again = world->detect(host_sort);
+    REQUIRE(again);
+    CHECK(again->pairs == on_host->pairs);
+    CHECK(again->stats.host.prepare_ms == 0.0);  // the host's path: nothing made ready
+    // detectInto on the host's path writes into the caller's memory.
+    DetectResult into;
+    REQUIRE(world->detectInto(into, host_sort));
+    const TrianglePair* memory = into.pairs.data();
+    REQUIRE(world->detectInto(into, host_sort));
+    CHECK(into.pairs.data() == memory);
+    CHECK(into.pairs == on_host->pairs);
+    CHECK(sameResponses(into.responses, on_host->responses));
+    CHECK(into.stats.host.prepare_ms == 0.0);
+    if (!ctx.device().shader_float64) return;  // no GPU sort without the exact decision on the GPU
+    DetectSettings gpu_sort;
+    gpu_sort.reliable.pair_sort = PairSort::Gpu;
+    auto first = world->detect(gpu_sort);
+    REQUIRE(first);
+    CHECK(first->pairs == on_host->pairs);
+    CHECK(first->stats.reliable.pairs_sorted_on_gpu);
     std::vector<DetectResult> kept;  // every result kept, as the bench's `default` does
     for (int frame = 0; frame < 2; ++frame) {
-        auto next = world->detect(host_sort);
+        auto next = world->detect(gpu_sort);
         REQUIRE(next);
         CHECK(next->pairs == first->pairs);
         CHECK(sameResponses(next->responses, first->responses));
@@ -504,7 +525,7 @@ TEST_CASE("detect() makes a host-sorted result's memory ready during the wait to
     // each time what a new world (nothing made ready) finds.
     const auto moved = [&](float x1, float x2, const char* what) {
         INFO(what);
-        DetectResult r = detectMovedAsNew(ctx, *grids, *world, host_sort, x1, x2);
+        DetectResult r = detectMovedAsNew(ctx, *grids, *world, gpu_sort, x1, x2);
         CHECK(r.pairs.size() == r.stats.positive_tests);
         const std::size_t found = r.pairs.size();
         kept.push_back(std::move(r));
@@ -515,15 +536,6 @@ TEST_CASE("detect() makes a host-sorted result's memory ready during the wait to
     CHECK(third > 0);
     CHECK(moved(-100.0f, 100.0f, "every grid apart: no pair") == 0);
     CHECK(moved(0.0f, 0.0f, "back in place: more pairs than the memory made ready") == n);
-    // detectInto on this path writes into the caller's memory as well.
-    DetectResult into;
-    REQUIRE(world->detectInto(into, host_sort));
-    const TrianglePair* memory = into.pairs.data();
-    REQUIRE(world->detectInto(into, host_sort));
-    CHECK(into.pairs.data() == memory);
-    CHECK(into.pairs == first->pairs);
-    CHECK(sameResponses(into.responses, first->responses));
-    CHECK(into.stats.host.prepare_ms == 0.0);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }
 

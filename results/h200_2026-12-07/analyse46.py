@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""Run 46 (session 62), from results/h200_2026-12-07. Fast-clock frames only (as analyse43.py:
+per scene, the frames whose cells-setup pass is within 5 % of the fastest seen in the run),
+medians over frames >= 1.
+    python3 analyse46.py sweep [run46]   the run's two builds, `default` (detect() keeping every
+                                         result): the host's narrow phase, detect()'s prepare,
+                                         the GPU span and the host total, the rounds pooled;
+                                         then the host total per round
+    python3 analyse46.py kinds [run46]   issue 27's kinds at s77: host total (GPU span) per
+                                         variant
+    python3 analyse46.py paired run48    per scene, every frame >= 1 (no clock filter: the GPU
+                                         span is not what changes), the host total's median per
+                                         round and policy; the new policy's difference per round"""
+import csv, glob, gzip, re, statistics as st, sys
+from collections import defaultdict
+what = sys.argv[1]
+if what == 'paired':
+    run = sys.argv[2]
+    tot = defaultdict(list)
+    for f in glob.glob(f'{run}/sweep-*_profile.csv.gz'):
+        rnd, b = re.match(rf'{run}/sweep-(\w)-(\w+)_profile', f).groups()
+        for r in csv.DictReader(gzip.open(f, 'rt')):
+            if int(r['frame']) >= 1 and (r['kind'], r['stage']) == ('host', 'total'):
+                tot[(r['scene'], rnd, b)].append(float(r['ms']))
+    rounds = sorted({k[1] for k in tot})
+    print('| scene | old, ms | new - old, ms, median of the rounds | per round (a b c d) |')
+    print('|---|---|---|---|')
+    for sc in sorted({k[0] for k in tot}):
+        d = [st.median(tot[(sc, r, 'new')]) - st.median(tot[(sc, r, 'old')]) for r in rounds]
+        old = st.median([st.median(tot[(sc, r, 'old')]) for r in rounds])
+        print(f'| {sc} | {old:.3f} | {st.median(d):+.3f} | ' + ' '.join(f'{x:+.2f}' for x in d) + ' |')
+    sys.exit(0)
+run = sys.argv[2] if len(sys.argv) > 2 else 'run46'
+pattern = f'{run}/sweep-*_profile.csv.gz' if what == 'sweep' else f'{run}/kinds_profile.csv.gz'
+frames = []
+for f in sorted(glob.glob(pattern)):
+    rnd, build = re.match(rf'{run}/sweep-(\w)-(\w+)_profile', f).groups() if what == 'sweep' else ('-', 'kinds')
+    per = defaultdict(dict)
+    for r in csv.DictReader(gzip.open(f, 'rt')):
+        if int(r['frame']) >= 1:
+            per[(r['scene'], r['variant'], r['frame'])][(r['kind'], r['stage'])] = float(r['ms'])
+    frames += [(sc, v, build, x, rnd) for (sc, v, fr), x in per.items()]
+fastest = defaultdict(lambda: 1e9)
+for sc, v, b, x, r in frames: fastest[sc] = min(fastest[sc], x.get(('gpu', 'cells-setup'), 1e9))
+kept, by_round = defaultdict(list), defaultdict(list)
+for sc, v, b, x, r in frames:
+    if x.get(('gpu', 'cells-setup'), 1e9) <= 1.05 * fastest[sc]:
+        kept[(sc, v, b)].append(x)
+        by_round[(sc, b, r)].append(x[('host', 'total')])
+med = lambda xs: f'{st.median(xs):.3f}' if xs else '-'
+if what == 'sweep':
+    builds = sorted({f[2] for f in frames})
+    if set(builds) == {'old', 'new'}: builds = ['old', 'new']  # run 48: one binary, two policies
+    cols = [('host', 'narrow'), ('detect', 'prepare'), ('detect', 'gpu-span'), ('host', 'total')]
+    print('| scene | ' + ' | '.join(f'{k[1]} ' + ' -> '.join(builds) for k in cols) + ' | frames |')
+    print('|---|' + '---|' * (len(cols) + 1))
+    for sc in sorted({k[0] for k in kept}):
+        cells = [' -> '.join(med([x.get(c, 0.0) for x in kept.get((sc, 'default', b), [])]) for b in builds) for c in cols]
+        print(f'| {sc} | ' + ' | '.join(cells) + ' | ' + ' / '.join(str(len(kept.get((sc, 'default', b), []))) for b in builds) + ' |')
+    rounds = sorted({f[4] for f in frames})
+    print()
+    print('| scene | ' + ' | '.join(f'host total, round {r}: ' + ' -> '.join(builds) for r in rounds) + ' |')
+    print('|---|' + '---|' * len(rounds))
+    for sc in sorted({k[0] for k in kept}):
+        print(f'| {sc} | ' + ' | '.join(' -> '.join(med(by_round.get((sc, b, r), [])) for b in builds) for r in rounds) + ' |')
+else:
+    variants = ['default', 'into', 'device-only', 'pipelined', 'dropped']
+    print('| scene | ' + ' | '.join(variants) + ' |')
+    print('|---|' + '---|' * len(variants))
+    for sc in sorted({k[0] for k in kept}):
+        cells = []
+        for v in variants:
+            xs = kept.get((sc, v, 'kinds'), [])
+            cells.append(f"{med([x[('host', 'total')] for x in xs])} ({med([x.get(('detect', 'gpu-span'), 0.0) for x in xs])})" if xs else '-')
+        print(f'| {sc} | ' + ' | '.join(cells) + ' |')

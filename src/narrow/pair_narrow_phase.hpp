@@ -1,5 +1,5 @@
-// runPairNarrowPhase (include/vkcollide/narrow.hpp) with memory for its result: a
-// detection's result memory, made ready while the GPU worked, or detectInto's.
+// runPairNarrowPhase (include/vkcollide/narrow.hpp) with memory for its result: the
+// caller's, lent by detectInto / collectInto.
 #pragma once
 
 #include <span>

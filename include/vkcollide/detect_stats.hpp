@@ -160,8 +160,10 @@ struct HostStats {
     // exceeds the GPU span it is also in launch_wake_ms (the host wakes after it).
     double prepare_ms = 0;
     // Of collect_ms: the host's work while the GPU still ran, past a milestone of the
-    // submission (the pairs named during the responses' passes: reliable.pairs_named_during_gpu;
-    // also narrow_timings.validate_ms, outside narrow_ms); not in wait_ms.
+    // submission: the pairs named during the responses' passes, every piece's time, whether
+    // the naming was used (reliable.pairs_named_during_gpu; narrow_timings.validate_ms is
+    // then that naming's time, outside narrow_ms) or refused (limits.max_pairs) or dropped;
+    // not in wait_ms.
     double milestone_ms = 0;
     // Of DetectStats::submissions, those whose command buffer was submitted again instead
     // of recorded: the commands equalled the last recording's and nothing they use was

@@ -327,6 +327,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
         st.host.record_ms += b.host.record_ms;
         st.host.submit_ms += b.host.submit_ms;
         st.host.wait_ms += b.host.wait_ms;
+        st.host.milestone_ms += b.host.milestone_ms;  // every piece's callback, named or refused
         st.gpu_span_ms += b.host.gpu_span_ms;
         st.host.launch_wake_ms += b.host.launch_wake_ms;
         st.submissions += b.host.submissions;
@@ -510,7 +511,6 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     st.host.start_ms = run.start_ms;
     st.host.collect_ms = run.wait_ms;
     st.host.prepare_ms = run.prepare_ms;
-    st.host.milestone_ms = st.reliable.pairs_named_during_gpu ? run.early_name_ms : 0;
     st.host.settings_ms = run.settings_ms;
     return out;
 }

@@ -606,6 +606,20 @@ TEST_CASE("detect() makes the next result's memory ready while the GPU works, an
     REQUIRE(named);
     CHECK(named->pairs == first->pairs);
     CHECK(named->stats.reliable.pairs_named_during_gpu);
+    // A naming refused at its first piece (more pairs than limits.max_pairs: the host keeps
+    // the first ones after the fence) still took its time during the wait: it is in
+    // milestone_ms, which with wait_ms and prepare_ms stays within collect_ms.
+    DetectSettings capped = gpu_sort;
+    capped.limits.max_pairs = n / 2;
+    auto refused = world->detect(capped);
+    REQUIRE(refused);
+    CHECK_FALSE(refused->stats.reliable.pairs_named_during_gpu);
+    CHECK(refused->pairs.size() == n / 2);
+    CHECK(refused->pairs_left_out == n - n / 2);
+    CHECK(std::equal(refused->pairs.begin(), refused->pairs.end(), first->pairs.begin()));
+    CHECK(refused->stats.host.milestone_ms > 0.0);
+    const HostStats& h = refused->stats.host;
+    CHECK(h.prepare_ms + h.milestone_ms + h.wait_ms <= h.collect_ms);
     auto bad = world->detect({.reliable = {.pair_naming = PairNaming(7)}});
     REQUIRE_FALSE(bad);
     CHECK_THAT(bad.error().message(), Catch::Contains("reliable.pair_naming") && Catch::Contains("PairNaming"));

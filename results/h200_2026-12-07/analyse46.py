@@ -31,7 +31,7 @@ if what == 'paired':
         print(f'| {sc} | {old:.3f} | {st.median(d):+.3f} | ' + ' '.join(f'{x:+.2f}' for x in d) + ' |')
     sys.exit(0)
 run = sys.argv[2] if len(sys.argv) > 2 else 'run46'
-pattern = f'{run}/sweep-*_profile.csv.gz' if what == 'sweep' else f'{run}/kinds_profile.csv.gz'
+pattern = f'{run}/sweep-*_profile.csv.gz' if what == 'sweep' else f'{run}/kinds*_profile.csv.gz'
 frames = []
 for f in sorted(glob.glob(pattern)):
     rnd, build = re.match(rf'{run}/sweep-(\w)-(\w+)_profile', f).groups() if what == 'sweep' else ('-', 'kinds')

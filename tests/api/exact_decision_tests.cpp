@@ -120,6 +120,18 @@ DetectResult detectMovedAsNew(ValidatedContext& ctx, const TestScene& grids, Col
     return std::move(*r);
 }
 
+// A GPU-sorted result like `first` (same pairs and responses) made in memory made ready during
+// the wait: room for an eighth more of both arrays, the time in prepare_ms, within collect_ms.
+void checkMadeReady(const DetectResult& next, const DetectResult& first) {
+    const std::size_t n = first.pairs.size(), responses = first.responses.size();
+    CHECK(next.pairs == first.pairs);
+    CHECK(sameResponses(next.responses, first.responses));
+    CHECK(next.pairs.capacity() >= n + n / 8);
+    CHECK(next.responses.capacity() >= responses + responses / 8);
+    CHECK(next.stats.host.prepare_ms > 0.0);
+    CHECK(next.stats.host.prepare_ms <= next.stats.host.collect_ms);
+}
+
 // The two paths agree bit for bit, match the exact reference, and say which decided.
 void requireSame(const Both& r, const std::vector<TrianglePair>& reference, const std::string& what) {
     INFO(what << ": GPU " << r.gpu.pairs.size() << " pairs, CPU " << r.cpu.pairs.size() << ", reference " << reference.size());
@@ -513,12 +525,7 @@ TEST_CASE("detect() makes a small GPU-sorted result's memory ready during the wa
     for (int frame = 0; frame < 2; ++frame) {
         auto next = world->detect(gpu_sort);
         REQUIRE(next);
-        CHECK(next->pairs == first->pairs);
-        CHECK(sameResponses(next->responses, first->responses));
-        CHECK(next->pairs.capacity() >= n + n / 8);  // the memory made ready during the wait
-        CHECK(next->responses.capacity() >= responses + responses / 8);
-        CHECK(next->stats.host.prepare_ms > 0.0);
-        CHECK(next->stats.host.prepare_ms <= next->stats.host.collect_ms);
+        checkMadeReady(*next, *first);
         kept.push_back(std::move(*next));
     }
     // Fewer pairs (the memory made ready is larger than the result), none, then more again:
@@ -558,11 +565,7 @@ TEST_CASE("detect() makes the next result's memory ready while the GPU works, an
     for (int frame = 0; frame < 2; ++frame) {
         auto next = world->detect(gpu_sort);
         REQUIRE(next);
-        CHECK(next->pairs == first->pairs);
-        CHECK(sameResponses(next->responses, first->responses));
-        CHECK(next->pairs.capacity() >= n + n / 8);  // the memory made ready during the wait
-        CHECK(next->stats.host.prepare_ms > 0.0);
-        CHECK(next->stats.host.prepare_ms <= next->stats.host.collect_ms);
+        checkMadeReady(*next, *first);
         CHECK(next->stats.reliable.pairs_named_during_gpu);  // into the memory made ready
         CHECK(next->stats.host.prepare_ms + next->stats.host.milestone_ms <= next->stats.host.collect_ms);
     }

@@ -99,7 +99,7 @@ struct Plan {
     std::vector<T> fresh{};
 
     Plan(std::vector<T>& into, std::size_t count, std::size_t touch_from = kTouchFrom) : v(into), n(count) {
-        if (n <= v.capacity() || n * sizeof(T) < std::max<std::size_t>(touch_from, 1)) return;
+        if (n <= v.capacity() || n * sizeof(T) < touch_from) return;
         fresh.reserve(n);
         adviseHugePages(fresh.data(), bytes());
     }

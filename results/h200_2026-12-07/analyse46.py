@@ -8,12 +8,30 @@ medians over frames >= 1.
                                          then the host total per round
     python3 analyse46.py kinds [run46]   issue 27's kinds at s77: host total (GPU span) per
                                          variant
+    python3 analyse46.py prepare run50   detect()'s prepare stage per scene and variant, both
+                                         policies (sweep and big files of run 50)
     python3 analyse46.py paired run48    per scene, every frame >= 1 (no clock filter: the GPU
                                          span is not what changes), the host total's median per
                                          round and policy; the new policy's difference per round"""
 import csv, glob, gzip, re, statistics as st, sys
 from collections import defaultdict
 what = sys.argv[1]
+if what == 'prepare':  # run 50: detect()'s prepare stage per scene and variant, old -> new policy
+    run = sys.argv[2]
+    prep = defaultdict(list)
+    for f in glob.glob(f'{run}/*_profile.csv.gz'):
+        m = re.match(rf'{run}/\w+-\w-(old|new)_profile', f)
+        if not m: continue
+        for r in csv.DictReader(gzip.open(f, 'rt')):
+            if int(r['frame']) >= 1 and (r['kind'], r['stage']) == ('detect', 'prepare'):
+                prep[(r['scene'], r['variant'], m.group(1))].append(float(r['ms']))
+    print('| scene | variant | prepare, old -> new, ms (median of every frame >= 1) | frames |')
+    print('|---|---|---|---|')
+    for sc, v in sorted({(k[0], k[1]) for k in prep}):
+        o, n = prep.get((sc, v, 'old'), []), prep.get((sc, v, 'new'), [])
+        if o and n and max(st.median(o), st.median(n)) >= 0.005:
+            print(f'| {sc} | {v} | {st.median(o):.3f} -> {st.median(n):.3f} | {len(o)} / {len(n)} |')
+    sys.exit(0)
 if what == 'paired':
     run = sys.argv[2]
     tot = defaultdict(list)

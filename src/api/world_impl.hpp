@@ -94,7 +94,7 @@ struct CollisionWorld::Impl {
     Result<DetectResult> collect(Run& run, bool restart_clock, DetectResult* reuse = nullptr);
     // Before collect()'s wait for a run whose pairs the GPU sorts and whose result memory the
     // caller does not lend (detect(), collect()): vectors as large as the last result's pairs
-    // and responses, their new pages touched and zeroed while the GPU works, not after it.
+    // and responses, their new pages faulted in while the GPU works, not after it.
     void prepareResultMemory();
     // The broad phase's on_sorted_pairs for `run`: its sorted pairs named into the result's
     // memory (Run::early_into) while the GPU computes the responses.

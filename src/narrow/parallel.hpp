@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <functional>
 #include <memory>
 #include <type_traits>
@@ -120,7 +119,7 @@ struct Plan {
         volatile unsigned char* const first = data() + task * kTouchBytes;
         const std::size_t length = std::min(kTouchBytes, bytes() - task * kTouchBytes);
         for (std::size_t at = 0; at < length; at += kPageBytes) first[at] = 0;
-        if (length > 0) first[length - 1] = 0;  // the last page, where the array is not page-aligned
+        first[length - 1] = 0;  // the last page, where the array is not page-aligned (length >= 1: task < pageTasks())
     }
     void finish() {
         if (!isNew()) {

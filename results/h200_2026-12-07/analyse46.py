@@ -10,6 +10,15 @@ medians over frames >= 1.
                                          variant
     python3 analyse46.py prepare run50   detect()'s prepare stage per scene and variant, both
                                          policies (sweep and big files of run 50)
+    python3 analyse46.py touch run51     the four ways of making a result's new memory ready
+                                         (VKC_EXP_TOUCH 0-3), per scene and variant: detect()'s
+                                         prepare and the host total, medians of the fast-clock
+                                         frames >= 1, per round (a round at slow clocks: none)
+    python3 analyse46.py order run53     run 53's two orders of making a result's memory ready
+                                         (new: the responses' resize() beside the pairs' touch;
+                                         old: after it), per scene: prepare and the host total,
+                                         medians of the fast-clock frames >= 1 per round, and
+                                         new - old per round
     python3 analyse46.py paired run48    per scene, every frame >= 1 (no clock filter: the GPU
                                          span is not what changes), the host total's median per
                                          round and policy; the new policy's difference per round"""
@@ -31,6 +40,61 @@ if what == 'prepare':  # run 50: detect()'s prepare stage per scene and variant,
         o, n = prep.get((sc, v, 'old'), []), prep.get((sc, v, 'new'), [])
         if o and n and max(st.median(o), st.median(n)) >= 0.005:
             print(f'| {sc} | {v} | {st.median(o):.3f} -> {st.median(n):.3f} | {len(o)} / {len(n)} |')
+    sys.exit(0)
+if what == 'touch':  # run 51: VKC_EXP_TOUCH modes
+    run = sys.argv[2]
+    names = {'0': 'touch+huge', '1': 'populate+huge', '2': 'touch', '3': 'populate'}
+    # Fast-clock frames only (cells-setup within 5 % of the run's fastest for the scene): a
+    # whole invocation of the bench sometimes ran at slow GPU clocks (every pass 2-2.6x).
+    per = defaultdict(dict)
+    for f in glob.glob(f'{run}/touch-*_profile.csv.gz'):
+        rnd, m = re.match(rf'{run}/touch-(\w)-m(\d)_profile', f).groups()
+        for r in csv.DictReader(gzip.open(f, 'rt')):
+            if int(r['frame']) >= 1:
+                per[(r['scene'], r['variant'], m, rnd, r['frame'])][(r['kind'], r['stage'])] = float(r['ms'])
+    fastest = defaultdict(lambda: 1e9)
+    for k, x in per.items(): fastest[k[0]] = min(fastest[k[0]], x.get(('gpu', 'cells-setup'), 1e9))
+    val = defaultdict(list)
+    for (sc, v, m, rnd, fr), x in per.items():
+        if x.get(('gpu', 'cells-setup'), 1e9) <= 1.05 * fastest[sc]:
+            val[(sc, v, m, 'prepare', rnd)].append(x[('detect', 'prepare')])
+            val[(sc, v, m, 'total', rnd)].append(x[('host', 'total')])
+    modes, rounds = sorted({k[2] for k in val}), sorted({k[4] for k in val})
+    print('| scene | variant | ' + ' | '.join(f'{names[m]}: prepare ; total (rounds ' + ', '.join(rounds) + ')' for m in modes) + ' |')
+    print('|---|---|' + '---|' * len(modes))
+    for sc, v in sorted({(k[0], k[1]) for k in val}):
+        cells = []
+        for m in modes:
+            p = [st.median(val[(sc, v, m, 'prepare', r)]) for r in rounds if val.get((sc, v, m, 'prepare', r))]
+            t = [st.median(val[(sc, v, m, 'total', r)]) for r in rounds if val.get((sc, v, m, 'total', r))]
+            cells.append(' / '.join(f'{x:.2f}' for x in p) + ' ; ' + ' / '.join(f'{x:.2f}' for x in t))
+        print(f'| {sc} | {v} | ' + ' | '.join(cells) + ' |')
+    sys.exit(0)
+if what == 'order':  # run 53: new and old order, one binary, alternated rounds
+    run = sys.argv[2]
+    per = defaultdict(dict)
+    for f in glob.glob(f'{run}/order-*_profile.csv.gz'):
+        rnd, b = re.match(rf'{run}/order-(\w)-(\w+)_profile', f).groups()
+        for r in csv.DictReader(gzip.open(f, 'rt')):
+            if int(r['frame']) >= 1:
+                per[(r['scene'], b, rnd, r['frame'])][(r['kind'], r['stage'])] = float(r['ms'])
+    fastest = defaultdict(lambda: 1e9)
+    for k, x in per.items(): fastest[k[0]] = min(fastest[k[0]], x.get(('gpu', 'cells-setup'), 1e9))
+    val = defaultdict(list)
+    for (sc, b, rnd, fr), x in per.items():
+        if x.get(('gpu', 'cells-setup'), 1e9) <= 1.05 * fastest[sc]:
+            for stage in (('detect', 'prepare'), ('host', 'total'), ('detect', 'gpu-span')):
+                val[(sc, b, rnd, stage[1])].append(x[stage])
+    rounds = sorted({k[2] for k in val})
+    print('| scene | stage | old, ms (median of rounds) | new - old per round (' + ' '.join(rounds) + ') | median |')
+    print('|---|---|---|---|---|')
+    for sc in sorted({k[0] for k in val}):
+        for stage in ('prepare', 'total', 'gpu-span'):
+            d, olds = [], []
+            for r in rounds:
+                o, n = val.get((sc, 'old', r, stage)), val.get((sc, 'new', r, stage))
+                if o and n: d.append(st.median(n) - st.median(o)); olds.append(st.median(o))
+            if d: print(f'| {sc} | {stage} | {st.median(olds):.3f} | ' + ' '.join(f'{x:+.2f}' for x in d) + f' | {st.median(d):+.3f} |')
     sys.exit(0)
 if what == 'paired':
     run = sys.argv[2]

@@ -24,6 +24,30 @@ medians over frames >= 1.
                                          round and policy; the new policy's difference per round"""
 import csv, glob, gzip, re, statistics as st, sys
 from collections import defaultdict
+
+
+def read_frames(run, name):
+    """Every frame >= 1 of {run}/{name}[-round][-tag]_profile.csv.gz, as
+    {(scene, variant, round, tag, frame): {(kind, stage): ms}} (round and tag '-' where absent)."""
+    per = defaultdict(dict)
+    for f in sorted(glob.glob(f'{run}/{name}*_profile.csv.gz')):
+        m = re.match(rf'{run}/{name}(?:-(\w))?(?:-(\w+))?_profile', f)
+        if not m: continue
+        rnd, tag = m.group(1) or '-', m.group(2) or '-'
+        for r in csv.DictReader(gzip.open(f, 'rt')):
+            if int(r['frame']) >= 1:
+                per[(r['scene'], r['variant'], rnd, tag, r['frame'])][(r['kind'], r['stage'])] = float(r['ms'])
+    return per
+
+
+def fast_clock(per):
+    """The frames whose cells-setup pass is within 5 % of the fastest seen for their scene: a
+    whole invocation of the bench sometimes ran at slow GPU clocks (every pass 2-2.6x)."""
+    fastest = defaultdict(lambda: 1e9)
+    for k, x in per.items(): fastest[k[0]] = min(fastest[k[0]], x.get(('gpu', 'cells-setup'), 1e9))
+    return {k: x for k, x in per.items() if x.get(('gpu', 'cells-setup'), 1e9) <= 1.05 * fastest[k[0]]}
+
+
 what = sys.argv[1]
 if what == 'prepare':  # run 50: detect()'s prepare stage per scene and variant, old -> new policy
     run = sys.argv[2]
@@ -44,21 +68,11 @@ if what == 'prepare':  # run 50: detect()'s prepare stage per scene and variant,
 if what == 'touch':  # run 51: VKC_EXP_TOUCH modes
     run = sys.argv[2]
     names = {'0': 'touch+huge', '1': 'populate+huge', '2': 'touch', '3': 'populate'}
-    # Fast-clock frames only (cells-setup within 5 % of the run's fastest for the scene): a
-    # whole invocation of the bench sometimes ran at slow GPU clocks (every pass 2-2.6x).
-    per = defaultdict(dict)
-    for f in glob.glob(f'{run}/touch-*_profile.csv.gz'):
-        rnd, m = re.match(rf'{run}/touch-(\w)-m(\d)_profile', f).groups()
-        for r in csv.DictReader(gzip.open(f, 'rt')):
-            if int(r['frame']) >= 1:
-                per[(r['scene'], r['variant'], m, rnd, r['frame'])][(r['kind'], r['stage'])] = float(r['ms'])
-    fastest = defaultdict(lambda: 1e9)
-    for k, x in per.items(): fastest[k[0]] = min(fastest[k[0]], x.get(('gpu', 'cells-setup'), 1e9))
     val = defaultdict(list)
-    for (sc, v, m, rnd, fr), x in per.items():
-        if x.get(('gpu', 'cells-setup'), 1e9) <= 1.05 * fastest[sc]:
-            val[(sc, v, m, 'prepare', rnd)].append(x[('detect', 'prepare')])
-            val[(sc, v, m, 'total', rnd)].append(x[('host', 'total')])
+    for (sc, v, rnd, m, fr), x in fast_clock(read_frames(run, 'touch')).items():
+        m = m.lstrip('m')
+        val[(sc, v, m, 'prepare', rnd)].append(x[('detect', 'prepare')])
+        val[(sc, v, m, 'total', rnd)].append(x[('host', 'total')])
     modes, rounds = sorted({k[2] for k in val}), sorted({k[4] for k in val})
     print('| scene | variant | ' + ' | '.join(f'{names[m]}: prepare ; total (rounds ' + ', '.join(rounds) + ')' for m in modes) + ' |')
     print('|---|---|' + '---|' * len(modes))
@@ -72,19 +86,10 @@ if what == 'touch':  # run 51: VKC_EXP_TOUCH modes
     sys.exit(0)
 if what == 'order':  # run 53: new and old order, one binary, alternated rounds
     run = sys.argv[2]
-    per = defaultdict(dict)
-    for f in glob.glob(f'{run}/order-*_profile.csv.gz'):
-        rnd, b = re.match(rf'{run}/order-(\w)-(\w+)_profile', f).groups()
-        for r in csv.DictReader(gzip.open(f, 'rt')):
-            if int(r['frame']) >= 1:
-                per[(r['scene'], b, rnd, r['frame'])][(r['kind'], r['stage'])] = float(r['ms'])
-    fastest = defaultdict(lambda: 1e9)
-    for k, x in per.items(): fastest[k[0]] = min(fastest[k[0]], x.get(('gpu', 'cells-setup'), 1e9))
     val = defaultdict(list)
-    for (sc, b, rnd, fr), x in per.items():
-        if x.get(('gpu', 'cells-setup'), 1e9) <= 1.05 * fastest[sc]:
-            for stage in (('detect', 'prepare'), ('host', 'total'), ('detect', 'gpu-span')):
-                val[(sc, b, rnd, stage[1])].append(x[stage])
+    for (sc, v, rnd, b, fr), x in fast_clock(read_frames(run, 'order')).items():
+        for stage in (('detect', 'prepare'), ('host', 'total'), ('detect', 'gpu-span')):
+            val[(sc, b, rnd, stage[1])].append(x[stage])
     rounds = sorted({k[2] for k in val})
     print('| scene | stage | old, ms (median of rounds) | new - old per round (' + ' '.join(rounds) + ') | median |')
     print('|---|---|---|---|---|')
@@ -113,25 +118,17 @@ if what == 'paired':
         print(f'| {sc} | {old:.3f} | {st.median(d):+.3f} | ' + ' '.join(f'{x:+.2f}' for x in d) + ' |')
     sys.exit(0)
 run = sys.argv[2] if len(sys.argv) > 2 else 'run46'
-pattern = f'{run}/sweep-*_profile.csv.gz' if what == 'sweep' else f'{run}/kinds*_profile.csv.gz'
-frames = []
-for f in sorted(glob.glob(pattern)):
-    rnd, build = re.match(rf'{run}/sweep-(\w)-(\w+)_profile', f).groups() if what == 'sweep' else ('-', 'kinds')
-    per = defaultdict(dict)
-    for r in csv.DictReader(gzip.open(f, 'rt')):
-        if int(r['frame']) >= 1:
-            per[(r['scene'], r['variant'], r['frame'])][(r['kind'], r['stage'])] = float(r['ms'])
-    frames += [(sc, v, build, x, rnd) for (sc, v, fr), x in per.items()]
-fastest = defaultdict(lambda: 1e9)
-for sc, v, b, x, r in frames: fastest[sc] = min(fastest[sc], x.get(('gpu', 'cells-setup'), 1e9))
+per = read_frames(run, 'sweep' if what == 'sweep' else 'kinds')
+# A frame's (build, round): the sweep's tag and round; the kinds files pooled as one build.
+label = lambda rnd, tag: (tag, rnd) if what == 'sweep' else ('kinds', '-')
 kept, by_round = defaultdict(list), defaultdict(list)
-for sc, v, b, x, r in frames:
-    if x.get(('gpu', 'cells-setup'), 1e9) <= 1.05 * fastest[sc]:
-        kept[(sc, v, b)].append(x)
-        by_round[(sc, b, r)].append(x[('host', 'total')])
+for (sc, v, rnd, tag, fr), x in fast_clock(per).items():
+    b, rnd = label(rnd, tag)
+    kept[(sc, v, b)].append(x)
+    by_round[(sc, b, rnd)].append(x[('host', 'total')])
 med = lambda xs: f'{st.median(xs):.3f}' if xs else '-'
 if what == 'sweep':
-    builds = sorted({f[2] for f in frames})
+    builds = sorted({label(k[2], k[3])[0] for k in per})
     if set(builds) == {'old', 'new'}: builds = ['old', 'new']  # run 48: one binary, two policies
     cols = [('host', 'narrow'), ('detect', 'prepare'), ('detect', 'gpu-span'), ('host', 'total')]
     print('| scene | ' + ' | '.join(f'{k[1]} ' + ' -> '.join(builds) for k in cols) + ' | frames |')
@@ -139,7 +136,7 @@ if what == 'sweep':
     for sc in sorted({k[0] for k in kept}):
         cells = [' -> '.join(med([x.get(c, 0.0) for x in kept.get((sc, 'default', b), [])]) for b in builds) for c in cols]
         print(f'| {sc} | ' + ' | '.join(cells) + ' | ' + ' / '.join(str(len(kept.get((sc, 'default', b), []))) for b in builds) + ' |')
-    rounds = sorted({f[4] for f in frames})
+    rounds = sorted({label(k[2], k[3])[1] for k in per})
     print()
     print('| scene | ' + ' | '.join(f'host total, round {r}: ' + ' -> '.join(builds) for r in rounds) + ' |')
     print('|---|' + '---|' * len(rounds))

@@ -97,7 +97,7 @@ TEST_CASE("resizeFresh sizes a vector as resize() does, growing it through the e
 }
 
 // The two-array resizeFresh (a result's pairs and responses): each array as the one-array
-// form sizes it, whichever of them grows.
+// form sizes it, whichever of them grows (both at once: the last size but one).
 TEST_CASE("resizeFresh sizes two vectors at once as resize() does, growing either or both", "[narrow]") {
     struct Pair {
         std::uint32_t a = 7, b = 0, c = 0, d = 0;
@@ -112,7 +112,8 @@ TEST_CASE("resizeFresh sizes two vectors at once as resize() does, growing eithe
         ThreadPool pool(threads);
         std::vector<Pair> pairs(3, old_pair);
         std::vector<Response> responses(5, old_response);
-        const std::size_t sizes[][2] = {{2, 4}, {300000, 3}, {300000, 200000}, {1000, 900000}, {700000, 900000}, {0, 0}};
+        const std::size_t sizes[][2] = {{2, 4}, {300000, 3}, {300000, 200000}, {1000, 900000}, {700000, 900000}, {1500000, 1200000},
+                                        {0, 0}};
         for (const auto& size : sizes) {
             INFO("sizes " << size[0] << ", " << size[1] << " on " << threads << " threads");
             const std::size_t kept_pairs = size[0] > pairs.capacity() ? 0 : std::min(size[0], pairs.size());

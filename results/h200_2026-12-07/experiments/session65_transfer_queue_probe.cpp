@@ -10,8 +10,8 @@
 //   queue2    as transfer, the copy on a second queue of the main family (where it has two)
 // GPU spans from timestamps (both queues' stamps are on one clock), host wall time from the
 // first submit to the last fence; medians of `reps`.
-// Build (run54.sh's build step): glslangValidator -V --target-env vulkan1.2 --vn fill_spv -o
-// fill.h session65_tq_fill.comp.glsl, the same for busy_spv / busy.h, then
+// Build: glslangValidator -V --target-env vulkan1.2 --vn fill_spv -o fill.h
+// session65_tq.comp.glsl, the same with -DBUSY --vn busy_spv -o busy.h, then
 //   g++ -O2 -std=c++20 session65_transfer_queue_probe.cpp -o tq_probe -l:libvulkan.so.1
 // Run: tq_probe [mb=17] [busy_iterations=4000] [reps=25]
 #include <vulkan/vulkan.h>

@@ -54,7 +54,8 @@ def fast_clock(per, run=''):
     From run 54 on, within 25 % of the scene's 20th percentile instead: one frame 6 % faster
     than the rest (pile-deep in run 54) left almost no frame within 5 % of it, while the slow
     state is more than twice as slow. Runs before 54 keep the old rule, so their tables stand."""
-    if re.match(r'run\d+', run) and int(re.match(r'run(\d+)', run).group(1)) >= 54:
+    number = re.match(r'run(\d+)', run)
+    if number and int(number.group(1)) >= 54:
         setups = defaultdict(list)
         for k, x in per.items():
             if ('gpu', 'cells-setup') in x: setups[k[0]].append(x[('gpu', 'cells-setup')])

@@ -120,9 +120,11 @@ struct ReliableSettings {
     // order (PairSort; docs/exact_gpu.md). Gpu: sorted on the GPU and read back in order, so
     // the CPU only computes the responses; Cpu: the narrow phase sorts them (the reference
     // path). Same pairs and responses either way; DetectStats::reliable.pairs_sorted_on_gpu
-    // says which ran. Gpu is refused where device_pairs would be (peeling, exact Cpu, no
-    // shaderFloat64, a pair filter the world applies on the host only); Auto then sorts on
-    // the CPU. With engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
+    // says which ran. Auto below kGpuPairSortFrom: one GPU pass sorts them and computes their
+    // responses (pairs_sorted_in_one_pass) where the survivors fit it, with responses Auto.
+    // Gpu is refused where device_pairs would be (peeling, exact Cpu, no shaderFloat64, a
+    // pair filter the world applies on the host only); Auto then sorts on the CPU. With
+    // engine meshes checked on the GPU (kObjectCheckOnGpu) the CPU sorts.
     PairSort pair_sort = PairSort::Auto;
     // Where the host result's responses are computed when its pairs are sorted on the GPU
     // (ResponseSource; docs/exact_gpu.md, "Responses on the GPU"). Gpu: the GPU computes them
@@ -301,8 +303,10 @@ struct DetectSettings {
     LimitSettings limits;  // either method
 };
 inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
-// PairSort::Auto sorts on the GPU from this many pairs in the world's last detection: below
-// it the host's sort costs less than the GPU's passes (docs/results.md, "Sorted on the GPU").
+// PairSort::Auto sorts on the GPU's device-pairs passes from this many pairs in the world's
+// last detection: below it they cost more than the host's sort, and one pass of one
+// workgroup sorts the pairs and computes their responses where it holds the survivors
+// (docs/exact_gpu.md, "Few pairs: one pass").
 inline constexpr std::size_t kGpuPairSortFrom = 4096;
 // Where the GPU sorts the pairs and computes their responses, the host names the pairs while
 // the GPU computes the responses (ReliableSettings::pair_naming Auto) from this many pairs in

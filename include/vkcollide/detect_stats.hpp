@@ -112,6 +112,10 @@ struct ReliableStats {
     double sorting_ms = 0;  // device_pairs: the GPU's sort of the pairs
     bool pairs_sorted_on_gpu = false;  // DetectSettings::reliable.pair_sort: the GPU ordered the host result's pairs
     bool responses_on_gpu = false;  // DetectSettings::reliable.responses: the GPU computed the host result's responses
+    // PairSort::Auto below kGpuPairSortFrom: one GPU pass sorted the few pairs and computed
+    // their responses (pairs_sorted_on_gpu and responses_on_gpu are then true as well);
+    // false where they did not fit it (more than 4,096 survivors) and the host sorted them.
+    bool pairs_sorted_in_one_pass = false;
     // With both (and reliable.pair_naming Auto, kNameDuringGpuFrom pairs or more in the
     // world's last detection): the host named the result's pairs while the GPU computed the
     // responses (a milestone in the submission: docs/exact_gpu.md), not after it finished.

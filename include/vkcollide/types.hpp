@@ -87,7 +87,9 @@ enum class ExactPass {
 // decision ran on the GPU. Both give the same pairs and responses to the bit.
 enum class PairSort {
     Auto,  // on the GPU when the world's last detection had at least kGpuPairSortFrom pairs
-           // (not where the device ends long loops, DeviceInfo::loop_iteration_limit: llvmpipe)
+           // (not where the device ends long loops, DeviceInfo::loop_iteration_limit: llvmpipe);
+           // below that one GPU pass sorts them and computes their responses where its 4,096
+           // survivors hold them (DetectStats::reliable.pairs_sorted_in_one_pass), else the CPU
     Gpu,   // on the GPU: the pairs come back sorted and the CPU only computes the responses
     Cpu,   // on the CPU: the GPU's unsorted pairs are read back, sorted and deduplicated there
 };

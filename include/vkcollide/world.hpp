@@ -6,11 +6,12 @@
 // phases (DetectSettings::method): the reliable cell stage (default: never misses a pair)
 // and the depth peeling of Georgii, Krüger and Westermann (2006). With the reliable
 // method on a device with shaderFloat64 (the default), the GPU decides every pair
-// exactly; from kGpuPairSortFrom pairs it also sorts them and computes their responses
-// (the host then names and copies them); below that the host does both, which costs less
-// there. Without shaderFloat64, with peeling, or where the settings ask for it, the CPU
-// narrow phase decides (the reference path). DetectStats says which ran
-// (gpu_exact_tests, cpu_exact_tests, reliable.pairs_sorted_on_gpu).
+// exactly and sorts them and computes their responses (the host then names and copies
+// them): from kGpuPairSortFrom pairs in passes over the triangles, below that in one pass
+// of one workgroup where the survivors fit it (else the host sorts them). Without
+// shaderFloat64, with peeling, or where the settings ask for it, the CPU narrow phase
+// decides (the reference path). DetectStats says which ran (gpu_exact_tests,
+// cpu_exact_tests, reliable.pairs_sorted_on_gpu, reliable.pairs_sorted_in_one_pass).
 //
 //   auto ctx = vkcollide::Context::adopt(engine_device);         // Context::create(): host meshes only
 //   auto world = vkcollide::CollisionWorld::create(**ctx);

@@ -376,6 +376,34 @@ struct DeviceResponsesParams {
     uint spare;
 };
 
+// ---- Few pairs sorted in one pass (PairSort::Auto below kGpuPairSortFrom; src/broad/cells/small_sort.cpp) ---
+// One workgroup sorts the exact run's survivors (global ids a < b, unsorted, a rare pair
+// twice) into the host result's order, drops repeats and computes every colliding
+// triangle's response (as DeviceResponse, to the bit the CPU's): a bitonic sort in shared
+// memory, then the pairs' ends ordered by merging two sorted lists. Where the survivors do
+// not fit (or the run is incomplete) it writes kSmallSortSkipped and the host sorts them as
+// before. spirv/cells/small_sort.comp.glsl has the steps.
+VKC_CONST kSmallSortGroupSize = 1024u;
+VKC_CONST kSmallSortPairs = 4096u;  // survivors it sorts: its shared memory holds 8 bytes each (32 KiB)
+VKC_CONST kSmallSortDone = 1u;
+VKC_CONST kSmallSortSkipped = 2u;   // too many survivors, an incomplete run, or a survivor out of range
+struct SmallSortHeader {
+    uint status;     // kSmallSort*
+    uint survivors;  // the run's survivors (repeats included)
+    uint pairs;      // distinct pairs, sorted, in `pairs`
+    uint responses;  // responses, in triangle order, in `responses`
+};
+struct SmallSortParams {
+    VKC_ADDRESS(uint64_t) cells;      // CellsParams of the run (survivors, triangles, geometry, objects)
+    VKC_ADDRESS(uint64_t) header;     // SmallSortHeader
+    VKC_ADDRESS(uint64_t) pairs;      // uvec2[kSmallSortPairs]: the distinct pairs (a, b), ascending
+    VKC_ADDRESS(uint64_t) ends;       // uvec2[2 kSmallSortPairs]: each pair's two ends (triangle, partner), ascending
+    VKC_ADDRESS(uint64_t) normals;    // double[3 * 2 kSmallSortPairs]: each end's partner's unit normal
+    VKC_ADDRESS(uint64_t) responses;  // DeviceResponse[2 kSmallSortPairs]
+    uint triangle_count;
+    uint spare;
+};
+
 // Unit test of the filter alone (tests/shaders/cells_filter_test.comp): one pair per invocation.
 struct CellsFilterCase {
     float a[9];

@@ -12,30 +12,13 @@
 #include "device_responses.glsl.inc"
 #include "exact_predicates.glsl.inc"
 #include "rounded_fp64.glsl.inc"
+#include "response_math.glsl.inc"
 layout(local_size_x = kCellsGroupSize) in;
 
 layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer DeviceResponsesRef { DeviceResponse r[]; };
 layout(buffer_reference, scalar, buffer_reference_align = 8) buffer DoublesRef { double v[]; };
 
 dvec3 loadNormal(DoublesRef normals, uint t) { return dvec3(normals.v[3u * t], normals.v[3u * t + 1u], normals.v[3u * t + 2u]); }
-
-// The CPU's unitNormal(): the cross product of the edges from the first vertex, in double
-// from the world vertices (exactly: through the float bits), divided by its length; zero for
-// a zero-area triangle. `precise`: the CPU's operations in its order, none fused.
-dvec3 unitNormal(CellsGeometry g) {
-    dvec3 v0 = dvec3(exactDouble(g.v[0]), exactDouble(g.v[1]), exactDouble(g.v[2]));
-    dvec3 v1 = dvec3(exactDouble(g.v[3]), exactDouble(g.v[4]), exactDouble(g.v[5]));
-    dvec3 v2 = dvec3(exactDouble(g.v[6]), exactDouble(g.v[7]), exactDouble(g.v[8]));
-    precise double ux = v1.x - v0.x, uy = v1.y - v0.y, uz = v1.z - v0.z;
-    precise double vx = v2.x - v0.x, vy = v2.y - v0.y, vz = v2.z - v0.z;
-    precise double nx = uy * vz - uz * vy;
-    precise double ny = uz * vx - ux * vz;
-    precise double nz = ux * vy - uy * vx;
-    precise double length2 = nx * nx + ny * ny + nz * nz;
-    if (!(length2 > 0.0lf)) return dvec3(0.0lf);
-    double length = roundedSqrt(length2);
-    return dvec3(roundedQuotient(nx, length), roundedQuotient(ny, length), roundedQuotient(nz, length));
-}
 
 void main() {
     DeviceResponsesParams R = DeviceResponsesParamsRef(pc.frame).p;
@@ -56,30 +39,10 @@ void main() {
     uint higher_n = UintsRef(D.counts).v[t], higher_base = UintsRef(D.offsets).v[t];
     uint lower_n = UintsRef(R.lower_counts).v[t], lower_base = UintsRef(R.lower_offsets).v[t];
     dvec3 n = loadNormal(normals, t);
-    precise dvec3 sum = dvec3(0.0lf);
-    for (uint j = 0u; j < lower_n; ++j) {
-        dvec3 m = loadNormal(normals, lower.v[lower_base + j]);
-        sum.x = sum.x + (m.x - n.x);
-        sum.y = sum.y + (m.y - n.y);
-        sum.z = sum.z + (m.z - n.z);
-    }
-    for (uint j = 0u; j < higher_n; ++j) {
-        dvec3 m = loadNormal(normals, partners.v[higher_base + j]);
-        sum.x = sum.x + (m.x - n.x);
-        sum.y = sum.y + (m.y - n.y);
-        sum.z = sum.z + (m.z - n.z);
-    }
-    // The CPU's setResponse(): scaled by a power of two (exact) so that no square underflows,
-    // the length, each component divided by it and rounded to float.
-    uvec3 direction = uvec3(0u);
-    if (max(abs(sum.x), max(abs(sum.y), abs(sum.z))) > 0.0lf) {
-        double scale = roundedUnitScale(sum);
-        precise dvec3 s = sum * scale;
-        precise double length2 = s.x * s.x + s.y * s.y + s.z * s.z;
-        double length = roundedSqrt(length2);
-        direction = uvec3(roundedFloatBits(roundedQuotient(s.x, length)), roundedFloatBits(roundedQuotient(s.y, length)),
-                          roundedFloatBits(roundedQuotient(s.z, length)));
-    }
+    dvec3 sum = dvec3(0.0lf);
+    for (uint j = 0u; j < lower_n; ++j) addTerm(sum, loadNormal(normals, lower.v[lower_base + j]), n);
+    for (uint j = 0u; j < higher_n; ++j) addTerm(sum, loadNormal(normals, partners.v[higher_base + j]), n);
+    uvec3 direction = responseDirection(sum);
     uint object = CellsTrianglesRef(P.triangles).t[t].key & kCellsKeyObject;
     DeviceResponse out_r;
     out_r.object = UintsRef(D.object_ids).v[object];

@@ -87,6 +87,9 @@ passes::BroadPhaseSettings CollisionWorld::Impl::methodSettings(const DetectSett
     b.device_responses = s.reliable.device_responses;
     b.sort_on_gpu = sort_on_gpu;
     b.responses_on_gpu = sort_on_gpu && s.reliable.responses != ResponseSource::Cpu;
+    // Few pairs in one GPU pass: where Auto leaves the sort and the responses to the host
+    // (the method turns it off where the GPU sorts or does not decide).
+    b.small_sort = s.reliable.pair_sort == PairSort::Auto && s.reliable.responses == ResponseSource::Auto;
     b.proximity_distance = s.proximity.distance;
     return b;
 }
@@ -119,6 +122,10 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
         if (!ok) return ok.error();
     d.broad = methodSettings(s, !filter_on_host_only && sortsOnGpu(s, last_narrow_pairs));
     d.broad.pair_mask = *mask;
+    // Not with a filter only the host applies, nor after a detection of kGpuPairSortFrom pairs
+    // or more, whose successor would not fit the pass (a device that ends long loops sorts
+    // those on the host: then the pass would only fail to fit).
+    d.broad.small_sort = d.broad.small_sort && !filter_on_host_only && last_narrow_pairs < kGpuPairSortFrom;
     d.broad.device_pair_capacity = s.reliable.device_pair_capacity;
     d.broad.host_pairs = s.reliable.host_pairs;
     d.broad.sorted_pairs_expected = static_cast<std::uint32_t>(std::min<std::size_t>(last_narrow_pairs, UINT32_MAX));
@@ -164,7 +171,7 @@ Result<void> CollisionWorld::Impl::start(Run& run, const DetectSettings& setting
     // While the wait polls, keep the narrow phase's workers awake as many as a detection
     // like the last one will use: they then take its first loops at once instead of
     // 0.1-0.2 ms later, when the kernel has woken the last of them (docs/narrow_phase.md).
-    if (const unsigned wake = narrow::threadsToWake(last_narrow_pairs, executor->threadCount(), last_narrow_decided))
+    if (const unsigned wake = last_narrow_one_pass ? 0 : narrow::threadsToWake(last_narrow_pairs, executor->threadCount(), last_narrow_decided))
         d.broad.poll_hook = [ex = executor, wake] { ex->prepare(wake); };
     d.broad.depth_aware = s.peeling.depth_aware;
     d.broad.keep_ray_image = s.peeling.collision_rays;  // peeling only (validation)
@@ -352,6 +359,7 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
     options.max_box_pairs = run_settings.limits.max_candidate_pairs;
     options.pairs_decided = detected.hasPairs() && broad[0].cells.exact_ran;
     last_narrow_decided = options.pairs_decided;
+    last_narrow_one_pass = false;
     // The filter's kept answers (indices of the live objects the mask was built over), or
     // the filter itself beyond the mask's object limit. The filter must not throw
     // (world.hpp); if it does, the exception stops here, the narrow phase sees "may not
@@ -403,13 +411,19 @@ Result<DetectResult> CollisionWorld::Impl::finish(Run& run, passes::DetectionRes
             }
             // Named during the wait (nameEarly) over these pairs, with the same objects.
             const bool named = broad[0].sorted_pairs_seen && std::ranges::equal(ids, run.ids);
-            narrow = narrow::runSortedPairs(broad[0].sorted_pairs, registry.source, options, *executor, narrow_workspace,
+            // Sorted in one pass: at most kSmallSortPairs, checked and copied on this thread.
+            narrow::CallingThreadExecutor calling_thread;
+            calling_thread_only = broad[0].sorted_in_one_pass;
+            narrow = narrow::runSortedPairs(broad[0].sorted_pairs, registry.source, options,
+                                            calling_thread_only ? static_cast<Executor&>(calling_thread) : *executor, narrow_workspace,
                                             std::move(pair_memory), std::move(response_memory), broad[0].sorted_responses, named);
             st.reliable.pairs_named_during_gpu = named && narrow && narrow->pairs_left_out == 0;
             if (named && narrow) narrow->timings.validate_ms = run.early_name_ms;
             last_narrow_pairs = broad[0].sorted_pairs.size();
+            last_narrow_one_pass = calling_thread_only;
             st.reliable.pairs_sorted_on_gpu = true;
             st.reliable.responses_on_gpu = broad[0].has_sorted_responses && narrow && narrow->pairs_left_out == 0;
+            st.reliable.pairs_sorted_in_one_pass = broad[0].sorted_in_one_pass;
         } else {
             // detectInto's memory; detect() makes none ready for this path (its results have
             // fewer than kGpuPairSortFrom pairs): run 48, `experiments/session62_old_prepare.diff`.

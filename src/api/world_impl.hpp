@@ -37,6 +37,7 @@ struct CollisionWorld::Impl {
     NarrowWorkspace narrow_workspace;  // reused by every detection's narrow phase
     std::size_t last_narrow_pairs = 0;  // the last pair-path narrow phase's input: whom to wake while the next one waits
     bool last_narrow_decided = false;   // ... and whether the GPU had decided its pairs (no tests: fewer threads)
+    bool last_narrow_one_pass = false;  // ... or sorted them in one pass (the host copies them on its calling thread)
     // detect()'s result memory for GPU-sorted pairs and responses, made ready while the GPU
     // works (prepareResultMemory) and handed to the result; the last result's pair and
     // response counts.

@@ -152,6 +152,11 @@ struct BroadPhaseSettings {
     std::uint32_t sorted_pairs_expected = 0;
     // Where sort_on_gpu ran: the responses computed there too (BroadPhaseResult::sorted_responses).
     bool responses_on_gpu = false;
+    // Methods that decide pairs exactly on the GPU, without sort_on_gpu or device_pairs: one
+    // pass sorts the few survivors and computes their responses (cells/small_sort.hpp) beside
+    // the host's path; where they fit, BroadPhaseResult::sorted_pairs, sorted_responses and
+    // sorted_in_one_pass are set. Not with meshes checked on the GPU.
+    bool small_sort = false;
     // With responses_on_gpu: called inside collect(), on its thread, as soon as the GPU has
     // copied a piece of the sorted pairs (global triangle ids, as BroadPhaseResult::sorted_pairs)
     // to host memory, while it still copies the rest and computes the responses: with all of
@@ -249,6 +254,8 @@ struct BroadPhaseResult {
     // order (objects as run indices; host-visible memory, valid until the next run).
     bool has_sorted_responses = false;
     std::span<const TriangleResponse> sorted_responses;
+    // small_sort did it: the pairs and responses above came from its one pass.
+    bool sorted_in_one_pass = false;
     // BroadPhaseSettings::host_pairs off: the device pairs' header as the GPU left it (the
     // pairs are only there).
     struct DeviceHeader {

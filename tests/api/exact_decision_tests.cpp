@@ -78,6 +78,9 @@ struct Both {
     DetectResult gpu, cpu;
 };
 
+// The survivors the one pass of few pairs sorts (gpu::kSmallSortPairs; docs/exact_gpu.md).
+constexpr std::size_t gpuOnePassSurvivors = 4096;
+
 Both detectBoth(ValidatedContext& ctx, const TestScene& scene, DetectSettings settings = {}) {
     auto world = CollisionWorld::create(ctx.context(), {.threads = 2});
     REQUIRE(world);
@@ -283,13 +286,15 @@ TEST_CASE("exact decision: the record paths refuse pairs_decided", "[narrow][exa
 
 namespace {
 
-// One world, the same settings twice: pairs sorted on the GPU, then on the CPU. The exact
-// pass fixed (ExactPass::Auto may change between the two detections, and with it the
-// filter that ran first and the count of exact tests; not the pairs). The queued pass may
-// still skip its filter in the second (CellStats::filter_ran).
-Both sortedBoth(CollisionWorld& world, DetectSettings settings = {}) {
+// One world, the same settings twice: pairs sorted on the GPU (`on_gpu`: Gpu, or Auto for
+// the one pass of few pairs, after a detection that sizes its copies for the scene), then
+// on the CPU. The exact pass fixed (ExactPass::Auto may change between the two detections,
+// and with it the filter that ran first and the count of exact tests; not the pairs). The
+// queued pass may still skip its filter in the second (CellStats::filter_ran).
+Both sortedBoth(CollisionWorld& world, DetectSettings settings = {}, PairSort on_gpu = PairSort::Gpu) {
     if (settings.reliable.exact_pass == ExactPass::Auto) settings.reliable.exact_pass = ExactPass::Queued;
-    settings.reliable.pair_sort = PairSort::Gpu;
+    settings.reliable.pair_sort = on_gpu;
+    if (on_gpu == PairSort::Auto) REQUIRE(world.detect(settings));
     auto gpu = world.detect(settings);
     REQUIRE(gpu);
     settings.reliable.pair_sort = PairSort::Cpu;
@@ -390,12 +395,14 @@ TEST_CASE("pair sort: pairs sorted on the GPU give the CPU sort's result to the 
     REQUIRE(a2);
     CHECK(a2->stats.reliable.pairs_sorted_on_gpu == (ctx.device().info.loop_iteration_limit == 0));
     CHECK(a2->pairs == a1->pairs);
+    // Below it the one pass sorts them (the next test case), never the device-pairs passes.
     auto small = sceneWorld(ctx, resting);
     for (int k = 0; k < 2; ++k) {
         auto r = small->detect();
         REQUIRE(r);
         REQUIRE(r->pairs.size() < kGpuPairSortFrom);
-        CHECK_FALSE(r->stats.reliable.pairs_sorted_on_gpu);
+        CHECK(r->stats.reliable.pairs_sorted_on_gpu == r->stats.reliable.pairs_sorted_in_one_pass);
+        CHECK(std::none_of(r->stats.gpu_passes.begin(), r->stats.gpu_passes.end(), [](const PassTime& p) { return p.name == "pairs-sort"; }));
     }
     // Refused by name where the GPU cannot sort.
     const auto refused = [&](DetectSettings s, const char* words) {
@@ -487,6 +494,88 @@ TEST_CASE("detectInto and collectInto give detect()'s result in the caller's mem
 // GPU-sorted results under a megabyte (the calling thread makes their memory ready) and the
 // host's pair path (none made ready for detect(); detectInto's memory reused): a kept result's
 // successor would otherwise fault its new pages in after the wait.
+namespace {
+
+Both onePassBoth(CollisionWorld& world, DetectSettings settings = {}) { return sortedBoth(world, settings, PairSort::Auto); }
+
+// `fits`: the one pass must have sorted them (its survivors fit); otherwise the host did.
+void requireSameOnePass(const Both& r, const std::string& what, bool fits) {
+    INFO(what << ": " << r.gpu.pairs.size() << " pairs");
+    CHECK(r.gpu.stats.reliable.pairs_sorted_in_one_pass == fits);
+    CHECK(r.gpu.stats.reliable.pairs_sorted_on_gpu == fits);
+    CHECK(r.gpu.stats.reliable.responses_on_gpu == (fits && r.gpu.pairs_left_out == 0));
+    CHECK_FALSE(r.cpu.stats.reliable.pairs_sorted_in_one_pass);
+    CHECK(std::none_of(r.gpu.stats.gpu_passes.begin(), r.gpu.stats.gpu_passes.end(), [](const PassTime& p) { return p.name == "pairs-sort"; }));
+    if (fits) CHECK(r.gpu.stats.host.narrow_threads == 1);
+    CHECK(r.gpu.pairs == r.cpu.pairs);
+    CHECK(sameResponses(r.gpu.responses, r.cpu.responses));
+    CHECK(r.gpu.pairs_left_out == r.cpu.pairs_left_out);
+    CHECK(r.gpu.incomplete.has_value() == r.cpu.incomplete.has_value());
+    CHECK(r.gpu.stats.positive_tests == r.cpu.stats.positive_tests);
+    CHECK(r.gpu.stats.cpu_exact_tests == 0);
+}
+
+}  // namespace
+
+TEST_CASE("pair sort: few pairs sorted in one GPU pass give the CPU sort's result to the bit", "[api][gpu][reliable][exact]") {
+    ValidatedContext ctx;
+    if (!ctx.device().shader_float64) return;  // no exact decision on the GPU: the host sorts
+    const TestScene resting = restingScene();
+    auto resting_world = sceneWorld(ctx, resting);
+    for (std::uint32_t resolution : {1u, 7u, 64u}) {
+        DetectSettings s;
+        s.resolution = resolution;
+        requireSameOnePass(onePassBoth(*resting_world, s), "resting scene, resolution " + std::to_string(resolution), true);
+    }
+    auto scenes = allTestScenes(0.5f);
+    REQUIRE(scenes);
+    for (const TestScene& scene : *scenes) {
+        auto world = sceneWorld(ctx, scene);
+        const Both r = onePassBoth(*world);
+        // Survivors repeat a rare pair: below 3,000 pairs they fit the pass's 4,096.
+        if (r.cpu.pairs.size() < 3000 || r.cpu.pairs.size() > gpuOnePassSurvivors)
+            requireSameOnePass(r, scene.name, r.cpu.pairs.size() < 3000);
+        else
+            CHECK(r.gpu.pairs == r.cpu.pairs);
+    }
+    for (auto make : {+[] { return exactlyTouching(true); }, +[] { return zeroAreaTriangle(); }, +[] { return coplanarOpenQuads(false); },
+                      +[] { return nonManifoldFin(); }}) {
+        auto c = make();
+        REQUIRE(c);
+        requireSameOnePass(onePassBoth(*sceneWorld(ctx, c->scene)), c->name, true);
+    }
+    // max_pairs: the first pairs in order, the rest counted, their responses the host's.
+    DetectSettings few;
+    few.limits.max_pairs = 37;
+    const Both cut = onePassBoth(*resting_world, few);
+    CHECK(cut.gpu.pairs.size() == 37);
+    CHECK(cut.gpu.pairs_left_out > 0);
+    requireSameOnePass(cut, "resting scene, max_pairs 37", true);
+    // A pair filter the GPU's mask holds.
+    REQUIRE(resting_world->setPairFilter([](ObjectId a, ObjectId b) { return (a + b) % 2 == 0; }));
+    requireSameOnePass(onePassBoth(*resting_world), "resting scene, filtered", true);
+    // detectInto: the caller's memory, the same result.
+    DetectResult into;
+    REQUIRE(resting_world->detectInto(into));
+    CHECK(into.stats.reliable.pairs_sorted_in_one_pass);
+    CHECK(into.pairs == onePassBoth(*resting_world).cpu.pairs);
+    // Too many survivors (coincident grids, with a rerun of the cell stage): the host sorts
+    // them, the same pairs.
+    auto grids = coincidentGrids(40);
+    REQUIRE(grids);
+    auto grid_world = sceneWorld(ctx, *grids);
+    auto first = grid_world->detect();
+    REQUIRE(first);
+    REQUIRE(first->pairs.size() > gpuOnePassSurvivors);
+    CHECK_FALSE(first->stats.reliable.pairs_sorted_in_one_pass);
+    DetectSettings host_sort;
+    host_sort.reliable.pair_sort = PairSort::Cpu;
+    auto on_host = grid_world->detect(host_sort);
+    REQUIRE(on_host);
+    CHECK(first->pairs == on_host->pairs);
+    CHECK(sameResponses(first->responses, on_host->responses));
+}
+
 TEST_CASE("detect() makes a small GPU-sorted result's memory ready during the wait, detectInto reuses memory on both paths", "[api][gpu][reliable]") {
     ValidatedContext ctx;
     auto grids = coincidentGrids(12);

@@ -3,7 +3,9 @@
 // work left running after a timeout is at most one chunk. The passes after them (the GPU
 // sort, proximity) must see every chunk: the same sorted pairs and proximity records as one
 // pass, and the sweep's counts unchanged. The sorted pairs handed to the host in pieces while
-// the GPU computes the responses (BroadPhaseSettings::on_sorted_pairs) are the final ones.
+// the GPU computes the responses (BroadPhaseSettings::on_sorted_pairs) are the final ones. The
+// one pass of few pairs (BroadPhaseSettings::small_sort) ends every chunk's submission and
+// gives the device pairs' sort and responses.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -43,6 +45,20 @@ HostMesh pileAt(Float3 t, std::uint32_t copies) {
         m.indices.insert(m.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
     }
     return m;
+}
+
+// `n` coplanar equilateral triangles about one centre, each turned a little further, each
+// with its own vertices: every two of them overlap, n (n - 1) / 2 pairs where it tests itself.
+HostMesh coplanarFan(std::uint32_t n) {
+    HostMesh fan{"fan", {}, {}};
+    for (std::uint32_t k = 0; k < n; ++k) {
+        for (int v = 0; v < 3; ++v) {
+            const double a = 0.011 * k + 2.0943951023931953 * v;
+            fan.positions.push_back({float(2.5 + 0.1 * std::cos(a)), float(0.1 * std::sin(a)), 0.0f});
+        }
+        fan.indices.insert(fan.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    return fan;
 }
 
 struct Outputs {
@@ -296,18 +312,9 @@ TEST_CASE("reliable: the sorted pairs handed over piece by piece while the GPU c
           "[gpu][cells]") {
     test::ValidatedContext ctx;
     REQUIRE(ctx.device().shader_float64);
-    // Two spheres and a fan of 100 coplanar equilateral triangles about one centre, each
-    // turned a little further, self-colliding: every two of them overlap (no shared vertex),
-    // 4,950 pairs, more than three of the four pieces of the smallest copy (4,096 pairs) hold.
-    HostMesh fan{"fan", {}, {}};
-    for (std::uint32_t k = 0; k < 100; ++k) {
-        for (int v = 0; v < 3; ++v) {
-            const double a = 0.011 * k + 2.0943951023931953 * v;
-            fan.positions.push_back({float(2.5 + 0.1 * std::cos(a)), float(0.1 * std::sin(a)), 0.0f});
-        }
-        fan.indices.insert(fan.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
-    }
-    const auto up = upload(ctx.device(), {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), fan}, 2);
+    // Two spheres and a fan of 100 coplanar triangles, self-colliding: 4,950 pairs in the fan,
+    // more than three of the four pieces of the smallest copy (4,096 pairs) hold.
+    const auto up = upload(ctx.device(), {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), coplanarFan(100)}, 2);
     auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
     REQUIRE(bp);
     BroadPhaseSettings s = exactWithProximity(48, 0.0);
@@ -365,5 +372,79 @@ TEST_CASE("reliable: the sorted pairs handed over piece by piece while the GPU c
     CHECK(r->has_sorted_pairs);
     CHECK_FALSE(r->sorted_pairs_seen);
     CHECK(pieces.empty());
+    REQUIRE_NO_VALIDATION_MESSAGES(ctx);
+}
+
+// The one pass of few pairs against the device-pairs passes (proved equal to the CPU's
+// result in tests/api/exact_decision_tests.cpp): the same pairs and responses to the bit,
+// whether the stage ran in one submission or in chunks; too many survivors are left to the
+// host's path.
+TEST_CASE("reliable: few pairs sorted in one pass give the device pairs' sort and responses, after chunks too, and leave too many to the host",
+          "[gpu][cells]") {
+    test::ValidatedContext ctx;
+    REQUIRE(ctx.device().shader_float64);
+    auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
+    REQUIRE(bp);
+    struct Sorted {
+        std::vector<CandidatePair> pairs;
+        std::vector<TriangleResponse> responses;
+        std::size_t survivors = 0;
+        bool one_pass = false;
+        CellStageStats cells;
+    };
+    const auto detect = [&](std::span<const GpuMesh> meshes, const BroadPhaseSettings& s) {
+        auto r = bp->get()->run(meshes, s);
+        INFO((r ? std::string() : r.error().message()));
+        REQUIRE(r);
+        Sorted out;
+        out.survivors = r->pairs.size();
+        out.one_pass = r->sorted_in_one_pass;
+        out.cells = r->cells;
+        if (!r->has_sorted_pairs) return out;
+        REQUIRE(r->has_sorted_responses);
+        out.pairs.assign(r->sorted_pairs.begin(), r->sorted_pairs.end());
+        out.responses.assign(r->sorted_responses.begin(), r->sorted_responses.end());
+        return out;
+    };
+    const auto same = [](const Sorted& a, const Sorted& b) {
+        REQUIRE(a.pairs.size() == b.pairs.size());
+        REQUIRE(a.responses.size() == b.responses.size());
+        CHECK(std::memcmp(a.pairs.data(), b.pairs.data(), a.pairs.size() * sizeof(CandidatePair)) == 0);
+        CHECK(std::memcmp(a.responses.data(), b.responses.data(), a.responses.size() * sizeof(TriangleResponse)) == 0);
+    };
+    // Spheres crossing, a sphere resting on them and a self-colliding coplanar fan (every
+    // triangle with many partners in one plane): 780 pairs in the fan.
+    const auto up = upload(ctx.device(),
+                           {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), sphereAt({0.0f, 1.1f, 0.0f}, 0.7f),
+                            coplanarFan(40)},
+                           3);
+    BroadPhaseSettings device_sort = exactWithProximity(48, 0.0);
+    device_sort.responses_on_gpu = true;
+    device_sort.pair_chunk = ~0u;
+    device_sort.sweep_work = ~0u;
+    (void)detect(up->up.meshes, device_sort);  // the copies grow to the scene
+    const Sorted expected = detect(up->up.meshes, device_sort);
+    REQUIRE(expected.pairs.size() > 780);
+    CHECK_FALSE(expected.one_pass);
+    BroadPhaseSettings small = device_sort;
+    small.sort_on_gpu = small.responses_on_gpu = false;
+    small.small_sort = true;
+    for (std::uint32_t chunk : {~0u, 157u}) {
+        INFO("pair pass chunks of " << chunk << " candidates");
+        small.pair_chunk = chunk;
+        const Sorted first = detect(up->up.meshes, small);  // copies sized for 1,024: too few responses here
+        CHECK(first.survivors >= expected.pairs.size());  // the host's path is still there
+        const Sorted one = detect(up->up.meshes, small);
+        CHECK(one.one_pass);
+        if (chunk != ~0u) CHECK(one.cells.pair_chunks > 1);
+        same(one, expected);
+    }
+    // A fan of 100: 4,950 pairs, more survivors than the pass holds: the host sorts them.
+    const auto many = upload(ctx.device(), {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), coplanarFan(100)}, 1);
+    small.pair_chunk = ~0u;
+    const Sorted left = detect(many->up.meshes, small);
+    CHECK_FALSE(left.one_pass);
+    CHECK(left.pairs.empty());
+    CHECK(left.survivors >= 4950);
     REQUIRE_NO_VALIDATION_MESSAGES(ctx);
 }

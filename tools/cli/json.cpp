@@ -127,6 +127,7 @@ void writeStats(JsonWriter& j, const vkcollide::DetectStats& st, std::size_t pai
     count("cpu_exact_tests", st.cpu_exact_tests);
     j.member("pairs_sorted_on_gpu", [&] { j.boolean(st.reliable.pairs_sorted_on_gpu); });
     j.member("responses_on_gpu", [&] { j.boolean(st.reliable.responses_on_gpu); });
+    j.member("pairs_sorted_in_one_pass", [&] { j.boolean(st.reliable.pairs_sorted_in_one_pass); });
     j.member("pairs_named_during_gpu", [&] { j.boolean(st.reliable.pairs_named_during_gpu); });
     if (st.contacts.geometry_ms > 0) j.member("contact_geometry_ms", [&] { j.number(st.contacts.geometry_ms); });
     count("pairs", pair_count);

@@ -263,10 +263,11 @@ public:
     // count the run needed. After any error the stage is ready for the next prepare().
     enum class Outcome { Complete, Rerun, MoreSweep, MorePairs };
     // After MoreSweep: the sweep's next chunk, then the pair pass's first chunk (it does
-    // nothing unless the sweep is complete) and the header readback.
-    void recordSweepChunk(graph::Graph& g);
-    // After MorePairs: the pair pass over the next chunk and the header readback.
-    void recordPairChunk(graph::Graph& g);
+    // nothing unless the sweep is complete) and the header readback. Returns what later
+    // passes of the same graph read, as record() does.
+    Resources recordSweepChunk(graph::Graph& g);
+    // After MorePairs: the pair pass over the next chunk and the header readback; the same.
+    Resources recordPairChunk(graph::Graph& g);
     // After the submission that swept the chunk finish() last read: its sweep pass's GPU
     // time, from which the automatic sweep chunk (CellStageSettings::sweep_work) is sized.
     void noteSweepTime(std::span<const graph::PassTiming> passes);

@@ -168,7 +168,7 @@ void CellStage::recordSweep(graph::Graph& g, const SweepIds& id) {
         });
 }
 
-void CellStage::recordSweepChunk(graph::Graph& g) {
+CellStage::Resources CellStage::recordSweepChunk(graph::Graph& g) {
     survivor_count_ = gpu_triangle_count_ = 0;
     const VkDeviceAddress params = buf_.params->address();
     const auto& P = pipes_;
@@ -183,11 +183,11 @@ void CellStage::recordSweepChunk(graph::Graph& g) {
     recordSweep(g, {header, importRow(g, buf_.entries), importRow(g, buf_.chunk_cells), importRow(g, buf_.offsets),
                     importRow(g, buf_.counts), importRow(g, buf_.deep_items), importRow(g, buf_.sorted), candidates, args});
     ++sweep_chunks_;
-    recordPairPass(g,
-                   {header, importRow(g, buf_.header_rb, true), importRow(g, buf_.triangles), importRow(g, buf_.geometry), candidates,
-                    importRow(g, buf_.survivors, !survivors_on_device_), args, importRow(g, buf_.gpu_triangles, true),
-                    importRow(g, buf_.marks), importRow(g, buf_.exact_queue)},
-                   0);
+    const PairPassIds id{header, importRow(g, buf_.header_rb, true), importRow(g, buf_.triangles), importRow(g, buf_.geometry), candidates,
+                         importRow(g, buf_.survivors, !survivors_on_device_), args, importRow(g, buf_.gpu_triangles, true),
+                         importRow(g, buf_.marks), importRow(g, buf_.exact_queue)};
+    recordPairPass(g, id, 0);
+    return {id.header, id.survivors, id.tris, id.candidates, id.geometry, id.args};
 }
 
 // The pair pass over chunk `chunk` of the candidates (its arguments first), with the exact
@@ -254,15 +254,15 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
     next_chunk_ = chunk + 1;
 }
 
-void CellStage::recordPairChunk(graph::Graph& g) {
+CellStage::Resources CellStage::recordPairChunk(graph::Graph& g) {
     survivor_count_ = gpu_triangle_count_ = 0;
-    recordPairPass(g,
-                   {importRow(g, buf_.header), importRow(g, buf_.header_rb, true),
-                    importRow(g, buf_.triangles), importRow(g, buf_.geometry),
-                    importRow(g, buf_.candidates),
-                    importRow(g, buf_.survivors, !survivors_on_device_), importRow(g, buf_.args),
-                    importRow(g, buf_.gpu_triangles, true), importRow(g, buf_.marks), importRow(g, buf_.exact_queue)},
-                   next_chunk_);
+    const PairPassIds id{importRow(g, buf_.header), importRow(g, buf_.header_rb, true),
+                         importRow(g, buf_.triangles), importRow(g, buf_.geometry),
+                         importRow(g, buf_.candidates),
+                         importRow(g, buf_.survivors, !survivors_on_device_), importRow(g, buf_.args),
+                         importRow(g, buf_.gpu_triangles, true), importRow(g, buf_.marks), importRow(g, buf_.exact_queue)};
+    recordPairPass(g, id, next_chunk_);
+    return {id.header, id.survivors, id.tris, id.candidates, id.geometry, id.args};
 }
 
 }  // namespace vkcollide::passes

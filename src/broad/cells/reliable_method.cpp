@@ -33,13 +33,14 @@ CellStageSettings cellSettings(const BroadPhaseSettings& s) {
 Result<void> ReliableMethod::preparePipelines(const BroadPhaseSettings& s) {
     if (auto ok = cells_->makeEveryPipeline(cellSettings(s)); !ok) return ok;
     // Sorting on the GPU needs the exact decision there (prepareStage).
-    const bool sorts = s.exact_on_gpu && cells_->filterSupported() && (s.device_pairs || s.sort_on_gpu);
-    return makeStages(s.proximity_distance > 0, sorts, sorts && (s.device_responses || s.responses_on_gpu));
+    const bool exact = s.exact_on_gpu && cells_->filterSupported();
+    const bool sorts = exact && (s.device_pairs || s.sort_on_gpu);
+    return makeStages(s.proximity_distance > 0, sorts, sorts && (s.device_responses || s.responses_on_gpu), exact && s.small_sort);
 }
 
 // The stages after the cell stage that a run uses, each created on first use (its buffers:
 // rows of the table).
-Result<void> ReliableMethod::makeStages(bool proximity, bool sorting, bool responding) {
+Result<void> ReliableMethod::makeStages(bool proximity, bool sorting, bool responding, bool small) {
     if (proximity && !proximity_) {
         auto made = proximity::ProximityStage::create(*device_, *table_);
         if (!made) return made.error();
@@ -54,6 +55,11 @@ Result<void> ReliableMethod::makeStages(bool proximity, bool sorting, bool respo
         auto made = DeviceResponseStage::create(*device_, *table_);
         if (!made) return made.error();
         device_responses_ = std::move(*made);
+    }
+    if (small && !small_sort_) {
+        auto made = SmallSortStage::create(*device_, *table_);
+        if (!made) return made.error();
+        small_sort_ = std::move(*made);
     }
     return {};
 }
@@ -92,6 +98,10 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
     sorted_for_host_ = !device_pairs_on_ && run.settings.sort_on_gpu && run.settings.exact_on_gpu && cells_->filterSupported() &&
                        !run.any_gpu_check;
     host_responses_on_ = sorted_for_host_ && run.settings.responses_on_gpu;
+    // Few pairs in one pass: beside the host's path (the survivors still read back), so only
+    // where no device-pairs pass sorts them.
+    small_sort_on_ = run.settings.small_sort && !device_pairs_on_ && !sorted_for_host_ && run.settings.exact_on_gpu &&
+                     cells_->filterSupported() && !run.any_gpu_check;
     early_pairs_on_ = host_responses_on_ && static_cast<bool>(run.settings.on_sorted_pairs);
     on_sorted_pairs_ = early_pairs_on_ ? run.settings.on_sorted_pairs : nullptr;
     early_piece_pairs_ = run.settings.early_piece_pairs;
@@ -105,10 +115,12 @@ Result<void> ReliableMethod::prepareStage(const RunView& run) {
         settings.proximity_pad = pad;
     }
     if (auto ok = cells_->prepare(in, settings); !ok) return ok;
-    if (auto ok = makeStages(proximity_on_, sorting(), responding()); !ok) return ok;
+    if (auto ok = makeStages(proximity_on_, sorting(), responding(), small_sort_on_); !ok) return ok;
     if (proximity_on_)
         if (auto ok = proximity_->prepare(*cells_, run.meshes, run.settings.proximity_distance, run.settings.proximity_capacity); !ok)
             return ok;
+    if (small_sort_on_)
+        if (auto ok = small_sort_->prepare(*cells_, last_small_pairs_, last_small_responses_); !ok) return ok;
     if (!sorting()) return {};
     device_pairs_->retire();
     object_tags_.resize(n);
@@ -145,20 +157,28 @@ void ReliableMethod::recordSort(graph::Graph& g, const CellStage::Resources& cel
 
 void ReliableMethod::record(Phase phase, graph::Graph& g, const RunView&, const GraphBuffers& buffers) const {
     if (phase == Phase::Measure) return;
+    // The one pass of few pairs ends every submission that may complete the stage: it reads
+    // the survivors only where the run is complete (else it writes Skipped).
     if (phase == Phase::Again && again_ == Step::PairChunk) {
-        cells_->recordPairChunk(g);
+        const CellStage::Resources cells = cells_->recordPairChunk(g);
+        if (small_sort_on_) small_sort_->record(g, cells);
         return;
     }
     if (phase == Phase::Again && again_ == Step::SweepChunk) {
-        cells_->recordSweepChunk(g);
+        const CellStage::Resources cells = cells_->recordSweepChunk(g);
+        if (small_sort_on_) small_sort_->record(g, cells);
         return;
     }
     if (phase == Phase::Main || again_ == Step::Cells) {
         // The projection the front wrote stays in its buffer for a rerun.
         const CellStage::Resources cells = cells_->record(g, buffers[core_.projection]);
-        if (phase == Phase::Again) return;  // the stage alone: the passes after it run once it completes
+        if (phase == Phase::Again) {  // the stage alone: the passes after it run once it completes
+            if (small_sort_on_) small_sort_->record(g, cells);
+            return;
+        }
         if (proximity_on_) proximity_->record(g, cells);
         if (sorting()) recordSort(g, cells, fault_header_ ? buffers[core_.header] : graph::ResourceId{});
+        if (small_sort_on_) small_sort_->record(g, cells);
         return;
     }
     const CellStage::Resources cells = cells_->importOutputs(g);
@@ -202,6 +222,17 @@ Result<Collected> ReliableMethod::collect(const RunView& run, const gpu::Header&
     }
     result.pairs = cells_->survivors();
     result.gpu_triangles = cells_->gpuTriangles();
+    // The one pass ran in the submission that completed the stage (record()).
+    if (small_sort_on_) {
+        const SmallSortStage::Output out = small_sort_->result();
+        last_small_pairs_ = out.pairs;
+        last_small_responses_ = out.responses;
+        if (out.done) {
+            result.has_sorted_pairs = result.has_sorted_responses = result.sorted_in_one_pass = true;
+            result.sorted_pairs = out.sorted;
+            result.sorted_responses = out.sorted_responses;
+        }
+    }
     return Collected::Done;
 }
 

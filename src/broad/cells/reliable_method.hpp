@@ -8,6 +8,8 @@
 //   (device pairs, BroadPhaseSettings::device_pairs: pairs-clear/args/bucket/sort after
 //             the stage's passes, device_pairs.hpp; with device_responses then
 //             responses-clear/bucket/sum, device_responses.hpp)
+//   (few pairs, BroadPhaseSettings::small_sort: pairs-small and its copy after the stage's
+//             passes, small_sort.hpp; the survivors are read back as well)
 //   collect   the stage's header; after an overflow Again (the broad phase runs the
 //             stage's passes alone, its buffers already grown), while the pair pass has
 //             chunks to go Again (its next chunk alone), until complete, then the device
@@ -29,6 +31,7 @@
 #include "broad/cells/cell_stage.hpp"
 #include "broad/cells/device_pairs.hpp"
 #include "broad/cells/device_responses.hpp"
+#include "broad/cells/small_sort.hpp"
 #include "broad/method.hpp"
 #include "proximity/proximity_stage.hpp"
 
@@ -72,7 +75,7 @@ private:
     ReliableMethod(vk::Device& device, BufferTable& table, const CoreBuffers& core, std::unique_ptr<CellStage> cells)
         : device_(&device), table_(&table), core_(core), cells_(std::move(cells)) {}
     Result<void> prepareStage(const RunView& run);
-    Result<void> makeStages(bool proximity, bool sorting, bool responding);
+    Result<void> makeStages(bool proximity, bool sorting, bool responding, bool small);
     // collect()'s steps, in order; each answers Again after asking for its passes.
     Result<Collected> collectCells(const RunView& run, BroadPhaseResult& io_result);
     Result<Collected> collectProximity(BroadPhaseResult& io_result);
@@ -126,6 +129,11 @@ private:
     std::uint32_t device_pair_capacity_ = 0;
     std::vector<std::uint32_t> object_tags_;
     VkDeviceAddress fault_header_ = 0;
+    // Few pairs sorted in one pass (BroadPhaseSettings::small_sort): made on first use; the
+    // last result's counts size its copies.
+    std::unique_ptr<SmallSortStage> small_sort_;
+    bool small_sort_on_ = false;
+    std::uint32_t last_small_pairs_ = 0, last_small_responses_ = 0;
     // Proximity (BroadPhaseSettings::proximity_distance): made on first use.
     std::unique_ptr<proximity::ProximityStage> proximity_;
     bool proximity_on_ = false;

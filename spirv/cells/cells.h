@@ -398,7 +398,7 @@ struct SmallSortParams {
     VKC_ADDRESS(uint64_t) header;     // SmallSortHeader
     VKC_ADDRESS(uint64_t) pairs;      // uvec2[kSmallSortPairs]: the distinct pairs (a, b), ascending
     VKC_ADDRESS(uint64_t) ends;       // uvec2[2 kSmallSortPairs]: each pair's two ends (triangle, partner), ascending
-    VKC_ADDRESS(uint64_t) normals;    // double[3 * 2 kSmallSortPairs]: each end's partner's unit normal
+    VKC_ADDRESS(uint64_t) normals;    // double[3 * 2 kSmallSortPairs]: each responder's unit normal
     VKC_ADDRESS(uint64_t) responses;  // DeviceResponse[2 kSmallSortPairs]
     uint triangle_count;
     uint spare;

@@ -15,9 +15,11 @@
 //      keys below it; no key is in both, since A's partners are above their triangle and
 //      B's below) into `ends`, ascending: each triangle's partners in ascending order,
 //      the CPU's order of a response's terms;
-//   4. each end's partner's unit normal (response_math.glsl.inc) into `normals`; each run
-//      of one triangle in `ends` is a response: runs numbered by a scan, each summed by the
-//      invocation holding its first end.
+//   4. each run of one triangle in `ends` is a responder: numbered by a scan, its triangle
+//      kept in shared memory and its unit normal (response_math.glsl.inc) computed once,
+//      into `normals` (every partner is a responder too);
+//   5. each end's partner replaced by its responder's number (a binary search);
+//   6. each response summed by the invocation holding its run's first end.
 // The survivors must fit kSmallSortPairs and the run be complete; otherwise (or with a
 // survivor out of range) the header says kSmallSortSkipped, and the host sorts them. Every
 // loop is bounded by kSmallSortPairs, so llvmpipe's loop limit never ends one.
@@ -99,6 +101,25 @@ uint rankInList(KeysRef list, uvec2 key, uint n) {
     return lo;
 }
 
+// Step 4 on: responder r's triangle, two to a key of s_keys (8,192 at most).
+void setResponder(uint r, uint t) {
+    if ((r & 1u) == 0u) s_keys[r >> 1].x = t;
+    else s_keys[r >> 1].y = t;
+}
+uint responder(uint r) { return (r & 1u) == 0u ? s_keys[r >> 1].x : s_keys[r >> 1].y; }
+// The number of responder `t` among the `count` (ascending).
+uint responderOf(uint t, uint count) {
+    uint lo = 0u, hi = count;
+    while (lo < hi) {
+        uint mid = (lo + hi) >> 1;
+        if (responder(mid) < t) lo = mid + 1u;
+        else hi = mid;
+    }
+    return lo;
+}
+
+dvec3 loadNormal(DoublesRef normals, uint r) { return dvec3(normals.v[3u * r], normals.v[3u * r + 1u], normals.v[3u * r + 2u]); }
+
 // Invocation i's share of [0, n): a run of consecutive items (their order follows i).
 uvec2 share(uint n) {
     uint per = (n + kSmallSortGroupSize - 1u) / kSmallSortGroupSize;
@@ -168,36 +189,47 @@ void main() {
     memoryBarrierBuffer();
     barrier();  // B no longer needed: s_keys is the next scan's scratch
 
-    // 4. A response per run of one triangle, numbered in order. Each end's partner's unit
-    // normal is computed once, by the invocation holding the end (a run's sum then only
-    // loads them: no invocation's loops grow with a triangle's partners beyond loads).
+    // 4. The responders: each run of one triangle in `ends`, numbered by a scan over the runs'
+    // first ends; their triangles in shared memory, their unit normals in `normals`, one each
+    // (every partner is a responder too).
     const uint end_count = 2u * pairs;
     const uvec2 runs_in = share(end_count);
+    uint heads = 0u;
+    for (uint e = runs_in.x; e < runs_in.y; ++e)
+        if (e == 0u || ends.v[e].x != ends.v[e - 1u].x) ++heads;
+    uint responses;
+    const uint first_r = groupExclusiveAdd(heads, responses);  // B is no longer needed: s_keys is its scratch
     CellsGeometryRef geometry = CellsGeometryRef(P.geometry);
     DoublesRef normals = DoublesRef(S.normals);
-    uint heads = 0u;
-    for (uint e = runs_in.x; e < runs_in.y; ++e) {
-        uvec2 end = ends.v[e];
-        if (e == 0u || ends.v[e - 1u].x != end.x) ++heads;
-        dvec3 m = unitNormal(geometry.g[end.y]);
-        normals.v[3u * e] = m.x;
-        normals.v[3u * e + 1u] = m.y;
-        normals.v[3u * e + 2u] = m.z;
+    for (uint e = runs_in.x, r = first_r; e < runs_in.y; ++e) {
+        const uint t = ends.v[e].x;
+        if (e > 0u && ends.v[e - 1u].x == t) continue;
+        setResponder(r, t);
+        dvec3 n = unitNormal(geometry.g[t]);
+        normals.v[3u * r] = n.x;
+        normals.v[3u * r + 1u] = n.y;
+        normals.v[3u * r + 2u] = n.z;
+        ++r;
     }
     memoryBarrierBuffer();
-    uint responses;
-    uint r = groupExclusiveAdd(heads, responses);  // its barriers order the normals' writes before the reads
+    barrier();
+    // 5. Each end's partner replaced by its responder's number (the partner's id is not read
+    // again; each invocation rewrites its own ends only).
+    for (uint e = runs_in.x; e < runs_in.y; ++e) ends.v[e].y = responderOf(ends.v[e].y, responses);
+    memoryBarrierBuffer();
+    barrier();
+    // 6. A response per run, summed by the invocation holding its first end, in the run's
+    // (ascending partner) order.
     CellsTrianglesRef triangles = CellsTrianglesRef(P.triangles);
     ObjectsRef objects = ObjectsRef(P.objects);
     DeviceResponsesRef out_responses = DeviceResponsesRef(S.responses);
-    for (uint e = runs_in.x; e < runs_in.y; ++e) {
+    for (uint e = runs_in.x, r = first_r; e < runs_in.y; ++e) {
         const uint t = ends.v[e].x;
         if (e > 0u && ends.v[e - 1u].x == t) continue;
-        dvec3 n_t = unitNormal(geometry.g[t]);
+        const dvec3 n_t = loadNormal(normals, r);
         dvec3 sum = dvec3(0.0lf);
         uint partners = 0u;
-        for (uint q = e; q < end_count && ends.v[q].x == t; ++q, ++partners)
-            addTerm(sum, dvec3(normals.v[3u * q], normals.v[3u * q + 1u], normals.v[3u * q + 2u]), n_t);
+        for (uint q = e; q < end_count && ends.v[q].x == t; ++q, ++partners) addTerm(sum, loadNormal(normals, ends.v[q].y), n_t);
         uvec3 direction = responseDirection(sum);
         uint object = triangles.t[t].key & kCellsKeyObject;  // the run's object index: the host result's
         DeviceResponse out_r;

@@ -85,8 +85,9 @@ Result<NarrowResult> sortedPhase(std::span<const CandidatePair> sorted, std::spa
     result.responses = std::move(response_memory);
     const std::size_t found = sorted.size();
     const std::size_t kept = std::min<std::size_t>(found, options.max_pairs);
-    // The GPU's responses are every pair's: used where no pair is left out.
-    const bool ready = !gpu_responses.empty() && kept == found;
+    // The GPU's responses are every pair's: used where no pair is left out (no pairs: no
+    // responses, whoever computed them, and nothing to mark over every triangle).
+    const bool ready = (!gpu_responses.empty() || found == 0) && kept == found;
     const std::uint32_t total = source.totalTriangles();
     // Named already (nameSortedPairs, while the GPU computed the responses), and the
     // responses are the GPU's: nothing to read again.

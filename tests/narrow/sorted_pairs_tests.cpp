@@ -115,6 +115,20 @@ TEST_CASE("sorted pairs: global ids are named (object, triangle) across empty ob
     REQUIRE(cut);
     CHECK(cut->pairs == std::vector<TrianglePair>(expected.begin(), expected.begin() + static_cast<std::ptrdiff_t>(few.max_pairs)));
     CHECK(cut->pairs_left_out == pairs.size() - few.max_pairs);
+    // No pairs: an empty result, and no loop over every triangle (the host's responses'
+    // marks and slots, many tasks over a source of 2^24 triangles): no task runs.
+    std::size_t tasks = 0;
+    CallbackExecutor counting(3, [&tasks](std::size_t n, const std::function<void(std::size_t)>& run) {
+        for (std::size_t k = 0; k < n; ++k, ++tasks) run(k);
+    });
+    TriangleSource big;
+    REQUIRE(big.addGpuMesh(1u << 24));
+    auto none = narrow::runSortedPairs({}, big, {}, counting, ws);
+    REQUIRE(none);
+    CHECK(none->pairs.empty());
+    CHECK(none->responses.empty());
+    CHECK(none->pairs_left_out == 0);
+    CHECK(tasks == 0);
 }
 
 TEST_CASE("sorted pairs: a list out of range or out of order fails naming its first bad pair", "[narrow][sorted]") {

@@ -27,6 +27,14 @@ medians over frames >= 1.
                                          each mode's median of its rounds' medians over
                                          the fast-clock frames >= 1, and its difference from
                                          the baseline mode per round
+    python3 analyse46.py variants run56 small sort-cpu
+                                         the files {name}-<round> holding several variants of
+                                         one binary (run 56: default and sort-cpu); per scene
+                                         and stage (the host total, the GPU span, the host's
+                                         narrow phase, pairs-small and its copy), each
+                                         variant's median of its rounds' medians over the
+                                         fast-clock frames >= 1, and its difference from the
+                                         base variant per round
     python3 analyse46.py paired run48    per scene, every frame >= 1 (no clock filter: the GPU
                                          span is not what changes), the host total's median per
                                          round and policy; the new policy's difference per round"""
@@ -139,6 +147,28 @@ if what == 'modes':  # run 54: one binary's switches, alternated rounds
                 d = [st.median(val[(sc, m, r, stage)]) - b[r] for r in rounds if r in b and val.get((sc, m, r, stage))]
                 cells.append(' '.join(f'{x:+.3f}' for x in d) if d else '-')
             print(f'| {sc} | {stage} | {st.median(list(b.values())):.3f} | ' + ' | '.join(cells) + ' |')
+    sys.exit(0)
+if what == 'variants':  # run 56: two variants of one bench call per round, alternated
+    run, name, base = sys.argv[2], sys.argv[3], sys.argv[4]
+    stages = (('host', 'total'), ('detect', 'gpu-span'), ('host', 'narrow'), ('gpu', 'pairs-small'), ('gpu', 'pairs-small-to-host'))
+    val = defaultdict(list)
+    for (sc, v, rnd, tag, fr), x in fast_clock(read_frames(run, name), run).items():
+        for stage in stages:
+            if stage in x: val[(sc, v, rnd, stage[1])].append(x[stage])
+    variants, rounds = sorted({k[1] for k in val}), sorted({k[2] for k in val})
+    others = [v for v in variants if v != base]
+    print(f'| scene | stage | {base}, ms (median of rounds) | ' + ' | '.join(f'{v}, ms | {v} - {base} per round (' + ' '.join(rounds) + ')' for v in others) + ' |')
+    print('|---|---|---|' + '---|---|' * len(others))
+    for sc in sorted({k[0] for k in val}):
+        for stage in (s_[1] for s_ in stages):
+            b = {r: st.median(val[(sc, base, r, stage)]) for r in rounds if val.get((sc, base, r, stage))}
+            o = {v: {r: st.median(val[(sc, v, r, stage)]) for r in rounds if val.get((sc, v, r, stage))} for v in others}
+            if not b and not any(o.values()): continue
+            cells = []
+            for v in others:
+                d = [o[v][r] - b[r] for r in rounds if r in b and r in o[v]]
+                cells.append((f'{st.median(list(o[v].values())):.3f}' if o[v] else '-') + ' | ' + (' '.join(f'{x:+.3f}' for x in d) if d else '-'))
+            print(f'| {sc} | {stage} | ' + (f'{st.median(list(b.values())):.3f}' if b else '-') + ' | ' + ' | '.join(cells) + ' |')
     sys.exit(0)
 if what == 'paired':
     run = sys.argv[2]

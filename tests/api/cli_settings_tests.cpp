@@ -420,6 +420,28 @@ TEST_CASE("vkcollide detect: --pair-sort, --responses and --pair-naming choose w
     const Run bad_naming = runCli("detect " + s.plain_files + " --pair-naming never");
     CHECK(bad_naming.status == 1);
     CHECK(bad_naming.err.find("--pair-naming needs auto or after-fence, got 'never'") != std::string::npos);
+    // --pair-sort auto, few pairs: one GPU pass sorts them and computes the responses; the
+    // JSON and the summary say where each part ran.
+    const bool on_gpu = stats(gpu)["gpu_exact_tests"].number() > 0;
+    const Json automatic = detectJson(s.scratch, s.plain_files);
+    REQUIRE(stats(automatic)["pairs"].number() < 4096);
+    CHECK(stats(automatic)["pairs_sorted_in_one_pass"].boolean() == on_gpu);
+    CHECK(stats(automatic)["pairs_sorted_on_gpu"].boolean() == on_gpu);
+    CHECK_FALSE(stats(gpu)["pairs_sorted_in_one_pass"].boolean());
+    CHECK_FALSE(stats(cpu)["pairs_sorted_in_one_pass"].boolean());
+    CHECK(jsonPairs(automatic["frames"][0]) == jsonPairs(cpu["frames"][0]));
+    const auto summary = [&](const std::string& options) {
+        const Run r = runCli("detect " + s.plain_files + options);
+        CHECK(r.status == 0);
+        const std::size_t at = r.out.find("exact decision: ");
+        return at == std::string::npos ? std::string() : r.out.substr(at, r.out.find('\n', at) - at);
+    };
+    if (on_gpu) {
+        CHECK(summary("").find("pairs sorted in one GPU pass, responses computed on the GPU (GPU sorting ") != std::string::npos);
+        CHECK(summary(" --pair-sort gpu").find("pairs sorted on the GPU, responses computed on the GPU") != std::string::npos);
+    }
+    CHECK(summary(" --pair-sort cpu").find("pairs sorted on the host, responses computed on the host") != std::string::npos);
+    CHECK(summary(" --exact cpu").find("exact decision: CPU (") != std::string::npos);
 }
 
 TEST_CASE("vkcollide detect: --exact-pass runs the exact decision inside the pair pass or in a pass of its own", "[cli][gpu]") {

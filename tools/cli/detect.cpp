@@ -36,6 +36,24 @@ std::string selfCollision(const Scene& scene) {
     return "self-collision on for " + counted(on, "object", "objects");
 }
 
+// The reliable method: where the pairs were decided, sorted and their responses computed
+// (DetectStats: gpu_exact_tests, cpu_exact_tests, reliable.*), with the GPU's sorting time.
+std::string whereDecided(const vkcollide::DetectStats& st) {
+    std::string out = "exact decision: ";
+    if (st.gpu_exact_tests > 0 || st.cpu_exact_tests == 0) out += "GPU (" + counted(st.gpu_exact_tests, "test", "tests") + ")";
+    if (st.cpu_exact_tests > 0) out += std::string(st.gpu_exact_tests > 0 ? " and " : "") + "CPU (" + counted(st.cpu_exact_tests, "test", "tests") + ")";
+    const vkcollide::ReliableStats& rs = st.reliable;
+    out += "; pairs sorted ";
+    out += rs.pairs_sorted_in_one_pass ? "in one GPU pass" : rs.pairs_sorted_on_gpu ? "on the GPU" : "on the host";
+    out += std::string(", responses computed ") + (rs.responses_on_gpu ? "on the GPU" : "on the host");
+    if (rs.sorting_ms > 0) {
+        char ms[32];
+        std::snprintf(ms, sizeof ms, "%.3f", rs.sorting_ms);
+        out += std::string(" (GPU sorting ") + ms + " ms)";
+    }
+    return out;
+}
+
 void printSummary(const std::string& device, const Scene& scene, const vkcollide::DetectResult& r) {
     const vkcollide::DetectStats& st = r.stats;
     std::printf("device: %s\n", device.c_str());
@@ -59,6 +77,7 @@ void printSummary(const std::string& device, const Scene& scene, const vkcollide
                 st.triangles, st.collision_rays, st.triangles_downloaded, st.potentially_colliding_triangles, st.triangle_tests,
                 st.positive_tests);
     std::printf("colliding triangle pairs: %zu\n", r.pairs.size());
+    if (st.method == vkcollide::DetectMethod::Reliable) std::printf("%s\n", whereDecided(st).c_str());
     for (const vkcollide::ObjectContact& c : r.contacts)
         std::printf("contact %s - %s: volume %.6g, normal (%.4f, %.4f, %.4f), depth %.6g, at (%.6g, %.6g, %.6g)%s\n",
                     scene.objects.at(c.object_a).options.name.c_str(), scene.objects.at(c.object_b).options.name.c_str(), c.volume,

@@ -378,11 +378,12 @@ struct DeviceResponsesParams {
 
 // ---- Few pairs sorted in one pass (PairSort::Auto below kGpuPairSortFrom; src/broad/cells/small_sort.cpp) ---
 // One workgroup sorts the exact run's survivors (global ids a < b, unsorted, a rare pair
-// twice) into the host result's order, drops repeats and computes every colliding
-// triangle's response (as DeviceResponse, to the bit the CPU's): a bitonic sort in shared
-// memory, then the pairs' ends ordered by merging two sorted lists. Where the survivors do
-// not fit (or the run is incomplete) it writes kSmallSortSkipped and the host sorts them as
-// before. spirv/cells/small_sort.comp.glsl has the steps.
+// twice) into the host result's order and drops repeats (a bitonic sort in shared memory),
+// orders the pairs' ends by merging two sorted lists and lists the responders; then one
+// invocation per responder computes every colliding triangle's response (as DeviceResponse,
+// to the bit the CPU's). Where the survivors do not fit (or the run is incomplete) it writes
+// kSmallSortSkipped and the host sorts them as before. spirv/cells/small_sort.comp.glsl and
+// small_sort_respond.comp.glsl have the steps.
 VKC_CONST kSmallSortGroupSize = 1024u;
 VKC_CONST kSmallSortPairs = 4096u;  // survivors it sorts: its shared memory holds 8 bytes each (32 KiB)
 VKC_CONST kSmallSortDone = 1u;
@@ -398,8 +399,11 @@ struct SmallSortParams {
     VKC_ADDRESS(uint64_t) header;     // SmallSortHeader
     VKC_ADDRESS(uint64_t) pairs;      // uvec2[kSmallSortPairs]: the distinct pairs (a, b), ascending
     VKC_ADDRESS(uint64_t) ends;       // uvec2[2 kSmallSortPairs]: each pair's two ends (triangle, partner), ascending
-    VKC_ADDRESS(uint64_t) normals;    // double[3 * 2 kSmallSortPairs]: each responder's unit normal
-    VKC_ADDRESS(uint64_t) responses;  // DeviceResponse[2 kSmallSortPairs]
+    VKC_ADDRESS(uint64_t) responders;  // uint[2 kSmallSortPairs]: each responder's triangle (global id), ascending
+    VKC_ADDRESS(uint64_t) run_begin;   // uint[2 kSmallSortPairs + 1]: each responder's first end; then the end count
+    VKC_ADDRESS(uint64_t) args;        // VkDispatchIndirectCommand: small_sort_respond.comp over the responders
+    VKC_ADDRESS(uint64_t) normals;     // double[3 * 2 kSmallSortPairs]: each responder's unit normal
+    VKC_ADDRESS(uint64_t) responses;   // DeviceResponse[2 kSmallSortPairs]
     uint triangle_count;
     uint spare;
 };

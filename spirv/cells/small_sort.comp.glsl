@@ -16,25 +16,19 @@
 //      B's below) into `ends`, ascending: each triangle's partners in ascending order,
 //      the CPU's order of a response's terms;
 //   4. each run of one triangle in `ends` is a responder: numbered by a scan, its triangle
-//      kept in shared memory and its unit normal (response_math.glsl.inc) computed once,
-//      into `normals` (every partner is a responder too);
-//   5. each end's partner replaced by its responder's number (a binary search);
-//   6. each response summed by the invocation holding its run's first end.
+//      and its run's first end written (`responders`, `run_begin`), and the indirect
+//      dispatch of the responses over them (`args`);
+//   5. each end's partner replaced by its responder's number (a binary search over the
+//      responders, kept in shared memory).
+// small_sort_respond.comp then computes the unit normals and the responses, one invocation
+// per responder, over as many workgroups as they need: the double arithmetic spread over
+// the GPU, not one multiprocessor.
 // The survivors must fit kSmallSortPairs and the run be complete; otherwise (or with a
 // survivor out of range) the header says kSmallSortSkipped, and the host sorts them. Every
 // loop is bounded by kSmallSortPairs, so llvmpipe's loop limit never ends one.
 #include "cells_common.glsl.inc"
-#include "exact_predicates.glsl.inc"
-#include "rounded_fp64.glsl.inc"
-#include "response_math.glsl.inc"
+#include "small_sort.glsl.inc"
 layout(local_size_x = kSmallSortGroupSize) in;
-
-layout(buffer_reference, scalar, buffer_reference_align = 8) readonly buffer SmallSortParamsRef { SmallSortParams p; };
-layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer SmallSortHeaderRef { SmallSortHeader h; };
-// Written and read again by other invocations of the workgroup: coherent, after barriers.
-layout(buffer_reference, scalar, buffer_reference_align = 4) coherent buffer KeysRef { uvec2 v[]; };
-layout(buffer_reference, scalar, buffer_reference_align = 8) coherent buffer DoublesRef { double v[]; };
-layout(buffer_reference, scalar, buffer_reference_align = 4) writeonly buffer DeviceResponsesRef { DeviceResponse r[]; };
 
 // The whole shared memory of a 32 KiB device: the keys, and between sorts a scan's scratch.
 shared uvec2 s_keys[kSmallSortPairs];
@@ -118,8 +112,6 @@ uint responderOf(uint t, uint count) {
     return lo;
 }
 
-dvec3 loadNormal(DoublesRef normals, uint r) { return dvec3(normals.v[3u * r], normals.v[3u * r + 1u], normals.v[3u * r + 2u]); }
-
 // Invocation i's share of [0, n): a run of consecutive items (their order follows i).
 uvec2 share(uint n) {
     uint per = (n + kSmallSortGroupSize - 1u) / kSmallSortGroupSize;
@@ -134,7 +126,10 @@ void main() {
     const uint n = min(cellsHeader(P).h.survivors, P.survivor_capacity);
     // Uniform: every invocation reads the same header.
     if (!runComplete(P) || n > kSmallSortPairs) {
-        if (self == 0u) SmallSortHeaderRef(S.header).h = SmallSortHeader(kSmallSortSkipped, n, 0u, 0u);
+        if (self == 0u) {
+            SmallSortHeaderRef(S.header).h = SmallSortHeader(kSmallSortSkipped, n, 0u, 0u);
+            writeResponseArgs(S, 0u);
+        }
         return;
     }
 
@@ -190,8 +185,7 @@ void main() {
     barrier();  // B no longer needed: s_keys is the next scan's scratch
 
     // 4. The responders: each run of one triangle in `ends`, numbered by a scan over the runs'
-    // first ends; their triangles in shared memory, their unit normals in `normals`, one each
-    // (every partner is a responder too).
+    // first ends (every partner is a responder too).
     const uint end_count = 2u * pairs;
     const uvec2 runs_in = share(end_count);
     uint heads = 0u;
@@ -199,47 +193,22 @@ void main() {
         if (e == 0u || ends.v[e].x != ends.v[e - 1u].x) ++heads;
     uint responses;
     const uint first_r = groupExclusiveAdd(heads, responses);  // B is no longer needed: s_keys is its scratch
-    CellsGeometryRef geometry = CellsGeometryRef(P.geometry);
-    DoublesRef normals = DoublesRef(S.normals);
+    UintsRef responders = UintsRef(S.responders), run_begin = UintsRef(S.run_begin);
     for (uint e = runs_in.x, r = first_r; e < runs_in.y; ++e) {
         const uint t = ends.v[e].x;
         if (e > 0u && ends.v[e - 1u].x == t) continue;
         setResponder(r, t);
-        dvec3 n = unitNormal(geometry.g[t]);
-        normals.v[3u * r] = n.x;
-        normals.v[3u * r + 1u] = n.y;
-        normals.v[3u * r + 2u] = n.z;
+        responders.v[r] = t;
+        run_begin.v[r] = e;
         ++r;
     }
-    memoryBarrierBuffer();
+    if (self == 0u) {
+        run_begin.v[responses] = end_count;
+        writeResponseArgs(S, bad ? 0u : responses);
+    }
     barrier();
     // 5. Each end's partner replaced by its responder's number (the partner's id is not read
     // again; each invocation rewrites its own ends only).
     for (uint e = runs_in.x; e < runs_in.y; ++e) ends.v[e].y = responderOf(ends.v[e].y, responses);
-    memoryBarrierBuffer();
-    barrier();
-    // 6. A response per run, summed by the invocation holding its first end, in the run's
-    // (ascending partner) order.
-    CellsTrianglesRef triangles = CellsTrianglesRef(P.triangles);
-    ObjectsRef objects = ObjectsRef(P.objects);
-    DeviceResponsesRef out_responses = DeviceResponsesRef(S.responses);
-    for (uint e = runs_in.x, r = first_r; e < runs_in.y; ++e) {
-        const uint t = ends.v[e].x;
-        if (e > 0u && ends.v[e - 1u].x == t) continue;
-        const dvec3 n_t = loadNormal(normals, r);
-        dvec3 sum = dvec3(0.0lf);
-        uint partners = 0u;
-        for (uint q = e; q < end_count && ends.v[q].x == t; ++q, ++partners) addTerm(sum, loadNormal(normals, ends.v[q].y), n_t);
-        uvec3 direction = responseDirection(sum);
-        uint object = triangles.t[t].key & kCellsKeyObject;  // the run's object index: the host result's
-        DeviceResponse out_r;
-        out_r.object = object;
-        out_r.triangle = t - objects.o[object].triangle_base;
-        out_r.direction[0] = direction.x;
-        out_r.direction[1] = direction.y;
-        out_r.direction[2] = direction.z;
-        out_r.partner_count = partners;
-        out_responses.r[r++] = out_r;
-    }
     if (self == 0u) SmallSortHeaderRef(S.header).h = SmallSortHeader(bad ? kSmallSortSkipped : kSmallSortDone, n, pairs, responses);
 }

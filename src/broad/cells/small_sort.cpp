@@ -12,7 +12,7 @@
 namespace vkcollide::passes {
 namespace {
 
-static_assert(sizeof(gpu::SmallSortParams) == 6 * 8 + 2 * 4);
+static_assert(sizeof(gpu::SmallSortParams) == 9 * 8 + 2 * 4);
 static_assert(sizeof(gpu::SmallSortHeader) == 16);
 static_assert(sizeof(CandidatePair) == 8 && sizeof(gpu::DeviceResponse) == sizeof(TriangleResponse));
 
@@ -30,12 +30,18 @@ Result<std::unique_ptr<SmallSortStage>> SmallSortStage::create(vk::Device& devic
     auto p = vk::Pipeline::createCompute(device, shaders::small_sort_comp, {}, sizeof(gpu::Push), "small-sort");
     if (!p) return p.error();
     stage->pipeline_ = std::move(*p);
+    auto respond = vk::Pipeline::createCompute(device, shaders::small_sort_respond_comp, {}, sizeof(gpu::Push), "small-sort-respond");
+    if (!respond) return respond.error();
+    stage->respond_pipeline_ = std::move(*respond);
     using vk::MemoryKind;
     Buffers& b = stage->buf_;
     b.params = table.addOwned("small-sort-params", MemoryKind::Upload);
     b.header = table.addOwned("small-sort-header", MemoryKind::DeviceLocal);
     b.pairs = table.addOwned("small-sort-pairs", MemoryKind::DeviceLocal);
     b.ends = table.addOwned("small-sort-ends", MemoryKind::DeviceLocal);
+    b.responders = table.addOwned("small-sort-responders", MemoryKind::DeviceLocal);
+    b.run_begin = table.addOwned("small-sort-run-begin", MemoryKind::DeviceLocal);
+    b.args = table.addOwned("small-sort-args", MemoryKind::DeviceLocal, VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     b.normals = table.addOwned("small-sort-normals", MemoryKind::DeviceLocal);
     b.responses = table.addOwned("small-sort-responses", MemoryKind::DeviceLocal);
     b.host_header = table.addOwned("small-sort-header-host", MemoryKind::Readback);
@@ -54,6 +60,9 @@ Result<void> SmallSortStage::prepare(const CellStage& cells, std::uint32_t last_
         rowSize(buf_.header, sizeof(gpu::SmallSortHeader), MemoryKind::DeviceLocal),
         rowSize(buf_.pairs, VkDeviceSize(gpu::kSmallSortPairs) * 8, MemoryKind::DeviceLocal),
         rowSize(buf_.ends, VkDeviceSize(kMaxEnds) * 8, MemoryKind::DeviceLocal),
+        rowSize(buf_.responders, VkDeviceSize(kMaxEnds) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.run_begin, VkDeviceSize(kMaxEnds + 1) * 4, MemoryKind::DeviceLocal),
+        rowSize(buf_.args, 12, MemoryKind::DeviceLocal),
         rowSize(buf_.normals, VkDeviceSize(kMaxEnds) * 3 * sizeof(double), MemoryKind::DeviceLocal),
         rowSize(buf_.responses, VkDeviceSize(kMaxEnds) * sizeof(gpu::DeviceResponse), MemoryKind::DeviceLocal),
         rowSize(buf_.host_header, sizeof(gpu::SmallSortHeader), MemoryKind::Readback),
@@ -66,6 +75,9 @@ Result<void> SmallSortStage::prepare(const CellStage& cells, std::uint32_t last_
     p.header = buf_.header->address();
     p.pairs = buf_.pairs->address();
     p.ends = buf_.ends->address();
+    p.responders = buf_.responders->address();
+    p.run_begin = buf_.run_begin->address();
+    p.args = buf_.args->address();
     p.normals = buf_.normals->address();
     p.responses = buf_.responses->address();
     p.triangle_count = triangles;
@@ -77,22 +89,41 @@ Result<void> SmallSortStage::prepare(const CellStage& cells, std::uint32_t last_
 void SmallSortStage::record(graph::Graph& g, const CellStage::Resources& cells) {
     Buffers& b = buf_;
     const auto header = importRow(g, b.header), pairs = importRow(g, b.pairs), ends = importRow(g, b.ends);
+    const auto responders = importRow(g, b.responders), run_begin = importRow(g, b.run_begin), args = importRow(g, b.args);
     const auto normals = importRow(g, b.normals), responses = importRow(g, b.responses);
     const VkDeviceAddress params = b.params->address();
     const vk::Pipeline* pipe = &pipeline_;
+    const vk::Pipeline* respond = &respond_pipeline_;
     addPass(g, "pairs-small", graph::PassKind::Compute, Stage::Sorting)
         .read(cells.header)
         .read(cells.survivors)
-        .read(cells.triangles)
-        .read(cells.geometry)
         .write(header)
         .write(pairs)
         .write(ends)
-        .write(normals)
-        .write(responses)
+        .write(responders)
+        .write(run_begin)
+        .write(args)
         .record([pipe, params](graph::PassContext& pc) {
             bindAndPush(pc, *pipe, params);
             pc.dispatch(1, 1, 1);
+        });
+    // Over the responders, as many workgroups as they need (none where the pass skipped).
+    addPass(g, "pairs-small-responses", graph::PassKind::Compute, Stage::Sorting)
+        .indirect(args)
+        .read(cells.triangles)
+        .read(cells.geometry)
+        .read(header)
+        .read(ends)
+        .read(responders)
+        .read(run_begin)
+        .write(normals)
+        .write(responses)
+        .record([respond, params, args_buffer = b.args->handle()](graph::PassContext& pc) {
+            bindAndPush(pc, *respond, params, 0, 0);
+            pc.dispatchIndirect(args_buffer, 0);
+            pc.shaderBarrier();
+            bindAndPush(pc, *respond, params, 0, 1);
+            pc.dispatchIndirect(args_buffer, 0);
         });
     const auto host_header = importRow(g, b.host_header, true), host_pairs = importRow(g, b.host_pairs, true);
     const auto host_responses = importRow(g, b.host_responses, true);

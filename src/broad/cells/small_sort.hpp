@@ -5,8 +5,11 @@
 // (device_pairs.hpp, device_responses.hpp) would take some twenty dispatches over every
 // triangle and the host about 50 ns a pair.
 //
-//   pairs-small          the pass (one workgroup of kSmallSortGroupSize)
-//   pairs-small-to-host  its header, pairs and responses copied to host memory
+//   pairs-small            the sort (one workgroup of kSmallSortGroupSize): the pairs, their
+//                          ends in order, the responders
+//   pairs-small-responses  the responses, one invocation per responder (indirect: as many
+//                          workgroups as they need, none where the sort skipped)
+//   pairs-small-to-host    its header, pairs and responses copied to host memory
 //
 // It runs beside the host's path, never instead of it: the survivors stay in host memory,
 // so where they do not fit kSmallSortPairs, the run took more than one submission, or the
@@ -54,9 +57,9 @@ private:
 
     vk::Device* device_;
     BufferTable* table_;
-    vk::Pipeline pipeline_;
+    vk::Pipeline pipeline_, respond_pipeline_;
     struct Buffers {
-        TableRow params, header, pairs, ends, normals, responses, host_header, host_pairs, host_responses;
+        TableRow params, header, pairs, ends, responders, run_begin, args, normals, responses, host_header, host_pairs, host_responses;
     } buf_;
     std::uint32_t copy_pairs_ = 0, copy_responses_ = 0;
 };

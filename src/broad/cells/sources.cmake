@@ -12,4 +12,4 @@ list(APPEND VKCOLLIDE_GPU_SOURCES
 list(APPEND VKCOLLIDE_SHADERS
   cells/cells_setup.comp cells/cells_setup_nofp64.comp cells/cells_big.comp cells/cells_scan.comp cells/cells_fill.comp cells/cells_fill_per_footprint.comp cells/cells_sweep.comp
   cells/cells_sweep_plain.comp cells/cells_deep_sort.comp cells/cells_deep.comp cells/cells_deep_guarded.comp cells/cells_args.comp cells/cells_pairs.comp cells/cells_pairs_nofp64.comp cells/cells_pairs_inline.comp cells/cells_exact.comp
-  cells/device_pairs.comp cells/device_responses.comp cells/device_responses_sum.comp cells/small_sort.comp)
+  cells/device_pairs.comp cells/device_responses.comp cells/device_responses_sum.comp cells/small_sort.comp cells/small_sort_respond.comp)

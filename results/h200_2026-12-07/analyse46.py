@@ -31,7 +31,7 @@ medians over frames >= 1.
                                          the files {name}-<round> holding several variants of
                                          one binary (run 56: default and sort-cpu); per scene
                                          and stage (the host total, the GPU span, the host's
-                                         narrow phase, pairs-small and its copy), each
+                                         narrow phase, the one pass's two passes and its copy), each
                                          variant's median of its rounds' medians over the
                                          fast-clock frames >= 1, and its difference from the
                                          base variant per round
@@ -150,7 +150,7 @@ if what == 'modes':  # run 54: one binary's switches, alternated rounds
     sys.exit(0)
 if what == 'variants':  # run 56: two variants of one bench call per round, alternated
     run, name, base = sys.argv[2], sys.argv[3], sys.argv[4]
-    stages = (('host', 'total'), ('detect', 'gpu-span'), ('host', 'narrow'), ('gpu', 'pairs-small'), ('gpu', 'pairs-small-to-host'))
+    stages = (('host', 'total'), ('detect', 'gpu-span'), ('host', 'narrow'), ('gpu', 'pairs-small'), ('gpu', 'pairs-small-responses'), ('gpu', 'pairs-small-to-host'))
     val = defaultdict(list)
     for (sc, v, rnd, tag, fr), x in fast_clock(read_frames(run, name), run).items():
         for stage in stages:

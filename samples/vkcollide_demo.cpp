@@ -93,11 +93,18 @@ int main(int argc, char** argv) {
     std::printf("colliding triangle pairs: %zu\n", result->pairs.size());
     std::printf("GPU passes (ms):");
     for (const auto& p : st.gpu_passes) std::printf(" %s %.3f;", p.name.c_str(), p.gpu_ms);
-    if (st.method == DetectMethod::Reliable)
-        std::printf("\nstages (ms): footprints %.3f, pairing %.3f, filtering %.3f (GPU), readback %.3f, CPU narrow phase %.3f (%u thread%s), total %.3f\n",
-                    st.reliable.footprints_ms, st.reliable.pairing_ms, st.reliable.filtering_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads,
-                    st.host.narrow_threads == 1 ? "" : "s", st.total_ms);
-    else
+    if (st.method == DetectMethod::Reliable) {
+        // Where the pairs were decided and sorted, and so what the host's part did.
+        const char* sorted = st.reliable.pairs_sorted_in_one_pass ? "in one GPU pass" : st.reliable.pairs_sorted_on_gpu ? "on the GPU" : "on the host";
+        const char* host = !st.reliable.pairs_sorted_on_gpu   ? "CPU narrow phase"
+                           : st.reliable.responses_on_gpu ? "host naming and copying"
+                                                          : "host naming and responses";
+        std::printf("\nexact decision: %s; pairs sorted %s, responses computed %s\n", st.cpu_exact_tests > 0 ? "CPU" : "GPU", sorted,
+                    st.reliable.responses_on_gpu ? "on the GPU" : "on the host");
+        std::printf("stages (ms): footprints %.3f, pairing %.3f, filtering %.3f, sorting %.3f (GPU), readback %.3f, %s %.3f (%u thread%s), total %.3f\n",
+                    st.reliable.footprints_ms, st.reliable.pairing_ms, st.reliable.filtering_ms, st.reliable.sorting_ms, st.readback_ms, host,
+                    st.narrow_ms, st.host.narrow_threads, st.host.narrow_threads == 1 ? "" : "s", st.total_ms);
+    } else
         std::printf("\nstages (ms): sampling %.3f, merging %.3f, separation %.3f, packing %.3f, readback %.3f, CPU narrow phase %.3f (%u thread%s), total %.3f\n",
                     st.sampling_ms, st.peeling.merging_ms, st.peeling.separation_ms, st.peeling.packing_ms, st.readback_ms, st.narrow_ms, st.host.narrow_threads,
                     st.host.narrow_threads == 1 ? "" : "s", st.total_ms);

@@ -559,6 +559,30 @@ TEST_CASE("pair sort: few pairs sorted in one GPU pass give the CPU sort's resul
     REQUIRE(resting_world->detectInto(into));
     CHECK(into.stats.reliable.pairs_sorted_in_one_pass);
     CHECK(into.pairs == onePassBoth(*resting_world).cpu.pairs);
+    // At the pass's limit: a self-colliding coplanar fan of 90 triangles (4,005 pairs, each
+    // triangle with 89 partners) fits its 4,096 survivors, one of 92 (4,186) does not; and a
+    // triangle with 2,000 partners (one run of 2,000 terms).
+    for (std::uint32_t n : {90u, 92u}) {
+        TestScene fan{"fan of " + std::to_string(n), {}};
+        fan.objects.push_back({coplanarFan(n), {.name = "fan", .self_collision = true, .open = true}});
+        const Both r = onePassBoth(*sceneWorld(ctx, fan));
+        const bool fits = r.gpu.stats.cells.survivors <= gpuOnePassSurvivors;
+        REQUIRE(fits == (n == 90));
+        INFO(fan.name);
+        CHECK(r.cpu.pairs.size() == std::size_t{n} * (n - 1) / 2);
+        if (fits) {
+            requireSameOnePass(r, fan.name, true);
+        } else {  // Auto then sorts on the host or, from kGpuPairSortFrom pairs on, the device-pairs passes
+            CHECK_FALSE(r.gpu.stats.reliable.pairs_sorted_in_one_pass);
+            CHECK(r.gpu.pairs == r.cpu.pairs);
+            CHECK(sameResponses(r.gpu.responses, r.cpu.responses));
+        }
+    }
+    const TestScene comb = combScene(2000);
+    const Both teeth = onePassBoth(*sceneWorld(ctx, comb));
+    REQUIRE(teeth.cpu.pairs.size() == 2000);
+    REQUIRE(teeth.cpu.responses.size() == 2001);
+    requireSameOnePass(teeth, comb.name, true);
     // Too many survivors (coincident grids, with a rerun of the cell stage): the host sorts
     // them, the same pairs.
     auto grids = coincidentGrids(40);

@@ -22,6 +22,7 @@
 #include "proximity/ownership.hpp"
 #include "support/device_copy.hpp"
 #include "support/gpu_fixture.hpp"
+#include "support/test_scenes.hpp"
 #include "vkcollide/scene.hpp"
 
 using namespace vkcollide;
@@ -45,20 +46,6 @@ HostMesh pileAt(Float3 t, std::uint32_t copies) {
         m.indices.insert(m.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
     }
     return m;
-}
-
-// `n` coplanar equilateral triangles about one centre, each turned a little further, each
-// with its own vertices: every two of them overlap, n (n - 1) / 2 pairs where it tests itself.
-HostMesh coplanarFan(std::uint32_t n) {
-    HostMesh fan{"fan", {}, {}};
-    for (std::uint32_t k = 0; k < n; ++k) {
-        for (int v = 0; v < 3; ++v) {
-            const double a = 0.011 * k + 2.0943951023931953 * v;
-            fan.positions.push_back({float(2.5 + 0.1 * std::cos(a)), float(0.1 * std::sin(a)), 0.0f});
-        }
-        fan.indices.insert(fan.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
-    }
-    return fan;
 }
 
 struct Outputs {
@@ -314,7 +301,7 @@ TEST_CASE("reliable: the sorted pairs handed over piece by piece while the GPU c
     REQUIRE(ctx.device().shader_float64);
     // Two spheres and a fan of 100 coplanar triangles, self-colliding: 4,950 pairs in the fan,
     // more than three of the four pieces of the smallest copy (4,096 pairs) hold.
-    const auto up = upload(ctx.device(), {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), coplanarFan(100)}, 2);
+    const auto up = upload(ctx.device(), {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), test::coplanarFan(100)}, 2);
     auto bp = BroadPhase::create(ctx.device(), ReliableMethod::create);
     REQUIRE(bp);
     BroadPhaseSettings s = exactWithProximity(48, 0.0);
@@ -416,7 +403,7 @@ TEST_CASE("reliable: few pairs sorted in one pass give the device pairs' sort an
     // triangle with many partners in one plane): 780 pairs in the fan.
     const auto up = upload(ctx.device(),
                            {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), sphereAt({0.6f, -0.03f, 0.02f}, 1.0f), sphereAt({0.0f, 1.1f, 0.0f}, 0.7f),
-                            coplanarFan(40)},
+                            test::coplanarFan(40)},
                            3);
     BroadPhaseSettings device_sort = exactWithProximity(48, 0.0);
     device_sort.responses_on_gpu = true;
@@ -440,7 +427,7 @@ TEST_CASE("reliable: few pairs sorted in one pass give the device pairs' sort an
         same(one, expected);
     }
     // A fan of 100: 4,950 pairs, more survivors than the pass holds: the host sorts them.
-    const auto many = upload(ctx.device(), {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), coplanarFan(100)}, 1);
+    const auto many = upload(ctx.device(), {sphereAt({-0.6f, 0.02f, 0.01f}, 1.0f), test::coplanarFan(100)}, 1);
     small.pair_chunk = ~0u;
     const Sorted left = detect(many->up.meshes, small);
     CHECK_FALSE(left.one_pass);

@@ -75,6 +75,32 @@ Result<TestScene> coincidentGrids(std::uint32_t cells) {
     return s;
 }
 
+HostMesh coplanarFan(std::uint32_t n) {
+    HostMesh fan{"fan", {}, {}};
+    for (std::uint32_t k = 0; k < n; ++k) {
+        for (int v = 0; v < 3; ++v) {
+            const double a = 0.011 * k + 2.0943951023931953 * v;
+            fan.positions.push_back({float(2.5 + 0.1 * std::cos(a)), float(0.1 * std::sin(a)), 0.0f});
+        }
+        fan.indices.insert(fan.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    return fan;
+}
+
+TestScene combScene(std::uint32_t teeth) {
+    TestScene s{"comb of " + std::to_string(teeth), {}};
+    s.objects.push_back({HostMesh{"plate", {{-40, -40, 0}, {40, -40, 0}, {0, 40, 0}}, {0, 1, 2}}, placed("plate", kIdentity3x4, false, true)});
+    HostMesh comb{"teeth", {}, {}};
+    const auto side = static_cast<std::uint32_t>(std::ceil(std::sqrt(double(teeth))));
+    for (std::uint32_t k = 0; k < teeth; ++k) {
+        const float x = -4.0f + 8.0f * float(k % side) / float(side), y = -4.0f + 8.0f * float(k / side) / float(side);
+        comb.positions.insert(comb.positions.end(), {{x, y, -0.1f}, {x + 0.01f, y, 0.1f}, {x, y + 0.01f, 0.1f}});
+        comb.indices.insert(comb.indices.end(), {3 * k, 3 * k + 1, 3 * k + 2});
+    }
+    s.objects.push_back({std::move(comb), placed("teeth", kIdentity3x4, false, true)});
+    return s;
+}
+
 Result<std::vector<TestScene>> allTestScenes(float d) {
     std::vector<TestScene> out;
     for (auto make : {overlappingSpheres, torusThroughBox, selfIntersectingTube, clothThroughSphere}) {

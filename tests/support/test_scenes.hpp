@@ -38,6 +38,13 @@ Result<std::vector<TestScene>> allTestScenes(float detail = 1.0f);
 // dozen of the other copies' (40 cells: more pairs than a first run's survivor capacity,
 // so the reliable method runs again). Not in allTestScenes.
 Result<TestScene> coincidentGrids(std::uint32_t cells);
+// `n` coplanar equilateral triangles about one centre near (2.5, 0, 0), each turned a little
+// further, each with its own vertices: every two overlap, n (n - 1) / 2 pairs where the
+// object tests itself, every triangle with n - 1 partners.
+HostMesh coplanarFan(std::uint32_t n);
+// One large triangle in the plane z = 0 and `teeth` small triangles of another object, each
+// crossing it: `teeth` pairs, one triangle with all of them as partners.
+TestScene combScene(std::uint32_t teeth);
 
 Transform3x4 rotationY(float angle, Float3 translation);
 

@@ -579,7 +579,11 @@ TEST_CASE("pair sort: few pairs sorted in one GPU pass give the CPU sort's resul
         }
     }
     const TestScene comb = combScene(2000);
-    const Both teeth = onePassBoth(*sceneWorld(ctx, comb));
+    auto comb_world = sceneWorld(ctx, comb);
+    auto first_comb = comb_world->detect();  // the first detection's copies hold what the pass can write
+    REQUIRE(first_comb);
+    CHECK(first_comb->stats.reliable.pairs_sorted_in_one_pass);
+    const Both teeth = onePassBoth(*comb_world);
     REQUIRE(teeth.cpu.pairs.size() == 2000);
     REQUIRE(teeth.cpu.responses.size() == 2001);
     requireSameOnePass(teeth, comb.name, true);

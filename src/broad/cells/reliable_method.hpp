@@ -130,10 +130,10 @@ private:
     std::vector<std::uint32_t> object_tags_;
     VkDeviceAddress fault_header_ = 0;
     // Few pairs sorted in one pass (BroadPhaseSettings::small_sort): made on first use; the
-    // last result's counts size its copies.
+    // last result's counts size its copies (before any: what the pass can write).
     std::unique_ptr<SmallSortStage> small_sort_;
     bool small_sort_on_ = false;
-    std::uint32_t last_small_pairs_ = 0, last_small_responses_ = 0;
+    std::uint32_t last_small_pairs_ = gpu::kSmallSortPairs, last_small_responses_ = 2 * gpu::kSmallSortPairs;
     // Proximity (BroadPhaseSettings::proximity_distance): made on first use.
     std::unique_ptr<proximity::ProximityStage> proximity_;
     bool proximity_on_ = false;

@@ -15,7 +15,7 @@
 // so where they do not fit kSmallSortPairs, the run took more than one submission, or the
 // copies hold fewer pairs or responses than were found, result() says so and the host sorts
 // the survivors as before. The copies hold twice the last result's counts (at least
-// kMinCopy), at most what the pass can write.
+// kMinCopy), at most what the pass can write (all of it before the first result).
 //
 // Not thread-safe; one per cell stage (ReliableMethod).
 #pragma once

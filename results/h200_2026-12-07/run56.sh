@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Device run 56 (session 66): the one pass of few pairs (PairSort::Auto below
 # kGpuPairSortFrom: spirv/cells/small_sort.comp.glsl) on the kind the targets name
-# (asked as nvidia-h200; gpu.txt says which card came). One build, s90 = 3a0062a (the
+# (asked as nvidia-h200; gpu.txt says which card came). One build, s90 = 298ed90 (the
 # pass and its follow-ups, its tests at the limit), Release, stripped: the bench and two test executables.
 #   tests-*.txt: the pass against the device-pairs passes and the CPU's sort, to the bit, on
 #     this driver (the same test cases CI runs on lavapipe).

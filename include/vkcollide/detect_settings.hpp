@@ -304,8 +304,8 @@ struct DetectSettings {
 };
 inline constexpr std::uint32_t kMaxDevicePairCapacity = 1u << 27;
 // PairSort::Auto sorts on the GPU's device-pairs passes from this many pairs in the world's
-// last detection: below it they cost more than the host's sort, and one pass of one
-// workgroup sorts the pairs and computes their responses where it holds the survivors
+// last detection: below it they cost more than the host's sort, and one workgroup sorts the
+// pairs and a pass over the responders computes their responses where the survivors fit it
 // (docs/exact_gpu.md, "Few pairs: one pass").
 inline constexpr std::size_t kGpuPairSortFrom = 4096;
 // Where the GPU sorts the pairs and computes their responses, the host names the pairs while

@@ -7,8 +7,9 @@
 // and the depth peeling of Georgii, Krüger and Westermann (2006). With the reliable
 // method on a device with shaderFloat64 (the default), the GPU decides every pair
 // exactly and sorts them and computes their responses (the host then names and copies
-// them): from kGpuPairSortFrom pairs in passes over the triangles, below that in one pass
-// of one workgroup where the survivors fit it (else the host sorts them). Without
+// them): from kGpuPairSortFrom pairs in passes over the triangles, below that in one
+// workgroup's sort and a pass over the responders where the survivors fit it (else the
+// host sorts them). Without
 // shaderFloat64, with peeling, or where the settings ask for it, the CPU narrow phase
 // decides (the reference path). DetectStats says which ran (gpu_exact_tests,
 // cpu_exact_tests, reliable.pairs_sorted_on_gpu, reliable.pairs_sorted_in_one_pass).

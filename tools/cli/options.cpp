@@ -175,8 +175,8 @@ const std::vector<Option>& options() {
         reliable({"--pair-sort", "WHERE", Section::Settings,
                   "where the exact decision's pairs are put in order: auto (the GPU: its device-pairs passes from 4096 pairs in the last "
                   "detection, below that one pass where the survivors fit it), gpu or cpu (the narrow phase; docs/exact_gpu.md)",
-                  "gpu: the device-pairs passes and one copy; auto below 4096: one pass of one workgroup and one copy; cpu: the host "
-                  "sorts; same pairs and responses",
+                  "gpu: the device-pairs passes and one copy; auto below 4096: one workgroup's sort, a pass over the responders and "
+                  "one copy; cpu: the host sorts; same pairs and responses",
                   setting<kReliable, &ReliableSettings::pair_sort>, "pair_sort", "reliable.pair_sort", show<kReliable, &ReliableSettings::pair_sort>}),
         reliable({"--responses", "WHERE", Section::Settings,
                   "where the responses are computed when the pairs are sorted on the GPU: auto (the GPU), gpu (the pairs sorted "

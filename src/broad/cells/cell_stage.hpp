@@ -335,7 +335,9 @@ private:
     struct PairPassIds {
         graph::ResourceId header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, exact_queue;
     };
-    void recordPairPass(graph::Graph& g, const PairPassIds& ids, std::uint32_t chunk);
+    // The pair pass, the last passes of every submission of the stage: returns what later
+    // passes of the same graph read (record(), the chunks').
+    Resources recordPairPass(graph::Graph& g, const PairPassIds& ids, std::uint32_t chunk);
     struct SweepIds {
         graph::ResourceId header, entries, chunk_cells, offsets, counts, deep, sorted, candidates, args;
     };

@@ -127,9 +127,8 @@ CellStage::Resources CellStage::record(graph::Graph& g, graph::ResourceId projec
 
     recordSweep(g, {header, entries, chunk_cells, offsets, counts, deep, importRow(g, buf_.sorted), candidates, args});
     sweep_chunks_ = 1;  // a run starts its sweep over
-    recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, importRow(g, buf_.exact_queue)},
-                   0);
-    return {header, survivors, tris, candidates, geometry, args};
+    return recordPairPass(g, {header, header_rb, tris, geometry, candidates, survivors, args, gpu_triangles, marks, importRow(g, buf_.exact_queue)},
+                          0);
 }
 
 // The sweep over the chunk of entries and deep items the arguments hold (the scan's last
@@ -183,17 +182,17 @@ CellStage::Resources CellStage::recordSweepChunk(graph::Graph& g) {
     recordSweep(g, {header, importRow(g, buf_.entries), importRow(g, buf_.chunk_cells), importRow(g, buf_.offsets),
                     importRow(g, buf_.counts), importRow(g, buf_.deep_items), importRow(g, buf_.sorted), candidates, args});
     ++sweep_chunks_;
-    const PairPassIds id{header, importRow(g, buf_.header_rb, true), importRow(g, buf_.triangles), importRow(g, buf_.geometry), candidates,
-                         importRow(g, buf_.survivors, !survivors_on_device_), args, importRow(g, buf_.gpu_triangles, true),
-                         importRow(g, buf_.marks), importRow(g, buf_.exact_queue)};
-    recordPairPass(g, id, 0);
-    return {id.header, id.survivors, id.tris, id.candidates, id.geometry, id.args};
+    return recordPairPass(g,
+                          {header, importRow(g, buf_.header_rb, true), importRow(g, buf_.triangles), importRow(g, buf_.geometry), candidates,
+                           importRow(g, buf_.survivors, !survivors_on_device_), args, importRow(g, buf_.gpu_triangles, true),
+                           importRow(g, buf_.marks), importRow(g, buf_.exact_queue)},
+                          0);
 }
 
 // The pair pass over chunk `chunk` of the candidates (its arguments first), with the exact
 // decision the exact pass over what it queued (its arguments first), then the header to
 // the host: the last passes of a run, and all of a later chunk's submission.
-void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint32_t chunk) {
+CellStage::Resources CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint32_t chunk) {
     const VkDeviceAddress params = buf_.params->address();
     const VkBuffer args_buffer = buf_.args->handle();
     const VkBuffer header_buffer = buf_.header->handle(), header_rb_buffer = buf_.header_rb->handle();
@@ -252,17 +251,18 @@ void CellStage::recordPairPass(graph::Graph& g, const PairPassIds& id, std::uint
             pc.copyBuffer(header_buffer, header_rb_buffer, copy);
         });
     next_chunk_ = chunk + 1;
+    return {id.header, id.survivors, id.tris, id.candidates, id.geometry, id.args};
 }
 
 CellStage::Resources CellStage::recordPairChunk(graph::Graph& g) {
     survivor_count_ = gpu_triangle_count_ = 0;
-    const PairPassIds id{importRow(g, buf_.header), importRow(g, buf_.header_rb, true),
-                         importRow(g, buf_.triangles), importRow(g, buf_.geometry),
-                         importRow(g, buf_.candidates),
-                         importRow(g, buf_.survivors, !survivors_on_device_), importRow(g, buf_.args),
-                         importRow(g, buf_.gpu_triangles, true), importRow(g, buf_.marks), importRow(g, buf_.exact_queue)};
-    recordPairPass(g, id, next_chunk_);
-    return {id.header, id.survivors, id.tris, id.candidates, id.geometry, id.args};
+    return recordPairPass(g,
+                          {importRow(g, buf_.header), importRow(g, buf_.header_rb, true),
+                           importRow(g, buf_.triangles), importRow(g, buf_.geometry),
+                           importRow(g, buf_.candidates),
+                           importRow(g, buf_.survivors, !survivors_on_device_), importRow(g, buf_.args),
+                           importRow(g, buf_.gpu_triangles, true), importRow(g, buf_.marks), importRow(g, buf_.exact_queue)},
+                          next_chunk_);
 }
 
 }  // namespace vkcollide::passes

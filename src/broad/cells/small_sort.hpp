@@ -1,7 +1,8 @@
 // Few pairs sorted in one pass (PairSort::Auto below kGpuPairSortFrom, docs/exact_gpu.md
-// "Few pairs: one pass"): one workgroup sorts the exact run's survivors, drops repeats and
-// computes every colliding triangle's response, equal to the CPU narrow phase's to the bit
-// (spirv/cells/small_sort.comp.glsl has the steps), where the device-pairs passes
+// "Few pairs: one pass"): one workgroup sorts the exact run's survivors and drops repeats,
+// then one invocation per responder computes every colliding triangle's response, equal to
+// the CPU narrow phase's to the bit (spirv/cells/small_sort*.comp.glsl have the steps),
+// where the device-pairs passes
 // (device_pairs.hpp, device_responses.hpp) would take some twenty dispatches over every
 // triangle and the host about 50 ns a pair.
 //
